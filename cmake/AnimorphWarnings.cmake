@@ -1,0 +1,8 @@
+# Strict warnings on our own targets only; third-party headers come from
+# /usr/include and are treated as system headers.
+function(animorph_target_defaults target)
+  # -Wno-restrict: GCC 12 reports false positives inside std::string's
+  # operator+ at -O3 (GCC bug 105329).
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Werror -Wno-restrict)
+  target_compile_features(${target} PUBLIC cxx_std_20)
+endfunction()

@@ -1,0 +1,83 @@
+#pragma once
+// The open project: its data, its file, its undo history and its autosave.
+// Panels read project() and change it only through execute(); the current
+// frame and the selection are view state and bypass the undo stack.
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "doc/command.h"
+#include "doc/project.h"
+#include "doc/undo_stack.h"
+#include "util/result.h"
+
+namespace animorph {
+
+struct Selection {
+  std::string actorId;  // empty: nothing selected
+  int node = -1;        // a node of that actor's character, or -1 for the actor itself
+  bool operator==(const Selection&) const = default;
+};
+
+class Document {
+ public:
+  Document();
+
+  // Opens a project file. The error names the file and the problem.
+  static Result<std::unique_ptr<Document>> open(const std::string& path);
+
+  const Project& project() const { return project_; }
+  // Applies and records an edit.
+  void execute(std::unique_ptr<Command> cmd);
+  bool undo();
+  bool redo();
+  UndoStack& history() { return history_; }
+  const UndoStack& history() const { return history_; }
+  void beginDrag() { history_.beginMerge(); }
+  void endDrag() { history_.endMerge(); }
+
+  // Unsaved changes exist.
+  bool dirty() const { return recovered_ || !history_.isClean(); }
+  // Increments on every change of project data (edits, undo, redo, load).
+  uint64_t revision() const { return revision_; }
+
+  // Current frame (view state: not undoable, does not dirty the document).
+  void setCurrentFrame(int frame);
+  Selection selection;
+
+  const std::string& path() const { return path_; }  // empty while untitled
+  std::string displayName() const;
+  // Directory that relative asset paths are resolved against.
+  std::string baseDir() const;
+  // Absolute path of an actor's asset.
+  std::string resolveAsset(const std::string& assetPath) const;
+
+  Status save();  // fails if untitled
+  Status saveAs(const std::string& path);
+
+  // Autosave file beside the project (or in ~/.local/share/animorph for
+  // untitled projects).
+  std::string autosavePath() const;
+  // Writes the autosave if there are changes since the last save/autosave
+  // and intervalSec has passed since the last autosave. Returns true if it wrote.
+  bool autosaveIfDue(double nowSec, double intervalSec = 60.0);
+  // An autosave newer than path exists (offer to recover it).
+  static bool hasNewerAutosave(const std::string& path);
+  // Loads the autosave of path in place of path (the result is dirty and
+  // still saves to path).
+  static Result<std::unique_ptr<Document>> recoverAutosave(const std::string& path);
+
+  // Replaces the whole project (File > New); clears history.
+  void reset(Project p, std::string path);
+
+ private:
+  Project project_;
+  UndoStack history_;
+  std::string path_;
+  uint64_t revision_ = 1;
+  uint64_t autosavedRevision_ = 1;
+  double lastAutosaveSec_ = -1.0;
+  bool recovered_ = false;
+};
+
+}  // namespace animorph

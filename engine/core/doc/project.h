@@ -1,0 +1,61 @@
+#pragma once
+// The saved state of a project (*.animorph): actors, timeline, view options.
+// Plain data; the Document owns it and edits it only through Commands.
+#include <string>
+#include <vector>
+
+#include "math/transform.h"
+
+namespace animorph {
+
+inline constexpr int kProjectFormatVersion = 1;
+
+// A character placed in the scene, playing one of its clips.
+struct Actor {
+  std::string id;         // stable, unique in the project
+  std::string name;
+  std::string assetPath;  // glTF path, relative to the project file's directory
+  int clip = 0;           // index into the asset's clips; ignored when it has none
+  double timeOffsetSec = 0.0;  // clip time = (t - timeOffsetSec) * speed
+  double speed = 1.0;
+  bool loop = true;
+  bool visible = true;
+  Transform transform;
+  bool operator==(const Actor&) const = default;
+};
+
+struct Timeline {
+  double fps = 24.0;
+  int frameStart = 0;
+  int frameEnd = 96;
+  int currentFrame = 0;
+  double playbackSpeed = 1.0;
+  bool loop = true;
+  bool operator==(const Timeline&) const = default;
+
+  double frameToSec(double frame) const { return frame / fps; }
+  double secToFrame(double sec) const { return sec * fps; }
+};
+
+struct ViewOptions {
+  bool showGrid = true;
+  bool showSkeleton = true;
+  bool wireframe = false;
+  bool showAxes = true;
+  bool operator==(const ViewOptions&) const = default;
+};
+
+struct Project {
+  std::string name = "untitled";
+  std::vector<Actor> actors;
+  Timeline timeline;
+  ViewOptions view;
+  bool operator==(const Project&) const = default;
+
+  Actor* findActor(const std::string& id);
+  const Actor* findActor(const std::string& id) const;
+  // An id not used by any actor, built from base ("actor" -> "actor_2").
+  std::string uniqueActorId(const std::string& base) const;
+};
+
+}  // namespace animorph

@@ -1,0 +1,190 @@
+#include "doc/project_io.h"
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "doc/atomic_file.h"
+
+namespace animorph {
+namespace {
+
+using json = nlohmann::json;
+
+json vec3Json(const glm::vec3& v) { return json::array({v.x, v.y, v.z}); }
+
+// Reads fields with error messages that say where the problem is.
+class Reader {
+ public:
+  explicit Reader(std::string source) : source_(std::move(source)) {}
+  bool failed() const { return !error_.empty(); }
+  const std::string& error() const { return error_; }
+  void fail(const std::string& where, const std::string& why) {
+    if (error_.empty()) error_ = source_ + ": " + where + ": " + why;
+  }
+
+  double number(const json& j, const char* key, const std::string& where, double def) {
+    if (!j.contains(key)) return def;
+    const json& v = j[key];
+    if (!v.is_number()) { fail(where + "." + key, "expected a number"); return def; }
+    double d = v.get<double>();
+    if (!std::isfinite(d)) { fail(where + "." + key, "not a finite number"); return def; }
+    return d;
+  }
+  int integer(const json& j, const char* key, const std::string& where, int def) {
+    if (!j.contains(key)) return def;
+    if (!j[key].is_number_integer()) { fail(where + "." + key, "expected an integer"); return def; }
+    return j[key].get<int>();
+  }
+  bool boolean(const json& j, const char* key, const std::string& where, bool def) {
+    if (!j.contains(key)) return def;
+    if (!j[key].is_boolean()) { fail(where + "." + key, "expected true or false"); return def; }
+    return j[key].get<bool>();
+  }
+  std::string string(const json& j, const char* key, const std::string& where, const std::string& def,
+                     bool required = false) {
+    if (!j.contains(key)) {
+      if (required) fail(where + "." + key, "missing");
+      return def;
+    }
+    if (!j[key].is_string()) { fail(where + "." + key, "expected a string"); return def; }
+    return j[key].get<std::string>();
+  }
+  template <int N>
+  glm::vec<N, float> vec(const json& j, const char* key, const std::string& where, glm::vec<N, float> def) {
+    if (!j.contains(key)) return def;
+    const json& v = j[key];
+    if (!v.is_array() || v.size() != N) {
+      fail(where + "." + key, "expected an array of " + std::to_string(N) + " numbers");
+      return def;
+    }
+    glm::vec<N, float> out;
+    for (int i = 0; i < N; ++i) {
+      if (!v[i].is_number() || !std::isfinite(v[i].get<double>())) {
+        fail(where + "." + key + "[" + std::to_string(i) + "]", "expected a finite number");
+        return def;
+      }
+      out[i] = v[i].get<float>();
+    }
+    return out;
+  }
+
+ private:
+  std::string source_;
+  std::string error_;
+};
+
+}  // namespace
+
+std::string projectToJson(const Project& p) {
+  json j;
+  j["format"] = "animorph";
+  j["version"] = kProjectFormatVersion;
+  j["name"] = p.name;
+  const Timeline& t = p.timeline;
+  j["timeline"] = {{"fps", t.fps},         {"frame_start", t.frameStart},       {"frame_end", t.frameEnd},
+                   {"current_frame", t.currentFrame}, {"playback_speed", t.playbackSpeed}, {"loop", t.loop}};
+  j["view"] = {{"grid", p.view.showGrid}, {"skeleton", p.view.showSkeleton},
+               {"wireframe", p.view.wireframe}, {"axes", p.view.showAxes}};
+  json actors = json::array();
+  for (const Actor& a : p.actors) {
+    const glm::quat& q = a.transform.rotation;
+    actors.push_back({{"id", a.id},
+                      {"name", a.name},
+                      {"asset", a.assetPath},
+                      {"clip", a.clip},
+                      {"time_offset", a.timeOffsetSec},
+                      {"speed", a.speed},
+                      {"loop", a.loop},
+                      {"visible", a.visible},
+                      {"translation", vec3Json(a.transform.translation)},
+                      {"rotation", json::array({q.x, q.y, q.z, q.w})},
+                      {"scale", vec3Json(a.transform.scale)}});
+  }
+  j["actors"] = actors;
+  return j.dump(2) + "\n";
+}
+
+Result<Project> projectFromJson(const std::string& text, const std::string& sourceName) {
+  json j = json::parse(text, nullptr, false);
+  if (j.is_discarded()) return Error{sourceName + ": not valid JSON"};
+  if (!j.is_object()) return Error{sourceName + ": expected a JSON object at the top level"};
+  if (!j.contains("format") || j["format"] != "animorph")
+    return Error{sourceName + ": not an Animorph project (missing \"format\": \"animorph\")"};
+  if (!j.contains("version") || !j["version"].is_number_integer())
+    return Error{sourceName + ": version: missing or not an integer"};
+  int version = j["version"].get<int>();
+  if (version > kProjectFormatVersion)
+    return Error{sourceName + ": version " + std::to_string(version) +
+                 " is newer than this Animorph understands (" + std::to_string(kProjectFormatVersion) +
+                 "); update Animorph to open it"};
+  if (version < 1) return Error{sourceName + ": version " + std::to_string(version) + " is not valid"};
+
+  Reader r(sourceName);
+  Project p;
+  p.name = r.string(j, "name", "project", p.name);
+  if (j.contains("timeline")) {
+    const json& t = j["timeline"];
+    if (!t.is_object()) return Error{sourceName + ": timeline: expected an object"};
+    Timeline& tl = p.timeline;
+    tl.fps = r.number(t, "fps", "timeline", tl.fps);
+    tl.frameStart = r.integer(t, "frame_start", "timeline", tl.frameStart);
+    tl.frameEnd = r.integer(t, "frame_end", "timeline", tl.frameEnd);
+    tl.currentFrame = r.integer(t, "current_frame", "timeline", tl.currentFrame);
+    tl.playbackSpeed = r.number(t, "playback_speed", "timeline", tl.playbackSpeed);
+    tl.loop = r.boolean(t, "loop", "timeline", tl.loop);
+    if (!r.failed() && !(tl.fps > 0.0 && tl.fps <= 1000.0)) r.fail("timeline.fps", "must be in (0, 1000]");
+    if (!r.failed() && tl.frameEnd < tl.frameStart) r.fail("timeline.frame_end", "is before frame_start");
+    if (!r.failed() && !(tl.playbackSpeed > 0.0)) r.fail("timeline.playback_speed", "must be positive");
+  }
+  if (j.contains("view")) {
+    const json& v = j["view"];
+    if (!v.is_object()) return Error{sourceName + ": view: expected an object"};
+    p.view.showGrid = r.boolean(v, "grid", "view", p.view.showGrid);
+    p.view.showSkeleton = r.boolean(v, "skeleton", "view", p.view.showSkeleton);
+    p.view.wireframe = r.boolean(v, "wireframe", "view", p.view.wireframe);
+    p.view.showAxes = r.boolean(v, "axes", "view", p.view.showAxes);
+  }
+  if (j.contains("actors")) {
+    const json& actors = j["actors"];
+    if (!actors.is_array()) return Error{sourceName + ": actors: expected an array"};
+    for (size_t i = 0; i < actors.size() && !r.failed(); ++i) {
+      const json& a = actors[i];
+      std::string where = "actors[" + std::to_string(i) + "]";
+      if (!a.is_object()) { r.fail(where, "expected an object"); break; }
+      Actor act;
+      act.id = r.string(a, "id", where, "", true);
+      act.name = r.string(a, "name", where, act.id);
+      act.assetPath = r.string(a, "asset", where, "", true);
+      act.clip = r.integer(a, "clip", where, 0);
+      act.timeOffsetSec = r.number(a, "time_offset", where, 0.0);
+      act.speed = r.number(a, "speed", where, 1.0);
+      act.loop = r.boolean(a, "loop", where, true);
+      act.visible = r.boolean(a, "visible", where, true);
+      act.transform.translation = r.vec<3>(a, "translation", where, glm::vec3(0.0f));
+      glm::vec4 q = r.vec<4>(a, "rotation", where, glm::vec4(0, 0, 0, 1));
+      act.transform.rotation = glm::quat(q.w, q.x, q.y, q.z);
+      act.transform.scale = r.vec<3>(a, "scale", where, glm::vec3(1.0f));
+      if (r.failed()) break;
+      if (act.id.empty()) r.fail(where + ".id", "must not be empty");
+      else if (p.findActor(act.id)) r.fail(where + ".id", "duplicate id '" + act.id + "'");
+      else if (act.clip < 0) r.fail(where + ".clip", "must not be negative");
+      else if (glm::length(q) < 1e-6f) r.fail(where + ".rotation", "zero quaternion");
+      else {
+        act.transform.rotation = glm::normalize(act.transform.rotation);
+        p.actors.push_back(std::move(act));
+      }
+    }
+  }
+  if (r.failed()) return Error{r.error()};
+  return p;
+}
+
+Result<Project> loadProject(const std::string& path) {
+  auto text = readFile(path);
+  if (!text) return Error{text.error()};
+  return projectFromJson(*text, path);
+}
+
+Status saveProject(const Project& p, const std::string& path) { return writeFileAtomic(path, projectToJson(p)); }
+
+}  // namespace animorph

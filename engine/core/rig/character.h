@@ -1,0 +1,96 @@
+#pragma once
+// An imported character: node hierarchy, meshes, skins and animation clips,
+// as glTF describes them (engine/core/io/gltf_import.h fills it).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "math/bounds.h"
+#include "math/transform.h"
+
+namespace animorph {
+
+struct Node {
+  std::string name;
+  int parent = -1;
+  std::vector<int> children;
+  Transform rest;  // local transform when no animation drives it
+  int mesh = -1;   // index into Character::meshes, or -1
+  int skin = -1;   // index into Character::skins, or -1
+};
+
+// Triangle geometry of one glTF mesh (its triangle primitives concatenated).
+// Up to kMaxInfluences joint influences per vertex, in two sets of four
+// (JOINTS_0/WEIGHTS_0, JOINTS_1/WEIGHTS_1); weights sum to 1. A mesh
+// without a skin has every vertex bound to joint 0 with weight 1, and the
+// renderer binds joint 0 to the node's own matrix.
+struct Mesh {
+  static constexpr int kMaxInfluences = 8;
+  std::string name;
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;
+  std::vector<uint32_t> indices;  // triangle list
+  std::vector<glm::uvec4> joints0, joints1;
+  std::vector<glm::vec4> weights0, weights1;
+
+  size_t vertexCount() const { return positions.size(); }
+  size_t triangleCount() const { return indices.size() / 3; }
+  Bounds bounds() const;
+};
+
+struct Skin {
+  std::string name;
+  std::vector<int> joints;  // node indices
+  std::vector<glm::mat4> inverseBindMatrices;
+  int skeletonRoot = -1;
+};
+
+enum class Interpolation { Step, Linear, CubicSpline };
+enum class ChannelPath { Translation, Rotation, Scale };
+
+// One animated property of one node. For CubicSpline, values holds three
+// entries per key: in-tangent, value, out-tangent (glTF layout). Vectors are
+// stored in xyz, quaternions as (x, y, z, w).
+struct Channel {
+  int node = -1;
+  ChannelPath path = ChannelPath::Translation;
+  Interpolation interpolation = Interpolation::Linear;
+  std::vector<float> timesSec;
+  std::vector<glm::vec4> values;
+};
+
+struct AnimationClip {
+  std::string name;
+  std::vector<Channel> channels;
+  float durationSec = 0.0f;
+};
+
+// What the importer did that the user should know about.
+struct ImportReport {
+  std::vector<std::string> warnings;     // recoverable problems, one line each
+  std::vector<std::string> unsupported;  // glTF features present but not used, by name
+  size_t weightsNormalised = 0;          // vertices whose weights did not sum to 1
+  size_t influencesDropped = 0;          // vertices with more than kMaxInfluences non-zero weights
+  size_t normalsComputed = 0;            // meshes whose normals were computed
+  double importMs = 0.0;
+};
+
+struct Character {
+  std::string sourcePath;
+  std::vector<Node> nodes;
+  std::vector<int> roots;  // nodes of the scene, in order
+  std::vector<Mesh> meshes;
+  std::vector<Skin> skins;
+  std::vector<AnimationClip> clips;
+  ImportReport report;
+
+  size_t totalVertices() const;
+  size_t totalTriangles() const;
+  size_t totalJoints() const;  // distinct joint nodes over all skins
+  // Nodes that draw a mesh, in hierarchy order.
+  std::vector<int> meshNodes() const;
+};
+
+}  // namespace animorph

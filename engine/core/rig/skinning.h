@@ -1,0 +1,18 @@
+#pragma once
+// Linear blend skinning on the CPU (the vertex shader does the same on the GPU).
+#include <vector>
+
+#include "rig/character.h"
+
+namespace animorph {
+
+// Skins mesh with jointMats (from jointMatrices()); outputs positions and
+// normals in the mesh node's space. Normals use the inverse-transpose.
+void skinMesh(const Mesh& mesh, const std::vector<glm::mat4>& jointMats, std::vector<glm::vec3>& outPositions,
+              std::vector<glm::vec3>& outNormals);
+
+// World-space positions of every mesh of the character at timeSec of clip
+// (null clip: rest pose), concatenated in meshNodes() order.
+std::vector<glm::vec3> skinnedWorldPositions(const Character& c, const AnimationClip* clip, float timeSec);
+
+}  // namespace animorph

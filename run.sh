@@ -1,0 +1,125 @@
+#!/usr/bin/env bash
+# Animorph: install what is missing, build, run.
+#   ./run.sh                 build and open the editor on the demo project
+#   ./run.sh test [--asan]   build and run every test (GUI tests under xvfb-run when there is no DISPLAY)
+#   ./run.sh build [--asan]  build only
+#   ./run.sh cli ARGS...     build and run animorph-cli
+#   ./run.sh bench ARGS...   build and run animorph-cli bench
+set -euo pipefail
+cd "$(dirname "$(readlink -f "$0")")"
+ROOT=$PWD
+
+BUILD_PACKAGES=(build-essential cmake ninja-build pkg-config
+  libimgui-dev libglfw3-dev libglm-dev libvulkan-dev mesa-vulkan-drivers
+  glslang-tools libtinygltf-dev nlohmann-json3-dev libstb-dev libtbb-dev)
+TEST_PACKAGES=(catch2 vulkan-validationlayers xvfb xauth xdotool imagemagick
+  assimp-testmodels python3)
+
+say() { printf '\033[1m[animorph]\033[0m %s\n' "$*" >&2; }
+
+missing_packages() {
+  local p
+  for p in "$@"; do
+    if [ "$(dpkg-query -W -f='${db:Status-Status}' "$p" 2>/dev/null)" != "installed" ]; then
+      printf '%s\n' "$p"
+    fi
+  done
+}
+
+ensure_packages() {
+  local missing
+  mapfile -t missing < <(missing_packages "$@")
+  [ ${#missing[@]} -eq 0 ] && return 0
+  say "installing missing Debian packages: ${missing[*]}"
+  local SUDO=()
+  if [ "$(id -u)" -ne 0 ]; then
+    if command -v sudo >/dev/null 2>&1 && sudo -n true 2>/dev/null; then
+      SUDO=(sudo -n)
+    elif command -v sudo >/dev/null 2>&1 && [ -t 0 ]; then
+      SUDO=(sudo)
+    else
+      say "these packages are missing and I am not root and cannot sudo:"
+      say "  apt-get install -y ${missing[*]}"
+      say "run that as root, then ./run.sh again."
+      exit 1
+    fi
+  fi
+  export DEBIAN_FRONTEND=noninteractive
+  if ! "${SUDO[@]}" apt-get install -y --no-install-recommends "${missing[@]}"; then
+    say "apt-get install failed; refreshing package lists and trying again"
+    "${SUDO[@]}" apt-get update
+    "${SUDO[@]}" apt-get install -y --no-install-recommends "${missing[@]}"
+  fi
+}
+
+build() {
+  local dir=$1; shift
+  local generator=()
+  command -v ninja >/dev/null 2>&1 && generator=(-G Ninja)
+  if [ ! -f "$dir/CMakeCache.txt" ]; then
+    cmake -S "$ROOT" -B "$dir" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release "$@"
+  else
+    cmake -S "$ROOT" -B "$dir" "$@" >/dev/null
+  fi
+  cmake --build "$dir" -j"$(nproc)"
+}
+
+asan=0
+cmd=${1:-run}
+[ $# -gt 0 ] && shift
+args=()
+for a in "$@"; do
+  if [ "$a" = "--asan" ]; then asan=1; else args+=("$a"); fi
+done
+BUILD_DIR=$ROOT/build
+BUILD_FLAGS=()
+if [ $asan -eq 1 ]; then
+  BUILD_DIR=$ROOT/build-asan
+  BUILD_FLAGS=(-DANIMORPH_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo)
+fi
+
+case "$cmd" in
+  run)
+    ensure_packages "${BUILD_PACKAGES[@]}" catch2
+    build "$BUILD_DIR" "${BUILD_FLAGS[@]}"
+    project=${args[0]:-$ROOT/resources/demo/demo.animorph}
+    if [ -z "${DISPLAY:-}" ] && [ -z "${WAYLAND_DISPLAY:-}" ]; then
+      say "no DISPLAY: the editor needs a window. Either run it under a virtual X server:"
+      say "  xvfb-run -a ./run.sh"
+      say "or use the headless CLI:"
+      say "  $BUILD_DIR/app/animorph-cli --help"
+      exit 2
+    fi
+    exec "$BUILD_DIR/app/animorph" "$project"
+    ;;
+  build)
+    ensure_packages "${BUILD_PACKAGES[@]}" catch2
+    build "$BUILD_DIR" "${BUILD_FLAGS[@]}"
+    ;;
+  test)
+    ensure_packages "${BUILD_PACKAGES[@]}" "${TEST_PACKAGES[@]}"
+    build "$BUILD_DIR" "${BUILD_FLAGS[@]}"
+    export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-$(mktemp -d /tmp/animorph-xdg.XXXXXX)}
+    chmod 700 "$XDG_RUNTIME_DIR" 2>/dev/null || true
+    export ANIMORPH_VALIDATION=1
+    if [ $asan -eq 1 ]; then
+      export ASAN_OPTIONS=detect_leaks=0:abort_on_error=1
+      export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+    fi
+    ctest --test-dir "$BUILD_DIR" --output-on-failure -j"$(nproc)" --timeout 600 "${args[@]}"
+    ;;
+  cli)
+    ensure_packages "${BUILD_PACKAGES[@]}" catch2
+    build "$BUILD_DIR" "${BUILD_FLAGS[@]}" >/dev/null
+    exec "$BUILD_DIR/app/animorph-cli" "${args[@]}"
+    ;;
+  bench)
+    ensure_packages "${BUILD_PACKAGES[@]}" catch2
+    build "$BUILD_DIR" "${BUILD_FLAGS[@]}" >/dev/null
+    exec "$BUILD_DIR/app/animorph-cli" bench "${args[@]}"
+    ;;
+  *)
+    say "unknown command '$cmd'. Use: ./run.sh [run|build|test|cli|bench] [--asan]"
+    exit 2
+    ;;
+esac
