@@ -1,0 +1,57 @@
+#pragma once
+// The scene at one time: what to draw, in world space. Evaluating a frame is
+// a pure function of the project, the loaded assets and the time; the
+// renderer, the picker and the CLI all consume a SceneFrame.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "doc/asset_cache.h"
+#include "doc/project.h"
+#include "math/bounds.h"
+#include "rig/character.h"
+
+namespace animorph {
+
+// One mesh of one actor, posed.
+struct MeshDraw {
+  std::string actorId;
+  std::shared_ptr<const Character> character;
+  int meshNode = -1;   // node that draws the mesh
+  int meshIndex = -1;  // index into character->meshes
+  glm::mat4 model{1.0f};             // actor transform * global(meshNode)
+  std::vector<glm::mat4> joints;     // skinning matrices (rig/pose.h jointMatrices)
+};
+
+// A bone of the skeleton overlay: from a joint's parent to the joint.
+struct BoneDraw {
+  std::string actorId;
+  int node = -1;
+  glm::vec3 head{0.0f};  // parent joint, world space
+  glm::vec3 tail{0.0f};  // this joint, world space
+};
+
+struct SceneFrame {
+  double timeSec = 0.0;
+  std::vector<MeshDraw> meshes;
+  std::vector<BoneDraw> bones;
+  std::vector<glm::vec3> jointPositions;  // every skin joint, world space
+  std::vector<std::string> errors;        // "actor 'x': <asset load error>"
+};
+
+// Clip time of actor at scene time timeSec: (t - offset) * speed, looped or clamped.
+double actorClipTimeSec(const Actor& actor, const AnimationClip& clip, double timeSec);
+
+// Evaluates every visible actor of project at timeSec. baseDir resolves the
+// actors' relative asset paths. Actors whose asset failed to load are
+// reported in errors and skipped.
+SceneFrame evaluateScene(const Project& project, const std::string& baseDir, AssetCache& assets, double timeSec);
+
+// World-space bounds of the posed meshes of one actor, or of all actors when
+// actorId is empty (Frame Selection / Frame All). Skins on the CPU: call on
+// demand, not every frame.
+Bounds posedBounds(const SceneFrame& frame, const std::string& actorId = {});
+
+}  // namespace animorph
