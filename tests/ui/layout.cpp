@@ -1,0 +1,86 @@
+#include <catch2/catch.hpp>
+
+#include <fstream>
+
+#include "layout.h"
+#include "support/editor_fixture.h"
+#include "util/prefs.h"
+
+using namespace animorph;
+using namespace animorph::test;
+
+TEST_CASE("dragging a splitter resizes the panel and the size persists in the preferences", "[layout]") {
+  EditorFixture f;
+  float before = f.h.ui->state().layout.outliner.size.x;
+  glm::vec2 c = f.h.widgetCenter("splitter/outliner");
+  f.h.drag(c, c + glm::vec2(60.0f, 0.0f));
+  f.h.frames(1);
+  float after = f.h.ui->state().layout.outliner.size.x;
+  CHECK(after == Approx(before + 60.0f));
+  CHECK(f.h.ui->state().layout.viewport.min.x == Approx(after + kSplitterThicknessPx));
+
+  // Timeline splitter: dragging up makes the timeline taller.
+  float tlBefore = f.h.ui->state().layout.timeline.size.y;
+  glm::vec2 t = f.h.widgetCenter("splitter/timeline");
+  f.h.drag(t, t + glm::vec2(0.0f, -40.0f));
+  f.h.frames(1);
+  CHECK(f.h.ui->state().layout.timeline.size.y == Approx(tlBefore + 40.0f));
+
+  // Written on release; a new editor starts with the same layout.
+  auto saved = loadPreferences(f.dir.file("config/prefs.json"));
+  REQUIRE(saved.ok());
+  CHECK(saved->outlinerWidth == Approx(after));
+  CHECK(saved->timelineHeight == Approx(tlBefore + 40.0f));
+  EditorUI again(f.dir.file("config/prefs.json"));
+  CHECK(again.state().prefs.outlinerWidth == Approx(after));
+}
+
+TEST_CASE("splitter drags are clamped so the viewport never vanishes", "[layout]") {
+  EditorFixture f;
+  glm::vec2 c = f.h.widgetCenter("splitter/outliner");
+  f.h.drag(c, {1270.0f, c.y}, 0, 4);
+  f.h.frames(1);
+  const LayoutRects& r = f.h.ui->state().layout;
+  CHECK(r.viewport.size.x >= kMinViewportPx - 0.5f);
+  CHECK(r.inspector.size.x >= kMinPanelPx - 0.5f);
+  CHECK(r.inspector.max().x == Approx(1280.0f));
+  auto saved = loadPreferences(f.dir.file("config/prefs.json"));
+  REQUIRE(saved.ok());
+  CHECK(saved->outlinerWidth <= 1280.0f - kMinViewportPx - kMinPanelPx - 2 * kSplitterThicknessPx + 0.5f);
+}
+
+TEST_CASE("layout rectangles tile the window without overlap", "[layout]") {
+  for (glm::vec2 display : {glm::vec2(1280, 800), glm::vec2(1920, 1080), glm::vec2(640, 480), glm::vec2(300, 200)}) {
+    for (float w : {0.0f, 200.0f, 5000.0f}) {
+      LayoutSizes s{w, w, w};
+      LayoutRects r = computeLayout(display, 20.0f, 22.0f, s);
+      // Rows: menu | upper area | timeline splitter | timeline | status.
+      CHECK(r.outliner.min.y == 20.0f);
+      CHECK(r.timelineSplitter.max().y == Approx(r.timeline.min.y));
+      CHECK(r.timeline.max().y == Approx(r.statusBar.min.y));
+      CHECK(r.statusBar.max().y == Approx(display.y));
+      // Columns: outliner | splitter | viewport | splitter | inspector.
+      CHECK(r.outlinerSplitter.min.x == Approx(r.outliner.max().x));
+      CHECK(r.viewport.min.x == Approx(r.outlinerSplitter.max().x));
+      CHECK(r.inspectorSplitter.min.x == Approx(r.viewport.max().x));
+      CHECK(r.inspector.min.x == Approx(r.inspectorSplitter.max().x));
+      CHECK(r.inspector.max().x == Approx(display.x));
+      CHECK(r.viewport.size.x >= 0.0f);
+      CHECK(r.viewport.size.y >= 0.0f);
+      if (display.x >= 1000.0f) {
+        CHECK(r.viewport.size.x >= kMinViewportPx - 1e-3f);
+        CHECK(r.outliner.size.x >= kMinPanelPx - 1e-3f);
+      }
+    }
+  }
+}
+
+TEST_CASE("a broken preferences file is ignored with a message", "[layout]") {
+  TempDir dir;
+  std::string path = dir.file("prefs.json");
+  { std::ofstream(path) << "{\"layout\": 12"; }
+  EditorUI ui(path);
+  CHECK(ui.state().prefs == Preferences{});
+  CHECK(ui.state().status.error);
+  CHECK(ui.state().status.text.find("prefs.json") != std::string::npos);
+}

@@ -1,0 +1,102 @@
+#include <catch2/catch.hpp>
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include "support/editor_fixture.h"
+
+using namespace animorph;
+using namespace animorph::test;
+
+namespace {
+// Clicks the expand arrow of a tree node (left of its label).
+void expand(EditorHarness& h, const std::string& key) {
+  auto r = *h.ui->widgets().find(key);
+  h.click({r.min.x + 8.0f, r.center().y});
+}
+}  // namespace
+
+TEST_CASE("outliner lists actors and their node hierarchy; clicks select", "[outliner]") {
+  EditorFixture f;
+  f.loadHeroScene();
+  auto& h = f.h;
+  REQUIRE(h.hasWidget("outliner/hero"));
+  h.clickWidget("outliner/hero");
+  CHECK(h.doc().selection == Selection{"hero", -1});
+  CHECK_FALSE(h.hasWidget("outliner/hero/node/1"));
+  expand(h, "outliner/hero");
+  REQUIRE(h.hasWidget("outliner/hero/node/0"));  // Body (skinned mesh), a root
+  REQUIRE(h.hasWidget("outliner/hero/node/1"));  // Armature
+  expand(h, "outliner/hero/node/1");
+  expand(h, "outliner/hero/node/2");
+  REQUIRE(h.hasWidget("outliner/hero/node/3"));  // spine, under hip
+  h.clickWidget("outliner/hero/node/3");
+  CHECK(h.doc().selection == Selection{"hero", 3});
+  CHECK_FALSE(h.doc().dirty());  // selection is view state
+}
+
+TEST_CASE("outliner shows asset load errors in place", "[outliner]") {
+  EditorFixture f;
+  auto& h = f.h;
+  Project p;
+  Actor a;
+  a.id = "ghost";
+  a.name = "ghost";
+  a.assetPath = "missing.glb";
+  p.actors.push_back(a);
+  h.doc().reset(p, f.dir.file("scene.animorph"));
+  h.frames(2);
+  REQUIRE(h.hasWidget("outliner/ghost/error"));
+  const auto& e = h.assets.get(h.doc().resolveAsset("missing.glb"));
+  CHECK(e.character == nullptr);
+  CHECK(e.error.find("missing.glb") != std::string::npos);
+}
+
+TEST_CASE("double-click renames, Del deletes, the box toggles visibility: all undoable", "[outliner]") {
+  EditorFixture f;
+  f.loadHeroScene();
+  auto& h = f.h;
+  h.doubleClick(h.widgetCenter("outliner/hero"));
+  REQUIRE(h.hasWidget("outliner/hero/rename"));
+  h.type("Villain");
+  h.tapKey(GLFW_KEY_ENTER);
+  CHECK(h.doc().project().actors[0].name == "Villain");
+  CHECK(h.doc().history().undoLabel() == "Rename hero to Villain");
+
+  h.clickWidget("outliner/hero/visible");
+  CHECK_FALSE(h.doc().project().actors[0].visible);
+
+  h.clickWidget("outliner/hero");
+  h.tapKey(GLFW_KEY_DELETE);
+  CHECK(h.doc().project().actors.empty());
+  CHECK(h.doc().selection.actorId.empty());
+
+  h.tapKey(GLFW_KEY_Z, true);
+  REQUIRE(h.doc().project().actors.size() == 1);
+  CHECK_FALSE(h.doc().project().actors[0].visible);
+  h.tapKey(GLFW_KEY_Z, true);
+  CHECK(h.doc().project().actors[0].visible);
+  h.tapKey(GLFW_KEY_Z, true);
+  CHECK(h.doc().project().actors[0].name == "hero");
+  CHECK_FALSE(h.doc().dirty());
+}
+
+TEST_CASE("Import glTF adds an actor with a project-relative path, undoable", "[outliner]") {
+  EditorFixture f;
+  f.loadHeroScene();
+  auto& h = f.h;
+  h.clickWidget("menu/File");
+  h.clickWidget("menu/Import glTF...");
+  REQUIRE(h.ui->state().browser.isOpen());
+  h.type(f.dir.file("hero.gltf"));
+  h.tapKey(GLFW_KEY_ENTER);
+  h.frames(1);
+  REQUIRE(h.doc().project().actors.size() == 2);
+  const Actor& added = h.doc().project().actors[1];
+  CHECK(added.id == "hero_2");
+  CHECK(added.assetPath == "hero.gltf");
+  CHECK(h.doc().selection.actorId == "hero_2");
+  CHECK(h.doc().history().undoLabel() == "Add hero");
+  h.tapKey(GLFW_KEY_Z, true);
+  CHECK(h.doc().project().actors.size() == 1);
+}

@@ -1,0 +1,147 @@
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include "doc/project_io.h"
+#include "support/editor_fixture.h"
+
+using namespace animorph;
+using namespace animorph::test;
+namespace fs = std::filesystem;
+
+namespace {
+void makeDirty(Document& d) {
+  d.execute(std::make_unique<SetValueCommand<int>>(
+      "Set range end", [](Project& p) { return &p.timeline.frameEnd; }, d.project().timeline.frameEnd, 42));
+}
+}  // namespace
+
+TEST_CASE("New with a dirty document asks Save / Don't Save / Cancel", "[unsaved]") {
+  EditorFixture f;
+  auto& h = f.h;
+  makeDirty(h.doc());
+  Document* before = &h.doc();
+  h.tapKey(GLFW_KEY_N, true);
+  CHECK(h.ui->state().unsavedPromptOpen);
+  REQUIRE(h.hasWidget("prompt/cancel"));
+  h.clickWidget("prompt/cancel");
+  h.frames(1);
+  CHECK(&h.doc() == before);  // nothing happened
+  CHECK(h.doc().dirty());
+  CHECK_FALSE(h.hasWidget("prompt/cancel"));
+
+  h.tapKey(GLFW_KEY_N, true);
+  h.clickWidget("prompt/dont_save");
+  CHECK(&h.doc() != before);
+  CHECK_FALSE(h.doc().dirty());
+  CHECK(h.doc().project().timeline.frameEnd == 96);
+
+  // A clean document is replaced without asking.
+  h.tapKey(GLFW_KEY_N, true);
+  CHECK_FALSE(h.ui->state().unsavedPromptOpen);
+}
+
+TEST_CASE("Quit with an untitled dirty document: Save goes through Save As, then quits", "[unsaved]") {
+  EditorFixture f;
+  auto& h = f.h;
+  makeDirty(h.doc());
+  h.tapKey(GLFW_KEY_Q, true);
+  CHECK_FALSE(h.ui->output().quit);
+  h.clickWidget("prompt/save");
+  h.frames(1);
+  REQUIRE(h.ui->state().browser.isOpen());
+  CHECK(h.ui->state().browser.mode() == FileBrowser::Mode::Save);
+  h.type(f.dir.file("kept"));
+  h.tapKey(GLFW_KEY_ENTER);
+  CHECK(h.ui->output().quit);
+  auto saved = loadProject(f.dir.file("kept.animorph"));
+  REQUIRE(saved.ok());
+  CHECK(saved->timeline.frameEnd == 42);
+}
+
+TEST_CASE("the window's close button goes through the same prompt", "[unsaved]") {
+  EditorFixture f;
+  auto& h = f.h;
+  h.ui->requestQuit();
+  h.frames(1);
+  CHECK(h.ui->output().quit);  // clean: quits at once
+
+  EditorFixture g;
+  makeDirty(g.h.doc());
+  g.h.ui->requestQuit();
+  g.h.frames(2);
+  CHECK_FALSE(g.h.ui->output().quit);
+  g.h.clickWidget("prompt/dont_save");
+  CHECK(g.h.ui->output().quit);
+}
+
+TEST_CASE("opening a project with a newer autosave offers Recover / Discard", "[unsaved]") {
+  EditorFixture f;
+  auto& h = f.h;
+  std::string path = f.dir.file("work.animorph");
+  Project saved;
+  saved.timeline.frameEnd = 10;
+  REQUIRE(saveProject(saved, path).ok());
+  Project autosaved = saved;
+  autosaved.timeline.frameEnd = 77;
+  REQUIRE(saveProject(autosaved, path + ".autosave").ok());
+  fs::last_write_time(path + ".autosave", fs::last_write_time(path) + std::chrono::seconds(5));
+
+  h.ui->requestOpen(path);
+  h.frames(2);
+  REQUIRE(h.hasWidget("prompt/recover"));
+  h.clickWidget("prompt/recover");
+  CHECK(h.doc().path() == path);
+  CHECK(h.doc().project().timeline.frameEnd == 77);
+  CHECK(h.doc().dirty());  // recovered work is not saved yet
+
+  // Discard deletes the autosave and opens the file as saved.
+  EditorFixture g;
+  g.h.ui->requestOpen(path);
+  g.h.frames(2);
+  g.h.clickWidget("prompt/discard");
+  CHECK(g.h.doc().project().timeline.frameEnd == 10);
+  CHECK_FALSE(g.h.doc().dirty());
+  CHECK_FALSE(fs::exists(path + ".autosave"));
+}
+
+TEST_CASE("a bad project shows an error and the editor keeps running", "[unsaved]") {
+  EditorFixture f;
+  auto& h = f.h;
+  std::string path = f.dir.file("broken.animorph");
+  std::ofstream(path) << "{ \"format\": \"animorph\", \"version\": 1, \"actors\": [ { \"speed\": \"fast\" } ] }";
+  Document* before = &h.doc();
+  h.ui->requestOpen(path);
+  h.frames(2);
+  CHECK(&h.doc() == before);
+  CHECK(h.ui->state().status.error);
+  CHECK(h.ui->state().status.text.find("broken.animorph") != std::string::npos);
+  REQUIRE(h.hasWidget("error/ok"));
+  h.clickWidget("error/ok");
+  h.frames(1);
+  CHECK_FALSE(h.hasWidget("error/ok"));
+  h.tapKey(GLFW_KEY_SPACE);  // still responsive
+  CHECK(h.ui->state().playback.playing());
+}
+
+TEST_CASE("autosave runs from the frame loop at the preference's interval", "[unsaved]") {
+  EditorFixture f;
+  auto& h = f.h;
+  std::string path = f.dir.file("auto.animorph");
+  REQUIRE(saveProject(Project{}, path).ok());
+  h.ui->requestOpen(path);
+  h.frames(1);
+  REQUIRE(h.doc().path() == path);
+  h.ui->state().prefs.autosaveIntervalSec = 5.0;
+  makeDirty(h.doc());
+  h.frames(1);
+  h.frames(3, 1.0);
+  CHECK_FALSE(fs::exists(path + ".autosave"));
+  h.frames(3, 1.0);
+  CHECK(fs::exists(path + ".autosave"));
+  CHECK(loadProject(path + ".autosave")->timeline.frameEnd == 42);
+}

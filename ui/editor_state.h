@@ -1,0 +1,63 @@
+#pragma once
+// Everything the editor UI remembers between frames (no project data: that
+// lives in the Document). A plain struct so tests and the app can inspect it.
+#include <string>
+
+#include "anim/playback.h"
+#include "drag_merge.h"
+#include "file_browser.h"
+#include "inspector_panel.h"
+#include "layout.h"
+#include "orbit_camera.h"
+#include "outliner_panel.h"
+#include "status_bar.h"
+#include "timeline_panel.h"
+#include "util/prefs.h"
+#include "viewport_input.h"
+
+namespace animorph {
+
+// An action waiting for the unsaved-changes question to be answered.
+enum class PendingKind { None, New, Open, OpenPath, Quit };
+
+// What a running file dialog is for.
+enum class BrowserPurpose { None, OpenProject, SaveProjectAs, ImportGltf, Screenshot };
+
+struct EditorState {
+  Preferences prefs;  // layout sizes, camera scheme, recent files, autosave interval
+  std::string prefsPath;
+  OrbitCamera camera;
+  Playback playback;
+  ViewportInput viewportInput;
+  LayoutRects layout;  // as computed for the last frame
+  float menuBarHeight = 0.0f;
+
+  // Windows.
+  bool showPreferences = false;
+  bool showShortcuts = false;
+  bool showAbout = false;
+
+  // Panels.
+  OutlinerState outliner;
+  InspectorState inspector;
+  TimelineState timeline;
+  DragMerge drag;
+
+  // Dialogs.
+  FileBrowser browser;
+  BrowserPurpose browserPurpose = BrowserPurpose::None;
+  PendingKind pending = PendingKind::None;
+  std::string pendingPath;            // for PendingKind::OpenPath
+  PendingKind afterSaveAs = PendingKind::None;  // continue this after Save As succeeds
+  bool openUnsavedPrompt = false;     // request to open the modal next frame
+  bool unsavedPromptOpen = false;
+  std::string recoverPath;            // project whose newer autosave is offered
+  bool openRecoverPrompt = false;
+  std::string errorMessage;           // shown in the error modal
+  bool openErrorPopup = false;
+
+  StatusMessage status;
+  double lastAssetRefreshSec = -1.0;
+};
+
+}  // namespace animorph

@@ -1,0 +1,536 @@
+#include "editor_ui.h"
+
+#include <algorithm>
+#include <filesystem>
+
+#include <imgui.h>
+
+#include "actor_commands.h"
+#include "help_windows.h"
+#include "menu_bar.h"
+#include "preferences_window.h"
+#include "project_commands.h"
+#include "selection_info.h"
+#include "transport.h"
+
+namespace animorph {
+namespace fs = std::filesystem;
+
+namespace {
+const std::vector<FileFilter> kProjectFilters = {{"Animorph project (*.animorph)", {".animorph"}},
+                                                 {"All files", {}}};
+const std::vector<FileFilter> kGltfFilters = {{"glTF (*.gltf, *.glb)", {".gltf", ".glb"}}, {"All files", {}}};
+const std::vector<FileFilter> kPngFilters = {{"PNG image (*.png)", {".png"}}};
+
+constexpr ImGuiWindowFlags kOverlayFlags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
+                                           ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBackground |
+                                           ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoFocusOnAppearing |
+                                           ImGuiWindowFlags_NoBringToFrontOnFocus |
+                                           ImGuiWindowFlags_NoScrollWithMouse;
+
+std::string fileName(const std::string& path) { return fs::path(path).filename().string(); }
+}  // namespace
+
+EditorUI::EditorUI(std::string prefsPath) {
+  st_.prefsPath = std::move(prefsPath);
+  auto loaded = loadPreferences(st_.prefsPath);
+  if (loaded) {
+    st_.prefs = std::move(*loaded);
+  } else {
+    setStatus("Preferences ignored: " + loaded.error(), true);
+  }
+  out_.camera = st_.camera;
+}
+
+void EditorUI::requestQuit() { external_.push_back({PendingKind::Quit, {}}); }
+void EditorUI::requestOpen(const std::string& path) { external_.push_back({PendingKind::OpenPath, path}); }
+
+bool EditorUI::savePreferences() {
+  Status s = animorph::savePreferences(st_.prefs, st_.prefsPath);
+  if (!s) setStatus("Cannot save preferences: " + s.error(), true);
+  return s.ok();
+}
+
+void EditorUI::setStatus(const std::string& text, bool error) { st_.status = {text, error}; }
+
+void EditorUI::showError(const std::string& message) {
+  setStatus(message, true);
+  st_.errorMessage = message;
+  st_.openErrorPopup = true;
+}
+
+Document& EditorUI::doc(EditorContext& ctx) {
+  if (!ctx.document) {
+    ctx.document = std::make_unique<Document>();
+    out_.documentReplaced = true;
+  }
+  return *ctx.document;
+}
+
+void EditorUI::draw(EditorContext& ctx) {
+  widgets_.clear();
+  setActiveWidgetRects(&widgets_);
+  out_.pick.reset();
+  out_.screenshotPath.reset();
+  out_.documentReplaced = false;
+  ImGuiIO& io = ImGui::GetIO();
+
+  // Housekeeping: autosave, asset reload, playback.
+  {
+    Document& d = doc(ctx);
+    if (st_.prefs.autosaveIntervalSec > 0.0 && d.autosaveIfDue(ctx.nowSec, st_.prefs.autosaveIntervalSec))
+      setStatus("Autosaved to " + d.autosavePath());
+    if (ctx.nowSec - st_.lastAssetRefreshSec >= 1.0 || st_.lastAssetRefreshSec < 0.0) {
+      st_.lastAssetRefreshSec = ctx.nowSec;
+      if (int n = ctx.assets.refresh(); n > 0) setStatus("Reloaded " + std::to_string(n) + " changed asset(s)");
+    }
+    const Timeline& tl = d.project().timeline;
+    if (st_.playback.playing()) {
+      d.setCurrentFrame(st_.playback.advance(ctx.dtSec, tl));
+    } else if (st_.playback.frame(tl) != std::clamp(tl.currentFrame, tl.frameStart, std::max(tl.frameStart, tl.frameEnd))) {
+      st_.playback.seekFrame(tl.currentFrame, tl);
+    }
+  }
+
+  std::vector<Action> actions;
+  for (auto& [kind, path] : external_) guardUnsaved(kind, path, ctx);
+  external_.clear();
+
+  // Menu bar, then the panels laid out below it.
+  MenuResult menu = drawMenuBar(doc(ctx), st_.prefs.recentFiles, st_.menuBarHeight);
+  actions.insert(actions.end(), menu.actions.begin(), menu.actions.end());
+  float statusHeight = ImGui::GetFrameHeight();
+  LayoutSizes sizes{st_.prefs.outlinerWidth, st_.prefs.inspectorWidth, st_.prefs.timelineHeight};
+  glm::vec2 display(io.DisplaySize.x, io.DisplaySize.y);
+  st_.layout = computeLayout(display, st_.menuBarHeight, statusHeight, sizes);
+
+  drawOutlinerPanel(st_.layout.outliner, doc(ctx), ctx.assets, st_.outliner, actions);
+  drawInspectorPanel(st_.layout.inspector, doc(ctx), ctx.assets, st_.inspector, st_.drag);
+  drawTimelinePanel(st_.layout.timeline, doc(ctx), st_.playback, keyFrames(ctx), st_.timeline, st_.drag, actions);
+  drawStatusBar(st_.layout.statusBar, doc(ctx), ctx.stats, st_.status);
+  drawViewport(ctx);
+  drawSplitters();
+
+  // Keyboard shortcuts: not while typing, not while a menu or dialog is open.
+  if (!ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel)) {
+    std::vector<Action> keys = pollShortcuts(io);
+    actions.insert(actions.end(), keys.begin(), keys.end());
+  }
+
+  if (!menu.openRecentPath.empty()) guardUnsaved(PendingKind::OpenPath, menu.openRecentPath, ctx);
+  for (Action a : actions) dispatch(a, ctx);
+
+  drawPrompts(ctx);
+  if (drawPreferencesWindow(st_.showPreferences, st_.prefs, st_.prefsPath)) savePreferences();
+  drawShortcutsWindow(st_.showShortcuts);
+  drawAboutWindow(st_.showAbout);
+
+  st_.drag.endFrame(doc(ctx));
+  out_.camera = st_.camera;
+  const LayoutRect& vp = st_.layout.viewport;
+  out_.viewport = {vp.min, vp.size};
+  setActiveWidgetRects(nullptr);
+}
+
+const std::vector<int>& EditorUI::keyFrames(EditorContext& ctx) {
+  const Document& d = doc(ctx);
+  if (keysDoc_ != &d || keysRevision_ != d.revision() || !(keysSelection_ == d.selection)) {
+    keysDoc_ = &d;
+    keysRevision_ = d.revision();
+    keysSelection_ = d.selection;
+    keys_ = selectionKeyFrames(d, ctx.assets);
+  }
+  return keys_;
+}
+
+void EditorUI::drawViewport(EditorContext& ctx) {
+  const LayoutRect& r = st_.layout.viewport;
+  ImGui::SetNextWindowPos(ImVec2(r.min.x, r.min.y));
+  ImGui::SetNextWindowSize(ImVec2(std::max(r.size.x, 1.0f), std::max(r.size.y, 1.0f)));
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowMinSize, ImVec2(1.0f, 1.0f));
+  ImGui::Begin("##viewport", nullptr, kOverlayFlags);
+  ImGui::PopStyleVar();
+  bool hovered = ImGui::IsWindowHovered();
+  const Document& d = doc(ctx);
+  ImGui::TextDisabled("%s camera  |  frame %d", st_.prefs.cameraScheme == CameraScheme::Maya ? "Maya" : "Blender",
+                      d.project().timeline.currentFrame);
+  if (d.project().actors.empty()) ImGui::TextDisabled("File > Import glTF... adds a character.");
+  ImGui::End();
+  widgets_.set("viewport", {r.min, r.min + r.size});
+
+  PointerInput in = pointerFromImGui(ImGui::GetIO(), !hovered);
+  ViewportRect vr{r.min, r.size};
+  out_.pick = st_.viewportInput.update(in, vr, st_.prefs.cameraScheme, st_.prefs.otherSchemeToo, st_.camera);
+  if (st_.viewportInput.activeDrag() != CameraDrag::None)
+    ImGui::SetMouseCursor(st_.viewportInput.activeDrag() == CameraDrag::Pan ? ImGuiMouseCursor_ResizeAll
+                                                                             : ImGuiMouseCursor_Hand);
+}
+
+void EditorUI::drawSplitters() {
+  ImGuiIO& io = ImGui::GetIO();
+  struct Splitter {
+    const char* id;
+    const LayoutRect* rect;
+    bool vertical;  // a vertical bar dragged horizontally
+  };
+  const Splitter splitters[] = {{"##split_outliner", &st_.layout.outlinerSplitter, true},
+                                {"##split_inspector", &st_.layout.inspectorSplitter, true},
+                                {"##split_timeline", &st_.layout.timelineSplitter, false}};
+  for (const Splitter& s : splitters) {
+    const LayoutRect& r = *s.rect;
+    if (r.size.x <= 0.0f || r.size.y <= 0.0f) continue;
+    ImGui::SetNextWindowPos(ImVec2(r.min.x, r.min.y));
+    ImGui::SetNextWindowSize(ImVec2(r.size.x, r.size.y));
+    ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0.0f, 0.0f));
+    ImGui::PushStyleVar(ImGuiStyleVar_WindowMinSize, ImVec2(1.0f, 1.0f));
+    ImGui::PushStyleVar(ImGuiStyleVar_WindowBorderSize, 0.0f);
+    ImGui::Begin(s.id, nullptr, kOverlayFlags);
+    ImGui::PopStyleVar(3);
+    ImGui::InvisibleButton("##handle", ImVec2(r.size.x, r.size.y));
+    std::string key = std::string("splitter/") + (s.id + 8);  // "outliner", "inspector", "timeline"
+    noteWidget(key);
+    bool active = ImGui::IsItemActive();
+    if (active || ImGui::IsItemHovered())
+      ImGui::SetMouseCursor(s.vertical ? ImGuiMouseCursor_ResizeEW : ImGuiMouseCursor_ResizeNS);
+    if (active || ImGui::IsItemHovered()) {
+      ImGui::GetWindowDrawList()->AddRectFilled(ImVec2(r.min.x, r.min.y), ImVec2(r.max().x, r.max().y),
+                                                active ? IM_COL32(90, 160, 255, 200) : IM_COL32(90, 160, 255, 90));
+    }
+    if (active && (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f)) {
+      if (s.id == splitters[0].id) st_.prefs.outlinerWidth += io.MouseDelta.x;
+      else if (s.id == splitters[1].id) st_.prefs.inspectorWidth -= io.MouseDelta.x;
+      else st_.prefs.timelineHeight -= io.MouseDelta.y;
+    }
+    bool released = ImGui::IsItemDeactivated();
+    ImGui::End();
+    if (released) {
+      // Store the clamped sizes so the file never holds a layout that does not fit.
+      LayoutSizes c = clampLayout({st_.prefs.outlinerWidth, st_.prefs.inspectorWidth, st_.prefs.timelineHeight},
+                                  {io.DisplaySize.x, io.DisplaySize.y}, st_.menuBarHeight, ImGui::GetFrameHeight());
+      st_.prefs.outlinerWidth = c.outlinerWidth;
+      st_.prefs.inspectorWidth = c.inspectorWidth;
+      st_.prefs.timelineHeight = c.timelineHeight;
+      savePreferences();
+    }
+  }
+}
+
+void EditorUI::dispatch(Action a, EditorContext& ctx) {
+  Document& d = doc(ctx);
+  switch (a) {
+    case Action::New: guardUnsaved(PendingKind::New, {}, ctx); break;
+    case Action::Open: guardUnsaved(PendingKind::Open, {}, ctx); break;
+    case Action::Save: saveOrSaveAs(PendingKind::None, ctx); break;
+    case Action::SaveAs: startSaveAs(PendingKind::None, ctx); break;
+    case Action::Quit: guardUnsaved(PendingKind::Quit, {}, ctx); break;
+    case Action::ImportGltf:
+      st_.browser.open(FileBrowser::Mode::Open, "Import glTF", kGltfFilters, d.baseDir());
+      st_.browserPurpose = BrowserPurpose::ImportGltf;
+      break;
+    case Action::SaveScreenshot:
+      st_.browser.open(FileBrowser::Mode::Save, "Save Screenshot", kPngFilters, d.baseDir(),
+                       fs::path(d.displayName()).stem().string() + ".png");
+      st_.browserPurpose = BrowserPurpose::Screenshot;
+      break;
+    case Action::Undo: {
+      std::string label = d.history().undoLabel();
+      if (d.undo()) setStatus("Undid " + label);
+      break;
+    }
+    case Action::Redo: {
+      std::string label = d.history().redoLabel();
+      if (d.redo()) setStatus("Redid " + label);
+      break;
+    }
+    case Action::DeleteSelection: {
+      if (d.selection.actorId.empty()) break;
+      if (d.selection.node >= 0) {
+        setStatus("Select the actor itself to delete it");
+        break;
+      }
+      if (auto cmd = deleteActorCommand(d.project(), d.selection.actorId)) {
+        setStatus(cmd->label());
+        d.execute(std::move(cmd));
+        d.selection = {};
+      }
+      break;
+    }
+    case Action::ToggleGrid:
+      d.execute(setViewOption(d.project(), &ViewOptions::showGrid, !d.project().view.showGrid, "Toggle grid"));
+      break;
+    case Action::ToggleSkeleton:
+      d.execute(setViewOption(d.project(), &ViewOptions::showSkeleton, !d.project().view.showSkeleton,
+                              "Toggle skeleton"));
+      break;
+    case Action::ToggleWireframe:
+      d.execute(setViewOption(d.project(), &ViewOptions::wireframe, !d.project().view.wireframe, "Toggle wireframe"));
+      break;
+    case Action::ToggleAxes:
+      d.execute(setViewOption(d.project(), &ViewOptions::showAxes, !d.project().view.showAxes, "Toggle axes"));
+      break;
+    case Action::FrameSelection: frameSelection(ctx); break;
+    case Action::PlayPause: togglePlayback(d, st_.playback); break;
+    case Action::StepBack: stepFrames(d, st_.playback, -1); break;
+    case Action::StepForward: stepFrames(d, st_.playback, +1); break;
+    case Action::GoToStart: goToFrame(d, st_.playback, d.project().timeline.frameStart); break;
+    case Action::GoToEnd: goToFrame(d, st_.playback, d.project().timeline.frameEnd); break;
+    case Action::Preferences: st_.showPreferences = true; break;
+    case Action::About: st_.showAbout = true; break;
+    case Action::ShowShortcuts: st_.showShortcuts = true; break;
+  }
+}
+
+void EditorUI::frameSelection(EditorContext& ctx) {
+  Document& d = doc(ctx);
+  const Timeline& tl = d.project().timeline;
+  double t = tl.fps > 0.0 ? tl.currentFrame / tl.fps : 0.0;
+  Bounds b = ctx.selectionBounds ? ctx.selectionBounds(d, t) : selectionBounds(d, ctx.assets, t);
+  if (b.empty()) {
+    setStatus("Nothing to frame");
+    return;
+  }
+  const LayoutRect& vp = st_.layout.viewport;
+  st_.camera.frame(b, vp.size.y > 0.0f ? vp.size.x / vp.size.y : 1.0f);
+}
+
+void EditorUI::guardUnsaved(PendingKind kind, const std::string& path, EditorContext& ctx) {
+  if (kind == PendingKind::None) return;
+  if (doc(ctx).dirty()) {
+    st_.pending = kind;
+    st_.pendingPath = path;
+    st_.openUnsavedPrompt = true;
+    return;
+  }
+  perform(kind, path, ctx);
+}
+
+void EditorUI::perform(PendingKind kind, const std::string& path, EditorContext& ctx) {
+  switch (kind) {
+    case PendingKind::None: break;
+    case PendingKind::New:
+      replaceDocument(std::make_unique<Document>(), ctx);
+      setStatus("New project");
+      break;
+    case PendingKind::Open: {
+      std::string start = doc(ctx).path().empty()
+                              ? (st_.prefs.recentFiles.empty() ? doc(ctx).baseDir()
+                                                               : fs::path(st_.prefs.recentFiles[0]).parent_path().string())
+                              : doc(ctx).baseDir();
+      st_.browser.open(FileBrowser::Mode::Open, "Open Project", kProjectFilters, start);
+      st_.browserPurpose = BrowserPurpose::OpenProject;
+      break;
+    }
+    case PendingKind::OpenPath: openProjectPath(path, ctx); break;
+    case PendingKind::Quit: out_.quit = true; break;
+  }
+}
+
+void EditorUI::openProjectPath(const std::string& path, EditorContext& ctx) {
+  if (Document::hasNewerAutosave(path)) {
+    st_.recoverPath = path;
+    st_.openRecoverPrompt = true;
+    return;
+  }
+  loadProject(path, false, ctx);
+}
+
+void EditorUI::loadProject(const std::string& path, bool recover, EditorContext& ctx) {
+  auto opened = recover ? Document::recoverAutosave(path) : Document::open(path);
+  if (!opened) {
+    showError("Cannot open " + path + ":\n" + opened.error());
+    return;
+  }
+  std::string abs = (*opened)->path();
+  replaceDocument(std::move(*opened), ctx);
+  addRecentFile(st_.prefs, abs);
+  savePreferences();
+  setStatus(recover ? "Recovered the autosave of " + fileName(abs) + " (not saved yet)" : "Opened " + abs);
+}
+
+void EditorUI::replaceDocument(std::unique_ptr<Document> d, EditorContext& ctx) {
+  if (ctx.document) ctx.document->endDrag();
+  ctx.document = std::move(d);
+  out_.documentReplaced = true;
+  st_.playback.pause();
+  const Timeline& tl = ctx.document->project().timeline;
+  st_.playback.seekFrame(tl.currentFrame, tl);
+  st_.outliner = {};
+  st_.inspector = {};
+  st_.timeline = {};
+  keysDoc_ = nullptr;
+  // Show the whole scene: frame every visible actor that loaded.
+  Bounds b = selectionBounds(*ctx.document, ctx.assets, tl.fps > 0.0 ? tl.currentFrame / tl.fps : 0.0);
+  if (!b.empty()) st_.camera.frame(b, st_.layout.viewport.size.y > 0.0f
+                                          ? st_.layout.viewport.size.x / st_.layout.viewport.size.y
+                                          : 1.0f);
+}
+
+bool EditorUI::saveOrSaveAs(PendingKind after, EditorContext& ctx) {
+  Document& d = doc(ctx);
+  if (d.path().empty()) {
+    startSaveAs(after, ctx);
+    return false;
+  }
+  Status s = d.save();
+  if (!s) {
+    showError("Save failed: " + s.error());
+    return false;
+  }
+  addRecentFile(st_.prefs, d.path());
+  savePreferences();
+  setStatus("Saved " + d.path());
+  return true;
+}
+
+void EditorUI::startSaveAs(PendingKind after, EditorContext& ctx) {
+  Document& d = doc(ctx);
+  std::string name = d.path().empty() ? d.project().name + ".animorph" : fileName(d.path());
+  st_.browser.open(FileBrowser::Mode::Save, "Save Project As", kProjectFilters, d.baseDir(), name);
+  st_.browserPurpose = BrowserPurpose::SaveProjectAs;
+  st_.afterSaveAs = after;
+}
+
+void EditorUI::handleBrowserResult(const std::string& path, EditorContext& ctx) {
+  BrowserPurpose purpose = st_.browserPurpose;
+  st_.browserPurpose = BrowserPurpose::None;
+  Document& d = doc(ctx);
+  switch (purpose) {
+    case BrowserPurpose::None: break;
+    case BrowserPurpose::OpenProject: openProjectPath(path, ctx); break;
+    case BrowserPurpose::SaveProjectAs: {
+      Status s = d.saveAs(path);
+      PendingKind after = st_.afterSaveAs;
+      st_.afterSaveAs = PendingKind::None;
+      if (!s) {
+        showError("Save failed: " + s.error());
+        break;
+      }
+      addRecentFile(st_.prefs, d.path());
+      savePreferences();
+      setStatus("Saved " + d.path());
+      perform(after, st_.pendingPath, ctx);
+      break;
+    }
+    case BrowserPurpose::ImportGltf: {
+      std::string projectDir = d.path().empty() ? std::string() : d.baseDir();
+      Actor actor = actorForAsset(d.project(), path, projectDir);
+      std::string id = actor.id;
+      const AssetCache::Entry& e = ctx.assets.get(path);
+      d.execute(addActorCommand(std::move(actor)));
+      d.selection = {id, -1};
+      if (e.character) {
+        setStatus("Imported " + fileName(path));
+        frameSelection(ctx);
+      } else {
+        setStatus("Added " + fileName(path) + ", but it did not load: " + e.error, true);
+      }
+      break;
+    }
+    case BrowserPurpose::Screenshot:
+      out_.screenshotPath = path;
+      setStatus("Screenshot: " + path);
+      break;
+  }
+}
+
+void EditorUI::drawPrompts(EditorContext& ctx) {
+  if (auto chosen = st_.browser.draw()) handleBrowserResult(*chosen, ctx);
+  if (!st_.browser.isOpen() && st_.browserPurpose != BrowserPurpose::None) {
+    // Cancelled: a Save As that was to be followed by New/Open/Quit is dropped too.
+    st_.browserPurpose = BrowserPurpose::None;
+    st_.afterSaveAs = PendingKind::None;
+  }
+  ImGuiIO& io = ImGui::GetIO();
+  ImVec2 centre(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.4f);
+
+  // Unsaved changes: Save / Don't Save / Cancel.
+  if (st_.openUnsavedPrompt) {
+    ImGui::OpenPopup("Unsaved changes##prompt");
+    st_.openUnsavedPrompt = false;
+  }
+  ImGui::SetNextWindowPos(centre, ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  st_.unsavedPromptOpen = ImGui::BeginPopupModal("Unsaved changes##prompt", nullptr,
+                                                 ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings);
+  if (st_.unsavedPromptOpen) {
+    const char* what = st_.pending == PendingKind::Quit ? "quitting" : st_.pending == PendingKind::New ? "creating a new project" : "opening another project";
+    ImGui::Text("Save the changes to %s before %s?", doc(ctx).displayName().c_str(), what);
+    ImGui::TextDisabled("Your changes are lost if you don't save them.");
+    ImGui::Separator();
+    PendingKind kind = st_.pending;
+    int choice = 0;
+    if (ImGui::Button("Save", ImVec2(110.0f, 0.0f))) choice = 1;
+    noteWidget("prompt/save");
+    ImGui::SameLine();
+    if (ImGui::Button("Don't Save", ImVec2(110.0f, 0.0f))) choice = 2;
+    noteWidget("prompt/dont_save");
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel", ImVec2(110.0f, 0.0f)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)))
+      choice = 3;
+    noteWidget("prompt/cancel");
+    if (choice != 0) {
+      ImGui::CloseCurrentPopup();
+      st_.unsavedPromptOpen = false;
+      st_.pending = PendingKind::None;
+    }
+    ImGui::EndPopup();
+    if (choice == 1 && saveOrSaveAs(kind, ctx)) perform(kind, st_.pendingPath, ctx);
+    if (choice == 2) perform(kind, st_.pendingPath, ctx);
+    if (choice == 3) setStatus("Cancelled");
+  }
+
+  // A newer autosave exists: Recover / Discard.
+  if (st_.openRecoverPrompt) {
+    ImGui::OpenPopup("Recover autosave?##prompt");
+    st_.openRecoverPrompt = false;
+  }
+  ImGui::SetNextWindowPos(centre, ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  if (ImGui::BeginPopupModal("Recover autosave?##prompt", nullptr,
+                             ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings)) {
+    ImGui::Text("%s has an autosave newer than the file.", fileName(st_.recoverPath).c_str());
+    ImGui::TextDisabled("Recover opens the autosave (save it to keep it); Discard deletes it.");
+    int choice = 0;
+    if (ImGui::Button("Recover", ImVec2(110.0f, 0.0f))) choice = 1;
+    noteWidget("prompt/recover");
+    ImGui::SameLine();
+    if (ImGui::Button("Discard", ImVec2(110.0f, 0.0f))) choice = 2;
+    noteWidget("prompt/discard");
+    if (choice) ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+    if (choice == 2) {
+      std::error_code ec;
+      fs::remove(st_.recoverPath + ".autosave", ec);
+    }
+    if (choice) loadProject(st_.recoverPath, choice == 1, ctx);
+  }
+
+  // Errors.
+  if (st_.openErrorPopup) {
+    ImGui::OpenPopup("Error##popup");
+    st_.openErrorPopup = false;
+  }
+  ImGui::SetNextWindowPos(centre, ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  if (ImGui::BeginPopupModal("Error##popup", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings)) {
+    ImGui::PushTextWrapPos(560.0f);
+    ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", st_.errorMessage.c_str());
+    ImGui::PopTextWrapPos();
+    if (ImGui::Button("OK", ImVec2(110.0f, 0.0f)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Enter)) ||
+        ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)))
+      ImGui::CloseCurrentPopup();
+    noteWidget("error/ok");
+    ImGui::EndPopup();
+  }
+}
+
+void EditorUI::applyStyle() {
+  ImGuiStyle& s = ImGui::GetStyle();
+  ImGui::StyleColorsDark(&s);
+  s.WindowRounding = 0.0f;
+  s.FrameRounding = 3.0f;
+  s.GrabRounding = 3.0f;
+  s.WindowBorderSize = 1.0f;
+  s.ItemSpacing = ImVec2(6.0f, 4.0f);
+  s.Colors[ImGuiCol_WindowBg] = ImVec4(0.16f, 0.16f, 0.18f, 1.0f);
+  s.Colors[ImGuiCol_TitleBgActive] = ImVec4(0.20f, 0.22f, 0.27f, 1.0f);
+}
+
+}  // namespace animorph

@@ -1,0 +1,81 @@
+#pragma once
+// The editor's user interface: menu bar, outliner, inspector, timeline,
+// status bar and the 3D viewport area, with file dialogs, unsaved-changes
+// and autosave-recovery prompts, shortcuts, playback and viewport camera
+// control. Pure ImGui over the Document; the app owns the window, the ImGui
+// backends and the renderer, and reads EditorOutput after each draw().
+//
+// Per frame the app does: backend NewFrame, ImGui::NewFrame(), fill an
+// EditorContext, EditorUI::draw(ctx), ImGui::Render(), draw the scene into
+// output().viewport with output().camera, then the ImGui draw data on top.
+// On the window's close button call requestQuit() and keep running until
+// output().quit (the user may cancel on the unsaved-changes prompt).
+#include <string>
+#include <vector>
+
+#include "editor_context.h"
+#include "editor_state.h"
+#include "widget_rects.h"
+
+namespace animorph {
+
+class EditorUI {
+ public:
+  // Loads preferences from prefsPath; a broken file is reported in the
+  // status bar and the defaults are used (and not written over until the
+  // user changes something).
+  explicit EditorUI(std::string prefsPath = defaultPreferencesPath());
+
+  // Draws one frame and acts on the user's input. Call between
+  // ImGui::NewFrame() and ImGui::Render().
+  void draw(EditorContext& ctx);
+  const EditorOutput& output() const { return out_; }
+
+  // Asks to quit: the unsaved-changes prompt first if the document is dirty.
+  void requestQuit();
+  // Opens a project (command line, drag and drop), asking about unsaved changes first.
+  void requestOpen(const std::string& path);
+
+  EditorState& state() { return st_; }
+  const EditorState& state() const { return st_; }
+  // Rectangles of named widgets drawn in the last frame (for automation).
+  const WidgetRects& widgets() const { return widgets_; }
+
+  // Writes the preferences file; failures go to the status bar. Returns success.
+  bool savePreferences();
+  // Applies the editor's colours and spacing to the current ImGui style.
+  static void applyStyle();
+
+ private:
+  Document& doc(EditorContext& ctx);
+  void dispatch(Action a, EditorContext& ctx);
+  void guardUnsaved(PendingKind kind, const std::string& path, EditorContext& ctx);
+  void perform(PendingKind kind, const std::string& path, EditorContext& ctx);
+  void openProjectPath(const std::string& path, EditorContext& ctx);
+  void loadProject(const std::string& path, bool recover, EditorContext& ctx);
+  void replaceDocument(std::unique_ptr<Document> d, EditorContext& ctx);
+  // Saves to the document's file; an untitled document opens Save As and
+  // continues with `after` once saved. Returns true if it saved now.
+  bool saveOrSaveAs(PendingKind after, EditorContext& ctx);
+  void startSaveAs(PendingKind after, EditorContext& ctx);
+  void handleBrowserResult(const std::string& path, EditorContext& ctx);
+  void frameSelection(EditorContext& ctx);
+  void drawSplitters();
+  void drawViewport(EditorContext& ctx);
+  void drawPrompts(EditorContext& ctx);
+  void showError(const std::string& message);
+  void setStatus(const std::string& text, bool error = false);
+  const std::vector<int>& keyFrames(EditorContext& ctx);
+
+  EditorState st_;
+  EditorOutput out_;
+  WidgetRects widgets_;
+  std::vector<std::pair<PendingKind, std::string>> external_;  // requestQuit/requestOpen
+  // Cache of the selection's key frames.
+  const Document* keysDoc_ = nullptr;
+  uint64_t keysRevision_ = 0;
+  Selection keysSelection_;
+  std::vector<int> keys_;
+};
+
+}  // namespace animorph

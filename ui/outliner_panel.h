@@ -1,0 +1,31 @@
+#pragma once
+// Outliner (left panel): the project's actors; expanding one shows its
+// character's node hierarchy (meshes, joints) from the AssetCache. Click
+// selects, double-click renames, the eye box toggles visibility, the context
+// menu deletes; an asset that failed to load shows its error in red.
+#include <string>
+#include <vector>
+
+#include "doc/asset_cache.h"
+#include "doc/document.h"
+#include "layout.h"
+#include "shortcuts.h"
+
+namespace animorph {
+
+struct OutlinerState {
+  std::string renamingActorId;  // actor whose name is being edited, or empty
+  std::string renameBuffer;
+  bool focusRename = false;
+};
+
+// Starts renaming actorId in place (double-click does this too).
+void beginRename(OutlinerState& st, const Document& doc, const std::string& actorId);
+
+// Draws the panel as a fixed window over rect. Edits go through the
+// Document's commands; actions the panel cannot do itself (import) are
+// appended to actions.
+void drawOutlinerPanel(const LayoutRect& rect, Document& doc, AssetCache& assets, OutlinerState& st,
+                       std::vector<Action>& actions);
+
+}  // namespace animorph
