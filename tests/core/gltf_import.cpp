@@ -429,3 +429,40 @@ TEST_CASE("animations: all three interpolations, duration is the last key", "[io
   CHECK(bad.error() == "badanim.gltf: accessor " + std::to_string(trans) +
                            ": 2 values for 2 keys (CUBICSPLINE needs 6)");
 }
+
+TEST_CASE("corrupted files never crash the importer", "[io][gltf]") {
+  // Deterministic byte mutations of a small skinned GLB (JSON and binary
+  // chunks alike): every import either loads or returns a message naming the file.
+  TempDir tmp;
+  std::ifstream in(kAssimp + "simple_skin/simple_skin.gltf");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  auto glbSource = importGltf(std::string(ANIMORPH_SOURCE_DIR) + "/resources/demo/gear.glb");
+  REQUIRE(glbSource.ok());
+  std::ifstream gin(std::string(ANIMORPH_SOURCE_DIR) + "/resources/demo/gear.glb", std::ios::binary);
+  const std::string glb((std::istreambuf_iterator<char>(gin)), std::istreambuf_iterator<char>());
+  uint32_t state = 12345;
+  auto next = [&] { return state = state * 1664525u + 1013904223u; };
+  int loaded = 0, refused = 0;
+  for (int round = 0; round < 300; ++round) {
+    const bool binary = round % 2 == 0;
+    std::string bytes = binary ? glb : text;
+    const int flips = 1 + static_cast<int>(next() % 4);
+    for (int f = 0; f < flips; ++f) {
+      // Binary rounds aim at the JSON chunk half of the time (it holds the offsets and counts).
+      const size_t limit = binary && (next() & 1) ? std::min<size_t>(bytes.size(), 2048) : bytes.size();
+      const size_t at = next() % limit;
+      const char digits[] = "0123456789-9e";
+      bytes[at] = binary ? static_cast<char>(next() & 0xff) : digits[next() % 13];
+    }
+    const std::string path = tmp.file(binary ? "fuzz.glb" : "fuzz.gltf");
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+    auto c = importGltf(path);
+    if (c) ++loaded;
+    else {
+      ++refused;
+      CHECK(c.error().rfind(binary ? "fuzz.glb: " : "fuzz.gltf: ", 0) == 0);
+    }
+  }
+  CHECK(loaded + refused == 300);
+  CHECK(refused > 0);
+}

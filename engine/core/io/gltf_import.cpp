@@ -266,18 +266,26 @@ Result<size_t> readAccessor(const Ctx& c, int index, const AccessorSpec& spec, s
   // float matrices are accepted here, so elements are tightly packed.
   const size_t elemSize = cs * comps;
   const size_t count = a.count;
-  if (count > (size_t(1) << 31)) return err(c, name, "count " + std::to_string(count) + " is too large");
-  out.assign(count * comps, T(0));
+  // Bounds are checked before anything is allocated, so a huge count in a
+  // small file cannot exhaust memory; accessors without a bufferView (all
+  // zeros, possibly sparse) are capped instead.
+  Span span;
   if (a.bufferView >= 0) {
-    auto span = viewRange(c, name, a.bufferView, a.byteOffset, count, elemSize, true);
-    if (!span) return Error{span.error()};
-    const unsigned char* base = span->data;
-    if (a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT && std::is_same_v<T, float> && span->stride == elemSize) {
+    auto checked = viewRange(c, name, a.bufferView, a.byteOffset, count, elemSize, true);
+    if (!checked) return Error{checked.error()};
+    span = *checked;
+  } else if (count > (size_t(1) << 26)) {
+    return err(c, name, "count " + std::to_string(count) + " is too large for an accessor without a bufferView");
+  }
+  out.assign(count * comps, T(0));
+  if (span.data) {
+    const unsigned char* base = span.data;
+    if (a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT && std::is_same_v<T, float> && span.stride == elemSize) {
       std::memcpy(out.data(), base, count * elemSize);
     } else {
       for (size_t i = 0; i < count; ++i)
         for (int k = 0; k < comps; ++k)
-          out[i * comps + k] = static_cast<T>(readComponent(base + i * span->stride + k * cs, a.componentType, a.normalized));
+          out[i * comps + k] = static_cast<T>(readComponent(base + i * span.stride + k * cs, a.componentType, a.normalized));
     }
   }
   if (a.sparse.isSparse) {
