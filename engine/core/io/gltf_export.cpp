@@ -1,0 +1,266 @@
+#include "io/gltf_export.h"
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+#include <nlohmann/json.hpp>
+
+#include "doc/atomic_file.h"
+
+namespace animorph {
+namespace {
+
+using json = nlohmann::json;
+
+constexpr int kUnsignedShort = 5123;
+constexpr int kUnsignedInt = 5125;
+constexpr int kFloat = 5126;
+constexpr int kArrayBuffer = 34962;
+constexpr int kElementArrayBuffer = 34963;
+
+class GlbWriter {
+ public:
+  // Appends raw bytes as a new bufferView (4-byte aligned); returns its index.
+  int view(const void* data, size_t bytes, int target) {
+    while (bin_.size() % 4) bin_.push_back(0);
+    json v = {{"buffer", 0}, {"byteOffset", bin_.size()}, {"byteLength", bytes}};
+    if (target) v["target"] = target;
+    const auto* p = static_cast<const unsigned char*>(data);
+    bin_.insert(bin_.end(), p, p + bytes);
+    views_.push_back(v);
+    return static_cast<int>(views_.size()) - 1;
+  }
+  // Float accessor of count elements with comps components (type "VEC3", ...).
+  int floats(const float* data, size_t count, int comps, const char* type, int target, bool minMax) {
+    int v = view(data, count * comps * sizeof(float), target);
+    json a = {{"bufferView", v}, {"componentType", kFloat}, {"count", count}, {"type", type}};
+    if (minMax && count > 0) {
+      json mn = json::array(), mx = json::array();
+      for (int k = 0; k < comps; ++k) {
+        float lo = std::numeric_limits<float>::max(), hi = -lo;
+        for (size_t i = 0; i < count; ++i) {
+          lo = std::min(lo, data[i * comps + k]);
+          hi = std::max(hi, data[i * comps + k]);
+        }
+        mn.push_back(lo);
+        mx.push_back(hi);
+      }
+      a["min"] = mn;
+      a["max"] = mx;
+    }
+    accessors_.push_back(a);
+    return static_cast<int>(accessors_.size()) - 1;
+  }
+  int indices(const std::vector<uint32_t>& idx, size_t vertexCount) {
+    int v;
+    int ct;
+    if (vertexCount <= 65535) {
+      std::vector<uint16_t> small(idx.begin(), idx.end());
+      v = view(small.data(), small.size() * 2, kElementArrayBuffer);
+      ct = kUnsignedShort;
+    } else {
+      v = view(idx.data(), idx.size() * 4, kElementArrayBuffer);
+      ct = kUnsignedInt;
+    }
+    accessors_.push_back({{"bufferView", v}, {"componentType", ct}, {"count", idx.size()}, {"type", "SCALAR"}});
+    return static_cast<int>(accessors_.size()) - 1;
+  }
+  int joints(const std::vector<glm::uvec4>& j) {
+    std::vector<uint16_t> data(j.size() * 4);
+    for (size_t i = 0; i < j.size(); ++i)
+      for (int k = 0; k < 4; ++k) data[i * 4 + k] = static_cast<uint16_t>(j[i][k]);
+    int v = view(data.data(), data.size() * 2, kArrayBuffer);
+    accessors_.push_back({{"bufferView", v}, {"componentType", kUnsignedShort}, {"count", j.size()}, {"type", "VEC4"}});
+    return static_cast<int>(accessors_.size()) - 1;
+  }
+
+  std::string finish(json root) {
+    if (!bin_.empty()) {
+      root["buffers"] = json::array({{{"byteLength", bin_.size()}}});
+      root["bufferViews"] = views_;
+      root["accessors"] = accessors_;
+    }
+    std::string text = root.dump();
+    while (text.size() % 4) text.push_back(' ');
+    while (bin_.size() % 4) bin_.push_back(0);
+    const uint32_t total = static_cast<uint32_t>(12 + 8 + text.size() + (bin_.empty() ? 0 : 8 + bin_.size()));
+    std::string out;
+    out.reserve(total);
+    auto u32 = [&](uint32_t x) { out.append(reinterpret_cast<const char*>(&x), 4); };
+    out.append("glTF", 4);
+    u32(2);
+    u32(total);
+    u32(static_cast<uint32_t>(text.size()));
+    out.append("JSON", 4);
+    out += text;
+    if (!bin_.empty()) {
+      u32(static_cast<uint32_t>(bin_.size()));
+      out.append("BIN\0", 4);
+      out.append(reinterpret_cast<const char*>(bin_.data()), bin_.size());
+    }
+    return out;
+  }
+
+ private:
+  std::vector<unsigned char> bin_;
+  json views_ = json::array();
+  json accessors_ = json::array();
+};
+
+const char* interpolationName(Interpolation i) {
+  switch (i) {
+    case Interpolation::Step: return "STEP";
+    case Interpolation::Linear: return "LINEAR";
+    case Interpolation::CubicSpline: return "CUBICSPLINE";
+  }
+  return "LINEAR";
+}
+
+const char* pathName(ChannelPath p) {
+  switch (p) {
+    case ChannelPath::Translation: return "translation";
+    case ChannelPath::Rotation: return "rotation";
+    case ChannelPath::Scale: return "scale";
+  }
+  return "translation";
+}
+
+}  // namespace
+
+Result<std::string> exportGlbBytes(const Character& c) {
+  const int nodeCount = static_cast<int>(c.nodes.size());
+  GlbWriter w;
+  json root;
+  root["asset"] = {{"version", "2.0"}, {"generator", "Animorph"}};
+
+  // Meshes drawn by a skinned node carry joints and weights.
+  std::vector<int> skinOfMesh(c.meshes.size(), -1);
+  json nodes = json::array();
+  for (int i = 0; i < nodeCount; ++i) {
+    const Node& n = c.nodes[i];
+    json jn = {{"name", n.name}};
+    if (!n.children.empty()) jn["children"] = n.children;
+    for (int ch : n.children)
+      if (ch < 0 || ch >= nodeCount) return Error{"node " + std::to_string(i) + ": child " + std::to_string(ch) + " does not exist"};
+    const Transform& t = n.rest;
+    if (t.translation != glm::vec3(0.0f)) jn["translation"] = {t.translation.x, t.translation.y, t.translation.z};
+    if (t.rotation != glm::quat(1, 0, 0, 0)) jn["rotation"] = {t.rotation.x, t.rotation.y, t.rotation.z, t.rotation.w};
+    if (t.scale != glm::vec3(1.0f)) jn["scale"] = {t.scale.x, t.scale.y, t.scale.z};
+    if (n.mesh >= 0) {
+      if (n.mesh >= static_cast<int>(c.meshes.size())) return Error{"node " + std::to_string(i) + ": mesh does not exist"};
+      jn["mesh"] = n.mesh;
+    }
+    if (n.skin >= 0) {
+      if (n.skin >= static_cast<int>(c.skins.size())) return Error{"node " + std::to_string(i) + ": skin does not exist"};
+      jn["skin"] = n.skin;
+      if (n.mesh >= 0) skinOfMesh[n.mesh] = n.skin;
+    }
+    nodes.push_back(jn);
+  }
+  root["nodes"] = nodes;
+  root["scene"] = 0;
+  root["scenes"] = json::array({{{"nodes", c.roots}}});
+
+  json meshes = json::array();
+  for (size_t mi = 0; mi < c.meshes.size(); ++mi) {
+    const Mesh& m = c.meshes[mi];
+    const std::string label = "mesh " + std::to_string(mi) + " '" + m.name + "'";
+    const size_t nv = m.vertexCount();
+    if (nv == 0) return Error{label + ": has no vertices (glTF accessors cannot be empty)"};
+    if (m.normals.size() != nv) return Error{label + ": " + std::to_string(m.normals.size()) + " normals for " + std::to_string(nv) + " vertices"};
+    for (uint32_t i : m.indices)
+      if (i >= nv) return Error{label + ": index " + std::to_string(i) + " out of range (" + std::to_string(nv) + " vertices)"};
+    json attrs;
+    attrs["POSITION"] = w.floats(&m.positions.data()->x, nv, 3, "VEC3", kArrayBuffer, true);
+    std::vector<glm::vec3> unit(m.normals);
+    for (auto& n : unit) {
+      float len = glm::length(n);
+      n = len > 1e-20f ? n / len : glm::vec3(0, 1, 0);
+    }
+    attrs["NORMAL"] = w.floats(&unit.data()->x, nv, 3, "VEC3", kArrayBuffer, false);
+    const int skin = skinOfMesh[mi];
+    if (skin >= 0 && nv > 0) {
+      const size_t jointCount = c.skins[skin].joints.size();
+      if (m.joints0.size() != nv || m.weights0.size() != nv) return Error{label + ": joints0/weights0 do not match the vertex count"};
+      const bool second = !m.joints1.empty();
+      if (second && (m.joints1.size() != nv || m.weights1.size() != nv))
+        return Error{label + ": joints1/weights1 do not match the vertex count"};
+      for (size_t v = 0; v < nv; ++v)
+        for (int k = 0; k < 4; ++k)
+          if ((m.weights0[v][k] > 0.0f && m.joints0[v][k] >= jointCount) ||
+              (second && m.weights1[v][k] > 0.0f && m.joints1[v][k] >= jointCount))
+            return Error{label + ": vertex " + std::to_string(v) + " uses a joint outside skin " + std::to_string(skin)};
+      // Slots with zero weight point at joint 0 (validators flag anything else).
+      auto clean = [](std::vector<glm::uvec4> j, const std::vector<glm::vec4>& wts) {
+        for (size_t v = 0; v < j.size(); ++v)
+          for (int k = 0; k < 4; ++k)
+            if (!(wts[v][k] > 0.0f)) j[v][k] = 0;
+        return j;
+      };
+      attrs["JOINTS_0"] = w.joints(clean(m.joints0, m.weights0));
+      attrs["WEIGHTS_0"] = w.floats(&m.weights0.data()->x, nv, 4, "VEC4", kArrayBuffer, false);
+      if (second) {
+        attrs["JOINTS_1"] = w.joints(clean(m.joints1, m.weights1));
+        attrs["WEIGHTS_1"] = w.floats(&m.weights1.data()->x, nv, 4, "VEC4", kArrayBuffer, false);
+      }
+    }
+    json prim = {{"attributes", attrs}, {"mode", 4}};
+    if (!m.indices.empty()) prim["indices"] = w.indices(m.indices, nv);
+    meshes.push_back({{"name", m.name}, {"primitives", json::array({prim})}});
+  }
+  if (!meshes.empty()) root["meshes"] = meshes;
+
+  json skins = json::array();
+  for (size_t si = 0; si < c.skins.size(); ++si) {
+    const Skin& s = c.skins[si];
+    for (int j : s.joints)
+      if (j < 0 || j >= nodeCount) return Error{"skin " + std::to_string(si) + ": joint node " + std::to_string(j) + " does not exist"};
+    std::vector<glm::mat4> ibm(s.joints.size(), glm::mat4(1.0f));
+    for (size_t j = 0; j < ibm.size() && j < s.inverseBindMatrices.size(); ++j) ibm[j] = s.inverseBindMatrices[j];
+    json js = {{"name", s.name}, {"joints", s.joints}};
+    js["inverseBindMatrices"] = w.floats(&ibm.data()[0][0][0], ibm.size(), 16, "MAT4", 0, false);
+    if (s.skeletonRoot >= 0) js["skeleton"] = s.skeletonRoot;
+    skins.push_back(js);
+  }
+  if (!skins.empty()) root["skins"] = skins;
+
+  json anims = json::array();
+  for (size_t ai = 0; ai < c.clips.size(); ++ai) {
+    const AnimationClip& clip = c.clips[ai];
+    if (clip.channels.empty()) continue;  // glTF requires at least one channel
+    json channels = json::array(), samplers = json::array();
+    for (size_t k = 0; k < clip.channels.size(); ++k) {
+      const Channel& ch = clip.channels[k];
+      const std::string label = "animation '" + clip.name + "' channel " + std::to_string(k);
+      if (ch.node < 0 || ch.node >= nodeCount) return Error{label + ": target node does not exist"};
+      if (ch.timesSec.empty()) return Error{label + ": no keys"};
+      for (size_t i = 1; i < ch.timesSec.size(); ++i)
+        if (!(ch.timesSec[i] > ch.timesSec[i - 1])) return Error{label + ": key times must increase (key " + std::to_string(i) + ")"};
+      const size_t perKey = ch.interpolation == Interpolation::CubicSpline ? 3 : 1;
+      if (ch.values.size() != perKey * ch.timesSec.size())
+        return Error{label + ": " + std::to_string(ch.values.size()) + " values for " + std::to_string(ch.timesSec.size()) + " keys"};
+      const bool rot = ch.path == ChannelPath::Rotation;
+      std::vector<float> vals;
+      vals.reserve(ch.values.size() * 4);
+      for (const auto& v : ch.values) {
+        vals.insert(vals.end(), {v.x, v.y, v.z});
+        if (rot) vals.push_back(v.w);
+      }
+      int in = w.floats(ch.timesSec.data(), ch.timesSec.size(), 1, "SCALAR", 0, true);
+      int out = w.floats(vals.data(), ch.values.size(), rot ? 4 : 3, rot ? "VEC4" : "VEC3", 0, false);
+      samplers.push_back({{"input", in}, {"output", out}, {"interpolation", interpolationName(ch.interpolation)}});
+      channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", ch.node}, {"path", pathName(ch.path)}}}});
+    }
+    anims.push_back({{"name", clip.name}, {"channels", channels}, {"samplers", samplers}});
+  }
+  if (!anims.empty()) root["animations"] = anims;
+  return w.finish(std::move(root));
+}
+
+Status exportGlb(const Character& c, const std::string& path) {
+  auto bytes = exportGlbBytes(c);
+  if (!bytes) return Error{path + ": " + bytes.error()};
+  return writeFileAtomic(path, *bytes);
+}
+
+}  // namespace animorph

@@ -1,0 +1,21 @@
+#pragma once
+// glTF 2.0 binary (.glb) export of a Character.
+#include <string>
+
+#include "rig/character.h"
+#include "util/result.h"
+
+namespace animorph {
+
+// Serialises c as GLB bytes: nodes (TRS), meshes (POSITION, NORMAL, indices,
+// JOINTS_0/WEIGHTS_0 and _1 when used, for meshes drawn with a skin), skins
+// with inverse bind matrices, animations with STEP/LINEAR/CUBICSPLINE
+// samplers, one scene of c.roots. Fails (naming the element) on data glTF
+// cannot hold: indices or joints out of range, key times that do not
+// increase, a value count that does not match the interpolation.
+Result<std::string> exportGlbBytes(const Character& c);
+
+// exportGlbBytes written atomically to path; errors name the file.
+Status exportGlb(const Character& c, const std::string& path);
+
+}  // namespace animorph

@@ -1,0 +1,880 @@
+// glTF 2.0 import with Debian's tinygltf (the compiled libtinygltf.so, built
+// with stb_image and the default file-system callbacks, so no configuration
+// macro is defined here). tinygltf parses JSON and loads buffers; every index,
+// bound and type is checked here before a byte is read.
+#include "io/gltf_import.h"
+
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <set>
+#include <sstream>
+
+#include "doc/atomic_file.h"
+#include "io/gltf_schema_check.h"
+#include "rig/mesh_normals.h"
+#include "rig/skin_influences.h"
+
+namespace animorph {
+namespace {
+
+namespace fs = std::filesystem;
+
+// ---------------------------------------------------------------------------
+// File access: external URIs must stay inside the glTF file's directory.
+
+struct FsGuard {
+  std::string baseDir;  // canonical, no trailing slash
+  std::string rejectedUri;
+  std::string rejectReason;
+  std::string missingUri;
+};
+
+bool isInside(const fs::path& p, const fs::path& dir) {
+  auto d = dir.begin(), q = p.begin();
+  for (; d != dir.end(); ++d, ++q)
+    if (q == p.end() || *q != *d) return false;
+  return true;
+}
+
+// tinygltf joins base_dir and the URI, then retries "./URI" (the working
+// directory); only the first form is honoured.
+bool guardedFileExists(const std::string& path, void* user) {
+  auto* g = static_cast<FsGuard*>(user);
+  const std::string prefix = g->baseDir + "/";
+  if (path.rfind(prefix, 0) != 0) return false;
+  std::string uri = path.substr(prefix.size());
+  if (uri.empty()) return false;
+  if (uri[0] == '/' || uri[0] == '\\' || (uri.size() > 1 && uri[1] == ':')) {
+    if (g->rejectedUri.empty()) { g->rejectedUri = uri; g->rejectReason = "absolute paths are not allowed"; }
+    return false;
+  }
+  std::error_code ec;
+  fs::path full = fs::weakly_canonical(fs::path(g->baseDir) / uri, ec);
+  if (ec || !isInside(full, fs::path(g->baseDir))) {
+    if (g->rejectedUri.empty()) {
+      g->rejectedUri = uri;
+      g->rejectReason = "resolves outside the glTF file's directory";
+    }
+    return false;
+  }
+  if (!fs::is_regular_file(full, ec)) {
+    if (g->missingUri.empty()) g->missingUri = uri;
+    return false;
+  }
+  return true;
+}
+
+std::string identityExpand(const std::string& path, void*) { return path; }
+
+bool guardedReadWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+  if (!guardedFileExists(path, user)) {
+    if (err) *err = "not readable";
+    return false;
+  }
+  return tinygltf::ReadWholeFile(out, err, path, nullptr);
+}
+
+bool refuseWrite(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+  if (err) *err = "writing is disabled during import";
+  return false;
+}
+
+// Textures are not used by the editor: keep the bytes, decode nothing.
+bool skipImageDecode(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
+                     void*) {
+  return true;
+}
+
+// ---------------------------------------------------------------------------
+// Import context and error helpers.
+
+struct Ctx {
+  std::string file;  // file name for messages
+  const tinygltf::Model& m;
+  ImportReport& report;
+};
+
+Error err(const Ctx& c, const std::string& element, const std::string& reason) {
+  return Error{c.file + ": " + element + ": " + reason};
+}
+
+std::string accessorName(int i) { return "accessor " + std::to_string(i); }
+
+std::string meshLabel(const tinygltf::Model& m, int i) {
+  const std::string& n = m.meshes[i].name;
+  return n.empty() ? "mesh " + std::to_string(i) : "mesh " + std::to_string(i) + " '" + n + "'";
+}
+
+std::string nodeLabel(const tinygltf::Model& m, int i) {
+  const std::string& n = m.nodes[i].name;
+  return n.empty() ? "node " + std::to_string(i) : "node " + std::to_string(i) + " '" + n + "'";
+}
+
+const char* typeName(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return "SCALAR";
+    case TINYGLTF_TYPE_VEC2: return "VEC2";
+    case TINYGLTF_TYPE_VEC3: return "VEC3";
+    case TINYGLTF_TYPE_VEC4: return "VEC4";
+    case TINYGLTF_TYPE_MAT2: return "MAT2";
+    case TINYGLTF_TYPE_MAT3: return "MAT3";
+    case TINYGLTF_TYPE_MAT4: return "MAT4";
+    default: return "unknown type";
+  }
+}
+
+const char* componentName(int ct) {
+  switch (ct) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: return "byte";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return "unsigned byte";
+    case TINYGLTF_COMPONENT_TYPE_SHORT: return "short";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return "unsigned short";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return "unsigned int";
+    case TINYGLTF_COMPONENT_TYPE_INT: return "int";
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return "float";
+    default: return "unknown component type";
+  }
+}
+
+size_t componentSize(int ct) {
+  switch (ct) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    case TINYGLTF_COMPONENT_TYPE_INT:
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+    default: return 0;
+  }
+}
+
+int componentCount(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return 1;
+    case TINYGLTF_TYPE_VEC2: return 2;
+    case TINYGLTF_TYPE_VEC3: return 3;
+    case TINYGLTF_TYPE_VEC4: return 4;
+    case TINYGLTF_TYPE_MAT2: return 4;
+    case TINYGLTF_TYPE_MAT3: return 9;
+    case TINYGLTF_TYPE_MAT4: return 16;
+    default: return 0;
+  }
+}
+
+// ---------------------------------------------------------------------------
+// Accessors: bounds-checked reads into flat float or integer arrays.
+
+struct Span {
+  const unsigned char* data = nullptr;  // null: all zeros (no bufferView)
+  size_t stride = 0;
+};
+
+// A bufferView range [offset, offset + (count-1)*stride + elemSize) checked
+// against the view and the view against its buffer.
+Result<Span> viewRange(const Ctx& c, const std::string& element, int viewIndex, size_t offset, size_t count,
+                       size_t elemSize, bool allowStride) {
+  const auto& m = c.m;
+  if (viewIndex < 0 || viewIndex >= static_cast<int>(m.bufferViews.size()))
+    return err(c, element, "bufferView " + std::to_string(viewIndex) + " does not exist (" +
+                               std::to_string(m.bufferViews.size()) + " bufferViews)");
+  const auto& bv = m.bufferViews[viewIndex];
+  const std::string bvName = "bufferView " + std::to_string(viewIndex);
+  if (bv.buffer < 0 || bv.buffer >= static_cast<int>(m.buffers.size()))
+    return err(c, bvName, "buffer " + std::to_string(bv.buffer) + " does not exist");
+  const auto& buf = m.buffers[bv.buffer];
+  if (bv.byteOffset > buf.data.size() || bv.byteLength > buf.data.size() - bv.byteOffset)
+    return err(c, bvName, "bytes " + std::to_string(bv.byteOffset) + ".." + std::to_string(bv.byteOffset + bv.byteLength) +
+                              " exceed buffer " + std::to_string(bv.buffer) + " (" + std::to_string(buf.data.size()) +
+                              " bytes)");
+  size_t stride = allowStride && bv.byteStride ? bv.byteStride : elemSize;
+  if (stride < elemSize)
+    return err(c, element, "byteStride " + std::to_string(stride) + " is smaller than an element (" +
+                               std::to_string(elemSize) + " bytes)");
+  if (count > 0) {
+    // (count-1)*stride + elemSize + offset <= byteLength, without overflow.
+    size_t avail = bv.byteLength;
+    bool fits = offset <= avail && elemSize <= avail - offset &&
+                (count - 1) <= (avail - offset - elemSize) / stride;
+    if (!fits)
+      return err(c, element, std::to_string(count) + " elements of " + std::to_string(elemSize) + " bytes at offset " +
+                                 std::to_string(offset) + " exceed " + bvName + " (" + std::to_string(bv.byteLength) +
+                                 " bytes)");
+  }
+  return Span{buf.data.data() + bv.byteOffset + offset, stride};
+}
+
+double readComponent(const unsigned char* p, int ct, bool normalized) {
+  switch (ct) {
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: { float f; std::memcpy(&f, p, 4); return f; }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? p[0] / 255.0 : p[0];
+    case TINYGLTF_COMPONENT_TYPE_BYTE: {
+      auto v = static_cast<int8_t>(p[0]);
+      return normalized ? std::max(v / 127.0, -1.0) : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      uint16_t v; std::memcpy(&v, p, 2);
+      return normalized ? v / 65535.0 : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_SHORT: {
+      int16_t v; std::memcpy(&v, p, 2);
+      return normalized ? std::max(v / 32767.0, -1.0) : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { uint32_t v; std::memcpy(&v, p, 4); return v; }
+    case TINYGLTF_COMPONENT_TYPE_INT: { int32_t v; std::memcpy(&v, p, 4); return v; }
+    default: return 0.0;
+  }
+}
+
+struct AccessorSpec {
+  std::vector<int> types;           // allowed TINYGLTF_TYPE_*
+  std::vector<int> componentTypes;  // allowed component types
+  const char* usage;                // for messages: "POSITION", "indices", ...
+};
+
+// Reads accessor `index` into out (components per element times count).
+// T is float or uint32_t. Sparse accessors are applied.
+template <class T>
+Result<size_t> readAccessor(const Ctx& c, int index, const AccessorSpec& spec, std::vector<T>& out, int& comps) {
+  const auto& m = c.m;
+  const std::string name = accessorName(index);
+  if (index < 0 || index >= static_cast<int>(m.accessors.size()))
+    return Error{c.file + ": " + spec.usage + " refers to accessor " + std::to_string(index) + ", which does not exist (" +
+                 std::to_string(m.accessors.size()) + " accessors)"};
+  const auto& a = m.accessors[index];
+  if (std::find(spec.types.begin(), spec.types.end(), a.type) == spec.types.end()) {
+    std::string expected;
+    for (int t : spec.types) expected += (expected.empty() ? "" : " or ") + std::string(typeName(t));
+    return err(c, name, std::string("type ") + typeName(a.type) + " is wrong for " + spec.usage + " (expected " +
+                            expected + ")");
+  }
+  if (std::find(spec.componentTypes.begin(), spec.componentTypes.end(), a.componentType) == spec.componentTypes.end()) {
+    std::string expected;
+    for (int t : spec.componentTypes) expected += (expected.empty() ? "" : " or ") + std::string(componentName(t));
+    return err(c, name, std::string("component type ") + componentName(a.componentType) + " (" +
+                            std::to_string(a.componentType) + ") is wrong for " + spec.usage + " (expected " + expected +
+                            ")");
+  }
+  comps = componentCount(a.type);
+  const size_t cs = componentSize(a.componentType);
+  // Matrix columns of 1- and 2-byte components are padded to 4 bytes; only
+  // float matrices are accepted here, so elements are tightly packed.
+  const size_t elemSize = cs * comps;
+  const size_t count = a.count;
+  // Bounds are checked before anything is allocated, so a huge count in a
+  // small file cannot exhaust memory; accessors without a bufferView (all
+  // zeros, possibly sparse) are capped instead.
+  Span span;
+  if (a.bufferView >= 0) {
+    auto checked = viewRange(c, name, a.bufferView, a.byteOffset, count, elemSize, true);
+    if (!checked) return Error{checked.error()};
+    span = *checked;
+  } else if (count > (size_t(1) << 26)) {
+    return err(c, name, "count " + std::to_string(count) + " is too large for an accessor without a bufferView");
+  }
+  out.assign(count * comps, T(0));
+  if (span.data) {
+    const unsigned char* base = span.data;
+    if (a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT && std::is_same_v<T, float> && span.stride == elemSize) {
+      std::memcpy(out.data(), base, count * elemSize);
+    } else {
+      for (size_t i = 0; i < count; ++i)
+        for (int k = 0; k < comps; ++k)
+          out[i * comps + k] = static_cast<T>(readComponent(base + i * span.stride + k * cs, a.componentType, a.normalized));
+    }
+  }
+  if (a.sparse.isSparse) {
+    const size_t n = static_cast<size_t>(std::max(0, a.sparse.count));
+    const int ict = a.sparse.indices.componentType;
+    if (ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+      return err(c, name, std::string("sparse indices have component type ") + componentName(ict));
+    auto idx = viewRange(c, name + " sparse indices", a.sparse.indices.bufferView,
+                         static_cast<size_t>(std::max(0, a.sparse.indices.byteOffset)), n, componentSize(ict), false);
+    if (!idx) return Error{idx.error()};
+    auto val = viewRange(c, name + " sparse values", a.sparse.values.bufferView,
+                         static_cast<size_t>(std::max(0, a.sparse.values.byteOffset)), n, elemSize, false);
+    if (!val) return Error{val.error()};
+    for (size_t i = 0; i < n; ++i) {
+      auto target = static_cast<size_t>(readComponent(idx->data + i * componentSize(ict), ict, false));
+      if (target >= count)
+        return err(c, name, "sparse index " + std::to_string(target) + " out of range (" + std::to_string(count) +
+                                " elements)");
+      for (int k = 0; k < comps; ++k)
+        out[target * comps + k] =
+            static_cast<T>(readComponent(val->data + i * elemSize + k * cs, a.componentType, a.normalized));
+    }
+  }
+  return count;
+}
+
+const std::vector<int> kFloatOnly = {TINYGLTF_COMPONENT_TYPE_FLOAT};
+const std::vector<int> kFloatOrNormalised = {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                                             TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT};
+const std::vector<int> kRotationTypes = {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
+                                         TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT,
+                                         TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT};
+const std::vector<int> kIndexTypes = {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                                      TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT};
+const std::vector<int> kJointTypes = {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT};
+
+Status checkFinite(const Ctx& c, int accessor, const std::vector<float>& v, int comps, const char* what) {
+  for (size_t i = 0; i < v.size(); ++i)
+    if (!std::isfinite(v[i]))
+      return err(c, accessorName(accessor), std::string(what) + " " + std::to_string(i / comps) + " is not finite (" +
+                                                (std::isnan(v[i]) ? "NaN" : "Inf") + ")");
+  return {};
+}
+
+// ---------------------------------------------------------------------------
+// Meshes.
+
+struct PrimitiveGeometry {
+  std::vector<glm::vec3> positions, normals;
+  std::vector<uint32_t> indices;
+  std::vector<std::vector<Influence>> influences;  // empty when the primitive has no JOINTS_0
+  bool computedNormals = false;
+};
+
+// Triangle list from the primitive's mode; returns false for non-triangle modes.
+bool toTriangles(int mode, std::vector<uint32_t>& idx) {
+  if (mode == TINYGLTF_MODE_TRIANGLES) {
+    idx.resize(idx.size() - idx.size() % 3);
+    return true;
+  }
+  std::vector<uint32_t> tris;
+  if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+    for (size_t i = 0; i + 2 < idx.size(); ++i) {
+      // Alternate the winding so every triangle keeps the strip's orientation.
+      if (i % 2 == 0) tris.insert(tris.end(), {idx[i], idx[i + 1], idx[i + 2]});
+      else tris.insert(tris.end(), {idx[i + 1], idx[i], idx[i + 2]});
+    }
+  } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+    for (size_t i = 1; i + 1 < idx.size(); ++i) tris.insert(tris.end(), {idx[0], idx[i], idx[i + 1]});
+  } else {
+    return false;
+  }
+  idx.swap(tris);
+  return true;
+}
+
+const char* modeName(int mode) {
+  switch (mode) {
+    case TINYGLTF_MODE_POINTS: return "POINTS";
+    case TINYGLTF_MODE_LINE: return "LINES";
+    case TINYGLTF_MODE_LINE_LOOP: return "LINE_LOOP";
+    case TINYGLTF_MODE_LINE_STRIP: return "LINE_STRIP";
+    default: return "unknown mode";
+  }
+}
+
+// Reads one triangle primitive. Returns an empty geometry with a warning for
+// recoverable problems.
+Result<PrimitiveGeometry> readPrimitive(const Ctx& c, int meshIndex, int primIndex) {
+  const auto& prim = c.m.meshes[meshIndex].primitives[primIndex];
+  const std::string label = meshLabel(c.m, meshIndex) + " primitive " + std::to_string(primIndex);
+  PrimitiveGeometry g;
+  auto attr = [&](const char* name) {
+    auto it = prim.attributes.find(name);
+    return it == prim.attributes.end() ? -1 : it->second;
+  };
+  int posAcc = attr("POSITION");
+  if (posAcc < 0) return err(c, label, "no POSITION attribute");
+  std::vector<float> pos;
+  int comps = 0;
+  auto n = readAccessor(c, posAcc, {{TINYGLTF_TYPE_VEC3}, kFloatOnly, "POSITION"}, pos, comps);
+  if (!n) return Error{n.error()};
+  if (auto s = checkFinite(c, posAcc, pos, 3, "position"); !s) return Error{s.error()};
+  const size_t vcount = *n;
+  g.positions.resize(vcount);
+  std::memcpy(g.positions.data(), pos.data(), vcount * sizeof(glm::vec3));
+
+  // Indices (or 0..n-1), range-checked, then converted to a triangle list.
+  if (prim.indices >= 0) {
+    int ic = 0;
+    auto k = readAccessor(c, prim.indices, {{TINYGLTF_TYPE_SCALAR}, kIndexTypes, "indices"}, g.indices, ic);
+    if (!k) return Error{k.error()};
+    for (uint32_t i : g.indices)
+      if (i >= vcount)
+        return err(c, accessorName(prim.indices),
+                   "index " + std::to_string(i) + " out of range (" + std::to_string(vcount) + " vertices)");
+  } else {
+    g.indices.resize(vcount);
+    for (size_t i = 0; i < vcount; ++i) g.indices[i] = static_cast<uint32_t>(i);
+  }
+  if (prim.mode == TINYGLTF_MODE_TRIANGLES && g.indices.size() % 3 != 0)
+    c.report.warnings.push_back(label + ": " + std::to_string(g.indices.size()) +
+                                (prim.indices >= 0 ? " indices" : " vertices") +
+                                " is not a multiple of 3; the last " + std::to_string(g.indices.size() % 3) +
+                                " ignored");
+  toTriangles(prim.mode, g.indices);
+
+  int nrmAcc = attr("NORMAL");
+  if (nrmAcc >= 0) {
+    std::vector<float> nrm;
+    auto k = readAccessor(c, nrmAcc, {{TINYGLTF_TYPE_VEC3}, kFloatOnly, "NORMAL"}, nrm, comps);
+    if (!k) return Error{k.error()};
+    if (*k != vcount)
+      return err(c, label, "NORMAL has " + std::to_string(*k) + " elements but POSITION has " + std::to_string(vcount));
+    if (auto s = checkFinite(c, nrmAcc, nrm, 3, "normal"); !s) return Error{s.error()};
+    g.normals.resize(vcount);
+    std::memcpy(g.normals.data(), nrm.data(), vcount * sizeof(glm::vec3));
+    for (auto& v : g.normals) {
+      float len = glm::length(v);
+      v = len > 1e-20f ? v / len : glm::vec3(0, 1, 0);
+    }
+  } else {
+    g.normals = computeAreaWeightedNormals(g.positions, g.indices);
+    g.computedNormals = true;
+  }
+
+  // Every JOINTS_n / WEIGHTS_n pair contributes influences.
+  for (int set = 0;; ++set) {
+    int ja = attr(("JOINTS_" + std::to_string(set)).c_str());
+    int wa = attr(("WEIGHTS_" + std::to_string(set)).c_str());
+    if (ja < 0 && wa < 0) break;
+    if (ja < 0 || wa < 0)
+      return err(c, label, "JOINTS_" + std::to_string(set) + " and WEIGHTS_" + std::to_string(set) +
+                               " must come together");
+    std::vector<uint32_t> joints;
+    std::vector<float> weights;
+    int jc = 0, wc = 0;
+    auto jn = readAccessor(c, ja, {{TINYGLTF_TYPE_VEC4}, kJointTypes, "JOINTS"}, joints, jc);
+    if (!jn) return Error{jn.error()};
+    auto wn = readAccessor(c, wa, {{TINYGLTF_TYPE_VEC4}, kFloatOrNormalised, "WEIGHTS"}, weights, wc);
+    if (!wn) return Error{wn.error()};
+    if (*jn != vcount || *wn != vcount)
+      return err(c, label, "JOINTS_" + std::to_string(set) + "/WEIGHTS_" + std::to_string(set) + " have " +
+                               std::to_string(*jn) + "/" + std::to_string(*wn) + " elements but POSITION has " +
+                               std::to_string(vcount));
+    if (g.influences.empty()) g.influences.resize(vcount);
+    for (size_t v = 0; v < vcount; ++v)
+      for (int k = 0; k < 4; ++k)
+        if (weights[v * 4 + k] != 0.0f) g.influences[v].push_back({joints[v * 4 + k], weights[v * 4 + k]});
+  }
+  return g;
+}
+
+// Concatenates the triangle primitives of mesh meshIndex.
+Result<Mesh> readMesh(const Ctx& c, int meshIndex) {
+  const auto& gm = c.m.meshes[meshIndex];
+  Mesh mesh;
+  mesh.name = gm.name.empty() ? "mesh " + std::to_string(meshIndex) : gm.name;
+  bool computed = false;
+  bool anySkinned = false;
+  std::vector<PrimitiveGeometry> prims;
+  for (int p = 0; p < static_cast<int>(gm.primitives.size()); ++p) {
+    const auto& prim = gm.primitives[p];
+    if (!prim.targets.empty())
+      c.report.unsupported.push_back("morph targets (" + meshLabel(c.m, meshIndex) + ")");
+    if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+        prim.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+      c.report.unsupported.push_back(std::string(modeName(prim.mode)) + " primitive (" + meshLabel(c.m, meshIndex) +
+                                     " primitive " + std::to_string(p) + ", skipped)");
+      continue;
+    }
+    auto g = readPrimitive(c, meshIndex, p);
+    if (!g) return Error{g.error()};
+    computed |= g->computedNormals;
+    anySkinned |= !g->influences.empty();
+    prims.push_back(std::move(*g));
+  }
+  InfluenceStats stats;
+  bool needSecondSet = false;
+  for (auto& g : prims) {
+    const auto base = static_cast<uint32_t>(mesh.positions.size());
+    mesh.positions.insert(mesh.positions.end(), g.positions.begin(), g.positions.end());
+    mesh.normals.insert(mesh.normals.end(), g.normals.begin(), g.normals.end());
+    for (uint32_t i : g.indices) mesh.indices.push_back(base + i);
+    const size_t n = g.positions.size();
+    mesh.joints0.resize(base + n, glm::uvec4(0));
+    mesh.weights0.resize(base + n, glm::vec4(1, 0, 0, 0));
+    mesh.joints1.resize(base + n, glm::uvec4(0));
+    mesh.weights1.resize(base + n, glm::vec4(0));
+    if (g.influences.empty()) continue;
+    for (size_t v = 0; v < n; ++v) {
+      packInfluences(g.influences[v], mesh.joints0[base + v], mesh.weights0[base + v], mesh.joints1[base + v],
+                     mesh.weights1[base + v], stats);
+      needSecondSet |= mesh.weights1[base + v].x > 0.0f;
+    }
+  }
+  if (!needSecondSet) {
+    mesh.joints1.clear();
+    mesh.weights1.clear();
+  }
+  c.report.weightsNormalised += stats.normalised;
+  c.report.influencesDropped += stats.dropped;
+  if (stats.unweighted)
+    c.report.warnings.push_back(meshLabel(c.m, meshIndex) + ": " + std::to_string(stats.unweighted) +
+                                " vertices have no skin weight; bound to the skin's first joint");
+  if (stats.dropped)
+    c.report.warnings.push_back(meshLabel(c.m, meshIndex) + ": " + std::to_string(stats.dropped) +
+                                " vertices have more than 8 influences; the smallest were dropped");
+  if (computed) ++c.report.normalsComputed;
+  if (mesh.indices.empty()) c.report.warnings.push_back(meshLabel(c.m, meshIndex) + ": no triangles");
+  (void)anySkinned;
+  return mesh;
+}
+
+// ---------------------------------------------------------------------------
+// Nodes, skins, animations.
+
+Result<Transform> readNodeTransform(const Ctx& c, int i) {
+  const auto& n = c.m.nodes[i];
+  auto finite = [](const std::vector<double>& v) {
+    return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
+  };
+  if (!finite(n.matrix) || !finite(n.translation) || !finite(n.rotation) || !finite(n.scale))
+    return err(c, nodeLabel(c.m, i), "transform is not finite");
+  Transform t;
+  if (n.matrix.size() == 16) {
+    glm::mat4 m;
+    for (int k = 0; k < 16; ++k) m[k / 4][k % 4] = static_cast<float>(n.matrix[k]);
+    return decompose(m);
+  }
+  if (!n.matrix.empty()) return err(c, nodeLabel(c.m, i), "matrix has " + std::to_string(n.matrix.size()) + " values");
+  if (n.translation.size() == 3) t.translation = {n.translation[0], n.translation[1], n.translation[2]};
+  if (n.scale.size() == 3) t.scale = {n.scale[0], n.scale[1], n.scale[2]};
+  if (n.rotation.size() == 4) {
+    glm::quat q(static_cast<float>(n.rotation[3]), static_cast<float>(n.rotation[0]), static_cast<float>(n.rotation[1]),
+                static_cast<float>(n.rotation[2]));
+    float len = glm::length(q);
+    if (len < 1e-6f) return err(c, nodeLabel(c.m, i), "rotation is a zero quaternion");
+    t.rotation = q / len;
+  }
+  return t;
+}
+
+Status readHierarchy(const Ctx& c, Character& ch) {
+  const auto& m = c.m;
+  const int n = static_cast<int>(m.nodes.size());
+  ch.nodes.resize(n);
+  for (int i = 0; i < n; ++i) {
+    const auto& gn = m.nodes[i];
+    Node& node = ch.nodes[i];
+    node.name = gn.name.empty() ? "node " + std::to_string(i) : gn.name;
+    auto t = readNodeTransform(c, i);
+    if (!t) return Error{t.error()};
+    node.rest = *t;
+    if (gn.mesh >= static_cast<int>(m.meshes.size()))
+      return err(c, nodeLabel(m, i), "mesh " + std::to_string(gn.mesh) + " does not exist");
+    if (gn.skin >= static_cast<int>(m.skins.size()))
+      return err(c, nodeLabel(m, i), "skin " + std::to_string(gn.skin) + " does not exist");
+    node.mesh = gn.mesh < 0 ? -1 : gn.mesh;
+    node.skin = gn.skin < 0 ? -1 : gn.skin;
+    for (int child : gn.children) {
+      if (child < 0 || child >= n)
+        return err(c, nodeLabel(m, i), "child " + std::to_string(child) + " does not exist (" + std::to_string(n) +
+                                           " nodes)");
+      if (child == i) return err(c, nodeLabel(m, i), "is its own child (cyclic hierarchy)");
+      if (ch.nodes[child].parent >= 0 && ch.nodes[child].parent != i)
+        return err(c, nodeLabel(m, child), "has two parents (node " + std::to_string(ch.nodes[child].parent) +
+                                               " and node " + std::to_string(i) + ")");
+      if (ch.nodes[child].parent == i)
+        return err(c, nodeLabel(m, i), "lists child " + std::to_string(child) + " twice");
+      ch.nodes[child].parent = i;
+      node.children.push_back(child);
+    }
+  }
+  // With one parent per node, a cycle is a parent chain that comes back.
+  std::vector<char> state(n, 0);  // 0 unknown, 1 on the current walk, 2 reaches a root
+  for (int i = 0; i < n; ++i) {
+    std::vector<int> walk;
+    int k = i;
+    while (k >= 0 && state[k] == 0) {
+      state[k] = 1;
+      walk.push_back(k);
+      k = ch.nodes[k].parent;
+    }
+    if (k >= 0 && state[k] == 1) {
+      std::string chain = std::to_string(k);
+      for (int p = ch.nodes[k].parent; p != k; p = ch.nodes[p].parent) chain += " -> " + std::to_string(p);
+      return err(c, nodeLabel(m, k), "cyclic hierarchy (parent chain " + chain + " -> " + std::to_string(k) + ")");
+    }
+    for (int w : walk) state[w] = 2;
+  }
+  // Roots: the default scene's nodes, else every parentless node.
+  int scene = m.defaultScene >= 0 ? m.defaultScene : (m.scenes.empty() ? -1 : 0);
+  if (scene >= static_cast<int>(m.scenes.size()))
+    return err(c, "scene " + std::to_string(scene), "does not exist (" + std::to_string(m.scenes.size()) + " scenes)");
+  if (scene >= 0) {
+    for (int r : m.scenes[scene].nodes) {
+      if (r < 0 || r >= n) return err(c, "scene " + std::to_string(scene), "node " + std::to_string(r) + " does not exist");
+      if (ch.nodes[r].parent >= 0)
+        c.report.warnings.push_back("scene " + std::to_string(scene) + ": " + nodeLabel(m, r) +
+                                    " is listed as a root but has a parent");
+      ch.roots.push_back(r);
+    }
+    if (m.scenes.size() > 1)
+      c.report.unsupported.push_back("additional scenes (" + std::to_string(m.scenes.size() - 1) + ", only scene " +
+                                     std::to_string(scene) + " is used)");
+  } else {
+    for (int i = 0; i < n; ++i)
+      if (ch.nodes[i].parent < 0) ch.roots.push_back(i);
+  }
+  return {};
+}
+
+Status readSkins(const Ctx& c, Character& ch) {
+  const auto& m = c.m;
+  for (int s = 0; s < static_cast<int>(m.skins.size()); ++s) {
+    const auto& gs = m.skins[s];
+    const std::string label = "skin " + std::to_string(s);
+    Skin skin;
+    skin.name = gs.name.empty() ? label : gs.name;
+    if (gs.joints.empty()) return err(c, label, "has no joints");
+    for (int j : gs.joints) {
+      if (j < 0 || j >= static_cast<int>(ch.nodes.size()))
+        return err(c, label, "joint node " + std::to_string(j) + " does not exist");
+      skin.joints.push_back(j);
+    }
+    if (gs.skeleton >= static_cast<int>(ch.nodes.size()))
+      return err(c, label, "skeleton node " + std::to_string(gs.skeleton) + " does not exist");
+    skin.skeletonRoot = gs.skeleton;
+    skin.inverseBindMatrices.assign(skin.joints.size(), glm::mat4(1.0f));
+    if (gs.inverseBindMatrices >= 0) {
+      std::vector<float> mats;
+      int comps = 0;
+      auto k = readAccessor(c, gs.inverseBindMatrices, {{TINYGLTF_TYPE_MAT4}, kFloatOnly, "inverseBindMatrices"}, mats,
+                            comps);
+      if (!k) return Error{k.error()};
+      if (*k < skin.joints.size())
+        return err(c, accessorName(gs.inverseBindMatrices),
+                   std::to_string(*k) + " inverse bind matrices for " + std::to_string(skin.joints.size()) + " joints");
+      if (auto st = checkFinite(c, gs.inverseBindMatrices, mats, 16, "matrix"); !st) return st;
+      for (size_t j = 0; j < skin.joints.size(); ++j)
+        std::memcpy(&skin.inverseBindMatrices[j][0][0], &mats[j * 16], 16 * sizeof(float));
+    }
+    ch.skins.push_back(std::move(skin));
+  }
+  return {};
+}
+
+Status readAnimations(const Ctx& c, Character& ch) {
+  const auto& m = c.m;
+  for (int a = 0; a < static_cast<int>(m.animations.size()); ++a) {
+    const auto& ga = m.animations[a];
+    const std::string label = "animation " + std::to_string(a) + (ga.name.empty() ? "" : " '" + ga.name + "'");
+    AnimationClip clip;
+    clip.name = ga.name.empty() ? "animation " + std::to_string(a) : ga.name;
+    bool morphWeights = false;
+    for (int k = 0; k < static_cast<int>(ga.channels.size()); ++k) {
+      const auto& gc = ga.channels[k];
+      const std::string chLabel = label + " channel " + std::to_string(k);
+      if (gc.target_path == "weights") { morphWeights = true; continue; }
+      Channel out;
+      if (gc.target_path == "translation") out.path = ChannelPath::Translation;
+      else if (gc.target_path == "rotation") out.path = ChannelPath::Rotation;
+      else if (gc.target_path == "scale") out.path = ChannelPath::Scale;
+      else {
+        c.report.unsupported.push_back("animation path '" + gc.target_path + "' (" + label + ")");
+        continue;
+      }
+      if (gc.target_node < 0) {
+        c.report.warnings.push_back(chLabel + ": no target node; skipped");
+        continue;
+      }
+      if (gc.target_node >= static_cast<int>(ch.nodes.size()))
+        return err(c, chLabel, "target node " + std::to_string(gc.target_node) + " does not exist");
+      if (gc.sampler < 0 || gc.sampler >= static_cast<int>(ga.samplers.size()))
+        return err(c, chLabel, "sampler " + std::to_string(gc.sampler) + " does not exist");
+      const auto& gs = ga.samplers[gc.sampler];
+      out.node = gc.target_node;
+      if (gs.interpolation == "LINEAR") out.interpolation = Interpolation::Linear;
+      else if (gs.interpolation == "STEP") out.interpolation = Interpolation::Step;
+      else if (gs.interpolation == "CUBICSPLINE") out.interpolation = Interpolation::CubicSpline;
+      else return err(c, label + " sampler " + std::to_string(gc.sampler), "unknown interpolation '" + gs.interpolation + "'");
+      int comps = 0;
+      auto nt = readAccessor(c, gs.input, {{TINYGLTF_TYPE_SCALAR}, kFloatOnly, "animation input"}, out.timesSec, comps);
+      if (!nt) return Error{nt.error()};
+      if (*nt == 0) {
+        c.report.warnings.push_back(chLabel + ": no keys; skipped");
+        continue;
+      }
+      for (size_t i = 0; i < out.timesSec.size(); ++i) {
+        if (!std::isfinite(out.timesSec[i]))
+          return err(c, accessorName(gs.input), "key time " + std::to_string(i) + " is not finite");
+        if (i > 0 && out.timesSec[i] < out.timesSec[i - 1])
+          return err(c, accessorName(gs.input), "key times decrease at key " + std::to_string(i));
+      }
+      const bool rotation = out.path == ChannelPath::Rotation;
+      std::vector<float> vals;
+      auto nv = readAccessor(c, gs.output,
+                             {{rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3},
+                              rotation ? kRotationTypes : kFloatOnly, "animation output"},
+                             vals, comps);
+      if (!nv) return Error{nv.error()};
+      const size_t perKey = out.interpolation == Interpolation::CubicSpline ? 3 : 1;
+      if (*nv != perKey * *nt)
+        return err(c, accessorName(gs.output), std::to_string(*nv) + " values for " + std::to_string(*nt) + " keys (" +
+                                                   gs.interpolation + " needs " + std::to_string(perKey * *nt) + ")");
+      if (auto st = checkFinite(c, gs.output, vals, comps, "value"); !st) return st;
+      out.values.resize(*nv);
+      for (size_t i = 0; i < *nv; ++i)
+        out.values[i] = rotation ? glm::vec4(vals[i * 4], vals[i * 4 + 1], vals[i * 4 + 2], vals[i * 4 + 3])
+                                 : glm::vec4(vals[i * 3], vals[i * 3 + 1], vals[i * 3 + 2], 0.0f);
+      clip.durationSec = std::max(clip.durationSec, out.timesSec.back());
+      clip.channels.push_back(std::move(out));
+    }
+    if (morphWeights) c.report.unsupported.push_back("morph target weights animation (" + label + ")");
+    ch.clips.push_back(std::move(clip));
+  }
+  return {};
+}
+
+// Joint indices must address the skin the mesh is drawn with; a mesh with
+// joints drawn without a skin is treated as rigid.
+Status checkSkinBindings(const Ctx& c, Character& ch) {
+  std::vector<int> skinOfMesh(ch.meshes.size(), -2);  // -2 unused, -1 no skin
+  for (size_t i = 0; i < ch.nodes.size(); ++i) {
+    const Node& n = ch.nodes[i];
+    if (n.mesh < 0) continue;
+    Mesh& mesh = ch.meshes[n.mesh];
+    if (n.skin < 0) continue;
+    const size_t jointCount = ch.skins[n.skin].joints.size();
+    uint32_t maxJoint = 0;
+    for (size_t v = 0; v < mesh.joints0.size(); ++v)
+      for (int k = 0; k < 4; ++k) {
+        if (mesh.weights0[v][k] > 0.0f) maxJoint = std::max(maxJoint, mesh.joints0[v][k]);
+        if (!mesh.weights1.empty() && mesh.weights1[v][k] > 0.0f) maxJoint = std::max(maxJoint, mesh.joints1[v][k]);
+      }
+    if (maxJoint >= jointCount)
+      return err(c, meshLabel(c.m, n.mesh), "joint index " + std::to_string(maxJoint) + " out of range (skin " +
+                                                std::to_string(n.skin) + " has " + std::to_string(jointCount) +
+                                                " joints)");
+    skinOfMesh[n.mesh] = n.skin;
+  }
+  for (size_t i = 0; i < ch.nodes.size(); ++i) {
+    const Node& n = ch.nodes[i];
+    if (n.mesh < 0 || n.skin >= 0 || skinOfMesh[n.mesh] >= 0) continue;
+    Mesh& mesh = ch.meshes[n.mesh];
+    const bool skinned = std::any_of(mesh.joints0.begin(), mesh.joints0.end(), [](const glm::uvec4& j) { return j != glm::uvec4(0); });
+    if (skinned) {
+      c.report.warnings.push_back(meshLabel(c.m, n.mesh) + ": has skin weights but " + nodeLabel(c.m, static_cast<int>(i)) +
+                                  " has no skin; drawn rigidly");
+      std::fill(mesh.joints0.begin(), mesh.joints0.end(), glm::uvec4(0));
+      std::fill(mesh.weights0.begin(), mesh.weights0.end(), glm::vec4(1, 0, 0, 0));
+      mesh.joints1.clear();
+      mesh.weights1.clear();
+    }
+  }
+  return {};
+}
+
+void listUnsupportedFeatures(const Ctx& c) {
+  const auto& m = c.m;
+  for (const auto& e : m.extensionsUsed) c.report.unsupported.push_back("extension " + e);
+  if (!m.lights.empty()) c.report.unsupported.push_back("lights (" + std::to_string(m.lights.size()) + ")");
+  if (!m.cameras.empty()) c.report.unsupported.push_back("cameras (" + std::to_string(m.cameras.size()) + ")");
+  for (size_t i = 0; i < m.materials.size(); ++i) {
+    const auto& mat = m.materials[i];
+    const std::string label = "material '" + (mat.name.empty() ? std::to_string(i) : mat.name) + "'";
+    if (mat.normalTexture.index >= 0) c.report.unsupported.push_back("normal texture (" + label + ")");
+    if (mat.occlusionTexture.index >= 0) c.report.unsupported.push_back("occlusion texture (" + label + ")");
+    if (mat.emissiveTexture.index >= 0) c.report.unsupported.push_back("emissive texture (" + label + ")");
+    if (mat.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0)
+      c.report.unsupported.push_back("metallic-roughness texture (" + label + ")");
+  }
+}
+
+void dedupe(std::vector<std::string>& v) {
+  std::set<std::string> seen;
+  std::vector<std::string> out;
+  for (auto& s : v)
+    if (seen.insert(s).second) out.push_back(std::move(s));
+  v.swap(out);
+}
+
+std::vector<std::string> splitLines(const std::string& s) {
+  std::vector<std::string> out;
+  std::istringstream in(s);
+  std::string line;
+  while (std::getline(in, line))
+    if (!line.empty()) out.push_back(line);
+  return out;
+}
+
+Result<Character> importImpl(const std::string& path) {
+  const std::string file = fs::path(path).filename().string();
+  auto bytes = readFile(path);
+  if (!bytes) return Error{bytes.error()};
+  std::error_code ec;
+  fs::path dir = fs::weakly_canonical(fs::absolute(fs::path(path), ec).parent_path(), ec);
+  if (ec) return Error{file + ": cannot resolve its directory: " + ec.message()};
+
+  std::vector<std::string> schemaWarnings;
+  if (auto s = checkGltfSchema(*bytes, file, schemaWarnings); !s) return Error{s.error()};
+
+  FsGuard guard;
+  guard.baseDir = dir.string();
+  while (guard.baseDir.size() > 1 && guard.baseDir.back() == '/') guard.baseDir.pop_back();
+  tinygltf::TinyGLTF loader;
+  loader.SetFsCallbacks({guardedFileExists, identityExpand, guardedReadWholeFile, refuseWrite, &guard});
+  loader.SetImageLoader(skipImageDecode, nullptr);
+  tinygltf::Model model;
+  std::string terr, twarn;
+  const std::string& data = *bytes;
+  const bool binary = data.size() >= 4 && data.compare(0, 4, "glTF") == 0;
+  bool ok;
+  if (binary)
+    ok = loader.LoadBinaryFromMemory(&model, &terr, &twarn, reinterpret_cast<const unsigned char*>(data.data()),
+                                     static_cast<unsigned int>(data.size()), guard.baseDir);
+  else
+    ok = loader.LoadASCIIFromString(&model, &terr, &twarn, data.data(), static_cast<unsigned int>(data.size()),
+                                    guard.baseDir);
+  if (!guard.rejectedUri.empty())
+    return Error{file + ": uri '" + guard.rejectedUri + "': " + guard.rejectReason};
+  if (!ok) {
+    if (!guard.missingUri.empty()) return Error{file + ": uri '" + guard.missingUri + "': file not found"};
+    auto lines = splitLines(terr);
+    std::string reason = lines.empty() ? "not a valid glTF file" : lines.front();
+    for (size_t i = 1; i < lines.size() && i < 3; ++i) reason += "; " + lines[i];
+    return Error{file + ": " + reason};
+  }
+
+  Character ch;
+  ch.sourcePath = path;
+  Ctx c{file, model, ch.report};
+  ch.report.warnings = std::move(schemaWarnings);
+  for (auto& w : splitLines(twarn)) ch.report.warnings.push_back(w);
+  if (!guard.missingUri.empty()) ch.report.warnings.push_back("uri '" + guard.missingUri + "': file not found");
+  for (const auto& e : model.extensionsRequired)
+    if (e != "KHR_materials_unlit" && e != "KHR_texture_transform")
+      return err(c, "extensionsRequired", "requires " + e + ", which is not supported");
+  listUnsupportedFeatures(c);
+  if (auto s = readHierarchy(c, ch); !s) return Error{s.error()};
+  for (int i = 0; i < static_cast<int>(model.meshes.size()); ++i) {
+    auto mesh = readMesh(c, i);
+    if (!mesh) return Error{mesh.error()};
+    ch.meshes.push_back(std::move(*mesh));
+  }
+  if (auto s = readSkins(c, ch); !s) return Error{s.error()};
+  if (auto s = checkSkinBindings(c, ch); !s) return Error{s.error()};
+  if (auto s = readAnimations(c, ch); !s) return Error{s.error()};
+  if (ch.meshes.empty()) ch.report.warnings.push_back("no meshes");
+  dedupe(ch.report.warnings);
+  dedupe(ch.report.unsupported);
+  return ch;
+}
+
+}  // namespace
+
+Result<Character> importGltf(const std::string& path) {
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    auto r = importImpl(path);
+    if (r) r->report.importMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return r;
+  } catch (const std::exception& e) {
+    return Error{fs::path(path).filename().string() + ": cannot be read: " + e.what()};
+  } catch (...) {
+    return Error{fs::path(path).filename().string() + ": cannot be read: unknown failure"};
+  }
+}
+
+}  // namespace animorph

@@ -1,0 +1,18 @@
+#pragma once
+// Type checks on the glTF JSON that tinygltf does not make (it silently
+// ignores a property of the wrong type, e.g. "scene": "hello").
+#include <string>
+#include <vector>
+
+#include "util/result.h"
+
+namespace animorph {
+
+// Checks the JSON of a .gltf (or the JSON chunk of a .glb, given whole) for
+// properties of the wrong type. Properties that decide geometry, hierarchy,
+// skins or animation give an error ("file: meshes[0].primitives: expected an
+// array, found object"); wrongly typed material, texture and naming
+// properties are appended to warnings (the importer ignores them anyway).
+Status checkGltfSchema(const std::string& fileBytes, const std::string& fileName, std::vector<std::string>& warnings);
+
+}  // namespace animorph
