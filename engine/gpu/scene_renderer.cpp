@@ -53,6 +53,7 @@ struct PipelineDesc {
   bool depthTest = true;
   bool depthWrite = true;
   bool blend = false;
+  VkCullModeFlags cull = VK_CULL_MODE_NONE;
 };
 
 Result<VkPipeline> createPipeline(VkDevice device, VkRenderPass pass, VkPipelineLayout layout, const PipelineDesc& d) {
@@ -94,7 +95,9 @@ Result<VkPipeline> createPipeline(VkDevice device, VkRenderPass pass, VkPipeline
   vp.scissorCount = 1;
   VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
   rs.polygonMode = d.polygonMode;
-  rs.cullMode = VK_CULL_MODE_NONE;  // shading is two-sided; imported winding is not trusted
+  rs.cullMode = d.cull;
+  // With the y-flipped projection (view/camera.h) this makes triangles that are
+  // counter-clockwise as seen by the viewer front-facing, as glTF defines.
   rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
   rs.lineWidth = 1.0f;
   VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
@@ -188,16 +191,30 @@ Status SceneRenderer::init(VkRenderPass renderPass, SceneRendererSettings settin
   dpi.pPoolSizes = sizes;
   AM_VK_TRY(vkCreateDescriptorPool(dev, &dpi, nullptr, &descriptorPool_), "vkCreateDescriptorPool");
 
+  const VkCullModeFlags back = VK_CULL_MODE_BACK_BIT, none = VK_CULL_MODE_NONE;
+  auto meshDesc = [](VkCullModeFlags cull) {
+    PipelineDesc d{"mesh.vert", "mesh.frag", VertexInput::Mesh, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST};
+    d.cull = cull;
+    return d;
+  };
+  auto wireDesc = [&](VkCullModeFlags cull) {
+    PipelineDesc d = meshDesc(cull);
+    if (edgeListWireframe_) {
+      d.topology = VK_PRIMITIVE_TOPOLOGY_LINE_LIST;  // lines are never culled
+      d.cull = none;
+    } else {
+      d.polygonMode = VK_POLYGON_MODE_LINE;
+    }
+    return d;
+  };
   struct Want {
     VkPipeline* out;
     PipelineDesc desc;
   } wants[] = {
-      {&meshPipeline_, {"mesh.vert", "mesh.frag", VertexInput::Mesh, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST}},
-      {&wirePipeline_,
-       edgeListWireframe_
-           ? PipelineDesc{"mesh.vert", "mesh.frag", VertexInput::Mesh, VK_PRIMITIVE_TOPOLOGY_LINE_LIST}
-           : PipelineDesc{"mesh.vert", "mesh.frag", VertexInput::Mesh, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST,
-                          VK_POLYGON_MODE_LINE}},
+      {&meshPipeline_[0], meshDesc(back)},
+      {&meshPipeline_[1], meshDesc(none)},
+      {&wirePipeline_[0], wireDesc(back)},
+      {&wirePipeline_[1], wireDesc(none)},
       {&gridPipeline_, {"grid.vert", "grid.frag", VertexInput::None, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST,
                         VK_POLYGON_MODE_FILL, true, false, true}},
       {&linePipeline_, {"line.vert", "line.frag", VertexInput::Line, VK_PRIMITIVE_TOPOLOGY_LINE_LIST,
@@ -236,7 +253,8 @@ SceneRenderer::~SceneRenderer() {
     destroyBuffer(dev, s->joints);
     destroyBuffer(dev, s->lines);
   }
-  for (VkPipeline p : {meshPipeline_, wirePipeline_, gridPipeline_, linePipeline_, overlayPipeline_})
+  for (VkPipeline p : {meshPipeline_[0], meshPipeline_[1], wirePipeline_[0], wirePipeline_[1], gridPipeline_,
+                       linePipeline_, overlayPipeline_})
     if (p) vkDestroyPipeline(dev, p, nullptr);
   if (layout_) vkDestroyPipelineLayout(dev, layout_, nullptr);
   if (descriptorPool_) vkDestroyDescriptorPool(dev, descriptorPool_, nullptr);
@@ -349,19 +367,24 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint32_t frameSlot, const View
     vkCmdPushConstants(cmd, layout_, kPushStages, 0, sizeof(p), &p);
   };
 
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, meshPipeline_);
+  VkPipeline bound = VK_NULL_HANDLE;
+  auto bind = [&](VkPipeline p) {
+    if (p != bound) vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
+    bound = p;
+  };
   for (size_t i = 0; i < scene.meshes.size(); ++i) {
     const MeshDraw& d = scene.meshes[i];
     if (!d.mesh || d.mesh->indexCount() == 0) continue;
+    bind(meshPipeline_[d.doubleSided]);
     pushMesh(d, i, d.selected ? kDrawSelected : 0u, d.color, 0.0f);
     d.mesh->bindTriangles(cmd);
     vkCmdDrawIndexed(cmd, d.mesh->indexCount(), 1, 0, 0, 0);
   }
   if (opt.wireframe) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, wirePipeline_);
     for (size_t i = 0; i < scene.meshes.size(); ++i) {
       const MeshDraw& d = scene.meshes[i];
       if (!d.mesh) continue;
+      bind(wirePipeline_[d.doubleSided]);
       glm::vec4 color = d.selected ? glm::mix(opt.wireColor, opt.selectColor, 0.6f) : opt.wireColor;
       pushMesh(d, i, kDrawWireframe | (d.selected ? kDrawSelected : 0u), color, kWireDepthPull);
       if (edgeListWireframe_) {

@@ -30,6 +30,10 @@ struct MeshDraw {
   std::span<const glm::mat4> jointMatrices;  // jointMatrices() of the node; empty: one identity
   glm::vec4 color{0.62f, 0.62f, 0.62f, 1.0f};  // base colour (sRGB)
   bool selected = false;
+  // glTF material.doubleSided: also draw back faces. Single-sided meshes cull
+  // them (counter-clockwise is front, as in glTF), which also halves the
+  // rasterisation work on CPU renderers.
+  bool doubleSided = false;
 };
 
 struct SceneOptions {
@@ -87,8 +91,8 @@ class SceneRenderer {
   VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
   VkDescriptorPool descriptorPool_ = VK_NULL_HANDLE;
   VkPipelineLayout layout_ = VK_NULL_HANDLE;
-  VkPipeline meshPipeline_ = VK_NULL_HANDLE;
-  VkPipeline wirePipeline_ = VK_NULL_HANDLE;
+  VkPipeline meshPipeline_[2]{};  // [doubleSided]
+  VkPipeline wirePipeline_[2]{};  // [doubleSided]
   VkPipeline gridPipeline_ = VK_NULL_HANDLE;
   VkPipeline linePipeline_ = VK_NULL_HANDLE;     // depth-tested
   VkPipeline overlayPipeline_ = VK_NULL_HANDLE;  // always on top

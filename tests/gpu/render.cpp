@@ -176,6 +176,22 @@ TEST_CASE("skinned normals follow the joint rotation", "[gpu][render][skinning]"
   CHECK(r.ctx->validationErrorCount() == 0);
 }
 
+TEST_CASE("single-sided meshes cull back faces, double-sided ones do not", "[gpu][render]") {
+  Rig r = makeRig(256, 192);
+  OrbitCamera behind = frontCamera();
+  behind.yawRad = 3.14159265f;  // looking from -Z at the quads' backs
+  std::vector<glm::mat4> joints(6, glm::mat4(1.0f));
+  Scene scene = meshScene(r, joints);
+  CHECK(test::countDiffering(render(r, behind, scene), kBackground) == 0);
+  CHECK(differs(pixelAt(render(r, frontCamera(), scene), frontCamera(), {-1, 0, 0}), kBackground, 10));
+  scene.meshes[0].doubleSided = true;
+  const RgbaImage& img = render(r, behind, scene);
+  glm::u8vec4 back = pixelAt(img, behind, {-1, 0, 0});
+  CHECK(differs(back, kBackground, 10));
+  CHECK(int(back.r) > int(back.g) + 60);  // lit like a front face (two-sided shading)
+  CHECK(r.ctx->validationErrorCount() == 0);
+}
+
 TEST_CASE("the ground grid appears, with coloured axes, and fades with distance", "[gpu][render][grid]") {
   Rig r = makeRig(320, 240);
   OrbitCamera cam;
