@@ -120,7 +120,7 @@ std::vector<bench::Row> runRenderBench(const bench::Options& opt) {
     scene.meshes[0].jointMatrices = joints;
     Status s = (*target)->render(
         [&](VkCommandBuffer cmd) {
-          Status r = (*renderer)->record(cmd, 0, {0, 0, width, height}, camera, scene);
+          Status r = (*renderer)->record(cmd, (*target)->serial(), {0, 0, width, height}, camera, scene);
           if (!r) failure = r;
         },
         {0, 0, 0, 1}, readBack);

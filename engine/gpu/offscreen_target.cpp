@@ -104,6 +104,7 @@ Status OffscreenTarget::resize(uint32_t width, uint32_t height) {
 Status OffscreenTarget::render(const std::function<void(VkCommandBuffer)>& record, const glm::vec4& clearColor,
                                bool readBack) {
   VkDevice dev = ctx_.device();
+  ++serial_;
   AM_VK_TRY(vkResetCommandBuffer(cmd_, 0), "vkResetCommandBuffer");
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;

@@ -1,7 +1,7 @@
 #pragma once
 // An offscreen colour (RGBA8) + depth target with its render pass, rendered
 // synchronously and read back to host memory (CLI renders, tests, thumbnails).
-// Renders use ring-buffer slot 0 of a SceneRenderer (each render waits).
+// Each render() waits for the GPU, so any SceneRenderer ring slot is free.
 #include <functional>
 #include <memory>
 
@@ -35,6 +35,10 @@ class OffscreenTarget {
   Status render(const std::function<void(VkCommandBuffer)>& record, const glm::vec4& clearColor = {0, 0, 0, 1},
                 bool readBack = true);
 
+  // Number of the render() in progress (or the last one): the frame serial to
+  // pass to SceneRenderer::record from inside the record callback.
+  uint64_t serial() const { return serial_; }
+
   // The colour image of the last render() with readBack (empty before).
   const RgbaImage& image() const { return image_; }
 
@@ -52,6 +56,7 @@ class OffscreenTarget {
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;
   VkFence fence_ = VK_NULL_HANDLE;
   RgbaImage image_;
+  uint64_t serial_ = 0;
 };
 
 }  // namespace animorph::gpu

@@ -147,11 +147,19 @@ Result<VkPipeline> createPipeline(VkDevice device, VkRenderPass pass, VkPipeline
 
 }  // namespace
 
+// Per-frame data of one frame in flight. Each record() call of a frame appends
+// to the buffers; a buffer that must grow mid-frame is retired (commands recorded
+// earlier in the frame still read it) and freed when the slot is next rewound.
 struct SceneRenderer::Slot {
-  Buffer frame;   // FrameUniforms
-  Buffer joints;  // mat4 per joint of every draw
-  Buffer lines;   // LineVertex
-  VkDescriptorSet set = VK_NULL_HANDLE;
+  uint64_t serial = UINT64_MAX;  // frame whose data the slot holds
+  Buffer frame;                  // FrameUniforms records at uniformStride_ (dynamic offset)
+  Buffer joints;                 // mat4 per joint of every draw
+  Buffer lines;                  // LineVertex
+  VkDeviceSize frameUsed = 0, jointsUsed = 0, linesUsed = 0;
+  VkDescriptorSet set = VK_NULL_HANDLE;  // frame + joints
+  bool setBound = false;                 // set is referenced by commands of this frame
+  std::vector<Buffer> retiredBuffers;
+  std::vector<VkDescriptorSet> retiredSets;
 };
 
 SceneRenderer::SceneRenderer(Context& ctx) : ctx_(ctx) {}
@@ -169,7 +177,7 @@ Status SceneRenderer::init(VkRenderPass renderPass, SceneRendererSettings settin
   edgeListWireframe_ = settings.forceEdgeListWireframe || !ctx_.supportsWireframeFill();
 
   VkDescriptorSetLayoutBinding b[2]{};
-  b[0] = {kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
+  b[0] = {kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 1, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
   b[1] = {kBindingJoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr};
   VkDescriptorSetLayoutCreateInfo sli{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   sli.bindingCount = 2;
@@ -183,13 +191,18 @@ Status SceneRenderer::init(VkRenderPass renderPass, SceneRendererSettings settin
   pli.pPushConstantRanges = &push;
   AM_VK_TRY(vkCreatePipelineLayout(dev, &pli, nullptr, &layout_), "vkCreatePipelineLayout");
 
-  VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kFramesInFlight},
-                                   {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kFramesInFlight}};
+  // Sets are replaced only when a ring buffer grows: a few per slot over a session.
+  constexpr uint32_t kMaxSets = 64;
+  VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, kMaxSets},
+                                   {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kMaxSets}};
   VkDescriptorPoolCreateInfo dpi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  dpi.maxSets = kFramesInFlight;
+  dpi.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
+  dpi.maxSets = kMaxSets;
   dpi.poolSizeCount = 2;
   dpi.pPoolSizes = sizes;
   AM_VK_TRY(vkCreateDescriptorPool(dev, &dpi, nullptr, &descriptorPool_), "vkCreateDescriptorPool");
+  const VkDeviceSize align = std::max<VkDeviceSize>(ctx_.properties().limits.minUniformBufferOffsetAlignment, 16);
+  uniformStride_ = (sizeof(FrameUniforms) + align - 1) / align * align;
 
   const VkCullModeFlags back = VK_CULL_MODE_BACK_BIT, none = VK_CULL_MODE_NONE;
   auto meshDesc = [](VkCullModeFlags cull) {
@@ -229,17 +242,8 @@ Status SceneRenderer::init(VkRenderPass renderPass, SceneRendererSettings settin
   }
 
   for (uint32_t i = 0; i < kFramesInFlight; ++i) {
-    auto slot = std::make_unique<Slot>();
-    VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-    ai.descriptorPool = descriptorPool_;
-    ai.descriptorSetCount = 1;
-    ai.pSetLayouts = &setLayout_;
-    AM_VK_TRY(vkAllocateDescriptorSets(dev, &ai, &slot->set), "vkAllocateDescriptorSets");
-    Result<Buffer> frame = createHostBuffer(ctx_, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
-    if (!frame) return Error{frame.error()};
-    slot->frame = *frame;
-    slots_.push_back(std::move(slot));
-    Status s = ensureCapacity(*slots_.back(), 256 * sizeof(glm::mat4), 4096 * sizeof(LineVertex));
+    slots_.push_back(std::make_unique<Slot>());
+    Status s = reserve(*slots_.back(), 0, 0);  // initial capacity: steady frames allocate nothing
     if (!s) return s;
   }
   return Status::success();
@@ -249,6 +253,7 @@ SceneRenderer::~SceneRenderer() {
   VkDevice dev = ctx_.device();
   vkDeviceWaitIdle(dev);
   for (auto& s : slots_) {
+    rewind(*s, UINT64_MAX);
     destroyBuffer(dev, s->frame);
     destroyBuffer(dev, s->joints);
     destroyBuffer(dev, s->lines);
@@ -257,45 +262,69 @@ SceneRenderer::~SceneRenderer() {
                        linePipeline_, overlayPipeline_})
     if (p) vkDestroyPipeline(dev, p, nullptr);
   if (layout_) vkDestroyPipelineLayout(dev, layout_, nullptr);
-  if (descriptorPool_) vkDestroyDescriptorPool(dev, descriptorPool_, nullptr);
+  if (descriptorPool_) vkDestroyDescriptorPool(dev, descriptorPool_, nullptr);  // frees the sets
   if (setLayout_) vkDestroyDescriptorSetLayout(dev, setLayout_, nullptr);
 }
 
-Status SceneRenderer::ensureCapacity(Slot& slot, size_t jointBytes, size_t lineBytes) {
-  // Grows by doubling; the slot is idle (caller contract), so its buffers can be replaced.
-  bool rebind = false;
-  if (slot.joints.size < jointBytes) {
-    VkDeviceSize size = std::max<VkDeviceSize>(jointBytes, slot.joints.size * 2);
-    Result<Buffer> b = createHostBuffer(ctx_, size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    if (!b) return Error{"joint matrix ring buffer: " + b.error()};
-    destroyBuffer(ctx_.device(), slot.joints);
-    slot.joints = *b;
-    rebind = true;
+void SceneRenderer::rewind(Slot& slot, uint64_t frameSerial) {
+  VkDevice dev = ctx_.device();
+  for (Buffer& b : slot.retiredBuffers) destroyBuffer(dev, b);
+  slot.retiredBuffers.clear();
+  if (!slot.retiredSets.empty())
+    vkFreeDescriptorSets(dev, descriptorPool_, static_cast<uint32_t>(slot.retiredSets.size()), slot.retiredSets.data());
+  slot.retiredSets.clear();
+  slot.frameUsed = slot.jointsUsed = slot.linesUsed = 0;
+  slot.setBound = false;
+  slot.serial = frameSerial;
+}
+
+Status SceneRenderer::reserve(Slot& slot, VkDeviceSize jointBytes, VkDeviceSize lineBytes) {
+  bool setStale = slot.set == VK_NULL_HANDLE;
+  auto fit = [&](Buffer& b, VkDeviceSize& used, VkDeviceSize need, VkDeviceSize minimum, VkBufferUsageFlags usage,
+                 const char* what) -> Status {
+    if (b.buffer && used + need <= b.size) return Status::success();
+    VkDeviceSize size = std::max({need, b.size * 2, minimum});
+    Result<Buffer> nb = createHostBuffer(ctx_, size, usage);
+    if (!nb) return Error{std::string(what) + " ring buffer: " + nb.error()};
+    if (b.buffer) slot.retiredBuffers.push_back(b);  // may still be read by this frame's commands
+    b = *nb;
+    used = 0;
+    return Status::success();
+  };
+  const VkBuffer oldFrame = slot.frame.buffer, oldJoints = slot.joints.buffer;
+  Status s = fit(slot.frame, slot.frameUsed, uniformStride_, 16 * uniformStride_, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "frame uniform");
+  if (s) s = fit(slot.joints, slot.jointsUsed, jointBytes, 256 * sizeof(glm::mat4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "joint matrix");
+  if (s) s = fit(slot.lines, slot.linesUsed, lineBytes, 4096 * sizeof(LineVertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "line");
+  if (!s) return s;
+  setStale |= slot.frame.buffer != oldFrame || slot.joints.buffer != oldJoints;
+  if (!setStale) return Status::success();
+  // A set already bound by this frame's commands must not change: retire it and use a new one.
+  VkDevice dev = ctx_.device();
+  if (slot.set && slot.setBound) slot.retiredSets.push_back(slot.set);
+  if (!slot.set || slot.setBound) {
+    VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    ai.descriptorPool = descriptorPool_;
+    ai.descriptorSetCount = 1;
+    ai.pSetLayouts = &setLayout_;
+    AM_VK_TRY(vkAllocateDescriptorSets(dev, &ai, &slot.set), "vkAllocateDescriptorSets");
+    slot.setBound = false;
   }
-  if (slot.lines.size < lineBytes) {
-    VkDeviceSize size = std::max<VkDeviceSize>(lineBytes, slot.lines.size * 2);
-    Result<Buffer> b = createHostBuffer(ctx_, size, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-    if (!b) return Error{"line ring buffer: " + b.error()};
-    destroyBuffer(ctx_.device(), slot.lines);
-    slot.lines = *b;
-  }
-  if (rebind) {
-    VkDescriptorBufferInfo frameInfo{slot.frame.buffer, 0, VK_WHOLE_SIZE};
-    VkDescriptorBufferInfo jointInfo{slot.joints.buffer, 0, VK_WHOLE_SIZE};
-    VkWriteDescriptorSet w[2]{};
-    w[0] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, slot.set, kBindingFrame, 0, 1,
-            VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, nullptr, &frameInfo, nullptr};
-    w[1] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, slot.set, kBindingJoints, 0, 1,
-            VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nullptr, &jointInfo, nullptr};
-    vkUpdateDescriptorSets(ctx_.device(), 2, w, 0, nullptr);
-  }
+  VkDescriptorBufferInfo frameInfo{slot.frame.buffer, 0, sizeof(FrameUniforms)};
+  VkDescriptorBufferInfo jointInfo{slot.joints.buffer, 0, VK_WHOLE_SIZE};
+  VkWriteDescriptorSet w[2]{};
+  w[0] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, slot.set, kBindingFrame, 0, 1,
+          VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, nullptr, &frameInfo, nullptr};
+  w[1] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, slot.set, kBindingJoints, 0, 1,
+          VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nullptr, &jointInfo, nullptr};
+  vkUpdateDescriptorSets(dev, 2, w, 0, nullptr);
   return Status::success();
 }
 
-Status SceneRenderer::record(VkCommandBuffer cmd, uint32_t frameSlot, const ViewportRect& rect,
+Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const ViewportRect& rect,
                              const OrbitCamera& camera, const Scene& scene) {
   if (rect.width == 0 || rect.height == 0) return Status::success();
-  Slot& slot = *slots_[frameSlot % kFramesInFlight];
+  Slot& slot = *slots_[frameSerial % kFramesInFlight];
+  if (slot.serial != frameSerial) rewind(slot, frameSerial);  // the GPU is done with that slot's last frame
   const SceneOptions& opt = scene.options;
 
   // Gather per-frame data: joint matrices of every draw, then every line vertex
@@ -321,10 +350,19 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint32_t frameSlot, const View
     lineScratch_.push_back({glm::vec3(0.0f), packRgba(axisColors[a])});
     lineScratch_.push_back({tip, packRgba(axisColors[a])});
   }
-  Status cap = ensureCapacity(slot, jointScratch_.size() * sizeof(glm::mat4), lineScratch_.size() * sizeof(LineVertex));
+  const VkDeviceSize jointBytes = jointScratch_.size() * sizeof(glm::mat4);
+  const VkDeviceSize lineBytes = lineScratch_.size() * sizeof(LineVertex);
+  Status cap = reserve(slot, jointBytes, lineBytes);
   if (!cap) return cap;
-  std::memcpy(slot.joints.mapped, jointScratch_.data(), jointScratch_.size() * sizeof(glm::mat4));
-  std::memcpy(slot.lines.mapped, lineScratch_.data(), lineScratch_.size() * sizeof(LineVertex));
+  // This call's places in the slot's buffers.
+  const uint32_t frameOffset = static_cast<uint32_t>(slot.frameUsed);
+  const uint32_t jointBase = static_cast<uint32_t>(slot.jointsUsed / sizeof(glm::mat4));
+  const VkDeviceSize lineOffset = slot.linesUsed;
+  std::memcpy(static_cast<uint8_t*>(slot.joints.mapped) + slot.jointsUsed, jointScratch_.data(), jointBytes);
+  std::memcpy(static_cast<uint8_t*>(slot.lines.mapped) + lineOffset, lineScratch_.data(), lineBytes);
+  slot.frameUsed += uniformStride_;
+  slot.jointsUsed += jointBytes;
+  slot.linesUsed += lineBytes;
 
   const float aspect = float(rect.width) / float(rect.height);
   const glm::mat4 viewProj = camera.viewProjection(aspect);
@@ -340,7 +378,7 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint32_t frameSlot, const View
   const float snap = 10.0f * cell;
   fu.gridCenter = glm::vec4(std::round(camera.target.x / snap) * snap, 0.0f, std::round(camera.target.z / snap) * snap, 0);
   fu.selectColor = opt.selectColor;
-  std::memcpy(slot.frame.mapped, &fu, sizeof(fu));
+  std::memcpy(static_cast<uint8_t*>(slot.frame.mapped) + frameOffset, &fu, sizeof(fu));
 
   VkViewport viewport{float(rect.x), float(rect.y), float(rect.width), float(rect.height), 0.0f, 1.0f};
   VkRect2D scissor{{rect.x, rect.y}, {rect.width, rect.height}};
@@ -354,13 +392,14 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint32_t frameSlot, const View
   clears[1].clearValue.depthStencil = {1.0f, 0};
   VkClearRect clearRect{scissor, 0, 1};
   vkCmdClearAttachments(cmd, 2, clears, 1, &clearRect);
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &slot.set, 0, nullptr);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &slot.set, 1, &frameOffset);
+  slot.setBound = true;
 
   auto pushMesh = [&](const MeshDraw& d, size_t i, uint32_t flags, const glm::vec4& color, float pull) {
     MeshPush p{};
     p.model = d.model;
     p.color = color;
-    p.jointOffset = jointOffsets[i];
+    p.jointOffset = jointBase + jointOffsets[i];
     p.jointCount = d.jointMatrices.empty() ? 1u : static_cast<uint32_t>(d.jointMatrices.size());
     p.flags = flags;
     p.depthPull = pull;
@@ -398,12 +437,11 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint32_t frameSlot, const View
     }
   }
 
-  VkDeviceSize zero = 0;
   auto drawLines = [&](VkPipeline pipeline, const glm::mat4& matrix, uint32_t first, uint32_t count) {
     if (count == 0) return;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
     vkCmdPushConstants(cmd, layout_, kPushStages, 0, sizeof(glm::mat4), &matrix);
-    vkCmdBindVertexBuffers(cmd, 0, 1, &slot.lines.buffer, &zero);
+    vkCmdBindVertexBuffers(cmd, 0, 1, &slot.lines.buffer, &lineOffset);
     vkCmdDraw(cmd, count, 1, first, 0);
   };
   drawLines(linePipeline_, viewProj, 0, static_cast<uint32_t>(depthLines.size()));

@@ -72,10 +72,13 @@ class SceneRenderer {
 
   // Records scene, seen through camera, into rect of the render pass instance
   // active on cmd (sets viewport and scissor; the rectangle is cleared first).
-  // frameSlot (< kFramesInFlight) picks the ring-buffer slot: the caller
-  // guarantees the GPU is done with the previous use of that slot (Swapchain
-  // and OffscreenTarget do). Errors: a ring buffer could not grow.
-  Status record(VkCommandBuffer cmd, uint32_t frameSlot, const ViewportRect& rect, const OrbitCamera& camera,
+  // frameSerial numbers the frame being recorded (Frame::serial of the
+  // swapchain, OffscreenTarget::serial()); its ring-buffer slot is
+  // frameSerial % kFramesInFlight, and the caller guarantees the GPU is done
+  // with the frame kFramesInFlight before (Swapchain and OffscreenTarget do).
+  // Several calls in one frame (several viewports) append to the slot.
+  // Errors: a ring buffer could not grow.
+  Status record(VkCommandBuffer cmd, uint64_t frameSerial, const ViewportRect& rect, const OrbitCamera& camera,
                 const Scene& scene);
 
   bool wireframeUsesEdgeLists() const { return edgeListWireframe_; }
@@ -84,7 +87,8 @@ class SceneRenderer {
   struct Slot;
   explicit SceneRenderer(Context& ctx);
   Status init(VkRenderPass renderPass, SceneRendererSettings settings);
-  Status ensureCapacity(Slot& slot, size_t jointBytes, size_t lineBytes);
+  Status reserve(Slot& slot, VkDeviceSize jointBytes, VkDeviceSize lineBytes);
+  void rewind(Slot& slot, uint64_t frameSerial);
 
   Context& ctx_;
   bool edgeListWireframe_ = false;
@@ -97,6 +101,7 @@ class SceneRenderer {
   VkPipeline linePipeline_ = VK_NULL_HANDLE;     // depth-tested
   VkPipeline overlayPipeline_ = VK_NULL_HANDLE;  // always on top
   std::vector<std::unique_ptr<Slot>> slots_;
+  VkDeviceSize uniformStride_ = 256;  // sizeof(FrameUniforms) rounded to the device's UBO offset alignment
   std::vector<glm::mat4> jointScratch_;
   std::vector<LineVertex> lineScratch_;
   std::vector<uint32_t> drawJointOffsets_;

@@ -237,7 +237,7 @@ FrameStatus Swapchain::beginFrame(Frame& frame) {
   rbi.clearValueCount = 2;
   rbi.pClearValues = clears;
   vkCmdBeginRenderPass(cmd, &rbi, VK_SUBPASS_CONTENTS_INLINE);
-  frame = Frame{cmd, slot_, imageIndex_, extent_};
+  frame = Frame{cmd, serial_, slot_, imageIndex_, extent_};
   frameOpen_ = true;
   return FrameStatus::Ready;
 }
@@ -333,7 +333,8 @@ Status Swapchain::endFrame() {
     for (size_t i = 3; i < img.pixels.size(); i += 4) img.pixels[i] = 255;  // the window is opaque
     capture_ = std::move(img);
   }
-  slot_ = (slot_ + 1) % kFramesInFlight;
+  ++serial_;
+  slot_ = static_cast<uint32_t>(serial_ % kFramesInFlight);
   return Status::success();
 }
 

@@ -5,7 +5,7 @@
 // Editor frame:
 //   gpu::Frame f;
 //   if (swapchain.beginFrame(f) == gpu::FrameStatus::Ready) {
-//     sceneRenderer.record(f.cmd, f.slot, viewportRect, camera, scene);  // 3D into a rectangle
+//     sceneRenderer.record(f.cmd, f.serial, viewportRect, camera, scene);  // 3D into a rectangle
 //     ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), f.cmd);      // same render pass
 //     swapchain.endFrame();
 //   }
@@ -38,7 +38,8 @@ struct SwapchainSettings {
 // One frame being recorded: the render pass is active on cmd over the whole image.
 struct Frame {
   VkCommandBuffer cmd = VK_NULL_HANDLE;
-  uint32_t slot = 0;        // frame-in-flight slot, for SceneRenderer::record
+  uint64_t serial = 0;      // number of this frame (counts Ready frames), for SceneRenderer::record
+  uint32_t slot = 0;        // frame-in-flight slot: serial % kFramesInFlight
   uint32_t imageIndex = 0;  // swapchain image
   VkExtent2D extent{0, 0};  // pixels of the window's framebuffer
 };
@@ -110,6 +111,7 @@ class Swapchain {
   VkSemaphore acquired_[kFramesInFlight]{};
   VkFence inFlight_[kFramesInFlight]{};
   uint32_t slot_ = 0;
+  uint64_t serial_ = 0;  // frames begun (Ready) so far; slot_ == serial_ % kFramesInFlight
   uint32_t imageIndex_ = 0;
   bool frameOpen_ = false;
   bool needsRecreate_ = false;

@@ -49,7 +49,7 @@ const RgbaImage& render(Rig& r, const OrbitCamera& cam, const Scene& scene) {
   VkExtent2D e = r.target->extent();
   Status recorded;
   Status s = r.target->render([&](VkCommandBuffer cmd) {
-    recorded = r.renderer->record(cmd, 0, {0, 0, e.width, e.height}, cam, scene);
+    recorded = r.renderer->record(cmd, r.target->serial(), {0, 0, e.width, e.height}, cam, scene);
   });
   INFO(s.error() + recorded.error());
   REQUIRE(s.ok());
@@ -318,7 +318,7 @@ TEST_CASE("drawing into a viewport rectangle leaves the rest of the target alone
   const glm::vec4 clear(1, 1, 1, 1);
   Status recorded;
   Status s = r.target->render(
-      [&](VkCommandBuffer cmd) { recorded = r.renderer->record(cmd, 1, {100, 20, 100, 80}, cam, scene); }, clear);
+      [&](VkCommandBuffer cmd) { recorded = r.renderer->record(cmd, r.target->serial(), {100, 20, 100, 80}, cam, scene); }, clear);
   REQUIRE(s.ok());
   REQUIRE(recorded.ok());
   const RgbaImage& img = r.target->image();
@@ -328,6 +328,50 @@ TEST_CASE("drawing into a viewport rectangle leaves the rest of the target alone
   // Quad A's centre, projected into the rectangle.
   glm::vec3 p = cam.worldToPixel({-1, 0, 0}, {100.0f, 80.0f});
   CHECK(differs(img.at(100 + uint32_t(p.x), 20 + uint32_t(p.y)), kBackground, 10));
+  CHECK(r.ctx->validationErrorCount() == 0);
+}
+
+TEST_CASE("two viewports in one frame keep their own cameras, poses and lines", "[gpu][render]") {
+  Rig r = makeRig(400, 150);
+  OrbitCamera left = frontCamera();
+  OrbitCamera right = frontCamera();
+  right.target = {1, 1, 0};  // looks at the lifted quad B
+  right.distanceM = 3.0f;
+  std::vector<glm::mat4> rest(6, glm::mat4(1.0f));
+  // The second viewport needs more joint matrices and line vertices than the
+  // initial ring capacity, so its buffers grow while the first viewport's
+  // commands still read the old ones.
+  std::vector<glm::mat4> lifted = liftJoints();
+  lifted.resize(700, glm::mat4(1.0f));
+  Scene a = meshScene(r, rest);
+  Scene b = meshScene(r, lifted);
+  b.options.background = glm::vec4(0.3f, 0.3f, 0.3f, 1.0f);
+  for (int i = 0; i < 6000; ++i) b.overlay.line({1.3f, 1.3f, 0}, {1.31f, 1.3f, 0}, packRgba({0, 1, 0, 1}));
+  const ViewportRect ra{0, 0, 200, 150}, rb{200, 0, 200, 150};
+  for (int frame = 0; frame < 3; ++frame) {  // also reuses both ring slots after growth
+    Status sa, sb;
+    Status s = r.target->render([&](VkCommandBuffer cmd) {
+      sa = r.renderer->record(cmd, r.target->serial(), ra, left, a);
+      sb = r.renderer->record(cmd, r.target->serial(), rb, right, b);
+    });
+    REQUIRE(s.ok());
+    REQUIRE(sa.ok());
+    REQUIRE(sb.ok());
+    const RgbaImage& img = r.target->image();
+    glm::vec2 vp(200, 150);
+    auto at = [&](const ViewportRect& rect, const OrbitCamera& cam, glm::vec3 w) {
+      glm::vec3 p = cam.worldToPixel(w, vp);
+      return img.at(uint32_t(rect.x) + uint32_t(p.x), uint32_t(p.y));
+    };
+    // Left: rest pose seen from the front camera.
+    CHECK(differs(at(ra, left, {1, 0, 0}), kBackground, 10));
+    CHECK_FALSE(differs(at(ra, left, {1, 1, 0}), kBackground));
+    // Right: quad B lifted, seen from its own camera, and its overlay line.
+    CHECK(differs(at(rb, right, {1, 1, 0}), b.options.background, 10));
+    CHECK_FALSE(differs(at(rb, right, {1, 0.2f, 0}), b.options.background));
+    glm::u8vec4 line = at(rb, right, {1.305f, 1.3f, 0});
+    CHECK(line.g > 200);
+  }
   CHECK(r.ctx->validationErrorCount() == 0);
 }
 
