@@ -144,7 +144,7 @@ Status Context::init(const ContextSettings& settings) {
     DeviceCandidate c;
     c.name = p.deviceName;
     c.type = p.deviceType;
-    c.usable = findQueueFamily(pd, surface_) >= 0 &&
+    c.usable = p.apiVersion >= VK_API_VERSION_1_1 && findQueueFamily(pd, surface_) >= 0 &&
                (!window_ || hasDeviceExtension(pd, VK_KHR_SWAPCHAIN_EXTENSION_NAME));
     candidates.push_back(c);
   }

@@ -13,7 +13,7 @@ namespace animorph::gpu {
 struct DeviceCandidate {
   std::string name;
   VkPhysicalDeviceType type = VK_PHYSICAL_DEVICE_TYPE_OTHER;
-  bool usable = true;  // has a graphics queue (and present support when a surface is needed)
+  bool usable = true;  // Vulkan 1.1, a graphics queue (and present support when a surface is needed)
 };
 
 // Rank of a device type: higher is preferred (discrete 4, integrated 3, virtual 2, CPU 1, other 0).

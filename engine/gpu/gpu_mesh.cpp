@@ -107,7 +107,7 @@ Result<std::unique_ptr<GpuMesh>> GpuMesh::upload(Context& ctx, const Mesh& mesh,
   size += 4 * edges.size();
   std::vector<uint8_t> blob(size);
   for (int s = 0; s < 6; ++s) std::memcpy(blob.data() + gm->streamOffsets_[s], streams[s], strides[s] * n);
-  std::memcpy(blob.data() + gm->indexOffset_, mesh.indices.data(), 4 * mesh.indices.size());
+  if (!mesh.indices.empty()) std::memcpy(blob.data() + gm->indexOffset_, mesh.indices.data(), 4 * mesh.indices.size());
   if (!edges.empty()) std::memcpy(blob.data() + gm->edgeOffset_, edges.data(), 4 * edges.size());
 
   Result<Buffer> buf = createDeviceBuffer(ctx, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT,

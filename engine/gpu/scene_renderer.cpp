@@ -358,8 +358,8 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
   const uint32_t frameOffset = static_cast<uint32_t>(slot.frameUsed);
   const uint32_t jointBase = static_cast<uint32_t>(slot.jointsUsed / sizeof(glm::mat4));
   const VkDeviceSize lineOffset = slot.linesUsed;
-  std::memcpy(static_cast<uint8_t*>(slot.joints.mapped) + slot.jointsUsed, jointScratch_.data(), jointBytes);
-  std::memcpy(static_cast<uint8_t*>(slot.lines.mapped) + lineOffset, lineScratch_.data(), lineBytes);
+  if (jointBytes) std::memcpy(static_cast<uint8_t*>(slot.joints.mapped) + slot.jointsUsed, jointScratch_.data(), jointBytes);
+  if (lineBytes) std::memcpy(static_cast<uint8_t*>(slot.lines.mapped) + lineOffset, lineScratch_.data(), lineBytes);
   slot.frameUsed += uniformStride_;
   slot.jointsUsed += jointBytes;
   slot.linesUsed += lineBytes;

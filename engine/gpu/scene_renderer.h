@@ -18,7 +18,8 @@
 
 namespace animorph::gpu {
 
-// Pixel rectangle of the target to draw into (origin top-left).
+// Pixel rectangle of the target to draw into (origin top-left); must lie within
+// the render area (an empty rectangle draws nothing).
 struct ViewportRect {
   int32_t x = 0, y = 0;
   uint32_t width = 0, height = 0;

@@ -114,14 +114,17 @@ void Swapchain::destroyTargets() {
 Status Swapchain::recreate(VkExtent2D size) {
   VkDevice dev = ctx_.device();
   VkPhysicalDevice pd = ctx_.physicalDevice();
-  vkDeviceWaitIdle(dev);
-  destroyTargets();
-
   VkSurfaceCapabilitiesKHR caps;
   AM_VK_TRY(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(pd, ctx_.surface(), &caps), "vkGetPhysicalDeviceSurfaceCapabilitiesKHR");
   if (caps.currentExtent.width != UINT32_MAX) size = caps.currentExtent;
   size.width = std::clamp(size.width, caps.minImageExtent.width, caps.maxImageExtent.width);
   size.height = std::clamp(size.height, caps.minImageExtent.height, caps.maxImageExtent.height);
+  if (size.width == 0 || size.height == 0) {  // minimised meanwhile: keep everything, try again later
+    needsRecreate_ = true;
+    return Status::success();
+  }
+  vkDeviceWaitIdle(dev);
+  destroyTargets();
   uint32_t n = 0;
   vkGetPhysicalDeviceSurfacePresentModesKHR(pd, ctx_.surface(), &n, nullptr);
   std::vector<VkPresentModeKHR> modes(n);
@@ -211,6 +214,7 @@ FrameStatus Swapchain::beginFrame(Frame& frame) {
   if (needsRecreate_ || !swapchain_ || size.width != extent_.width || size.height != extent_.height) {
     Status s = recreate(size);
     if (!s) return fail(s.error());
+    if (needsRecreate_ || !swapchain_) return FrameStatus::Skipped;  // surface reports 0x0
   }
   r = vkAcquireNextImageKHR(dev, swapchain_, UINT64_MAX, acquired_[slot_], VK_NULL_HANDLE, &imageIndex_);
   if (r == VK_ERROR_OUT_OF_DATE_KHR) {
