@@ -1,0 +1,469 @@
+#include "scene_renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "buffer.h"
+#include "shader_module.h"
+#include "shared_constants.h"
+#include "vk_check.h"
+
+namespace animorph::gpu {
+
+namespace {
+
+// std140 mirror of FrameUniforms in shaders/include/frame.glsl.
+struct FrameUniforms {
+  glm::mat4 viewProj;
+  glm::mat4 view;
+  glm::vec4 cameraPos;
+  glm::vec4 keyLightDir;
+  glm::vec4 grid;
+  glm::vec4 gridCenter;
+  glm::vec4 selectColor;
+};
+static_assert(sizeof(FrameUniforms) == 2 * 64 + 5 * 16);
+
+// Push constants of mesh.vert/mesh.frag (MeshPush); line.vert reads the first 64 bytes as LinePush.
+struct MeshPush {
+  glm::mat4 model;
+  glm::vec4 color;
+  uint32_t jointOffset;
+  uint32_t jointCount;
+  uint32_t flags;
+  float depthPull;
+};
+static_assert(sizeof(MeshPush) == 96);
+constexpr VkShaderStageFlags kPushStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+
+// Clip-space depth pulled toward the camera by the wireframe pass (in NDC depth units).
+constexpr float kWireDepthPull = 5e-5f;
+
+enum class VertexInput { None, Mesh, Line };
+
+struct PipelineDesc {
+  const char* vert;
+  const char* frag;
+  VertexInput input;
+  VkPrimitiveTopology topology;
+  VkPolygonMode polygonMode = VK_POLYGON_MODE_FILL;
+  bool depthTest = true;
+  bool depthWrite = true;
+  bool blend = false;
+  VkCullModeFlags cull = VK_CULL_MODE_NONE;
+};
+
+Result<VkPipeline> createPipeline(VkDevice device, VkRenderPass pass, VkPipelineLayout layout, const PipelineDesc& d) {
+  Result<VkShaderModule> vs = createShaderModule(device, d.vert);
+  if (!vs) return Error{vs.error()};
+  Result<VkShaderModule> fs = createShaderModule(device, d.frag);
+  if (!fs) {
+    vkDestroyShaderModule(device, *vs, nullptr);
+    return Error{fs.error()};
+  }
+  VkPipelineShaderStageCreateInfo stages[2]{};
+  stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, *vs, "main", nullptr};
+  stages[1] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, *fs, "main", nullptr};
+
+  std::vector<VkVertexInputBindingDescription> bindings;
+  std::vector<VkVertexInputAttributeDescription> attributes;
+  if (d.input == VertexInput::Mesh) {
+    const struct { uint32_t stride; VkFormat format; } streams[6] = {
+        {12, VK_FORMAT_R32G32B32_SFLOAT}, {12, VK_FORMAT_R32G32B32_SFLOAT}, {8, VK_FORMAT_R16G16B16A16_UINT},
+        {8, VK_FORMAT_R16G16B16A16_UINT}, {16, VK_FORMAT_R32G32B32A32_SFLOAT}, {16, VK_FORMAT_R32G32B32A32_SFLOAT}};
+    for (uint32_t s = 0; s < 6; ++s) {
+      bindings.push_back({s, streams[s].stride, VK_VERTEX_INPUT_RATE_VERTEX});
+      attributes.push_back({s, s, streams[s].format, 0});
+    }
+  } else if (d.input == VertexInput::Line) {
+    bindings.push_back({0, sizeof(LineVertex), VK_VERTEX_INPUT_RATE_VERTEX});
+    attributes.push_back({0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0});
+    attributes.push_back({1, 0, VK_FORMAT_R8G8B8A8_UNORM, 12});
+  }
+  VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+  vi.vertexBindingDescriptionCount = static_cast<uint32_t>(bindings.size());
+  vi.pVertexBindingDescriptions = bindings.data();
+  vi.vertexAttributeDescriptionCount = static_cast<uint32_t>(attributes.size());
+  vi.pVertexAttributeDescriptions = attributes.data();
+  VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+  ia.topology = d.topology;
+  VkPipelineViewportStateCreateInfo vp{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+  vp.viewportCount = 1;
+  vp.scissorCount = 1;
+  VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+  rs.polygonMode = d.polygonMode;
+  rs.cullMode = d.cull;
+  // With the y-flipped projection (view/camera.h) this makes triangles that are
+  // counter-clockwise as seen by the viewer front-facing, as glTF defines.
+  rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+  rs.lineWidth = 1.0f;
+  VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+  ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+  VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+  ds.depthTestEnable = d.depthTest;
+  ds.depthWriteEnable = d.depthWrite;
+  ds.depthCompareOp = VK_COMPARE_OP_LESS_OR_EQUAL;
+  VkPipelineColorBlendAttachmentState att{};
+  att.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+  if (d.blend) {
+    att.blendEnable = VK_TRUE;
+    att.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
+    att.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+    att.colorBlendOp = VK_BLEND_OP_ADD;
+    att.srcAlphaBlendFactor = VK_BLEND_FACTOR_ZERO;  // keep the target opaque
+    att.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+    att.alphaBlendOp = VK_BLEND_OP_ADD;
+  }
+  VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+  cb.attachmentCount = 1;
+  cb.pAttachments = &att;
+  VkDynamicState dyn[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+  VkPipelineDynamicStateCreateInfo dy{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+  dy.dynamicStateCount = 2;
+  dy.pDynamicStates = dyn;
+  VkGraphicsPipelineCreateInfo pci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+  pci.stageCount = 2;
+  pci.pStages = stages;
+  pci.pVertexInputState = &vi;
+  pci.pInputAssemblyState = &ia;
+  pci.pViewportState = &vp;
+  pci.pRasterizationState = &rs;
+  pci.pMultisampleState = &ms;
+  pci.pDepthStencilState = &ds;
+  pci.pColorBlendState = &cb;
+  pci.pDynamicState = &dy;
+  pci.layout = layout;
+  pci.renderPass = pass;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  VkResult r = vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &pci, nullptr, &pipeline);
+  vkDestroyShaderModule(device, *vs, nullptr);
+  vkDestroyShaderModule(device, *fs, nullptr);
+  if (r != VK_SUCCESS) return vkError(std::string("pipeline ") + d.vert + " + " + d.frag, r);
+  return pipeline;
+}
+
+}  // namespace
+
+// Per-frame data of one frame in flight. Each record() call of a frame appends
+// to the buffers; a buffer that must grow mid-frame is retired (commands recorded
+// earlier in the frame still read it) and freed when the slot is next rewound.
+struct SceneRenderer::Slot {
+  uint64_t serial = UINT64_MAX;  // frame whose data the slot holds
+  Buffer frame;                  // FrameUniforms records at uniformStride_ (dynamic offset)
+  Buffer joints;                 // mat4 per joint of every draw
+  Buffer lines;                  // LineVertex
+  VkDeviceSize frameUsed = 0, jointsUsed = 0, linesUsed = 0;
+  VkDescriptorSet set = VK_NULL_HANDLE;  // frame + joints
+  bool setBound = false;                 // set is referenced by commands of this frame
+  std::vector<Buffer> retiredBuffers;
+  std::vector<VkDescriptorSet> retiredSets;
+};
+
+SceneRenderer::SceneRenderer(Context& ctx) : ctx_(ctx) {}
+
+Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(Context& ctx, VkRenderPass renderPass,
+                                                             SceneRendererSettings settings) {
+  std::unique_ptr<SceneRenderer> r(new SceneRenderer(ctx));
+  Status s = r->init(renderPass, settings);
+  if (!s) return Error{"scene renderer: " + s.error()};
+  return r;
+}
+
+Status SceneRenderer::init(VkRenderPass renderPass, SceneRendererSettings settings) {
+  VkDevice dev = ctx_.device();
+  edgeListWireframe_ = settings.forceEdgeListWireframe || !ctx_.supportsWireframeFill();
+
+  VkDescriptorSetLayoutBinding b[2]{};
+  b[0] = {kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 1, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
+  b[1] = {kBindingJoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr};
+  VkDescriptorSetLayoutCreateInfo sli{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  sli.bindingCount = 2;
+  sli.pBindings = b;
+  AM_VK_TRY(vkCreateDescriptorSetLayout(dev, &sli, nullptr, &setLayout_), "vkCreateDescriptorSetLayout");
+  VkPushConstantRange push{kPushStages, 0, sizeof(MeshPush)};
+  VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  pli.setLayoutCount = 1;
+  pli.pSetLayouts = &setLayout_;
+  pli.pushConstantRangeCount = 1;
+  pli.pPushConstantRanges = &push;
+  AM_VK_TRY(vkCreatePipelineLayout(dev, &pli, nullptr, &layout_), "vkCreatePipelineLayout");
+
+  // Sets are replaced only when a ring buffer grows: a few per slot over a session.
+  constexpr uint32_t kMaxSets = 64;
+  VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, kMaxSets},
+                                   {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kMaxSets}};
+  VkDescriptorPoolCreateInfo dpi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  dpi.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
+  dpi.maxSets = kMaxSets;
+  dpi.poolSizeCount = 2;
+  dpi.pPoolSizes = sizes;
+  AM_VK_TRY(vkCreateDescriptorPool(dev, &dpi, nullptr, &descriptorPool_), "vkCreateDescriptorPool");
+  const VkDeviceSize align = std::max<VkDeviceSize>(ctx_.properties().limits.minUniformBufferOffsetAlignment, 16);
+  uniformStride_ = (sizeof(FrameUniforms) + align - 1) / align * align;
+
+  const VkCullModeFlags back = VK_CULL_MODE_BACK_BIT, none = VK_CULL_MODE_NONE;
+  auto meshDesc = [](VkCullModeFlags cull) {
+    PipelineDesc d{"mesh.vert", "mesh.frag", VertexInput::Mesh, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST};
+    d.cull = cull;
+    return d;
+  };
+  auto wireDesc = [&](VkCullModeFlags cull) {
+    PipelineDesc d = meshDesc(cull);
+    if (edgeListWireframe_) {
+      d.topology = VK_PRIMITIVE_TOPOLOGY_LINE_LIST;  // lines are never culled
+      d.cull = none;
+    } else {
+      d.polygonMode = VK_POLYGON_MODE_LINE;
+    }
+    return d;
+  };
+  struct Want {
+    VkPipeline* out;
+    PipelineDesc desc;
+  } wants[] = {
+      {&meshPipeline_[0], meshDesc(back)},
+      {&meshPipeline_[1], meshDesc(none)},
+      {&wirePipeline_[0], wireDesc(back)},
+      {&wirePipeline_[1], wireDesc(none)},
+      {&gridPipeline_, {"grid.vert", "grid.frag", VertexInput::None, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST,
+                        VK_POLYGON_MODE_FILL, true, false, true}},
+      {&linePipeline_, {"line.vert", "line.frag", VertexInput::Line, VK_PRIMITIVE_TOPOLOGY_LINE_LIST,
+                        VK_POLYGON_MODE_FILL, true, true, true}},
+      {&overlayPipeline_, {"line.vert", "line.frag", VertexInput::Line, VK_PRIMITIVE_TOPOLOGY_LINE_LIST,
+                           VK_POLYGON_MODE_FILL, false, false, true}},
+  };
+  for (auto& w : wants) {
+    Result<VkPipeline> p = createPipeline(dev, renderPass, layout_, w.desc);
+    if (!p) return Error{p.error()};
+    *w.out = *p;
+  }
+
+  for (uint32_t i = 0; i < kFramesInFlight; ++i) {
+    slots_.push_back(std::make_unique<Slot>());
+    Status s = reserve(*slots_.back(), 0, 0);  // initial capacity: steady frames allocate nothing
+    if (!s) return s;
+  }
+  return Status::success();
+}
+
+SceneRenderer::~SceneRenderer() {
+  VkDevice dev = ctx_.device();
+  vkDeviceWaitIdle(dev);
+  for (auto& s : slots_) {
+    rewind(*s, UINT64_MAX);
+    destroyBuffer(dev, s->frame);
+    destroyBuffer(dev, s->joints);
+    destroyBuffer(dev, s->lines);
+  }
+  for (VkPipeline p : {meshPipeline_[0], meshPipeline_[1], wirePipeline_[0], wirePipeline_[1], gridPipeline_,
+                       linePipeline_, overlayPipeline_})
+    if (p) vkDestroyPipeline(dev, p, nullptr);
+  if (layout_) vkDestroyPipelineLayout(dev, layout_, nullptr);
+  if (descriptorPool_) vkDestroyDescriptorPool(dev, descriptorPool_, nullptr);  // frees the sets
+  if (setLayout_) vkDestroyDescriptorSetLayout(dev, setLayout_, nullptr);
+}
+
+void SceneRenderer::rewind(Slot& slot, uint64_t frameSerial) {
+  VkDevice dev = ctx_.device();
+  for (Buffer& b : slot.retiredBuffers) destroyBuffer(dev, b);
+  slot.retiredBuffers.clear();
+  if (!slot.retiredSets.empty())
+    vkFreeDescriptorSets(dev, descriptorPool_, static_cast<uint32_t>(slot.retiredSets.size()), slot.retiredSets.data());
+  slot.retiredSets.clear();
+  slot.frameUsed = slot.jointsUsed = slot.linesUsed = 0;
+  slot.setBound = false;
+  slot.serial = frameSerial;
+}
+
+Status SceneRenderer::reserve(Slot& slot, VkDeviceSize jointBytes, VkDeviceSize lineBytes) {
+  bool setStale = slot.set == VK_NULL_HANDLE;
+  auto fit = [&](Buffer& b, VkDeviceSize& used, VkDeviceSize need, VkDeviceSize minimum, VkBufferUsageFlags usage,
+                 const char* what) -> Status {
+    if (b.buffer && used + need <= b.size) return Status::success();
+    VkDeviceSize size = std::max({need, b.size * 2, minimum});
+    Result<Buffer> nb = createHostBuffer(ctx_, size, usage);
+    if (!nb) return Error{std::string(what) + " ring buffer: " + nb.error()};
+    if (b.buffer) slot.retiredBuffers.push_back(b);  // may still be read by this frame's commands
+    b = *nb;
+    used = 0;
+    return Status::success();
+  };
+  const VkBuffer oldFrame = slot.frame.buffer, oldJoints = slot.joints.buffer;
+  Status s = fit(slot.frame, slot.frameUsed, uniformStride_, 16 * uniformStride_, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "frame uniform");
+  if (s) s = fit(slot.joints, slot.jointsUsed, jointBytes, 256 * sizeof(glm::mat4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "joint matrix");
+  if (s) s = fit(slot.lines, slot.linesUsed, lineBytes, 4096 * sizeof(LineVertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "line");
+  if (!s) return s;
+  setStale |= slot.frame.buffer != oldFrame || slot.joints.buffer != oldJoints;
+  if (!setStale) return Status::success();
+  // A set already bound by this frame's commands must not change: retire it and use a new one.
+  VkDevice dev = ctx_.device();
+  if (slot.set && slot.setBound) slot.retiredSets.push_back(slot.set);
+  if (!slot.set || slot.setBound) {
+    VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    ai.descriptorPool = descriptorPool_;
+    ai.descriptorSetCount = 1;
+    ai.pSetLayouts = &setLayout_;
+    AM_VK_TRY(vkAllocateDescriptorSets(dev, &ai, &slot.set), "vkAllocateDescriptorSets");
+    slot.setBound = false;
+  }
+  VkDescriptorBufferInfo frameInfo{slot.frame.buffer, 0, sizeof(FrameUniforms)};
+  VkDescriptorBufferInfo jointInfo{slot.joints.buffer, 0, VK_WHOLE_SIZE};
+  VkWriteDescriptorSet w[2]{};
+  w[0] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, slot.set, kBindingFrame, 0, 1,
+          VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, nullptr, &frameInfo, nullptr};
+  w[1] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, slot.set, kBindingJoints, 0, 1,
+          VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nullptr, &jointInfo, nullptr};
+  vkUpdateDescriptorSets(dev, 2, w, 0, nullptr);
+  return Status::success();
+}
+
+Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const ViewportRect& rect,
+                             const OrbitCamera& camera, const Scene& scene) {
+  if (rect.width == 0 || rect.height == 0) return Status::success();
+  Slot& slot = *slots_[frameSerial % kFramesInFlight];
+  if (slot.serial != frameSerial) rewind(slot, frameSerial);  // the GPU is done with that slot's last frame
+  const SceneOptions& opt = scene.options;
+
+  // Gather per-frame data: joint matrices of every draw, then every line vertex
+  // (depth-tested lines, overlay lines, the axis tripod).
+  jointScratch_.clear();
+  std::vector<uint32_t>& jointOffsets = drawJointOffsets_;
+  jointOffsets.clear();
+  for (const MeshDraw& d : scene.meshes) {
+    jointOffsets.push_back(static_cast<uint32_t>(jointScratch_.size()));
+    if (d.jointMatrices.empty()) jointScratch_.push_back(glm::mat4(1.0f));
+    else jointScratch_.insert(jointScratch_.end(), d.jointMatrices.begin(), d.jointMatrices.end());
+  }
+  lineScratch_.clear();
+  const auto& depthLines = scene.lines.vertices();
+  const auto& overlayLines = scene.overlay.vertices();
+  lineScratch_.insert(lineScratch_.end(), depthLines.begin(), depthLines.end());
+  lineScratch_.insert(lineScratch_.end(), overlayLines.begin(), overlayLines.end());
+  const uint32_t axisFirst = static_cast<uint32_t>(lineScratch_.size());
+  const glm::vec4 axisColors[3] = {{0.9f, 0.3f, 0.3f, 1}, {0.4f, 0.85f, 0.35f, 1}, {0.35f, 0.55f, 1.0f, 1}};
+  for (int a = 0; a < 3; ++a) {
+    glm::vec3 tip(0.0f);
+    tip[a] = 1.0f;
+    lineScratch_.push_back({glm::vec3(0.0f), packRgba(axisColors[a])});
+    lineScratch_.push_back({tip, packRgba(axisColors[a])});
+  }
+  const VkDeviceSize jointBytes = jointScratch_.size() * sizeof(glm::mat4);
+  const VkDeviceSize lineBytes = lineScratch_.size() * sizeof(LineVertex);
+  Status cap = reserve(slot, jointBytes, lineBytes);
+  if (!cap) return cap;
+  // This call's places in the slot's buffers.
+  const uint32_t frameOffset = static_cast<uint32_t>(slot.frameUsed);
+  const uint32_t jointBase = static_cast<uint32_t>(slot.jointsUsed / sizeof(glm::mat4));
+  const VkDeviceSize lineOffset = slot.linesUsed;
+  if (jointBytes) std::memcpy(static_cast<uint8_t*>(slot.joints.mapped) + slot.jointsUsed, jointScratch_.data(), jointBytes);
+  if (lineBytes) std::memcpy(static_cast<uint8_t*>(slot.lines.mapped) + lineOffset, lineScratch_.data(), lineBytes);
+  slot.frameUsed += uniformStride_;
+  slot.jointsUsed += jointBytes;
+  slot.linesUsed += lineBytes;
+
+  const float aspect = float(rect.width) / float(rect.height);
+  const glm::mat4 viewProj = camera.viewProjection(aspect);
+  FrameUniforms fu{};
+  fu.viewProj = viewProj;
+  fu.view = camera.view();
+  fu.cameraPos = glm::vec4(camera.eye(), 1.0f);
+  // Key light from the upper left, slightly behind the viewer (camera-relative like Maya's default light).
+  fu.keyLightDir = glm::vec4(glm::normalize(-0.5f * camera.right() + 0.75f * camera.up() - 0.45f * camera.forward()), 0);
+  const float cell = std::max(opt.gridCellM, 1e-4f);
+  const float fadeEnd = std::max(20.0f * cell, 8.0f * camera.distanceM);
+  fu.grid = glm::vec4(cell, 0.25f * fadeEnd, fadeEnd, fadeEnd);
+  const float snap = 10.0f * cell;
+  fu.gridCenter = glm::vec4(std::round(camera.target.x / snap) * snap, 0.0f, std::round(camera.target.z / snap) * snap, 0);
+  fu.selectColor = opt.selectColor;
+  std::memcpy(static_cast<uint8_t*>(slot.frame.mapped) + frameOffset, &fu, sizeof(fu));
+
+  VkViewport viewport{float(rect.x), float(rect.y), float(rect.width), float(rect.height), 0.0f, 1.0f};
+  VkRect2D scissor{{rect.x, rect.y}, {rect.width, rect.height}};
+  vkCmdSetViewport(cmd, 0, 1, &viewport);
+  vkCmdSetScissor(cmd, 0, 1, &scissor);
+  VkClearAttachment clears[2]{};
+  clears[0].aspectMask = VK_IMAGE_ASPECT_COLOR_BIT;
+  clears[0].colorAttachment = 0;
+  clears[0].clearValue.color = {{opt.background.r, opt.background.g, opt.background.b, opt.background.a}};
+  clears[1].aspectMask = VK_IMAGE_ASPECT_DEPTH_BIT;
+  clears[1].clearValue.depthStencil = {1.0f, 0};
+  VkClearRect clearRect{scissor, 0, 1};
+  vkCmdClearAttachments(cmd, 2, clears, 1, &clearRect);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &slot.set, 1, &frameOffset);
+  slot.setBound = true;
+
+  auto pushMesh = [&](const MeshDraw& d, size_t i, uint32_t flags, const glm::vec4& color, float pull) {
+    MeshPush p{};
+    p.model = d.model;
+    p.color = color;
+    p.jointOffset = jointBase + jointOffsets[i];
+    p.jointCount = d.jointMatrices.empty() ? 1u : static_cast<uint32_t>(d.jointMatrices.size());
+    p.flags = flags;
+    p.depthPull = pull;
+    vkCmdPushConstants(cmd, layout_, kPushStages, 0, sizeof(p), &p);
+  };
+
+  VkPipeline bound = VK_NULL_HANDLE;
+  auto bind = [&](VkPipeline p) {
+    if (p != bound) vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
+    bound = p;
+  };
+  for (size_t i = 0; i < scene.meshes.size(); ++i) {
+    const MeshDraw& d = scene.meshes[i];
+    if (!d.mesh || d.mesh->indexCount() == 0) continue;
+    bind(meshPipeline_[d.doubleSided]);
+    pushMesh(d, i, d.selected ? kDrawSelected : 0u, d.color, 0.0f);
+    d.mesh->bindTriangles(cmd);
+    vkCmdDrawIndexed(cmd, d.mesh->indexCount(), 1, 0, 0, 0);
+  }
+  if (opt.wireframe) {
+    for (size_t i = 0; i < scene.meshes.size(); ++i) {
+      const MeshDraw& d = scene.meshes[i];
+      if (!d.mesh) continue;
+      bind(wirePipeline_[d.doubleSided]);
+      glm::vec4 color = d.selected ? glm::mix(opt.wireColor, opt.selectColor, 0.6f) : opt.wireColor;
+      pushMesh(d, i, kDrawWireframe | (d.selected ? kDrawSelected : 0u), color, kWireDepthPull);
+      if (edgeListWireframe_) {
+        if (d.mesh->edgeIndexCount() == 0) continue;  // uploaded without an edge list
+        d.mesh->bindEdges(cmd);
+        vkCmdDrawIndexed(cmd, d.mesh->edgeIndexCount(), 1, 0, 0, 0);
+      } else if (d.mesh->indexCount() > 0) {
+        d.mesh->bindTriangles(cmd);
+        vkCmdDrawIndexed(cmd, d.mesh->indexCount(), 1, 0, 0, 0);
+      }
+    }
+  }
+
+  auto drawLines = [&](VkPipeline pipeline, const glm::mat4& matrix, uint32_t first, uint32_t count) {
+    if (count == 0) return;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+    vkCmdPushConstants(cmd, layout_, kPushStages, 0, sizeof(glm::mat4), &matrix);
+    vkCmdBindVertexBuffers(cmd, 0, 1, &slot.lines.buffer, &lineOffset);
+    vkCmdDraw(cmd, count, 1, first, 0);
+  };
+  drawLines(linePipeline_, viewProj, 0, static_cast<uint32_t>(depthLines.size()));
+  if (opt.grid) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, gridPipeline_);
+    vkCmdDraw(cmd, 6, 1, 0, 0);
+  }
+  drawLines(overlayPipeline_, viewProj, static_cast<uint32_t>(depthLines.size()),
+            static_cast<uint32_t>(overlayLines.size()));
+
+  const uint32_t size = opt.axisIndicatorPx, margin = 6;
+  if (opt.axisIndicator && rect.width >= size + 2 * margin && rect.height >= size + 2 * margin) {
+    VkViewport corner{float(rect.x + margin), float(rect.y + int32_t(rect.height - size - margin)), float(size),
+                      float(size), 0.0f, 1.0f};
+    vkCmdSetViewport(cmd, 0, 1, &corner);
+    // Camera rotation only, orthographic, y flipped for Vulkan.
+    glm::mat4 ortho = glm::orthoRH_ZO(-1.3f, 1.3f, -1.3f, 1.3f, -2.0f, 2.0f);
+    ortho[1][1] = -ortho[1][1];
+    drawLines(overlayPipeline_, ortho * glm::mat4(glm::mat3(fu.view)), axisFirst, 6);
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+  }
+  return Status::success();
+}
+
+}  // namespace animorph::gpu

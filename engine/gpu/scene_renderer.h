@@ -1,0 +1,111 @@
+#pragma once
+// Draws the 3D scene of a viewport: skinned meshes (LBS in the vertex shader),
+// optional wireframe overlay, ground grid, line overlays (skeleton) and an axis
+// indicator, into a rectangle of any colour+depth target made by
+// createSceneRenderPass (swapchain or offscreen). Per-frame data lives in
+// host-visible ring buffers, one slot per frame in flight; steady-state frames
+// allocate no Vulkan objects.
+#include <memory>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "context.h"
+#include "gpu_mesh.h"
+#include "line_batch.h"
+#include "view/camera.h"
+
+namespace animorph::gpu {
+
+// Pixel rectangle of the target to draw into (origin top-left); must lie within
+// the render area (an empty rectangle draws nothing).
+struct ViewportRect {
+  int32_t x = 0, y = 0;
+  uint32_t width = 0, height = 0;
+};
+
+struct MeshDraw {
+  const GpuMesh* mesh = nullptr;
+  glm::mat4 model{1.0f};                     // mesh node's world matrix
+  std::span<const glm::mat4> jointMatrices;  // jointMatrices() of the node; empty: one identity
+  glm::vec4 color{0.62f, 0.62f, 0.62f, 1.0f};  // base colour (sRGB)
+  bool selected = false;
+  // glTF material.doubleSided: also draw back faces. Single-sided meshes cull
+  // them (counter-clockwise is front, as in glTF), which also halves the
+  // rasterisation work on CPU renderers.
+  bool doubleSided = false;
+};
+
+struct SceneOptions {
+  glm::vec4 background{0.23f, 0.24f, 0.26f, 1.0f};  // the viewport rectangle is cleared to this
+  bool grid = true;
+  float gridCellM = 1.0f;            // minor line spacing; a major line every 10 cells
+  bool wireframe = false;            // draw mesh edges over the shaded surface
+  glm::vec4 wireColor{0.05f, 0.05f, 0.05f, 1.0f};
+  glm::vec4 selectColor{1.0f, 0.62f, 0.15f, 1.0f};
+  bool axisIndicator = true;         // X/Y/Z tripod in the lower-left corner
+  uint32_t axisIndicatorPx = 72;     // its square size in pixels
+};
+
+struct Scene {
+  std::vector<MeshDraw> meshes;
+  LineBatch lines;    // depth-tested lines (guides, bounds)
+  LineBatch overlay;  // drawn on top of everything (skeleton overlay)
+  SceneOptions options;
+};
+
+struct SceneRendererSettings {
+  // Draw wireframes from per-mesh edge lists even when fillModeNonSolid exists
+  // (the path devices without it take; meshes need GpuMesh::upload(..., true)).
+  bool forceEdgeListWireframe = false;
+};
+
+class SceneRenderer {
+ public:
+  // Pipelines for renderPass (from createSceneRenderPass with the context's depth
+  // format) and kFramesInFlight ring-buffer slots. Errors: Vulkan failures.
+  static Result<std::unique_ptr<SceneRenderer>> create(Context& ctx, VkRenderPass renderPass,
+                                                        SceneRendererSettings settings = {});
+  ~SceneRenderer();
+  SceneRenderer(const SceneRenderer&) = delete;
+  SceneRenderer& operator=(const SceneRenderer&) = delete;
+
+  // Records scene, seen through camera, into rect of the render pass instance
+  // active on cmd (sets viewport and scissor; the rectangle is cleared first).
+  // frameSerial numbers the frame being recorded (Frame::serial of the
+  // swapchain, OffscreenTarget::serial()); its ring-buffer slot is
+  // frameSerial % kFramesInFlight, and the caller guarantees the GPU is done
+  // with the frame kFramesInFlight before (Swapchain and OffscreenTarget do).
+  // Several calls in one frame (several viewports) append to the slot.
+  // Errors: a ring buffer could not grow.
+  Status record(VkCommandBuffer cmd, uint64_t frameSerial, const ViewportRect& rect, const OrbitCamera& camera,
+                const Scene& scene);
+
+  bool wireframeUsesEdgeLists() const { return edgeListWireframe_; }
+
+ private:
+  struct Slot;
+  explicit SceneRenderer(Context& ctx);
+  Status init(VkRenderPass renderPass, SceneRendererSettings settings);
+  Status reserve(Slot& slot, VkDeviceSize jointBytes, VkDeviceSize lineBytes);
+  void rewind(Slot& slot, uint64_t frameSerial);
+
+  Context& ctx_;
+  bool edgeListWireframe_ = false;
+  VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
+  VkDescriptorPool descriptorPool_ = VK_NULL_HANDLE;
+  VkPipelineLayout layout_ = VK_NULL_HANDLE;
+  VkPipeline meshPipeline_[2]{};  // [doubleSided]
+  VkPipeline wirePipeline_[2]{};  // [doubleSided]
+  VkPipeline gridPipeline_ = VK_NULL_HANDLE;
+  VkPipeline linePipeline_ = VK_NULL_HANDLE;     // depth-tested
+  VkPipeline overlayPipeline_ = VK_NULL_HANDLE;  // always on top
+  std::vector<std::unique_ptr<Slot>> slots_;
+  VkDeviceSize uniformStride_ = 256;  // sizeof(FrameUniforms) rounded to the device's UBO offset alignment
+  std::vector<glm::mat4> jointScratch_;
+  std::vector<LineVertex> lineScratch_;
+  std::vector<uint32_t> drawJointOffsets_;
+};
+
+}  // namespace animorph::gpu

@@ -1,0 +1,126 @@
+#pragma once
+// Presenting to the context's window: swapchain (recreated on resize), depth
+// buffer, render pass, kFramesInFlight frames in flight, and a frame capture.
+//
+// Editor frame:
+//   gpu::Frame f;
+//   if (swapchain.beginFrame(f) == gpu::FrameStatus::Ready) {
+//     sceneRenderer.record(f.cmd, f.serial, viewportRect, camera, scene);  // 3D into a rectangle
+//     ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), f.cmd);      // same render pass
+//     swapchain.endFrame();
+//   }
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "buffer.h"
+#include "context.h"
+#include "image.h"
+#include "rgba_image.h"
+#include "shared_constants.h"
+
+namespace animorph::gpu {
+
+enum class PresentMode {
+  Fifo,       // vsync, always available (default)
+  Mailbox,    // low latency without tearing, for benchmarks; falls back to Fifo
+  Immediate,  // no vsync, may tear, for benchmarks; falls back to Fifo
+};
+
+struct SwapchainSettings {
+  PresentMode presentMode = PresentMode::Fifo;
+  glm::vec4 clearColor{0.11f, 0.11f, 0.12f, 1.0f};  // the whole window, before UI and 3D
+};
+
+// One frame being recorded: the render pass is active on cmd over the whole image.
+struct Frame {
+  VkCommandBuffer cmd = VK_NULL_HANDLE;
+  uint64_t serial = 0;      // number of this frame (counts Ready frames), for SceneRenderer::record
+  uint32_t slot = 0;        // frame-in-flight slot: serial % kFramesInFlight
+  uint32_t imageIndex = 0;  // swapchain image
+  VkExtent2D extent{0, 0};  // pixels of the window's framebuffer
+};
+
+enum class FrameStatus {
+  Ready,    // record into the Frame, then call endFrame()
+  Skipped,  // minimised (0x0) or the swapchain was just recreated: draw nothing this time
+  Failed,   // lastError() says why (device lost, surface lost); the caller may retry later
+};
+
+class Swapchain {
+ public:
+  // Needs a windowed Context. Errors: surface unusable, Vulkan failures.
+  static Result<std::unique_ptr<Swapchain>> create(Context& ctx, const SwapchainSettings& settings = {});
+  ~Swapchain();
+  Swapchain(const Swapchain&) = delete;
+  Swapchain& operator=(const Swapchain&) = delete;
+
+  // Waits for the frame slot, recreates the swapchain when the window size
+  // changed, acquires an image, begins the command buffer and the render pass.
+  FrameStatus beginFrame(Frame& frame);
+  // Ends the render pass, records the capture if one was requested, submits and
+  // presents. An out-of-date swapchain is recreated on the next beginFrame.
+  // Errors: Vulkan failures (also in lastError()).
+  Status endFrame();
+
+  // Makes the next endFrame() copy its image to host memory (RGBA8); fetch it
+  // with takeCapture() after that endFrame(). Needs TRANSFER_SRC support on the
+  // swapchain images (captureSupported()).
+  void requestCapture() { captureRequested_ = true; }
+  bool captureSupported() const { return captureSupported_; }
+  // The captured image, once; nullopt when none was taken since the last call.
+  std::optional<RgbaImage> takeCapture();
+
+  // For ImGui_ImplVulkan_Init and friends.
+  VkRenderPass renderPass() const { return renderPass_; }
+  uint32_t imageCount() const { return static_cast<uint32_t>(images_.size()); }
+  uint32_t minImageCount() const { return minImageCount_; }
+  VkFormat colorFormat() const { return format_.format; }
+  VkExtent2D extent() const { return extent_; }
+  PresentMode presentMode() const { return presentMode_; }  // the one in use after fallback
+  // Times the swapchain was (re)created; ImGui_ImplVulkan_SetMinImageCount after a change.
+  uint32_t generation() const { return generation_; }
+  const std::string& lastError() const { return lastError_; }
+
+ private:
+  explicit Swapchain(Context& ctx) : ctx_(ctx) {}
+  Status init(const SwapchainSettings& settings);
+  Status recreate(VkExtent2D framebufferSize);
+  void destroyTargets();
+  FrameStatus fail(const std::string& message);
+
+  Context& ctx_;
+  SwapchainSettings settings_;
+  VkSwapchainKHR swapchain_ = VK_NULL_HANDLE;
+  VkSurfaceFormatKHR format_{};
+  PresentMode presentMode_ = PresentMode::Fifo;
+  VkExtent2D extent_{0, 0};
+  uint32_t minImageCount_ = 2;
+  uint32_t generation_ = 0;
+  VkRenderPass renderPass_ = VK_NULL_HANDLE;
+  std::vector<VkImage> images_;
+  std::vector<VkImageView> views_;
+  std::vector<VkFramebuffer> framebuffers_;
+  std::vector<VkSemaphore> renderDone_;  // per image: signalled by the submit, waited by present
+  Image depth_;
+  VkCommandPool pool_ = VK_NULL_HANDLE;
+  VkCommandBuffer cmds_[kFramesInFlight]{};
+  VkSemaphore acquired_[kFramesInFlight]{};
+  VkFence inFlight_[kFramesInFlight]{};
+  uint32_t slot_ = 0;
+  uint64_t serial_ = 0;  // frames begun (Ready) so far; slot_ == serial_ % kFramesInFlight
+  uint32_t imageIndex_ = 0;
+  bool frameOpen_ = false;
+  bool needsRecreate_ = false;
+  bool captureSupported_ = false;
+  bool captureRequested_ = false;
+  bool captureRecorded_ = false;
+  Buffer captureBuffer_;
+  std::optional<RgbaImage> capture_;
+  std::string lastError_;
+};
+
+}  // namespace animorph::gpu

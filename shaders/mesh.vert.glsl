@@ -1,0 +1,48 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Skinned mesh: linear blend skinning with up to 8 influences per vertex, as
+// glTF defines it and engine/core/rig/skinning.cpp computes it on the CPU:
+// skin = sum_k w_k * joint[j_k] (joints beyond the draw's joint count ignored),
+// position = model * skin * p, normal = inverse-transpose of (model * skin) * n.
+#include "frame.glsl"
+
+layout(location = AM_VERTEX_POSITION) in vec3 inPosition;
+layout(location = AM_VERTEX_NORMAL) in vec3 inNormal;
+layout(location = AM_VERTEX_JOINTS0) in uvec4 inJoints0;
+layout(location = AM_VERTEX_JOINTS1) in uvec4 inJoints1;
+layout(location = AM_VERTEX_WEIGHTS0) in vec4 inWeights0;
+layout(location = AM_VERTEX_WEIGHTS1) in vec4 inWeights1;
+
+layout(set = 0, binding = AM_BINDING_JOINTS, std430) readonly buffer Joints {
+  mat4 joints[];
+};
+
+layout(push_constant) uniform MeshPush {
+  mat4 model;
+  vec4 color;
+  uint jointOffset;
+  uint jointCount;
+  uint flags;
+  float depthPull;
+} pc;
+
+layout(location = 0) out vec3 outWorldPos;
+layout(location = 1) out vec3 outWorldNormal;
+
+void accumulate(inout mat4 skin, uvec4 j, vec4 w) {
+  for (int k = 0; k < 4; ++k)
+    if (w[k] != 0.0 && j[k] < pc.jointCount) skin += w[k] * joints[pc.jointOffset + j[k]];
+}
+
+void main() {
+  mat4 skin = mat4(0.0);
+  accumulate(skin, inJoints0, inWeights0);
+  accumulate(skin, inJoints1, inWeights1);
+  mat4 world = pc.model * skin;
+  vec4 wp = world * vec4(inPosition, 1.0);
+  outWorldPos = wp.xyz;
+  outWorldNormal = transpose(inverse(mat3(world))) * inNormal;
+  gl_Position = frame.viewProj * wp;
+  // Wireframe pass: pull towards the camera so lines win the depth test against their own faces.
+  gl_Position.z -= pc.depthPull * gl_Position.w;
+}
