@@ -8,7 +8,7 @@
 #include "doc/asset_cache.h"
 #include "doc/document.h"
 #include "math/bounds.h"
-#include "orbit_camera.h"
+#include "view/camera.h"
 #include "status_bar.h"
 #include "viewport_input.h"
 

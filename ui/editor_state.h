@@ -8,7 +8,7 @@
 #include "file_browser.h"
 #include "inspector_panel.h"
 #include "layout.h"
-#include "orbit_camera.h"
+#include "view/camera.h"
 #include "outliner_panel.h"
 #include "status_bar.h"
 #include "timeline_panel.h"

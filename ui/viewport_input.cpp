@@ -4,6 +4,8 @@
 
 namespace animorph {
 namespace {
+// Alt+RMB / Ctrl+MMB dolly: 100 pixels of drag is three wheel notches.
+constexpr float kDollyStepsPerPixel = 0.03f;
 constexpr float kClickSlopPx = 4.0f;
 }
 
@@ -37,7 +39,7 @@ std::optional<PickRequest> ViewportInput::update(const PointerInput& in, const V
       switch (drag_) {
         case CameraDrag::Orbit: camera.orbit(in.delta.x, in.delta.y); break;
         case CameraDrag::Pan: camera.pan(in.delta.x, in.delta.y, rect.size.y); break;
-        case CameraDrag::Dolly: camera.dolly(in.delta.x - in.delta.y); break;
+        case CameraDrag::Dolly: camera.dolly((in.delta.x - in.delta.y) * kDollyStepsPerPixel); break;
         case CameraDrag::None: break;
       }
     }
@@ -77,7 +79,7 @@ std::optional<PickRequest> ViewportInput::update(const PointerInput& in, const V
     }
   }
 
-  if (inside && in.wheel != 0.0f && drag_ == CameraDrag::None) camera.zoomWheel(in.wheel);
+  if (inside && in.wheel != 0.0f && drag_ == CameraDrag::None) camera.dolly(in.wheel);
   return pick;
 }
 

@@ -9,7 +9,7 @@
 
 #include <glm/glm.hpp>
 
-#include "orbit_camera.h"
+#include "view/camera.h"
 #include "util/prefs.h"
 
 struct ImGuiIO;

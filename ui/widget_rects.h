@@ -21,6 +21,7 @@ class WidgetRects {
   std::optional<WidgetRect> find(const std::string& key) const;
   void set(const std::string& key, WidgetRect r) { rects_[key] = r; }
   void clear() { rects_.clear(); }
+  const std::map<std::string, WidgetRect>& all() const { return rects_; }
 
  private:
   std::map<std::string, WidgetRect> rects_;

@@ -108,9 +108,9 @@ TEST_CASE("orbit camera: pan follows the mouse, dolly and wheel approach, frame 
   float expected = 100.0f * 2.0f * cam.distanceM * std::tan(0.5f * cam.fovYRad) / 600.0f;
   CHECK(glm::length(cam.target - t0) == Approx(expected).epsilon(1e-4));
   float d0 = cam.distanceM;
-  cam.zoomWheel(1.0f);
+  cam.dolly(1.0f);
   CHECK(cam.distanceM < d0);
-  cam.dolly(-100.0f);
+  cam.dolly(-3.0f);
   CHECK(cam.distanceM > d0 * 0.85f);
   cam.orbit(0.0f, 10000.0f);
   CHECK(std::abs(cam.pitchRad) < 1.5708f);  // never flips over the pole

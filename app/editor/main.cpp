@@ -1,0 +1,300 @@
+// animorph: the editor. Wiring only: window, Vulkan, ImGui, the editor UI,
+// scene evaluation and the renderer, joined in one frame loop.
+//
+//   animorph [PROJECT] [--screenshot FILE.png --frame N --quit] [--size WxH] [--bench FRAMES]
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "context.h"
+#include "doc/atomic_file.h"
+#include "editor_ui.h"
+#include "imgui_vulkan.h"
+#include "mesh_cache.h"
+#include "scene/pick.h"
+#include "scene/scene_frame.h"
+#include "scene_from_frame.h"
+#include "scene_renderer.h"
+#include "swapchain.h"
+
+using namespace animorph;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+struct Args {
+  std::string project;
+  std::string screenshot;
+  int frame = -1;
+  bool quit = false;
+  int width = 1600, height = 900;
+  int benchFrames = 0;
+};
+
+void usage() {
+  std::printf(
+      "usage: animorph [PROJECT.animorph] [options]\n"
+      "  --screenshot FILE.png  render the whole editor window to FILE.png\n"
+      "  --frame N              go to frame N first\n"
+      "  --quit                 exit after the screenshot\n"
+      "  --size WxH             window size (default 1600x900)\n"
+      "  --bench N              play N frames and print frame-time figures, then exit\n"
+      "environment: ANIMORPH_GPU=name|index picks the Vulkan device; ANIMORPH_VALIDATION=1 enables\n"
+      "validation (errors make the exit status non-zero); ANIMORPH_UI_MAP=FILE writes the positions\n"
+      "of named widgets to FILE (for scripted GUI tests).\n");
+}
+
+bool parseArgs(int argc, char** argv, Args& a) {
+  for (int i = 1; i < argc; ++i) {
+    std::string s = argv[i];
+    auto next = [&](const char* what) -> const char* {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "animorph: %s needs a value\n", what);
+        std::exit(2);
+      }
+      return argv[++i];
+    };
+    if (s == "--help" || s == "-h") { usage(); std::exit(0); }
+    else if (s == "--version") { std::printf("animorph 0.1.0\n"); std::exit(0); }
+    else if (s == "--screenshot") a.screenshot = next("--screenshot");
+    else if (s == "--frame") a.frame = std::atoi(next("--frame"));
+    else if (s == "--quit") a.quit = true;
+    else if (s == "--bench") a.benchFrames = std::max(1, std::atoi(next("--bench")));
+    else if (s == "--size") {
+      if (std::sscanf(next("--size"), "%dx%d", &a.width, &a.height) != 2 || a.width < 64 || a.height < 64) {
+        std::fprintf(stderr, "animorph: --size expects WxH, e.g. 1600x900\n");
+        return false;
+      }
+    } else if (!s.empty() && s[0] == '-') {
+      std::fprintf(stderr, "animorph: unknown option %s (see --help)\n", s.c_str());
+      return false;
+    } else a.project = s;
+  }
+  return true;
+}
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<size_t>(p * static_cast<double>(v.size())))];
+}
+
+// Writes the rectangles of named widgets for scripted GUI tests.
+void writeUiMap(const std::string& path, const WidgetRects& rects, const EditorOutput& out, const Document& doc) {
+  std::string s = "{\n  \"viewport\": [" + std::to_string(out.viewport.min.x) + ", " +
+                  std::to_string(out.viewport.min.y) + ", " + std::to_string(out.viewport.size.x) + ", " +
+                  std::to_string(out.viewport.size.y) + "],\n  \"current_frame\": " +
+                  std::to_string(doc.project().timeline.currentFrame) + ",\n  \"dirty\": " +
+                  (doc.dirty() ? "true" : "false") + ",\n  \"widgets\": {";
+  bool first = true;
+  for (const auto& [key, r] : rects.all()) {
+    s += std::string(first ? "\n" : ",\n") + "    \"" + key + "\": [" + std::to_string(r.min.x) + ", " +
+         std::to_string(r.min.y) + ", " + std::to_string(r.max.x) + ", " + std::to_string(r.max.y) + "]";
+    first = false;
+  }
+  s += "\n  }\n}\n";
+  (void)writeFileAtomic(path, s);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const auto startTime = Clock::now();
+  Args args;
+  if (!parseArgs(argc, argv, args)) return 2;
+
+  if (!glfwInit()) {
+    std::fprintf(stderr, "animorph: cannot open a window (no display?). Run under a virtual X server:\n"
+                         "  xvfb-run -a animorph ...   or use animorph-cli for headless work.\n");
+    return 1;
+  }
+  glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+  GLFWwindow* window = glfwCreateWindow(args.width, args.height, "Animorph", nullptr, nullptr);
+  if (!window) {
+    std::fprintf(stderr, "animorph: could not create a window\n");
+    glfwTerminate();
+    return 1;
+  }
+
+  gpu::ContextSettings cs;
+  cs.window = window;
+  auto ctxR = gpu::Context::create(cs);
+  if (!ctxR) {
+    std::fprintf(stderr, "animorph: no usable Vulkan device: %s\n", ctxR.error().c_str());
+    glfwDestroyWindow(window);
+    glfwTerminate();
+    return 1;
+  }
+  gpu::Context& ctx = **ctxR;
+  gpu::SwapchainSettings ss;
+  if (args.benchFrames > 0) ss.presentMode = gpu::PresentMode::Immediate;
+  auto swapR = gpu::Swapchain::create(ctx, ss);
+  if (!swapR) {
+    std::fprintf(stderr, "animorph: %s\n", swapR.error().c_str());
+    return 1;
+  }
+  gpu::Swapchain& swapchain = **swapR;
+  auto rendR = gpu::SceneRenderer::create(ctx, swapchain.renderPass());
+  if (!rendR) {
+    std::fprintf(stderr, "animorph: %s\n", rendR.error().c_str());
+    return 1;
+  }
+  gpu::SceneRenderer& renderer = **rendR;
+
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;  // the layout lives in our preferences
+  EditorUI::applyStyle();
+  auto imguiR = ImGuiVulkan::create(ctx, swapchain);
+  if (!imguiR) {
+    std::fprintf(stderr, "animorph: %s\n", imguiR.error().c_str());
+    return 1;
+  }
+  ImGuiVulkan& imgui = **imguiR;
+
+  EditorUI ui;
+  AssetCache assets;
+  auto meshCache = std::make_unique<gpu::MeshCache>(ctx);
+  gpu::MeshCache& meshes = *meshCache;
+  std::unique_ptr<Document> document = std::make_unique<Document>();
+  if (!args.project.empty()) ui.requestOpen(args.project);
+  EditorContext ectx(document, assets);
+  ectx.stats.deviceName = ctx.deviceName();
+
+  const char* uiMapEnv = std::getenv("ANIMORPH_UI_MAP");
+  const std::string uiMapPath = uiMapEnv ? uiMapEnv : "";
+  gpu::Scene scene;
+  std::string lastTitle;
+  std::vector<double> frameMs;
+  double firstFrameMs = -1.0;
+  int frameCount = 0, screenshotAt = -1;
+  bool frameApplied = false;
+  std::string pendingCapture;
+  int exitCode = 0;
+  auto prev = Clock::now();
+  double smoothedMs = 16.0;
+
+  for (;;) {
+    glfwPollEvents();
+    if (glfwWindowShouldClose(window)) {
+      glfwSetWindowShouldClose(window, GLFW_FALSE);
+      ui.requestQuit();
+    }
+    const auto now = Clock::now();
+    const double dt = std::chrono::duration<double>(now - prev).count();
+    prev = now;
+    smoothedMs = 0.9 * smoothedMs + 0.1 * dt * 1000.0;
+    ectx.nowSec = std::chrono::duration<double>(now - startTime).count();
+    ectx.dtSec = dt;
+    ectx.stats.frameMs = static_cast<float>(smoothedMs);
+    ectx.stats.fps = static_cast<float>(smoothedMs > 0.0 ? 1000.0 / smoothedMs : 0.0);
+
+    // The command-line frame is applied once the project is open.
+    if (args.frame >= 0 && !frameApplied && frameCount >= 2) {
+      document->setCurrentFrame(args.frame);
+      frameApplied = true;
+    }
+    if (args.benchFrames > 0 && frameCount == 2 && !ui.state().playback.playing()) ui.state().playback.toggle(document->project().timeline);
+
+    imgui.newFrame();
+    ui.draw(ectx);
+    ImGui::Render();
+    const EditorOutput& out = ui.output();
+    if (out.quit) break;
+
+    Document& doc = *document;
+    const Timeline& tl = doc.project().timeline;
+    SceneFrame frame = evaluateScene(doc.project(), doc.baseDir(), assets, tl.frameToSec(tl.currentFrame));
+    if (out.pick) {
+      glm::vec2 local = out.pick->windowPos - out.viewport.min;
+      Ray ray = out.camera.rayThroughPixel(local.x, local.y, out.viewport.size);
+      auto hit = pickScene(frame, ray);
+      if (hit) doc.selection = Selection{hit->actorId, -1};
+      else if (!out.pick->extend) doc.selection = {};
+    }
+    gpu::buildScene(frame, doc.project().view, doc.selection.actorId, meshes, scene);
+
+    if (out.screenshotPath) pendingCapture = *out.screenshotPath;
+    if (!args.screenshot.empty() && screenshotAt < 0 && frameApplied == (args.frame >= 0) && frameCount >= 6) {
+      pendingCapture = args.screenshot;
+      screenshotAt = frameCount;
+    }
+    if (!pendingCapture.empty()) swapchain.requestCapture();
+
+    gpu::Frame f;
+    gpu::FrameStatus fs = swapchain.beginFrame(f);
+    if (fs == gpu::FrameStatus::Ready) {
+      ImGuiIO& io = ImGui::GetIO();
+      const float sx = io.DisplayFramebufferScale.x, sy = io.DisplayFramebufferScale.y;
+      gpu::ViewportRect rect;
+      rect.x = static_cast<int32_t>(out.viewport.min.x * sx);
+      rect.y = static_cast<int32_t>(out.viewport.min.y * sy);
+      rect.width = static_cast<uint32_t>(std::max(0.0f, out.viewport.size.x * sx));
+      rect.height = static_cast<uint32_t>(std::max(0.0f, out.viewport.size.y * sy));
+      rect.width = std::min(rect.width, f.extent.width - std::min<uint32_t>(f.extent.width, rect.x));
+      rect.height = std::min(rect.height, f.extent.height - std::min<uint32_t>(f.extent.height, rect.y));
+      if (rect.width > 0 && rect.height > 0) {
+        Status st = renderer.record(f.cmd, f.serial, rect, out.camera, scene);
+        if (!st) std::fprintf(stderr, "animorph: %s\n", st.error().c_str());
+      }
+      imgui.record(f.cmd);
+      Status st = swapchain.endFrame();
+      if (!st) std::fprintf(stderr, "animorph: %s\n", st.error().c_str());
+      if (firstFrameMs < 0.0) {
+        firstFrameMs = std::chrono::duration<double, std::milli>(Clock::now() - startTime).count();
+      }
+      if (auto img = swapchain.takeCapture(); img && !pendingCapture.empty()) {
+        Status w = gpu::writePng(pendingCapture, *img);
+        if (!w) std::fprintf(stderr, "animorph: %s\n", w.error().c_str());
+        pendingCapture.clear();
+        if (args.quit && screenshotAt >= 0) break;
+      }
+    } else if (fs == gpu::FrameStatus::Failed) {
+      std::fprintf(stderr, "animorph: %s\n", swapchain.lastError().c_str());
+      glfwWaitEventsTimeout(0.1);
+    }
+    meshes.endFrame();
+    ++frameCount;
+    if (args.benchFrames > 0 && frameCount > 10) {
+      frameMs.push_back(dt * 1000.0);
+      if (static_cast<int>(frameMs.size()) >= args.benchFrames) break;
+    }
+    if (args.screenshot.empty() && args.quit && frameCount > 3) break;
+
+    if (!uiMapPath.empty() && frameCount % 5 == 0) writeUiMap(uiMapPath, ui.widgets(), out, doc);
+    std::string title = "Animorph - " + doc.displayName() + (doc.dirty() ? " *" : "");
+    if (title != lastTitle) {
+      glfwSetWindowTitle(window, title.c_str());
+      lastTitle = title;
+    }
+  }
+
+  if (args.benchFrames > 0) {
+    std::printf("start to first frame: %.1f ms\n", firstFrameMs);
+    std::printf("frame time over %zu frames: p50 %.2f ms, p95 %.2f ms, max %.2f ms (device: %s)\n", frameMs.size(),
+                percentile(frameMs, 0.5), percentile(frameMs, 0.95), percentile(frameMs, 1.0),
+                ctx.deviceName().c_str());
+  }
+  ctx.waitIdle();
+  ui.savePreferences();
+  if (ctx.validationEnabled() && ctx.validationErrorCount() > 0) {
+    std::fprintf(stderr, "animorph: %u Vulkan validation error(s)\n", ctx.validationErrorCount());
+    exitCode = 3;
+  }
+  meshCache.reset();
+  imguiR->reset();
+  ImGui::DestroyContext();
+  rendR->reset();
+  swapR->reset();
+  ctxR->reset();
+  glfwDestroyWindow(window);
+  glfwTerminate();
+  return exitCode;
+}

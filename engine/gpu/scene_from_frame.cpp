@@ -1,0 +1,45 @@
+#include "scene_from_frame.h"
+
+#include <algorithm>
+
+namespace animorph::gpu {
+
+void buildScene(const SceneFrame& frame, const ViewOptions& view, const std::string& selectedActorId,
+                MeshCache& meshes, Scene& out) {
+  out.meshes.clear();
+  out.lines.clear();
+  out.overlay.clear();
+  out.options.grid = view.showGrid;
+  out.options.wireframe = view.wireframe;
+  out.options.axisIndicator = view.showAxes;
+  Bounds b;
+  for (const auto& d : frame.meshes) {
+    const GpuMesh* gm = meshes.get(d.character, d.meshIndex);
+    if (!gm) continue;
+    gpu::MeshDraw md;
+    md.mesh = gm;
+    md.model = d.model;
+    md.jointMatrices = d.joints;
+    md.selected = !selectedActorId.empty() && d.actorId == selectedActorId;
+    out.meshes.push_back(md);
+    Bounds mb = gm->bounds();
+    if (!mb.empty()) {
+      b.add(glm::vec3(d.model * glm::vec4(mb.min, 1.0f)));
+      b.add(glm::vec3(d.model * glm::vec4(mb.max, 1.0f)));
+    }
+  }
+  if (view.showSkeleton && !frame.bones.empty()) {
+    // Joint markers sized to the scene, bones in a light blue, the selected actor's in orange.
+    float radius = std::max(0.004f, 0.006f * b.diagonal());
+    const uint32_t bone = packRgba({0.55f, 0.8f, 1.0f, 1.0f});
+    const uint32_t boneSel = packRgba({1.0f, 0.7f, 0.25f, 1.0f});
+    for (const auto& bd : frame.bones) {
+      uint32_t c = bd.actorId == selectedActorId ? boneSel : bone;
+      out.overlay.line(bd.head, bd.tail, c);
+      out.overlay.octahedron(bd.head, radius, c);
+      out.overlay.octahedron(bd.tail, radius, c);
+    }
+  }
+}
+
+}  // namespace animorph::gpu

@@ -1,0 +1,19 @@
+#pragma once
+// Turns an evaluated SceneFrame (engine/core/scene) into the renderer's Scene:
+// GPU meshes with their joint matrices, the skeleton overlay, view options.
+#include <string>
+
+#include "doc/project.h"
+#include "mesh_cache.h"
+#include "scene/scene_frame.h"
+#include "scene_renderer.h"
+
+namespace animorph::gpu {
+
+// Fills out from frame (out keeps pointers into frame: frame must outlive the
+// recording). selectedActorId is highlighted. Meshes whose upload failed are
+// skipped (meshes.lastError()).
+void buildScene(const SceneFrame& frame, const ViewOptions& view, const std::string& selectedActorId,
+                MeshCache& meshes, Scene& out);
+
+}  // namespace animorph::gpu
