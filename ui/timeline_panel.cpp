@@ -95,7 +95,8 @@ void drawRuler(Document& doc, Playback& playback, const std::vector<int>& keyFra
     if (major) {
       char buf[24];
       std::snprintf(buf, sizeof buf, "%ld", f);
-      dl->AddText(ImVec2(x + 3.0f, p0.y + 1.0f), IM_COL32(200, 200, 210, 255), buf);
+      // Below the minor ticks, so no tick line crosses the digits.
+      dl->AddText(ImVec2(x + 3.0f, p0.y + size.y * 0.2f + 1.0f), IM_COL32(200, 200, 210, 255), buf);
     }
   }
   // Key ticks of the selection.
@@ -116,6 +117,13 @@ void drawRuler(Document& doc, Playback& playback, const std::vector<int>& keyFra
                     IM_COL32(90, 160, 255, 255), 3.0f);
   dl->AddText(ImVec2(cx - ts.x * 0.5f, p1.y - ts.y - 1.0f), IM_COL32(10, 10, 20, 255), cur);
   dl->PopClipRect();
+}
+
+// A field's label on its left, the way DCC transport bars read ("Speed 1.00x").
+void labelBefore(const char* label) {
+  ImGui::AlignTextToFramePadding();
+  ImGui::TextUnformatted(label);
+  ImGui::SameLine();
 }
 
 }  // namespace
@@ -155,26 +163,29 @@ void drawTimelinePanel(const LayoutRect& rect, Document& doc, Playback& playback
   noteWidget("timeline/loop");
   ImGui::SameLine();
 
+  labelBefore("Speed");
   ImGui::SetNextItemWidth(70.0f);
   double speed = tl.playbackSpeed;
-  bool changed = ImGui::DragScalar("Speed", ImGuiDataType_Double, &speed, 0.01f, nullptr, nullptr, "%.2fx");
+  bool changed = ImGui::DragScalar("##speed", ImGuiDataType_Double, &speed, 0.01f, nullptr, nullptr, "%.2fx");
   drag.begin(doc);
   if (changed)
     doc.execute(setTimelineField(doc.project(), &Timeline::playbackSpeed, speed, "Set playback speed", "tl/speed"));
   drag.end(doc);
   ImGui::SameLine();
 
+  labelBefore("FPS");
   ImGui::SetNextItemWidth(60.0f);
   double fps = tl.fps;
-  ImGui::InputDouble("FPS", &fps, 0.0, 0.0, "%.3g");
+  ImGui::InputDouble("##fps", &fps, 0.0, 0.0, "%.3g");
   noteWidget("timeline/fps");
   if (ImGui::IsItemDeactivatedAfterEdit() && fps != tl.fps)
     doc.execute(setTimelineField(doc.project(), &Timeline::fps, std::clamp(fps, 1.0, 1000.0), "Set frame rate"));
   ImGui::SameLine();
 
+  labelBefore("Start");
   ImGui::SetNextItemWidth(60.0f);
   int start = tl.frameStart;
-  ImGui::InputInt("Start", &start, 0, 0);
+  ImGui::InputInt("##start", &start, 0, 0);
   noteWidget("timeline/range_start");
   if (ImGui::IsItemDeactivatedAfterEdit() && start != tl.frameStart) {
     start = std::min(start, tl.frameEnd);
@@ -182,9 +193,10 @@ void drawTimelinePanel(const LayoutRect& rect, Document& doc, Playback& playback
     goToFrame(doc, playback, tl.currentFrame);
   }
   ImGui::SameLine();
+  labelBefore("End");
   ImGui::SetNextItemWidth(60.0f);
   int end = tl.frameEnd;
-  ImGui::InputInt("End", &end, 0, 0);
+  ImGui::InputInt("##end", &end, 0, 0);
   noteWidget("timeline/range_end");
   if (ImGui::IsItemDeactivatedAfterEdit() && end != tl.frameEnd) {
     end = std::max(end, tl.frameStart);
@@ -192,9 +204,10 @@ void drawTimelinePanel(const LayoutRect& rect, Document& doc, Playback& playback
     goToFrame(doc, playback, tl.currentFrame);
   }
   ImGui::SameLine();
+  labelBefore("Frame");
   ImGui::SetNextItemWidth(60.0f);
   int frame = tl.currentFrame;
-  ImGui::InputInt("Frame", &frame, 0, 0);
+  ImGui::InputInt("##frame", &frame, 0, 0);
   noteWidget("timeline/frame");
   if (ImGui::IsItemDeactivatedAfterEdit()) goToFrame(doc, playback, frame);
   ImGui::SameLine();
