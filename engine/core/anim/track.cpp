@@ -279,7 +279,7 @@ bool readValue(const json& j, glm::quat& q, std::string& err) {
       err = "quaternion [x, y, z, w] has zero length";
       return false;
     }
-    q = glm::normalize(q);
+    if (std::abs(len - 1.0f) > 1e-6f) q = glm::normalize(q);  // idempotent on unit input
     return true;
   }
   err = "expected a quaternion [x, y, z, w] of finite numbers, got " + describe(j);

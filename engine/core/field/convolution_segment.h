@@ -44,8 +44,8 @@ inline double convolutionWeightForRadius(double radius, double S, double thresho
   return 2.0 * S * threshold * std::pow(1.0 + S * S * radius * radius, 1.5) / M_PI;
 }
 
-// Distance from the segment beyond which w F(x) < eps * T for every x (a
-// conservative bound on F from the segment length and the line field).
+// Distance from the segment beyond which w F(x) < eps * T for every x: F is
+// largest beside the segment's middle among points at a given distance.
 double convolutionCutoffRadius(double length, double S, double weight, double threshold, double eps);
 
 }  // namespace animorph

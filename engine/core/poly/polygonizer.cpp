@@ -165,7 +165,7 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
 
   // ---- fine level: blocks
   std::vector<BlockOutput> out(nBlocks);
-  std::atomic<size_t> culled{0}, evaluated{0}, cells{0}, points{0}, done{0};
+  std::atomic<size_t> culled{0}, evaluated{0}, cells{0}, points{0}, pairs{0}, done{0};
   std::mutex progressMutex;
   const auto& table = marchingCubesTable();
   std::atomic<bool> cancelled{false};
@@ -214,6 +214,7 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
         }
     sc.evaluator.evaluate(program, *prog, sc.x.data(), sc.y.data(), sc.z.data(), np, sc.v.data());
     points.fetch_add(size_t(np), std::memory_order_relaxed);
+    pairs.fetch_add(size_t(np) * prog->primitiveCount, std::memory_order_relaxed);
     // The grid boundary counts as outside, so a surface cut by it is closed.
     for (int k = 0, p = 0; k < cz; ++k)
       for (int j = 0; j < cy; ++j)
@@ -281,6 +282,7 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
                             sc.gx.data(), sc.gy.data(), sc.gz.data());
       for (size_t q = 0; q < nv; ++q) o.normals[q] = outwardNormal(sc.gx[q], sc.gy[q], sc.gz[q], o.normals[q]);
       points.fetch_add(nv, std::memory_order_relaxed);
+      pairs.fetch_add(nv * prog->primitiveCount, std::memory_order_relaxed);
     }
   };
 
@@ -374,6 +376,7 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
   }
   st.orphanVertices = orphans.size();
   st.pointsEvaluated = points.load() + orphans.size();
+  st.primitiveEvaluations = pairs.load();
   if (s.progress) s.progress(1.0f);
   st.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return result;

@@ -41,6 +41,7 @@ struct PolygonizeStats {
   size_t blocksEvaluated = 0;
   size_t cellsVisited = 0;              // cells of evaluated blocks
   size_t pointsEvaluated = 0;           // field evaluations (grid corners + normals)
+  size_t primitiveEvaluations = 0;      // (point, primitive) pairs evaluated
   size_t orphanVertices = 0;            // edge vertices their owner block did not make (should be 0)
   double milliseconds = 0.0;
 };
