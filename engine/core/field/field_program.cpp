@@ -404,6 +404,39 @@ void FieldProgram::primitivesReaching(const Bounds& box, std::vector<uint32_t>& 
 
 // ------------------------------------------------------------------ intervals
 
+Bounds FieldProgram::tightBounds(int depth) const {
+  if (unbounded_ || bounds_.empty()) return bounds_;
+  Bounds out;
+  ActiveProgram active;
+  // Depth-first over the octree of bounds().
+  struct Frame {
+    Bounds box;
+    int level;
+  };
+  std::vector<Frame> stack{{bounds_, 0}};
+  std::vector<uint32_t> reaching;
+  while (!stack.empty()) {
+    Frame fr = stack.back();
+    stack.pop_back();
+    primitivesReaching(fr.box, reaching);
+    specialise(reaching, active);
+    Interval iv = interval(active, fr.box.center(), 0.5f * fr.box.diagonal());
+    if (iv.hi < 0.0f) continue;
+    if (fr.level >= depth || iv.lo >= 0.0f) {
+      out.add(fr.box);
+      continue;
+    }
+    glm::vec3 c = fr.box.center();
+    for (int k = 0; k < 8; ++k) {
+      Bounds child;
+      child.add(glm::vec3(k & 1 ? c.x : fr.box.min.x, k & 2 ? c.y : fr.box.min.y, k & 4 ? c.z : fr.box.min.z));
+      child.add(glm::vec3(k & 1 ? fr.box.max.x : c.x, k & 2 ? fr.box.max.y : c.y, k & 4 ? fr.box.max.z : c.z));
+      stack.push_back({child, fr.level + 1});
+    }
+  }
+  return out;
+}
+
 namespace {
 
 float potentialAt(float d, float R, float I, float k) {

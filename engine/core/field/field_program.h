@@ -134,6 +134,9 @@ class FieldProgram {
   // Global ids (sorted) of primitives whose bound reaches the box.
   void primitivesReaching(const Bounds& box, std::vector<uint32_t>& out,
                           const std::vector<uint32_t>* candidates = nullptr) const;
+  // bounds() shrunk by recursive subdivision (depth levels of 2x2x2): the union
+  // of the boxes whose interval does not prove them outside. Still conservative.
+  Bounds tightBounds(int depth = 5) const;
   // Rigorous interval of f = p - T over the ball (centre, radius) for a specialised
   // program (exact arithmetic; callers add a margin for float rounding).
   Interval interval(const ActiveProgram& prog, const glm::vec3& centre, float radius) const;

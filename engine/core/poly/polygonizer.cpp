@@ -83,7 +83,7 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
   } else {
     if (program.unbounded())
       return Error{"polygonize: the field is inside everywhere far from its primitives (unbounded); give bounds"};
-    box = program.bounds();
+    box = program.tightBounds();
     if (box.empty()) {
       result.stats.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       return result;  // nothing inside anywhere

@@ -18,7 +18,8 @@ struct PolygonizeSettings {
   // Cells along the longest side of the grid bounds (cells are cubes). Larger:
   // finer mesh; cost grows with the surface (culling on) or the volume (off). 2..4096.
   int resolution = 128;
-  // Grid bounds; default: the program's bounds grown by marginCells on every side.
+  // Grid bounds; default: the program's bounds, tightened by interval
+  // subdivision, grown by marginCells on every side.
   // A surface cut by these bounds is closed by the grid boundary (treated as outside).
   std::optional<Bounds> bounds;
   float marginCells = 2.0f;
