@@ -115,6 +115,52 @@ void convolutionGradients(const float* __restrict bxs, const float* __restrict b
   }
 }
 
+// Per-primitive intervals of w F over the ball (c, rho): the kernel is
+// decreasing in distance, so each eighth of a segment contributes between
+// length * h(farthest) and length * h(nearest). Primitives are the SIMD lanes.
+ANIMORPH_KERNEL
+void convolutionIntervals(const float* __restrict bxs, const float* __restrict bys, const float* __restrict bzs,
+                          const float* __restrict axs, const float* __restrict ays, const float* __restrict azs,
+                          const float* __restrict lens, const float* __restrict ws, const float* __restrict ss,
+                          const float* __restrict cuts, const uint32_t* __restrict idx, int count, float cx, float cy,
+                          float cz, float rho, float* __restrict lo, float* __restrict hi) {
+  for (int k = 0; k < count; ++k) {
+    const uint32_t i = idx[k];
+    const float l = lens[i], S2 = ss[i] * ss[i], cut2 = cuts[i];
+    float dx = cx - bxs[i], dy = cy - bys[i], dz = cz - bzs[i];
+    float uc = dx * axs[i] + dy * ays[i] + dz * azs[i];
+    float perp2 = dx * dx + dy * dy + dz * dz - uc * uc;
+    perp2 = perp2 > 0.0f ? perp2 : 0.0f;
+    float along = uc < 0.0f ? -uc : (uc > l ? uc - l : 0.0f);
+    float dseg = std::sqrt(perp2 + along * along);
+    const float ds = l * 0.125f;
+    float sumLo = 0.0f, sumHi = 0.0f;
+#pragma GCC unroll 8
+    for (int q = 0; q < 8; ++q) {
+      float s0 = ds * float(q), s1 = s0 + ds;
+      float nearD = uc < s0 ? s0 - uc : (uc > s1 ? uc - s1 : 0.0f);
+      float a0 = s0 - uc, a1 = s1 - uc;
+      a0 = a0 < 0.0f ? -a0 : a0;
+      a1 = a1 < 0.0f ? -a1 : a1;
+      float farD = a0 > a1 ? a0 : a1;
+      float rmin = std::sqrt(perp2 + nearD * nearD) - rho;
+      rmin = rmin > 0.0f ? rmin : 0.0f;
+      float rmax = std::sqrt(perp2 + farD * farD) + rho;
+      float kmax = 1.0f / (1.0f + S2 * rmin * rmin);
+      float kmin = 1.0f / (1.0f + S2 * rmax * rmax);  // 0 for an infinite ball
+      sumHi += kmax * kmax;
+      sumLo += kmin * kmin;
+    }
+    float wds = ws[i] * ds;
+    float dOut = dseg - rho, dIn = dseg + rho;
+    bool none = dOut * dOut > cut2 && dOut > 0.0f;
+    bool all = dIn * dIn <= cut2;
+    // Widened by a few ulps: the values themselves are computed in float.
+    lo[k] = all ? wds * sumLo * 0.9999f : 0.0f;
+    hi[k] = none ? 0.0f : wds * sumHi * 1.0001f;
+  }
+}
+
 template <bool kMax>
 inline void accumulate(float* f, float* gx, float* gy, float* gz, int j, float v, float vx, float vy, float vz) {
   if constexpr (kMax) {
@@ -209,6 +255,13 @@ void convolutionKernel(const ConvolutionData& c, const uint32_t* idx, int count,
   else
     convolutionValues(c.bx.data(), c.by.data(), c.bz.data(), c.ax.data(), c.ay.data(), c.az.data(), c.length.data(),
                       c.weight.data(), c.sharpness.data(), c.cut2.data(), idx, count, x, y, z, n, f);
+}
+
+void convolutionIntervalKernel(const ConvolutionData& c, const uint32_t* idx, int count, const glm::vec3& centre,
+                               float radius, float* lo, float* hi) {
+  convolutionIntervals(c.bx.data(), c.by.data(), c.bz.data(), c.ax.data(), c.ay.data(), c.az.data(), c.length.data(),
+                       c.weight.data(), c.sharpness.data(), c.cut2.data(), idx, count, centre.x, centre.y, centre.z,
+                       radius, lo, hi);
 }
 
 void skeletalKernel(const FieldProgram& prog, const uint32_t* idx, int count, bool combineMax, const float* x,

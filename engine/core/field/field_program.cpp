@@ -458,6 +458,19 @@ Interval FieldProgram::interval(const ActiveProgram& prog, const glm::vec3& cent
     switch (op.code) {
       case OpCode::Prims: {
         Interval acc{0.0f, 0.0f};
+        if (op.primClass == PrimClass::Convolution) {
+          thread_local std::vector<float> los, his;
+          los.resize(op.count);
+          his.resize(op.count);
+          convolutionIntervalKernel(convolution, prog.indices.data() + op.first, int(op.count), c, rho, los.data(),
+                                    his.data());
+          for (uint32_t k = 0; k < op.count; ++k) {
+            acc.lo += los[k];
+            acc.hi += his[k];
+          }
+          st.push_back(acc);
+          break;
+        }
         for (uint32_t k = 0; k < op.count; ++k) {
           uint32_t i = prog.indices[op.first + k];
           Interval v{0.0f, 0.0f};
@@ -469,35 +482,11 @@ Interval FieldProgram::interval(const ActiveProgram& prog, const glm::vec3& cent
             float g0 = potentialAt(std::max(0.0f, d - rho), p.radius, p.intensity, p.stiffness);
             float g1 = potentialAt(d + rho, p.radius, p.intensity, p.stiffness);
             v = {std::min(g0, g1), std::max(g0, g1)};
-          } else if (op.primClass == PrimClass::Capsule) {
+          } else {
             const CapsulePrimitive& cp = capsules[i];
             float d = distToSegment(c, cp.a, cp.b);
             auto pot = [&](float dd) { return cp.radius > 0.0f ? T * std::max(0.0f, 2.0f - dd / cp.radius) : 0.0f; };
             v = {pot(d + rho), pot(std::max(0.0f, d - rho))};
-          } else {
-            const ConvolutionData& cd = convolution;
-            glm::vec3 b(cd.bx[i], cd.by[i], cd.bz[i]), a(cd.ax[i], cd.ay[i], cd.az[i]);
-            float l = cd.length[i], w = cd.weight[i], S = cd.sharpness[i], cut = std::sqrt(cd.cut2[i]);
-            float dseg = distToSegment(c, b, b + l * a);
-            if (dseg - rho > cut) {
-              v = {0.0f, 0.0f};
-            } else {
-              const int pieces = 8;
-              float ds = l / pieces;
-              double lo = 0.0, hi = 0.0;
-              for (int q = 0; q < pieces; ++q) {
-                glm::vec3 s0 = b + a * (ds * q), s1 = b + a * (ds * (q + 1));
-                float dmin = distToSegment(c, s0, s1);
-                float dmax = std::max(glm::length(c - s0), glm::length(c - s1));
-                double rmin = std::max(0.0, double(dmin) - rho), rmax = double(dmax) + rho;
-                double hmax = 1.0 / std::pow(1.0 + double(S) * S * rmin * rmin, 2.0);
-                double hmin = std::isinf(rmax) ? 0.0 : 1.0 / std::pow(1.0 + double(S) * S * rmax * rmax, 2.0);
-                hi += ds * hmax;
-                lo += ds * hmin;
-              }
-              bool fullyInside = dseg + rho <= cut;
-              v = {fullyInside ? float(w * lo) : 0.0f, float(w * hi)};
-            }
           }
           if (op.combineMax) acc = {std::max(acc.lo, v.lo), std::max(acc.hi, v.hi)};
           else acc = {acc.lo + v.lo, acc.hi + v.hi};

@@ -176,6 +176,9 @@ class FieldEvaluator {
 // Batched primitive kernels (field_kernels.cpp): accumulate into f (and gradients when gx != null).
 void convolutionKernel(const ConvolutionData& c, const uint32_t* idx, int count, const float* x, const float* y,
                        const float* z, int n, float* f, float* gx, float* gy, float* gz);
+// Per-primitive intervals of the weighted, cut convolution fields over the ball (centre, radius).
+void convolutionIntervalKernel(const ConvolutionData& c, const uint32_t* idx, int count, const glm::vec3& centre,
+                               float radius, float* lo, float* hi);
 void skeletalKernel(const FieldProgram& prog, const uint32_t* idx, int count, bool combineMax, const float* x,
                     const float* y, const float* z, int n, float* f, float* gx, float* gy, float* gz);
 void capsuleKernel(const std::vector<CapsulePrimitive>& caps, float threshold, const uint32_t* idx, int count,

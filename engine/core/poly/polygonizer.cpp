@@ -48,7 +48,8 @@ struct Scratch {
   FieldEvaluator evaluator;
   ActiveProgram active;
   std::vector<uint32_t> reaching;
-  std::vector<float> x, y, z, v, gx, gy, gz;
+  std::vector<float> x, y, z, v, e, gx, gy, gz;
+  std::vector<int32_t> slot;
 };
 
 enum class SuperState : uint8_t { Culled, Partial };
@@ -179,6 +180,9 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
       cnt[a] = std::min(kBlock, g.n[a] - c0[a]);
     }
     const ActiveProgram* prog = &allPrims;
+    // Sub-blocks of 4^3 cells whose cells may hold surface (all of them without culling).
+    bool subLive[8] = {true, true, true, true, true, true, true, true};
+    bool allLive = true;
     if (s.culling) {
       size_t si = size_t(b[0] / kSuper) + size_t(g.ns[0]) * (size_t(b[1] / kSuper) + size_t(g.ns[1]) * size_t(b[2] / kSuper));
       if (superState[si] == SuperState::Culled) {
@@ -194,27 +198,71 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
         return;
       }
       prog = &sc.active;
+      for (int q = 0; q < 8; ++q) {
+        int s0[3], sn[3];
+        for (int a = 0; a < 3; ++a) {
+          int half = ((q >> a) & 1) * (kBlock / 2);
+          s0[a] = c0[a] + half;
+          sn[a] = std::min(kBlock / 2, cnt[a] - half);
+        }
+        if (sn[0] <= 0 || sn[1] <= 0 || sn[2] <= 0) {
+          subLive[q] = false;
+        } else {
+          Bounds sb = regionBox(s0, sn);
+          subLive[q] = !oneSigned(program.interval(sc.active, sb.center(), 0.5f * sb.diagonal()), touchesBoundary(s0, sn));
+        }
+        allLive &= subLive[q];
+      }
     }
     evaluated.fetch_add(1, std::memory_order_relaxed);
-    cells.fetch_add(size_t(cnt[0]) * cnt[1] * cnt[2], std::memory_order_relaxed);
-    // Corner values of the block's cells (its own corners plus the +1 layer).
+    // Corner values of the block's cells (its own corners plus the +1 layer);
+    // only the corners of live sub-blocks are evaluated.
     const int cx = cnt[0] + 1, cy = cnt[1] + 1, cz = cnt[2] + 1;
     const int np = cx * cy * cz;
+    auto subOf = [&](int i, int j, int k) {
+      return (i >= kBlock / 2 ? 1 : 0) | (j >= kBlock / 2 ? 2 : 0) | (k >= kBlock / 2 ? 4 : 0);
+    };
+    size_t liveCells = 0;
+    for (int k = 0; k < cnt[2]; ++k)
+      for (int j = 0; j < cnt[1]; ++j)
+        for (int i = 0; i < cnt[0]; ++i) liveCells += subLive[subOf(i, j, k)];
+    cells.fetch_add(liveCells, std::memory_order_relaxed);
     sc.x.resize(size_t(np));
     sc.y.resize(size_t(np));
     sc.z.resize(size_t(np));
-    sc.v.resize(size_t(np));
+    sc.v.assign(size_t(np), 0.0f);
+    sc.slot.assign(size_t(np), allLive ? 0 : -1);
+    if (!allLive) {
+      // Corners of live sub-blocks (each spans its cells plus the +1 layer).
+      for (int q = 0; q < 8; ++q) {
+        if (!subLive[q]) continue;
+        int lo[3], hi[3];
+        for (int a = 0; a < 3; ++a) {
+          lo[a] = ((q >> a) & 1) * (kBlock / 2);
+          hi[a] = std::min(lo[a] + kBlock / 2, cnt[a]);
+        }
+        for (int k = lo[2]; k <= hi[2]; ++k)
+          for (int j = lo[1]; j <= hi[1]; ++j)
+            for (int i = lo[0]; i <= hi[0]; ++i) sc.slot[size_t((k * cy + j) * cx + i)] = 0;
+      }
+    }
+    int ne = 0;
     for (int k = 0, p = 0; k < cz; ++k)
       for (int j = 0; j < cy; ++j)
         for (int i = 0; i < cx; ++i, ++p) {
+          if (sc.slot[size_t(p)] < 0) continue;
           glm::vec3 q = cornerPos(c0[0] + i, c0[1] + j, c0[2] + k);
-          sc.x[size_t(p)] = q.x;
-          sc.y[size_t(p)] = q.y;
-          sc.z[size_t(p)] = q.z;
+          sc.x[size_t(ne)] = q.x;
+          sc.y[size_t(ne)] = q.y;
+          sc.z[size_t(ne)] = q.z;
+          sc.slot[size_t(p)] = ne++;
         }
-    sc.evaluator.evaluate(program, *prog, sc.x.data(), sc.y.data(), sc.z.data(), np, sc.v.data());
-    points.fetch_add(size_t(np), std::memory_order_relaxed);
-    pairs.fetch_add(size_t(np) * prog->primitiveCount, std::memory_order_relaxed);
+    sc.e.resize(size_t(ne));
+    sc.evaluator.evaluate(program, *prog, sc.x.data(), sc.y.data(), sc.z.data(), ne, sc.e.data());
+    points.fetch_add(size_t(ne), std::memory_order_relaxed);
+    pairs.fetch_add(size_t(ne) * prog->primitiveCount, std::memory_order_relaxed);
+    for (int p = 0; p < np; ++p)
+      if (sc.slot[size_t(p)] >= 0) sc.v[size_t(p)] = sc.e[size_t(sc.slot[size_t(p)])];
     // The grid boundary counts as outside, so a surface cut by it is closed.
     for (int k = 0, p = 0; k < cz; ++k)
       for (int j = 0; j < cy; ++j)
@@ -254,7 +302,7 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
           int mask = 0;
           for (int c = 0; c < 8; ++c)
             if (val(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1)) >= 0.0f) mask |= 1 << c;
-          if (mask == 0 || mask == 255) continue;
+          if (mask == 0 || mask == 255 || !subLive[subOf(i, j, k)]) continue;
           const auto& tri = table.triangles[size_t(mask)];
           for (int q = 0; tri[size_t(q)] != 255; ++q) {
             int e = tri[size_t(q)];
@@ -306,6 +354,7 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
   });
   st.blocksCulled = culled.load();
   st.blocksEvaluated = evaluated.load();
+  for (const BlockOutput& o : out) st.blocksWithSurface += o.corners.empty() ? 0 : 1;
   st.cellsVisited = cells.load();
   if (cancelled.load() || (s.cancel && s.cancel->load())) {
     result.cancelled = true;

@@ -40,6 +40,7 @@ struct PolygonizeStats {
   size_t blocksTotal = 0;               // 8^3-cell blocks in the grid
   size_t blocksCulled = 0;              // skipped: no primitive, or one-signed interval
   size_t blocksEvaluated = 0;
+  size_t blocksWithSurface = 0;         // evaluated blocks that produced triangles
   size_t cellsVisited = 0;              // cells of evaluated blocks
   size_t pointsEvaluated = 0;           // field evaluations (grid corners + normals)
   size_t primitiveEvaluations = 0;      // (point, primitive) pairs evaluated
