@@ -1,0 +1,95 @@
+#pragma once
+// Evolution functions: key-framed animatable parameters (DESIGN.md §2, §3).
+// A Track<T> maps time (seconds) to a value of T = float, glm::vec3 or glm::quat.
+// Keys carry a value and, for Hermite-Ferguson interpolation of degree n, the
+// first n-1 derivatives (n = 2: cubic with velocity, n = 3: quintic with
+// velocity and acceleration). Derivatives are automatic (Catmull-Rom finite
+// differences) unless the key sets them. Quaternion tracks slerp along the
+// shortest arc (Hermite keys on quaternions also slerp). A track may instead
+// be driven by a callback; a constant parameter is a track with one key.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <nlohmann/json.hpp>
+
+#include "util/result.h"
+
+namespace animorph {
+
+enum class KeyInterp { Constant, Linear, Hermite };
+
+template <class T>
+struct TrackKey {
+  double timeSec = 0.0;
+  T value{};
+  KeyInterp interp = KeyInterp::Hermite;  // interpolation of the segment that starts at this key
+  bool userDerivatives = false;            // true: d1 (and d2 for degree 3) are used as given
+  T d1{};                                  // first derivative (per second)
+  T d2{};                                  // second derivative (degree-3 tracks only)
+};
+
+template <class T>
+class Track {
+ public:
+  using Driver = std::function<T(double timeSec)>;
+
+  Track();                       // one key holding T's zero / identity
+  explicit Track(const T& constant);
+  static Track constant(const T& v) { return Track(v); }
+
+  // Adds (or replaces, at an equal time) a key; keeps keys sorted by time.
+  void setKey(const TrackKey<T>& key);
+  void setKey(double timeSec, const T& value, KeyInterp interp = KeyInterp::Hermite);
+  void clearKeys() { keys_.clear(); }
+  const std::vector<TrackKey<T>>& keys() const { return keys_; }
+  std::vector<TrackKey<T>>& keys() { return keys_; }
+
+  // Hermite degree: 2 (cubic, default) or 3 (quintic). Other values are clamped.
+  void setDegree(int n) { degree_ = n < 3 ? 2 : 3; }
+  int degree() const { return degree_; }
+
+  // Replaces key interpolation with a callback (not serialised); an empty function removes it.
+  void setDriver(Driver d) { driver_ = std::move(d); }
+  bool driven() const { return static_cast<bool>(driver_); }
+
+  bool isConstant() const { return !driver_ && keys_.size() <= 1; }
+
+  // Value at t; holds the first/last key outside the key range. No keys: T's zero / identity.
+  T evaluate(double timeSec) const;
+  // order-th time derivative at t (order 1 or 2); quaternion tracks give dq/dt as a quat.
+  // Driven tracks use central differences.
+  T derivative(double timeSec, int order = 1) const;
+
+ private:
+  // Derivatives (d1, d2) of key i: user values or finite differences.
+  void keyDerivatives(size_t i, T& d1, T& d2) const;
+  std::vector<TrackKey<T>> keys_;
+  int degree_ = 2;
+  Driver driver_;
+};
+
+using FloatTrack = Track<float>;
+using Vec3Track = Track<glm::vec3>;
+using QuatTrack = Track<glm::quat>;
+
+extern template class Track<float>;
+extern template class Track<glm::vec3>;
+extern template class Track<glm::quat>;
+
+// JSON: a constant track is written as its bare value (number, [x,y,z], or
+// quaternion [x,y,z,w]); otherwise {"degree": n, "keys": [{"t", "v", "interp",
+// "d1", "d2"}]}. A driver is not serialised: its keys (if any) are written.
+nlohmann::json trackToJson(const FloatTrack& t);
+nlohmann::json trackToJson(const Vec3Track& t);
+nlohmann::json trackToJson(const QuatTrack& t);
+
+// Parse a track; errors name `where` (e.g. "node 4 parameter 'radius'") and the reason,
+// including non-finite numbers and unsorted keys.
+Result<FloatTrack> floatTrackFromJson(const nlohmann::json& j, const std::string& where);
+Result<Vec3Track> vec3TrackFromJson(const nlohmann::json& j, const std::string& where);
+Result<QuatTrack> quatTrackFromJson(const nlohmann::json& j, const std::string& where);
+
+}  // namespace animorph

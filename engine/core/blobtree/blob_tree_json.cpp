@@ -1,0 +1,186 @@
+#include "blobtree/blob_tree_json.h"
+
+#include "blobtree/validate.h"
+#include "doc/atomic_file.h"
+
+namespace animorph {
+
+using nlohmann::json;
+
+namespace {
+
+json paramToJson(const ParamValue& v) {
+  if (auto* f = std::get_if<FloatTrack>(&v)) return trackToJson(*f);
+  if (auto* p = std::get_if<Vec3Track>(&v)) return trackToJson(*p);
+  if (auto* q = std::get_if<QuatTrack>(&v)) return trackToJson(*q);
+  json arr = json::array();
+  for (const auto& t : std::get<ControlPoints>(v)) arr.push_back(trackToJson(t));
+  return arr;
+}
+
+json nodeToJson(const BlobNode& n) {
+  json j;
+  j["id"] = n.id;
+  j["type"] = nodeTypeInfo(n.type).name;
+  if (!n.name.empty()) j["name"] = n.name;
+  const auto& specs = nodeTypeInfo(n.type).params;
+  if (!specs.empty()) {
+    json p = json::object();
+    for (size_t i = 0; i < specs.size() && i < n.params.size(); ++i) p[specs[i].name] = paramToJson(n.params[i]);
+    j["params"] = p;
+  }
+  if (!n.children.empty()) {
+    json c = json::array();
+    for (const auto& ch : n.children) c.push_back(nodeToJson(ch));
+    j["children"] = c;
+  }
+  return j;
+}
+
+// `path` locates nodes whose id is not known yet ("root.children[2]").
+Result<BlobNode> nodeFromJson(const json& j, const std::string& path) {
+  if (!j.is_object()) return Error{path + ": a node must be a JSON object"};
+  if (!j.contains("id") || !j["id"].is_number_integer())
+    return Error{path + ": node without an integer \"id\""};
+  int id = j["id"].get<int>();
+  std::string who = "node " + std::to_string(id);
+  if (!j.contains("type") || !j["type"].is_string()) return Error{who + ": missing \"type\""};
+  std::string typeName = j["type"].get<std::string>();
+  const NodeTypeInfo* info = findNodeType(typeName);
+  if (!info) return Error{who + ": unknown node type '" + typeName + "'"};
+  std::string name;
+  if (j.contains("name")) {
+    if (!j["name"].is_string()) return Error{who + ": \"name\" must be a string"};
+    name = j["name"].get<std::string>();
+  }
+  BlobNode n = makeBlobNode(info->type, id, name);
+  who = describeNode(n);
+  json params = j.contains("params") ? j["params"] : json::object();
+  if (!params.is_object()) return Error{who + ": \"params\" must be an object"};
+  for (auto it = params.begin(); it != params.end(); ++it)
+    if (paramIndex(info->type, it.key()) < 0) return Error{who + ": unknown parameter '" + it.key() + "'"};
+  for (size_t i = 0; i < info->params.size(); ++i) {
+    const ParamSpec& spec = info->params[i];
+    if (!params.contains(spec.name)) {
+      if (spec.required) return Error{who + ": missing parameter '" + std::string(spec.name) + "'"};
+      continue;
+    }
+    const json& pj = params[spec.name];
+    std::string where = who + ": parameter '" + spec.name + "'";
+    switch (spec.kind) {
+      case ParamKind::Float: {
+        auto t = floatTrackFromJson(pj, where);
+        if (!t) return Error{t.error()};
+        n.params[i] = std::move(*t);
+        break;
+      }
+      case ParamKind::Vec3: {
+        auto t = vec3TrackFromJson(pj, where);
+        if (!t) return Error{t.error()};
+        n.params[i] = std::move(*t);
+        break;
+      }
+      case ParamKind::Quat: {
+        auto t = quatTrackFromJson(pj, where);
+        if (!t) return Error{t.error()};
+        n.params[i] = std::move(*t);
+        break;
+      }
+      case ParamKind::Vec3List: {
+        if (!pj.is_array()) return Error{where + ": expected an array of points (each a vector track)"};
+        ControlPoints pts;
+        for (size_t k = 0; k < pj.size(); ++k) {
+          auto t = vec3TrackFromJson(pj[k], where + " point " + std::to_string(k));
+          if (!t) return Error{t.error()};
+          pts.push_back(std::move(*t));
+        }
+        n.params[i] = std::move(pts);
+        break;
+      }
+    }
+  }
+  if (j.contains("children")) {
+    const json& c = j["children"];
+    if (!c.is_array()) return Error{who + ": \"children\" must be an array"};
+    for (size_t k = 0; k < c.size(); ++k) {
+      auto ch = nodeFromJson(c[k], who + " child " + std::to_string(k));
+      if (!ch) return Error{ch.error()};
+      n.children.push_back(std::move(*ch));
+    }
+  }
+  return n;
+}
+
+}  // namespace
+
+json blobTreeToJson(const BlobTree& tree) {
+  return json{{"threshold", trackToJson(tree.threshold)}, {"root", nodeToJson(tree.root)}};
+}
+
+json blobTreeSceneToJson(const BlobTree& tree) {
+  json j = {{"format", "animorph-blobtree"}, {"version", kBlobTreeFormatVersion}};
+  json body = blobTreeToJson(tree);
+  j["threshold"] = body["threshold"];
+  j["root"] = body["root"];
+  return j;
+}
+
+std::string blobTreeSceneToString(const BlobTree& tree) { return blobTreeSceneToJson(tree).dump(1) + "\n"; }
+
+Result<BlobTree> blobTreeFromJson(const json& j, const std::string& source) {
+  if (!j.is_object()) return Error{source + ": a BlobTree must be a JSON object"};
+  if (j.contains("format")) {
+    if (j["format"] != "animorph-blobtree")
+      return Error{source + ": \"format\" is " + j["format"].dump() + ", expected \"animorph-blobtree\""};
+    if (!j.contains("version") || !j["version"].is_number_integer())
+      return Error{source + ": \"version\" missing or not an integer"};
+    int v = j["version"].get<int>();
+    if (v > kBlobTreeFormatVersion)
+      return Error{source + ": version " + std::to_string(v) + " is newer than this Animorph reads (" +
+                   std::to_string(kBlobTreeFormatVersion) + "); update Animorph"};
+    if (v < 1) return Error{source + ": version " + std::to_string(v) + " is not valid"};
+  }
+  BlobTree tree;
+  if (j.contains("threshold")) {
+    auto t = floatTrackFromJson(j["threshold"], "threshold");
+    if (!t) return Error{source + ": " + t.error()};
+    tree.threshold = std::move(*t);
+  }
+  if (!j.contains("root")) return Error{source + ": missing \"root\" node"};
+  auto root = nodeFromJson(j["root"], "root");
+  if (!root) return Error{source + ": " + root.error()};
+  tree.root = std::move(*root);
+  if (Status s = validateBlobTree(tree); !s) return Error{source + ": " + s.error()};
+  return tree;
+}
+
+Result<BlobTree> parseBlobTreeScene(const std::string& text, const std::string& source) {
+  json j = json::parse(text, nullptr, false);
+  if (j.is_discarded()) {
+    // Re-parse with exceptions only to get the position of the syntax error.
+    try {
+      json again = json::parse(text);
+      (void)again;
+    } catch (const json::parse_error& e) {
+      return Error{source + ": not valid JSON (" + e.what() + ")"};
+    }
+    return Error{source + ": not valid JSON"};
+  }
+  if (j.is_object() && j.contains("format") && j["format"] == "animorph") {
+    if (!j.contains("blobtree")) return Error{source + ": project has no \"blobtree\" key"};
+    return blobTreeFromJson(j["blobtree"], source + ": blobtree");
+  }
+  return blobTreeFromJson(j, source);
+}
+
+Result<BlobTree> loadBlobTreeScene(const std::string& path) {
+  auto text = readFile(path);
+  if (!text) return Error{text.error()};
+  return parseBlobTreeScene(*text, path);
+}
+
+Status saveBlobTreeScene(const BlobTree& tree, const std::string& path) {
+  return writeFileAtomic(path, blobTreeSceneToString(tree));
+}
+
+}  // namespace animorph

@@ -1,0 +1,210 @@
+#include "blobtree/compile.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "blobtree/meta_primitives.h"
+
+namespace animorph {
+
+namespace {
+
+struct Compiler {
+  FieldProgram& prog;
+  double t;
+  CompileOptions opt;
+
+  float f(const BlobNode& n, const char* name) const { return n.floatParam(name).evaluate(t); }
+  glm::vec3 v(const BlobNode& n, const char* name) const { return n.vec3Param(name).evaluate(t); }
+
+  static bool isPrimitive(NodeType type) { return type <= NodeType::Capsule; }
+
+  SkeletalPrimitive skeletal(const BlobNode& n) {
+    SkeletalPrimitive p;
+    Skeleton& s = p.skeleton;
+    switch (n.type) {
+      case NodeType::Point: s.kind = SkeletonKind::Point; s.p0 = v(n, "center"); break;
+      case NodeType::Sphere:
+        s.kind = SkeletonKind::Sphere;
+        s.p0 = v(n, "center");
+        s.r0 = std::max(0.0f, f(n, "skeletonRadius"));
+        break;
+      case NodeType::Segment: s.kind = SkeletonKind::Segment; s.p0 = v(n, "a"); s.p1 = v(n, "b"); break;
+      case NodeType::Cylinder:
+        s.kind = SkeletonKind::Cylinder;
+        s.p0 = v(n, "a");
+        s.p1 = v(n, "b");
+        s.r0 = std::max(0.0f, f(n, "skeletonRadius"));
+        break;
+      case NodeType::Cone:
+        s.kind = SkeletonKind::Cone;
+        s.p0 = v(n, "a");
+        s.p1 = v(n, "b");
+        s.r0 = std::max(0.0f, f(n, "radiusA"));
+        s.r1 = std::max(0.0f, f(n, "radiusB"));
+        break;
+      case NodeType::Disc:
+      case NodeType::Circle: {
+        s.kind = n.type == NodeType::Disc ? SkeletonKind::Disc : SkeletonKind::Circle;
+        s.p0 = v(n, "center");
+        glm::vec3 nn = v(n, "normal");
+        s.p1 = glm::length(nn) > 1e-9f ? glm::normalize(nn) : glm::vec3(0, 1, 0);
+        s.r0 = std::max(0.0f, f(n, "skeletonRadius"));
+        break;
+      }
+      case NodeType::Triangle:
+        s.kind = SkeletonKind::Triangle;
+        s.p0 = v(n, "a");
+        s.p1 = v(n, "b");
+        s.p2 = v(n, "c");
+        break;
+      case NodeType::Curve: {
+        s.kind = SkeletonKind::Curve;
+        std::vector<glm::vec3> pts = evaluatePoints(n.pointsParam("points"), t);
+        p.curveFirst = uint32_t(prog.curvePoints.size());
+        s.curveCount = int(pts.size());
+        prog.curvePoints.insert(prog.curvePoints.end(), pts.begin(), pts.end());
+        break;
+      }
+      default: break;
+    }
+    p.radius = std::max(0.0f, f(n, "radius"));
+    p.intensity = f(n, "intensity");
+    p.stiffness = std::max(0.0f, f(n, "stiffness"));
+    return p;
+  }
+
+  // Emits a primitive; returns true when it pushed a new operand.
+  bool primitive(const BlobNode& n, bool combine, bool combineMax) {
+    if (isSkeletalType(n.type)) return prog.addSkeletal(skeletal(n), combine, combineMax);
+    if (n.type == NodeType::ConvSegment) {
+      if (combineMax) combine = false;  // convolution ops only sum
+      return prog.addConvolution(v(n, "a"), v(n, "b"), std::max(0.0f, f(n, "radius")),
+                                 std::max(1e-6f, f(n, "sharpness")), opt.cutoffEpsilon, combine);
+    }
+    CapsulePrimitive c{v(n, "a"), v(n, "b"), std::max(0.0f, f(n, "radius"))};
+    return prog.addCapsule(c, combine, combineMax);
+  }
+
+  // Emits children[first..] combined by `code` (Sum or Max) as one operand.
+  void group(const std::vector<BlobNode>& children, size_t first, OpCode code) {
+    uint32_t operands = 0;
+    bool prevPrim = false;
+    for (size_t i = first; i < children.size(); ++i) {
+      const BlobNode& c = children[i];
+      if (isPrimitive(c.type)) {
+        if (primitive(c, prevPrim, code == OpCode::Max)) ++operands;
+        prevPrim = true;
+      } else {
+        node(c);
+        ++operands;
+        prevPrim = false;
+      }
+    }
+    if (operands == 0) prog.addConstant(0.0f);
+    else if (operands > 1) prog.addOperator(code, operands);
+  }
+
+  void node(const BlobNode& n) {
+    if (isPrimitive(n.type)) {
+      primitive(n, false, false);
+      return;
+    }
+    switch (n.type) {
+      case NodeType::Blend: group(n.children, 0, OpCode::Sum); return;
+      case NodeType::Union: group(n.children, 0, OpCode::Max); return;
+      case NodeType::Intersection:
+        for (const auto& c : n.children) node(c);
+        if (n.children.size() > 1) prog.addOperator(OpCode::Min, uint32_t(n.children.size()));
+        return;
+      case NodeType::HyperBlend: {
+        for (const auto& c : n.children) node(c);
+        float q = std::max(1.0f, f(n, "q"));
+        prog.addOperator(OpCode::HyperBlend, uint32_t(n.children.size()), &q, 1);
+        return;
+      }
+      case NodeType::Difference:
+        node(n.children[0]);
+        group(n.children, 1, OpCode::Max);
+        prog.addOperator(OpCode::Difference, 2);
+        return;
+      case NodeType::RUnion:
+      case NodeType::RIntersection:
+        node(n.children[0]);
+        node(n.children[1]);
+        prog.addOperator(n.type == NodeType::RUnion ? OpCode::RUnion : OpCode::RIntersection, 2);
+        return;
+      case NodeType::BoundedBlend: {
+        for (const auto& c : n.children) node(c);
+        float a[4] = {f(n, "a0"), std::max(1e-6f, f(n, "a1")), std::max(1e-6f, f(n, "a2")),
+                      std::max(1e-6f, f(n, "a3"))};
+        prog.addOperator(OpCode::BoundedBlend, 3, a, 4);
+        return;
+      }
+      case NodeType::Frame: {
+        glm::vec3 s = v(n, "scale");
+        for (int k = 0; k < 3; ++k)
+          if (std::abs(s[k]) < 1e-6f) s[k] = s[k] < 0.0f ? -1e-6f : 1e-6f;
+        prog.beginMap(makeAffineMap(v(n, "translation"), n.quatParam("rotation").evaluate(t), s));
+        group(n.children, 0, OpCode::Sum);
+        prog.endMap();
+        return;
+      }
+      case NodeType::Twist:
+        prog.beginMap(makeTwistMap(v(n, "a"), v(n, "b"), f(n, "angle")));
+        group(n.children, 0, OpCode::Sum);
+        prog.endMap();
+        return;
+      case NodeType::Taper:
+        prog.beginMap(makeTaperMap(v(n, "a"), v(n, "b"), std::max(1e-4f, f(n, "scaleA")),
+                                   std::max(1e-4f, f(n, "scaleB"))));
+        group(n.children, 0, OpCode::Sum);
+        prog.endMap();
+        return;
+      case NodeType::Bend:
+        prog.beginMap(makeBendMap(v(n, "a"), v(n, "b"), f(n, "angle"), v(n, "direction")));
+        group(n.children, 0, OpCode::Sum);
+        prog.endMap();
+        return;
+      case NodeType::SplineOfNodes: {
+        std::vector<SpaceMap> frames = splineOfNodesFrames(n, t);
+        for (const SpaceMap& m : frames) {
+          prog.beginMap(m);
+          node(n.children[0]);
+          prog.endMap();
+        }
+        if (frames.size() > 1) prog.addOperator(OpCode::Sum, uint32_t(frames.size()));
+        return;
+      }
+      case NodeType::CoonsPatch: {
+        auto tris = coonsPatchTriangles(n, t);
+        SkeletalPrimitive p;
+        p.skeleton.kind = SkeletonKind::Triangle;
+        p.radius = std::max(0.0f, f(n, "radius"));
+        p.intensity = f(n, "intensity");
+        p.stiffness = std::max(0.0f, f(n, "stiffness"));
+        for (size_t i = 0; i < tris.size(); ++i) {
+          p.skeleton.p0 = tris[i][0];
+          p.skeleton.p1 = tris[i][1];
+          p.skeleton.p2 = tris[i][2];
+          prog.addSkeletal(p, i > 0, true);
+        }
+        return;
+      }
+      default: prog.addConstant(0.0f); return;
+    }
+  }
+};
+
+}  // namespace
+
+FieldProgram compileFieldProgram(const BlobTree& tree, double timeSec, const CompileOptions& options) {
+  FieldProgram prog;
+  prog.threshold = std::max(1e-6f, tree.threshold.evaluate(timeSec));
+  Compiler c{prog, timeSec, options};
+  c.node(tree.root);
+  prog.finish();
+  return prog;
+}
+
+}  // namespace animorph

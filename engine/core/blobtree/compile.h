@@ -1,0 +1,20 @@
+#pragma once
+// Instantiating a BlobTree at time t and flattening it into a FieldProgram.
+#include "blobtree/blob_tree.h"
+#include "field/field_program.h"
+
+namespace animorph {
+
+struct CompileOptions {
+  // Convolution segments are cut to 0 where their contribution is below
+  // cutoffEpsilon * T (their bound). Smaller: exacter field, less culling.
+  float cutoffEpsilon = 1e-3f;
+};
+
+// Evaluates every track at timeSec and flattens the tree (meta-primitives
+// expanded, primitives of one class under one operator grouped into one op).
+// The tree must be valid (validateBlobTree); values that animation pushes out
+// of range between keys are clamped (radii to >= 0, q to >= 1, scales to non-zero).
+FieldProgram compileFieldProgram(const BlobTree& tree, double timeSec, const CompileOptions& options = {});
+
+}  // namespace animorph

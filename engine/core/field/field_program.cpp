@@ -1,0 +1,848 @@
+#include "field/field_program.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <limits>
+
+#include "field/convolution_segment.h"
+#include "field/potential.h"
+
+namespace animorph {
+
+namespace {
+
+constexpr int kChunk = 1024;
+
+float distToSegment(const glm::vec3& x, const glm::vec3& a, const glm::vec3& b) {
+  return glm::length(x - closestOnSegment(x, a, b));
+}
+
+bool uniformScaleRigid(const glm::mat3& m, float& scale) {
+  float s0 = glm::length(m[0]), s1 = glm::length(m[1]), s2 = glm::length(m[2]);
+  scale = s0;
+  float tol = 1e-4f * s0;
+  return std::abs(s0 - s1) <= tol && std::abs(s0 - s2) <= tol && std::abs(glm::dot(m[0], m[1])) <= tol * s0 &&
+         std::abs(glm::dot(m[0], m[2])) <= tol * s0 && std::abs(glm::dot(m[1], m[2])) <= tol * s0;
+}
+
+Bounds intersect(const Bounds& a, const Bounds& b) {
+  Bounds r;
+  if (a.empty() || b.empty()) return r;
+  r.min = glm::max(a.min, b.min);
+  r.max = glm::min(a.max, b.max);
+  if (r.min.x > r.max.x || r.min.y > r.max.y || r.min.z > r.max.z) return Bounds{};
+  return r;
+}
+
+Bounds infiniteBounds() {
+  Bounds b;
+  b.min = glm::vec3(-INFINITY);
+  b.max = glm::vec3(INFINITY);
+  return b;
+}
+
+bool isInfinite(const Bounds& b) { return !b.empty() && (std::isinf(b.min.x) || std::isinf(b.max.x)); }
+
+float applyScalar(OpCode code, const float* v, uint32_t n, const float* prm, float T) {
+  switch (code) {
+    case OpCode::Sum: {
+      float s = 0.0f;
+      for (uint32_t i = 0; i < n; ++i) s += v[i];
+      return s;
+    }
+    case OpCode::Max: {
+      float s = v[0];
+      for (uint32_t i = 1; i < n; ++i) s = std::max(s, v[i]);
+      return s;
+    }
+    case OpCode::Min: {
+      float s = v[0];
+      for (uint32_t i = 1; i < n; ++i) s = std::min(s, v[i]);
+      return s;
+    }
+    case OpCode::HyperBlend: {
+      float d[64];
+      float tmp[64];
+      uint32_t m = std::min<uint32_t>(n, 64);
+      for (uint32_t i = 0; i < m; ++i) tmp[i] = v[i];
+      return hyperBlend(tmp, int(m), prm[0], d);
+    }
+    case OpCode::Difference: return std::min(v[0], 2.0f * T - v[1]);
+    case OpCode::RUnion: {
+      float d1, d2;
+      return T + rUnion(v[0] - T, v[1] - T, d1, d2);
+    }
+    case OpCode::RIntersection: {
+      float d1, d2;
+      return T + rIntersection(v[0] - T, v[1] - T, d1, d2);
+    }
+    case OpCode::BoundedBlend: {
+      float d[3];
+      BoundedBlendParams bp{prm[0], prm[1], prm[2], prm[3]};
+      return T + boundedBlend(v[0] - T, v[1] - T, v[2] - T, bp, d);
+    }
+    default: return 0.0f;
+  }
+}
+
+}  // namespace
+
+// ------------------------------------------------------------------ building
+
+PrimitiveBound FieldProgram::worldBound(const glm::vec3& a, const glm::vec3& b, float radius) const {
+  PrimitiveBound pb;
+  pb.a = a;
+  pb.b = b;
+  pb.radius = radius;
+  pb.box.add(glm::min(a, b) - glm::vec3(radius));
+  pb.box.add(glm::max(a, b) + glm::vec3(radius));
+  for (auto it = openMaps_.rbegin(); it != openMaps_.rend(); ++it) {
+    const SpaceMap& m = maps[*it];
+    Bounds box = m.worldBounds(pb.box);
+    float s;
+    if (m.kind == SpaceMapKind::Affine && uniformScaleRigid(m.forwardLinear, s)) {
+      pb.a = m.toWorld(pb.a);
+      pb.b = m.toWorld(pb.b);
+      pb.radius *= s;
+      Bounds capBox;
+      capBox.add(glm::min(pb.a, pb.b) - glm::vec3(pb.radius));
+      capBox.add(glm::max(pb.a, pb.b) + glm::vec3(pb.radius));
+      pb.box = intersect(box, capBox);
+      if (pb.box.empty()) pb.box = capBox;
+    } else {
+      pb.box = box;
+      pb.a = pb.b = box.center();
+      pb.radius = 0.5f * box.diagonal();
+    }
+  }
+  return pb;
+}
+
+bool FieldProgram::pushPrims(PrimClass cls, uint32_t local, bool combineWithPrevious, bool combineMax,
+                             const PrimitiveBound& b) {
+  uint32_t global = uint32_t(primitiveBounds.size());
+  primitiveBounds.push_back(b);
+  if (combineWithPrevious && !ops.empty()) {
+    FieldOp& last = ops.back();
+    if (last.code == OpCode::Prims && last.primClass == cls && last.combineMax == combineMax &&
+        last.first + last.count == local && last.primBegin + last.count == global) {
+      ++last.count;
+      return false;
+    }
+  }
+  FieldOp op;
+  op.code = OpCode::Prims;
+  op.primClass = cls;
+  op.combineMax = combineMax;
+  op.first = local;
+  op.count = 1;
+  op.primBegin = global;
+  ops.push_back(op);
+  return true;
+}
+
+bool FieldProgram::addSkeletal(const SkeletalPrimitive& p, bool combineWithPrevious, bool combineMax) {
+  glm::vec3 a, b;
+  float r;
+  Skeleton s = p.skeleton;
+  s.curve = p.skeleton.kind == SkeletonKind::Curve ? curvePoints.data() + p.curveFirst : nullptr;
+  skeletonEnclosingCapsule(s, a, b, r);
+  uint32_t local = uint32_t(skeletal.size());
+  skeletal.push_back(p);
+  return pushPrims(PrimClass::Skeletal, local, combineWithPrevious, combineMax,
+                   worldBound(a, b, r + std::max(p.radius, 0.0f)));
+}
+
+bool FieldProgram::addConvolution(const glm::vec3& a, const glm::vec3& b, float radius, float sharpness, float eps,
+                                  bool combineWithPrevious) {
+  glm::vec3 ab = b - a;
+  float len = glm::length(ab);
+  glm::vec3 dir = len > 1e-12f ? ab / len : glm::vec3(1, 0, 0);
+  double w = convolutionWeightForRadius(radius, sharpness, threshold);
+  double cut = convolutionCutoffRadius(len, sharpness, w, threshold, eps);
+  ConvolutionData& c = convolution;
+  uint32_t local = uint32_t(c.size());
+  c.bx.push_back(a.x);
+  c.by.push_back(a.y);
+  c.bz.push_back(a.z);
+  c.ax.push_back(dir.x);
+  c.ay.push_back(dir.y);
+  c.az.push_back(dir.z);
+  c.length.push_back(len);
+  c.weight.push_back(float(w));
+  c.sharpness.push_back(sharpness);
+  c.cut2.push_back(float(cut * cut));
+  return pushPrims(PrimClass::Convolution, local, combineWithPrevious, false, worldBound(a, b, float(cut)));
+}
+
+bool FieldProgram::addCapsule(const CapsulePrimitive& cp, bool combineWithPrevious, bool combineMax) {
+  uint32_t local = uint32_t(capsules.size());
+  capsules.push_back(cp);
+  return pushPrims(PrimClass::Capsule, local, combineWithPrevious, combineMax,
+                   worldBound(cp.a, cp.b, 2.0f * std::max(cp.radius, 0.0f)));
+}
+
+void FieldProgram::addConstant(float potential) {
+  FieldOp op;
+  op.code = OpCode::Const;
+  op.emptyValue = potential;
+  ops.push_back(op);
+}
+
+void FieldProgram::addOperator(OpCode code, uint32_t operands, const float* opParams, int paramCount) {
+  FieldOp op;
+  op.code = code;
+  op.count = operands;
+  op.param = uint32_t(params.size());
+  for (int i = 0; i < paramCount; ++i) params.push_back(opParams[i]);
+  ops.push_back(op);
+}
+
+void FieldProgram::beginMap(const SpaceMap& m) {
+  FieldOp op;
+  op.code = OpCode::BeginMap;
+  op.first = uint32_t(maps.size());
+  openMaps_.push_back(op.first);
+  openBegins_.push_back(uint32_t(ops.size()));
+  maps.push_back(m);
+  ops.push_back(op);
+}
+
+void FieldProgram::endMap() {
+  assert(!openMaps_.empty());
+  FieldOp op;
+  op.code = OpCode::EndMap;
+  op.first = openMaps_.back();
+  openMaps_.pop_back();
+  openBegins_.pop_back();
+  ops.push_back(op);
+}
+
+void FieldProgram::finish() {
+  // Empty values, subtree extents and stack depth by a symbolic run.
+  std::vector<float> vals;
+  std::vector<uint32_t> begins;
+  std::vector<uint32_t> mapBegins;
+  std::vector<Bounds> boxes;
+  int depth = 0;
+  maxStack_ = 0;
+  maxMapDepth_ = 0;
+  const float T = threshold;
+  for (uint32_t i = 0; i < ops.size(); ++i) {
+    FieldOp& op = ops[i];
+    switch (op.code) {
+      case OpCode::Prims: {
+        op.emptyValue = 0.0f;
+        Bounds b;
+        for (uint32_t k = 0; k < op.count; ++k) b.add(primitiveBounds[op.primBegin + k].box);
+        vals.push_back(0.0f);
+        begins.push_back(i);
+        boxes.push_back(b);
+        op.subtreeBegin = i;
+        break;
+      }
+      case OpCode::Const:
+        vals.push_back(op.emptyValue);
+        begins.push_back(i);
+        boxes.push_back(op.emptyValue >= T ? infiniteBounds() : Bounds{});
+        op.subtreeBegin = i;
+        break;
+      case OpCode::BeginMap:
+        mapBegins.push_back(i);
+        op.subtreeBegin = i;
+        ++depth;
+        maxMapDepth_ = std::max(maxMapDepth_, depth);
+        break;
+      case OpCode::EndMap: {
+        op.subtreeBegin = mapBegins.back();
+        mapBegins.pop_back();
+        --depth;
+        begins.back() = op.subtreeBegin;
+        op.emptyValue = vals.back();
+        boxes.back() = maps[op.first].worldBounds(boxes.back());
+        break;
+      }
+      default: {
+        uint32_t n = op.count;
+        assert(vals.size() >= n && n > 0);
+        size_t base = vals.size() - n;
+        float v = applyScalar(op.code, vals.data() + base, n, params.data() + op.param, T);
+        uint32_t b0 = begins[base];
+        Bounds box;
+        switch (op.code) {
+          case OpCode::Min:
+          case OpCode::RIntersection:
+            box = boxes[base];
+            for (uint32_t k = 1; k < n; ++k) {
+              const Bounds& o = boxes[base + k];
+              if (isInfinite(box)) box = o;
+              else if (!isInfinite(o)) box = intersect(box, o);
+            }
+            break;
+          case OpCode::Difference: box = boxes[base]; break;
+          default:
+            for (uint32_t k = 0; k < n; ++k) {
+              if (isInfinite(boxes[base + k])) box = infiniteBounds();
+              if (!isInfinite(box)) box.add(boxes[base + k]);
+            }
+        }
+        if (v >= T) box = infiniteBounds();
+        vals.resize(base + 1);
+        begins.resize(base + 1);
+        boxes.resize(base + 1);
+        vals[base] = v;
+        begins[base] = b0;
+        boxes[base] = box;
+        op.subtreeBegin = b0;
+        op.emptyValue = v;
+      }
+    }
+    maxStack_ = std::max(maxStack_, int(vals.size()));
+  }
+  outermostEnd_.assign(ops.size(), 0);
+  for (uint32_t i = 0; i < ops.size(); ++i) outermostEnd_[i] = i;
+  for (uint32_t j = 0; j < ops.size(); ++j) {
+    uint32_t b = ops[j].subtreeBegin;
+    outermostEnd_[b] = std::max(outermostEnd_[b], j);
+  }
+  if (vals.size() != 1) {
+    // Empty or malformed program: evaluates to "outside" everywhere.
+    ops.clear();
+    addConstant(0.0f);
+    outermostEnd_.assign(1, 0);
+    maxStack_ = 1;
+    bounds_ = Bounds{};
+    unbounded_ = false;
+    return;
+  }
+  unbounded_ = isInfinite(boxes[0]);
+  bounds_ = unbounded_ ? Bounds{} : boxes[0];
+}
+
+// ------------------------------------------------------------------ specialising
+
+void FieldProgram::specialiseAll(ActiveProgram& out) const {
+  out.ops = ops;
+  out.indices.clear();
+  for (FieldOp& op : out.ops)
+    if (op.code == OpCode::Prims) {
+      uint32_t off = uint32_t(out.indices.size());
+      for (uint32_t k = 0; k < op.count; ++k) out.indices.push_back(op.first + k);
+      op.first = off;
+    }
+  out.primitiveCount = primitiveBounds.size();
+}
+
+void FieldProgram::specialise(const std::vector<uint32_t>& active, ActiveProgram& out) const {
+  out.ops.clear();
+  out.indices.clear();
+  out.primitiveCount = active.size();
+  // Active primitives per op, as a prefix sum over ops.
+  thread_local std::vector<uint32_t> prefix;
+  prefix.assign(ops.size() + 1, 0);
+  size_t cursor = 0;
+  for (size_t i = 0; i < ops.size(); ++i) {
+    uint32_t c = 0;
+    const FieldOp& op = ops[i];
+    if (op.code == OpCode::Prims) {
+      while (cursor < active.size() && active[cursor] < op.primBegin) ++cursor;
+      size_t start = cursor;
+      while (cursor < active.size() && active[cursor] < op.primBegin + op.count) ++cursor;
+      c = uint32_t(cursor - start);
+    }
+    prefix[i + 1] = prefix[i] + c;
+  }
+  cursor = 0;
+  for (size_t i = 0; i < ops.size();) {
+    uint32_t e = outermostEnd_[i];
+    // Only leaves and map openings start subtrees; operators close them.
+    bool startsSubtree = ops[i].code == OpCode::Prims || ops[i].code == OpCode::BeginMap;
+    if (startsSubtree && prefix[e + 1] == prefix[i]) {
+      FieldOp c;
+      c.code = OpCode::Const;
+      c.emptyValue = ops[e].emptyValue;
+      out.ops.push_back(c);
+      i = e + 1;
+      continue;
+    }
+    FieldOp op = ops[i];
+    if (op.code == OpCode::Prims) {
+      while (cursor < active.size() && active[cursor] < op.primBegin) ++cursor;
+      uint32_t off = uint32_t(out.indices.size());
+      while (cursor < active.size() && active[cursor] < op.primBegin + op.count) {
+        out.indices.push_back(op.first + (active[cursor] - op.primBegin));
+        ++cursor;
+      }
+      op.first = off;
+      op.count = uint32_t(out.indices.size()) - off;
+    }
+    out.ops.push_back(op);
+    ++i;
+  }
+}
+
+void FieldProgram::primitivesReaching(const Bounds& box, std::vector<uint32_t>& out,
+                                      const std::vector<uint32_t>* candidates) const {
+  out.clear();
+  glm::vec3 c = box.center();
+  float half = 0.5f * box.diagonal();
+  auto test = [&](uint32_t g) {
+    const PrimitiveBound& b = primitiveBounds[g];
+    if (b.box.min.x > box.max.x || b.box.max.x < box.min.x || b.box.min.y > box.max.y || b.box.max.y < box.min.y ||
+        b.box.min.z > box.max.z || b.box.max.z < box.min.z)
+      return;
+    if (distToSegment(c, b.a, b.b) > b.radius + half) return;
+    out.push_back(g);
+  };
+  if (candidates) {
+    for (uint32_t g : *candidates) test(g);
+  } else {
+    for (uint32_t g = 0; g < primitiveBounds.size(); ++g) test(g);
+  }
+}
+
+// ------------------------------------------------------------------ intervals
+
+Bounds FieldProgram::tightBounds(int depth) const {
+  if (unbounded_ || bounds_.empty()) return bounds_;
+  Bounds out;
+  ActiveProgram active;
+  // Depth-first over the octree of bounds().
+  struct Frame {
+    Bounds box;
+    int level;
+  };
+  std::vector<Frame> stack{{bounds_, 0}};
+  std::vector<uint32_t> reaching;
+  while (!stack.empty()) {
+    Frame fr = stack.back();
+    stack.pop_back();
+    primitivesReaching(fr.box, reaching);
+    specialise(reaching, active);
+    Interval iv = interval(active, fr.box.center(), 0.5f * fr.box.diagonal());
+    if (iv.hi < 0.0f) continue;
+    if (fr.level >= depth || iv.lo >= 0.0f) {
+      out.add(fr.box);
+      continue;
+    }
+    glm::vec3 c = fr.box.center();
+    for (int k = 0; k < 8; ++k) {
+      Bounds child;
+      child.add(glm::vec3(k & 1 ? c.x : fr.box.min.x, k & 2 ? c.y : fr.box.min.y, k & 4 ? c.z : fr.box.min.z));
+      child.add(glm::vec3(k & 1 ? fr.box.max.x : c.x, k & 2 ? fr.box.max.y : c.y, k & 4 ? fr.box.max.z : c.z));
+      stack.push_back({child, fr.level + 1});
+    }
+  }
+  return out;
+}
+
+namespace {
+
+float potentialAt(float d, float R, float I, float k) {
+  float gf;
+  return skeletalPotential(d * d, R, I, k, gf);
+}
+
+}  // namespace
+
+Interval FieldProgram::interval(const ActiveProgram& prog, const glm::vec3& centre, float radius) const {
+  thread_local std::vector<Interval> st;
+  thread_local std::vector<glm::vec4> balls;
+  st.clear();
+  balls.clear();
+  glm::vec3 c = centre;
+  float rho = radius;
+  const float T = threshold;
+  for (const FieldOp& op : prog.ops) {
+    switch (op.code) {
+      case OpCode::Prims: {
+        Interval acc{0.0f, 0.0f};
+        if (op.primClass == PrimClass::Convolution) {
+          thread_local std::vector<float> los, his;
+          los.resize(op.count);
+          his.resize(op.count);
+          convolutionIntervalKernel(convolution, prog.indices.data() + op.first, int(op.count), c, rho, los.data(),
+                                    his.data());
+          for (uint32_t k = 0; k < op.count; ++k) {
+            acc.lo += los[k];
+            acc.hi += his[k];
+          }
+          st.push_back(acc);
+          break;
+        }
+        for (uint32_t k = 0; k < op.count; ++k) {
+          uint32_t i = prog.indices[op.first + k];
+          Interval v{0.0f, 0.0f};
+          if (op.primClass == PrimClass::Skeletal) {
+            const SkeletalPrimitive& p = skeletal[i];
+            Skeleton s = p.skeleton;
+            if (s.kind == SkeletonKind::Curve) s.curve = curvePoints.data() + p.curveFirst;
+            float d = glm::length(c - closestOnSkeleton(s, c));
+            float g0 = potentialAt(std::max(0.0f, d - rho), p.radius, p.intensity, p.stiffness);
+            float g1 = potentialAt(d + rho, p.radius, p.intensity, p.stiffness);
+            v = {std::min(g0, g1), std::max(g0, g1)};
+          } else {
+            const CapsulePrimitive& cp = capsules[i];
+            float d = distToSegment(c, cp.a, cp.b);
+            auto pot = [&](float dd) { return cp.radius > 0.0f ? T * std::max(0.0f, 2.0f - dd / cp.radius) : 0.0f; };
+            v = {pot(d + rho), pot(std::max(0.0f, d - rho))};
+          }
+          if (op.combineMax) acc = {std::max(acc.lo, v.lo), std::max(acc.hi, v.hi)};
+          else acc = {acc.lo + v.lo, acc.hi + v.hi};
+        }
+        st.push_back(acc);
+        break;
+      }
+      case OpCode::Const: st.push_back({op.emptyValue, op.emptyValue}); break;
+      case OpCode::BeginMap: {
+        balls.push_back(glm::vec4(c, rho));
+        const SpaceMap& m = maps[op.first];
+        float stretch = m.localStretchBound(c, rho);
+        c = m.toLocal(c);
+        rho = std::isinf(stretch) ? INFINITY : rho * stretch * 1.0001f;
+        break;
+      }
+      case OpCode::EndMap: {
+        c = glm::vec3(balls.back());
+        rho = balls.back().w;
+        balls.pop_back();
+        break;
+      }
+      default: {
+        uint32_t n = op.count;
+        size_t base = st.size() - n;
+        const float* prm = params.data() + op.param;
+        Interval r;
+        switch (op.code) {
+          case OpCode::Sum:
+            r = {0.0f, 0.0f};
+            for (uint32_t k = 0; k < n; ++k) r = {r.lo + st[base + k].lo, r.hi + st[base + k].hi};
+            break;
+          case OpCode::Max:
+            r = st[base];
+            for (uint32_t k = 1; k < n; ++k) r = {std::max(r.lo, st[base + k].lo), std::max(r.hi, st[base + k].hi)};
+            break;
+          case OpCode::Min:
+            r = st[base];
+            for (uint32_t k = 1; k < n; ++k) r = {std::min(r.lo, st[base + k].lo), std::min(r.hi, st[base + k].hi)};
+            break;
+          case OpCode::HyperBlend: {
+            float los[64], his[64], d[64];
+            uint32_t m = std::min<uint32_t>(n, 64);
+            for (uint32_t k = 0; k < m; ++k) {
+              los[k] = std::max(0.0f, st[base + k].lo);
+              his[k] = std::max(0.0f, st[base + k].hi);
+            }
+            r = {hyperBlend(los, int(m), prm[0], d), hyperBlend(his, int(m), prm[0], d)};
+            break;
+          }
+          case OpCode::Difference:
+            r = {std::min(st[base].lo, 2.0f * T - st[base + 1].hi), std::min(st[base].hi, 2.0f * T - st[base + 1].lo)};
+            break;
+          case OpCode::RUnion:
+          case OpCode::RIntersection: {
+            float d1, d2;
+            auto f = [&](float a, float b) {
+              return op.code == OpCode::RUnion ? rUnion(a - T, b - T, d1, d2) : rIntersection(a - T, b - T, d1, d2);
+            };
+            r = {T + f(st[base].lo, st[base + 1].lo), T + f(st[base].hi, st[base + 1].hi)};
+            break;
+          }
+          case OpCode::BoundedBlend: {
+            float d1, d2;
+            float a0 = prm[0];
+            r = {T + rUnion(st[base].lo - T, st[base + 1].lo - T, d1, d2) + std::min(0.0f, a0),
+                 T + rUnion(st[base].hi - T, st[base + 1].hi - T, d1, d2) + std::max(0.0f, a0)};
+            break;
+          }
+          default: r = {-INFINITY, INFINITY};
+        }
+        if (std::isnan(r.lo)) r.lo = -INFINITY;
+        if (std::isnan(r.hi)) r.hi = INFINITY;
+        st.resize(base + 1);
+        st[base] = r;
+      }
+    }
+  }
+  if (st.empty()) return {-T, -T};
+  return {st.back().lo - T, st.back().hi - T};
+}
+
+// ------------------------------------------------------------------ evaluation
+
+float FieldEvaluator::evaluatePoint(const FieldProgram& program, const glm::vec3& p, glm::vec3* gradient) {
+  if (allFor_ != &program || allOps_ != program.ops.size()) {
+    program.specialiseAll(all_);
+    allFor_ = &program;
+    allOps_ = program.ops.size();
+  }
+  float f, gx, gy, gz;
+  evaluate(program, all_, &p.x, &p.y, &p.z, 1, &f, gradient ? &gx : nullptr, &gy, &gz);
+  if (gradient) *gradient = {gx, gy, gz};
+  return f;
+}
+
+void FieldEvaluator::evaluate(const FieldProgram& program, const ActiveProgram& active, const float* x,
+                              const float* y, const float* z, int n, float* f, float* gx, float* gy, float* gz) {
+  size_t needStack = size_t(std::max(1, program.maxStack())) * 4 * kChunk;
+  if (stack_.size() < needStack) stack_.resize(needStack);
+  size_t needCoords = size_t(program.maxMapDepth() + 1) * 3 * kChunk;
+  if (coords_.size() < needCoords) coords_.resize(needCoords);
+  for (int s = 0; s < n; s += kChunk) {
+    int m = std::min(kChunk, n - s);
+    runChunk(program, active, x + s, y + s, z + s, m, f + s, gx ? gx + s : nullptr, gx ? gy + s : nullptr,
+             gx ? gz + s : nullptr);
+  }
+}
+
+void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, const float* x, const float* y,
+                              const float* z, int n, float* fOut, float* gxOut, float* gyOut, float* gzOut) {
+  const bool grad = gxOut != nullptr;
+  const float T = P.threshold;
+  int sp = 0;  // stack size
+  int level = 0;
+  levels_.resize(size_t(P.maxMapDepth() + 1) * 3);
+  const float** cx = levels_.data();
+  const float** cy = cx + P.maxMapDepth() + 1;
+  const float** cz = cy + P.maxMapDepth() + 1;
+  cx[0] = x;
+  cy[0] = y;
+  cz[0] = z;
+  auto F = [&](int s) { return stack_.data() + size_t(s) * 4 * kChunk; };
+  auto GX = [&](int s) { return F(s) + kChunk; };
+  auto GY = [&](int s) { return F(s) + 2 * kChunk; };
+  auto GZ = [&](int s) { return F(s) + 3 * kChunk; };
+  for (const FieldOp& op : A.ops) {
+    switch (op.code) {
+      case OpCode::Prims: {
+        float* f = F(sp);
+        std::fill(f, f + n, 0.0f);
+        if (grad) {
+          std::fill(GX(sp), GX(sp) + n, 0.0f);
+          std::fill(GY(sp), GY(sp) + n, 0.0f);
+          std::fill(GZ(sp), GZ(sp) + n, 0.0f);
+        }
+        const uint32_t* idx = A.indices.data() + op.first;
+        float* gx = grad ? GX(sp) : nullptr;
+        float* gy = grad ? GY(sp) : nullptr;
+        float* gz = grad ? GZ(sp) : nullptr;
+        switch (op.primClass) {
+          case PrimClass::Convolution:
+            convolutionKernel(P.convolution, idx, int(op.count), cx[level], cy[level], cz[level], n, f, gx, gy, gz);
+            break;
+          case PrimClass::Skeletal:
+            skeletalKernel(P, idx, int(op.count), op.combineMax, cx[level], cy[level], cz[level], n, f, gx, gy, gz);
+            break;
+          case PrimClass::Capsule:
+            capsuleKernel(P.capsules, T, idx, int(op.count), op.combineMax, cx[level], cy[level], cz[level], n, f,
+                          gx, gy, gz);
+            break;
+        }
+        ++sp;
+        break;
+      }
+      case OpCode::Const: {
+        std::fill(F(sp), F(sp) + n, op.emptyValue);
+        if (grad) {
+          std::fill(GX(sp), GX(sp) + n, 0.0f);
+          std::fill(GY(sp), GY(sp) + n, 0.0f);
+          std::fill(GZ(sp), GZ(sp) + n, 0.0f);
+        }
+        ++sp;
+        break;
+      }
+      case OpCode::BeginMap: {
+        const SpaceMap& m = P.maps[op.first];
+        float* out = coords_.data() + size_t(level + 1) * 3 * kChunk;
+        float* ox = out;
+        float* oy = out + kChunk;
+        float* oz = out + 2 * kChunk;
+        const float* ix = cx[level];
+        const float* iy = cy[level];
+        const float* iz = cz[level];
+        if (m.kind == SpaceMapKind::Affine) {
+          const glm::mat3& L = m.linear;
+          const glm::vec3 o = m.origin;
+          for (int i = 0; i < n; ++i) {
+            float dx = ix[i] - o.x, dy = iy[i] - o.y, dz = iz[i] - o.z;
+            ox[i] = L[0][0] * dx + L[1][0] * dy + L[2][0] * dz;
+            oy[i] = L[0][1] * dx + L[1][1] * dy + L[2][1] * dz;
+            oz[i] = L[0][2] * dx + L[1][2] * dy + L[2][2] * dz;
+          }
+        } else {
+          for (int i = 0; i < n; ++i) {
+            glm::vec3 q = m.toLocal({ix[i], iy[i], iz[i]});
+            ox[i] = q.x;
+            oy[i] = q.y;
+            oz[i] = q.z;
+          }
+        }
+        ++level;
+        cx[level] = ox;
+        cy[level] = oy;
+        cz[level] = oz;
+        break;
+      }
+      case OpCode::EndMap: {
+        const SpaceMap& m = P.maps[op.first];
+        --level;
+        if (grad) {
+          float* gx = GX(sp - 1);
+          float* gy = GY(sp - 1);
+          float* gz = GZ(sp - 1);
+          if (m.kind == SpaceMapKind::Affine) {
+            const glm::mat3& L = m.linear;  // J = L; grad_world = L^T grad_local
+            for (int i = 0; i < n; ++i) {
+              float a = gx[i], b = gy[i], c = gz[i];
+              gx[i] = L[0][0] * a + L[0][1] * b + L[0][2] * c;
+              gy[i] = L[1][0] * a + L[1][1] * b + L[1][2] * c;
+              gz[i] = L[2][0] * a + L[2][1] * b + L[2][2] * c;
+            }
+          } else {
+            for (int i = 0; i < n; ++i) {
+              glm::mat3 J;
+              m.toLocal({cx[level][i], cy[level][i], cz[level][i]}, &J);
+              glm::vec3 g = glm::transpose(J) * glm::vec3(gx[i], gy[i], gz[i]);
+              gx[i] = g.x;
+              gy[i] = g.y;
+              gz[i] = g.z;
+            }
+          }
+        }
+        break;
+      }
+      default: {
+        int cnt = int(op.count);
+        int base = sp - cnt;
+        float* f0 = F(base);
+        float* gx0 = GX(base);
+        float* gy0 = GY(base);
+        float* gz0 = GZ(base);
+        const float* prm = P.params.data() + op.param;
+        switch (op.code) {
+          case OpCode::Sum:
+            for (int k = 1; k < cnt; ++k) {
+              const float* fk = F(base + k);
+              for (int i = 0; i < n; ++i) f0[i] += fk[i];
+              if (grad) {
+                const float* ax = GX(base + k);
+                const float* ay = GY(base + k);
+                const float* az = GZ(base + k);
+                for (int i = 0; i < n; ++i) {
+                  gx0[i] += ax[i];
+                  gy0[i] += ay[i];
+                  gz0[i] += az[i];
+                }
+              }
+            }
+            break;
+          case OpCode::Max:
+          case OpCode::Min: {
+            bool mx = op.code == OpCode::Max;
+            for (int k = 1; k < cnt; ++k) {
+              const float* fk = F(base + k);
+              if (grad) {
+                const float* ax = GX(base + k);
+                const float* ay = GY(base + k);
+                const float* az = GZ(base + k);
+                for (int i = 0; i < n; ++i) {
+                  bool take = mx ? fk[i] > f0[i] : fk[i] < f0[i];
+                  if (take) {
+                    f0[i] = fk[i];
+                    gx0[i] = ax[i];
+                    gy0[i] = ay[i];
+                    gz0[i] = az[i];
+                  }
+                }
+              } else {
+                for (int i = 0; i < n; ++i) f0[i] = mx ? std::max(f0[i], fk[i]) : std::min(f0[i], fk[i]);
+              }
+            }
+            break;
+          }
+          case OpCode::HyperBlend: {
+            float q = prm[0];
+            float vals[64], d[64];
+            int m = std::min(cnt, 64);
+            for (int i = 0; i < n; ++i) {
+              for (int k = 0; k < m; ++k) vals[k] = F(base + k)[i];
+              float h = hyperBlend(vals, m, q, d);
+              if (grad) {
+                float sx = 0, sy = 0, sz = 0;
+                for (int k = 0; k < m; ++k) {
+                  sx += d[k] * GX(base + k)[i];
+                  sy += d[k] * GY(base + k)[i];
+                  sz += d[k] * GZ(base + k)[i];
+                }
+                gx0[i] = sx;
+                gy0[i] = sy;
+                gz0[i] = sz;
+              }
+              f0[i] = h;
+            }
+            break;
+          }
+          case OpCode::Difference: {
+            const float* f1 = F(base + 1);
+            for (int i = 0; i < n; ++i) {
+              float other = 2.0f * T - f1[i];
+              if (other < f0[i]) {
+                f0[i] = other;
+                if (grad) {
+                  gx0[i] = -GX(base + 1)[i];
+                  gy0[i] = -GY(base + 1)[i];
+                  gz0[i] = -GZ(base + 1)[i];
+                }
+              }
+            }
+            break;
+          }
+          case OpCode::RUnion:
+          case OpCode::RIntersection: {
+            bool uni = op.code == OpCode::RUnion;
+            const float* f1 = F(base + 1);
+            for (int i = 0; i < n; ++i) {
+              float d1, d2;
+              float r = uni ? rUnion(f0[i] - T, f1[i] - T, d1, d2) : rIntersection(f0[i] - T, f1[i] - T, d1, d2);
+              f0[i] = T + r;
+              if (grad) {
+                gx0[i] = d1 * gx0[i] + d2 * GX(base + 1)[i];
+                gy0[i] = d1 * gy0[i] + d2 * GY(base + 1)[i];
+                gz0[i] = d1 * gz0[i] + d2 * GZ(base + 1)[i];
+              }
+            }
+            break;
+          }
+          case OpCode::BoundedBlend: {
+            BoundedBlendParams bp{prm[0], prm[1], prm[2], prm[3]};
+            const float* f1 = F(base + 1);
+            const float* f2 = F(base + 2);
+            for (int i = 0; i < n; ++i) {
+              float d[3];
+              float r = boundedBlend(f0[i] - T, f1[i] - T, f2[i] - T, bp, d);
+              f0[i] = T + r;
+              if (grad) {
+                gx0[i] = d[0] * gx0[i] + d[1] * GX(base + 1)[i] + d[2] * GX(base + 2)[i];
+                gy0[i] = d[0] * gy0[i] + d[1] * GY(base + 1)[i] + d[2] * GY(base + 2)[i];
+                gz0[i] = d[0] * gz0[i] + d[1] * GZ(base + 1)[i] + d[2] * GZ(base + 2)[i];
+              }
+            }
+            break;
+          }
+          default: break;
+        }
+        sp = base + 1;
+      }
+    }
+  }
+  const float* f = F(0);
+  for (int i = 0; i < n; ++i) fOut[i] = f[i] - T;
+  if (grad) {
+    std::copy(GX(0), GX(0) + n, gxOut);
+    std::copy(GY(0), GY(0) + n, gyOut);
+    std::copy(GZ(0), GZ(0) + n, gzOut);
+  }
+}
+
+}  // namespace animorph

@@ -1,0 +1,188 @@
+#pragma once
+// FieldProgram: a BlobTree instantiated at one time and flattened (DESIGN.md §3).
+// A postfix list of operations over structure-of-arrays primitive data,
+// evaluated on batches of points by FieldEvaluator: no per-point, per-node
+// virtual calls. Primitives of one class under one operator form one op that
+// loops over primitives outside and points inside. Every primitive carries a
+// bound (compact support, or the radius where its contribution falls under
+// eps * T, beyond which it is cut to exactly 0), so a region of space can use a
+// specialised program holding only the primitives that reach it, with results
+// identical to the full program. The value is f = p_root - T (>= 0 inside).
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "field/operators.h"
+#include "field/skeleton.h"
+#include "field/space_map.h"
+#include "math/bounds.h"
+
+namespace animorph {
+
+enum class PrimClass : uint8_t { Skeletal, Convolution, Capsule };
+
+enum class OpCode : uint8_t {
+  Prims,          // push the sum (or max) over a range of primitives of one class
+  Const,          // push a constant potential (emptyValue), zero gradient
+  Sum,            // pop count, push their sum (blend)
+  Max,            // union
+  Min,            // intersection
+  HyperBlend,     // (sum p_i^q)^(1/q), q = params[param]
+  Difference,     // pop 2: min(p1, 2T - p2)
+  RUnion,         // pop 2: R-function union on s = p - T
+  RIntersection,  // pop 2: R-function intersection
+  BoundedBlend,   // pop 3 (f1, f2, bounding f3): params[param..param+3] = a0..a3
+  BeginMap,       // enter maps[first]: points move to the child's space
+  EndMap,         // leave maps[first]: the top gradient returns by the chain rule
+};
+
+struct FieldOp {
+  OpCode code = OpCode::Const;
+  PrimClass primClass = PrimClass::Skeletal;  // Prims
+  bool combineMax = false;                    // Prims: union instead of sum (Skeletal, Capsule)
+  uint32_t first = 0;         // Prims: first class-local index (in an ActiveProgram: offset in indices); maps: map index
+  uint32_t count = 0;         // Prims: primitive count; operators: operand count
+  uint32_t primBegin = 0;     // Prims: global id of the first primitive
+  uint32_t param = 0;         // index into params
+  uint32_t subtreeBegin = 0;  // first op of the subtree this op closes
+  float emptyValue = 0.0f;    // potential of the subtree where no primitive contributes
+};
+
+// A skeletal primitive: g(d) = I (1 - (d/R)^2)^k of the distance to its skeleton.
+struct SkeletalPrimitive {
+  Skeleton skeleton;        // skeleton.curve is unused here: see curveFirst
+  uint32_t curveFirst = 0;  // control points in FieldProgram::curvePoints
+  float radius = 1.0f, intensity = 1.0f, stiffness = 3.0f;
+};
+
+// Convolution segments, structure of arrays: start b, unit direction a,
+// length, weight w (from the radius rule), sharpness S, squared cut radius.
+struct ConvolutionData {
+  std::vector<float> bx, by, bz, ax, ay, az, length, weight, sharpness, cut2;
+  size_t size() const { return bx.size(); }
+};
+
+// Canal surface (capsule): potential T * max(0, 2 - dist / R): equals T at
+// distance R, support 2R.
+struct CapsulePrimitive {
+  glm::vec3 a{0.0f}, b{0.0f};
+  float radius = 0.0f;
+};
+
+// World-space bound of one primitive: support within `radius` of segment (a, b), and a box.
+struct PrimitiveBound {
+  glm::vec3 a{0.0f}, b{0.0f};
+  float radius = 0.0f;
+  Bounds box;
+};
+
+// A program restricted to some primitives (see FieldProgram::specialise).
+struct ActiveProgram {
+  std::vector<FieldOp> ops;        // Prims ops index `indices`
+  std::vector<uint32_t> indices;   // class-local primitive indices
+  size_t primitiveCount = 0;
+};
+
+// Interval of a value over a region.
+struct Interval {
+  float lo = 0.0f, hi = 0.0f;
+};
+
+class FieldProgram {
+ public:
+  float threshold = 1.0f;
+  std::vector<FieldOp> ops;
+  std::vector<float> params;
+  std::vector<SpaceMap> maps;
+  std::vector<SkeletalPrimitive> skeletal;
+  std::vector<glm::vec3> curvePoints;
+  ConvolutionData convolution;
+  std::vector<CapsulePrimitive> capsules;
+  std::vector<PrimitiveBound> primitiveBounds;  // by global primitive id (order of Prims ops)
+
+  // --- building (postfix order; BlobTree's compiler and tests use these) ---
+  // Each add returns true when it pushed a new operand, false when the primitive
+  // joined the previous Prims op (combineWithPrevious, same class and mode).
+  bool addSkeletal(const SkeletalPrimitive& p, bool combineWithPrevious, bool combineMax);
+  // Convolution segment a -> b whose long-segment surface lies at `radius`
+  // (weight from the radius rule with this program's threshold); contributions
+  // under eps * T are cut.
+  bool addConvolution(const glm::vec3& a, const glm::vec3& b, float radius, float sharpness, float eps,
+                      bool combineWithPrevious);
+  bool addCapsule(const CapsulePrimitive& c, bool combineWithPrevious, bool combineMax);
+  void addConstant(float potential);
+  void addOperator(OpCode code, uint32_t operands, const float* opParams = nullptr, int paramCount = 0);
+  void beginMap(const SpaceMap& m);
+  void endMap();
+  // Finishes building: empty values, subtree extents, stack sizes and bounds.
+  // Call once after the last add; the program is then immutable.
+  void finish();
+
+  // --- queries ---
+  size_t primitiveCount() const { return primitiveBounds.size(); }
+  // Region where f >= 0 can occur (empty: nothing inside; unbounded(): everywhere).
+  const Bounds& bounds() const { return bounds_; }
+  bool unbounded() const { return unbounded_; }
+  int maxStack() const { return maxStack_; }
+  int maxMapDepth() const { return maxMapDepth_; }
+
+  // All primitives.
+  void specialiseAll(ActiveProgram& out) const;
+  // Only the primitives listed (sorted global ids); subtrees with none become constants.
+  void specialise(const std::vector<uint32_t>& activeSorted, ActiveProgram& out) const;
+  // Global ids (sorted) of primitives whose bound reaches the box.
+  void primitivesReaching(const Bounds& box, std::vector<uint32_t>& out,
+                          const std::vector<uint32_t>* candidates = nullptr) const;
+  // bounds() shrunk by recursive subdivision (depth levels of 2x2x2): the union
+  // of the boxes whose interval does not prove them outside. Still conservative.
+  Bounds tightBounds(int depth = 5) const;
+  // Rigorous interval of f = p - T over the ball (centre, radius) for a specialised
+  // program (exact arithmetic; callers add a margin for float rounding).
+  Interval interval(const ActiveProgram& prog, const glm::vec3& centre, float radius) const;
+
+ private:
+  bool pushPrims(PrimClass cls, uint32_t local, bool combineWithPrevious, bool combineMax, const PrimitiveBound& b);
+  PrimitiveBound worldBound(const glm::vec3& a, const glm::vec3& b, float radius) const;
+  std::vector<uint32_t> openMaps_;    // while building
+  std::vector<uint32_t> openBegins_;  // while building: op index of each open BeginMap
+  std::vector<uint32_t> outermostEnd_;
+  Bounds bounds_;
+  bool unbounded_ = false;
+  int maxStack_ = 0;
+  int maxMapDepth_ = 0;
+};
+
+// Evaluates programs on batches of points. Holds scratch memory: one per thread.
+class FieldEvaluator {
+ public:
+  // f[i] = field at (x[i], y[i], z[i]); gradients when gx is non-null (gy, gz too).
+  void evaluate(const FieldProgram& program, const ActiveProgram& active, const float* x, const float* y,
+                const float* z, int n, float* f, float* gx = nullptr, float* gy = nullptr, float* gz = nullptr);
+  // Convenience: one point, full program (slow path for tools and tests).
+  float evaluatePoint(const FieldProgram& program, const glm::vec3& p, glm::vec3* gradient = nullptr);
+
+ private:
+  void runChunk(const FieldProgram& program, const ActiveProgram& active, const float* x, const float* y,
+                const float* z, int n, float* f, float* gx, float* gy, float* gz);
+  std::vector<float> stack_;
+  std::vector<float> coords_;
+  std::vector<const float*> levels_;
+  ActiveProgram all_;
+  const FieldProgram* allFor_ = nullptr;
+  size_t allOps_ = 0;
+};
+
+// Batched primitive kernels (field_kernels.cpp): accumulate into f (and gradients when gx != null).
+void convolutionKernel(const ConvolutionData& c, const uint32_t* idx, int count, const float* x, const float* y,
+                       const float* z, int n, float* f, float* gx, float* gy, float* gz);
+// Per-primitive intervals of the weighted, cut convolution fields over the ball (centre, radius).
+void convolutionIntervalKernel(const ConvolutionData& c, const uint32_t* idx, int count, const glm::vec3& centre,
+                               float radius, float* lo, float* hi);
+void skeletalKernel(const FieldProgram& prog, const uint32_t* idx, int count, bool combineMax, const float* x,
+                    const float* y, const float* z, int n, float* f, float* gx, float* gy, float* gz);
+void capsuleKernel(const std::vector<CapsulePrimitive>& caps, float threshold, const uint32_t* idx, int count,
+                   bool combineMax, const float* x, const float* y, const float* z, int n, float* f, float* gx,
+                   float* gy, float* gz);
+
+}  // namespace animorph

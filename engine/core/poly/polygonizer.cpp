@@ -1,0 +1,434 @@
+#include "poly/polygonizer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <unordered_map>
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "poly/marching_cubes_table.h"
+
+namespace animorph {
+
+namespace {
+
+constexpr int kBlock = 8;        // cells per block side
+constexpr int kSuper = 4;        // blocks per superblock side
+constexpr float kSnap = 1e-3f;   // edge parameter kept in [kSnap, 1 - kSnap]: no degenerate triangles
+constexpr uint64_t kExternal = uint64_t(1) << 63;
+
+struct Grid {
+  glm::vec3 origin{0.0f};
+  float h = 1.0f;
+  int n[3] = {1, 1, 1};   // cells per axis
+  int nb[3] = {1, 1, 1};  // blocks per axis
+  int ns[3] = {1, 1, 1};  // superblocks per axis
+};
+
+struct ExternalVertex {
+  int gi, gj, gk;  // base corner of the edge
+  int axis;
+  glm::vec3 position;
+};
+
+struct BlockOutput {
+  std::vector<glm::vec3> positions, normals;
+  std::vector<int32_t> ownedSlot;   // (lk*8 + lj)*8 + li)*3 + axis -> local vertex
+  std::vector<uint64_t> corners;    // triangle corners: local index, or kExternal | external index
+  std::vector<ExternalVertex> externals;
+  size_t vertexOffset = 0, indexOffset = 0;
+};
+
+struct Scratch {
+  FieldEvaluator evaluator;
+  ActiveProgram active;
+  std::vector<uint32_t> reaching;
+  std::vector<float> x, y, z, v, e, gx, gy, gz;
+  std::vector<int32_t> slot;
+};
+
+enum class SuperState : uint8_t { Culled, Partial };
+
+glm::vec3 outwardNormal(float gx, float gy, float gz, const glm::vec3& fallback) {
+  glm::vec3 g(gx, gy, gz);
+  float l = glm::length(g);
+  if (!(l > 1e-20f) || !std::isfinite(l)) return fallback;
+  return -g / l;
+}
+
+}  // namespace
+
+Result<PolygonizeResult> polygonize(const FieldProgram& program, const PolygonizeSettings& s) {
+  auto t0 = std::chrono::steady_clock::now();
+  if (s.resolution < 2 || s.resolution > 4096)
+    return Error{"polygonize: resolution " + std::to_string(s.resolution) + " is out of range (2..4096)"};
+  PolygonizeResult result;
+  const float T = program.threshold;
+
+  // ---- grid
+  Grid g;
+  Bounds box;
+  if (s.bounds) {
+    box = *s.bounds;
+    if (box.empty() || !std::isfinite(box.diagonal()) || box.diagonal() <= 0.0f)
+      return Error{"polygonize: the bounds override is empty or not finite"};
+    float L = std::max({box.size().x, box.size().y, box.size().z});
+    g.h = L / float(s.resolution);
+    for (int a = 0; a < 3; ++a) g.n[a] = std::max(1, int(std::lround(box.size()[a] / g.h)));
+    g.origin = box.center() - 0.5f * g.h * glm::vec3(float(g.n[0]), float(g.n[1]), float(g.n[2]));
+  } else {
+    if (program.unbounded())
+      return Error{"polygonize: the field is inside everywhere far from its primitives (unbounded); give bounds"};
+    box = program.tightBounds();
+    if (box.empty()) {
+      result.stats.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      return result;  // nothing inside anywhere
+    }
+    float L = std::max({box.size().x, box.size().y, box.size().z, 1e-6f});
+    float margin = std::max(0.0f, s.marginCells);
+    float usable = float(s.resolution) - 2.0f * margin;
+    g.h = usable >= 1.0f ? L / usable : L / float(s.resolution);
+    for (int a = 0; a < 3; ++a)
+      g.n[a] = std::clamp(int(std::ceil(box.size()[a] / g.h + 2.0f * margin)), 1, s.resolution);
+    g.origin = box.center() - 0.5f * g.h * glm::vec3(float(g.n[0]), float(g.n[1]), float(g.n[2]));
+  }
+  for (int a = 0; a < 3; ++a) {
+    g.nb[a] = (g.n[a] + kBlock - 1) / kBlock;
+    g.ns[a] = (g.nb[a] + kSuper - 1) / kSuper;
+  }
+  PolygonizeStats& st = result.stats;
+  st.gridX = g.n[0];
+  st.gridY = g.n[1];
+  st.gridZ = g.n[2];
+  st.cellSize = g.h;
+  const size_t nBlocks = size_t(g.nb[0]) * g.nb[1] * g.nb[2];
+  const size_t nSupers = size_t(g.ns[0]) * g.ns[1] * g.ns[2];
+  st.blocksTotal = nBlocks;
+
+  auto cornerPos = [&](int i, int j, int k) {
+    return g.origin + g.h * glm::vec3(float(i), float(j), float(k));
+  };
+  // World box of the corners of cells [c0, c0 + count) per axis.
+  auto regionBox = [&](const int c0[3], const int count[3]) {
+    Bounds b;
+    b.add(cornerPos(c0[0], c0[1], c0[2]));
+    b.add(cornerPos(c0[0] + count[0], c0[1] + count[1], c0[2] + count[2]));
+    return b;
+  };
+  auto touchesBoundary = [&](const int c0[3], const int count[3]) {
+    for (int a = 0; a < 3; ++a)
+      if (c0[a] == 0 || c0[a] + count[a] >= g.n[a]) return true;
+    return false;
+  };
+  const float margin = 1e-3f * T + 1e-7f;
+  // True when the interval proves one sign over the region (and the grid
+  // boundary, forced outside, cannot create a surface there).
+  auto oneSigned = [&](const Interval& iv, bool boundary) {
+    if (iv.hi < -margin) return true;
+    if (iv.lo > margin && !boundary) return true;
+    return false;
+  };
+
+  ActiveProgram allPrims;
+  program.specialiseAll(allPrims);
+  std::vector<uint32_t> noCandidates;
+
+  tbb::task_arena arena(s.threads > 0 ? s.threads : tbb::task_arena::automatic);
+  tbb::enumerable_thread_specific<Scratch> scratch;
+
+  // ---- coarse level: superblocks
+  std::vector<SuperState> superState(nSupers, SuperState::Partial);
+  std::vector<std::vector<uint32_t>> superCandidates(nSupers);
+  if (s.culling) {
+    arena.execute([&] {
+      tbb::parallel_for(size_t(0), nSupers, [&](size_t si) {
+        Scratch& sc = scratch.local();
+        int sidx[3] = {int(si % size_t(g.ns[0])), int((si / size_t(g.ns[0])) % size_t(g.ns[1])),
+                       int(si / (size_t(g.ns[0]) * g.ns[1]))};
+        int c0[3], cnt[3];
+        for (int a = 0; a < 3; ++a) {
+          c0[a] = sidx[a] * kSuper * kBlock;
+          cnt[a] = std::min(kSuper * kBlock, g.n[a] - c0[a]);
+        }
+        Bounds b = regionBox(c0, cnt);
+        program.primitivesReaching(b, superCandidates[si]);
+        program.specialise(superCandidates[si], sc.active);
+        Interval iv = program.interval(sc.active, b.center(), 0.5f * b.diagonal());
+        if (oneSigned(iv, touchesBoundary(c0, cnt))) superState[si] = SuperState::Culled;
+      });
+    });
+  }
+
+  // ---- fine level: blocks
+  std::vector<BlockOutput> out(nBlocks);
+  std::atomic<size_t> culled{0}, evaluated{0}, cells{0}, points{0}, pairs{0}, done{0};
+  std::mutex progressMutex;
+  const auto& table = marchingCubesTable();
+  std::atomic<bool> cancelled{false};
+
+  auto processBlock = [&](size_t bi, Scratch& sc) {
+    int b[3] = {int(bi % size_t(g.nb[0])), int((bi / size_t(g.nb[0])) % size_t(g.nb[1])),
+                int(bi / (size_t(g.nb[0]) * g.nb[1]))};
+    int c0[3], cnt[3];
+    for (int a = 0; a < 3; ++a) {
+      c0[a] = b[a] * kBlock;
+      cnt[a] = std::min(kBlock, g.n[a] - c0[a]);
+    }
+    const ActiveProgram* prog = &allPrims;
+    // Sub-blocks of 4^3 cells whose cells may hold surface (all of them without culling).
+    bool subLive[8] = {true, true, true, true, true, true, true, true};
+    bool allLive = true;
+    if (s.culling) {
+      size_t si = size_t(b[0] / kSuper) + size_t(g.ns[0]) * (size_t(b[1] / kSuper) + size_t(g.ns[1]) * size_t(b[2] / kSuper));
+      if (superState[si] == SuperState::Culled) {
+        culled.fetch_add(1, std::memory_order_relaxed);
+        return;
+      }
+      Bounds bb = regionBox(c0, cnt);
+      program.primitivesReaching(bb, sc.reaching, &superCandidates[si]);
+      program.specialise(sc.reaching, sc.active);
+      Interval iv = program.interval(sc.active, bb.center(), 0.5f * bb.diagonal());
+      if (oneSigned(iv, touchesBoundary(c0, cnt))) {
+        culled.fetch_add(1, std::memory_order_relaxed);
+        return;
+      }
+      prog = &sc.active;
+      for (int q = 0; q < 8; ++q) {
+        int s0[3], sn[3];
+        for (int a = 0; a < 3; ++a) {
+          int half = ((q >> a) & 1) * (kBlock / 2);
+          s0[a] = c0[a] + half;
+          sn[a] = std::min(kBlock / 2, cnt[a] - half);
+        }
+        if (sn[0] <= 0 || sn[1] <= 0 || sn[2] <= 0) {
+          subLive[q] = false;
+        } else {
+          Bounds sb = regionBox(s0, sn);
+          subLive[q] = !oneSigned(program.interval(sc.active, sb.center(), 0.5f * sb.diagonal()), touchesBoundary(s0, sn));
+        }
+        allLive &= subLive[q];
+      }
+    }
+    evaluated.fetch_add(1, std::memory_order_relaxed);
+    // Corner values of the block's cells (its own corners plus the +1 layer);
+    // only the corners of live sub-blocks are evaluated.
+    const int cx = cnt[0] + 1, cy = cnt[1] + 1, cz = cnt[2] + 1;
+    const int np = cx * cy * cz;
+    auto subOf = [&](int i, int j, int k) {
+      return (i >= kBlock / 2 ? 1 : 0) | (j >= kBlock / 2 ? 2 : 0) | (k >= kBlock / 2 ? 4 : 0);
+    };
+    size_t liveCells = 0;
+    for (int k = 0; k < cnt[2]; ++k)
+      for (int j = 0; j < cnt[1]; ++j)
+        for (int i = 0; i < cnt[0]; ++i) liveCells += subLive[subOf(i, j, k)];
+    cells.fetch_add(liveCells, std::memory_order_relaxed);
+    sc.x.resize(size_t(np));
+    sc.y.resize(size_t(np));
+    sc.z.resize(size_t(np));
+    sc.v.assign(size_t(np), 0.0f);
+    sc.slot.assign(size_t(np), allLive ? 0 : -1);
+    if (!allLive) {
+      // Corners of live sub-blocks (each spans its cells plus the +1 layer).
+      for (int q = 0; q < 8; ++q) {
+        if (!subLive[q]) continue;
+        int lo[3], hi[3];
+        for (int a = 0; a < 3; ++a) {
+          lo[a] = ((q >> a) & 1) * (kBlock / 2);
+          hi[a] = std::min(lo[a] + kBlock / 2, cnt[a]);
+        }
+        for (int k = lo[2]; k <= hi[2]; ++k)
+          for (int j = lo[1]; j <= hi[1]; ++j)
+            for (int i = lo[0]; i <= hi[0]; ++i) sc.slot[size_t((k * cy + j) * cx + i)] = 0;
+      }
+    }
+    int ne = 0;
+    for (int k = 0, p = 0; k < cz; ++k)
+      for (int j = 0; j < cy; ++j)
+        for (int i = 0; i < cx; ++i, ++p) {
+          if (sc.slot[size_t(p)] < 0) continue;
+          glm::vec3 q = cornerPos(c0[0] + i, c0[1] + j, c0[2] + k);
+          sc.x[size_t(ne)] = q.x;
+          sc.y[size_t(ne)] = q.y;
+          sc.z[size_t(ne)] = q.z;
+          sc.slot[size_t(p)] = ne++;
+        }
+    sc.e.resize(size_t(ne));
+    sc.evaluator.evaluate(program, *prog, sc.x.data(), sc.y.data(), sc.z.data(), ne, sc.e.data());
+    points.fetch_add(size_t(ne), std::memory_order_relaxed);
+    pairs.fetch_add(size_t(ne) * prog->primitiveCount, std::memory_order_relaxed);
+    for (int p = 0; p < np; ++p)
+      if (sc.slot[size_t(p)] >= 0) sc.v[size_t(p)] = sc.e[size_t(sc.slot[size_t(p)])];
+    // The grid boundary counts as outside, so a surface cut by it is closed.
+    for (int k = 0, p = 0; k < cz; ++k)
+      for (int j = 0; j < cy; ++j)
+        for (int i = 0; i < cx; ++i, ++p) {
+          int gi = c0[0] + i, gj = c0[1] + j, gk = c0[2] + k;
+          if (gi == 0 || gj == 0 || gk == 0 || gi == g.n[0] || gj == g.n[1] || gk == g.n[2])
+            sc.v[size_t(p)] = std::min(sc.v[size_t(p)], -1e-6f * T);
+        }
+    BlockOutput& o = out[bi];
+    auto val = [&](int i, int j, int k) { return sc.v[size_t((k * cy + j) * cx + i)]; };
+    auto edgeVertex = [&](int li, int lj, int lk, int axis) -> uint64_t {
+      int lj2 = lj + (axis == 1), li2 = li + (axis == 0), lk2 = lk + (axis == 2);
+      float f0 = val(li, lj, lk), f1 = val(li2, lj2, lk2);
+      float t = f0 / (f0 - f1);
+      t = std::clamp(t, kSnap, 1.0f - kSnap);
+      glm::vec3 p0 = cornerPos(c0[0] + li, c0[1] + lj, c0[2] + lk);
+      glm::vec3 p1 = cornerPos(c0[0] + li2, c0[1] + lj2, c0[2] + lk2);
+      glm::vec3 pos = p0 + t * (p1 - p0);
+      if (li < kBlock && lj < kBlock && lk < kBlock) {
+        if (o.ownedSlot.empty()) o.ownedSlot.assign(size_t(kBlock * kBlock * kBlock * 3), -1);
+        int32_t& slot = o.ownedSlot[size_t(((lk * kBlock + lj) * kBlock + li) * 3 + axis)];
+        if (slot < 0) {
+          slot = int32_t(o.positions.size());
+          o.positions.push_back(pos);
+          // Fallback normal: along the edge, from the inside corner to the outside one.
+          glm::vec3 dir = glm::normalize(p1 - p0);
+          o.normals.push_back(f0 >= 0.0f ? dir : -dir);
+        }
+        return uint64_t(slot);
+      }
+      o.externals.push_back({c0[0] + li, c0[1] + lj, c0[2] + lk, axis, pos});
+      return kExternal | uint64_t(o.externals.size() - 1);
+    };
+    for (int k = 0; k < cnt[2]; ++k)
+      for (int j = 0; j < cnt[1]; ++j)
+        for (int i = 0; i < cnt[0]; ++i) {
+          int mask = 0;
+          for (int c = 0; c < 8; ++c)
+            if (val(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1)) >= 0.0f) mask |= 1 << c;
+          if (mask == 0 || mask == 255 || !subLive[subOf(i, j, k)]) continue;
+          const auto& tri = table.triangles[size_t(mask)];
+          for (int q = 0; tri[size_t(q)] != 255; ++q) {
+            int e = tri[size_t(q)];
+            int cA = table.edgeCorners[size_t(e)][0];
+            o.corners.push_back(edgeVertex(i + (cA & 1), j + ((cA >> 1) & 1), k + ((cA >> 2) & 1),
+                                           table.edgeAxis[size_t(e)]));
+          }
+        }
+    // Normals from the field gradient at the block's own vertices.
+    size_t nv = o.positions.size();
+    if (nv > 0) {
+      sc.x.resize(nv);
+      sc.y.resize(nv);
+      sc.z.resize(nv);
+      sc.v.resize(nv);
+      sc.gx.resize(nv);
+      sc.gy.resize(nv);
+      sc.gz.resize(nv);
+      for (size_t q = 0; q < nv; ++q) {
+        sc.x[q] = o.positions[q].x;
+        sc.y[q] = o.positions[q].y;
+        sc.z[q] = o.positions[q].z;
+      }
+      sc.evaluator.evaluate(program, *prog, sc.x.data(), sc.y.data(), sc.z.data(), int(nv), sc.v.data(),
+                            sc.gx.data(), sc.gy.data(), sc.gz.data());
+      for (size_t q = 0; q < nv; ++q) o.normals[q] = outwardNormal(sc.gx[q], sc.gy[q], sc.gz[q], o.normals[q]);
+      points.fetch_add(nv, std::memory_order_relaxed);
+      pairs.fetch_add(nv * prog->primitiveCount, std::memory_order_relaxed);
+    }
+  };
+
+  const size_t reportEvery = std::max<size_t>(1, nBlocks / 100);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, nBlocks, 4), [&](const tbb::blocked_range<size_t>& r) {
+      Scratch& sc = scratch.local();
+      for (size_t bi = r.begin(); bi != r.end(); ++bi) {
+        if (s.cancel && s.cancel->load(std::memory_order_relaxed)) {
+          cancelled.store(true);
+          return;
+        }
+        processBlock(bi, sc);
+        size_t d = done.fetch_add(1, std::memory_order_relaxed) + 1;
+        if (s.progress && (d % reportEvery == 0 || d == nBlocks)) {
+          std::lock_guard<std::mutex> lock(progressMutex);
+          s.progress(0.95f * float(d) / float(nBlocks));
+        }
+      }
+    });
+  });
+  st.blocksCulled = culled.load();
+  st.blocksEvaluated = evaluated.load();
+  for (const BlockOutput& o : out) st.blocksWithSurface += o.corners.empty() ? 0 : 1;
+  st.cellsVisited = cells.load();
+  if (cancelled.load() || (s.cancel && s.cancel->load())) {
+    result.cancelled = true;
+    result.stats.pointsEvaluated = points.load();
+    result.stats.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return result;
+  }
+
+  // ---- stitch: global vertex numbering in block order, then resolve shared edges
+  size_t nv = 0, ni = 0;
+  for (BlockOutput& o : out) {
+    o.vertexOffset = nv;
+    o.indexOffset = ni;
+    nv += o.positions.size();
+    ni += o.corners.size();
+  }
+  TriangleMesh& mesh = result.mesh;
+  mesh.positions.resize(nv);
+  mesh.normals.resize(nv);
+  mesh.indices.resize(ni);
+  constexpr uint32_t kUnresolved = 0xffffffffu;
+  arena.execute([&] {
+    tbb::parallel_for(size_t(0), nBlocks, [&](size_t bi) {
+      const BlockOutput& o = out[bi];
+      std::copy(o.positions.begin(), o.positions.end(), mesh.positions.begin() + std::ptrdiff_t(o.vertexOffset));
+      std::copy(o.normals.begin(), o.normals.end(), mesh.normals.begin() + std::ptrdiff_t(o.vertexOffset));
+      for (size_t q = 0; q < o.corners.size(); ++q) {
+        uint64_t code = o.corners[q];
+        uint32_t index = kUnresolved;
+        if (!(code & kExternal)) {
+          index = uint32_t(o.vertexOffset + code);
+        } else {
+          const ExternalVertex& ev = o.externals[size_t(code & ~kExternal)];
+          size_t ob = size_t(ev.gi / kBlock) +
+                      size_t(g.nb[0]) * (size_t(ev.gj / kBlock) + size_t(g.nb[1]) * size_t(ev.gk / kBlock));
+          const BlockOutput& owner = out[ob];
+          if (!owner.ownedSlot.empty()) {
+            int li = ev.gi % kBlock, lj = ev.gj % kBlock, lk = ev.gk % kBlock;
+            int32_t slot = owner.ownedSlot[size_t(((lk * kBlock + lj) * kBlock + li) * 3 + ev.axis)];
+            if (slot >= 0) index = uint32_t(owner.vertexOffset + size_t(slot));
+          }
+        }
+        mesh.indices[o.indexOffset + q] = index;
+      }
+    });
+  });
+  // Edges whose owner block made no vertex (only if an interval bound was too
+  // optimistic): make them here, once per edge, so the mesh stays watertight.
+  std::unordered_map<uint64_t, uint32_t> orphans;
+  FieldEvaluator evaluator;
+  for (size_t bi = 0; bi < nBlocks; ++bi) {
+    const BlockOutput& o = out[bi];
+    for (size_t q = 0; q < o.corners.size(); ++q) {
+      if (mesh.indices[o.indexOffset + q] != kUnresolved) continue;
+      const ExternalVertex& ev = o.externals[size_t(o.corners[q] & ~kExternal)];
+      uint64_t key = ((uint64_t(ev.gk) * uint64_t(g.n[1] + 1) + uint64_t(ev.gj)) * uint64_t(g.n[0] + 1) + uint64_t(ev.gi)) * 3 +
+                     uint64_t(ev.axis);
+      auto it = orphans.find(key);
+      if (it == orphans.end()) {
+        glm::vec3 grad;
+        evaluator.evaluatePoint(program, ev.position, &grad);
+        mesh.positions.push_back(ev.position);
+        mesh.normals.push_back(outwardNormal(grad.x, grad.y, grad.z, glm::vec3(0, 1, 0)));
+        it = orphans.emplace(key, uint32_t(mesh.positions.size() - 1)).first;
+      }
+      mesh.indices[o.indexOffset + q] = it->second;
+    }
+  }
+  st.orphanVertices = orphans.size();
+  st.pointsEvaluated = points.load() + orphans.size();
+  st.primitiveEvaluations = pairs.load();
+  if (s.progress) s.progress(1.0f);
+  st.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return result;
+}
+
+}  // namespace animorph

@@ -1,0 +1,61 @@
+#pragma once
+// CPU polygoniser (DESIGN.md §6): marching cubes over a FieldProgram on a
+// regular grid, vertices shared by edge id (watertight, consistently oriented,
+// manifold), normals from the field gradient, coarse-to-fine block culling
+// (per-block primitive lists and interval bounds), parallel with TBB.
+#include <atomic>
+#include <functional>
+#include <optional>
+
+#include "field/field_program.h"
+#include "math/bounds.h"
+#include "poly/mesh.h"
+#include "util/result.h"
+
+namespace animorph {
+
+struct PolygonizeSettings {
+  // Cells along the longest side of the grid bounds (cells are cubes). Larger:
+  // finer mesh; cost grows with the surface (culling on) or the volume (off). 2..4096.
+  int resolution = 128;
+  // Grid bounds; default: the program's bounds, tightened by interval
+  // subdivision, grown by marginCells on every side.
+  // A surface cut by these bounds is closed by the grid boundary (treated as outside).
+  std::optional<Bounds> bounds;
+  float marginCells = 2.0f;
+  // Skip blocks no primitive reaches or whose field interval has one sign. Off:
+  // every grid corner is evaluated with every primitive (same mesh, slower).
+  bool culling = true;
+  // Worker threads; 0 = all hardware threads.
+  int threads = 0;
+  // Called with the fraction done (0..1), from worker threads, one call at a time.
+  std::function<void(float)> progress;
+  // When set to true the run stops early and returns cancelled = true, empty mesh.
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+struct PolygonizeStats {
+  int gridX = 0, gridY = 0, gridZ = 0;  // cells per axis
+  float cellSize = 0.0f;
+  size_t blocksTotal = 0;               // 8^3-cell blocks in the grid
+  size_t blocksCulled = 0;              // skipped: no primitive, or one-signed interval
+  size_t blocksEvaluated = 0;
+  size_t blocksWithSurface = 0;         // evaluated blocks that produced triangles
+  size_t cellsVisited = 0;              // cells of evaluated blocks
+  size_t pointsEvaluated = 0;           // field evaluations (grid corners + normals)
+  size_t primitiveEvaluations = 0;      // (point, primitive) pairs evaluated
+  size_t orphanVertices = 0;            // edge vertices their owner block did not make (should be 0)
+  double milliseconds = 0.0;
+};
+
+struct PolygonizeResult {
+  TriangleMesh mesh;
+  PolygonizeStats stats;
+  bool cancelled = false;
+};
+
+// Polygonises f = 0 of the program. Errors: bad resolution, an unbounded
+// field without a bounds override, or empty/invalid bounds.
+Result<PolygonizeResult> polygonize(const FieldProgram& program, const PolygonizeSettings& settings);
+
+}  // namespace animorph

@@ -1,0 +1,130 @@
+#include <catch2/catch.hpp>
+
+#include <random>
+
+#include "blobtree/compile.h"
+#include "field/field_program.h"
+#include "util/blob_builders.h"
+#include "util/reference_field.h"
+
+using namespace animorph;
+using namespace animorph::test;
+
+namespace {
+
+glm::vec3 randomIn(std::mt19937& rng, float s) {
+  std::uniform_real_distribution<float> u(-s, s);
+  return {u(rng), u(rng), u(rng)};
+}
+
+}  // namespace
+
+TEST_CASE("FieldProgram equals the recursive reference on random trees", "[field_program]") {
+  int compared = 0;
+  for (unsigned seed = 100; seed < 160; ++seed) {
+    std::mt19937 rng(seed);
+    int id = 1;
+    BlobTree tree = treeOf(randomNode(rng, 3, id), 0.5f);
+    for (double t : {0.0, 0.37, 1.0}) {
+      FieldProgram p = compileFieldProgram(tree, t);
+      FieldEvaluator ev;
+      // A batch through the SoA path, and the reference point by point.
+      std::vector<glm::vec3> pts;
+      for (int i = 0; i < 64; ++i) pts.push_back(randomIn(rng, 0.8f));
+      std::vector<float> x, y, z, f(pts.size()), gx(pts.size()), gy(pts.size()), gz(pts.size());
+      for (auto& q : pts) {
+        x.push_back(q.x);
+        y.push_back(q.y);
+        z.push_back(q.z);
+      }
+      ActiveProgram all;
+      p.specialiseAll(all);
+      ev.evaluate(p, all, x.data(), y.data(), z.data(), int(pts.size()), f.data(), gx.data(), gy.data(), gz.data());
+      for (size_t i = 0; i < pts.size(); ++i) {
+        glm::vec3 gr;
+        float fr = referenceField(tree, t, pts[i], &gr);
+        INFO("seed " << seed << " t " << t << " point " << i);
+        // The convolution cut (1e-3 T) may fall either side for float vs double.
+        CHECK(f[i] == Approx(fr).margin(2e-3));
+        if (std::abs(f[i] - fr) < 1e-4f)
+          CHECK(glm::length(glm::vec3(gx[i], gy[i], gz[i]) - gr) <= 1e-2f * std::max(1.0f, glm::length(gr)));
+        ++compared;
+      }
+    }
+  }
+  CHECK(compared == 60 * 3 * 64);
+}
+
+TEST_CASE("a program specialised to a region gives the same values there", "[field_program]") {
+  for (unsigned seed = 200; seed < 230; ++seed) {
+    std::mt19937 rng(seed);
+    int id = 1;
+    BlobTree tree = treeOf(randomNode(rng, 3, id), 0.5f);
+    FieldProgram p = compileFieldProgram(tree, 0.2);
+    FieldEvaluator ev;
+    for (int r = 0; r < 8; ++r) {
+      Bounds box;
+      glm::vec3 c = randomIn(rng, 0.6f);
+      box.add(c - glm::vec3(0.1f));
+      box.add(c + glm::vec3(0.1f));
+      std::vector<uint32_t> active;
+      p.primitivesReaching(box, active);
+      ActiveProgram spec, all;
+      p.specialise(active, spec);
+      p.specialiseAll(all);
+      CHECK(spec.primitiveCount <= p.primitiveCount());
+      std::vector<float> x, y, z;
+      for (int i = 0; i < 40; ++i) {
+        glm::vec3 q = box.min + (box.max - box.min) * (0.5f + 0.5f * randomIn(rng, 1.0f));
+        x.push_back(q.x);
+        y.push_back(q.y);
+        z.push_back(q.z);
+      }
+      std::vector<float> a(x.size()), b(x.size());
+      ev.evaluate(p, spec, x.data(), y.data(), z.data(), int(x.size()), a.data());
+      ev.evaluate(p, all, x.data(), y.data(), z.data(), int(x.size()), b.data());
+      INFO("seed " << seed);
+      CHECK(a == b);  // bit for bit: culled primitives contribute exactly 0 there
+      // The interval bound holds every value in the box's ball.
+      Interval iv = p.interval(spec, box.center(), 0.5f * box.diagonal());
+      for (float v : b) {
+        CHECK(v >= iv.lo - 1e-4f);
+        CHECK(v <= iv.hi + 1e-4f);
+      }
+    }
+  }
+}
+
+TEST_CASE("outside the program's bounds the field is outside", "[field_program]") {
+  for (unsigned seed = 300; seed < 330; ++seed) {
+    std::mt19937 rng(seed);
+    int id = 1;
+    BlobTree tree = treeOf(randomNode(rng, 3, id), 0.5f);
+    FieldProgram p = compileFieldProgram(tree, 0.5);
+    if (p.unbounded()) continue;
+    Bounds b = p.bounds();
+    FieldEvaluator ev;
+    for (int i = 0; i < 200; ++i) {
+      glm::vec3 x = randomIn(rng, 2.0f);
+      bool in = !b.empty() && x.x >= b.min.x && x.y >= b.min.y && x.z >= b.min.z && x.x <= b.max.x &&
+                x.y <= b.max.y && x.z <= b.max.z;
+      if (!in) CHECK(ev.evaluatePoint(p, x) < 0.0f);
+    }
+  }
+}
+
+TEST_CASE("primitives of one class under one operator share one op", "[field_program]") {
+  BlobNode root = makeBlobNode(NodeType::Blend, 1);
+  for (int i = 0; i < 10; ++i)
+    root.children.push_back(convSegmentNode(2 + i, {0.1f * i, 0, 0}, {0.1f * i + 0.1f, 0, 0}, 0.05f));
+  root.children.push_back(pointNode(20, {0, 0.2f, 0}, 0.2f));
+  root.children.push_back(pointNode(21, {0, 0.4f, 0}, 0.2f));
+  FieldProgram p = compileFieldProgram(treeOf(root), 0.0);
+  REQUIRE(p.ops.size() == 3);  // Prims(10 convolution), Prims(2 skeletal), Sum(2)
+  CHECK(p.ops[0].code == OpCode::Prims);
+  CHECK(p.ops[0].count == 10);
+  CHECK(p.ops[1].count == 2);
+  CHECK(p.ops[2].code == OpCode::Sum);
+  CHECK(p.ops[2].count == 2);
+  CHECK(p.primitiveCount() == 12);
+}

@@ -1,0 +1,115 @@
+#include <catch2/catch.hpp>
+
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "blobtree/compile.h"
+#include "doc/atomic_file.h"
+#include "poly/mesh_checks.h"
+#include "poly/mesh_io.h"
+#include "poly/polygonizer.h"
+#include "util/blob_builders.h"
+#include "util/temp_dir.h"
+
+using namespace animorph;
+using namespace animorph::test;
+
+namespace {
+
+TriangleMesh sphereMesh() {
+  FieldProgram p = compileFieldProgram(treeOf(pointNode(1, {0, 0, 0}, 0.5f)), 0.0);
+  PolygonizeSettings s;
+  s.resolution = 24;
+  return polygonize(p, s)->mesh;
+}
+
+template <class T>
+T readAt(const std::string& s, size_t off) {
+  T v;
+  std::memcpy(&v, s.data() + off, sizeof(T));
+  return v;
+}
+
+}  // namespace
+
+TEST_CASE("GLB: header, chunks and accessors describe the mesh", "[mesh_io]") {
+  TriangleMesh m = sphereMesh();
+  REQUIRE(m.triangleCount() > 100);
+  std::string b = glbBytes(m);
+  REQUIRE(b.size() % 4 == 0);
+  CHECK(readAt<uint32_t>(b, 0) == 0x46546C67u);
+  CHECK(readAt<uint32_t>(b, 4) == 2u);
+  CHECK(readAt<uint32_t>(b, 8) == b.size());
+  uint32_t jsonLen = readAt<uint32_t>(b, 12);
+  CHECK(readAt<uint32_t>(b, 16) == 0x4E4F534Au);
+  auto j = nlohmann::json::parse(b.substr(20, jsonLen));
+  size_t binHeader = 20 + jsonLen;
+  uint32_t binLen = readAt<uint32_t>(b, binHeader);
+  CHECK(readAt<uint32_t>(b, binHeader + 4) == 0x004E4942u);
+  CHECK(binHeader + 8 + binLen == b.size());
+  CHECK(j["buffers"][0]["byteLength"] == binLen);
+  CHECK(j["asset"]["version"] == "2.0");
+  const auto& prim = j["meshes"][0]["primitives"][0];
+  const auto& pos = j["accessors"][prim["attributes"]["POSITION"].get<int>()];
+  const auto& idx = j["accessors"][prim["indices"].get<int>()];
+  CHECK(pos["count"] == m.positions.size());
+  CHECK(idx["count"] == m.indices.size());
+  CHECK(idx["componentType"] == 5125);
+  // The index data round-trips through the binary chunk.
+  const auto& view = j["bufferViews"][idx["bufferView"].get<int>()];
+  size_t off = binHeader + 8 + view["byteOffset"].get<size_t>();
+  for (size_t i = 0; i < m.indices.size(); i += 97) CHECK(readAt<uint32_t>(b, off + 4 * i) == m.indices[i]);
+  // Every accessor's view lies inside the buffer, aligned to 4 bytes.
+  for (const auto& v : j["bufferViews"]) {
+    CHECK(v["byteOffset"].get<size_t>() % 4 == 0);
+    CHECK(v["byteOffset"].get<size_t>() + v["byteLength"].get<size_t>() <= binLen);
+  }
+}
+
+TEST_CASE("OBJ and binary PLY hold the same mesh", "[mesh_io]") {
+  TempDir dir;
+  TriangleMesh m = sphereMesh();
+  REQUIRE(writeMesh(m, dir.file("s.obj")).ok());
+  REQUIRE(writeMesh(m, dir.file("s.ply")).ok());
+  REQUIRE(writeMesh(m, dir.file("s.glb")).ok());
+  CHECK_FALSE(writeMesh(m, dir.file("s.stl")).ok());
+
+  // OBJ: parse back vertices and faces.
+  std::ifstream obj(dir.file("s.obj"));
+  TriangleMesh back;
+  std::string line;
+  while (std::getline(obj, line)) {
+    std::istringstream ls(line);
+    std::string tag;
+    ls >> tag;
+    if (tag == "v") {
+      glm::vec3 p;
+      ls >> p.x >> p.y >> p.z;
+      back.positions.push_back(p);
+    } else if (tag == "f") {
+      for (int k = 0; k < 3; ++k) {
+        std::string w;
+        ls >> w;
+        back.indices.push_back(uint32_t(std::stoul(w.substr(0, w.find('/')))) - 1);
+      }
+    }
+  }
+  CHECK(back.indices == m.indices);
+  REQUIRE(back.positions.size() == m.positions.size());
+  CHECK(std::abs(meshVolume(back) - meshVolume(m)) < 1e-5);
+
+  // PLY: header counts and the binary payload size.
+  auto ply = readFile(dir.file("s.ply"));
+  REQUIRE(ply.ok());
+  size_t end = ply->find("end_header\n");
+  REQUIRE(end != std::string::npos);
+  std::string header = ply->substr(0, end);
+  CHECK(header.find("format binary_little_endian 1.0") != std::string::npos);
+  CHECK(header.find("element vertex " + std::to_string(m.positions.size())) != std::string::npos);
+  CHECK(header.find("element face " + std::to_string(m.triangleCount())) != std::string::npos);
+  size_t payload = ply->size() - (end + 11);
+  CHECK(payload == m.positions.size() * 24 + m.triangleCount() * 13);
+}
