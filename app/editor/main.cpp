@@ -5,6 +5,8 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -86,21 +88,20 @@ double percentile(std::vector<double> v, double p) {
   return v[std::min(v.size() - 1, static_cast<size_t>(p * static_cast<double>(v.size())))];
 }
 
-// Writes the rectangles of named widgets for scripted GUI tests.
-void writeUiMap(const std::string& path, const WidgetRects& rects, const EditorOutput& out, const Document& doc) {
-  std::string s = "{\n  \"viewport\": [" + std::to_string(out.viewport.min.x) + ", " +
-                  std::to_string(out.viewport.min.y) + ", " + std::to_string(out.viewport.size.x) + ", " +
-                  std::to_string(out.viewport.size.y) + "],\n  \"current_frame\": " +
-                  std::to_string(doc.project().timeline.currentFrame) + ",\n  \"dirty\": " +
-                  (doc.dirty() ? "true" : "false") + ",\n  \"widgets\": {";
-  bool first = true;
-  for (const auto& [key, r] : rects.all()) {
-    s += std::string(first ? "\n" : ",\n") + "    \"" + key + "\": [" + std::to_string(r.min.x) + ", " +
-         std::to_string(r.min.y) + ", " + std::to_string(r.max.x) + ", " + std::to_string(r.max.y) + "]";
-    first = false;
-  }
-  s += "\n  }\n}\n";
-  (void)writeFileAtomic(path, s);
+// Writes the rectangles of named widgets, and a little state, for scripted GUI tests.
+void writeUiMap(const std::string& path, const WidgetRects& rects, const EditorOutput& out, const Document& doc,
+                int frameCount) {
+  nlohmann::json j;
+  j["frame_count"] = frameCount;
+  j["project"] = doc.path();
+  j["selected"] = doc.selection.actorId;
+  j["current_frame"] = doc.project().timeline.currentFrame;
+  j["dirty"] = doc.dirty();
+  j["viewport"] = {out.viewport.min.x, out.viewport.min.y, out.viewport.size.x, out.viewport.size.y};
+  nlohmann::json w = nlohmann::json::object();
+  for (const auto& [key, r] : rects.all()) w[key] = {r.min.x, r.min.y, r.max.x, r.max.y};
+  j["widgets"] = std::move(w);
+  (void)writeFileAtomic(path, j.dump(1));
 }
 
 }  // namespace
@@ -268,7 +269,7 @@ int main(int argc, char** argv) {
     }
     if (args.screenshot.empty() && args.quit && frameCount > 3) break;
 
-    if (!uiMapPath.empty() && frameCount % 5 == 0) writeUiMap(uiMapPath, ui.widgets(), out, doc);
+    if (!uiMapPath.empty() && frameCount % 3 == 0) writeUiMap(uiMapPath, ui.widgets(), out, doc, frameCount);
     std::string title = "Animorph - " + doc.displayName() + (doc.dirty() ? " *" : "");
     if (title != lastTitle) {
       glfwSetWindowTitle(window, title.c_str());

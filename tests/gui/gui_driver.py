@@ -1,0 +1,195 @@
+"""Drives the real Animorph editor in an X server (Xvfb in tests) with real
+input events (xdotool), finds widgets through the map the editor writes when
+ANIMORPH_UI_MAP is set, and judges results from screenshots (ImageMagick) and
+the saved project. Used by the tests in this folder."""
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+SCREEN = "1600x900x24"
+
+
+def ensure_display(argv):
+    """Re-runs this script under xvfb-run when there is no X display."""
+    if os.environ.get("DISPLAY"):
+        return
+    if not shutil.which("xvfb-run"):
+        print("SKIP: no DISPLAY and no xvfb-run", flush=True)
+        sys.exit(77)
+    os.execvp("xvfb-run", ["xvfb-run", "-a", "-s", f"-screen 0 {SCREEN}", sys.executable] + argv)
+
+
+def fail(msg):
+    print("FAIL: " + msg, flush=True)
+    raise SystemExit(1)
+
+
+def check(cond, msg):
+    if not cond:
+        fail(msg)
+    print("ok: " + msg, flush=True)
+
+
+def xdo(*args):
+    subprocess.run(["xdotool", *map(str, args)], check=True)
+
+
+class Editor:
+    def __init__(self, editor_bin, project=None, workdir=None, size="1600x900"):
+        self.bin = editor_bin
+        self.project = project
+        self.workdir = workdir or tempfile.mkdtemp(prefix="animorph-gui-")
+        self.size = size
+        self.map_path = os.path.join(self.workdir, "uimap.json")
+        self.log_path = os.path.join(self.workdir, "editor.log")
+        self.proc = None
+        self.window = None
+
+    def start(self):
+        env = dict(os.environ)
+        env["XDG_CONFIG_HOME"] = os.path.join(self.workdir, "config")
+        env["HOME"] = self.workdir
+        env["ANIMORPH_UI_MAP"] = self.map_path
+        env.setdefault("ANIMORPH_VALIDATION", "1")
+        env.setdefault("VK_ICD_FILENAMES", "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json")
+        args = [self.bin, "--size", self.size]
+        if self.project:
+            args.append(self.project)
+        self.log = open(self.log_path, "w")
+        self.proc = subprocess.Popen(args, env=env, stdout=self.log, stderr=subprocess.STDOUT)
+        self.wait_until(lambda m: m.get("frame_count", 0) >= 6, "the editor draws frames", timeout=60)
+        out = subprocess.run(["xdotool", "search", "--sync", "--name", "^Animorph"], capture_output=True,
+                             text=True, timeout=30)
+        self.window = out.stdout.split()[0]
+        xdo("windowfocus", "--sync", self.window)
+        return self
+
+    # --- state -----------------------------------------------------------
+    def ui_map(self):
+        for _ in range(50):
+            try:
+                with open(self.map_path) as f:
+                    return json.load(f)
+            except (FileNotFoundError, json.JSONDecodeError):
+                if self.proc and self.proc.poll() is not None:
+                    fail(f"editor exited with {self.proc.returncode}; log:\n{self.read_log()}")
+                time.sleep(0.1)
+        return {}
+
+    def fresh_map(self, frames=3):
+        """The map as of at least `frames` frames after now (input has been processed)."""
+        start = self.ui_map().get("frame_count", 0)
+        return self.wait_until(lambda m: m.get("frame_count", 0) >= start + frames, "the editor keeps drawing")
+
+    def wait_until(self, pred, what, timeout=20):
+        end = time.time() + timeout
+        m = {}
+        while time.time() < end:
+            if self.proc and self.proc.poll() is not None:
+                fail(f"editor exited with {self.proc.returncode} while waiting for: {what}; log:\n{self.read_log()}")
+            if os.path.exists(self.map_path):
+                m = self.ui_map()
+                if m and pred(m):
+                    return m
+            time.sleep(0.05)
+        fail(f"timed out waiting for: {what}; last map keys: {sorted(m.get('widgets', {}))[:40]}")
+
+    def widget(self, key, timeout=10):
+        m = self.wait_until(lambda m: key in m.get("widgets", {}), f"widget {key}", timeout)
+        x0, y0, x1, y1 = m["widgets"][key]
+        return (x0, y0, x1, y1)
+
+    def center(self, key):
+        x0, y0, x1, y1 = self.widget(key)
+        return (int((x0 + x1) / 2), int((y0 + y1) / 2))
+
+    # --- input -----------------------------------------------------------
+    def move(self, x, y):
+        xdo("mousemove", "--window", self.window, int(x), int(y))
+
+    def click(self, x, y, button=1):
+        self.move(x, y)
+        time.sleep(0.05)
+        xdo("click", button)
+        self.fresh_map()
+
+    def click_widget(self, key, button=1):
+        self.click(*self.center(key), button=button)
+
+    def drag(self, x0, y0, x1, y1, button=1, steps=12, modifiers=()):
+        for k in modifiers:
+            xdo("keydown", k)
+        self.move(x0, y0)
+        time.sleep(0.05)
+        xdo("mousedown", button)
+        self.fresh_map(2)
+        for i in range(1, steps + 1):
+            self.move(x0 + (x1 - x0) * i / steps, y0 + (y1 - y0) * i / steps)
+            time.sleep(0.02)
+        self.fresh_map(2)
+        xdo("mouseup", button)
+        for k in modifiers:
+            xdo("keyup", k)
+        self.fresh_map()
+
+    def key(self, combo):
+        xdo("key", "--clearmodifiers", combo)
+        self.fresh_map()
+
+    def type_text(self, text):
+        xdo("type", "--delay", 20, text)
+        self.fresh_map()
+
+    # --- output ----------------------------------------------------------
+    def screenshot(self, path):
+        self.fresh_map()
+        subprocess.run(["import", "-window", "root", path], check=True)
+        return path
+
+    def read_log(self):
+        try:
+            with open(self.log_path) as f:
+                return f.read()[-4000:]
+        except OSError:
+            return ""
+
+    def wait_exit(self, timeout=20):
+        try:
+            return self.proc.wait(timeout=timeout)
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+            fail("editor did not exit")
+
+    def kill(self):
+        if self.proc and self.proc.poll() is None:
+            self.proc.kill()
+            self.proc.wait()
+
+
+def region_stats(png, x, y, w, h):
+    """Mean and standard deviation (0..1) of the grey levels of a region."""
+    out = subprocess.run(["convert", png, "-crop", f"{int(w)}x{int(h)}+{int(x)}+{int(y)}", "+repage",
+                          "-colorspace", "Gray", "-format", "%[fx:mean] %[fx:standard_deviation]", "info:"],
+                         capture_output=True, text=True, check=True)
+    mean, sd = out.stdout.split()
+    return float(mean), float(sd)
+
+
+def pixel(png, x, y):
+    """(r, g, b) 0..255 of one pixel."""
+    out = subprocess.run(["convert", png, "-crop", f"1x1+{int(x)}+{int(y)}", "-depth", "8", "-format",
+                          "%[fx:int(255*r)] %[fx:int(255*g)] %[fx:int(255*b)]", "info:"],
+                         capture_output=True, text=True, check=True)
+    return tuple(int(v) for v in out.stdout.split())
+
+
+def differing_pixels(png_a, png_b, x, y, w, h, fuzz="3%"):
+    """Number of pixels of a region that differ between two screenshots."""
+    crop = f"{int(w)}x{int(h)}+{int(x)}+{int(y)}"
+    out = subprocess.run(["compare", "-metric", "AE", "-fuzz", fuzz, f"{png_a}[{crop}]", f"{png_b}[{crop}]",
+                          "null:"], capture_output=True, text=True)
+    return int(float(out.stderr.split()[0]))
