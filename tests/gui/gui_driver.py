@@ -111,14 +111,16 @@ class Editor:
     def move(self, x, y):
         xdo("mousemove", "--window", self.window, int(x), int(y))
 
-    def click(self, x, y, button=1):
+    def click(self, x, y, button=1, wait=True):
+        """Clicks at window pixel (x, y); wait=False when the click may end the editor."""
         self.move(x, y)
         time.sleep(0.05)
         xdo("click", button)
-        self.fresh_map()
+        if wait:
+            self.fresh_map()
 
-    def click_widget(self, key, button=1):
-        self.click(*self.center(key), button=button)
+    def click_widget(self, key, button=1, wait=True):
+        self.click(*self.center(key), button=button, wait=wait)
 
     def drag(self, x0, y0, x1, y1, button=1, steps=12, modifiers=()):
         for k in modifiers:

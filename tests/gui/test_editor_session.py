@@ -86,7 +86,7 @@ try:
     ed.widget("prompt/dont_save")
     shot2 = ed.screenshot(os.path.join(work, "quit_prompt.png"))
     g.check(os.path.getsize(shot2) > 0, "the unsaved-changes prompt is shown")
-    ed.click_widget("prompt/dont_save")
+    ed.click_widget("prompt/dont_save", wait=False)
     rc = ed.wait_exit()
     g.check(rc == 0, f"the editor quits cleanly with no validation errors (exit {rc})")
     with open(project) as f:
