@@ -36,7 +36,7 @@ void printHelp() {
   std::sort(cmds.begin(), cmds.end(), [](auto& a, auto& b) { return std::strcmp(a.name, b.name) < 0; });
   std::cout << "animorph-cli: headless Animorph (metamorphosis of animated 3D characters)\n\n"
                "usage: animorph-cli COMMAND [ARGS...]   (animorph-cli COMMAND --help for details)\n\ncommands:\n";
-  for (const auto& c : cmds) std::printf("  %-12s %s\n", c.name, c.summary);
+  for (const auto& c : cmds) std::printf("  %-15s %s\n", c.name, c.summary);
 }
 
 }  // namespace
