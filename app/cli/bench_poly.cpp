@@ -118,7 +118,14 @@ PolygonizeResult polygonizeCube(const FieldProgram& prog, int res, bool cull) {
 std::vector<Row> runPoly(const animorph::bench::Options& opt) {
   std::vector<Row> rows;
   double peak = measurePeakGflops();
-  rows.push_back({"machine peak (FMA loop, 2 threads)", peak, "GFLOP/s", "", "measured in this run"});
+  std::string load = "?";
+  if (FILE* f = std::fopen("/proc/loadavg", "r")) {
+    char buf[64] = {};
+    if (std::fgets(buf, sizeof buf, f)) load = std::string(buf).substr(0, std::string(buf).find(' '));
+    std::fclose(f);
+  }
+  rows.push_back({"machine peak (FMA loop, 2 threads)", peak, "GFLOP/s", "",
+                  "measured in this run; load average " + load});
   std::vector<int> sizes = opt.quick ? std::vector<int>{64} : std::vector<int>{64, 128, 256};
   for (int n : {20, 60}) {
     FieldProgram prog = compileFieldProgram(creature(n, 1234u + unsigned(n)), 0.0);

@@ -37,8 +37,8 @@ int polygonizeCommand(const std::vector<std::string>& args) {
     if (a == "--time") {
       if (!value(timeSec)) return fail(me, "--time needs a number of seconds", 2);
     } else if (a == "--res") {
-      if (!value(res) || res < 2 || res > 4096 || res != std::floor(res))
-        return fail(me, "--res needs an integer from 2 to 4096", 2);
+      if (!value(res) || res < 2 || res > 2048 || res != std::floor(res))
+        return fail(me, "--res needs an integer from 2 to 2048", 2);
     } else if (a == "--threads") {
       if (!value(threads) || threads < 0) return fail(me, "--threads needs a non-negative integer", 2);
     } else if (a == "--no-cull") {

@@ -113,3 +113,12 @@ TEST_CASE("OBJ and binary PLY hold the same mesh", "[mesh_io]") {
   size_t payload = ply->size() - (end + 11);
   CHECK(payload == m.positions.size() * 24 + m.triangleCount() * 13);
 }
+
+TEST_CASE("an empty mesh writes a valid empty GLB scene", "[mesh_io]") {
+  std::string b = glbBytes(TriangleMesh{});
+  REQUIRE(b.size() % 4 == 0);
+  CHECK(readAt<uint32_t>(b, 8) == b.size());
+  auto j = nlohmann::json::parse(b.substr(20, readAt<uint32_t>(b, 12)));
+  CHECK(j["asset"]["version"] == "2.0");
+  CHECK_FALSE(j.contains("buffers"));
+}

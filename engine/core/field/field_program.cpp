@@ -1,6 +1,7 @@
 #include "field/field_program.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -220,6 +221,8 @@ void FieldProgram::endMap() {
 }
 
 void FieldProgram::finish() {
+  static std::atomic<uint64_t> nextIdentity{1};
+  identity_ = nextIdentity.fetch_add(1);
   // Empty values, subtree extents and stack depth by a symbolic run.
   std::vector<float> vals;
   std::vector<uint32_t> begins;
@@ -572,10 +575,9 @@ Interval FieldProgram::interval(const ActiveProgram& prog, const glm::vec3& cent
 // ------------------------------------------------------------------ evaluation
 
 float FieldEvaluator::evaluatePoint(const FieldProgram& program, const glm::vec3& p, glm::vec3* gradient) {
-  if (allFor_ != &program || allOps_ != program.ops.size()) {
+  if (allFor_ != program.identity() || program.identity() == 0) {
     program.specialiseAll(all_);
-    allFor_ = &program;
-    allOps_ = program.ops.size();
+    allFor_ = program.identity();
   }
   float f, gx, gy, gz;
   evaluate(program, all_, &p.x, &p.y, &p.z, 1, &f, gradient ? &gx : nullptr, &gy, &gz);

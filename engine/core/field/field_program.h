@@ -125,6 +125,8 @@ class FieldProgram {
   const Bounds& bounds() const { return bounds_; }
   bool unbounded() const { return unbounded_; }
   int maxStack() const { return maxStack_; }
+  // Unique per finish() call (copies share it): lets evaluators cache per program.
+  uint64_t identity() const { return identity_; }
   int maxMapDepth() const { return maxMapDepth_; }
 
   // All primitives.
@@ -151,6 +153,7 @@ class FieldProgram {
   bool unbounded_ = false;
   int maxStack_ = 0;
   int maxMapDepth_ = 0;
+  uint64_t identity_ = 0;
 };
 
 // Evaluates programs on batches of points. Holds scratch memory: one per thread.
@@ -169,8 +172,7 @@ class FieldEvaluator {
   std::vector<float> coords_;
   std::vector<const float*> levels_;
   ActiveProgram all_;
-  const FieldProgram* allFor_ = nullptr;
-  size_t allOps_ = 0;
+  uint64_t allFor_ = 0;
 };
 
 // Batched primitive kernels (field_kernels.cpp): accumulate into f (and gradients when gx != null).

@@ -72,6 +72,21 @@ Status writePly(const TriangleMesh& m, const std::string& path) {
 
 std::string glbBytes(const TriangleMesh& m) {
   using nlohmann::json;
+  if (m.positions.empty() || m.indices.empty()) {
+    // glTF forbids empty buffers and accessors: an empty scene instead.
+    std::string js = json{{"asset", {{"version", "2.0"}, {"generator", "animorph polygonizer"}}},
+                          {"scene", 0},
+                          {"scenes", json::array({json::object()})}}
+                         .dump();
+    while (js.size() % 4) js.push_back(' ');
+    std::string out;
+    append(out, uint32_t(0x46546C67));
+    append(out, uint32_t(2));
+    append(out, uint32_t(12 + 8 + js.size()));
+    append(out, uint32_t(js.size()));
+    append(out, uint32_t(0x4E4F534A));
+    return out + js;
+  }
   bool normals = m.normals.size() == m.positions.size() && !m.positions.empty();
   std::string bin;
   appendFloats(bin, m.positions);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <memory>
 #include <cmath>
 #include <mutex>
 #include <unordered_map>
@@ -65,8 +66,8 @@ glm::vec3 outwardNormal(float gx, float gy, float gz, const glm::vec3& fallback)
 
 Result<PolygonizeResult> polygonize(const FieldProgram& program, const PolygonizeSettings& s) {
   auto t0 = std::chrono::steady_clock::now();
-  if (s.resolution < 2 || s.resolution > 4096)
-    return Error{"polygonize: resolution " + std::to_string(s.resolution) + " is out of range (2..4096)"};
+  if (s.resolution < 2 || s.resolution > 2048)
+    return Error{"polygonize: resolution " + std::to_string(s.resolution) + " is out of range (2..2048)"};
   PolygonizeResult result;
   const float T = program.threshold;
 
@@ -165,9 +166,11 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
   }
 
   // ---- fine level: blocks
-  std::vector<BlockOutput> out(nBlocks);
+  // Outputs only for blocks that are evaluated (most are culled at high resolution).
+  std::vector<std::unique_ptr<BlockOutput>> out(nBlocks);
   std::atomic<size_t> culled{0}, evaluated{0}, cells{0}, points{0}, pairs{0}, done{0};
   std::mutex progressMutex;
+  size_t reported = 0;
   const auto& table = marchingCubesTable();
   std::atomic<bool> cancelled{false};
 
@@ -271,7 +274,8 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
           if (gi == 0 || gj == 0 || gk == 0 || gi == g.n[0] || gj == g.n[1] || gk == g.n[2])
             sc.v[size_t(p)] = std::min(sc.v[size_t(p)], -1e-6f * T);
         }
-    BlockOutput& o = out[bi];
+    out[bi] = std::make_unique<BlockOutput>();
+    BlockOutput& o = *out[bi];
     auto val = [&](int i, int j, int k) { return sc.v[size_t((k * cy + j) * cx + i)]; };
     auto edgeVertex = [&](int li, int lj, int lk, int axis) -> uint64_t {
       int lj2 = lj + (axis == 1), li2 = li + (axis == 0), lk2 = lk + (axis == 2);
@@ -347,14 +351,17 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
         size_t d = done.fetch_add(1, std::memory_order_relaxed) + 1;
         if (s.progress && (d % reportEvery == 0 || d == nBlocks)) {
           std::lock_guard<std::mutex> lock(progressMutex);
-          s.progress(0.95f * float(d) / float(nBlocks));
+          if (d > reported) {  // blocks finish out of order: report only forward
+            reported = d;
+            s.progress(0.95f * float(d) / float(nBlocks));
+          }
         }
       }
     });
   });
   st.blocksCulled = culled.load();
   st.blocksEvaluated = evaluated.load();
-  for (const BlockOutput& o : out) st.blocksWithSurface += o.corners.empty() ? 0 : 1;
+  for (const auto& o : out) st.blocksWithSurface += o && !o->corners.empty() ? 1 : 0;
   st.cellsVisited = cells.load();
   if (cancelled.load() || (s.cancel && s.cancel->load())) {
     result.cancelled = true;
@@ -365,11 +372,12 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
 
   // ---- stitch: global vertex numbering in block order, then resolve shared edges
   size_t nv = 0, ni = 0;
-  for (BlockOutput& o : out) {
-    o.vertexOffset = nv;
-    o.indexOffset = ni;
-    nv += o.positions.size();
-    ni += o.corners.size();
+  for (auto& op : out) {
+    if (!op) continue;
+    op->vertexOffset = nv;
+    op->indexOffset = ni;
+    nv += op->positions.size();
+    ni += op->corners.size();
   }
   TriangleMesh& mesh = result.mesh;
   mesh.positions.resize(nv);
@@ -378,7 +386,8 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
   constexpr uint32_t kUnresolved = 0xffffffffu;
   arena.execute([&] {
     tbb::parallel_for(size_t(0), nBlocks, [&](size_t bi) {
-      const BlockOutput& o = out[bi];
+      if (!out[bi]) return;
+      const BlockOutput& o = *out[bi];
       std::copy(o.positions.begin(), o.positions.end(), mesh.positions.begin() + std::ptrdiff_t(o.vertexOffset));
       std::copy(o.normals.begin(), o.normals.end(), mesh.normals.begin() + std::ptrdiff_t(o.vertexOffset));
       for (size_t q = 0; q < o.corners.size(); ++q) {
@@ -390,11 +399,11 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
           const ExternalVertex& ev = o.externals[size_t(code & ~kExternal)];
           size_t ob = size_t(ev.gi / kBlock) +
                       size_t(g.nb[0]) * (size_t(ev.gj / kBlock) + size_t(g.nb[1]) * size_t(ev.gk / kBlock));
-          const BlockOutput& owner = out[ob];
-          if (!owner.ownedSlot.empty()) {
+          const BlockOutput* owner = out[ob].get();
+          if (owner && !owner->ownedSlot.empty()) {
             int li = ev.gi % kBlock, lj = ev.gj % kBlock, lk = ev.gk % kBlock;
-            int32_t slot = owner.ownedSlot[size_t(((lk * kBlock + lj) * kBlock + li) * 3 + ev.axis)];
-            if (slot >= 0) index = uint32_t(owner.vertexOffset + size_t(slot));
+            int32_t slot = owner->ownedSlot[size_t(((lk * kBlock + lj) * kBlock + li) * 3 + ev.axis)];
+            if (slot >= 0) index = uint32_t(owner->vertexOffset + size_t(slot));
           }
         }
         mesh.indices[o.indexOffset + q] = index;
@@ -406,7 +415,8 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
   std::unordered_map<uint64_t, uint32_t> orphans;
   FieldEvaluator evaluator;
   for (size_t bi = 0; bi < nBlocks; ++bi) {
-    const BlockOutput& o = out[bi];
+    if (!out[bi]) continue;
+    const BlockOutput& o = *out[bi];
     for (size_t q = 0; q < o.corners.size(); ++q) {
       if (mesh.indices[o.indexOffset + q] != kUnresolved) continue;
       const ExternalVertex& ev = o.externals[size_t(o.corners[q] & ~kExternal)];

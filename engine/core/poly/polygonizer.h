@@ -16,7 +16,7 @@ namespace animorph {
 
 struct PolygonizeSettings {
   // Cells along the longest side of the grid bounds (cells are cubes). Larger:
-  // finer mesh; cost grows with the surface (culling on) or the volume (off). 2..4096.
+  // finer mesh; cost grows with the surface (culling on) or the volume (off). 2..2048.
   int resolution = 128;
   // Grid bounds; default: the program's bounds, tightened by interval
   // subdivision, grown by marginCells on every side.
