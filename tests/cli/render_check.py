@@ -1,0 +1,62 @@
+#!/usr/bin/env python3
+"""animorph-cli render end to end: offscreen, with no X server (DISPLAY removed).
+
+usage: render_check.py CLI DEMO_DIR
+Renders the demo project at two frames and checks the pictures: the right size, the
+characters visible (many pixels differ from the background), the two frames different
+(the walk moves), zero validation errors (ANIMORPH_VALIDATION=1 makes them fail the
+command). A malformed project fails with its name on stderr."""
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+cli, demo = sys.argv[1], sys.argv[2]
+env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
+env["ANIMORPH_VALIDATION"] = "1"
+env.setdefault("VK_ICD_FILENAMES", "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json")
+work = tempfile.mkdtemp(prefix="animorph-render-")
+
+
+def fail(msg):
+    print("FAIL:", msg)
+    sys.exit(1)
+
+
+def render(frame, out):
+    r = subprocess.run([cli, "render", os.path.join(demo, "demo.animorph"), "--frame", str(frame), "--size",
+                        "320x180", "-o", out], capture_output=True, text=True, env=env, timeout=120)
+    if r.returncode != 0:
+        fail(f"render --frame {frame} exited {r.returncode}: {r.stderr}")
+    print(r.stdout.strip())
+
+
+
+a, b = os.path.join(work, "a.png"), os.path.join(work, "b.png")
+render(0, a)
+render(6, b)
+size = subprocess.run(["identify", "-format", "%wx%h", a], capture_output=True, text=True).stdout
+if size != "320x180":
+    fail(f"picture is {size}, expected 320x180")
+# The viewport background is one flat colour: count the pixels that are not it.
+bg = subprocess.run(["convert", a, "-crop", "1x1+2+2", "-depth", "8", "-format", "%[hex:p{0,0}]", "info:"],
+                    capture_output=True, text=True).stdout.strip()
+fg = subprocess.run(["convert", a, "-fuzz", "4%", "-fill", "black", "-opaque", f"#{bg}", "-fill", "white",
+                     "+opaque", "black", "-format", "%[fx:mean*w*h]", "info:"], capture_output=True, text=True).stdout
+if float(fg or 0) < 0.05 * 320 * 180:
+    fail(f"only {fg} pixels differ from the background #{bg}: the characters are not visible")
+diff = subprocess.run(["compare", "-metric", "AE", "-fuzz", "3%", a, b, "null:"], capture_output=True, text=True)
+changed = int(float(diff.stderr.split()[0]))
+if changed < 100:
+    fail(f"frames 0 and 6 differ in only {changed} pixels: the animation does not play")
+print(f"ok: {float(fg):.0f} foreground pixels, {changed} pixels changed between frames")
+
+bad = os.path.join(work, "bad.animorph")
+with open(bad, "w") as f:
+    f.write('{"format": "animorph", "version": 1, "actors": [{"id": "x"}]}')
+r = subprocess.run([cli, "render", bad, "-o", os.path.join(work, "c.png")], capture_output=True, text=True, env=env)
+if r.returncode == 0 or "bad.animorph" not in r.stderr:
+    fail(f"a malformed project should fail naming it: exit {r.returncode}, stderr {r.stderr!r}")
+shutil.rmtree(work)
+print("ok")
