@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "doc/atomic_file.h"
+#include "doc/morph_setup_json.h"
 
 namespace animorph {
 namespace {
@@ -101,6 +102,7 @@ std::string projectToJson(const Project& p) {
                       {"scale", vec3Json(a.transform.scale)}});
   }
   j["actors"] = actors;
+  if (p.morph.enabled()) j["morph"] = morphSetupToJson(p.morph);
   return j.dump(2) + "\n";
 }
 
@@ -176,6 +178,13 @@ Result<Project> projectFromJson(const std::string& text, const std::string& sour
     }
   }
   if (r.failed()) return Error{r.error()};
+  if (j.contains("morph")) {
+    std::vector<std::string> ids;
+    for (const Actor& a : p.actors) ids.push_back(a.id);
+    auto morph = morphSetupFromJson(j["morph"], sourceName, ids);
+    if (!morph) return Error{morph.error()};
+    p.morph = std::move(*morph);
+  }
   return p;
 }
 
