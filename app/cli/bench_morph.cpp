@@ -14,6 +14,7 @@
 #include "morph/morph_runtime.h"
 #include "morph/new_morph_project.h"
 #include "rig/pose.h"
+#include "rig/skinning.h"
 #include "standin/fit_standin.h"
 
 namespace {
@@ -58,7 +59,16 @@ std::vector<Row> benchMorph(const bench::Options& opt) {
     const auto globals = poseGlobals(dense, clip, t);
     evaluateTransition(dense, binding, globals, glm::mat4(1.0f), alpha, nullptr, nullptr, {}, pos, nrm);
   });
-  std::snprintf(note, sizeof note, "%zu vertices, alpha 0.5, no re-projection", verts);
+  // Baseline in the same run: plain CPU skinning (rig/skinning.h, one thread) of the same mesh.
+  std::vector<glm::vec3> sp, sn;
+  const double skinMs = bench::medianMs(opt.quick ? 5 : 21, [&] {
+    t += 0.04f;
+    const auto globals = poseGlobals(dense, clip, t);
+    const int node = dense.meshNodes().front();
+    skinMesh(dense.meshes[size_t(dense.nodes[size_t(node)].mesh)], jointMatrices(dense, node, globals), sp, sn);
+  });
+  std::snprintf(note, sizeof note, "%zu vertices, alpha 0.5, no re-projection; plain skinMesh %.2f ms (%.2fx)", verts,
+                skinMs, plainMs / skinMs);
   rows.push_back({"transition per frame (CPU)", plainMs, "ms", "<= 2 ms at 50k vertices", note});
   std::fill(alpha.begin(), alpha.end(), 0.9f);
   const double reprojMs = bench::medianMs(opt.quick ? 3 : 9, [&] {

@@ -102,7 +102,15 @@ std::string projectToJson(const Project& p) {
                       {"scale", vec3Json(a.transform.scale)}});
   }
   j["actors"] = actors;
-  if (p.morph.enabled()) j["morph"] = morphSetupToJson(p.morph);
+  // The morph is written only while both of its actors exist (an actor deleted
+  // in the editor must not make the saved file unreadable); entries of other
+  // removed actors are dropped.
+  if (p.morph.enabled() && p.findActor(p.morph.sourceActorId) && p.findActor(p.morph.targetActorId) &&
+      p.morph.sourceActorId != p.morph.targetActorId) {
+    MorphSetup m = p.morph;
+    std::erase_if(m.actors, [&](const ActorMorph& a) { return !p.findActor(a.actorId); });
+    j["morph"] = morphSetupToJson(m);
+  }
   return j.dump(2) + "\n";
 }
 

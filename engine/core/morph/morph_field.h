@@ -18,12 +18,15 @@ namespace animorph {
 
 enum class MorphMethod : uint8_t { Interpolation, SpaceTime };
 
+// Defaults chosen on the demo (creature -> gear, T = 1): both shapes stay
+// visible and bridge in the middle; with a1 = a2 = a3 = 1 the transitional
+// shapes are empty (the blend never reaches the threshold).
 struct SpaceTimeParams {
   float timeScale = 1.0f;  // s: length of the morph along the time axis, in field units
   float a0 = 1.0f;         // blend amount (displacement height); 0: no bridge between the shapes
-  float a1 = 1.0f;         // blend extent in the source's field units
-  float a2 = 1.0f;         // blend extent in the target's field units
-  float a3 = 1.0f;         // how far the time bound lets the blend reach
+  float a1 = 5.0f;         // blend extent in the source's field units (larger: the source lingers)
+  float a2 = 5.0f;         // blend extent in the target's field units (larger: the target appears early)
+  float a3 = 0.02f;        // time bound's reach: smaller lets the blend act right after B and before C
   bool operator==(const SpaceTimeParams&) const = default;
 };
 

@@ -113,22 +113,54 @@ TransitionStats evaluateTransition(const Character& c, const StandinBinding& bin
     const float* A = alpha.size() == total ? alpha.data() + first : nullptr;
     glm::vec3* outP = positions.data() + first;
     glm::vec3* outN = normals.data() + first;
+    // Joint matrices as 3x4 (the fourth row of an affine matrix is unused):
+    // accumulating the same products in the same order as skinMesh gives the
+    // same bits for the rows that matter, with a quarter less work.
+    struct Affine { glm::vec3 c[4]; };
+    std::vector<Affine> J(joints.size());
+    for (size_t j = 0; j < joints.size(); ++j)
+      for (int k = 0; k < 4; ++k) J[j].c[k] = glm::vec3(joints[j][k]);
+    const size_t jointCount = J.size();
+    const bool skinned = !mesh.joints0.empty();
+    const bool second = !mesh.joints1.empty();
     arena.execute([&] {
       tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 2048), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t v = r.begin(); v != r.end(); ++v) {
-          const glm::mat4 m = vertexSkinMatrix(mesh, v, joints);
+          glm::vec3 c0(0.0f), c1(0.0f), c2(0.0f), c3(0.0f);
+          if (!skinned) {
+            const Affine& m = jointCount ? J[0] : Affine{{glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1), glm::vec3(0.0f)}};
+            c0 = m.c[0]; c1 = m.c[1]; c2 = m.c[2]; c3 = m.c[3];
+          } else {
+            auto accumulate = [&](const glm::uvec4& j, const glm::vec4& w) {
+              for (int k = 0; k < 4; ++k)
+                if (w[k] != 0.0f && j[k] < jointCount) {
+                  const Affine& m = J[j[k]];
+                  c0 += w[k] * m.c[0];
+                  c1 += w[k] * m.c[1];
+                  c2 += w[k] * m.c[2];
+                  c3 += w[k] * m.c[3];
+                }
+            };
+            accumulate(mesh.joints0[v], mesh.weights0[v]);
+            if (second) accumulate(mesh.joints1[v], mesh.weights1[v]);
+          }
           const float a = A ? A[v] : 0.0f;
           glm::vec3 p = P[v];
           glm::vec3 nb = N ? N[v] : glm::vec3(0, 1, 0);
           if (dP && a != 0.0f) {
             p = glm::mix(p, p + dP[v], a);
+            // nlerp's normalisation is left to the final one (a linear map in between).
             const glm::vec3 nl = glm::mix(nb, nT[v], a);
-            const float l = glm::length(nl);
-            nb = l > 1e-12f ? nl / l : nT[v];
+            nb = glm::dot(nl, nl) > 1e-24f ? nl : nT[v];
           }
-          const glm::vec3 pm = glm::vec3(m * glm::vec4(p, 1.0f));
+          const glm::vec3 pm = (c0 * p.x + c1 * p.y) + (c2 * p.z + c3 * 1.0f);  // glm's order
           outP[v] = glm::vec3(model * glm::vec4(pm, 1.0f));
-          glm::vec3 nw = modelNormal * (glm::transpose(glm::inverse(glm::mat3(m))) * nb);
+          // Inverse-transpose up to a positive factor: the cofactor matrix (three
+          // cross products, no division), sign-corrected; normalised below.
+          const glm::mat3 cof(glm::cross(c1, c2), glm::cross(c2, c0), glm::cross(c0, c1));
+          const float det = glm::dot(c0, cof[0]);
+          glm::vec3 nw = modelNormal * (cof * nb);
+          if (det < 0.0f) nw = -nw;
           const float l = glm::length(nw);
           outN[v] = l > 0.0f ? nw / l : glm::vec3(0, 1, 0);
         }

@@ -76,7 +76,8 @@ void splitFlat(Candidate& cd, float minLen, std::vector<Candidate>& out) {
     uf.push_back(std::abs(glm::dot(d - centroid, f)));
   }
   const float wide = percentile(ue, 0.9f), thin = std::max(percentile(uf, 0.9f), 1e-6f);
-  const int n = std::min(5, int(std::lround(wide / thin)));
+  // Spacing about 1.3 thicknesses: neighbours blend into one smooth sheet.
+  const int n = std::min(8, int(std::lround(1.5f * wide / thin)));
   if (wide < 2.5f * thin || n < 2) {
     out.push_back(std::move(cd));
     return;
