@@ -85,12 +85,28 @@ int infoProject(const std::string& path, bool asJson) {
     json j = {{"file", path},          {"format", "animorph"},        {"name", p.name},
               {"fps", t.fps},          {"frame_start", t.frameStart}, {"frame_end", t.frameEnd},
               {"actors", actors}};
+    if (p.morph.enabled()) {
+      const auto& m = p.morph;
+      j["markers"] = {{"A", m.markers.a}, {"B", m.markers.b}, {"C", m.markers.c}, {"D", m.markers.d}};
+      json segs = json::object();
+      for (const auto& am : m.actors) segs[am.actorId] = am.standin.segments.size();
+      j["morph"] = {{"source", m.sourceActorId},
+                    {"target", m.targetActorId},
+                    {"method", animorph::morphMethodName(m.method)},
+                    {"standin_segments", segs}};
+    }
     std::cout << j.dump(2) << "\n";
     return 0;
   }
   std::printf("%s: Animorph project '%s'\n", path.c_str(), p.name.c_str());
   std::printf("  timeline: frames %d..%d at %g fps (%.2f s)\n", t.frameStart, t.frameEnd, t.fps,
               (t.frameEnd - t.frameStart) / t.fps);
+  if (p.morph.enabled()) {
+    const auto& m = p.morph;
+    std::printf("  morph: %s -> %s (%s), markers A %d, B %d, C %d, D %d\n", m.sourceActorId.c_str(),
+                m.targetActorId.c_str(), animorph::morphMethodName(m.method), m.markers.a, m.markers.b, m.markers.c,
+                m.markers.d);
+  }
   std::printf("  %zu actors\n", actors.size());
   for (const auto& a : actors) {
     std::printf("    %-12s %-40s ", a["id"].get<std::string>().c_str(), a["asset"].get<std::string>().c_str());
@@ -129,7 +145,8 @@ ANIMORPH_CLI_COMMAND("info", "summary of a glTF character or an .animorph projec
                      "  with their durations, and the import report (warnings, unsupported features,\n"
                      "  normalised weights).\n"
                      "  FILE.animorph: project name, frame rate, frame range, and each actor's asset\n"
-                     "  with whether it loads.\n"
+                     "  with whether it loads; the morph's source, target, method and markers A..D\n"
+                     "  (JSON: \"markers\": {\"A\", \"B\", \"C\", \"D\"} in frames) when it has one.\n"
                      "  --json  print the same as JSON.\n"
                      "  Exit status: 0 on success, 1 when FILE cannot be read, 2 on bad arguments.\n",
                      runInfo);

@@ -8,6 +8,7 @@
 #include "demo/gear.h"
 #include "doc/project_io.h"
 #include "io/gltf_export.h"
+#include "morph/new_morph_project.h"
 
 namespace {
 
@@ -30,24 +31,16 @@ int runMakeDemo(const std::vector<std::string>& args) {
                 character->totalJoints());
   }
 
-  animorph::Project p;
+  // The creature morphs into the gear: stand-ins fitted automatically, the
+  // default markers (A 1 s, B 2 s, C 3.5 s, D 4.5 s, end 6 s at 24 fps). The gear
+  // already stands where the creature does; keep its own size (no alignment).
+  animorph::NewMorphSettings settings;
+  settings.alignScaleRatio = 4.0;
+  auto made = animorph::makeMorphProject(creature, "creature.glb", gear, "gear.glb", settings);
+  if (!made) return animorph::cli::fail("make-demo", made.error());
+  animorph::Project p = std::move(made->project);
   p.name = "demo";
-  animorph::Actor walker;
-  walker.id = "creature";
-  walker.name = "Creature";
-  walker.assetPath = "creature.glb";
-  walker.clip = 0;
-  animorph::Actor wheel;
-  wheel.id = "gear";
-  wheel.name = "Gear";
-  wheel.assetPath = "gear.glb";
-  wheel.clip = 0;
-  wheel.transform.translation = {0.9f, 0.0f, 0.0f};
-  p.actors = {walker, wheel};
-  p.timeline.fps = 24.0;
-  p.timeline.frameStart = 0;
-  // Three walk cycles.
-  p.timeline.frameEnd = static_cast<int>(std::lround(3.0 * creature.clips[0].durationSec * p.timeline.fps));
+  for (const auto& m : made->messages) std::printf("%s\n", m.c_str());
   const std::string projectPath = (dir / "demo.animorph").string();
   if (auto s = animorph::saveProject(p, projectPath); !s) return animorph::cli::fail("make-demo", s.error());
   std::printf("wrote %s (frames %d..%d at %g fps)\n", projectPath.c_str(), p.timeline.frameStart, p.timeline.frameEnd,
@@ -61,6 +54,7 @@ ANIMORPH_CLI_COMMAND("make-demo", "write the procedural demo characters and proj
                      "usage: animorph-cli make-demo DIR\n"
                      "  Writes DIR/creature.glb (a skinned lizard-like quadruped with a 2 s walk cycle),\n"
                      "  DIR/gear.glb (a skinned gear with an axle hole and four windows, turning) and\n"
-                     "  DIR/demo.animorph (both actors, the creature walking and the gear beside it,\n"
-                     "  three walk cycles at 24 fps). DIR is created if needed; files are replaced.\n",
+                     "  DIR/demo.animorph (the creature walks, collapses onto its stand-in from 1 s to\n"
+                     "  2 s, morphs into the gear's stand-in until 3.5 s, and the turning gear expands\n"
+                     "  from it until 4.5 s; 6 s at 24 fps). DIR is created if needed; files are replaced.\n",
                      runMakeDemo);

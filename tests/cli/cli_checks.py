@@ -6,6 +6,11 @@ usage: cli_checks.py MODE CLI [ARGS...]
   info-bad CLI FILE                         info on a malformed file: non-zero exit, file named on stderr
   make-demo CLI RESOURCES_DIR               make-demo into a temp dir, then info on what it wrote;
                                             the committed resources/demo must match the generator
+  new-info CLI ASSETS_DIR                   new creature -> gear, then info --json: markers, timeline;
+                                            new with a much larger source says it aligned the target
+  fit CLI                                   fit the demo creature: report printed, stand-in file loads
+  bake CLI                                  bake a few frames per stage: file names, binary PLY headers,
+                                            same bytes for --jobs 1 and --jobs 2
 """
 import json
 import os
@@ -117,11 +122,120 @@ def mode_make_demo(cli, resources):
             fail("make-demo without DIR succeeded")
 
 
+def make_demo_dir(cli, tmp):
+    out = os.path.join(tmp, "demo")
+    r = run(cli, "make-demo", out)
+    if r.returncode != 0:
+        fail(f"make-demo exited {r.returncode}: {r.stderr}")
+    return out
+
+
+def mode_new_info(cli, assets):
+    with tempfile.TemporaryDirectory() as tmp:
+        demo = make_demo_dir(cli, tmp)
+        proj = os.path.join(tmp, "sub", "m.animorph")
+        os.makedirs(os.path.dirname(proj))
+        r = run(cli, "new", os.path.join(demo, "creature.glb"), os.path.join(demo, "gear.glb"), "-o", proj)
+        if r.returncode != 0:
+            fail(f"new exited {r.returncode}: {r.stderr}")
+        if "stand-in" not in r.stdout or "wrote" not in r.stdout:
+            fail(f"new did not report the stand-ins: {r.stdout}")
+        d = info_json(cli, proj)
+        if d["fps"] != 24 or d["frame_start"] != 0 or d["frame_end"] != 144:
+            fail(f"timeline: {d}")
+        if d.get("markers") != {"A": 24, "B": 48, "C": 84, "D": 108}:
+            fail(f"markers: {d.get('markers')}")
+        if d["morph"]["source"] != "creature" or d["morph"]["target"] != "gear":
+            fail(f"morph: {d['morph']}")
+        if not all(a["loads"] for a in d["actors"]):
+            fail(f"actors do not load from the project's directory: {d['actors']}")
+        # Very different sizes: the target is aligned to the source, and new says so.
+        tentacle = os.path.join(assets, "tentacle.glb")
+        if os.path.isfile(tentacle):
+            r = run(cli, "new", tentacle, os.path.join(demo, "gear.glb"), "-o", os.path.join(tmp, "t.animorph"))
+            if r.returncode != 0 or "aligned the target" not in r.stdout:
+                fail(f"new tentacle -> gear did not align: {r.returncode} {r.stdout} {r.stderr}")
+        # Bad input: a missing file is named.
+        r = run(cli, "new", os.path.join(tmp, "missing.glb"), os.path.join(demo, "gear.glb"), "-o", proj)
+        if r.returncode == 0 or "missing.glb" not in r.stderr:
+            fail(f"new with a missing file: {r.returncode} {r.stderr}")
+
+
+def mode_fit(cli):
+    with tempfile.TemporaryDirectory() as tmp:
+        demo = make_demo_dir(cli, tmp)
+        out = os.path.join(tmp, "creature.standin.json")
+        r = run(cli, "fit", os.path.join(demo, "creature.glb"), "-o", out)
+        if r.returncode != 0 or "fit error" not in r.stdout or "segments" not in r.stdout:
+            fail(f"fit: {r.returncode} {r.stdout} {r.stderr}")
+        with open(out) as f:
+            d = json.load(f)
+        if d["format"] != "animorph-standin" or len(d["standin"]["segments"]) < 10:
+            fail(f"stand-in file: {str(d)[:300]}")
+        if not d["report"]["mean_error"] < 0.05:
+            fail(f"fit error too large: {d['report']}")
+
+
+def read_ply_header(path):
+    with open(path, "rb") as f:
+        data = f.read()
+    end = data.find(b"end_header\n")
+    if not data.startswith(b"ply\nformat binary_little_endian 1.0\n") or end < 0:
+        fail(f"{path}: not a binary little-endian PLY")
+    header = data[:end].decode("ascii").split("\n")
+    verts = faces = None
+    props = 0
+    for line in header:
+        if line.startswith("element vertex "):
+            verts = int(line.split()[2])
+        elif line.startswith("element face "):
+            faces = int(line.split()[2])
+        elif line.startswith("property float ") and faces is None:
+            props += 1
+    body = len(data) - end - len("end_header\n")
+    if verts is None or faces is None or verts <= 0 or faces <= 0:
+        fail(f"{path}: header counts {verts} vertices, {faces} faces")
+    if body != verts * props * 4 + faces * 13:
+        fail(f"{path}: {body} bytes of data for {verts} vertices x {props} floats and {faces} faces")
+    return verts, faces
+
+
+def mode_bake(cli):
+    with tempfile.TemporaryDirectory() as tmp:
+        demo = make_demo_dir(cli, tmp)
+        proj = os.path.join(demo, "demo.animorph")
+        # Two frames of each stage: source, collapse, morph, expand, target.
+        outs = {}
+        for jobs in ("1", "2"):
+            out = os.path.join(tmp, "bake" + jobs)
+            names = []
+            for a, b in ((22, 23), (46, 47), (48, 49), (84, 85), (108, 109)):
+                r = run(cli, "bake", proj, "--frames", f"{a}:{b}", "--res", "20", "-o", out, "--jobs", jobs)
+                if r.returncode != 0:
+                    fail(f"bake {a}:{b} --jobs {jobs}: {r.returncode} {r.stderr}")
+                if "\r" in r.stdout:
+                    fail("bake drew a progress bar although stdout is not a terminal")
+                names += [f"frame_{f:04d}.ply" for f in (a, b)]
+            if sorted(os.listdir(out)) != sorted(names):
+                fail(f"bake wrote {sorted(os.listdir(out))}, expected {sorted(names)}")
+            for n in names:
+                read_ply_header(os.path.join(out, n))
+            outs[jobs] = out
+        for n in os.listdir(outs["1"]):
+            with open(os.path.join(outs["1"], n), "rb") as f1, open(os.path.join(outs["2"], n), "rb") as f2:
+                if f1.read() != f2.read():
+                    fail(f"{n} differs between --jobs 1 and --jobs 2")
+        r = run(cli, "bake", proj, "--frames", "5:2", "--res", "20", "-o", os.path.join(tmp, "x"))
+        if r.returncode != 2:
+            fail(f"bake with a reversed frame range: exit {r.returncode}")
+
+
 def main():
     if len(sys.argv) < 3:
         fail(__doc__)
     mode, cli, args = sys.argv[1], sys.argv[2], sys.argv[3:]
-    {"info-json": mode_info_json, "info-bad": mode_info_bad, "make-demo": mode_make_demo}[mode](cli, *args)
+    {"info-json": mode_info_json, "info-bad": mode_info_bad, "make-demo": mode_make_demo, "new-info": mode_new_info,
+     "fit": mode_fit, "bake": mode_bake}[mode](cli, *args)
     print("ok")
 
 

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "doc/morph_setup.h"
 #include "math/transform.h"
 
 namespace animorph {
@@ -50,6 +51,7 @@ struct Project {
   std::vector<Actor> actors;
   Timeline timeline;
   ViewOptions view;
+  MorphSetup morph;  // the source -> target morph; disabled when morph.sourceActorId is empty
   bool operator==(const Project&) const = default;
 
   Actor* findActor(const std::string& id);

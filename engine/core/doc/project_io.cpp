@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "doc/atomic_file.h"
+#include "doc/morph_setup_json.h"
 
 namespace animorph {
 namespace {
@@ -101,6 +102,15 @@ std::string projectToJson(const Project& p) {
                       {"scale", vec3Json(a.transform.scale)}});
   }
   j["actors"] = actors;
+  // The morph is written only while both of its actors exist (an actor deleted
+  // in the editor must not make the saved file unreadable); entries of other
+  // removed actors are dropped.
+  if (p.morph.enabled() && p.findActor(p.morph.sourceActorId) && p.findActor(p.morph.targetActorId) &&
+      p.morph.sourceActorId != p.morph.targetActorId) {
+    MorphSetup m = p.morph;
+    std::erase_if(m.actors, [&](const ActorMorph& a) { return !p.findActor(a.actorId); });
+    j["morph"] = morphSetupToJson(m);
+  }
   return j.dump(2) + "\n";
 }
 
@@ -176,6 +186,13 @@ Result<Project> projectFromJson(const std::string& text, const std::string& sour
     }
   }
   if (r.failed()) return Error{r.error()};
+  if (j.contains("morph")) {
+    std::vector<std::string> ids;
+    for (const Actor& a : p.actors) ids.push_back(a.id);
+    auto morph = morphSetupFromJson(j["morph"], sourceName, ids);
+    if (!morph) return Error{morph.error()};
+    p.morph = std::move(*morph);
+  }
   return p;
 }
 

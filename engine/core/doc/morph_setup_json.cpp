@@ -1,0 +1,226 @@
+#include "doc/morph_setup_json.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "doc/base64.h"
+#include "standin/standin_json.h"
+
+namespace animorph {
+
+using json = nlohmann::json;
+
+json morphSetupToJson(const MorphSetup& m) {
+  json j;
+  j["source"] = m.sourceActorId;
+  j["target"] = m.targetActorId;
+  j["markers"] = {{"A", m.markers.a}, {"B", m.markers.b}, {"C", m.markers.c}, {"D", m.markers.d}};
+  j["method"] = morphMethodName(m.method);
+  const SpaceTimeParams& st = m.spaceTime;
+  j["space_time"] = {{"time_scale", st.timeScale}, {"a0", st.a0}, {"a1", st.a1}, {"a2", st.a2}, {"a3", st.a3}};
+  j["easing"] = trackToJson(m.easing);
+  j["blend"] = trackToJson(m.blend);
+  j["weight_map_shift"] = m.weightMapShift;
+  j["noise"] = {{"amplitude", trackToJson(m.noiseAmplitude)}, {"frequency", m.noiseFrequency}};
+  const MorphProjection& p = m.projection;
+  j["projection"] = {{"pose", p.atClipTime ? "clip" : "rest"}, {"clip_time", p.clipTimeSec},
+                     {"max_iterations", p.maxIterations}, {"tolerance", p.tolerance},
+                     {"max_step_radii", p.maxStepRadii}, {"reproject_from", p.reprojectFrom}};
+  json actors = json::array();
+  for (const ActorMorph& a : m.actors) {
+    json ja = {{"id", a.actorId}, {"standin", standinToJson(a.standin)}};
+    if (!a.weightMap.empty()) ja["weight_map"] = floatsToBase64(a.weightMap);
+    if (!a.segmentTracks.empty()) {
+      json tracks = json::array();
+      for (const SegmentTracks& t : a.segmentTracks)
+        tracks.push_back({{"segment", t.segment},
+                          {"a_offset", trackToJson(t.aOffset)},
+                          {"b_offset", trackToJson(t.bOffset)},
+                          {"radius_scale", trackToJson(t.radiusScale)}});
+      ja["segment_tracks"] = tracks;
+    }
+    actors.push_back(ja);
+  }
+  j["actors"] = actors;
+  return j;
+}
+
+namespace {
+
+struct Parser {
+  std::string src;
+  std::string error;
+  bool ok() const { return error.empty(); }
+  void fail(const std::string& where, const std::string& why) {
+    if (error.empty()) error = src + ": " + where + ": " + why;
+  }
+  double number(const json& j, const char* key, const std::string& where, double def) {
+    if (!j.contains(key)) return def;
+    if (!j[key].is_number() || !std::isfinite(j[key].get<double>())) {
+      fail(where + "." + key, "expected a finite number");
+      return def;
+    }
+    return j[key].get<double>();
+  }
+  int integer(const json& j, const char* key, const std::string& where, int def) {
+    if (!j.contains(key)) return def;
+    if (!j[key].is_number_integer()) { fail(where + "." + key, "expected an integer"); return def; }
+    return j[key].get<int>();
+  }
+  std::string string(const json& j, const char* key, const std::string& where) {
+    if (!j.contains(key)) { fail(where + "." + key, "missing"); return {}; }
+    if (!j[key].is_string()) { fail(where + "." + key, "expected a string"); return {}; }
+    return j[key].get<std::string>();
+  }
+  template <class R>
+  auto track(const json& j, const char* key, const std::string& where, R (*parse)(const json&, const std::string&),
+             decltype(std::declval<R>().value()) def) {
+    if (!j.contains(key)) return def;
+    R r = parse(j[key], where + "." + key);
+    if (!r) {
+      if (error.empty()) error = src + ": " + r.error();
+      return def;
+    }
+    return r.value();
+  }
+};
+
+}  // namespace
+
+Result<MorphSetup> morphSetupFromJson(const json& j, const std::string& sourceName,
+                                      const std::vector<std::string>& actorIds) {
+  Parser r{sourceName, {}};
+  const std::string w = "morph";
+  if (!j.is_object()) return Error{sourceName + ": morph: expected an object"};
+  MorphSetup m;
+  auto known = [&](const std::string& id) { return std::find(actorIds.begin(), actorIds.end(), id) != actorIds.end(); };
+  m.sourceActorId = r.string(j, "source", w);
+  m.targetActorId = r.string(j, "target", w);
+  if (r.ok() && !known(m.sourceActorId)) r.fail(w + ".source", "no actor with id '" + m.sourceActorId + "'");
+  if (r.ok() && !known(m.targetActorId)) r.fail(w + ".target", "no actor with id '" + m.targetActorId + "'");
+  if (r.ok() && m.sourceActorId == m.targetActorId) r.fail(w + ".target", "is the same actor as the source");
+  if (r.ok() && j.contains("markers")) {
+    const json& mk = j["markers"];
+    if (!mk.is_object()) r.fail(w + ".markers", "expected an object {A, B, C, D}");
+    else {
+      m.markers.a = r.integer(mk, "A", w + ".markers", m.markers.a);
+      m.markers.b = r.integer(mk, "B", w + ".markers", m.markers.b);
+      m.markers.c = r.integer(mk, "C", w + ".markers", m.markers.c);
+      m.markers.d = r.integer(mk, "D", w + ".markers", m.markers.d);
+      if (r.ok() && m.markers.b < m.markers.a) r.fail(w + ".markers.B", "is before A");
+      if (r.ok() && m.markers.c < m.markers.b) r.fail(w + ".markers.C", "is before B");
+      if (r.ok() && m.markers.d < m.markers.c) r.fail(w + ".markers.D", "is before C");
+    }
+  }
+  if (r.ok() && j.contains("method")) {
+    const json& me = j["method"];
+    if (me == "interpolation") m.method = MorphMethod::Interpolation;
+    else if (me == "space_time") m.method = MorphMethod::SpaceTime;
+    else r.fail(w + ".method", "expected \"interpolation\" or \"space_time\"");
+  }
+  if (r.ok() && j.contains("space_time")) {
+    const json& s = j["space_time"];
+    const std::string ws = w + ".space_time";
+    if (!s.is_object()) r.fail(ws, "expected an object");
+    else {
+      SpaceTimeParams& p = m.spaceTime;
+      p.timeScale = float(r.number(s, "time_scale", ws, p.timeScale));
+      p.a0 = float(r.number(s, "a0", ws, p.a0));
+      p.a1 = float(r.number(s, "a1", ws, p.a1));
+      p.a2 = float(r.number(s, "a2", ws, p.a2));
+      p.a3 = float(r.number(s, "a3", ws, p.a3));
+      if (r.ok() && !(p.timeScale > 0.0f)) r.fail(ws + ".time_scale", "must be positive");
+      if (r.ok() && p.a0 < 0.0f) r.fail(ws + ".a0", "must not be negative");
+      if (r.ok() && !(p.a1 > 0.0f && p.a2 > 0.0f && p.a3 > 0.0f)) r.fail(ws, "a1, a2 and a3 must be positive");
+    }
+  }
+  if (r.ok()) m.easing = r.track(j, "easing", w, &floatTrackFromJson, m.easing);
+  if (r.ok()) m.blend = r.track(j, "blend", w, &floatTrackFromJson, m.blend);
+  if (r.ok()) {
+    m.weightMapShift = float(r.number(j, "weight_map_shift", w, m.weightMapShift));
+    if (r.ok() && !(m.weightMapShift >= 0.0f && m.weightMapShift < 1.0f))
+      r.fail(w + ".weight_map_shift", "must be in [0, 1)");
+  }
+  if (r.ok() && j.contains("noise")) {
+    const json& n = j["noise"];
+    if (!n.is_object()) r.fail(w + ".noise", "expected an object");
+    else {
+      m.noiseAmplitude = r.track(n, "amplitude", w + ".noise", &floatTrackFromJson, m.noiseAmplitude);
+      m.noiseFrequency = float(r.number(n, "frequency", w + ".noise", m.noiseFrequency));
+      if (r.ok() && !(m.noiseFrequency > 0.0f)) r.fail(w + ".noise.frequency", "must be positive");
+    }
+  }
+  if (r.ok() && j.contains("projection")) {
+    const json& p = j["projection"];
+    const std::string wp = w + ".projection";
+    if (!p.is_object()) r.fail(wp, "expected an object");
+    else {
+      MorphProjection& mp = m.projection;
+      if (p.contains("pose")) {
+        if (p["pose"] == "rest") mp.atClipTime = false;
+        else if (p["pose"] == "clip") mp.atClipTime = true;
+        else r.fail(wp + ".pose", "expected \"rest\" or \"clip\"");
+      }
+      mp.clipTimeSec = r.number(p, "clip_time", wp, mp.clipTimeSec);
+      mp.maxIterations = r.integer(p, "max_iterations", wp, mp.maxIterations);
+      mp.tolerance = float(r.number(p, "tolerance", wp, mp.tolerance));
+      mp.maxStepRadii = float(r.number(p, "max_step_radii", wp, mp.maxStepRadii));
+      mp.reprojectFrom = float(r.number(p, "reproject_from", wp, mp.reprojectFrom));
+      if (r.ok() && !(mp.maxIterations >= 1 && mp.maxIterations <= 1000)) r.fail(wp + ".max_iterations", "must be in 1..1000");
+      if (r.ok() && !(mp.tolerance > 0.0f)) r.fail(wp + ".tolerance", "must be positive");
+      if (r.ok() && !(mp.maxStepRadii > 0.0f)) r.fail(wp + ".max_step_radii", "must be positive");
+      if (r.ok() && !(mp.reprojectFrom >= 0.0f && mp.reprojectFrom <= 1.0f)) r.fail(wp + ".reproject_from", "must be in [0, 1]");
+    }
+  }
+  if (r.ok() && j.contains("actors")) {
+    const json& actors = j["actors"];
+    if (!actors.is_array()) r.fail(w + ".actors", "expected an array");
+    for (size_t i = 0; r.ok() && i < actors.size(); ++i) {
+      const std::string wa = w + ".actors[" + std::to_string(i) + "]";
+      const json& a = actors[i];
+      if (!a.is_object()) { r.fail(wa, "expected an object"); break; }
+      ActorMorph am;
+      am.actorId = r.string(a, "id", wa);
+      if (r.ok() && !known(am.actorId)) r.fail(wa + ".id", "no actor with id '" + am.actorId + "'");
+      if (r.ok() && m.findActor(am.actorId)) r.fail(wa + ".id", "duplicate entry for '" + am.actorId + "'");
+      if (!r.ok()) break;
+      if (!a.contains("standin")) { r.fail(wa + ".standin", "missing"); break; }
+      auto s = standinFromJson(a["standin"], wa + ".standin");
+      if (!s) { r.error = sourceName + ": " + s.error(); break; }
+      am.standin = std::move(*s);
+      if (a.contains("weight_map")) {
+        if (!a["weight_map"].is_string()) { r.fail(wa + ".weight_map", "expected a base64 string"); break; }
+        auto wm = floatsFromBase64(a["weight_map"].get<std::string>(), wa + ".weight_map");
+        if (!wm) { r.error = sourceName + ": " + wm.error(); break; }
+        for (size_t k = 0; k < wm->size(); ++k)
+          if ((*wm)[k] < 0.0f || (*wm)[k] > 1.0f) {
+            r.fail(wa + ".weight_map[" + std::to_string(k) + "]", "must be in [0, 1]");
+            break;
+          }
+        am.weightMap = std::move(*wm);
+      }
+      if (r.ok() && a.contains("segment_tracks")) {
+        const json& ts = a["segment_tracks"];
+        if (!ts.is_array()) r.fail(wa + ".segment_tracks", "expected an array");
+        for (size_t k = 0; r.ok() && k < ts.size(); ++k) {
+          const std::string wt = wa + ".segment_tracks[" + std::to_string(k) + "]";
+          if (!ts[k].is_object()) { r.fail(wt, "expected an object"); break; }
+          SegmentTracks st;
+          st.segment = r.integer(ts[k], "segment", wt, -1);
+          if (r.ok() && !(st.segment >= 0 && st.segment < static_cast<int>(am.standin.segments.size())))
+            r.fail(wt + ".segment", "no segment " + std::to_string(st.segment) + " in the stand-in (" +
+                                        std::to_string(am.standin.segments.size()) + " segments)");
+          if (r.ok()) st.aOffset = r.track(ts[k], "a_offset", wt, &vec3TrackFromJson, st.aOffset);
+          if (r.ok()) st.bOffset = r.track(ts[k], "b_offset", wt, &vec3TrackFromJson, st.bOffset);
+          if (r.ok()) st.radiusScale = r.track(ts[k], "radius_scale", wt, &floatTrackFromJson, st.radiusScale);
+          am.segmentTracks.push_back(std::move(st));
+        }
+      }
+      m.actors.push_back(std::move(am));
+    }
+  }
+  if (!r.ok()) return Error{r.error};
+  return m;
+}
+
+}  // namespace animorph

@@ -1,0 +1,46 @@
+#pragma once
+// The implicit morph between two posed stand-ins (DESIGN.md §5, paper 1 eq. 3
+// and 4), flattened into one FieldProgram that the polygonisers evaluate.
+//  * interpolation: m = (1 - w) f1 + w f2. Both stand-ins share T, so this is
+//    the sum of both stand-ins' primitives with weights scaled by 1 - w and w.
+//  * space-time blending: g1 = f1 ^ (-tau), g2 = f2 ^ (tau - s), with
+//    tau = s w, s the time scale; m = (g1 v g2) + disp(g1, g2, tau ^ (s - tau))
+//    (Pasko's bounded blending with a0..a3, R-function ^ and v).
+// At w <= 0 the program is f1's alone, at w >= 1 f2's alone, for both methods,
+// so the morph starts and ends exactly on the stand-ins.
+#include <cstdint>
+#include <vector>
+
+#include "field/field_program.h"
+#include "standin/standin.h"
+
+namespace animorph {
+
+enum class MorphMethod : uint8_t { Interpolation, SpaceTime };
+
+// Defaults chosen on the demo (creature -> gear, T = 1): both shapes stay
+// visible and bridge in the middle; with a1 = a2 = a3 = 1 the transitional
+// shapes are empty (the blend never reaches the threshold).
+struct SpaceTimeParams {
+  float timeScale = 1.0f;  // s: length of the morph along the time axis, in field units
+  float a0 = 1.0f;         // blend amount (displacement height); 0: no bridge between the shapes
+  float a1 = 5.0f;         // blend extent in the source's field units (larger: the source lingers)
+  float a2 = 5.0f;         // blend extent in the target's field units (larger: the target appears early)
+  float a3 = 0.02f;        // time bound's reach: smaller lets the blend act right after B and before C
+  bool operator==(const SpaceTimeParams&) const = default;
+};
+
+// One posed stand-in taking part in the morph.
+struct MorphOperand {
+  StandinKind kind = StandinKind::Convolution;
+  float sharpness = 20.0f;
+  std::vector<PosedSegment> segments;  // world space
+};
+
+// The morph field at blend value w in [0, 1] (w(t) of the morph's track).
+FieldProgram buildMorphProgram(const MorphOperand& source, const MorphOperand& target, MorphMethod method, float w,
+                               const SpaceTimeParams& spaceTime);
+
+const char* morphMethodName(MorphMethod m);  // "interpolation", "space_time"
+
+}  // namespace animorph

@@ -1,0 +1,87 @@
+#pragma once
+// Evaluating a project's morph at any time (DESIGN.md §5): before A the source
+// plays (skinned mesh); A->B its collapse onto its stand-in; B->C the implicit
+// morph, polygonised; C->D the target's expansion; after D the target plays.
+// prepareMorph does the costly part once (loading, binding vertices to the
+// stand-ins); evaluateMorphFrame is then a pure function of the time, cheap
+// enough per frame at a coarse resolution (the editor keeps one MorphRuntime
+// per document revision and calls it every frame).
+#include <atomic>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "doc/asset_cache.h"
+#include "doc/project.h"
+#include "morph/transition.h"
+#include "poly/mesh.h"
+#include "poly/polygonizer.h"
+#include "util/result.h"
+
+namespace animorph {
+
+enum class MorphStage { Source, Collapse, Morph, Expand, Target };
+const char* morphStageName(MorphStage s);  // "source", "collapse", "morph", "expand", "target"
+
+struct MorphActorRuntime {
+  Actor actor;
+  std::shared_ptr<const Character> character;
+  const AnimationClip* clip = nullptr;  // null: no animation (static rest pose)
+  ActorMorph morph;                     // stand-in, weight map, segment tracks
+  StandinBinding binding;
+  size_t vertexCount = 0;
+};
+
+struct MorphRuntime {
+  MorphSetup setup;
+  Timeline timeline;
+  MorphActorRuntime source, target;
+  std::vector<std::string> notes;  // what the user should know ("gear.glb: no skin: rigid one-bone actor")
+};
+
+// Loads both actors' characters (through assets), checks the stand-ins against
+// the rigs and the weight maps against the vertex counts, and binds every
+// vertex to its stand-in. Errors name the project element and the reason.
+Result<std::shared_ptr<const MorphRuntime>> prepareMorph(const Project& project, const std::string& baseDir,
+                                                         AssetCache& assets);
+
+struct MorphFrameSettings {
+  int resolution = 48;     // B->C: polygonisation cells along the longest side of the morph's bounds
+  int threads = 0;         // 0: all hardware threads
+  bool reproject = true;   // pull vertices onto the posed stand-in near alpha = 1
+  const std::atomic<bool>* cancel = nullptr;  // polygonisation stops early; the frame comes back empty
+};
+
+struct MorphFrame {
+  double timeSec = 0.0;
+  MorphStage stage = MorphStage::Source;
+  double progress = 0.0;  // u in [0, 1] within the stage (0 outside the transitions and the morph)
+  float blend = 0.0f;     // w(u) during the morph
+  std::string actorId;    // whose mesh this is (empty during the morph)
+  TriangleMesh mesh;      // world space, unit normals, counter-clockwise outside
+  PolygonizeStats polygonize;   // B->C only
+  TransitionStats transition;   // A->B and C->D only
+  bool cancelled = false;
+};
+
+// The stage and its progress u at timeSec.
+MorphStage morphStageAt(const MorphSetup& setup, const Timeline& tl, double timeSec, double& progress);
+
+// The output of the morph at timeSec. Errors: polygonisation failed (bad resolution).
+Result<MorphFrame> evaluateMorphFrame(const MorphRuntime& rt, double timeSec, const MorphFrameSettings& settings);
+
+// Seam between a transition and the polygonised morph: the transition's
+// vertices at alpha = 1 at marker B (atB) or C, against the surface
+// polygonised there at resolution. Distances in metres, and the grid cell.
+struct SeamGap {
+  double maxDistance = 0.0;
+  double meanDistance = 0.0;
+  float cellSize = 0.0f;
+};
+Result<SeamGap> measureSeamGap(const MorphRuntime& rt, bool atB, int resolution);
+
+// The posed stand-in of a runtime actor at scene time timeSec (world space),
+// with its segment tracks applied at morph progress u (negative: none).
+MorphOperand posedOperand(const MorphActorRuntime& a, double timeSec, double u);
+
+}  // namespace animorph

@@ -1,0 +1,42 @@
+#pragma once
+// A complete morph project from two characters (what `animorph-cli new` and
+// the demo write): both actors, automatic stand-ins, a default timeline with
+// markers A..D, and the target aligned to the source when their bounding boxes
+// differ a lot in size or position.
+#include <string>
+#include <vector>
+
+#include "doc/project.h"
+#include "rig/character.h"
+#include "standin/fit_standin.h"
+#include "util/result.h"
+
+namespace animorph {
+
+struct NewMorphSettings {
+  double fps = 24.0;
+  // Marker times (s): A, B, C, D and the end of the timeline.
+  double aSec = 1.0, bSec = 2.0, cSec = 3.5, dSec = 4.5, endSec = 6.0;
+  MorphMethod method = MorphMethod::Interpolation;
+  FitSettings fit;
+  // Align when the diagonals differ by more than this factor, or the centres
+  // are further apart than this fraction of the source's diagonal.
+  double alignScaleRatio = 1.5;
+  double alignOffsetFraction = 0.5;
+};
+
+struct NewMorphProject {
+  Project project;
+  bool aligned = false;
+  FitReport sourceFit, targetFit;
+  std::vector<std::string> messages;  // one line each, for the user (alignment, fit notes)
+};
+
+// sourceAsset / targetAsset are stored as the actors' asset paths (relative to
+// the project file). Actor ids come from the file names. Errors: a stand-in
+// could not be fitted (named by file).
+Result<NewMorphProject> makeMorphProject(const Character& source, const std::string& sourceAsset,
+                                         const Character& target, const std::string& targetAsset,
+                                         const NewMorphSettings& settings = {});
+
+}  // namespace animorph

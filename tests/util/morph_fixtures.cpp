@@ -1,0 +1,69 @@
+#include "util/morph_fixtures.h"
+
+#include <cstdlib>
+#include <filesystem>
+#include <stdexcept>
+
+#include "demo/creature.h"
+#include "demo/gear.h"
+#include "doc/project_io.h"
+#include "io/gltf_export.h"
+#include "morph/new_morph_project.h"
+
+namespace animorph::test {
+
+const Character& demoCreature() {
+  static const Character c = makeCreatureCharacter();
+  return c;
+}
+
+const Character& demoGear() {
+  static const Character c = makeGearCharacter();
+  return c;
+}
+
+namespace {
+
+DemoMorph buildDemoMorph() {
+  DemoMorph d;
+  std::string tmpl = (std::filesystem::temp_directory_path() / "animorph-morph-XXXXXX").string();
+  if (!::mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
+  d.dir = tmpl;
+  if (!exportGlb(demoCreature(), d.dir + "/creature.glb") || !exportGlb(demoGear(), d.dir + "/gear.glb"))
+    throw std::runtime_error("cannot write the demo characters");
+  NewMorphSettings s;
+  s.alignScaleRatio = 4.0;
+  auto made = makeMorphProject(demoCreature(), "creature.glb", demoGear(), "gear.glb", s);
+  if (!made) throw std::runtime_error(made.error());
+  d.project = made->project;
+  d.projectPath = d.dir + "/demo.animorph";
+  if (!saveProject(d.project, d.projectPath)) throw std::runtime_error("cannot save the demo project");
+  AssetCache assets;
+  auto rt = prepareMorph(d.project, d.dir, assets);
+  if (!rt) throw std::runtime_error(rt.error());
+  d.runtime = *rt;
+  return d;
+}
+
+struct Cleanup {
+  std::string dir;
+  ~Cleanup() {
+    std::error_code ec;
+    if (!dir.empty()) std::filesystem::remove_all(dir, ec);
+  }
+};
+
+}  // namespace
+
+const DemoMorph& demoMorph() {
+  static const DemoMorph d = buildDemoMorph();
+  static Cleanup cleanup{d.dir};
+  return d;
+}
+
+float fieldAt(const FieldProgram& p, const glm::vec3& x, glm::vec3* gradient) {
+  FieldEvaluator e;
+  return e.evaluatePoint(p, x, gradient);
+}
+
+}  // namespace animorph::test

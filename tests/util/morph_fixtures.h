@@ -1,0 +1,30 @@
+#pragma once
+// Shared, built-once fixtures for the stand-in / transition / morph tests:
+// the demo characters and the creature -> gear morph, written to a temporary
+// directory and prepared like a real project.
+#include <memory>
+#include <string>
+
+#include "doc/project.h"
+#include "morph/morph_runtime.h"
+#include "rig/character.h"
+
+namespace animorph::test {
+
+const Character& demoCreature();
+const Character& demoGear();
+
+// The demo morph: creature.glb -> gear.glb in a temporary directory (kept for
+// the whole test run), as makeMorphProject builds it.
+struct DemoMorph {
+  std::string dir;
+  std::string projectPath;
+  Project project;
+  std::shared_ptr<const MorphRuntime> runtime;
+};
+const DemoMorph& demoMorph();
+
+// Field value of a program at one point.
+float fieldAt(const FieldProgram& p, const glm::vec3& x, glm::vec3* gradient = nullptr);
+
+}  // namespace animorph::test
