@@ -24,6 +24,7 @@ struct EditorContext {
   FrameStats stats;    // filled by the app
   double nowSec = 0.0; // monotonic clock in seconds (autosave timing)
   double dtSec = 0.0;  // wall-clock seconds since the previous frame (playback)
+  std::string viewportNote;  // shown after the frame number in the viewport (e.g. the morph stage)
   // Optional: world bounds of the selection at a timeline time as the
   // renderer sees them (F frames them). Without it, EditorUI skins the
   // selection on the CPU.

@@ -152,8 +152,9 @@ void EditorUI::drawViewport(EditorContext& ctx) {
   ImGui::PopStyleVar();
   bool hovered = ImGui::IsWindowHovered();
   const Document& d = doc(ctx);
-  ImGui::TextDisabled("%s camera  |  frame %d", st_.prefs.cameraScheme == CameraScheme::Maya ? "Maya" : "Blender",
-                      d.project().timeline.currentFrame);
+  ImGui::TextDisabled("%s camera  |  frame %d%s%s", st_.prefs.cameraScheme == CameraScheme::Maya ? "Maya" : "Blender",
+                      d.project().timeline.currentFrame, ctx.viewportNote.empty() ? "" : "  |  ",
+                      ctx.viewportNote.c_str());
   if (d.project().actors.empty()) ImGui::TextDisabled("File > Import glTF... adds a character.");
   ImGui::End();
   widgets_.set("viewport", {r.min, r.min + r.size});

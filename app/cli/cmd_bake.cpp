@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "cli/cli_command.h"
+#include "scene/mesh_character.h"
 #include "doc/project_io.h"
 #include "morph/morph_runtime.h"
 #include "poly/mesh_io.h"
@@ -58,26 +59,6 @@ class ProgressBar {
 };
 
 #if ANIMORPH_HAS_GPU
-// The baked mesh as a one-node, unskinned character the renderer can draw.
-std::shared_ptr<const Character> meshCharacter(const TriangleMesh& tm) {
-  auto c = std::make_shared<Character>();
-  c->sourcePath = "baked";
-  Mesh m;
-  m.name = "baked";
-  m.positions = tm.positions;
-  m.normals = tm.normals;
-  m.indices = tm.indices;
-  m.joints0.assign(m.positions.size(), glm::uvec4(0));
-  m.weights0.assign(m.positions.size(), glm::vec4(1, 0, 0, 0));
-  c->meshes.push_back(std::move(m));
-  Node n;
-  n.name = "baked";
-  n.mesh = 0;
-  c->nodes.push_back(n);
-  c->roots = {0};
-  return c;
-}
-
 int renderPngs(const std::vector<TriangleMesh>& meshes, int first, const fs::path& dir, const ViewOptions& view) {
   gpu::ContextSettings cs;
   auto ctxR = gpu::Context::create(cs);
@@ -103,7 +84,7 @@ int renderPngs(const std::vector<TriangleMesh>& meshes, int first, const fs::pat
       SceneFrame frame;
       MeshDraw d;
       d.actorId = "morph";
-      d.character = meshCharacter(meshes[i]);
+      d.character = characterFromMesh(meshes[i], "baked");
       d.meshNode = 0;
       d.meshIndex = 0;
       d.joints = {glm::mat4(1.0f)};

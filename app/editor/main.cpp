@@ -20,6 +20,7 @@
 #include "editor_ui.h"
 #include "imgui_vulkan.h"
 #include "mesh_cache.h"
+#include "scene/morph_scene.h"
 #include "scene/pick.h"
 #include "scene/scene_frame.h"
 #include "scene_from_frame.h"
@@ -172,6 +173,9 @@ int main(int argc, char** argv) {
   const char* uiMapEnv = std::getenv("ANIMORPH_UI_MAP");
   const std::string uiMapPath = uiMapEnv ? uiMapEnv : "";
   gpu::Scene scene;
+  MorphCache morphCache;
+  MorphFrameSettings morphPreview;
+  morphPreview.resolution = 32;  // coarse CPU preview of the implicit stage
   std::string lastTitle;
   std::vector<double> frameMs;
   double firstFrameMs = -1.0;
@@ -212,7 +216,13 @@ int main(int argc, char** argv) {
 
     Document& doc = *document;
     const Timeline& tl = doc.project().timeline;
-    SceneFrame frame = evaluateScene(doc.project(), doc.baseDir(), assets, tl.frameToSec(tl.currentFrame));
+    const double timeSec = tl.frameToSec(tl.currentFrame);
+    SceneFrame frame = evaluateScene(doc.project(), doc.baseDir(), assets, timeSec);
+    if (auto rt = morphCache.get(doc.project(), doc.baseDir(), assets, &doc, doc.revision())) {
+      ectx.viewportNote = "morph: " + describeMorphStage(applyMorph(frame, *rt, timeSec, morphPreview));
+    } else {
+      ectx.viewportNote = morphCache.error().empty() ? "" : "morph: " + morphCache.error();
+    }
     if (out.pick) {
       glm::vec2 local = out.pick->windowPos - out.viewport.min;
       Ray ray = out.camera.rayThroughPixel(local.x, local.y, out.viewport.size);

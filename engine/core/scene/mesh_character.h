@@ -1,0 +1,15 @@
+#pragma once
+// A triangle mesh (polygonised surface, transition output) wrapped as a
+// one-node, unskinned Character, so the scene and the renderer draw it like
+// any imported character.
+#include <memory>
+#include <string>
+
+#include "poly/mesh.h"
+#include "rig/character.h"
+
+namespace animorph {
+
+std::shared_ptr<const Character> characterFromMesh(const TriangleMesh& mesh, const std::string& name);
+
+}  // namespace animorph
