@@ -1,5 +1,7 @@
 #include "inspector_panel.h"
 
+#include "morph_panel.h"
+
 #include <cmath>
 #include <cstdio>
 
@@ -71,7 +73,8 @@ void drawInspectorPanel(const LayoutRect& rect, Document& doc, AssetCache& asset
   }
   const Actor* found = doc.project().findActor(doc.selection.actorId);
   if (!found) {
-    ImGui::TextDisabled("Nothing selected.");
+    if (doc.project().morph.enabled()) drawMorphSettings(doc, drag);
+    else ImGui::TextDisabled("Nothing selected.");
     ImGui::End();
     return;
   }

@@ -1,5 +1,7 @@
 #include "timeline_panel.h"
 
+#include "morph_panel.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -107,6 +109,7 @@ void drawRuler(Document& doc, Playback& playback, const std::vector<int>& keyFra
     dl->AddQuadFilled(ImVec2(x, ky - 5.0f), ImVec2(x + 4.0f, ky), ImVec2(x, ky + 5.0f), ImVec2(x - 4.0f, ky),
                       IM_COL32(240, 200, 60, 255));
   }
+  drawMorphMarkers(doc, p0.x, p1.x, p0.y, p1.y, st.viewStartFrame, st.viewEndFrame);
   // Current frame.
   float cx = xOf(tl.currentFrame);
   dl->AddLine(ImVec2(cx, p0.y), ImVec2(cx, p1.y), IM_COL32(90, 160, 255, 255), 2.0f);

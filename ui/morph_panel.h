@@ -1,0 +1,16 @@
+#pragma once
+// The morph's settings in the inspector (shown when no actor is selected in a
+// project with a morph): the stage markers A..D, the implicit method and its
+// parameters, the weight-map shift. Every edit is a command; a drag is one step.
+#include "doc/document.h"
+#include "drag_merge.h"
+
+namespace animorph {
+
+void drawMorphSettings(Document& doc, DragMerge& drag);
+
+// Draws the markers A..D of the project's morph on a timeline ruler spanning
+// [x0, x1] pixels for frames [viewStart, viewEnd], from y0 to y1.
+void drawMorphMarkers(const Document& doc, float x0, float x1, float y0, float y1, double viewStart, double viewEnd);
+
+}  // namespace animorph
