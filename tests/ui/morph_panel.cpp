@@ -1,0 +1,45 @@
+#include <catch2/catch.hpp>
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include "support/editor_fixture.h"
+
+using namespace animorph;
+using namespace animorph::test;
+
+namespace {
+// The hero scene with a morph from the hero to a second actor of the same asset.
+void addMorph(EditorFixture& f) {
+  f.loadHeroScene();
+  Project p = f.h.doc().project();
+  Actor b = p.actors[0];
+  b.id = "other";
+  p.actors.push_back(b);
+  p.morph.sourceActorId = "hero";
+  p.morph.targetActorId = "other";
+  p.morph.markers = {10, 20, 30, 40};
+  f.h.document->reset(p, f.dir.file("scene.animorph"));
+  f.h.doc().selection = {};
+  f.h.frames(2);
+}
+}  // namespace
+
+TEST_CASE("morph settings show with nothing selected, and a marker drag is one undo step", "[morph]") {
+  EditorFixture f;
+  addMorph(f);
+  auto& h = f.h;
+  REQUIRE(h.hasWidget("morph/markers"));
+  // DragInt4: the first of the four fields is marker A. Drag it to the right.
+  auto r = *h.ui->widgets().find("morph/markers");
+  const float w = (r.max.x - r.min.x) / 4.0f;
+  glm::vec2 a{r.min.x + 0.5f * w, r.center().y};
+  h.drag(a, a + glm::vec2(40.0f, 0.0f));
+  const MorphMarkers after = h.doc().project().morph.markers;
+  CHECK(after.a > 10);
+  CHECK(after.a <= after.b);  // kept in order
+  CHECK(h.doc().history().size() == 1);
+  h.tapKey(GLFW_KEY_Z, true);
+  CHECK(h.doc().project().morph.markers == MorphMarkers{10, 20, 30, 40});
+  CHECK_FALSE(h.doc().dirty());
+}
