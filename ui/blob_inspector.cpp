@@ -111,7 +111,9 @@ void drawBlobNodeInspector(Document& doc, const std::string& actorId, int nodeId
   const double t = blobTreeTimeNow(doc, *actor);
   const NodeTypeInfo& info = nodeTypeInfo(node->type);
   ImGui::Text("Actor: %s", actor->name.c_str());
-  ImGui::TextDisabled("%s node %d: %s", info.category, node->id, info.doc);
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+  ImGui::TextWrapped("%s node %d: %s", info.category, node->id, info.doc);
+  ImGui::PopStyleColor();
   ImGui::Separator();
 
   ImGui::PushItemWidth(-110.0f);
@@ -126,7 +128,7 @@ void drawBlobNodeInspector(Document& doc, const std::string& actorId, int nodeId
   noteWidget("inspector/blob/name");
   if (ImGui::IsItemDeactivatedAfterEdit() && st.nameBuffer != node->name)
     run(doc, renameBlobNodeCommand(doc.project(), actorId, nodeId, st.nameBuffer), status);
-  ImGui::TextDisabled("Type %s  |  tree time %.3f s (frame %d)", info.name, t, doc.project().timeline.currentFrame);
+  ImGui::TextDisabled("Type %s  |  tree time %.3f s", info.name, t);
 
   if (!info.params.empty()) {
     ImGui::Separator();

@@ -521,7 +521,7 @@ void drawCurveEditorPanel(const LayoutRect& area, Document& doc, CurveEditorStat
   for (double f = std::ceil(st.frame0 / fStep) * fStep; f <= st.frame1; f += fStep) {
     float x = curveToPixel(st, f, 0.0).x;
     dl->AddLine(ImVec2(x, g0.y), ImVec2(x, g1.y), IM_COL32(55, 55, 62, 255));
-    std::snprintf(buf, sizeof buf, "%g", f);
+    std::snprintf(buf, sizeof buf, "%g", std::abs(f) < fStep * 1e-6 ? 0.0 : f);  // never "-0"
     dl->AddText(ImVec2(x + 3.0f, g1.y - ImGui::GetTextLineHeight() - 2.0f), IM_COL32(150, 150, 160, 255), buf);
   }
   double vStep = niceStep((st.value1 - st.value0) / avail.y, 40.0);
