@@ -4,6 +4,8 @@
 #include <string>
 
 #include "anim/playback.h"
+#include "curve_editor_panel.h"
+#include "gizmo.h"
 #include "drag_merge.h"
 #include "file_browser.h"
 #include "inspector_panel.h"
@@ -41,6 +43,8 @@ struct EditorState {
   OutlinerState outliner;
   InspectorState inspector;
   TimelineState timeline;
+  CurveEditorState curveEditor;
+  GizmoState gizmo;
   DragMerge drag;
 
   // Dialogs.

@@ -6,6 +6,8 @@
 #include <imgui.h>
 
 #include "actor_commands.h"
+#include "doc/blobtree_commands.h"
+#include "node_type_menu.h"
 #include "help_windows.h"
 #include "menu_bar.h"
 #include "preferences_window.h"
@@ -97,25 +99,30 @@ void EditorUI::draw(EditorContext& ctx) {
   external_.clear();
 
   // Menu bar, then the panels laid out below it.
-  MenuResult menu = drawMenuBar(doc(ctx), st_.prefs.recentFiles, st_.menuBarHeight);
+  MenuResult menu = drawMenuBar(doc(ctx), st_.prefs.recentFiles, st_.menuBarHeight, st_.curveEditor.visible);
   actions.insert(actions.end(), menu.actions.begin(), menu.actions.end());
   float statusHeight = ImGui::GetFrameHeight();
   LayoutSizes sizes{st_.prefs.outlinerWidth, st_.prefs.inspectorWidth, st_.prefs.timelineHeight};
   glm::vec2 display(io.DisplaySize.x, io.DisplaySize.y);
   st_.layout = computeLayout(display, st_.menuBarHeight, statusHeight, sizes);
 
-  drawOutlinerPanel(st_.layout.outliner, doc(ctx), ctx.assets, st_.outliner, actions);
-  drawInspectorPanel(st_.layout.inspector, doc(ctx), ctx.assets, st_.inspector, st_.drag);
+  drawOutlinerPanel(st_.layout.outliner, doc(ctx), ctx.assets, st_.outliner, actions, st_.status);
+  drawInspectorPanel(st_.layout.inspector, doc(ctx), ctx.assets, st_.inspector, st_.drag, st_.status);
   drawTimelinePanel(st_.layout.timeline, doc(ctx), st_.playback, keyFrames(ctx), st_.timeline, st_.drag, actions);
   drawStatusBar(st_.layout.statusBar, doc(ctx), ctx.stats, st_.status);
   drawViewport(ctx);
+  drawCurveEditorPanel(st_.layout.viewport, doc(ctx), st_.curveEditor, st_.status);
   drawSplitters();
 
   // Keyboard shortcuts: not while typing, not while a menu or dialog is open.
+  // Del and F belong to the curve editor while it has the focus.
   if (!ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel)) {
     std::vector<Action> keys = pollShortcuts(io);
-    actions.insert(actions.end(), keys.begin(), keys.end());
+    for (Action a : keys)
+      if (!st_.curveEditor.focused || (a != Action::DeleteSelection && a != Action::FrameSelection))
+        actions.push_back(a);
   }
+  if (menu.addNodeType) addNodeToSelection(*menu.addNodeType, ctx);
 
   if (!menu.openRecentPath.empty()) guardUnsaved(PendingKind::OpenPath, menu.openRecentPath, ctx);
   for (Action a : actions) dispatch(a, ctx);
@@ -155,12 +162,18 @@ void EditorUI::drawViewport(EditorContext& ctx) {
   ImGui::TextDisabled("%s camera  |  frame %d%s%s", st_.prefs.cameraScheme == CameraScheme::Maya ? "Maya" : "Blender",
                       d.project().timeline.currentFrame, ctx.viewportNote.empty() ? "" : "  |  ",
                       ctx.viewportNote.c_str());
-  if (d.project().actors.empty()) ImGui::TextDisabled("File > Import glTF... adds a character.");
+  if (d.project().actors.empty())
+    ImGui::TextDisabled("File > Import glTF... adds a character; Create > New BlobTree Actor an implicit shape.");
   ImGui::End();
   widgets_.set("viewport", {r.min, r.min + r.size});
 
   PointerInput in = pointerFromImGui(ImGui::GetIO(), !hovered);
   ViewportRect vr{r.min, r.size};
+  // The gizmo goes first: while the mouse is on it, the camera and picking stay still.
+  ImGui::Begin("##viewport", nullptr, kOverlayFlags);
+  drawGizmo(doc(ctx), st_.camera, vr, in, st_.gizmo, st_.status, ImGui::GetWindowDrawList());
+  ImGui::End();
+  if (st_.gizmo.hot()) in.blockedByUi = true;
   out_.pick = st_.viewportInput.update(in, vr, st_.prefs.cameraScheme, st_.prefs.otherSchemeToo, st_.camera);
   if (st_.viewportInput.activeDrag() != CameraDrag::None)
     ImGui::SetMouseCursor(st_.viewportInput.activeDrag() == CameraDrag::Pan ? ImGuiMouseCursor_ResizeAll
@@ -245,6 +258,18 @@ void EditorUI::dispatch(Action a, EditorContext& ctx) {
     }
     case Action::DeleteSelection: {
       if (d.selection.actorId.empty()) break;
+      const Actor* sel = d.project().findActor(d.selection.actorId);
+      if (sel && sel->kind == ActorKind::BlobTree && d.selection.node >= 0) {
+        auto cmd = deleteBlobNodeCommand(d.project(), d.selection.actorId, d.selection.node);
+        if (!cmd) {
+          setStatus(cmd.error(), true);
+          break;
+        }
+        setStatus((*cmd)->label());
+        d.execute(std::move(*cmd));
+        d.selection.node = -1;
+        break;
+      }
       if (d.selection.node >= 0) {
         setStatus("Select the actor itself to delete it");
         break;
@@ -256,6 +281,34 @@ void EditorUI::dispatch(Action a, EditorContext& ctx) {
       }
       break;
     }
+    case Action::DuplicateSelection: {
+      const Actor* sel = d.project().findActor(d.selection.actorId);
+      if (!sel || sel->kind != ActorKind::BlobTree || d.selection.node < 0) {
+        setStatus("Select a BlobTree node to duplicate it");
+        break;
+      }
+      int copy = -1;
+      auto cmd = duplicateBlobNodeCommand(d.project(), d.selection.actorId, d.selection.node, &copy);
+      if (!cmd) {
+        setStatus(cmd.error(), true);
+        break;
+      }
+      setStatus((*cmd)->label());
+      d.execute(std::move(*cmd));
+      d.selection.node = copy;
+      break;
+    }
+    case Action::NewBlobActor: {
+      Actor a = makeBlobTreeActor(d.project(), "Blob");
+      a.loop = false;  // keys set past the last one must not wrap around while animating
+      std::string id = a.id;
+      setStatus("Added BlobTree actor " + a.name);
+      d.execute(addActorCommand(std::move(a)));
+      d.selection = {id, -1};
+      frameSelection(ctx);
+      break;
+    }
+    case Action::ToggleCurveEditor: st_.curveEditor.visible = !st_.curveEditor.visible; break;
     case Action::ToggleGrid:
       d.execute(setViewOption(d.project(), &ViewOptions::showGrid, !d.project().view.showGrid, "Toggle grid"));
       break;
@@ -279,6 +332,30 @@ void EditorUI::dispatch(Action a, EditorContext& ctx) {
     case Action::About: st_.showAbout = true; break;
     case Action::ShowShortcuts: st_.showShortcuts = true; break;
   }
+}
+
+void EditorUI::addNodeToSelection(NodeType type, EditorContext& ctx) {
+  Document& d = doc(ctx);
+  const Actor* sel = d.project().findActor(d.selection.actorId);
+  if (!sel || sel->kind != ActorKind::BlobTree) {
+    setStatus("Select a BlobTree actor or node first (Create > New BlobTree Actor makes one)", true);
+    return;
+  }
+  std::string why;
+  int parent = parentForNewNode(sel->blobTree, d.selection.node, &why);
+  if (parent < 0) {
+    setStatus(why, true);
+    return;
+  }
+  int created = -1;
+  auto cmd = addBlobNodeCommand(d.project(), d.selection.actorId, parent, type, &created);
+  if (!cmd) {
+    setStatus(cmd.error(), true);
+    return;
+  }
+  setStatus((*cmd)->label());
+  d.execute(std::move(*cmd));
+  d.selection.node = created;
 }
 
 void EditorUI::frameSelection(EditorContext& ctx) {
@@ -358,6 +435,9 @@ void EditorUI::replaceDocument(std::unique_ptr<Document> d, EditorContext& ctx) 
   st_.outliner = {};
   st_.inspector = {};
   st_.timeline = {};
+  st_.curveEditor.selection.clear();
+  st_.curveEditor.actorId.clear();
+  st_.gizmo = {};
   keysDoc_ = nullptr;
   // Show the whole scene: frame every visible actor that loaded.
   Bounds b = selectionBounds(*ctx.document, ctx.assets, tl.fps > 0.0 ? tl.currentFrame / tl.fps : 0.0);

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "blobtree/node_type.h"
 #include "editor_context.h"
 #include "editor_state.h"
 #include "widget_rects.h"
@@ -60,6 +61,7 @@ class EditorUI {
   void startSaveAs(PendingKind after, EditorContext& ctx);
   void handleBrowserResult(const std::string& path, EditorContext& ctx);
   void frameSelection(EditorContext& ctx);
+  void addNodeToSelection(NodeType type, EditorContext& ctx);
   void drawSplitters();
   void drawViewport(EditorContext& ctx);
   void drawPrompts(EditorContext& ctx);

@@ -61,7 +61,7 @@ void drawJoint(const Character& c, int node) {
 }  // namespace
 
 void drawInspectorPanel(const LayoutRect& rect, Document& doc, AssetCache& assets, InspectorState& st,
-                        DragMerge& drag) {
+                        DragMerge& drag, StatusMessage& status) {
   ImGui::SetNextWindowPos(ImVec2(rect.min.x, rect.min.y));
   ImGui::SetNextWindowSize(ImVec2(rect.size.x, rect.size.y));
   constexpr ImGuiWindowFlags kFlags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
@@ -82,6 +82,11 @@ void drawInspectorPanel(const LayoutRect& rect, Document& doc, AssetCache& asset
   const std::string id = actor.id;
   const Character* c = actorCharacter(doc, assets, actor);
 
+  if (doc.selection.node >= 0 && actor.kind == ActorKind::BlobTree) {
+    drawBlobNodeInspector(doc, id, doc.selection.node, st.blob, drag, status);
+    ImGui::End();
+    return;
+  }
   if (doc.selection.node >= 0) {
     ImGui::Text("Actor: %s", actor.name.c_str());
     ImGui::Separator();
@@ -102,7 +107,8 @@ void drawInspectorPanel(const LayoutRect& rect, Document& doc, AssetCache& asset
   if (ImGui::IsItemDeactivatedAfterEdit())
     if (auto cmd = renameActorCommand(doc.project(), id, st.nameBuffer)) doc.execute(std::move(cmd));
 
-  readOnlyRow("Asset", actor.assetPath.empty() ? std::string("(none)") : actor.assetPath);
+  if (actor.kind == ActorKind::BlobTree) drawBlobActorInspector(doc, id, drag, status);
+  else readOnlyRow("Asset", actor.assetPath.empty() ? std::string("(none)") : actor.assetPath);
   if (!actor.assetPath.empty() && !c) {
     const AssetCache::Entry& e = assets.get(doc.resolveAsset(actor.assetPath));
     ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.35f, 1.0f), "%s", e.error.c_str());
@@ -126,7 +132,7 @@ void drawInspectorPanel(const LayoutRect& rect, Document& doc, AssetCache& asset
       ImGui::EndCombo();
     }
     noteWidget("inspector/clip");
-  } else {
+  } else if (actor.kind == ActorKind::Gltf) {
     readOnlyRow("Clip", c ? "(no animation)" : "-");
   }
 

@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "blob_inspector.h"
 #include "doc/asset_cache.h"
 #include "doc/document.h"
 #include "drag_merge.h"
@@ -24,10 +25,12 @@ struct InspectorState {
   glm::vec3 eulerDeg{0.0f};
   std::string nameBuffer;
   std::string nameActorId;
+  BlobInspectorState blob;  // a selected BlobTree node
 };
 
+// Refused edits (BlobTree nodes) report to status.
 void drawInspectorPanel(const LayoutRect& rect, Document& doc, AssetCache& assets, InspectorState& st,
-                        DragMerge& drag);
+                        DragMerge& drag, StatusMessage& status);
 
 // XYZ Euler angles in degrees (R = Rz * Ry * Rx) of q, and back.
 glm::vec3 quatToEulerDeg(const glm::quat& q);

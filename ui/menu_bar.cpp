@@ -4,6 +4,7 @@
 
 #include <imgui.h>
 
+#include "node_type_menu.h"
 #include "widget_rects.h"
 
 namespace animorph {
@@ -19,7 +20,8 @@ bool beginMenu(const char* label, bool enabled = true) {
 }
 }  // namespace
 
-MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& recentFiles, float& heightPx) {
+MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& recentFiles, float& heightPx,
+                       bool curveEditorShown) {
   MenuResult r;
   heightPx = 0.0f;
   if (!ImGui::BeginMainMenuBar()) return r;
@@ -68,7 +70,21 @@ MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& rece
       r.actions.push_back(Action::Redo);
     noteWidget("menu/Redo");
     ImGui::Separator();
-    item("Delete", Action::DeleteSelection, !doc.selection.actorId.empty() && doc.selection.node < 0);
+    const Actor* sel = doc.project().findActor(doc.selection.actorId);
+    const bool blobNode = sel && sel->kind == ActorKind::BlobTree && doc.selection.node >= 0;
+    item("Delete", Action::DeleteSelection, sel && (doc.selection.node < 0 || blobNode));
+    item("Duplicate", Action::DuplicateSelection, blobNode);
+    ImGui::EndMenu();
+  }
+
+  bool createOpen = beginMenu("Create");
+  if (createOpen) {
+    item("New BlobTree Actor", Action::NewBlobActor);
+    ImGui::Separator();
+    const Actor* sel = doc.project().findActor(doc.selection.actorId);
+    const bool blob = sel && sel->kind == ActorKind::BlobTree;
+    ImGui::TextDisabled(blob ? "Add node under the selection" : "Add node (select a BlobTree actor)");
+    if (auto t = nodeTypeMenuItems("menu/Add/", blob)) r.addNodeType = *t;
     ImGui::EndMenu();
   }
 
@@ -81,6 +97,8 @@ MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& rece
     item("Axes", Action::ToggleAxes, true, v.showAxes);
     ImGui::Separator();
     item("Frame Selection", Action::FrameSelection);
+    ImGui::Separator();
+    item("Curve Editor", Action::ToggleCurveEditor, true, curveEditorShown);
     ImGui::Separator();
     item("Preferences...", Action::Preferences);
     ImGui::EndMenu();

@@ -2,9 +2,11 @@
 // The main menu bar: File, Edit, View, Help, with the shortcut of each item
 // shown beside it (from the shortcut table). Returns what the user chose;
 // EditorUI carries it out.
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "blobtree/node_type.h"
 #include "doc/document.h"
 #include "shortcuts.h"
 
@@ -13,9 +15,12 @@ namespace animorph {
 struct MenuResult {
   std::vector<Action> actions;
   std::string openRecentPath;  // File > Recent > path chosen, or empty
+  std::optional<NodeType> addNodeType;  // Create > Add Node > type chosen
 };
 
-// Draws the bar; returns its height in pixels through heightPx.
-MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& recentFiles, float& heightPx);
+// Draws the bar; returns its height in pixels through heightPx. curveEditorShown
+// checks View > Curve Editor.
+MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& recentFiles, float& heightPx,
+                       bool curveEditorShown = false);
 
 }  // namespace animorph

@@ -51,7 +51,7 @@ void beginRename(OutlinerState& st, const Document& doc, const std::string& acto
 }
 
 void drawOutlinerPanel(const LayoutRect& rect, Document& doc, AssetCache& assets, OutlinerState& st,
-                       std::vector<Action>& actions) {
+                       std::vector<Action>& actions, StatusMessage& status) {
   ImGui::SetNextWindowPos(ImVec2(rect.min.x, rect.min.y));
   ImGui::SetNextWindowSize(ImVec2(rect.size.x, rect.size.y));
   constexpr ImGuiWindowFlags kFlags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
@@ -63,10 +63,16 @@ void drawOutlinerPanel(const LayoutRect& rect, Document& doc, AssetCache& assets
   }
   if (ImGui::SmallButton("+ Import glTF")) actions.push_back(Action::ImportGltf);
   noteWidget("outliner/import");
+  ImGui::SameLine();
+  if (ImGui::SmallButton("+ BlobTree")) actions.push_back(Action::NewBlobActor);
+  noteWidget("outliner/new_blob");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("New BlobTree actor (a blend of one sphere)");
   ImGui::Separator();
 
   const Project& project = doc.project();
-  if (project.actors.empty()) ImGui::TextDisabled("No actors. File > Import glTF... adds one.");
+  if (project.actors.empty())
+    ImGui::TextWrapped("No actors. File > Import glTF... adds a character; Create > New BlobTree Actor an implicit "
+                       "shape.");
   std::string deleteId;
   // Copy: a command executed below may reallocate project.actors.
   std::vector<Actor> actors = project.actors;
@@ -102,7 +108,9 @@ void drawOutlinerPanel(const LayoutRect& rect, Document& doc, AssetCache& assets
     const Character* c = actorCharacter(doc, assets, actor);
     ImGuiTreeNodeFlags flags = ImGuiTreeNodeFlags_OpenOnArrow | ImGuiTreeNodeFlags_SpanAvailWidth;
     if (doc.selection.actorId == actor.id && doc.selection.node < 0) flags |= ImGuiTreeNodeFlags_Selected;
-    if (!c || c->roots.empty()) flags |= ImGuiTreeNodeFlags_Leaf;
+    const bool blob = actor.kind == ActorKind::BlobTree;
+    if (blob) flags |= ImGuiTreeNodeFlags_DefaultOpen;
+    else if (!c || c->roots.empty()) flags |= ImGuiTreeNodeFlags_Leaf;
     if (!actor.visible) ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
     bool open = ImGui::TreeNodeEx("##actor", flags, "%s", actor.name.c_str());
     if (!actor.visible) ImGui::PopStyleColor();
@@ -118,7 +126,10 @@ void drawOutlinerPanel(const LayoutRect& rect, Document& doc, AssetCache& assets
       if (ImGui::MenuItem("Delete", shortcutHint(Action::DeleteSelection).c_str())) deleteId = actor.id;
       ImGui::EndPopup();
     }
-    if (open) {
+    if (open && blob) {
+      drawBlobTreeNodes(doc, actor.id, st.blob, status);
+      ImGui::TreePop();
+    } else if (open) {
       if (!actor.assetPath.empty() && !c) {
         const AssetCache::Entry& e = assets.get(doc.resolveAsset(actor.assetPath));
         ImGui::PushStyleColor(ImGuiCol_Text, kErrorColor);

@@ -6,10 +6,12 @@
 #include <string>
 #include <vector>
 
+#include "blob_outliner.h"
 #include "doc/asset_cache.h"
 #include "doc/document.h"
 #include "layout.h"
 #include "shortcuts.h"
+#include "status_bar.h"
 
 namespace animorph {
 
@@ -17,6 +19,7 @@ struct OutlinerState {
   std::string renamingActorId;  // actor whose name is being edited, or empty
   std::string renameBuffer;
   bool focusRename = false;
+  BlobOutlinerState blob;  // BlobTree actors' node hierarchies
 };
 
 // Starts renaming actorId in place (double-click does this too).
@@ -24,8 +27,9 @@ void beginRename(OutlinerState& st, const Document& doc, const std::string& acto
 
 // Draws the panel as a fixed window over rect. Edits go through the
 // Document's commands; actions the panel cannot do itself (import) are
-// appended to actions.
+// appended to actions. BlobTree actors show their node tree (blob_outliner.h);
+// refused node edits report to status.
 void drawOutlinerPanel(const LayoutRect& rect, Document& doc, AssetCache& assets, OutlinerState& st,
-                       std::vector<Action>& actions);
+                       std::vector<Action>& actions, StatusMessage& status);
 
 }  // namespace animorph

@@ -38,6 +38,14 @@ bool drawPreferencesWindow(bool& open, Preferences& prefs, const std::string& pr
   }
 
   ImGui::Separator();
+  ImGui::TextUnformatted("BlobTree preview (cells along the longest side)");
+  if (ImGui::SliderInt("Refined", &prefs.previewResolution, 16, 512)) changed = true;
+  noteWidget("prefs/preview_resolution");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Shown once the time and the tree stop changing");
+  if (ImGui::SliderInt("While scrubbing", &prefs.previewCoarseResolution, 8, 256)) changed = true;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Shown first after every change");
+
+  ImGui::Separator();
   ImGui::TextUnformatted("Layout");
   ImGui::DragFloat("Outliner width", &prefs.outlinerWidth, 1.0f, 0.0f, 5000.0f, "%.0f px");
   if (ImGui::IsItemDeactivatedAfterEdit()) changed = true;

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "blobtree/compile.h"
+#include "blobtree/tree_edit.h"
 #include "rig/pose.h"
+#include "scene/scene_frame.h"
 #include "rig/skinning.h"
 
 namespace animorph {
@@ -23,6 +26,30 @@ std::vector<int> selectionKeyFrames(const Document& doc, AssetCache& assets) {
   const Project& p = doc.project();
   const Actor* actor = p.findActor(doc.selection.actorId);
   if (!actor) return frames;
+  if (actor->kind == ActorKind::BlobTree) {
+    const Timeline& tl = p.timeline;
+    if (actor->speed == 0.0 || !(tl.fps > 0.0)) return frames;
+    std::vector<double> keys = animatedKeyTimes(actor->blobTree, doc.selection.node);
+    double end = animationEndSec(actor->blobTree);
+    double cycleSec = end / std::abs(actor->speed);
+    double startSec = tl.frameStart / tl.fps, endSec = (tl.frameEnd + 1) / tl.fps;
+    long first = 0, last = 0;
+    if (actor->loop && cycleSec > 1e-6) {
+      first = static_cast<long>(std::floor((startSec - actor->timeOffsetSec) / cycleSec)) - 1;
+      last = std::min(first + 10000, static_cast<long>(std::ceil((endSec - actor->timeOffsetSec) / cycleSec)) + 1);
+    }
+    for (long k = first; k <= last; ++k)
+      for (double kt : keys) {
+        double local = actor->speed > 0.0 ? kt / actor->speed : (end - kt) / -actor->speed;
+        double t = actor->timeOffsetSec + k * cycleSec + local;
+        if (t < startSec - 1e-9 || t >= endSec) continue;
+        frames.push_back(static_cast<int>(std::lround(t * tl.fps)));
+      }
+    std::sort(frames.begin(), frames.end());
+    frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
+    while (!frames.empty() && frames.back() > tl.frameEnd) frames.pop_back();
+    return frames;
+  }
   const Character* c = actorCharacter(doc, assets, *actor);
   if (!c || actor->clip < 0 || actor->clip >= static_cast<int>(c->clips.size())) return frames;
   const AnimationClip& clip = c->clips[actor->clip];
@@ -70,6 +97,39 @@ Bounds selectionBounds(const Document& doc, AssetCache& assets, double timeSec) 
   for (const Actor& actor : p.actors) {
     bool selected = actor.id == doc.selection.actorId;
     if (!doc.selection.actorId.empty() ? !selected : !actor.visible) continue;
+    if (actor.kind == ActorKind::BlobTree) {
+      double t = blobActorTimeSec(actor, timeSec);
+      glm::mat4 world = actor.transform.matrix();
+      int node = selected ? doc.selection.node : -1;
+      Bounds local;
+      if (node >= 0) {
+        // The node's skeleton drawing, with a margin for the surface around it.
+        BlobGuides g = blobGuides(actor.blobTree, t, world);
+        Bounds nb;
+        for (const auto& l : g.lines)
+          if (l.node == node) { nb.add(l.a); nb.add(l.b); }
+        for (const auto& m : g.markers)
+          if (m.node == node) nb.add(m.position);
+        for (const auto& a : g.axes)
+          if (a.node == node) { nb.add(a.origin); for (const auto& tip : a.tips) nb.add(tip); }
+        if (!nb.empty()) {
+          float margin = std::max(0.15f, 0.25f * nb.diagonal());
+          out.add(nb.min - glm::vec3(margin));
+          out.add(nb.max + glm::vec3(margin));
+          continue;
+        }
+      }
+      FieldProgram prog = compileFieldProgram(actor.blobTree, t);
+      if (prog.unbounded()) continue;
+      local = prog.tightBounds(3);
+      if (local.empty()) continue;
+      for (int corner = 0; corner < 8; ++corner) {
+        glm::vec3 p((corner & 1) ? local.max.x : local.min.x, (corner & 2) ? local.max.y : local.min.y,
+                    (corner & 4) ? local.max.z : local.min.z);
+        out.add(glm::vec3(world * glm::vec4(p, 1.0f)));
+      }
+      continue;
+    }
     const Character* c = actorCharacter(doc, assets, actor);
     if (!c) continue;
     const AnimationClip* clip =

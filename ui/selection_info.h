@@ -17,7 +17,9 @@ const Character* actorCharacter(const Document& doc, AssetCache& assets, const A
 // selected actor's clip: the clip's key times mapped through the actor's
 // time offset and speed (t = offset + clipTime / speed), repeated per clip
 // cycle when the actor loops. When a node is selected only the channels of
-// that node count. Empty without a selection or a loaded clip.
+// that node count. Empty without a selection or a loaded clip. For a
+// BlobTree actor: the key times of its animated parameters (the selected
+// node's own, or every node's), mapped the same way.
 std::vector<int> selectionKeyFrames(const Document& doc, AssetCache& assets);
 
 // Clip time of actor at timeline time timeSec (offset, speed, loop applied).
@@ -25,7 +27,8 @@ float actorClipTime(const Actor& actor, const AnimationClip& clip, double timeSe
 
 // World-space bounds of the selection at timeSec (skinned pose): the selected
 // actor's meshes, or a selected node's position with a margin; without a
-// selection, every visible actor. Empty bounds when nothing is loaded.
+// selection, every visible actor. BlobTree actors: the bounds of their field
+// (tightened), or of a selected node's skeleton. Empty bounds when nothing is loaded.
 Bounds selectionBounds(const Document& doc, AssetCache& assets, double timeSec);
 
 }  // namespace animorph

@@ -12,7 +12,7 @@ namespace animorph {
 
 enum class Action {
   New, Open, Save, SaveAs, ImportGltf, SaveScreenshot, Quit,
-  Undo, Redo, DeleteSelection,
+  Undo, Redo, DeleteSelection, DuplicateSelection, NewBlobActor, ToggleCurveEditor,
   ToggleGrid, ToggleSkeleton, ToggleWireframe, ToggleAxes, FrameSelection,
   PlayPause, StepBack, StepForward, GoToStart, GoToEnd,
   Preferences, About, ShowShortcuts,

@@ -26,6 +26,12 @@ void drawStatusBar(const LayoutRect& rect, const Document& doc, const FrameStats
   ImGui::SameLine();
   ImGui::TextDisabled("|");
   ImGui::SameLine();
+  if (!stats.previewInfo.empty()) {
+    ImGui::TextDisabled("%s", stats.previewInfo.c_str());
+    ImGui::SameLine();
+    ImGui::TextDisabled("|");
+    ImGui::SameLine();
+  }
   std::string title = documentTitle(doc);
   ImGui::TextUnformatted(title.c_str());
   noteWidget("status/document");

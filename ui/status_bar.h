@@ -13,6 +13,7 @@ struct FrameStats {
   float fps = 0.0f;
   float frameMs = 0.0f;
   std::string deviceName;
+  std::string previewInfo;  // BlobTree preview state ("preview 128^3, 12 ms"), empty when none
 };
 
 struct StatusMessage {

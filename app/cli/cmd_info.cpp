@@ -2,9 +2,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <map>
 
 #include <nlohmann/json.hpp>
 
+#include "blobtree/tree_edit.h"
 #include "cli/cli_command.h"
 #include "doc/project_io.h"
 #include "io/gltf_import.h"
@@ -15,6 +17,11 @@ using json = nlohmann::json;
 namespace fs = std::filesystem;
 
 json vec3(const glm::vec3& v) { return json::array({v.x, v.y, v.z}); }
+
+void countNodes(const animorph::BlobNode& n, std::map<std::string, int>& byCategory) {
+  ++byCategory[animorph::nodeTypeInfo(n.type).category];
+  for (const auto& c : n.children) countNodes(c, byCategory);
+}
 
 json characterJson(const std::string& path, const animorph::Character& c) {
   animorph::Bounds b;
@@ -69,6 +76,22 @@ int infoProject(const std::string& path, bool asJson) {
   const fs::path dir = fs::absolute(fs::path(path)).parent_path();
   json actors = json::array();
   for (const auto& a : p.actors) {
+    if (a.kind == animorph::ActorKind::BlobTree) {
+      std::map<std::string, int> cats;
+      countNodes(a.blobTree.root, cats);
+      json ja = {{"id", a.id},
+                 {"name", a.name},
+                 {"kind", "blobtree"},
+                 {"loads", true},
+                 {"nodes", a.blobTree.root.subtreeSize()},
+                 {"primitives", cats["primitive"]},
+                 {"operators", cats["operator"]},
+                 {"maps", cats["map"]},
+                 {"meta", cats["meta"]},
+                 {"animation_end", animorph::animationEndSec(a.blobTree)}};
+      actors.push_back(ja);
+      continue;
+    }
     const std::string resolved = (dir / a.assetPath).lexically_normal().string();
     auto c = animorph::importGltf(resolved);
     json ja = {{"id", a.id}, {"name", a.name}, {"asset", a.assetPath}, {"loads", c.ok()}, {"clip", a.clip}};
@@ -109,6 +132,13 @@ int infoProject(const std::string& path, bool asJson) {
   }
   std::printf("  %zu actors\n", actors.size());
   for (const auto& a : actors) {
+    if (a.contains("kind") && a["kind"] == "blobtree") {
+      std::printf("    %-12s BlobTree: %d nodes (%d primitives, %d operators, %d maps, %d meta), animated over %.2f s\n",
+                  a["id"].get<std::string>().c_str(), a["nodes"].get<int>(), a["primitives"].get<int>(),
+                  a["operators"].get<int>(), a["maps"].get<int>(), a["meta"].get<int>(),
+                  a["animation_end"].get<double>());
+      continue;
+    }
     std::printf("    %-12s %-40s ", a["id"].get<std::string>().c_str(), a["asset"].get<std::string>().c_str());
     if (a["loads"].get<bool>())
       std::printf("ok (%zu triangles%s%s)\n", a["triangles"].get<size_t>(), a.contains("clip_name") ? ", clip " : "",

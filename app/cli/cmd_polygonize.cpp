@@ -6,6 +6,8 @@
 #include "blobtree/blob_tree_json.h"
 #include "blobtree/compile.h"
 #include "cli/cli_command.h"
+#include "doc/project_io.h"
+#include "scene/scene_frame.h"
 #include "poly/mesh_io.h"
 #include "poly/polygonizer.h"
 
@@ -24,7 +26,7 @@ bool parseNumber(const std::string& s, double& out) {
 int polygonizeCommand(const std::vector<std::string>& args) {
   using animorph::cli::fail;
   const char* me = "polygonize";
-  std::string scene, output;
+  std::string scene, output, actorId;
   double timeSec = 0.0, res = 128, threads = 0;
   bool cull = true;
   for (size_t i = 0; i < args.size(); ++i) {
@@ -41,6 +43,9 @@ int polygonizeCommand(const std::vector<std::string>& args) {
         return fail(me, "--res needs an integer from 2 to 2048", 2);
     } else if (a == "--threads") {
       if (!value(threads) || threads < 0) return fail(me, "--threads needs a non-negative integer", 2);
+    } else if (a == "--actor") {
+      if (i + 1 >= args.size()) return fail(me, "--actor needs an actor id", 2);
+      actorId = args[++i];
     } else if (a == "--no-cull") {
       cull = false;
     } else if (a == "-o" || a == "--output") {
@@ -60,18 +65,58 @@ int polygonizeCommand(const std::vector<std::string>& args) {
   if (ext != ".obj" && ext != ".ply" && ext != ".glb")
     return fail(me, output + ": unknown mesh format (use .obj, .ply or .glb)", 2);
 
-  auto tree = animorph::loadBlobTreeScene(scene);
-  if (!tree) return fail(me, tree.error());
-  animorph::FieldProgram program = animorph::compileFieldProgram(*tree, timeSec);
+  // A project: one of its BlobTree actors (--actor, or the only one), at the
+  // actor's tree time for scene time --time, in world space. Else a scene file
+  // (or a project with a top-level "blobtree" key).
+  animorph::Result<animorph::BlobTree> tree = animorph::Error{""};
+  double treeTimeSec = timeSec;
+  glm::mat4 model(1.0f);
+  std::string what = scene;
+  bool isProject = scene.size() > 9 && scene.substr(scene.size() - 9) == ".animorph";
+  auto project = isProject ? animorph::loadProject(scene) : animorph::Result<animorph::Project>(animorph::Error{""});
+  if (isProject && !project) return fail(me, project.error());
+  std::vector<const animorph::Actor*> blobs;
+  if (isProject)
+    for (const auto& a : project->actors)
+      if (a.kind == animorph::ActorKind::BlobTree) blobs.push_back(&a);
+  if (isProject && (!actorId.empty() || !blobs.empty())) {
+    const animorph::Actor* actor = nullptr;
+    if (!actorId.empty()) {
+      actor = project->findActor(actorId);
+      if (!actor) return fail(me, scene + ": no actor '" + actorId + "'");
+      if (actor->kind != animorph::ActorKind::BlobTree)
+        return fail(me, scene + ": actor '" + actorId + "' is a glTF character, not a BlobTree");
+    } else if (blobs.size() == 1) {
+      actor = blobs.front();
+    } else {
+      std::string ids;
+      for (const auto* b : blobs) ids += (ids.empty() ? "" : ", ") + b->id;
+      return fail(me, scene + ": several BlobTree actors (" + ids + "): choose one with --actor ID", 2);
+    }
+    tree = actor->blobTree;
+    treeTimeSec = animorph::blobActorTimeSec(*actor, timeSec);
+    model = actor->transform.matrix();
+    what = scene + " actor '" + actor->id + "'";
+  } else {
+    if (!actorId.empty()) return fail(me, "--actor applies to .animorph projects only", 2);
+    tree = animorph::loadBlobTreeScene(scene);
+    if (!tree) return fail(me, tree.error());
+  }
+  animorph::FieldProgram program = animorph::compileFieldProgram(*tree, treeTimeSec);
   animorph::PolygonizeSettings settings;
   settings.resolution = int(res);
   settings.culling = cull;
   settings.threads = int(threads);
   auto result = animorph::polygonize(program, settings);
-  if (!result) return fail(me, scene + ": " + result.error());
+  if (!result) return fail(me, what + ": " + result.error());
+  if (model != glm::mat4(1.0f)) {
+    glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(model)));
+    for (auto& p : result->mesh.positions) p = glm::vec3(model * glm::vec4(p, 1.0f));
+    for (auto& n : result->mesh.normals) n = glm::normalize(nm * n);
+  }
   if (auto s = animorph::writeMesh(result->mesh, output); !s) return fail(me, s.error());
   const auto& st = result->stats;
-  std::printf("%s at t = %g s: %zu triangles, %zu vertices in %.1f ms\n", scene.c_str(), timeSec,
+  std::printf("%s at t = %g s: %zu triangles, %zu vertices in %.1f ms\n", what.c_str(), timeSec,
               result->mesh.triangleCount(), result->mesh.positions.size(), st.milliseconds);
   std::printf("  grid %d x %d x %d (cell %.4g m), %zu primitives, blocks %zu evaluated / %zu culled of %zu -> %s\n",
               st.gridX, st.gridY, st.gridZ, st.cellSize, program.primitiveCount(), st.blocksEvaluated, st.blocksCulled,
@@ -82,8 +127,10 @@ int polygonizeCommand(const std::vector<std::string>& args) {
 }  // namespace
 
 ANIMORPH_CLI_COMMAND("polygonize", "polygonise a BlobTree scene at a time into a mesh (CPU)",
-                     "usage: animorph-cli polygonize SCENE --time T --res N [--no-cull] [--threads N] -o MESH\n"
-                     "  SCENE   a BlobTree scene JSON, or a .animorph project with a \"blobtree\" key\n"
+                     "usage: animorph-cli polygonize SCENE --time T --res N [--actor ID] [--no-cull] [--threads N] -o MESH\n"
+                     "  SCENE   a BlobTree scene JSON, or a .animorph project: its BlobTree actor (--actor ID\n"
+                     "          when it has several) at scene time T, in world space (the actor's offset,\n"
+                     "          speed, loop and transform applied), or its top-level \"blobtree\" key\n"
                      "  --time  seconds (default 0)\n"
                      "  --res   cells along the longest side of the bounds (default 128)\n"
                      "  --no-cull  evaluate every grid corner with every primitive (same mesh, slower)\n"

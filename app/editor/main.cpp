@@ -15,12 +15,14 @@
 #include <string>
 #include <vector>
 
+#include "blob_preview_set.h"
 #include "context.h"
 #include "doc/atomic_file.h"
 #include "editor_ui.h"
 #include "imgui_vulkan.h"
 #include "mesh_cache.h"
 #include "scene/morph_scene.h"
+#include "scene/blob_pick.h"
 #include "scene/pick.h"
 #include "scene/scene_frame.h"
 #include "scene_from_frame.h"
@@ -165,6 +167,7 @@ int main(int argc, char** argv) {
   AssetCache assets;
   auto meshCache = std::make_unique<gpu::MeshCache>(ctx);
   gpu::MeshCache& meshes = *meshCache;
+  auto blobPreviews = std::make_unique<gpu::BlobPreviewSet>(ctx);
   std::unique_ptr<Document> document = std::make_unique<Document>();
   if (!args.project.empty()) ui.requestOpen(args.project);
   EditorContext ectx(document, assets);
@@ -223,19 +226,52 @@ int main(int argc, char** argv) {
     } else {
       ectx.viewportNote = morphCache.error().empty() ? "" : "morph: " + morphCache.error();
     }
+    const Preferences& prefs = ui.state().prefs;
+    blobPreviews->update(doc.project(), frame,
+                         {prefs.previewCoarseResolution, prefs.previewResolution, /*threads=*/0});
     if (out.pick) {
       glm::vec2 local = out.pick->windowPos - out.viewport.min;
       Ray ray = out.camera.rayThroughPixel(local.x, local.y, out.viewport.size);
       auto hit = pickScene(frame, ray);
-      if (hit) doc.selection = Selection{hit->actorId, -1};
+      for (const BlobDraw& b : frame.blobs) {
+        auto r = blobPreviews->result(b.actorId);
+        if (!r) continue;
+        auto bh = pickBlobSurface(b.actorId, b.model, r->mesh, ray);
+        if (bh && (!hit || bh->distance < hit->distance)) hit = bh;
+      }
+      // A skeleton marker under the cursor selects its node; with the skeleton
+      // hidden, markers are not there to click.
+      auto guide = doc.project().view.showSkeleton ? pickBlobGuide(frame, out.camera, out.viewport.size, local)
+                                                   : std::nullopt;
+      if (guide) doc.selection = Selection{guide->actorId, guide->node};
+      else if (hit) doc.selection = Selection{hit->actorId, -1};
       else if (!out.pick->extend) doc.selection = {};
     }
-    gpu::buildScene(frame, doc.project().view, doc.selection.actorId, meshes, scene);
 
     if (out.screenshotPath) pendingCapture = *out.screenshotPath;
     if (!args.screenshot.empty() && screenshotAt < 0 && frameApplied == (args.frame >= 0) && frameCount >= 6) {
       pendingCapture = args.screenshot;
       screenshotAt = frameCount;
+    }
+    // A screenshot shows the refined BlobTree surfaces, not whatever is ready.
+    if (!pendingCapture.empty() && !blobPreviews->waitIdle(120.0))
+      std::fprintf(stderr, "animorph: BlobTree preview still computing at the screenshot\n");
+    const Actor* selActor = doc.project().findActor(doc.selection.actorId);
+    int selBlobNode = selActor && selActor->kind == ActorKind::BlobTree ? doc.selection.node : -1;
+    gpu::buildScene(frame, doc.project().view, doc.selection.actorId, meshes, scene, blobPreviews.get(), selBlobNode);
+    {
+      // Status bar: the preview of the selected BlobTree actor (else the first one).
+      std::string id = selBlobNode >= 0 || (selActor && selActor->kind == ActorKind::BlobTree)
+                           ? doc.selection.actorId
+                           : (frame.blobs.empty() ? std::string() : frame.blobs.front().actorId);
+      auto r = id.empty() ? nullptr : blobPreviews->result(id);
+      char buf[160] = "";
+      if (r && !r->error.empty()) std::snprintf(buf, sizeof buf, "preview error: %s", r->error.c_str());
+      else if (r)
+        std::snprintf(buf, sizeof buf, "preview %d^3%s %.0f ms, %zu tris", r->resolution,
+                      blobPreviews->busy() ? " (refining)" : "", r->stats.milliseconds, r->mesh.triangleCount());
+      else if (!id.empty()) std::snprintf(buf, sizeof buf, "preview: computing");
+      ectx.stats.previewInfo = buf;
     }
     if (!pendingCapture.empty()) swapchain.requestCapture();
 
@@ -272,6 +308,7 @@ int main(int argc, char** argv) {
       glfwWaitEventsTimeout(0.1);
     }
     meshes.endFrame();
+    blobPreviews->endFrame();
     ++frameCount;
     if (args.benchFrames > 0 && frameCount > 10) {
       frameMs.push_back(dt * 1000.0);
@@ -299,6 +336,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "animorph: %u Vulkan validation error(s)\n", ctx.validationErrorCount());
     exitCode = 3;
   }
+  blobPreviews.reset();
   meshCache.reset();
   imguiR->reset();
   ImGui::DestroyContext();

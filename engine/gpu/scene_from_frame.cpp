@@ -5,7 +5,7 @@
 namespace animorph::gpu {
 
 void buildScene(const SceneFrame& frame, const ViewOptions& view, const std::string& selectedActorId,
-                MeshCache& meshes, Scene& out) {
+                MeshCache& meshes, Scene& out, const BlobPreviewSet* blobs, int selectedBlobNode) {
   out.meshes.clear();
   out.lines.clear();
   out.overlay.clear();
@@ -26,6 +26,42 @@ void buildScene(const SceneFrame& frame, const ViewOptions& view, const std::str
     if (!mb.empty()) {
       b.add(glm::vec3(d.model * glm::vec4(mb.min, 1.0f)));
       b.add(glm::vec3(d.model * glm::vec4(mb.max, 1.0f)));
+    }
+  }
+  for (const auto& d : frame.blobs) {
+    const GpuMesh* gm = blobs ? blobs->mesh(d.actorId) : nullptr;
+    if (!gm) continue;
+    gpu::MeshDraw md;
+    md.mesh = gm;
+    md.model = d.model;
+    md.color = glm::vec4(0.55f, 0.68f, 0.82f, 1.0f);  // implicit surfaces: a cool clay tone
+    md.doubleSided = true;  // a surface cut by the grid bounds shows its inside
+    md.selected = !selectedActorId.empty() && d.actorId == selectedActorId;
+    out.meshes.push_back(md);
+    Bounds mb = gm->bounds();
+    if (!mb.empty()) {
+      b.add(glm::vec3(d.model * glm::vec4(mb.min, 1.0f)));
+      b.add(glm::vec3(d.model * glm::vec4(mb.max, 1.0f)));
+    }
+  }
+  if (view.showSkeleton && !frame.blobGuides.empty()) {
+    float radius = std::max(0.006f, 0.006f * b.diagonal());
+    const uint32_t guide = packRgba({0.45f, 0.95f, 0.55f, 1.0f});
+    const uint32_t guideActor = packRgba({0.7f, 1.0f, 0.75f, 1.0f});
+    const uint32_t guideSel = packRgba({1.0f, 0.7f, 0.25f, 1.0f});
+    const uint32_t axisColor[3] = {packRgba({0.95f, 0.3f, 0.3f, 1.0f}), packRgba({0.4f, 0.9f, 0.3f, 1.0f}),
+                                   packRgba({0.35f, 0.55f, 1.0f, 1.0f})};
+    for (const auto& g : frame.blobGuides) {
+      bool actorSel = g.actorId == selectedActorId;
+      auto color = [&](int node) {
+        return actorSel && node == selectedBlobNode ? guideSel : actorSel ? guideActor : guide;
+      };
+      for (const auto& l : g.lines) out.overlay.line(l.a, l.b, color(l.node));
+      for (const auto& m : g.markers) out.overlay.octahedron(m.position, radius, color(m.node));
+      for (const auto& a : g.axes) {
+        bool sel = actorSel && a.node == selectedBlobNode;
+        for (int k = 0; k < 3; ++k) out.overlay.line(a.origin, a.tips[k], sel ? guideSel : axisColor[k]);
+      }
     }
   }
   if (view.showSkeleton && !frame.bones.empty()) {

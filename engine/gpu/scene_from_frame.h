@@ -3,6 +3,7 @@
 // GPU meshes with their joint matrices, the skeleton overlay, view options.
 #include <string>
 
+#include "blob_preview_set.h"
 #include "doc/project.h"
 #include "mesh_cache.h"
 #include "scene/scene_frame.h"
@@ -12,8 +13,10 @@ namespace animorph::gpu {
 
 // Fills out from frame (out keeps pointers into frame: frame must outlive the
 // recording). selectedActorId is highlighted. Meshes whose upload failed are
-// skipped (meshes.lastError()).
+// skipped (meshes.lastError()). BlobTree actors are drawn from blobs' newest
+// preview meshes (double-sided) when blobs is given; their skeleton guides
+// join the overlay, selectedBlobNode's (a node id of the selected actor) highlighted.
 void buildScene(const SceneFrame& frame, const ViewOptions& view, const std::string& selectedActorId,
-                MeshCache& meshes, Scene& out);
+                MeshCache& meshes, Scene& out, const BlobPreviewSet* blobs = nullptr, int selectedBlobNode = -1);
 
 }  // namespace animorph::gpu

@@ -29,6 +29,7 @@ struct TrackKey {
   bool userDerivatives = false;            // true: d1 (and d2 for degree 3) are used as given
   T d1{};                                  // first derivative (per second)
   T d2{};                                  // second derivative (degree-3 tracks only)
+  bool operator==(const TrackKey&) const = default;
 };
 
 template <class T>
@@ -56,6 +57,10 @@ class Track {
   bool driven() const { return static_cast<bool>(driver_); }
 
   bool isConstant() const { return !driver_ && keys_.size() <= 1; }
+  // Same keys and degree, both driven or both not (drivers themselves cannot be compared).
+  bool operator==(const Track& o) const {
+    return keys_ == o.keys_ && degree_ == o.degree_ && driven() == o.driven();
+  }
 
   // Value at t; holds the first/last key outside the key range. No keys: T's zero / identity.
   T evaluate(double timeSec) const;

@@ -33,6 +33,7 @@ struct BlobNode {
 
   // Number of nodes in this subtree, itself included.
   size_t subtreeSize() const;
+  bool operator==(const BlobNode&) const = default;
 };
 
 // A node of `type` with every parameter at its default (required ones at 0 / empty).
@@ -47,6 +48,7 @@ struct BlobTree {
   const BlobNode* find(int id) const;
   // One more than the largest id in use.
   int nextId() const;
+  bool operator==(const BlobTree&) const = default;
 };
 
 }  // namespace animorph

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "blobtree/blob_tree.h"
 #include "doc/morph_setup.h"
 #include "math/transform.h"
 
@@ -11,11 +12,17 @@ namespace animorph {
 
 inline constexpr int kProjectFormatVersion = 1;
 
+// What an actor shows: a glTF character (assetPath, clip) or an animated
+// BlobTree held in the project itself (blobTree).
+enum class ActorKind { Gltf, BlobTree };
+
 // A character placed in the scene, playing one of its clips.
 struct Actor {
   std::string id;         // stable, unique in the project
   std::string name;
-  std::string assetPath;  // glTF path, relative to the project file's directory
+  ActorKind kind = ActorKind::Gltf;
+  std::string assetPath;  // glTF path, relative to the project file's directory (Gltf actors)
+  BlobTree blobTree;      // the shape of a BlobTree actor (unused for Gltf actors)
   int clip = 0;           // index into the asset's clips; ignored when it has none
   double timeOffsetSec = 0.0;  // clip time = (t - timeOffsetSec) * speed
   double speed = 1.0;

@@ -1,8 +1,10 @@
 #include "scene/scene_frame.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
+#include "blobtree/tree_edit.h"
 #include "rig/pose.h"
 #include "rig/skinning.h"
 
@@ -10,6 +12,16 @@ namespace animorph {
 
 double actorClipTimeSec(const Actor& actor, const AnimationClip& clip, double timeSec) {
   return clipTime(clip, (timeSec - actor.timeOffsetSec) * actor.speed, actor.loop);
+}
+
+double blobActorTimeSec(const Actor& actor, double timeSec) {
+  double t = (timeSec - actor.timeOffsetSec) * actor.speed;
+  double end = animationEndSec(actor.blobTree);
+  if (actor.loop && end > 1e-6) {
+    t = std::fmod(t, end);
+    if (t < 0.0) t += end;
+  }
+  return t;
 }
 
 namespace {
@@ -64,6 +76,16 @@ SceneFrame evaluateScene(const Project& project, const std::string& baseDir, Ass
   out.timeSec = timeSec;
   for (const Actor& actor : project.actors) {
     if (!actor.visible) continue;
+    if (actor.kind == ActorKind::BlobTree) {
+      BlobDraw d;
+      d.actorId = actor.id;
+      d.model = actor.transform.matrix();
+      d.treeTimeSec = blobActorTimeSec(actor, timeSec);
+      out.blobGuides.push_back(blobGuides(actor.blobTree, d.treeTimeSec, d.model));
+      out.blobGuides.back().actorId = actor.id;
+      out.blobs.push_back(std::move(d));
+      continue;
+    }
     fs::path p(actor.assetPath);
     std::string abs = (p.is_absolute() ? p : fs::path(baseDir) / p).lexically_normal().string();
     const AssetCache::Entry& e = assets.get(abs);

@@ -12,6 +12,7 @@
 #include "doc/project.h"
 #include "math/bounds.h"
 #include "rig/character.h"
+#include "scene/blob_guides.h"
 
 namespace animorph {
 
@@ -33,9 +34,19 @@ struct BoneDraw {
   glm::vec3 tail{0.0f};  // this joint, world space
 };
 
+// A BlobTree actor. Its surface is polygonised off the frame loop (poly/
+// preview_polygonizer.h) at treeTimeSec and drawn with model.
+struct BlobDraw {
+  std::string actorId;
+  glm::mat4 model{1.0f};    // the actor's transform
+  double treeTimeSec = 0.0; // blobActorTimeSec of the scene time
+};
+
 struct SceneFrame {
   double timeSec = 0.0;
   std::vector<MeshDraw> meshes;
+  std::vector<BlobDraw> blobs;
+  std::vector<BlobGuides> blobGuides;     // skeleton drawing of each BlobTree actor
   std::vector<BoneDraw> bones;
   std::vector<glm::vec3> jointPositions;  // every skin joint, world space
   std::vector<std::string> errors;        // "actor 'x': <asset load error>"
@@ -43,6 +54,10 @@ struct SceneFrame {
 
 // Clip time of actor at scene time timeSec: (t - offset) * speed, looped or clamped.
 double actorClipTimeSec(const Actor& actor, const AnimationClip& clip, double timeSec);
+
+// Tree time of a BlobTree actor at scene time timeSec: (t - offset) * speed,
+// wrapped into [0, last key] when the actor loops and its tree is animated.
+double blobActorTimeSec(const Actor& actor, double timeSec);
 
 // Evaluates every visible actor of project at timeSec. baseDir resolves the
 // actors' relative asset paths. Actors whose asset failed to load are

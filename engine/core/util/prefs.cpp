@@ -33,6 +33,8 @@ std::string preferencesToJson(const Preferences& p) {
                  {"otherSchemeToo", p.otherSchemeToo}};
   j["recentFiles"] = p.recentFiles;
   j["autosaveIntervalSec"] = p.autosaveIntervalSec;
+  j["previewResolution"] = p.previewResolution;
+  j["previewCoarseResolution"] = p.previewCoarseResolution;
   return j.dump(2) + "\n";
 }
 
@@ -102,6 +104,9 @@ Result<Preferences> preferencesFromJson(const std::string& text, const std::stri
     }
   }
   p.autosaveIntervalSec = number(j, "autosaveIntervalSec", "", p.autosaveIntervalSec, 0, 86400);
+  p.previewResolution = static_cast<int>(number(j, "previewResolution", "", p.previewResolution, 16, 512));
+  p.previewCoarseResolution =
+      static_cast<int>(number(j, "previewCoarseResolution", "", p.previewCoarseResolution, 8, 256));
   if (!err.empty()) {
     // "prefs.json: .autosaveIntervalSec" reads badly for top-level keys.
     auto pos = err.find(": .");

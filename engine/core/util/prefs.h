@@ -24,6 +24,10 @@ struct Preferences {
   bool otherSchemeToo = true;
   std::vector<std::string> recentFiles;  // absolute paths, most recent first
   double autosaveIntervalSec = 60.0;     // 0 disables autosave
+  // BlobTree preview: cells along the longest side for the refined surface
+  // (shown once scrubbing stops) and for the quick one while things change.
+  int previewResolution = 128;           // 16..512
+  int previewCoarseResolution = 48;      // 8..256
   bool operator==(const Preferences&) const = default;
 };
 

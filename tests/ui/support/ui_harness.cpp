@@ -44,7 +44,7 @@ EditorHarness::EditorHarness(const std::string& prefsPath, glm::vec2 display)
   io.KeyMap[ImGuiKey_Z] = GLFW_KEY_Z;
   io.MousePos = ImVec2(display.x * 0.5f, display.y * 0.5f);
   ui = std::make_unique<EditorUI>(prefsPath);
-  ctx.stats = {60.0f, 16.7f, "test device"};
+  ctx.stats = {60.0f, 16.7f, "test device", ""};
   frames(2);  // windows exist and are laid out
 }
 

@@ -1,0 +1,614 @@
+#include "blobtree/tree_edit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "blobtree/validate.h"
+#include "math/euler.h"
+
+namespace animorph {
+
+namespace {
+
+constexpr double kSameTimeSec = 1e-6;  // keys closer than this are at "the same time"
+
+template <class N>
+N* parentOf(N& n, int id, int* index) {
+  for (size_t i = 0; i < n.children.size(); ++i) {
+    if (n.children[i].id == id) {
+      if (index) *index = int(i);
+      return &n;
+    }
+    if (N* p = parentOf(n.children[i], id, index)) return p;
+  }
+  return nullptr;
+}
+
+template <class Tree, class Out>
+Out trackIn(Tree& tree, const ParamAddress& a) {
+  auto* n = tree.find(a.node);
+  if (!n || a.param < 0 || a.param >= int(n->params.size())) return Out{};
+  auto& pv = n->params[size_t(a.param)];
+  if (auto* pts = std::get_if<ControlPoints>(&pv)) {
+    if (a.point < 0 || a.point >= int(pts->size())) return Out{};
+    return Out{&(*pts)[size_t(a.point)]};
+  }
+  if (a.point >= 0) return Out{};
+  if (auto* f = std::get_if<FloatTrack>(&pv)) return Out{f};
+  if (auto* v = std::get_if<Vec3Track>(&pv)) return Out{v};
+  if (auto* q = std::get_if<QuatTrack>(&pv)) return Out{q};
+  return Out{};
+}
+
+std::string paramName(const BlobNode& n, const ParamAddress& a) {
+  std::string s = nodeTypeInfo(n.type).params[size_t(a.param)].name;
+  if (a.point >= 0) s += "[" + std::to_string(a.point) + "]";
+  return s;
+}
+
+int maxChildren(const BlobNode& n) { return nodeTypeInfo(n.type).maxChildren; }
+int minChildren(const BlobNode& n) { return nodeTypeInfo(n.type).minChildren; }
+
+void collectIds(const BlobNode& n, std::set<int>& ids) {
+  ids.insert(n.id);
+  for (const auto& c : n.children) collectIds(c, ids);
+}
+
+void renumber(BlobNode& n, int& nextId) {
+  n.id = nextId++;
+  for (auto& c : n.children) renumber(c, nextId);
+}
+
+// Automatic (Catmull-Rom) derivatives of key i, as track.cpp computes them.
+template <class T>
+void autoDerivatives(const std::vector<TrackKey<T>>& keys, size_t i, T& d1, T& d2) {
+  d1 = d2 = T(0.0f);
+  size_t n = keys.size();
+  if (n < 2) return;
+  const auto& k = keys[i];
+  if (i == 0) {
+    d1 = (keys[1].value - k.value) / float(keys[1].timeSec - k.timeSec);
+  } else if (i + 1 == n) {
+    d1 = (k.value - keys[i - 1].value) / float(k.timeSec - keys[i - 1].timeSec);
+  } else {
+    const auto& a = keys[i - 1];
+    const auto& b = keys[i + 1];
+    float h0 = float(k.timeSec - a.timeSec), h1 = float(b.timeSec - k.timeSec);
+    d1 = (b.value - a.value) / (h0 + h1);
+    d2 = ((b.value - k.value) / h1 - (k.value - a.value) / h0) * (2.0f / (h0 + h1));
+  }
+}
+
+float clampToRule(float v, ParamRule rule) {
+  switch (rule) {
+    case ParamRule::NonNegative: return std::max(0.0f, v);
+    case ParamRule::Positive: return std::max(1e-4f, v);
+    case ParamRule::AtLeastOne: return std::max(1.0f, v);
+    default: return v;
+  }
+}
+
+// Adds (or replaces at the same time, keeping its interpolation) a key.
+template <class T>
+void putKey(Track<T>& t, double timeSec, const T& value) {
+  auto& keys = t.keys();
+  for (auto& k : keys) {
+    if (std::abs(k.timeSec - timeSec) < kSameTimeSec) {
+      k.value = value;
+      return;
+    }
+  }
+  KeyInterp interp = KeyInterp::Hermite;
+  // A new key inherits the interpolation of the segment it splits.
+  for (const auto& k : keys)
+    if (k.timeSec < timeSec) interp = k.interp;
+  t.setKey(timeSec, value, interp);
+}
+
+template <class T>
+void setTrackValue(Track<T>& t, double timeSec, const T& value, bool key) {
+  if (t.keys().empty()) {
+    t.setKey(key ? timeSec : 0.0, value);
+    return;
+  }
+  if (t.keys().size() == 1 && !key) {
+    t.keys()[0].value = value;  // no animation: the value holds at all times
+    return;
+  }
+  putKey(t, timeSec, value);
+}
+
+template <class T>
+Track<T>* asTrack(const TrackPtr& p) {
+  if (auto* t = std::get_if<Track<T>*>(&p)) return *t;
+  return nullptr;
+}
+
+template <class F>
+auto visitTrack(const TrackPtr& p, F&& f) {
+  if (auto* t = std::get_if<FloatTrack*>(&p)) return f(**t);
+  if (auto* t = std::get_if<Vec3Track*>(&p)) return f(**t);
+  return f(*std::get<QuatTrack*>(p));
+}
+
+Error noParam(const ParamAddress& a) {
+  return Error{"node " + std::to_string(a.node) + ": no parameter #" + std::to_string(a.param) +
+               (a.point >= 0 ? " point " + std::to_string(a.point) : std::string())};
+}
+
+}  // namespace
+
+TrackPtr findTrack(BlobTree& tree, const ParamAddress& a) { return trackIn<BlobTree, TrackPtr>(tree, a); }
+ConstTrackPtr findTrack(const BlobTree& tree, const ParamAddress& a) {
+  return trackIn<const BlobTree, ConstTrackPtr>(tree, a);
+}
+
+int channelCount(ParamKind kind) { return kind == ParamKind::Float ? 1 : 3; }
+
+bool paramKindAt(const BlobTree& tree, const ParamAddress& a, ParamKind& kind) {
+  ConstTrackPtr t = findTrack(tree, a);
+  if (std::holds_alternative<std::monostate>(t)) return false;
+  kind = std::holds_alternative<const FloatTrack*>(t)  ? ParamKind::Float
+         : std::holds_alternative<const QuatTrack*>(t) ? ParamKind::Quat
+                                                       : ParamKind::Vec3;
+  return true;
+}
+
+float channelOf(const ParamSample& v, int channel) {
+  if (auto* f = std::get_if<float>(&v)) return *f;
+  if (auto* p = std::get_if<glm::vec3>(&v)) return (*p)[std::clamp(channel, 0, 2)];
+  return eulerDegreesOf(std::get<glm::quat>(v))[std::clamp(channel, 0, 2)];
+}
+
+ParamSample withChannel(const ParamSample& v, int channel, float x) {
+  if (std::holds_alternative<float>(v)) return x;
+  int c = std::clamp(channel, 0, 2);
+  if (auto* p = std::get_if<glm::vec3>(&v)) {
+    glm::vec3 r = *p;
+    r[c] = x;
+    return r;
+  }
+  glm::vec3 e = eulerDegreesOf(std::get<glm::quat>(v));
+  e[c] = x;
+  return quatFromEulerDegrees(e);
+}
+
+int keyCount(const BlobTree& tree, const ParamAddress& a) {
+  ConstTrackPtr t = findTrack(tree, a);
+  if (auto* f = std::get_if<const FloatTrack*>(&t)) return int((*f)->keys().size());
+  if (auto* v = std::get_if<const Vec3Track*>(&t)) return int((*v)->keys().size());
+  if (auto* q = std::get_if<const QuatTrack*>(&t)) return int((*q)->keys().size());
+  return 0;
+}
+
+bool keyAt(const BlobTree& tree, const KeyRef& k, double& timeSec, ParamSample& value) {
+  ConstTrackPtr t = findTrack(tree, k.param);
+  auto read = [&](const auto* track) {
+    if (!track || k.key < 0 || k.key >= int(track->keys().size())) return false;
+    timeSec = track->keys()[size_t(k.key)].timeSec;
+    value = track->keys()[size_t(k.key)].value;
+    return true;
+  };
+  if (auto* f = std::get_if<const FloatTrack*>(&t)) return read(*f);
+  if (auto* v = std::get_if<const Vec3Track*>(&t)) return read(*v);
+  if (auto* q = std::get_if<const QuatTrack*>(&t)) return read(*q);
+  return false;
+}
+
+bool sampleParam(const BlobTree& tree, const ParamAddress& a, double timeSec, ParamSample& value) {
+  ConstTrackPtr t = findTrack(tree, a);
+  if (auto* f = std::get_if<const FloatTrack*>(&t)) value = (*f)->evaluate(timeSec);
+  else if (auto* v = std::get_if<const Vec3Track*>(&t)) value = (*v)->evaluate(timeSec);
+  else if (auto* q = std::get_if<const QuatTrack*>(&t)) value = (*q)->evaluate(timeSec);
+  else return false;
+  return true;
+}
+
+bool isAnimated(const BlobTree& tree, const ParamAddress& a) { return keyCount(tree, a) >= 2; }
+
+BlobNode* findParent(BlobTree& tree, int id, int* index) { return parentOf(tree.root, id, index); }
+const BlobNode* findParent(const BlobTree& tree, int id, int* index) { return parentOf(tree.root, id, index); }
+
+bool isInSubtree(const BlobNode& ancestor, int id) {
+  if (ancestor.id == id) return true;
+  for (const auto& c : ancestor.children)
+    if (isInSubtree(c, id)) return true;
+  return false;
+}
+
+BlobNode makeDefaultNode(NodeType type, int& nextId) {
+  const NodeTypeInfo& info = nodeTypeInfo(type);
+  BlobNode n = makeBlobNode(type, nextId++, info.name);
+  auto setF = [&](const char* name, float v) {
+    if (paramIndex(type, name) >= 0) n.floatParam(name) = FloatTrack(v);
+  };
+  auto setV = [&](const char* name, glm::vec3 v) {
+    if (paramIndex(type, name) >= 0) n.vec3Param(name) = Vec3Track(v);
+  };
+  // Skeletal potentials: I = 2 with T = 1 puts the surface at 0.45 R from the skeleton.
+  setF("radius", type == NodeType::ConvSegment || type == NodeType::Capsule ? 0.15f : 0.5f);
+  setF("intensity", 2.0f);
+  setF("skeletonRadius", 0.15f);
+  setF("radiusA", 0.15f);
+  setF("radiusB", 0.05f);
+  setV("a", {-0.3f, 0.0f, 0.0f});
+  setV("b", {0.3f, 0.0f, 0.0f});
+  if (type == NodeType::Triangle) {
+    setV("a", {-0.3f, 0.0f, -0.2f});
+    setV("b", {0.3f, 0.0f, -0.2f});
+    setV("c", {0.0f, 0.0f, 0.3f});
+  }
+  if (type == NodeType::Twist || type == NodeType::Taper || type == NodeType::Bend) {
+    setV("a", {0.0f, -0.4f, 0.0f});
+    setV("b", {0.0f, 0.4f, 0.0f});
+  }
+  if (type == NodeType::Bend) setV("direction", {1.0f, 0.0f, 0.0f});
+  auto points = [](std::initializer_list<glm::vec3> ps) {
+    ControlPoints out;
+    for (const auto& p : ps) out.emplace_back(p);
+    return out;
+  };
+  if (type == NodeType::Curve) n.pointsParam("points") = points({{-0.4f, 0, 0}, {0, 0.2f, 0}, {0.4f, 0, 0}});
+  if (type == NodeType::SplineOfNodes) {
+    n.pointsParam("points") = points({{-0.5f, 0, 0}, {0, 0.2f, 0}, {0.5f, 0, 0}});
+    n.floatParam("scaleEnd") = FloatTrack(0.6f);
+  }
+  if (type == NodeType::CoonsPatch) {
+    n.pointsParam("bottom") = points({{-0.3f, 0, -0.3f}, {0.3f, 0, -0.3f}});
+    n.pointsParam("top") = points({{-0.3f, 0, 0.3f}, {0.3f, 0, 0.3f}});
+    n.pointsParam("left") = points({{-0.3f, 0, -0.3f}, {-0.3f, 0.1f, 0}, {-0.3f, 0, 0.3f}});
+    n.pointsParam("right") = points({{0.3f, 0, -0.3f}, {0.3f, 0.1f, 0}, {0.3f, 0, 0.3f}});
+    n.floatParam("radius") = FloatTrack(0.3f);
+  }
+  // Children the type needs, spread along X so each is visible.
+  int need = info.minChildren;
+  for (int i = 0; i < need; ++i) {
+    BlobNode s = makeBlobNode(NodeType::Sphere, nextId++, "sphere");
+    float x = need == 1 ? 0.0f : -0.2f + 0.4f * float(i) / float(need - 1);
+    if (type == NodeType::BoundedBlend && i == 2) x = 0.0f;  // the bounding solid sits between
+    s.vec3Param("center") = Vec3Track(glm::vec3(x, 0.0f, 0.0f));
+    s.floatParam("skeletonRadius") = FloatTrack(type == NodeType::SplineOfNodes ? 0.05f : 0.15f);
+    s.floatParam("radius") = FloatTrack(type == NodeType::SplineOfNodes ? 0.25f : 0.4f);
+    s.floatParam("intensity") = FloatTrack(2.0f);
+    n.children.push_back(std::move(s));
+  }
+  return n;
+}
+
+BlobTree makeStarterTree() {
+  BlobTree t;
+  int next = 1;
+  t.root = makeDefaultNode(NodeType::Blend, next);
+  t.root.name = "blend";
+  return t;
+}
+
+Status addNode(BlobTree& tree, int parentId, BlobNode node, int index) {
+  BlobNode* parent = tree.find(parentId);
+  if (!parent) return Error{"no node " + std::to_string(parentId) + " to add to"};
+  int mx = maxChildren(*parent);
+  if (mx >= 0 && int(parent->children.size()) >= mx)
+    return Error{describeNode(*parent) + " takes at most " + std::to_string(mx) + " child" + (mx == 1 ? "" : "ren")};
+  std::set<int> have, adding;
+  collectIds(tree.root, have);
+  collectIds(node, adding);
+  for (int id : adding)
+    if (have.count(id)) return Error{"node id " + std::to_string(id) + " is already in use"};
+  if (index < 0 || index > int(parent->children.size())) index = int(parent->children.size());
+  parent->children.insert(parent->children.begin() + index, std::move(node));
+  return Status::success();
+}
+
+Status deleteNode(BlobTree& tree, int id) {
+  if (tree.root.id == id) return Error{"the root node cannot be deleted"};
+  int index = -1;
+  BlobNode* parent = findParent(tree, id, &index);
+  if (!parent) return Error{"no node " + std::to_string(id)};
+  int mn = minChildren(*parent);
+  if (int(parent->children.size()) - 1 < mn)
+    return Error{"cannot delete " + describeNode(parent->children[size_t(index)]) + ": " + describeNode(*parent) +
+                 " needs at least " + std::to_string(mn) + " child" + (mn == 1 ? "" : "ren")};
+  parent->children.erase(parent->children.begin() + index);
+  return Status::success();
+}
+
+Result<int> duplicateNode(BlobTree& tree, int id) {
+  if (tree.root.id == id) return Error{"the root node cannot be duplicated (it has no parent)"};
+  int index = -1;
+  BlobNode* parent = findParent(tree, id, &index);
+  if (!parent) return Error{"no node " + std::to_string(id)};
+  BlobNode copy = parent->children[size_t(index)];
+  int next = tree.nextId();
+  renumber(copy, next);
+  if (!copy.name.empty()) copy.name += " copy";
+  int newId = copy.id;
+  if (Status s = addNode(tree, parent->id, std::move(copy), index + 1); !s) return Error{s.error()};
+  return newId;
+}
+
+Status reparentNode(BlobTree& tree, int id, int newParentId, int index) {
+  if (tree.root.id == id) return Error{"the root node cannot be moved"};
+  int oldIndex = -1;
+  BlobNode* oldParent = findParent(tree, id, &oldIndex);
+  if (!oldParent) return Error{"no node " + std::to_string(id)};
+  const BlobNode& node = oldParent->children[size_t(oldIndex)];
+  BlobNode* target = tree.find(newParentId);
+  if (!target) return Error{"no node " + std::to_string(newParentId) + " to move to"};
+  if (isInSubtree(node, newParentId))
+    return Error{"cannot move " + describeNode(node) + " under " + describeNode(*target) +
+                 ": it is inside the node itself (a cycle)"};
+  if (oldParent == target) {
+    // Reorder among siblings.
+    int n = int(target->children.size());
+    if (index < 0 || index >= n) index = n - 1;
+    BlobNode moved = std::move(target->children[size_t(oldIndex)]);
+    target->children.erase(target->children.begin() + oldIndex);
+    target->children.insert(target->children.begin() + std::min(index, n - 1), std::move(moved));
+    return Status::success();
+  }
+  int mx = maxChildren(*target);
+  if (mx >= 0 && int(target->children.size()) >= mx)
+    return Error{"cannot move " + describeNode(node) + ": " + describeNode(*target) + " takes at most " +
+                 std::to_string(mx) + " child" + (mx == 1 ? "" : "ren")};
+  int mn = minChildren(*oldParent);
+  if (int(oldParent->children.size()) - 1 < mn)
+    return Error{"cannot move " + describeNode(node) + ": " + describeNode(*oldParent) + " needs at least " +
+                 std::to_string(mn) + " child" + (mn == 1 ? "" : "ren")};
+  BlobNode moved = std::move(oldParent->children[size_t(oldIndex)]);
+  oldParent->children.erase(oldParent->children.begin() + oldIndex);
+  // Erasing shifted the old parent's later children (target may be one of them): look it up again.
+  target = tree.find(newParentId);
+  if (index < 0 || index > int(target->children.size())) index = int(target->children.size());
+  target->children.insert(target->children.begin() + index, std::move(moved));
+  return Status::success();
+}
+
+Status renameNode(BlobTree& tree, int id, const std::string& name) {
+  BlobNode* n = tree.find(id);
+  if (!n) return Error{"no node " + std::to_string(id)};
+  n->name = name;
+  return Status::success();
+}
+
+Status setParamValue(BlobTree& tree, const ParamAddress& a, double timeSec, const ParamSample& value, bool key) {
+  BlobNode* n = tree.find(a.node);
+  TrackPtr t = findTrack(tree, a);
+  if (!n || std::holds_alternative<std::monostate>(t)) return noParam(a);
+  const ParamSpec& spec = nodeTypeInfo(n->type).params[size_t(a.param)];
+  if (!std::isfinite(timeSec)) return Error{describeNode(*n) + ": key time is not finite"};
+  if (auto* f = asTrack<float>(t)) {
+    const float* v = std::get_if<float>(&value);
+    if (!v) return Error{describeNode(*n) + ": parameter '" + paramName(*n, a) + "' takes a number"};
+    if (!std::isfinite(*v)) return Error{describeNode(*n) + ": parameter '" + paramName(*n, a) + "' must be finite"};
+    setTrackValue(*f, timeSec, clampToRule(*v, spec.rule), key);
+  } else if (auto* q = asTrack<glm::quat>(t)) {
+    const glm::quat* v = std::get_if<glm::quat>(&value);
+    if (!v) return Error{describeNode(*n) + ": parameter '" + paramName(*n, a) + "' takes a rotation"};
+    if (!(glm::length(*v) > 1e-6f)) return Error{describeNode(*n) + ": parameter '" + paramName(*n, a) + "': zero quaternion"};
+    setTrackValue(*q, timeSec, glm::normalize(*v), key);
+  } else {
+    auto* vt = asTrack<glm::vec3>(t);
+    const glm::vec3* v = std::get_if<glm::vec3>(&value);
+    if (!v) return Error{describeNode(*n) + ": parameter '" + paramName(*n, a) + "' takes a vector"};
+    if (!std::isfinite(v->x) || !std::isfinite(v->y) || !std::isfinite(v->z))
+      return Error{describeNode(*n) + ": parameter '" + paramName(*n, a) + "' must be finite"};
+    if (spec.rule == ParamRule::NonZero) {
+      bool perComponent = n->type == NodeType::Frame;
+      if (perComponent ? (v->x == 0.0f || v->y == 0.0f || v->z == 0.0f) : glm::length(*v) == 0.0f)
+        return Error{describeNode(*n) + ": parameter '" + paramName(*n, a) + "' must be non-zero"};
+    }
+    setTrackValue(*vt, timeSec, *v, key);
+  }
+  return Status::success();
+}
+
+Status deleteKeys(BlobTree& tree, const std::vector<KeyRef>& keys) {
+  std::map<ParamAddress, std::set<int>> byTrack;
+  for (const KeyRef& k : keys) byTrack[k.param].insert(k.key);
+  for (const auto& [addr, idx] : byTrack) {
+    TrackPtr t = findTrack(tree, addr);
+    if (std::holds_alternative<std::monostate>(t)) return noParam(addr);
+    Status st = visitTrack(t, [&](auto& track) -> Status {
+      auto& ks = track.keys();
+      for (int i : idx)
+        if (i < 0 || i >= int(ks.size()))
+          return Error{"node " + std::to_string(addr.node) + ": no key " + std::to_string(i)};
+      auto first = ks.front();
+      for (auto it = idx.rbegin(); it != idx.rend(); ++it) ks.erase(ks.begin() + *it);
+      if (ks.empty()) {
+        first.timeSec = 0.0;
+        first.userDerivatives = false;
+        ks.push_back(first);
+      }
+      return Status::success();
+    });
+    if (!st) return st;
+  }
+  return Status::success();
+}
+
+Result<std::vector<KeyChannelRef>> moveKeys(BlobTree& tree, const std::vector<KeyChannelRef>& channels, double dtSec,
+                                            float dValue) {
+  // Per track: which keys move, and which of their channels change.
+  std::map<ParamAddress, std::map<int, std::set<int>>> byTrack;
+  for (const auto& c : channels) byTrack[c.key.param][c.key.key].insert(c.channel);
+  std::map<KeyRef, KeyRef> remap;
+  for (const auto& [addr, moving] : byTrack) {
+    TrackPtr t = findTrack(tree, addr);
+    if (std::holds_alternative<std::monostate>(t)) return noParam(addr);
+    BlobNode* node = tree.find(addr.node);
+    const ParamSpec& spec = nodeTypeInfo(node->type).params[size_t(addr.param)];
+    Status st = visitTrack(t, [&](auto& track) -> Status {
+      using T = std::decay_t<decltype(track.keys()[0].value)>;
+      auto& ks = track.keys();
+      for (const auto& [i, chs] : moving)
+        if (i < 0 || i >= int(ks.size()))
+          return Error{"node " + std::to_string(addr.node) + ": no key " + std::to_string(i)};
+      struct Tagged {
+        TrackKey<T> key;
+        int oldIndex;
+        bool moved;
+      };
+      std::vector<Tagged> all;
+      for (size_t i = 0; i < ks.size(); ++i) {
+        Tagged tg{ks[i], int(i), moving.count(int(i)) > 0};
+        if (tg.moved) {
+          tg.key.timeSec = std::max(0.0, tg.key.timeSec + dtSec);
+          ParamSample v = tg.key.value;
+          for (int c : moving.at(int(i))) v = withChannel(v, c, channelOf(v, c) + dValue);
+          T nv = std::get<T>(v);
+          if constexpr (std::is_same_v<T, float>) nv = clampToRule(nv, spec.rule);
+          tg.key.value = nv;
+        }
+        all.push_back(tg);
+      }
+      // Moved keys replace unmoved ones at the same time.
+      std::vector<Tagged> kept;
+      for (const auto& a : all) {
+        bool covered = false;
+        if (!a.moved)
+          for (const auto& b : all)
+            if (b.moved && std::abs(b.key.timeSec - a.key.timeSec) < kSameTimeSec) covered = true;
+        if (!covered) kept.push_back(a);
+      }
+      std::stable_sort(kept.begin(), kept.end(),
+                       [](const Tagged& x, const Tagged& y) { return x.key.timeSec < y.key.timeSec; });
+      // Two moved keys on one time: the later in the list wins.
+      std::vector<Tagged> uniq;
+      for (const auto& k : kept) {
+        if (!uniq.empty() && std::abs(uniq.back().key.timeSec - k.key.timeSec) < kSameTimeSec) uniq.back() = k;
+        else uniq.push_back(k);
+      }
+      ks.clear();
+      for (size_t i = 0; i < uniq.size(); ++i) {
+        ks.push_back(uniq[i].key);
+        if (uniq[i].moved) remap[KeyRef{addr, uniq[i].oldIndex}] = KeyRef{addr, int(i)};
+      }
+      return Status::success();
+    });
+    if (!st) return Error{st.error()};
+  }
+  std::vector<KeyChannelRef> out;
+  for (const auto& c : channels) {
+    auto it = remap.find(c.key);
+    if (it != remap.end()) out.push_back({it->second, c.channel});
+  }
+  return out;
+}
+
+Result<KeyChannelRef> setKeyTimeValue(BlobTree& tree, const KeyChannelRef& k, double timeSec, float value) {
+  double t0 = 0.0;
+  ParamSample v;
+  if (!keyAt(tree, k.key, t0, v)) return Error{"node " + std::to_string(k.key.param.node) + ": no such key"};
+  if (!std::isfinite(timeSec) || !std::isfinite(value)) return Error{"key time and value must be finite"};
+  auto moved = moveKeys(tree, {k}, std::max(0.0, timeSec) - t0, value - channelOf(v, k.channel));
+  if (!moved) return Error{moved.error()};
+  if (moved->empty()) return Error{"the key vanished"};
+  return moved->front();
+}
+
+Status setKeyInterp(BlobTree& tree, const std::vector<KeyRef>& keys, KeyInterp interp) {
+  for (const KeyRef& k : keys) {
+    TrackPtr t = findTrack(tree, k.param);
+    if (std::holds_alternative<std::monostate>(t)) return noParam(k.param);
+    Status st = visitTrack(t, [&](auto& track) -> Status {
+      if (k.key < 0 || k.key >= int(track.keys().size())) return Error{"no key " + std::to_string(k.key)};
+      track.keys()[size_t(k.key)].interp = interp;
+      return Status::success();
+    });
+    if (!st) return st;
+  }
+  return Status::success();
+}
+
+Status setKeyTangentMode(BlobTree& tree, const std::vector<KeyRef>& keys, bool user) {
+  for (const KeyRef& k : keys) {
+    TrackPtr t = findTrack(tree, k.param);
+    if (std::holds_alternative<std::monostate>(t)) return noParam(k.param);
+    if (std::holds_alternative<QuatTrack*>(t)) continue;  // rotations slerp: no tangents
+    Status st = visitTrack(t, [&](auto& track) -> Status {
+      using T = std::decay_t<decltype(track.keys()[0].value)>;
+      if constexpr (std::is_same_v<T, glm::quat>) {
+        return Status::success();
+      } else {
+        auto& ks = track.keys();
+        if (k.key < 0 || k.key >= int(ks.size())) return Error{"no key " + std::to_string(k.key)};
+        auto& key = ks[size_t(k.key)];
+        if (user && !key.userDerivatives) autoDerivatives(ks, size_t(k.key), key.d1, key.d2);
+        key.userDerivatives = user;
+        return Status::success();
+      }
+    });
+    if (!st) return st;
+  }
+  return Status::success();
+}
+
+Status setKeyTangent(BlobTree& tree, const KeyChannelRef& k, float slopePerSec) {
+  TrackPtr t = findTrack(tree, k.key.param);
+  if (std::holds_alternative<std::monostate>(t)) return noParam(k.key.param);
+  if (std::holds_alternative<QuatTrack*>(t)) return Error{"rotation keys have no tangents (they slerp)"};
+  if (!std::isfinite(slopePerSec)) return Error{"tangent slope must be finite"};
+  if (Status s = setKeyTangentMode(tree, {k.key}, true); !s) return s;
+  if (auto* f = asTrack<float>(t)) f->keys()[size_t(k.key.key)].d1 = slopePerSec;
+  else asTrack<glm::vec3>(t)->keys()[size_t(k.key.key)].d1[std::clamp(k.channel, 0, 2)] = slopePerSec;
+  return Status::success();
+}
+
+float keySlope(const BlobTree& tree, const KeyChannelRef& k) {
+  ConstTrackPtr t = findTrack(tree, k.key.param);
+  auto slope = [&](const auto* track) -> float {
+    using T = std::decay_t<decltype(track->keys()[0].value)>;
+    const auto& ks = track->keys();
+    if (k.key.key < 0 || k.key.key >= int(ks.size())) return 0.0f;
+    T d1 = ks[size_t(k.key.key)].d1, d2{};
+    if (!ks[size_t(k.key.key)].userDerivatives) autoDerivatives(ks, size_t(k.key.key), d1, d2);
+    if constexpr (std::is_same_v<T, float>) return d1;
+    else return d1[std::clamp(k.channel, 0, 2)];
+  };
+  if (auto* f = std::get_if<const FloatTrack*>(&t)) return slope(*f);
+  if (auto* v = std::get_if<const Vec3Track*>(&t)) return slope(*v);
+  return 0.0f;
+}
+
+namespace {
+void keyTimesOf(const BlobNode& n, bool recurse, std::vector<double>& out) {
+  auto add = [&](const auto& track) {
+    if (track.keys().size() >= 2)
+      for (const auto& k : track.keys()) out.push_back(k.timeSec);
+  };
+  for (const auto& pv : n.params) {
+    if (auto* f = std::get_if<FloatTrack>(&pv)) add(*f);
+    else if (auto* v = std::get_if<Vec3Track>(&pv)) add(*v);
+    else if (auto* q = std::get_if<QuatTrack>(&pv)) add(*q);
+    else
+      for (const auto& p : std::get<ControlPoints>(pv)) add(p);
+  }
+  if (recurse)
+    for (const auto& c : n.children) keyTimesOf(c, true, out);
+}
+}  // namespace
+
+std::vector<double> animatedKeyTimes(const BlobTree& tree, int id) {
+  std::vector<double> out;
+  if (id < 0) {
+    keyTimesOf(tree.root, true, out);
+    if (tree.threshold.keys().size() >= 2)
+      for (const auto& k : tree.threshold.keys()) out.push_back(k.timeSec);
+  } else if (const BlobNode* n = tree.find(id)) {
+    keyTimesOf(*n, false, out);
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end(), [](double a, double b) { return std::abs(a - b) < kSameTimeSec; }),
+            out.end());
+  return out;
+}
+
+double animationEndSec(const BlobTree& tree) {
+  std::vector<double> t = animatedKeyTimes(tree, -1);
+  return t.empty() ? 0.0 : t.back();
+}
+
+}  // namespace animorph

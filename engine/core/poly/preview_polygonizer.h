@@ -1,0 +1,89 @@
+#pragma once
+// Interactive preview of an animated BlobTree (DESIGN.md §6: "the editor
+// refines progressively while scrubbing stops"). A worker thread polygonises
+// the latest request only: a new request cancels the run in progress (the
+// polygoniser's cancel flag) and replaces any request still waiting. Each
+// request is answered first at a coarse resolution, then, if no newer request
+// came in meanwhile, at the fine one. The UI thread submits and polls; it
+// never waits.
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "blobtree/blob_tree.h"
+#include "poly/polygonizer.h"
+
+namespace animorph {
+
+struct PreviewRequest {
+  std::shared_ptr<const BlobTree> tree;  // a snapshot: never modified after submission
+  double timeSec = 0.0;                  // tree time to evaluate at
+  int coarseResolution = 48;             // first answer (skipped when >= fineResolution)
+  int fineResolution = 128;              // refined answer once the request stays unchanged
+};
+
+struct PreviewResult {
+  uint64_t requestId = 0;  // submit()'s id of the request this answers
+  uint64_t serial = 0;     // increases with every published result
+  double timeSec = 0.0;
+  int resolution = 0;
+  bool final = false;      // the fine answer (no better one will come for this request)
+  TriangleMesh mesh;       // in the tree's space; empty on error or for an empty shape
+  PolygonizeStats stats;
+  std::string error;       // invalid tree or polygoniser error; empty on success
+};
+
+struct PreviewCounters {
+  uint64_t runsStarted = 0;    // polygoniser runs begun (one per level)
+  uint64_t runsCancelled = 0;  // runs stopped by a newer request
+  uint64_t published = 0;      // results published
+};
+
+class PreviewPolygonizer {
+ public:
+  // threads: polygoniser threads per run (0: all hardware threads).
+  explicit PreviewPolygonizer(int threads = 0);
+  // Cancels the run in progress and joins the worker.
+  ~PreviewPolygonizer();
+  PreviewPolygonizer(const PreviewPolygonizer&) = delete;
+  PreviewPolygonizer& operator=(const PreviewPolygonizer&) = delete;
+
+  // Submits a request and returns its id. A request equal to the latest one
+  // (same tree contents, time and resolutions) changes nothing and returns the
+  // latest id; any other cancels the work in progress. Requests without a tree are ignored (id 0).
+  uint64_t submit(PreviewRequest request);
+  // The newest published result, or null before the first. Never blocks on the worker's runs.
+  std::shared_ptr<const PreviewResult> latest() const;
+  // Serial of latest() (0 before the first): cheap polling for "is there something new".
+  uint64_t latestSerial() const { return serial_.load(); }
+  // True while a request is waiting or running.
+  bool busy() const;
+  // Waits until the worker is idle (the latest request fully answered) or timeoutSec passes. Returns idle.
+  bool waitIdle(double timeoutSec) const;
+  PreviewCounters counters() const;
+
+ private:
+  void run();
+  void publish(std::shared_ptr<PreviewResult> r);
+
+  const int threads_;
+  mutable std::mutex mutex_;
+  mutable std::condition_variable wake_;  // worker: a request or stop
+  mutable std::condition_variable idle_;  // waitIdle
+  PreviewRequest pending_;                // latest request
+  uint64_t pendingId_ = 0;                // id of pending_ (0: none yet)
+  uint64_t doneId_ = 0;                   // last request fully handled
+  bool running_ = false;
+  bool stop_ = false;
+  std::atomic<bool> cancel_{false};
+  std::atomic<uint64_t> serial_{0};
+  std::shared_ptr<const PreviewResult> latest_;
+  PreviewCounters counters_;
+  std::thread worker_;
+};
+
+}  // namespace animorph

@@ -1,0 +1,66 @@
+#pragma once
+// Curve editor (View > Curve Editor, Ctrl+G): the animated parameters of the
+// selected BlobTree node as curves over the tree's time (in frames). Left: the
+// channels with visibility boxes (x red, y green, z blue; rotations as Euler
+// degrees). Right: the graph.
+//   click a key: select it (Shift: add / remove); drag on empty space: box
+//   select (Shift adds); drag keys: move them (whole frames unless Ctrl is
+//   held); Del: delete the selected keys; handles of selected Hermite keys:
+//   drag to set the slope (the key switches to user tangents); right-click a
+//   key: interpolation (constant / linear / Hermite), auto / user tangents,
+//   delete; F: frame every curve; wheel: zoom time, Ctrl+wheel: zoom values;
+//   middle drag: pan. The toolbar has the same commands and numeric entry of
+//   the selected key's frame and value. Every edit is one undoable command
+//   (one per drag).
+#include <set>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "blobtree/tree_edit.h"
+#include "doc/document.h"
+#include "layout.h"
+#include "status_bar.h"
+
+namespace animorph {
+
+struct CurveEditorState {
+  bool visible = false;
+  bool placeNext = true;  // position the window over the bottom area next time it opens
+  // View: frames of tree time across, parameter values up.
+  double frame0 = -2.0, frame1 = 50.0;
+  double value0 = -1.0, value1 = 1.0;
+  bool frameAllNext = true;  // frame every curve on the next draw
+  std::string actorId;       // whose node's curves are shown
+  int node = -1;
+  std::set<KeyChannelRef> selection;
+  std::set<std::tuple<int, int, int>> hidden;  // (param, point, channel) not drawn
+  bool snap = true;                            // whole frames when moving keys
+
+  enum class Drag { None, Move, Tangent, Box, Pan };
+  Drag drag = Drag::None;
+  glm::vec2 dragStart{0.0f};
+  BlobTree dragOriginal;                // the tree when a move / tangent drag began
+  std::vector<KeyChannelRef> dragKeys;  // what the drag moves, as refs into dragOriginal
+  KeyChannelRef dragAnchor;             // the key under the mouse (snapping follows it)
+  int tangentSide = 1;                  // +1: out handle, -1: in handle
+  double lastDt = 0.0;
+  double lastDv = 0.0;
+  bool dragChanged = false;
+
+  bool focused = false;  // the window had keyboard focus this frame (Del / F are its own then)
+  // Graph rectangle of the last frame (window pixels).
+  glm::vec2 graphMin{0.0f}, graphMax{0.0f};
+};
+
+// Graph pixel of a (frame, value) point, and back, for the state's view and graph rectangle.
+glm::vec2 curveToPixel(const CurveEditorState& st, double frame, double value);
+glm::dvec2 pixelToCurve(const CurveEditorState& st, glm::vec2 px);
+
+// Draws the window when visible. area: the region it opens over (the
+// viewport). Refused edits report to status.
+void drawCurveEditorPanel(const LayoutRect& area, Document& doc, CurveEditorState& st, StatusMessage& status);
+
+}  // namespace animorph
