@@ -1,0 +1,88 @@
+// Fine pass 1: one workgroup per active block. Evaluates the field at the
+// block's 9^3 grid corners (81 columns of 9 points, one column per invocation),
+// applies the grid-boundary rule, classifies the 8^3 cells (marching-cubes case)
+// and marks the crossing edges this block makes vertices for (edgeOwner).
+// Writes the corner values, the edge bitmask with its popcount prefixes, and
+// the block's (vertex, triangle) counts for the scan.
+#include "poly_common.glsl"
+#include "poly_field.glsl"
+#include "poly_table.glsl"
+
+#define FE_P AM_POLY_COLUMN
+#define FE_PROGRAM programColumn
+#define FE_COMBINED fieldColumn
+#include "poly_field_values.glsl"
+
+layout(local_size_x = AM_POLY_WG_CELLS) in;
+
+layout(set = 0, binding = AM_PB_CORNERS, std430) writeonly buffer Corners { float corners[]; };
+layout(set = 0, binding = AM_PB_EDGES, std430) writeonly buffer Edges { uint edges[]; };
+layout(set = 0, binding = AM_PB_COUNTS, std430) writeonly buffer Counts { uvec2 counts[]; };
+
+shared float sCorner[AM_POLY_BLOCK_CORNERS];
+shared uint sMask[AM_POLY_EDGE_WORDS];
+shared uint sTriangles;
+
+void main() {
+  uint slot = gl_WorkGroupID.x;
+  uint t = gl_LocalInvocationID.x;
+  uint b = activeBlocks[slot];
+  uvec3 bc = blockCoord(b);
+  uvec3 c0 = bc * uint(AM_POLY_BLOCK);
+  uvec3 cnt = blockCells(bc);
+  uvec3 n = P.gridCells.xyz;
+  if (t < uint(AM_POLY_EDGE_WORDS)) sMask[t] = 0u;
+  if (t == 0u) sTriangles = 0u;
+  if (t < 81u) {
+    uint i = t % 9u, j = t / 9u;
+    float f[FE_P];
+    if (i <= cnt.x && j <= cnt.y) {
+      vec3 pts[FE_P];
+      for (int k = 0; k < FE_P; ++k) pts[k] = cornerPosition(c0 + uvec3(i, j, uint(k)));
+      fieldColumn(b * P.modes.y, pts, f);
+    } else {
+      for (int k = 0; k < FE_P; ++k) f[k] = P.thresholds.w;  // outside the grid: never read
+    }
+    for (uint k = 0u; k < 9u; ++k) {
+      uvec3 g = c0 + uvec3(i, j, k);
+      float v = f[k];
+      // The grid boundary counts as outside, so a surface cut by it is closed.
+      if (any(equal(g, uvec3(0u))) || any(equal(g, n))) v = min(v, P.thresholds.w);
+      uint idx = (k * 9u + j) * 9u + i;
+      sCorner[idx] = v;
+      corners[slot * AM_POLY_BLOCK_CORNERS + idx] = v;
+    }
+  }
+  barrier();
+  uint tris = 0u;
+  for (uint c = t; c < uint(AM_POLY_BLOCK_CELLS); c += AM_POLY_WG_CELLS) {
+    uvec3 l = uvec3(c & 7u, (c >> 3) & 7u, c >> 6);
+    if (any(greaterThanEqual(l, cnt))) continue;
+    uint cubeCase = 0u;
+    for (uint q = 0u; q < 8u; ++q)
+      if (sCorner[cornerIndex(l + uvec3(q & 1u, (q >> 1) & 1u, q >> 2))] >= 0.0) cubeCase |= 1u << q;
+    tris += mcTriangleCount(cubeCase);
+  }
+  if (tris > 0u) atomicAdd(sTriangles, tris);
+  for (uint e = t; e < uint(AM_POLY_BLOCK_EDGES); e += AM_POLY_WG_CELLS) {
+    uint a;
+    uvec3 l = edgeLocal(e, a);
+    uvec3 l1 = l;
+    l1[a] += 1u;
+    if (any(greaterThan(l1, cnt))) continue;  // beyond the grid
+    bool in0 = sCorner[cornerIndex(l)] >= 0.0, in1 = sCorner[cornerIndex(l1)] >= 0.0;
+    if (in0 == in1) continue;
+    uvec3 ownerLocal;
+    if (edgeOwner(bc, l, a, slot, ownerLocal) == slot) atomicOr(sMask[e >> 5], 1u << (e & 31u));
+  }
+  barrier();
+  if (t < uint(AM_POLY_EDGE_WORDS)) edges[slot * AM_POLY_EDGE_INFO + t] = sMask[t];
+  if (t == 0u) {
+    uint run = 0u;
+    for (uint w = 0u; w < uint(AM_POLY_EDGE_WORDS); ++w) {
+      edges[slot * AM_POLY_EDGE_INFO + AM_POLY_EDGE_WORDS + w] = run;
+      run += bitCount(sMask[w]);
+    }
+    counts[slot] = uvec2(run, sTriangles);
+  }
+}
