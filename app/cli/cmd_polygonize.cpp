@@ -1,4 +1,6 @@
-// animorph-cli polygonize: BlobTree scene -> mesh (OBJ, PLY or GLB) on the CPU.
+// animorph-cli polygonize: BlobTree scene -> mesh (OBJ, PLY or GLB) on the CPU,
+// or with --gpu on the Vulkan compute polygoniser (headless; falls back to the
+// CPU with a note on stderr when there is no device or the scene is unsupported).
 #include <cstdio>
 #include <iostream>
 #include <thread>
@@ -8,6 +10,10 @@
 #include "cli/cli_command.h"
 #include "poly/mesh_io.h"
 #include "poly/polygonizer.h"
+#if ANIMORPH_HAS_GPU
+#include "context.h"
+#include "gpu_polygonizer.h"
+#endif
 
 namespace {
 
@@ -26,7 +32,7 @@ int polygonizeCommand(const std::vector<std::string>& args) {
   const char* me = "polygonize";
   std::string scene, output;
   double timeSec = 0.0, res = 128, threads = 0;
-  bool cull = true;
+  bool cull = true, gpu = false;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     auto value = [&](double& v) {
@@ -43,6 +49,8 @@ int polygonizeCommand(const std::vector<std::string>& args) {
       if (!value(threads) || threads < 0) return fail(me, "--threads needs a non-negative integer", 2);
     } else if (a == "--no-cull") {
       cull = false;
+    } else if (a == "--gpu") {
+      gpu = true;
     } else if (a == "-o" || a == "--output") {
       if (i + 1 >= args.size()) return fail(me, "-o needs an output file (.obj, .ply or .glb)", 2);
       output = args[++i];
@@ -63,6 +71,45 @@ int polygonizeCommand(const std::vector<std::string>& args) {
   auto tree = animorph::loadBlobTreeScene(scene);
   if (!tree) return fail(me, tree.error());
   animorph::FieldProgram program = animorph::compileFieldProgram(*tree, timeSec);
+#if ANIMORPH_HAS_GPU
+  if (gpu) {
+    namespace g = animorph::gpu;
+    auto field = g::GpuField::single(program);
+    std::string why = g::GpuPolygonizer::unsupported(field);
+    std::unique_ptr<g::Context> ctx;
+    std::unique_ptr<g::GpuPolygonizer> poly;
+    if (why.empty()) {
+      auto c = g::Context::create(g::ContextSettings{});
+      if (c) {
+        ctx = std::move(*c);
+        auto p = g::GpuPolygonizer::create(*ctx);
+        if (p) poly = std::move(*p);
+        else why = p.error();
+      } else {
+        why = c.error();
+      }
+    }
+    if (poly) {
+      g::GpuPolygonizeSettings gs;
+      gs.resolution = int(res);
+      gs.culling = cull;
+      auto stats = poly->polygonize(field, gs);
+      if (!stats) return fail(me, scene + ": " + stats.error());
+      auto mesh = poly->readBack();
+      if (!mesh) return fail(me, scene + ": " + mesh.error());
+      if (auto s = animorph::writeMesh(*mesh, output); !s) return fail(me, s.error());
+      std::printf("%s at t = %g s: %zu triangles, %zu vertices in %.1f ms (GPU: %s)\n", scene.c_str(), timeSec,
+                  mesh->triangleCount(), mesh->positions.size(), stats->milliseconds, ctx->deviceName().c_str());
+      std::printf("  grid %d x %d x %d (cell %.4g m), %zu primitives, blocks %u evaluated / %u culled of %u -> %s\n",
+                  stats->gridX, stats->gridY, stats->gridZ, stats->cellSize, program.primitiveCount(),
+                  stats->blocksActive, stats->blocksTotal - stats->blocksActive, stats->blocksTotal, output.c_str());
+      return 0;
+    }
+    std::fprintf(stderr, "animorph-cli polygonize: --gpu unavailable (%s); using the CPU\n", why.c_str());
+  }
+#else
+  if (gpu) std::fprintf(stderr, "animorph-cli polygonize: built without Vulkan; --gpu uses the CPU\n");
+#endif
   animorph::PolygonizeSettings settings;
   settings.resolution = int(res);
   settings.culling = cull;
@@ -81,13 +128,15 @@ int polygonizeCommand(const std::vector<std::string>& args) {
 
 }  // namespace
 
-ANIMORPH_CLI_COMMAND("polygonize", "polygonise a BlobTree scene at a time into a mesh (CPU)",
-                     "usage: animorph-cli polygonize SCENE --time T --res N [--no-cull] [--threads N] -o MESH\n"
+ANIMORPH_CLI_COMMAND("polygonize", "polygonise a BlobTree scene at a time into a mesh (CPU, or GPU with --gpu)",
+                     "usage: animorph-cli polygonize SCENE --time T --res N [--gpu] [--no-cull] [--threads N] -o MESH\n"
                      "  SCENE   a BlobTree scene JSON, or a .animorph project with a \"blobtree\" key\n"
                      "  --time  seconds (default 0)\n"
                      "  --res   cells along the longest side of the bounds (default 128)\n"
                      "  --no-cull  evaluate every grid corner with every primitive (same mesh, slower)\n"
                      "  --threads  worker threads (default: all)\n"
+                     "  --gpu   Vulkan compute polygoniser (offscreen, no display needed); falls back to\n"
+                     "          the CPU with a note on stderr when no device is usable. --res up to 512.\n"
                      "  -o      output mesh: .obj, .ply (binary) or .glb\n"
                      "  Prints the triangle count and the time taken. Errors name the file and the node.\n",
                      polygonizeCommand);
