@@ -35,6 +35,7 @@ struct PolyParams {
 static_assert(sizeof(PolyParams) == 11 * 16);
 
 constexpr uint32_t kTableVec4 = 2 * 256 + 3;
+constexpr uint32_t kTimestamps = 7;
 
 struct Grid {
   glm::vec3 origin{0.0f};
@@ -120,6 +121,7 @@ struct GpuPolygonizer::Impl {
   VkCommandPool commandPool = VK_NULL_HANDLE;
   VkCommandBuffer cmd = VK_NULL_HANDLE;
   VkFence fence = VK_NULL_HANDLE;
+  VkQueryPool timestamps = VK_NULL_HANDLE;  // kTimestamps per frame of polygonize(); null when unsupported
 
   Buffer params, pool, bounds, table, blockMask, blockFlag, blockPrefix, blockSlot, partials, control;
   Buffer active, corners, edges, counts, offsets;  // per active-block slot
@@ -142,7 +144,7 @@ struct GpuPolygonizer::Impl {
   Status ensureCapacities(uint32_t blocksWanted, uint32_t verticesWanted, uint32_t trianglesWanted);
   void writeSet();
   Status recordFrame(VkCommandBuffer cmd, uint32_t slot, const GpuField& field, const GpuPolygonizeSettings& s,
-                     GpuPolygonizeStats& stats);
+                     GpuPolygonizeStats& stats, bool timed = false);
 };
 
 GpuPolygonizer::Impl::~Impl() {
@@ -154,6 +156,7 @@ GpuPolygonizer::Impl::~Impl() {
   for (VkPipeline p : {blocks[0], blocks[1], cells[0], cells[1], emit[0], emit[1], scan, compact, args})
     if (p) vkDestroyPipeline(dev, p, nullptr);
   if (fence) vkDestroyFence(dev, fence, nullptr);
+  if (timestamps) vkDestroyQueryPool(dev, timestamps, nullptr);
   if (commandPool) vkDestroyCommandPool(dev, commandPool, nullptr);
   if (descriptorPool) vkDestroyDescriptorPool(dev, descriptorPool, nullptr);
   if (layout) vkDestroyPipelineLayout(dev, layout, nullptr);
@@ -178,7 +181,7 @@ Status GpuPolygonizer::Impl::init() {
   VkDevice dev = ctx.device();
   std::array<VkDescriptorSetLayoutBinding, AM_PB_COUNT> b{};
   for (uint32_t i = 0; i < AM_PB_COUNT; ++i) {
-    bool uniform = i == AM_PB_PARAMS || i == AM_PB_POOL_UBO || i == AM_PB_TABLE;
+    bool uniform = i == AM_PB_POOL_UBO;
     b[i] = {i, uniform ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
             VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
   }
@@ -193,7 +196,7 @@ Status GpuPolygonizer::Impl::init() {
   pli.pushConstantRangeCount = 1;
   pli.pPushConstantRanges = &push;
   AM_VK_TRY(vkCreatePipelineLayout(dev, &pli, nullptr, &layout), "vkCreatePipelineLayout");
-  VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 3}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, AM_PB_COUNT}};
+  VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, AM_PB_COUNT}};
   VkDescriptorPoolCreateInfo dpi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   dpi.maxSets = 1;
   dpi.poolSizeCount = 2;
@@ -230,10 +233,19 @@ Status GpuPolygonizer::Impl::init() {
   AM_VK_TRY(vkAllocateCommandBuffers(dev, &cai, &cmd), "vkAllocateCommandBuffers");
   VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
   AM_VK_TRY(vkCreateFence(dev, &fci, nullptr, &fence), "vkCreateFence");
+  if (ctx.properties().limits.timestampComputeAndGraphics && ctx.properties().limits.timestampPeriod > 0.0f) {
+    VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+    qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
+    qi.queryCount = kTimestamps;
+    if (vkCreateQueryPool(dev, &qi, nullptr, &timestamps) != VK_SUCCESS) timestamps = VK_NULL_HANDLE;
+  }
 
-  uniformPoolAllowed = ctx.properties().limits.maxUniformBufferRange >= AM_POLY_UNIFORM_POOL_VEC4 * 16u;
+  // A uniform pool suits GPUs; lavapipe specialises shaders on uniform-buffer
+  // contents (recompiling as they change) and measured ~10% faster with storage.
+  uniformPoolAllowed = ctx.properties().limits.maxUniformBufferRange >= AM_POLY_UNIFORM_POOL_VEC4 * 16u &&
+                       ctx.deviceType() != VK_PHYSICAL_DEVICE_TYPE_CPU;
   const VkBufferUsageFlags ssbo = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-  Status s = ensure(params, sizeof(PolyParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+  Status s = ensure(params, sizeof(PolyParams), ssbo);
   if (s) s = ensure(pool, AM_POLY_UNIFORM_POOL_VEC4 * 16, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | ssbo);
   if (s) s = ensure(bounds, 4096, ssbo);
   if (s) s = ensure(partials, AM_POLY_SCAN_MAX_GROUPS * 8, ssbo);
@@ -264,7 +276,7 @@ Status GpuPolygonizer::Impl::init() {
     tableData[size_t(512 + e / 4)][e % 4] = uint32_t(mc.edgeCorners[size_t(e)][0]) |
                                              uint32_t(mc.edgeCorners[size_t(e)][1]) << 4 |
                                              uint32_t(mc.edgeAxis[size_t(e)]) << 8;
-  Result<Buffer> tb = createDeviceBuffer(ctx, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, tableData.data(),
+  Result<Buffer> tb = createDeviceBuffer(ctx, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, tableData.data(),
                                          tableData.size() * sizeof(glm::uvec4));
   if (!tb) return Error{"marching-cubes table: " + tb.error()};
   table = *tb;
@@ -347,7 +359,7 @@ void GpuPolygonizer::Impl::writeSet() {
   info[AM_PB_INDICES] = whole(indices);
   std::array<VkWriteDescriptorSet, AM_PB_COUNT> w{};
   for (uint32_t i = 0; i < AM_PB_COUNT; ++i) {
-    bool uniform = i == AM_PB_PARAMS || i == AM_PB_POOL_UBO || i == AM_PB_TABLE;
+    bool uniform = i == AM_PB_POOL_UBO;
     w[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, set, i, 0, 1,
             uniform ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nullptr, &info[i], nullptr};
   }
@@ -356,7 +368,7 @@ void GpuPolygonizer::Impl::writeSet() {
 }
 
 Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, const GpuField& field,
-                                         const GpuPolygonizeSettings& s, GpuPolygonizeStats& stats) {
+                                         const GpuPolygonizeSettings& s, GpuPolygonizeStats& stats, bool timed) {
   if (!field.a) return Error{"GPU polygoniser: no field program"};
   if (s.resolution < 2 || s.resolution > 512)
     return Error{"GPU polygoniser: resolution " + std::to_string(s.resolution) + " is out of range (2..512)"};
@@ -368,7 +380,10 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   const PackedFieldPrograms& pk = *packed;
   const uint32_t nBlocks = g.blocks();
   const uint32_t words = std::max(1u, (pk.primitiveTotal() + 31) / 32);
-  const bool storagePool = !uniformPoolAllowed || pk.pool.size() > AM_POLY_UNIFORM_POOL_VEC4;
+  const bool fitsUniform = pk.pool.size() <= AM_POLY_UNIFORM_POOL_VEC4 &&
+                           ctx.properties().limits.maxUniformBufferRange >= AM_POLY_UNIFORM_POOL_VEC4 * 16u;
+  const bool storagePool = s.poolBuffer == GpuPolygonizeSettings::PoolBuffer::Storage || !fitsUniform ||
+                           (s.poolBuffer == GpuPolygonizeSettings::PoolBuffer::Auto && !uniformPoolAllowed);
   const VkBufferUsageFlags ssbo = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
 
   Status st = ensure(pool, std::max<VkDeviceSize>(AM_POLY_UNIFORM_POOL_VEC4 * 16, pk.pool.size() * 16),
@@ -398,7 +413,7 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   prm.morph0 = glm::vec4(field.weight, field.morphTime, field.timeScale, field.a0);
   const float normalStep = 0.05f * g.h;
   prm.morph1 = glm::vec4(field.a1, field.a2, field.a3, normalStep);
-  prm.caps = glm::uvec4(vertexCapacity, triangleCapacity, pk.primitiveTotal(), 0u);
+  prm.caps = glm::uvec4(vertexCapacity, triangleCapacity, pk.primitiveTotal(), uint32_t(AM_POLY_POINTS));
   prm.extra = glm::vec4(2.0f * normalStep, 0.0f, 0.0f, 0.0f);
 
   stats.gridX = int(g.n[0]);
@@ -409,6 +424,13 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   stats.uniformPool = !storagePool;
   lastGrid = g;
 
+  timed = timed && timestamps != VK_NULL_HANDLE;
+  uint32_t stamp = 0;
+  auto timestamp = [&] {
+    if (timed) vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps, stamp++);
+  };
+  if (timed) vkCmdResetQueryPool(cb, timestamps, 0, kTimestamps);
+  timestamp();
   // This frame's writes wait for the previous frame's readers (draw, copies) and writers.
   barrier(cb,
           VK_PIPELINE_STAGE_VERTEX_INPUT_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT |
@@ -424,6 +446,7 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   barrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
           VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_UNIFORM_READ_BIT);
 
+  timestamp();
   const int v = storagePool ? 1 : 0;
   vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
   auto push = [&](uint32_t x, uint32_t y, uint32_t z) {
@@ -449,6 +472,7 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, blocks[v]);
   vkCmdDispatch(cb, linearGroups, 1, 1);
   computeToCompute(cb);
+  timestamp();
   // Active blocks -> slots.
   runScan(AM_SCAN_SOURCE_BLOCKS, nBlocks);
   vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, compact);
@@ -458,15 +482,18 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   push(AM_ARGS_AFTER_BLOCKS, 0, 0);
   vkCmdDispatch(cb, 1, 1, 1);
   computeToCompute(cb);
+  timestamp();
   // Fine: corner values, cell cases, vertex and triangle counts.
   vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, cells[v]);
   vkCmdDispatchIndirect(cb, control.buffer, AM_CTL_DISPATCH * 4);
   computeToCompute(cb);
+  timestamp();
   runScan(AM_SCAN_SOURCE_COUNTS, blockCapacity);
   vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, args);
   push(AM_ARGS_AFTER_COUNTS, 0, 0);
   vkCmdDispatch(cb, 1, 1, 1);
   computeToCompute(cb);
+  timestamp();
   // Vertices, normals, triangles.
   vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, emit[v]);
   vkCmdDispatchIndirect(cb, control.buffer, AM_CTL_DISPATCH * 4);
@@ -475,6 +502,7 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
           VK_ACCESS_SHADER_WRITE_BIT,
           VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_INDEX_READ_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT |
               VK_ACCESS_TRANSFER_READ_BIT);
+  timestamp();
   VkBufferCopy copy{0, VkDeviceSize(slot) * AM_CTL_READBACK_UINTS * 4, AM_CTL_READBACK_UINTS * 4};
   vkCmdCopyBuffer(cb, control.buffer, readback.buffer, 1, &copy);
   barrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
@@ -576,7 +604,7 @@ Result<GpuPolygonizeStats> GpuPolygonizer::polygonize(const GpuField& field, con
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     AM_VK_TRY(vkBeginCommandBuffer(m.cmd, &bi), "vkBeginCommandBuffer");
-    Status rec = m.recordFrame(m.cmd, slot, field, s, stats);
+    Status rec = m.recordFrame(m.cmd, slot, field, s, stats, true);
     AM_VK_TRY(vkEndCommandBuffer(m.cmd), "vkEndCommandBuffer");
     if (!rec) return Error{rec.error()};
     if (attempt == 0) t0 = std::chrono::steady_clock::now();
@@ -592,6 +620,12 @@ Result<GpuPolygonizeStats> GpuPolygonizer::polygonize(const GpuField& field, con
     stats.triangles = c[AM_CTL_TRIANGLES];
     uint32_t overflow = c[AM_CTL_OVERFLOW];
     if (overflow == 0) {
+      uint64_t ticks[kTimestamps] = {};
+      if (m.timestamps && vkGetQueryPoolResults(dev, m.timestamps, 0, kTimestamps, sizeof ticks, ticks, sizeof(uint64_t),
+                                                VK_QUERY_RESULT_64_BIT) == VK_SUCCESS) {
+        const double period = m.ctx.properties().limits.timestampPeriod * 1e-6;
+        for (uint32_t k = 0; k + 1 < kTimestamps; ++k) stats.passMs[k] = double(ticks[k + 1] - ticks[k]) * period;
+      }
       stats.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       stats_ = stats;
       m.haveMesh = true;

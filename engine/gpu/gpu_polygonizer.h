@@ -75,6 +75,11 @@ struct GpuPolygonizeSettings {
   // Per-block primitive lists and interval culling. Off: every block is
   // evaluated with every primitive (same mesh, slower).
   bool culling = true;
+  // Where the shaders read the programs: Auto picks a uniform buffer on GPUs when
+  // the programs fit in 64 KiB, a storage buffer on CPU devices (lavapipe) or
+  // beyond. Same results either way; tests force each.
+  enum class PoolBuffer : uint8_t { Auto, Uniform, Storage };
+  PoolBuffer poolBuffer = PoolBuffer::Auto;
   // Initial buffer capacities (0: automatic). They grow when a frame overflows.
   uint32_t initialBlockCapacity = 0;
   uint32_t initialVertexCapacity = 0;
@@ -90,6 +95,9 @@ struct GpuPolygonizeStats {
   uint32_t regrows = 0;       // polygonize(): frames redone after growing the buffers
   bool uniformPool = true;    // programs read from a uniform buffer (else storage)
   double milliseconds = 0.0;  // polygonize(): wall time from submit to completion (all passes)
+  // polygonize(): GPU time per pass from timestamps (0 when the queue has none):
+  // uploads, coarse (lists + intervals), block compaction, corners + cells, vertex/triangle scan, emit.
+  double passMs[6] = {0, 0, 0, 0, 0, 0};
 };
 
 class GpuPolygonizer {

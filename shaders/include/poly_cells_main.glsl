@@ -1,5 +1,5 @@
 // Fine pass 1: one workgroup per active block. Evaluates the field at the
-// block's 9^3 grid corners (81 columns of 9 points, one column per invocation),
+// block's 9^3 grid corners (8 per invocation),
 // applies the grid-boundary rule, classifies the 8^3 cells (marching-cubes case)
 // and marks the crossing edges this block makes vertices for (edgeOwner).
 // Writes the corner values, the edge bitmask with its popcount prefixes, and
@@ -8,10 +8,7 @@
 #include "poly_field.glsl"
 #include "poly_table.glsl"
 
-#define FE_P AM_POLY_COLUMN
-#define FE_PROGRAM programColumn
-#define FE_COMBINED fieldColumn
-#include "poly_field_values.glsl"
+#include "poly_field8.glsl"
 
 layout(local_size_x = AM_POLY_WG_CELLS) in;
 
@@ -33,22 +30,23 @@ void main() {
   uvec3 n = P.gridCells.xyz;
   if (t < uint(AM_POLY_EDGE_WORDS)) sMask[t] = 0u;
   if (t == 0u) sTriangles = 0u;
-  if (t < 81u) {
-    uint i = t % 9u, j = t / 9u;
-    float f[FE_P];
-    if (i <= cnt.x && j <= cnt.y) {
-      vec3 pts[FE_P];
-      for (int k = 0; k < FE_P; ++k) pts[k] = cornerPosition(c0 + uvec3(i, j, uint(k)));
-      fieldColumn(b * P.modes.y, pts, f);
-    } else {
-      for (int k = 0; k < FE_P; ++k) f[k] = P.thresholds.w;  // outside the grid: never read
+  uint first = t * uint(AM_POLY_POINTS);
+  if (first < uint(AM_POLY_BLOCK_CORNERS)) {
+    uvec3 g[8];
+    for (uint k = 0u; k < 8u; ++k) {
+      uint idx = min(first + k, uint(AM_POLY_BLOCK_CORNERS) - 1u);
+      g[k] = c0 + uvec3(idx % 9u, (idx / 9u) % 9u, idx / 81u);
     }
-    for (uint k = 0u; k < 9u; ++k) {
-      uvec3 g = c0 + uvec3(i, j, k);
-      float v = f[k];
+    Points8 w = points8(cornerPosition(g[0]), cornerPosition(g[1]), cornerPosition(g[2]), cornerPosition(g[3]),
+                        cornerPosition(g[4]), cornerPosition(g[5]), cornerPosition(g[6]), cornerPosition(g[7]));
+    vec4 f0, f1;
+    field8(b * P.modes.y, w, f0, f1);
+    for (uint k = 0u; k < 8u; ++k) {
+      uint idx = first + k;
+      if (idx >= uint(AM_POLY_BLOCK_CORNERS)) break;
+      float v = k < 4u ? f0[k] : f1[k - 4u];
       // The grid boundary counts as outside, so a surface cut by it is closed.
-      if (any(equal(g, uvec3(0u))) || any(equal(g, n))) v = min(v, P.thresholds.w);
-      uint idx = (k * 9u + j) * 9u + i;
+      if (any(equal(g[k], uvec3(0u))) || any(equal(g[k], n))) v = min(v, P.thresholds.w);
       sCorner[idx] = v;
       corners[slot * AM_POLY_BLOCK_CORNERS + idx] = v;
     }

@@ -5,7 +5,7 @@
 #include "poly_constants.h"
 
 // C++ mirror: PolyParams in engine/gpu/gpu_polygonizer.cpp (std140).
-layout(set = 0, binding = AM_PB_PARAMS, std140) uniform PolyParams {
+layout(set = 0, binding = AM_PB_PARAMS, std430) readonly buffer PolyParams {
   vec4 gridOrigin;  // xyz: world position of grid corner (0,0,0); w: cell size h (m)
   uvec4 gridCells;  // xyz: cells per axis
   uvec4 gridBlocks; // xyz: blocks per axis; w: total blocks
@@ -15,7 +15,7 @@ layout(set = 0, binding = AM_PB_PARAMS, std140) uniform PolyParams {
   uvec4 modes;      // x: AM_COMBINE_*, y: primitive-mask words per block, z: culling on, w: block capacity
   vec4 morph0;      // x: weight w, y: morph time t, z: time scale, w: a0
   vec4 morph1;      // x: a1, y: a2, z: a3, w: normal step (m)
-  uvec4 caps;       // x: vertex capacity, y: triangle capacity, z: total primitives, w: unused
+  uvec4 caps;       // x: vertex capacity, y: triangle capacity, z: total primitives, w: 8 (points per batch, kept opaque to the compiler)
   vec4 extra;       // x: reach dilation of a block box (m)
 } P;
 

@@ -9,10 +9,7 @@
 #include "poly_field.glsl"
 #include "poly_table.glsl"
 
-#define FE_P 6
-#define FE_PROGRAM programSix
-#define FE_COMBINED fieldSix
-#include "poly_field_values.glsl"
+#include "poly_field8.glsl"
 
 layout(local_size_x = AM_POLY_WG_CELLS) in;
 
@@ -83,15 +80,12 @@ void main() {
     float s = clamp(f0 / (f0 - f1), float(AM_POLY_SNAP), 1.0 - float(AM_POLY_SNAP));
     vec3 p0 = cornerPosition(c0 + l), p1 = cornerPosition(c0 + l1);
     vec3 pos = p0 + s * (p1 - p0);
-    vec3 pts[6];
-    for (int k = 0; k < 6; ++k) {
-      vec3 d = vec3(0.0);
-      d[k >> 1] = (k & 1) == 0 ? delta : -delta;
-      pts[k] = pos + d;
-    }
-    float f[6];
-    fieldSix(b * P.modes.y, pts, f);
-    vec3 g = vec3(f[0] - f[1], f[2] - f[3], f[4] - f[5]);
+    // Central differences: +x -x +y / -y +z -z (the last two points repeat).
+    Points8 w = points8(pos + vec3(delta, 0, 0), pos - vec3(delta, 0, 0), pos + vec3(0, delta, 0),
+                        pos - vec3(0, delta, 0), pos + vec3(0, 0, delta), pos - vec3(0, 0, delta), pos, pos);
+    vec4 f0_, f1_;
+    field8(b * P.modes.y, w, f0_, f1_);
+    vec3 g = vec3(f0_.x - f0_.y, f0_.z - f0_.w, f1_.x - f1_.y);
     float len = length(g);
     vec3 dir = normalize(p1 - p0);
     vec3 normal = len > 1e-30 && !isinf(len) && !isnan(len) ? -g / len : (f0 >= 0.0 ? dir : -dir);

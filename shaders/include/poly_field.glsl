@@ -7,42 +7,41 @@
 
 // ------------------------------------------------------------ kernels
 
-// atan2(y, x) for y > 0 (field_kernels.cpp: Cephes atanf polynomial).
-float atan2PositiveY(float y, float x) {
-  float ax = abs(x);
-  float mn = min(ax, y);
-  float mx = max(ax, y);
-  bool big = mn > 0.41421356237 * mx;
-  float num = big ? mn - mx : mn;
-  float den = big ? mn + mx : mx;
-  float t = num / den;
-  float z = t * t;
-  float r = (((8.05374449538e-2 * z - 1.38776856032e-1) * z + 1.99777106478e-1) * z - 3.33329491539e-1) * z * t + t;
-  r += big ? 0.78539816340 : 0.0;
-  r = y > ax ? 1.57079632679 - r : r;
-  r = x < 0.0 ? 3.14159265359 - r : r;
+// atan2(y, x) for y > 0 (field_kernels.cpp: Cephes atanf polynomial), four at a time.
+vec4 atan2PositiveY4(vec4 y, vec4 x) {
+  vec4 ax = abs(x);
+  vec4 mn = min(ax, y);
+  vec4 mx = max(ax, y);
+  bvec4 big = greaterThan(mn, 0.41421356237 * mx);
+  vec4 t = mix(mn, mn - mx, big) / mix(mx, mn + mx, big);
+  vec4 z = t * t;
+  vec4 r = (((8.05374449538e-2 * z - 1.38776856032e-1) * z + 1.99777106478e-1) * z - 3.33329491539e-1) * z * t + t;
+  r += mix(vec4(0.0), vec4(0.78539816340), big);
+  r = mix(r, 1.57079632679 - r, greaterThan(y, ax));
+  r = mix(r, 3.14159265359 - r, lessThan(x, vec4(0.0)));
   return r;
 }
 
-// Weighted, cut convolution-segment field (record r0 = (b, l), r1 = (a, w), r2 = (S, cut2)).
-float convolutionValue(vec3 q, vec4 r0, vec4 r1, vec4 r2) {
-  vec3 d = q - r0.xyz;
+// Weighted, cut convolution-segment field at four points (convolutionValues);
+// record r0 = (b, l), r1 = (a, w), r2 = (S, cut2).
+vec4 convolution4(vec4 x, vec4 y, vec4 z, vec4 r0, vec4 r1, vec4 r2) {
+  vec4 dx = x - r0.x, dy = y - r0.y, dz = z - r0.z;
   float l = r0.w, S = r2.x, S2 = S * S;
-  float dd = dot(d, d);
-  float u = dot(d, r1.xyz);
-  float perp2 = max(dd - u * u, 0.0);
-  float Pp = 1.0 + S2 * perp2;
-  float D = 1.0 + S2 * dd;
-  float lu = l - u;
-  float e2 = dd - 2.0 * l * u + l * l;
-  float Q = 1.0 + S2 * e2;
-  float invP = 1.0 / Pp;
-  float p = sqrt(Pp);
-  float A = atan2PositiveY(S * l * p, Pp - S2 * u * lu);
-  float invDQ = 1.0 / (D * Q);
-  float F = invP * ((u * Q + lu * D) * invDQ + A * p * invP / S);
-  float seg2 = u < 0.0 ? dd : (u > l ? e2 : perp2);
-  return seg2 <= r2.y ? 0.5 * r1.w * F : 0.0;
+  vec4 dd = dx * dx + dy * dy + dz * dz;
+  vec4 u = dx * r1.x + dy * r1.y + dz * r1.z;
+  vec4 perp2 = max(dd - u * u, vec4(0.0));
+  vec4 Pp = 1.0 + S2 * perp2;
+  vec4 D = 1.0 + S2 * dd;
+  vec4 lu = l - u;
+  vec4 e2 = dd - 2.0 * l * u + l * l;
+  vec4 Q = 1.0 + S2 * e2;
+  vec4 invP = 1.0 / Pp;
+  vec4 p = sqrt(Pp);
+  vec4 A = atan2PositiveY4(S * l * p, Pp - S2 * u * lu);
+  vec4 invDQ = 1.0 / (D * Q);
+  vec4 F = invP * ((u * Q + lu * D) * invDQ + A * p * invP / S);
+  vec4 seg2 = mix(mix(perp2, e2, greaterThan(u, vec4(l))), dd, lessThan(u, vec4(0.0)));
+  return mix(vec4(0.0), 0.5 * r1.w * F, lessThanEqual(seg2, vec4(r2.y)));
 }
 
 // Interval of the weighted, cut convolution field over the ball (c, rho) (convolutionIntervals).

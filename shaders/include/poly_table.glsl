@@ -2,7 +2,7 @@
 // uploaded once: per case two uvec4, the triangles' edges as 4-bit entries
 // (words 0..4) and the triangle count (second.y); then the 12 edges as
 // corner0 | corner1 << 4 | axis << 8, four per uvec4.
-layout(set = 0, binding = AM_PB_TABLE, std140) uniform MarchingCubes { uvec4 mcTable[2 * 256 + 3]; };
+layout(set = 0, binding = AM_PB_TABLE, std430) readonly buffer MarchingCubes { uvec4 mcTable[]; };
 
 uint mcTriangleCount(uint cubeCase) { return mcTable[2u * cubeCase + 1u].y; }
 

@@ -242,6 +242,14 @@ TEST_CASE("GPU polygoniser matches the CPU on a convolution chain, culled and de
   CHECK(denseStats.blocksActive == denseStats.blocksTotal);
   CHECK(culledStats.blocksActive < culledStats.blocksTotal);
   CHECK(triangleSet(dense) == triangleSet(culled));  // same field values, bit for bit
+  s.culling = true;
+  for (auto pool : {GpuPolygonizeSettings::PoolBuffer::Uniform, GpuPolygonizeSettings::PoolBuffer::Storage}) {
+    s.poolBuffer = pool;
+    GpuPolygonizeStats st;
+    TriangleMesh other = gpuMesh(*r.poly, GpuField::single(p), s, &st);
+    CHECK(st.uniformPool == (pool == GpuPolygonizeSettings::PoolBuffer::Uniform));
+    CHECK(triangleSet(other) == triangleSet(culled));
+  }
 
   // Normals: the field gradient, as the CPU's (analytic there, central differences here).
   std::unordered_map<uint64_t, glm::vec3> cpuNormal;

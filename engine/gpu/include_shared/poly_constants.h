@@ -19,8 +19,8 @@
 
 // Workgroup sizes (x only; multiples of 8 suit lavapipe's 8-wide SIMD).
 #define AM_POLY_WG_BLOCKS 64   // coarse pass: one invocation per block
-#define AM_POLY_WG_CELLS 88    // fine passes: one workgroup per active block; 81 corner columns of 9 points
-#define AM_POLY_COLUMN 9       // points per invocation in the corner pass (one column along z)
+#define AM_POLY_WG_CELLS 96    // fine passes: one workgroup per active block; 8 corners per invocation (92 busy)
+#define AM_POLY_POINTS 8       // points per invocation of the batched field evaluation
 #define AM_POLY_WG_SCAN 256
 #define AM_POLY_SCAN_PER_GROUP 1024  // elements per scan workgroup (4 per invocation)
 #define AM_POLY_SCAN_MAX_GROUPS 1024 // so at most 1M elements per scan
