@@ -1,4 +1,6 @@
-// animorph-cli polygonize: BlobTree scene -> mesh (OBJ, PLY or GLB) on the CPU.
+// animorph-cli polygonize: BlobTree scene -> mesh (OBJ, PLY or GLB) on the CPU,
+// or with --gpu on the Vulkan compute polygoniser (headless; falls back to the
+// CPU with a note on stderr when there is no device or the scene is unsupported).
 #include <cstdio>
 #include <iostream>
 #include <thread>
@@ -10,8 +12,21 @@
 #include "scene/scene_frame.h"
 #include "poly/mesh_io.h"
 #include "poly/polygonizer.h"
+#if ANIMORPH_HAS_GPU
+#include "context.h"
+#include "gpu_polygonizer.h"
+#endif
 
 namespace {
+
+// Moves a mesh from the tree's space into the world by the actor's transform.
+void toWorld(animorph::TriangleMesh& mesh, const glm::mat4& model) {
+  if (model == glm::mat4(1.0f)) return;
+  const glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(model)));
+  for (auto& p : mesh.positions) p = glm::vec3(model * glm::vec4(p, 1.0f));
+  for (auto& n : mesh.normals) n = glm::normalize(nm * n);
+}
+
 
 bool parseNumber(const std::string& s, double& out) {
   try {
@@ -28,7 +43,7 @@ int polygonizeCommand(const std::vector<std::string>& args) {
   const char* me = "polygonize";
   std::string scene, output, actorId;
   double timeSec = 0.0, res = 128, threads = 0;
-  bool cull = true;
+  bool cull = true, gpu = false;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     auto value = [&](double& v) {
@@ -48,6 +63,8 @@ int polygonizeCommand(const std::vector<std::string>& args) {
       actorId = args[++i];
     } else if (a == "--no-cull") {
       cull = false;
+    } else if (a == "--gpu") {
+      gpu = true;
     } else if (a == "-o" || a == "--output") {
       if (i + 1 >= args.size()) return fail(me, "-o needs an output file (.obj, .ply or .glb)", 2);
       output = args[++i];
@@ -103,17 +120,53 @@ int polygonizeCommand(const std::vector<std::string>& args) {
     if (!tree) return fail(me, tree.error());
   }
   animorph::FieldProgram program = animorph::compileFieldProgram(*tree, treeTimeSec);
+#if ANIMORPH_HAS_GPU
+  if (gpu) {
+    namespace g = animorph::gpu;
+    auto field = g::GpuField::single(program);
+    std::string why = g::GpuPolygonizer::unsupported(field);
+    std::unique_ptr<g::Context> ctx;
+    std::unique_ptr<g::GpuPolygonizer> poly;
+    if (why.empty()) {
+      auto c = g::Context::create(g::ContextSettings{});
+      if (c) {
+        ctx = std::move(*c);
+        auto p = g::GpuPolygonizer::create(*ctx);
+        if (p) poly = std::move(*p);
+        else why = p.error();
+      } else {
+        why = c.error();
+      }
+    }
+    if (poly) {
+      g::GpuPolygonizeSettings gs;
+      gs.resolution = int(res);
+      gs.culling = cull;
+      auto stats = poly->polygonize(field, gs);
+      if (!stats) return fail(me, what + ": " + stats.error());
+      auto mesh = poly->readBack();
+      if (!mesh) return fail(me, scene + ": " + mesh.error());
+      toWorld(*mesh, model);
+      if (auto s = animorph::writeMesh(*mesh, output); !s) return fail(me, s.error());
+      std::printf("%s at t = %g s: %zu triangles, %zu vertices in %.1f ms (GPU: %s)\n", what.c_str(), timeSec,
+                  mesh->triangleCount(), mesh->positions.size(), stats->milliseconds, ctx->deviceName().c_str());
+      std::printf("  grid %d x %d x %d (cell %.4g m), %zu primitives, blocks %u evaluated / %u culled of %u -> %s\n",
+                  stats->gridX, stats->gridY, stats->gridZ, stats->cellSize, program.primitiveCount(),
+                  stats->blocksActive, stats->blocksTotal - stats->blocksActive, stats->blocksTotal, output.c_str());
+      return 0;
+    }
+    std::fprintf(stderr, "animorph-cli polygonize: --gpu unavailable (%s); using the CPU\n", why.c_str());
+  }
+#else
+  if (gpu) std::fprintf(stderr, "animorph-cli polygonize: built without Vulkan; --gpu uses the CPU\n");
+#endif
   animorph::PolygonizeSettings settings;
   settings.resolution = int(res);
   settings.culling = cull;
   settings.threads = int(threads);
   auto result = animorph::polygonize(program, settings);
   if (!result) return fail(me, what + ": " + result.error());
-  if (model != glm::mat4(1.0f)) {
-    glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(model)));
-    for (auto& p : result->mesh.positions) p = glm::vec3(model * glm::vec4(p, 1.0f));
-    for (auto& n : result->mesh.normals) n = glm::normalize(nm * n);
-  }
+  toWorld(result->mesh, model);
   if (auto s = animorph::writeMesh(result->mesh, output); !s) return fail(me, s.error());
   const auto& st = result->stats;
   std::printf("%s at t = %g s: %zu triangles, %zu vertices in %.1f ms\n", what.c_str(), timeSec,
@@ -126,8 +179,8 @@ int polygonizeCommand(const std::vector<std::string>& args) {
 
 }  // namespace
 
-ANIMORPH_CLI_COMMAND("polygonize", "polygonise a BlobTree scene at a time into a mesh (CPU)",
-                     "usage: animorph-cli polygonize SCENE --time T --res N [--actor ID] [--no-cull] [--threads N] -o MESH\n"
+ANIMORPH_CLI_COMMAND("polygonize", "polygonise a BlobTree scene at a time into a mesh (CPU, or GPU with --gpu)",
+                     "usage: animorph-cli polygonize SCENE --time T --res N [--actor ID] [--gpu] [--no-cull] [--threads N] -o MESH\n"
                      "  SCENE   a BlobTree scene JSON, or a .animorph project: its BlobTree actor (--actor ID\n"
                      "          when it has several) at scene time T, in world space (the actor's offset,\n"
                      "          speed, loop and transform applied), or its top-level \"blobtree\" key\n"
@@ -135,6 +188,8 @@ ANIMORPH_CLI_COMMAND("polygonize", "polygonise a BlobTree scene at a time into a
                      "  --res   cells along the longest side of the bounds (default 128)\n"
                      "  --no-cull  evaluate every grid corner with every primitive (same mesh, slower)\n"
                      "  --threads  worker threads (default: all)\n"
+                     "  --gpu   Vulkan compute polygoniser (offscreen, no display needed); falls back to\n"
+                     "          the CPU with a note on stderr when no device is usable. --res up to 512.\n"
                      "  -o      output mesh: .obj, .ply (binary) or .glb\n"
                      "  Prints the triangle count and the time taken. Errors name the file and the node.\n",
                      polygonizeCommand);

@@ -42,7 +42,7 @@ constexpr VkShaderStageFlags kPushStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADE
 // Clip-space depth pulled toward the camera by the wireframe pass (in NDC depth units).
 constexpr float kWireDepthPull = 5e-5f;
 
-enum class VertexInput { None, Mesh, Line };
+enum class VertexInput { None, Mesh, Line, Generated };
 
 struct PipelineDesc {
   const char* vert;
@@ -77,6 +77,11 @@ Result<VkPipeline> createPipeline(VkDevice device, VkRenderPass pass, VkPipeline
     for (uint32_t s = 0; s < 6; ++s) {
       bindings.push_back({s, streams[s].stride, VK_VERTEX_INPUT_RATE_VERTEX});
       attributes.push_back({s, s, streams[s].format, 0});
+    }
+  } else if (d.input == VertexInput::Generated) {
+    for (uint32_t s = 0; s < 2; ++s) {  // AM_VERTEX_POSITION, AM_VERTEX_NORMAL
+      bindings.push_back({s, 12, VK_VERTEX_INPUT_RATE_VERTEX});
+      attributes.push_back({s, s, VK_FORMAT_R32G32B32_SFLOAT, 0});
     }
   } else if (d.input == VertexInput::Line) {
     bindings.push_back({0, sizeof(LineVertex), VK_VERTEX_INPUT_RATE_VERTEX});
@@ -228,6 +233,8 @@ Status SceneRenderer::init(VkRenderPass renderPass, SceneRendererSettings settin
       {&meshPipeline_[1], meshDesc(none)},
       {&wirePipeline_[0], wireDesc(back)},
       {&wirePipeline_[1], wireDesc(none)},
+      {&generatedPipeline_, {"generated.vert", "mesh.frag", VertexInput::Generated, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST,
+                             VK_POLYGON_MODE_FILL, true, true, false, back}},
       {&gridPipeline_, {"grid.vert", "grid.frag", VertexInput::None, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST,
                         VK_POLYGON_MODE_FILL, true, false, true}},
       {&linePipeline_, {"line.vert", "line.frag", VertexInput::Line, VK_PRIMITIVE_TOPOLOGY_LINE_LIST,
@@ -258,7 +265,7 @@ SceneRenderer::~SceneRenderer() {
     destroyBuffer(dev, s->joints);
     destroyBuffer(dev, s->lines);
   }
-  for (VkPipeline p : {meshPipeline_[0], meshPipeline_[1], wirePipeline_[0], wirePipeline_[1], gridPipeline_,
+  for (VkPipeline p : {meshPipeline_[0], meshPipeline_[1], wirePipeline_[0], wirePipeline_[1], generatedPipeline_, gridPipeline_,
                        linePipeline_, overlayPipeline_})
     if (p) vkDestroyPipeline(dev, p, nullptr);
   if (layout_) vkDestroyPipelineLayout(dev, layout_, nullptr);
@@ -418,6 +425,21 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
     pushMesh(d, i, d.selected ? kDrawSelected : 0u, d.color, 0.0f);
     d.mesh->bindTriangles(cmd);
     vkCmdDrawIndexed(cmd, d.mesh->indexCount(), 1, 0, 0, 0);
+  }
+  for (const GeneratedMeshDraw& g : scene.generatedMeshes) {
+    if (!g.positions || !g.normals || !g.indices || !g.indirect) continue;
+    bind(generatedPipeline_);
+    MeshPush p{};
+    p.model = g.model;
+    p.color = g.color;
+    p.jointCount = 1;
+    p.flags = g.selected ? kDrawSelected : 0u;
+    vkCmdPushConstants(cmd, layout_, kPushStages, 0, sizeof(p), &p);
+    VkBuffer streams[2] = {g.positions, g.normals};
+    VkDeviceSize offsets[2] = {0, 0};
+    vkCmdBindVertexBuffers(cmd, 0, 2, streams, offsets);
+    vkCmdBindIndexBuffer(cmd, g.indices, 0, VK_INDEX_TYPE_UINT32);
+    vkCmdDrawIndexedIndirect(cmd, g.indirect, g.indirectOffset, 1, sizeof(VkDrawIndexedIndirectCommand));
   }
   if (opt.wireframe) {
     for (size_t i = 0; i < scene.meshes.size(); ++i) {

@@ -37,6 +37,20 @@ struct MeshDraw {
   bool doubleSided = false;
 };
 
+// A non-skinned mesh that lives only in device buffers (made by GpuPolygonizer),
+// drawn with vkCmdDrawIndexedIndirect: no CPU read-back. Buffers must stay
+// valid until the frame that draws them completes.
+struct GeneratedMeshDraw {
+  VkBuffer positions = VK_NULL_HANDLE;  // float xyz per vertex, tightly packed
+  VkBuffer normals = VK_NULL_HANDLE;    // float xyz per vertex (unit, outward)
+  VkBuffer indices = VK_NULL_HANDLE;    // uint32 triangle list, counter-clockwise from outside
+  VkBuffer indirect = VK_NULL_HANDLE;   // one VkDrawIndexedIndirectCommand at indirectOffset
+  VkDeviceSize indirectOffset = 0;
+  glm::mat4 model{1.0f};
+  glm::vec4 color{0.62f, 0.62f, 0.62f, 1.0f};
+  bool selected = false;
+};
+
 struct SceneOptions {
   glm::vec4 background{0.23f, 0.24f, 0.26f, 1.0f};  // the viewport rectangle is cleared to this
   bool grid = true;
@@ -50,6 +64,7 @@ struct SceneOptions {
 
 struct Scene {
   std::vector<MeshDraw> meshes;
+  std::vector<GeneratedMeshDraw> generatedMeshes;  // GPU-polygonised previews
   LineBatch lines;    // depth-tested lines (guides, bounds)
   LineBatch overlay;  // drawn on top of everything (skeleton overlay)
   SceneOptions options;
@@ -98,6 +113,7 @@ class SceneRenderer {
   VkPipelineLayout layout_ = VK_NULL_HANDLE;
   VkPipeline meshPipeline_[2]{};  // [doubleSided]
   VkPipeline wirePipeline_[2]{};  // [doubleSided]
+  VkPipeline generatedPipeline_ = VK_NULL_HANDLE;  // GeneratedMeshDraw: positions + normals, indirect
   VkPipeline gridPipeline_ = VK_NULL_HANDLE;
   VkPipeline linePipeline_ = VK_NULL_HANDLE;     // depth-tested
   VkPipeline overlayPipeline_ = VK_NULL_HANDLE;  // always on top

@@ -1,0 +1,39 @@
+#pragma once
+// One or two FieldPrograms packed for the GPU polygoniser's shaders
+// (shaders/include/poly_field*.glsl): ops, operator parameters, space maps,
+// primitive records and spline control points in one pool of 16-byte words,
+// plus a bound per primitive for the per-block primitive lists. Pure C++ (no
+// Vulkan calls), so packing and its limits are testable without a device.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "field/field_program.h"
+#include "util/result.h"
+
+namespace animorph::gpu {
+
+struct PackedFieldPrograms {
+  std::vector<glm::uvec4> pool;    // the shaders' `pool` (floats stored as their bits)
+  std::vector<glm::vec4> bounds;   // AM_REC_BOUND vec4 per primitive, program A's then B's
+  uint32_t programCount = 1;
+  uint32_t opBegin[2] = {0, 0};    // first op record (index into pool)
+  uint32_t opCount[2] = {0, 0};
+  uint32_t primBegin[2] = {0, 0};  // first global primitive id
+  uint32_t primCount[2] = {0, 0};
+  float threshold[2] = {1.0f, 1.0f};
+  uint32_t primitiveTotal() const { return primCount[0] + primCount[1]; }
+};
+
+// Why the GPU cannot evaluate program (empty when it can): names the feature and
+// the limit, e.g. "operator stack depth 20 exceeds the GPU limit 16". Callers fall
+// back to the CPU polygoniser when it is not empty.
+std::string gpuUnsupportedReason(const FieldProgram& program);
+
+// Packs a (and b, when non-null) for the shaders. Errors: gpuUnsupportedReason's,
+// prefixed with "program A"/"program B".
+Result<PackedFieldPrograms> packFieldPrograms(const FieldProgram& a, const FieldProgram* b = nullptr);
+
+}  // namespace animorph::gpu

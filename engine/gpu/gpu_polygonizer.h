@@ -1,0 +1,146 @@
+#pragma once
+// GPU polygoniser (DESIGN.md §6, docs/gpu-polygonizer.md): marching cubes of a
+// FieldProgram, or of the morph of two, in Vulkan compute, agreeing with the
+// CPU polygoniser (poly/polygonizer.h) on the same grid. Per frame: the
+// programs are uploaded as small buffers inside the command buffer; a coarse
+// pass lists per 8^3-cell block the primitives that reach it and culls blocks
+// whose field interval has one sign; the active blocks are compacted by a
+// prefix sum; the field is evaluated only there; vertices (one per crossing
+// edge, shared by the cells around it) and triangles are placed by prefix sums;
+// normals come from the field gradient. The outputs are vertex/index buffers
+// and a VkDrawIndexedIndirectCommand, so the editor draws with no CPU read-back.
+// When a frame outgrows the buffers the draw is empty, the counters say so, and
+// the next record() (or polygonize(), at once) grows them and redoes the frame:
+// nothing is ever truncated silently.
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <vulkan/vulkan.h>
+
+#include "buffer.h"
+#include "context.h"
+#include "field/field_program.h"
+#include "math/bounds.h"
+#include "poly/mesh.h"
+#include "scene_renderer.h"
+#include "util/result.h"
+
+namespace animorph::gpu {
+
+enum class MorphMethod : uint8_t {
+  Interpolation,   // m = (1 - w) f1 + w f2
+  SpaceTimeBlend,  // DESIGN.md §5 and include_shared/morph_field.h
+};
+
+// What to polygonise: one program, or the morph of two ("evaluate two programs
+// and combine"; the formulas are in include_shared/morph_field.h, shared with C++).
+struct GpuField {
+  const FieldProgram* a = nullptr;  // required
+  const FieldProgram* b = nullptr;  // set: the morph of a and b
+  MorphMethod method = MorphMethod::Interpolation;
+  float weight = 0.5f;     // interpolation: w (0: a, 1: b)
+  float morphTime = 0.5f;  // space-time: t (0: a, 1: b)
+  float timeScale = 1.0f;  // space-time: scale of t against field values
+  float a0 = 1.0f, a1 = 1.0f, a2 = 1.0f, a3 = 1.0f;  // space-time: bounded-blending parameters
+
+  static GpuField single(const FieldProgram& p) { return {&p}; }
+  static GpuField interpolation(const FieldProgram& a, const FieldProgram& b, float w) {
+    GpuField f{&a, &b};
+    f.weight = w;
+    return f;
+  }
+  static GpuField spaceTime(const FieldProgram& a, const FieldProgram& b, float t, float timeScale = 1.0f,
+                            float a0 = 1.0f, float a1 = 1.0f, float a2 = 1.0f, float a3 = 1.0f) {
+    GpuField f{&a, &b, MorphMethod::SpaceTimeBlend};
+    f.morphTime = t;
+    f.timeScale = timeScale;
+    f.a0 = a0;
+    f.a1 = a1;
+    f.a2 = a2;
+    f.a3 = a3;
+    return f;
+  }
+};
+
+struct GpuPolygonizeSettings {
+  // Cells along the longest side of the grid bounds (cubic cells), 2..512.
+  // The cost follows the surface with culling, the volume without.
+  int resolution = 128;
+  // Grid bounds; default as the CPU polygoniser: the programs' interval-tightened
+  // bounds (the union for a morph; space-time blending adds 10%) grown by marginCells.
+  std::optional<Bounds> bounds;
+  float marginCells = 2.0f;
+  // Per-block primitive lists and interval culling. Off: every block is
+  // evaluated with every primitive (same mesh, slower).
+  bool culling = true;
+  // Where the shaders read the programs: Auto picks a uniform buffer on GPUs when
+  // the programs fit in 64 KiB, a storage buffer on CPU devices (lavapipe) or
+  // beyond. Same results either way; tests force each.
+  enum class PoolBuffer : uint8_t { Auto, Uniform, Storage };
+  PoolBuffer poolBuffer = PoolBuffer::Auto;
+  // Initial buffer capacities (0: automatic). They grow when a frame overflows.
+  uint32_t initialBlockCapacity = 0;
+  uint32_t initialVertexCapacity = 0;
+  uint32_t initialTriangleCapacity = 0;
+};
+
+struct GpuPolygonizeStats {
+  int gridX = 0, gridY = 0, gridZ = 0;  // cells per axis
+  float cellSize = 0.0f;
+  uint32_t blocksTotal = 0;   // 8^3-cell blocks of the grid
+  uint32_t blocksActive = 0;  // blocks the fine passes evaluated
+  uint32_t vertices = 0, triangles = 0;
+  uint32_t regrows = 0;       // polygonize(): frames redone after growing the buffers
+  bool uniformPool = true;    // programs read from a uniform buffer (else storage)
+  double milliseconds = 0.0;  // polygonize(): wall time from submit to completion (all passes)
+  // polygonize(): GPU time per pass from timestamps (0 when the queue has none):
+  // uploads, coarse (lists + intervals), block compaction, corners + cells, vertex/triangle scan, emit.
+  double passMs[6] = {0, 0, 0, 0, 0, 0};
+};
+
+class GpuPolygonizer {
+ public:
+  // Pipelines, the marching-cubes table and small initial buffers. Errors:
+  // missing shaders, Vulkan failures (out of memory included).
+  static Result<std::unique_ptr<GpuPolygonizer>> create(Context& ctx);
+  ~GpuPolygonizer();
+  GpuPolygonizer(const GpuPolygonizer&) = delete;
+  GpuPolygonizer& operator=(const GpuPolygonizer&) = delete;
+
+  // Why the GPU cannot polygonise field (empty when it can). Callers use the CPU path otherwise.
+  static std::string unsupported(const GpuField& field);
+
+  // Records one polygonisation into cmd (outside any render pass), no CPU
+  // read-back: the editor's per-frame call, then draw generatedMesh(). frameSerial
+  // numbers the frame (as SceneRenderer::record); the counters of frame
+  // frameSerial - kFramesInFlight, which the caller guarantees has completed,
+  // are read here, and if that frame overflowed the buffers grow first (waiting
+  // for the device). Buffers may be replaced: take generatedMesh() after record().
+  // Errors: unsupported field, bad settings or bounds, Vulkan failures.
+  Status record(VkCommandBuffer cmd, uint64_t frameSerial, const GpuField& field, const GpuPolygonizeSettings& s);
+
+  // Device buffers of the last recorded mesh for SceneRenderer (Scene::generatedMeshes).
+  GeneratedMeshDraw generatedMesh(const glm::vec4& color = {0.62f, 0.62f, 0.62f, 1.0f}) const;
+
+  // Synchronous polygonisation (CLI, tests, benchmarks): records, submits and
+  // waits; on overflow grows the buffers and redoes it until the mesh fits.
+  // Errors: as record(), device lost, a mesh beyond the device's buffer limits.
+  Result<GpuPolygonizeStats> polygonize(const GpuField& field, const GpuPolygonizeSettings& s);
+
+  // The mesh of the last polygonize() (positions, normals, indices) copied to
+  // host memory. Errors: nothing polygonised yet, Vulkan failures.
+  Result<TriangleMesh> readBack();
+
+  // Stats of the last polygonize(), or of the last record() whose counters were read.
+  const GpuPolygonizeStats& lastStats() const { return stats_; }
+
+ private:
+  struct Impl;
+  explicit GpuPolygonizer(Context& ctx);
+  std::unique_ptr<Impl> impl_;
+  GpuPolygonizeStats stats_;
+};
+
+}  // namespace animorph::gpu

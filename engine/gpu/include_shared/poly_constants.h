@@ -1,0 +1,138 @@
+// Constants of the GPU polygoniser shared by engine/gpu/gpu_polygonizer.cpp,
+// gpu_field_program.cpp and shaders/poly_*.comp.glsl (docs/gpu-polygonizer.md).
+// Only preprocessor definitions, so GLSL and C++ read the same values.
+#ifndef ANIMORPH_POLY_CONSTANTS_H
+#define ANIMORPH_POLY_CONSTANTS_H
+
+// Blocks of 8^3 cells: the unit of culling, of per-block primitive lists and of
+// one workgroup in the fine passes.
+#define AM_POLY_BLOCK 8
+#define AM_POLY_BLOCK_CORNERS 729  // (8 + 1)^3 grid corners of a block
+#define AM_POLY_BLOCK_CELLS 512
+// Edges of a block's closed box (base corner in [0,8] on the two other axes,
+// [0,8) along the edge): 3 * 8 * 9 * 9. A block owns the ones whose base
+// corner lies in it, and adopts face edges whose owner block is not active.
+#define AM_POLY_BLOCK_EDGES 1944
+#define AM_POLY_EDGES_PER_AXIS 648
+#define AM_POLY_EDGE_WORDS 64  // bitmask words per block (>= 1944 / 32), then 64 prefix counts
+#define AM_POLY_EDGE_INFO 128  // uints per block: 64 mask words + 64 exclusive popcount prefixes
+
+// Workgroup sizes (x only; multiples of 8 suit lavapipe's 8-wide SIMD).
+#define AM_POLY_WG_BLOCKS 64   // coarse pass: one invocation per block
+#define AM_POLY_WG_CELLS 96    // fine passes: one workgroup per active block; 8 corners per invocation (92 busy)
+#define AM_POLY_POINTS 8       // points per invocation of the batched field evaluation
+#define AM_POLY_WG_SCAN 256
+#define AM_POLY_SCAN_PER_GROUP 1024  // elements per scan workgroup (4 per invocation)
+#define AM_POLY_SCAN_MAX_GROUPS 1024 // so at most 1M elements per scan
+#define AM_POLY_WG_LINEAR 64   // compaction and helpers
+
+// Interpreter limits: programs beyond them are reported and polygonised on the CPU.
+#define AM_POLY_MAX_STACK 16
+#define AM_POLY_MAX_MAP_DEPTH 6
+// Operands of one hyper-blend are read from the stack, so at most the stack size.
+
+// The primitive/op pool in a uniform buffer of this many vec4 (64 KiB) when it
+// fits and the device allows it; else the storage-buffer variant of the shaders.
+#define AM_POLY_UNIFORM_POOL_VEC4 4096
+
+// Edge parameter kept in [snap, 1 - snap], as the CPU polygoniser does.
+#define AM_POLY_SNAP 1e-3
+
+// Op codes (values of animorph::OpCode).
+#define AM_OP_PRIMS 0
+#define AM_OP_CONST 1
+#define AM_OP_SUM 2
+#define AM_OP_MAX 3
+#define AM_OP_MIN 4
+#define AM_OP_HYPERBLEND 5
+#define AM_OP_DIFFERENCE 6
+#define AM_OP_RUNION 7
+#define AM_OP_RINTERSECTION 8
+#define AM_OP_BOUNDEDBLEND 9
+#define AM_OP_BEGINMAP 10
+#define AM_OP_ENDMAP 11
+
+// Primitive classes (animorph::PrimClass).
+#define AM_PRIM_SKELETAL 0
+#define AM_PRIM_CONVOLUTION 1
+#define AM_PRIM_CAPSULE 2
+
+// Skeleton kinds (animorph::SkeletonKind).
+#define AM_SKEL_POINT 0
+#define AM_SKEL_SPHERE 1
+#define AM_SKEL_SEGMENT 2
+#define AM_SKEL_CYLINDER 3
+#define AM_SKEL_CONE 4
+#define AM_SKEL_DISC 5
+#define AM_SKEL_CIRCLE 6
+#define AM_SKEL_TRIANGLE 7
+#define AM_SKEL_CURVE 8
+
+// Space map kinds (animorph::SpaceMapKind).
+#define AM_MAP_AFFINE 0
+#define AM_MAP_TWIST 1
+#define AM_MAP_TAPER 2
+#define AM_MAP_BEND 3
+
+// Pool record sizes in vec4.
+#define AM_REC_OP 2
+#define AM_REC_CONV 3
+#define AM_REC_SKEL 6  // (p0, kind|count<<8), (p1, r0), (p2, r1), (R, I, k, curve), (capsule a, reach), (capsule b, 0)
+#define AM_REC_CAPSULE 2
+#define AM_REC_MAP 4
+#define AM_REC_BOUND 4  // storage buffer of bounds: (a, radius), (b, 0), (box min, 0), (box max, 0)
+
+// How the two programs combine (GpuPolygonizer settings).
+#define AM_COMBINE_SINGLE 0
+#define AM_COMBINE_INTERPOLATE 1
+#define AM_COMBINE_SPACETIME 2
+
+// Descriptor bindings of the polygoniser's single descriptor set.
+#define AM_PB_PARAMS 0       // uniform: PolyParams
+#define AM_PB_POOL_UBO 1     // uniform: vec4 pool[AM_POLY_UNIFORM_POOL_VEC4]
+#define AM_PB_POOL_SSBO 2    // storage: vec4 pool[]
+#define AM_PB_BOUNDS 3       // storage: vec4 per primitive bound (AM_REC_BOUND each)
+#define AM_PB_TABLE 4        // uniform: marching-cubes table
+#define AM_PB_BLOCK_MASK 5   // storage: primitive bitmask per block
+#define AM_PB_BLOCK_FLAG 6   // storage: uvec2 per block (active, 0): scan input
+#define AM_PB_BLOCK_PREFIX 7 // storage: uvec2 per block: scan output
+#define AM_PB_BLOCK_SLOT 8   // storage: uint per block: active slot or AM_POLY_NONE
+#define AM_PB_ACTIVE 9       // storage: uint per active slot: block id
+#define AM_PB_CORNERS 10     // storage: float, AM_POLY_BLOCK_CORNERS per active slot
+#define AM_PB_EDGES 11       // storage: uint, AM_POLY_EDGE_INFO per active slot
+#define AM_PB_COUNTS 12      // storage: uvec2 per active slot (vertices, triangles): scan input
+#define AM_PB_OFFSETS 13     // storage: uvec2 per active slot: scan output
+#define AM_PB_PARTIALS 14    // storage: uvec2 per scan group
+#define AM_PB_CONTROL 15     // storage: counters and indirect arguments (AM_CTL_*)
+#define AM_PB_POSITIONS 16   // storage: float xyz per vertex (vertex buffer)
+#define AM_PB_NORMALS 17     // storage: float xyz per vertex (vertex buffer)
+#define AM_PB_INDICES 18     // storage: uint per triangle corner (index buffer)
+#define AM_PB_COUNT 19
+
+#define AM_POLY_NONE 0xffffffffu
+
+// Control buffer layout (uint indices).
+#define AM_CTL_ACTIVE 0      // active blocks (may exceed the block capacity)
+#define AM_CTL_VERTICES 1    // vertices of the mesh (may exceed the vertex capacity)
+#define AM_CTL_TRIANGLES 2   // triangles (may exceed the triangle capacity)
+#define AM_CTL_OVERFLOW 3    // AM_OVERFLOW_* bits: the mesh is incomplete, grow and redo
+#define AM_CTL_DISPATCH 4    // VkDispatchIndirectCommand (x, y, z) for the fine passes
+#define AM_CTL_DRAW 8        // VkDrawIndexedIndirectCommand (5 uints)
+#define AM_CTL_SCAN_TOTAL 14 // uvec2 total of the last scan
+#define AM_CTL_UINTS 16
+#define AM_CTL_READBACK_UINTS 4  // counters copied to the host after each frame
+
+#define AM_OVERFLOW_BLOCKS 1u
+#define AM_OVERFLOW_VERTICES 2u
+#define AM_OVERFLOW_TRIANGLES 4u
+
+// Push constants (one uvec4) of the helper passes.
+#define AM_SCAN_REDUCE 0
+#define AM_SCAN_PARTIALS 1
+#define AM_SCAN_DOWNSWEEP 2
+#define AM_SCAN_SOURCE_BLOCKS 0  // block flags -> block prefix
+#define AM_SCAN_SOURCE_COUNTS 1  // per-slot counts -> offsets
+#define AM_ARGS_AFTER_BLOCKS 0
+#define AM_ARGS_AFTER_COUNTS 1
+
+#endif  // ANIMORPH_POLY_CONSTANTS_H

@@ -1,0 +1,86 @@
+// Fine pass 1: one workgroup per active block. Evaluates the field at the
+// block's 9^3 grid corners (8 per invocation),
+// applies the grid-boundary rule, classifies the 8^3 cells (marching-cubes case)
+// and marks the crossing edges this block makes vertices for (edgeOwner).
+// Writes the corner values, the edge bitmask with its popcount prefixes, and
+// the block's (vertex, triangle) counts for the scan.
+#include "poly_common.glsl"
+#include "poly_field.glsl"
+#include "poly_table.glsl"
+
+#include "poly_field8.glsl"
+
+layout(local_size_x = AM_POLY_WG_CELLS) in;
+
+layout(set = 0, binding = AM_PB_CORNERS, std430) writeonly buffer Corners { float corners[]; };
+layout(set = 0, binding = AM_PB_EDGES, std430) writeonly buffer Edges { uint edges[]; };
+layout(set = 0, binding = AM_PB_COUNTS, std430) writeonly buffer Counts { uvec2 counts[]; };
+
+shared float sCorner[AM_POLY_BLOCK_CORNERS];
+shared uint sMask[AM_POLY_EDGE_WORDS];
+shared uint sTriangles;
+
+void main() {
+  uint slot = gl_WorkGroupID.x;
+  uint t = gl_LocalInvocationID.x;
+  uint b = activeBlocks[slot];
+  uvec3 bc = blockCoord(b);
+  uvec3 c0 = bc * uint(AM_POLY_BLOCK);
+  uvec3 cnt = blockCells(bc);
+  uvec3 n = P.gridCells.xyz;
+  if (t < uint(AM_POLY_EDGE_WORDS)) sMask[t] = 0u;
+  if (t == 0u) sTriangles = 0u;
+  uint first = t * uint(AM_POLY_POINTS);
+  if (first < uint(AM_POLY_BLOCK_CORNERS)) {
+    uvec3 g[8];
+    for (uint k = 0u; k < 8u; ++k) {
+      uint idx = min(first + k, uint(AM_POLY_BLOCK_CORNERS) - 1u);
+      g[k] = c0 + uvec3(idx % 9u, (idx / 9u) % 9u, idx / 81u);
+    }
+    Points8 w = points8(cornerPosition(g[0]), cornerPosition(g[1]), cornerPosition(g[2]), cornerPosition(g[3]),
+                        cornerPosition(g[4]), cornerPosition(g[5]), cornerPosition(g[6]), cornerPosition(g[7]));
+    vec4 f0, f1;
+    field8(b * P.modes.y, w, f0, f1);
+    for (uint k = 0u; k < 8u; ++k) {
+      uint idx = first + k;
+      if (idx >= uint(AM_POLY_BLOCK_CORNERS)) break;
+      float v = k < 4u ? f0[k] : f1[k - 4u];
+      // The grid boundary counts as outside, so a surface cut by it is closed.
+      if (any(equal(g[k], uvec3(0u))) || any(equal(g[k], n))) v = min(v, P.thresholds.w);
+      sCorner[idx] = v;
+      corners[slot * AM_POLY_BLOCK_CORNERS + idx] = v;
+    }
+  }
+  barrier();
+  uint tris = 0u;
+  for (uint c = t; c < uint(AM_POLY_BLOCK_CELLS); c += AM_POLY_WG_CELLS) {
+    uvec3 l = uvec3(c & 7u, (c >> 3) & 7u, c >> 6);
+    if (any(greaterThanEqual(l, cnt))) continue;
+    uint cubeCase = 0u;
+    for (uint q = 0u; q < 8u; ++q)
+      if (sCorner[cornerIndex(l + uvec3(q & 1u, (q >> 1) & 1u, q >> 2))] >= 0.0) cubeCase |= 1u << q;
+    tris += mcTriangleCount(cubeCase);
+  }
+  if (tris > 0u) atomicAdd(sTriangles, tris);
+  for (uint e = t; e < uint(AM_POLY_BLOCK_EDGES); e += AM_POLY_WG_CELLS) {
+    uint a;
+    uvec3 l = edgeLocal(e, a);
+    uvec3 l1 = l;
+    l1[a] += 1u;
+    if (any(greaterThan(l1, cnt))) continue;  // beyond the grid
+    bool in0 = sCorner[cornerIndex(l)] >= 0.0, in1 = sCorner[cornerIndex(l1)] >= 0.0;
+    if (in0 == in1) continue;
+    uvec3 ownerLocal;
+    if (edgeOwner(bc, l, a, slot, ownerLocal) == slot) atomicOr(sMask[e >> 5], 1u << (e & 31u));
+  }
+  barrier();
+  if (t < uint(AM_POLY_EDGE_WORDS)) edges[slot * AM_POLY_EDGE_INFO + t] = sMask[t];
+  if (t == 0u) {
+    uint run = 0u;
+    for (uint w = 0u; w < uint(AM_POLY_EDGE_WORDS); ++w) {
+      edges[slot * AM_POLY_EDGE_INFO + AM_POLY_EDGE_WORDS + w] = run;
+      run += bitCount(sMask[w]);
+    }
+    counts[slot] = uvec2(run, sTriangles);
+  }
+}

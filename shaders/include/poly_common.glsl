@@ -1,0 +1,103 @@
+// Declarations shared by the polygoniser's compute shaders (engine/gpu/gpu_polygonizer.cpp):
+// per-frame parameters, the primitive/op pool, block data and helpers for the
+// block grid and edge numbering. Buffers a shader does not use are still
+// declared; the compiler drops them.
+#include "poly_constants.h"
+
+// C++ mirror: PolyParams in engine/gpu/gpu_polygonizer.cpp (std140).
+layout(set = 0, binding = AM_PB_PARAMS, std430) readonly buffer PolyParams {
+  vec4 gridOrigin;  // xyz: world position of grid corner (0,0,0); w: cell size h (m)
+  uvec4 gridCells;  // xyz: cells per axis
+  uvec4 gridBlocks; // xyz: blocks per axis; w: total blocks
+  uvec4 progA;      // x: first op record (vec4 index), y: op count, z: first global primitive id, w: primitives
+  uvec4 progB;      // the second program (morphs), else zero
+  vec4 thresholds;  // x: T of A, y: T of B, z: culling margin on f, w: value forced on the grid boundary (< 0)
+  uvec4 modes;      // x: AM_COMBINE_*, y: primitive-mask words per block, z: culling on, w: block capacity
+  vec4 morph0;      // x: weight w, y: morph time t, z: time scale, w: a0
+  vec4 morph1;      // x: a1, y: a2, z: a3, w: normal step (m)
+  uvec4 caps;       // x: vertex capacity, y: triangle capacity, z: total primitives, w: 8 (points per batch, kept opaque to the compiler)
+  vec4 extra;       // x: reach dilation of a block box (m)
+} P;
+
+#if AM_POOL_STORAGE
+layout(set = 0, binding = AM_PB_POOL_SSBO, std430) readonly buffer PoolStorage { uvec4 pool[]; };
+#else
+layout(set = 0, binding = AM_PB_POOL_UBO, std140) uniform PoolUniform { uvec4 pool[AM_POLY_UNIFORM_POOL_VEC4]; };
+#endif
+#define POOLF(i) uintBitsToFloat(pool[i])
+#define POOLU(i) pool[i]
+
+layout(set = 0, binding = AM_PB_BOUNDS, std430) readonly buffer PrimBounds { vec4 primBounds[]; };
+layout(set = 0, binding = AM_PB_BLOCK_MASK, std430) buffer BlockMask { uint blockMask[]; };
+layout(set = 0, binding = AM_PB_BLOCK_SLOT, std430) buffer BlockSlot { uint blockSlot[]; };
+layout(set = 0, binding = AM_PB_ACTIVE, std430) buffer ActiveBlocks { uint activeBlocks[]; };
+layout(set = 0, binding = AM_PB_CONTROL, std430) buffer Control { uint control[]; };
+
+#define kInf uintBitsToFloat(0x7f800000u)
+
+// Grid position of block b.
+uvec3 blockCoord(uint b) {
+  uvec3 nb = P.gridBlocks.xyz;
+  return uvec3(b % nb.x, (b / nb.x) % nb.y, b / (nb.x * nb.y));
+}
+
+// Cells of block bc along each axis (8, fewer at the far end of the grid).
+uvec3 blockCells(uvec3 bc) { return min(uvec3(AM_POLY_BLOCK), P.gridCells.xyz - bc * uint(AM_POLY_BLOCK)); }
+
+vec3 cornerPosition(uvec3 g) { return P.gridOrigin.xyz + P.gridOrigin.w * vec3(g); }
+
+bool primActive(uint maskBase, uint g) { return ((blockMask[maskBase + (g >> 5)] >> (g & 31u)) & 1u) != 0u; }
+
+// Bit of the edge (base corner l, axis a) in its block's closed-box numbering.
+uint edgeBit(uvec3 l, uint a) {
+  if (a == 0u) return l.x + 8u * (l.y + 9u * l.z);
+  if (a == 1u) return AM_POLY_EDGES_PER_AXIS + l.x + 9u * (l.y + 8u * l.z);
+  return 2u * AM_POLY_EDGES_PER_AXIS + l.x + 9u * (l.y + 9u * l.z);
+}
+
+// Inverse of edgeBit: base corner and axis of closed-box edge e.
+uvec3 edgeLocal(uint e, out uint a) {
+  a = e / uint(AM_POLY_EDGES_PER_AXIS);
+  uint r = e % uint(AM_POLY_EDGES_PER_AXIS);
+  if (a == 0u) return uvec3(r % 8u, (r / 8u) % 9u, r / 72u);
+  if (a == 1u) return uvec3(r % 9u, (r / 9u) % 8u, r / 72u);
+  return uvec3(r % 9u, (r / 9u) % 9u, r / 81u);
+}
+
+uint cornerIndex(uvec3 l) { return (l.z * 9u + l.y) * 9u + l.x; }
+
+// The active slot that makes the vertex of the edge at local base corner l
+// (axis a) of block bc, and the edge's base corner local to that block. The
+// owner is the block holding the base corner when it is active, else the
+// first active block of the (up to 4) blocks sharing the edge, in a fixed
+// order, so every block that uses the edge agrees. AM_POLY_NONE only when no
+// block sharing it is active (never for an edge of an active block).
+uint edgeOwner(uvec3 bc, uvec3 l, uint a, uint selfSlot, out uvec3 ownerLocal) {
+  uint a1 = (a + 1u) % 3u, a2 = (a + 2u) % 3u;
+  if (l[a1] < 8u && l[a2] < 8u) {
+    ownerLocal = l;
+    return selfSlot;
+  }
+  uvec3 g = bc * 8u + l;
+  uvec3 base = g / 8u;
+  uvec3 nb = P.gridBlocks.xyz;
+  for (uint m = 0u; m < 4u; ++m) {
+    uvec3 cand = base;
+    if ((m & 1u) != 0u) {
+      if (g[a1] % 8u != 0u || base[a1] == 0u) continue;
+      cand[a1] -= 1u;
+    }
+    if ((m & 2u) != 0u) {
+      if (g[a2] % 8u != 0u || base[a2] == 0u) continue;
+      cand[a2] -= 1u;
+    }
+    if (any(greaterThanEqual(cand, nb))) continue;
+    uint s = blockSlot[cand.x + nb.x * (cand.y + nb.y * cand.z)];
+    if (s != AM_POLY_NONE) {
+      ownerLocal = g - cand * 8u;
+      return s;
+    }
+  }
+  ownerLocal = l;
+  return AM_POLY_NONE;
+}

@@ -1,0 +1,485 @@
+// FieldProgram evaluation on the GPU: the scalar kernels of
+// engine/core/field (field_kernels.cpp, skeleton.cpp, spline_curve.cpp,
+// space_map.cpp, operators.h) ported line by line, the interval evaluator of
+// FieldProgram::interval, and (poly_field_values.glsl) the batched value
+// interpreter. Needs poly_common.glsl.
+#include "morph_field.h"
+
+// ------------------------------------------------------------ kernels
+
+// atan2(y, x) for y > 0 (field_kernels.cpp: Cephes atanf polynomial), four at a time.
+vec4 atan2PositiveY4(vec4 y, vec4 x) {
+  vec4 ax = abs(x);
+  vec4 mn = min(ax, y);
+  vec4 mx = max(ax, y);
+  bvec4 big = greaterThan(mn, 0.41421356237 * mx);
+  vec4 t = mix(mn, mn - mx, big) / mix(mx, mn + mx, big);
+  vec4 z = t * t;
+  vec4 r = (((8.05374449538e-2 * z - 1.38776856032e-1) * z + 1.99777106478e-1) * z - 3.33329491539e-1) * z * t + t;
+  r += mix(vec4(0.0), vec4(0.78539816340), big);
+  r = mix(r, 1.57079632679 - r, greaterThan(y, ax));
+  r = mix(r, 3.14159265359 - r, lessThan(x, vec4(0.0)));
+  return r;
+}
+
+// Weighted, cut convolution-segment field at four points (convolutionValues);
+// record r0 = (b, l), r1 = (a, w), r2 = (S, cut2).
+vec4 convolution4(vec4 x, vec4 y, vec4 z, vec4 r0, vec4 r1, vec4 r2) {
+  vec4 dx = x - r0.x, dy = y - r0.y, dz = z - r0.z;
+  float l = r0.w, S = r2.x, S2 = S * S;
+  vec4 dd = dx * dx + dy * dy + dz * dz;
+  vec4 u = dx * r1.x + dy * r1.y + dz * r1.z;
+  vec4 perp2 = max(dd - u * u, vec4(0.0));
+  vec4 Pp = 1.0 + S2 * perp2;
+  vec4 D = 1.0 + S2 * dd;
+  vec4 lu = l - u;
+  vec4 e2 = dd - 2.0 * l * u + l * l;
+  vec4 Q = 1.0 + S2 * e2;
+  vec4 invP = 1.0 / Pp;
+  vec4 p = sqrt(Pp);
+  vec4 A = atan2PositiveY4(S * l * p, Pp - S2 * u * lu);
+  vec4 invDQ = 1.0 / (D * Q);
+  vec4 F = invP * ((u * Q + lu * D) * invDQ + A * p * invP / S);
+  vec4 seg2 = mix(mix(perp2, e2, greaterThan(u, vec4(l))), dd, lessThan(u, vec4(0.0)));
+  return mix(vec4(0.0), 0.5 * r1.w * F, lessThanEqual(seg2, vec4(r2.y)));
+}
+
+// Interval of the weighted, cut convolution field over the ball (c, rho) (convolutionIntervals).
+vec2 convolutionInterval(vec3 c, float rho, vec4 r0, vec4 r1, vec4 r2) {
+  float l = r0.w, S2 = r2.x * r2.x, cut2 = r2.y;
+  vec3 d = c - r0.xyz;
+  float uc = dot(d, r1.xyz);
+  float perp2 = max(dot(d, d) - uc * uc, 0.0);
+  float along = uc < 0.0 ? -uc : (uc > l ? uc - l : 0.0);
+  float dseg = sqrt(perp2 + along * along);
+  float ds = l * 0.125;
+  float sumLo = 0.0, sumHi = 0.0;
+  for (int q = 0; q < 8; ++q) {
+    float s0 = ds * float(q), s1 = s0 + ds;
+    float nearD = uc < s0 ? s0 - uc : (uc > s1 ? uc - s1 : 0.0);
+    float farD = max(abs(s0 - uc), abs(s1 - uc));
+    float rmin = max(sqrt(perp2 + nearD * nearD) - rho, 0.0);
+    float rmax = sqrt(perp2 + farD * farD) + rho;
+    float kmax = 1.0 / (1.0 + S2 * rmin * rmin);
+    float kmin = 1.0 / (1.0 + S2 * rmax * rmax);
+    sumHi += kmax * kmax;
+    sumLo += kmin * kmin;
+  }
+  float wds = r1.w * ds;
+  float dOut = dseg - rho, dIn = dseg + rho;
+  bool none = dOut * dOut > cut2 && dOut > 0.0;
+  bool inside = dIn * dIn <= cut2;
+  return vec2(inside ? wds * sumLo * 0.9999 : 0.0, none ? 0.0 : wds * sumHi * 1.0001);
+}
+
+float powStiffness(float base, float k) {
+  int ki = int(k);
+  if (float(ki) == k && ki >= 0 && ki <= 8) {
+    float r = 1.0;
+    for (int i = 0; i < ki; ++i) r *= base;
+    return r;
+  }
+  return pow(base, k);
+}
+
+// g = I (1 - d2/R^2)^k for d2 < R^2 (potential.h).
+float skeletalPotential(float d2, float R, float I, float k) {
+  float r2 = R * R;
+  if (!(d2 < r2) || r2 <= 0.0) return 0.0;
+  float t = 1.0 - d2 / r2;
+  float tk1 = k == 0.0 ? 0.0 : powStiffness(t, k - 1.0);
+  return k == 0.0 ? I : I * tk1 * t;
+}
+
+vec3 closestOnSegment(vec3 x, vec3 a, vec3 b) {
+  vec3 ab = b - a;
+  float l2 = dot(ab, ab);
+  if (l2 <= 0.0) return a;
+  float t = clamp(dot(x - a, ab) / l2, 0.0, 1.0);
+  return a + t * ab;
+}
+
+vec3 closestOnBall(vec3 x, vec3 c, float r) {
+  vec3 d = x - c;
+  float l = length(d);
+  if (l <= r) return x;
+  return c + d * (r / l);
+}
+
+vec3 anyPerpendicular(vec3 n) {
+  vec3 t = abs(n.x) < 0.9 ? vec3(1, 0, 0) : vec3(0, 1, 0);
+  return normalize(cross(n, t));
+}
+
+vec2 closest2(vec2 c, vec2 p, vec2 q) {
+  vec2 pq = q - p;
+  float l2 = dot(pq, pq);
+  if (l2 <= 0.0) return p;
+  float t = clamp(dot(c - p, pq) / l2, 0.0, 1.0);
+  return p + t * pq;
+}
+
+vec3 closestOnDisc(vec3 x, vec3 c, vec3 n, float r) {
+  vec3 d = x - c;
+  vec3 inPlane = d - dot(d, n) * n;
+  float l = length(inPlane);
+  if (l > r) inPlane *= r / l;
+  return c + inPlane;
+}
+
+vec3 closestOnCircle(vec3 x, vec3 c, vec3 n, float r) {
+  vec3 d = x - c;
+  vec3 inPlane = d - dot(d, n) * n;
+  float l = length(inPlane);
+  vec3 dir = l > 1e-12 ? inPlane / l : anyPerpendicular(n);
+  return c + r * dir;
+}
+
+vec3 closestOnCone(vec3 x, vec3 a, vec3 b, float ra, float rb) {
+  vec3 ab = b - a;
+  float len = length(ab);
+  if (len <= 1e-12) return closestOnDisc(x, a, vec3(0, 1, 0), max(ra, rb));
+  vec3 axis = ab / len;
+  vec3 d = x - a;
+  float u = dot(d, axis);
+  vec3 radial = d - u * axis;
+  float rho = length(radial);
+  vec3 rdir = rho > 1e-12 ? radial / rho : anyPerpendicular(axis);
+  if (u >= 0.0 && u <= len && rho <= ra + (rb - ra) * (u / len)) return x;
+  vec2 c = vec2(u, rho);
+  vec2 v0 = vec2(0.0, 0.0), v1 = vec2(0.0, ra), v2 = vec2(len, rb), v3 = vec2(len, 0.0);
+  vec2 best = closest2(c, v0, v1);
+  float bestD = dot(best - c, best - c);
+  vec2 q = closest2(c, v1, v2);
+  float dq = dot(q - c, q - c);
+  if (dq < bestD) {
+    bestD = dq;
+    best = q;
+  }
+  q = closest2(c, v2, v3);
+  dq = dot(q - c, q - c);
+  if (dq < bestD) best = q;
+  return a + best.x * axis + best.y * rdir;
+}
+
+// Ericson, Real-Time Collision Detection, 5.1.5 (skeleton.cpp).
+vec3 closestOnTriangle(vec3 p, vec3 a, vec3 b, vec3 c) {
+  vec3 ab = b - a, ac = c - a, ap = p - a;
+  float d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return a;
+  vec3 bp = p - b;
+  float d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0.0 && d4 <= d3) return b;
+  float vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + ab * (d1 / (d1 - d3));
+  vec3 cp = p - c;
+  float d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0.0 && d5 <= d6) return c;
+  float vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + ac * (d2 / (d2 - d6));
+  float va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  float denom = 1.0 / (va + vb + vc);
+  if (isinf(denom) || isnan(denom)) return closestOnSegment(p, a, b);
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+// Uniform Catmull-Rom curve through n control points pool[first ..] (spline_curve.cpp).
+void evaluateCurve(uint first, int n, float s, out vec3 position, out vec3 tangent, out vec3 second) {
+  if (n <= 1) {
+    position = n == 1 ? POOLF(first).xyz : vec3(0.0);
+    tangent = vec3(0.0);
+    second = vec3(0.0);
+    return;
+  }
+  int spans = n - 1;
+  float x = clamp(s, 0.0, 1.0) * float(spans);
+  int i = min(int(x), spans - 1);
+  float u = x - float(i);
+  vec3 p1 = POOLF(first + uint(i)).xyz, p2 = POOLF(first + uint(i + 1)).xyz;
+  vec3 p0 = i > 0 ? POOLF(first + uint(i - 1)).xyz : 2.0 * p1 - p2;
+  vec3 p3 = i + 2 < n ? POOLF(first + uint(i + 2)).xyz : 2.0 * p2 - p1;
+  vec3 c1 = 0.5 * (p2 - p0);
+  vec3 c2 = 0.5 * (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3);
+  vec3 c3 = 0.5 * (-p0 + 3.0 * p1 - 3.0 * p2 + p3);
+  position = p1 + u * (c1 + u * (c2 + u * c3));
+  tangent = (c1 + u * (2.0 * c2 + 3.0 * u * c3)) * float(spans);
+  second = (2.0 * c2 + 6.0 * u * c3) * float(spans * spans);
+}
+
+vec3 curvePosition(uint first, int n, float s) {
+  vec3 p, t, c;
+  evaluateCurve(first, n, s, p, t, c);
+  return p;
+}
+
+// closestCurveParameter: dense sampling, then Newton in the best sample's neighbourhood.
+vec3 closestOnCurve(uint first, int n, vec3 x) {
+  if (n <= 1) return curvePosition(first, n, 0.0);
+  const int samplesPerSpan = 16;
+  int total = (n - 1) * samplesPerSpan;
+  float best = 0.0, bestD = kInf;
+  for (int i = 0; i <= total; ++i) {
+    float s = float(i) / float(total);
+    vec3 d = curvePosition(first, n, s) - x;
+    float dd = dot(d, d);
+    if (dd < bestD) {
+      bestD = dd;
+      best = s;
+    }
+  }
+  float sampleStep = 1.0 / float(total);
+  float lo = max(0.0, best - sampleStep), hi = min(1.0, best + sampleStep);
+  float s = best;
+  for (int it = 0; it < 8; ++it) {
+    vec3 pos, tan, sec;
+    evaluateCurve(first, n, s, pos, tan, sec);
+    vec3 d = pos - x;
+    float g = dot(d, tan);
+    float h = dot(tan, tan) + dot(d, sec);
+    float next = h > 0.0 ? s - g / h : (g > 0.0 ? lo : hi);
+    next = clamp(next, lo, hi);
+    if (abs(next - s) < 1e-7) {
+      s = next;
+      break;
+    }
+    s = next;
+  }
+  vec3 pn = curvePosition(first, n, s);
+  vec3 dn = pn - x;
+  return dot(dn, dn) <= bestD ? pn : curvePosition(first, n, best);
+}
+
+// Closest point of skeletal primitive record rec to x (closestOnSkeleton).
+vec3 closestOnSkeleton(uint rec, vec3 x) {
+  vec4 r0 = POOLF(rec), r1 = POOLF(rec + 1u), r2 = POOLF(rec + 2u);
+  uint kindBits = floatBitsToUint(r0.w);
+  uint kind = kindBits & 0xffu;
+  if (kind == AM_SKEL_POINT) return r0.xyz;
+  if (kind == AM_SKEL_SPHERE) return closestOnBall(x, r0.xyz, r1.w);
+  if (kind == AM_SKEL_SEGMENT) return closestOnSegment(x, r0.xyz, r1.xyz);
+  if (kind == AM_SKEL_CYLINDER) return closestOnCone(x, r0.xyz, r1.xyz, r1.w, r1.w);
+  if (kind == AM_SKEL_CONE) return closestOnCone(x, r0.xyz, r1.xyz, r1.w, r2.w);
+  if (kind == AM_SKEL_DISC) return closestOnDisc(x, r0.xyz, r1.xyz, r1.w);
+  if (kind == AM_SKEL_CIRCLE) return closestOnCircle(x, r0.xyz, r1.xyz, r1.w);
+  if (kind == AM_SKEL_TRIANGLE) return closestOnTriangle(x, r0.xyz, r1.xyz, r2.xyz);
+  return closestOnCurve(floatBitsToUint(POOLF(rec + 3u).w), int(kindBits >> 8), x);
+}
+
+// Skeletal potential of record rec at x, with the enclosing-capsule rejection of skeletalLoop.
+float skeletalValue(uint rec, vec3 q) {
+  vec4 r3 = POOLF(rec + 3u), r4 = POOLF(rec + 4u), r5 = POOLF(rec + 5u);
+  vec3 ca = r4.xyz, ab = r5.xyz - r4.xyz;
+  float l2 = dot(ab, ab);
+  float t = l2 > 0.0 ? clamp(dot(q - ca, ab) / l2, 0.0, 1.0) : 0.0;
+  vec3 e = q - (ca + t * ab);
+  if (dot(e, e) >= r4.w * r4.w) return 0.0;
+  vec3 d = q - closestOnSkeleton(rec, q);
+  return skeletalPotential(dot(d, d), r3.x, r3.y, r3.z);
+}
+
+// Canal surface T max(0, 2 - dist / R) (capsuleLoop): record (a, R), (b, 0).
+float capsuleValue(uint rec, vec3 q, float T) {
+  vec4 r0 = POOLF(rec), r1 = POOLF(rec + 1u);
+  if (r0.w <= 0.0) return 0.0;
+  float dist = length(q - closestOnSegment(q, r0.xyz, r1.xyz));
+  float v = T * (2.0 - dist * (1.0 / r0.w));
+  return v <= 0.0 ? 0.0 : v;
+}
+
+// ------------------------------------------------------------ space maps
+
+vec3 bendInverse(vec3 Pw, float kappa, float len) {
+  float c = 1.0 / kappa;
+  float X = Pw.x, Y = Pw.y, Z = Pw.z;
+  float theta = atan(Z, c - Y);
+  float thetaL = kappa * len;
+  if (Z < 0.0 || theta < 0.0) return Pw;
+  if (theta <= thetaL) {
+    float rho = sqrt((c - Y) * (c - Y) + Z * Z);
+    return vec3(X, c - rho, theta / kappa);
+  }
+  float s = sin(thetaL), co = cos(thetaL);
+  vec3 C = vec3(0.0, (1.0 - co) / kappa, s / kappa);
+  vec3 N = vec3(0.0, co, -s), Tt = vec3(0.0, s, co);
+  vec3 v = Pw - C;
+  return vec3(v.x, dot(v, N), dot(v, Tt) + len);
+}
+
+// World -> child point through map record m (SpaceMap::toLocal): r0..r2 = columns
+// of `linear` (w: kind, length, k0), r3 = (origin, k1).
+vec3 mapToLocal(uint m, vec3 x) {
+  vec4 r0 = POOLF(m), r1 = POOLF(m + 1u), r2 = POOLF(m + 2u), r3 = POOLF(m + 3u);
+  mat3 L = mat3(r0.xyz, r1.xyz, r2.xyz);
+  uint kind = floatBitsToUint(r0.w);
+  vec3 Pw = L * (x - r3.xyz);
+  if (kind == AM_MAP_AFFINE) return Pw;
+  float len = r1.w, k0 = r2.w, k1 = r3.w;
+  vec3 Lc = Pw;
+  if (kind == AM_MAP_TWIST) {
+    float zc = clamp(Pw.z, 0.0, len);
+    float phi = k0 * zc;
+    float c = cos(phi), s = sin(phi);
+    Lc = vec3(Pw.x * c + Pw.y * s, -Pw.x * s + Pw.y * c, Pw.z);
+  } else if (kind == AM_MAP_TAPER) {
+    float zc = clamp(Pw.z, 0.0, len);
+    float sc = k0 + (k1 - k0) * (zc / len);
+    Lc = vec3(Pw.x / sc, Pw.y / sc, Pw.z);
+  } else {
+    if (abs(k0) < 1e-6) {
+      Lc = Pw;
+    } else if (k0 > 0.0) {
+      Lc = bendInverse(Pw, k0, len);
+    } else {
+      vec3 Lm = bendInverse(vec3(Pw.x, -Pw.y, Pw.z), -k0, len);
+      Lc = vec3(Lm.x, -Lm.y, Lm.z);
+    }
+  }
+  return r3.xyz + transpose(L) * Lc;
+}
+
+// Upper bound of how much map m stretches distances on the ball (c, radius) (localStretchBound).
+float mapStretchBound(uint m, vec3 centre, float radius) {
+  vec4 r0 = POOLF(m), r1 = POOLF(m + 1u), r2 = POOLF(m + 2u), r3 = POOLF(m + 3u);
+  uint kind = floatBitsToUint(r0.w);
+  if (kind == AM_MAP_AFFINE) return sqrt(dot(r0.xyz, r0.xyz) + dot(r1.xyz, r1.xyz) + dot(r2.xyz, r2.xyz));
+  mat3 L = mat3(r0.xyz, r1.xyz, r2.xyz);
+  vec3 Lc = L * (centre - r3.xyz);
+  float rMax = sqrt(Lc.x * Lc.x + Lc.y * Lc.y) + radius;
+  float len = r1.w, k0 = r2.w, k1 = r3.w;
+  if (kind == AM_MAP_TWIST) return 1.0 + abs(k0) * rMax;
+  if (kind == AM_MAP_TAPER) {
+    float smin = min(k0, k1);
+    if (smin <= 0.0) return kInf;
+    return 1.0 / smin + abs(k1 - k0) / len * rMax / (smin * smin);
+  }
+  float kap = abs(k0);
+  if (kap < 1e-6) return 1.0;
+  float minDist = 1.0 / kap - rMax;
+  if (minDist <= 0.0) return kInf;
+  return max(1.0, 1.0 / (kap * minDist));
+}
+
+// ------------------------------------------------------------ intervals
+
+float paramAt(uint index) { return POOLF(index >> 2)[index & 3u]; }
+
+// Interval of f = p - T of the program's ops [opBegin, opBegin + opCount) over
+// the ball (centre, radius), primitives restricted to the block mask at maskBase
+// (FieldProgram::interval on the specialised program).
+vec2 programInterval(uint opBegin, uint opCount, float T, vec3 centre, float radius, uint maskBase) {
+  vec2 st[AM_POLY_MAX_STACK];
+  vec4 balls[AM_POLY_MAX_MAP_DEPTH];
+  int sp = 0, level = 0;
+  vec3 c = centre;
+  float rho = radius;
+  for (uint i = 0u; i < opCount; ++i) {
+    uint o = opBegin + i * AM_REC_OP;
+    uvec4 op0 = POOLU(o);
+    vec4 op1 = POOLF(o + 1u);
+    uint code = op0.x & 0xffu;
+    if (code == AM_OP_PRIMS) {
+      uint cls = (op0.x >> 8) & 0xffu;
+      bool cmax = ((op0.x >> 16) & 1u) != 0u;
+      vec2 acc = vec2(0.0);
+      for (uint k = 0u; k < op0.z; ++k) {
+        if (!primActive(maskBase, op0.w + k)) continue;
+        vec2 v;
+        if (cls == AM_PRIM_CONVOLUTION) {
+          uint r = op0.y + k * AM_REC_CONV;
+          acc += convolutionInterval(c, rho, POOLF(r), POOLF(r + 1u), POOLF(r + 2u));
+          continue;
+        } else if (cls == AM_PRIM_SKELETAL) {
+          uint r = op0.y + k * AM_REC_SKEL;
+          vec4 r3 = POOLF(r + 3u);
+          float d = length(c - closestOnSkeleton(r, c));
+          float dm = max(0.0, d - rho);
+          float g0 = skeletalPotential(dm * dm, r3.x, r3.y, r3.z);
+          float g1 = skeletalPotential((d + rho) * (d + rho), r3.x, r3.y, r3.z);
+          v = vec2(min(g0, g1), max(g0, g1));
+        } else {
+          uint r = op0.y + k * AM_REC_CAPSULE;
+          vec4 r0 = POOLF(r), r1 = POOLF(r + 1u);
+          float d = length(c - closestOnSegment(c, r0.xyz, r1.xyz));
+          float R = r0.w;
+          float gFar = R > 0.0 ? T * max(0.0, 2.0 - (d + rho) / R) : 0.0;
+          float gNear = R > 0.0 ? T * max(0.0, 2.0 - max(0.0, d - rho) / R) : 0.0;
+          v = vec2(gFar, gNear);
+        }
+        acc = cmax ? max(acc, v) : acc + v;
+      }
+      st[sp++] = acc;
+    } else if (code == AM_OP_CONST) {
+      st[sp++] = vec2(op1.z);
+    } else if (code == AM_OP_BEGINMAP) {
+      uint m = floatBitsToUint(op1.y);
+      balls[level++] = vec4(c, rho);
+      float stretch = mapStretchBound(m, c, rho);
+      c = mapToLocal(m, c);
+      rho = isinf(stretch) ? kInf : rho * stretch * 1.0001;
+    } else if (code == AM_OP_ENDMAP) {
+      vec4 b = balls[--level];
+      c = b.xyz;
+      rho = b.w;
+    } else {
+      int n = int(op0.z);
+      int base = sp - n;
+      uint prm = floatBitsToUint(op1.x);
+      vec2 r = st[base];
+      if (code == AM_OP_SUM) {
+        for (int k = 1; k < n; ++k) r += st[base + k];
+      } else if (code == AM_OP_MAX) {
+        for (int k = 1; k < n; ++k) r = max(r, st[base + k]);
+      } else if (code == AM_OP_MIN) {
+        for (int k = 1; k < n; ++k) r = min(r, st[base + k]);
+      } else if (code == AM_OP_HYPERBLEND) {
+        float q = paramAt(prm);
+        vec2 sum = vec2(0.0);
+        for (int k = 0; k < n; ++k) {
+          vec2 v = max(st[base + k], vec2(0.0));
+          sum.x += v.x > 0.0 ? pow(v.x, q) : 0.0;
+          sum.y += v.y > 0.0 ? pow(v.y, q) : 0.0;
+        }
+        r = vec2(sum.x > 0.0 ? pow(sum.x, 1.0 / q) : 0.0, sum.y > 0.0 ? pow(sum.y, 1.0 / q) : 0.0);
+      } else if (code == AM_OP_DIFFERENCE) {
+        vec2 b = st[base + 1];
+        r = vec2(min(r.x, 2.0 * T - b.y), min(r.y, 2.0 * T - b.x));
+      } else if (code == AM_OP_RUNION) {
+        vec2 b = st[base + 1];
+        r = vec2(T + amRUnion(r.x - T, b.x - T), T + amRUnion(r.y - T, b.y - T));
+      } else if (code == AM_OP_RINTERSECTION) {
+        vec2 b = st[base + 1];
+        r = vec2(T + amRIntersection(r.x - T, b.x - T), T + amRIntersection(r.y - T, b.y - T));
+      } else if (code == AM_OP_BOUNDEDBLEND) {
+        vec2 b = st[base + 1];
+        float a0 = paramAt(prm);
+        r = vec2(T + amRUnion(r.x - T, b.x - T) + min(0.0, a0), T + amRUnion(r.y - T, b.y - T) + max(0.0, a0));
+      }
+      if (isnan(r.x)) r.x = -kInf;
+      if (isnan(r.y)) r.y = kInf;
+      sp = base + 1;
+      st[base] = r;
+    }
+  }
+  return sp > 0 ? st[0] - vec2(T) : vec2(-T);
+}
+
+vec2 guardInterval(vec2 r) { return vec2(isnan(r.x) ? -kInf : r.x, isnan(r.y) ? kInf : r.y); }
+
+// Interval of the combined field (one program, or the morph of two) over the ball.
+vec2 combinedInterval(vec3 centre, float radius, uint maskBase) {
+  vec2 a = programInterval(P.progA.x, P.progA.y, P.thresholds.x, centre, radius, maskBase);
+  if (P.modes.x == AM_COMBINE_SINGLE) return a;
+  vec2 b = programInterval(P.progB.x, P.progB.y, P.thresholds.y, centre, radius, maskBase);
+  if (P.modes.x == AM_COMBINE_INTERPOLATE) {
+    float w = P.morph0.x;
+    vec2 ia = (1.0 - w) * a, ib = w * b;
+    return guardInterval(vec2(min(ia.x, ia.y) + min(ib.x, ib.y), max(ia.x, ia.y) + max(ib.x, ib.y)));
+  }
+  float tau = P.morph0.z * P.morph0.y, tau1 = P.morph0.z * (P.morph0.y - 1.0);
+  // R-functions are non-decreasing in each argument: map the ends.
+  vec2 g1 = guardInterval(vec2(amRIntersection(a.x, -tau), amRIntersection(a.y, -tau)));
+  vec2 g2 = guardInterval(vec2(amRIntersection(b.x, tau1), amRIntersection(b.y, tau1)));
+  float a0 = P.morph0.w;
+  return guardInterval(vec2(amRUnion(g1.x, g2.x) + min(0.0, a0), amRUnion(g1.y, g2.y) + max(0.0, a0)));
+}

@@ -1,0 +1,471 @@
+// GPU polygoniser on lavapipe against the CPU polygoniser on the same grid:
+// triangle counts within 0.5 %, vertex-to-nearest-vertex distance (an upper
+// bound of the symmetric Hausdorff distance between the vertex sets) within
+// 0.05 cell, closed manifolds, normals, culled == dense, buffer growth from tiny
+// capacities, morphs (interpolation and space-time blending), the indirect draw
+// through the scene renderer, and unsupported programs. Validation on, no errors.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <random>
+#include <set>
+#include <unordered_map>
+
+#include "blobtree/compile.h"
+#include "gpu_fixture.h"
+#include "gpu_polygonizer.h"
+#include "morph_field.h"
+#include "offscreen_target.h"
+#include "poly/marching_cubes_table.h"
+#include "poly/mesh_checks.h"
+#include "poly/polygonizer.h"
+#include "scene_renderer.h"
+#include "util/blob_builders.h"
+
+using namespace animorph;
+using namespace animorph::gpu;
+using namespace animorph::test;
+
+namespace {
+
+struct Rig {
+  std::unique_ptr<Context> ctx;
+  std::unique_ptr<GpuPolygonizer> poly;
+};
+
+Rig makeRig() {
+  Rig r;
+  r.ctx = makeTestContext();
+  auto p = GpuPolygonizer::create(*r.ctx);
+  INFO(p.error());
+  REQUIRE(p.ok());
+  r.poly = std::move(*p);
+  return r;
+}
+
+TriangleMesh gpuMesh(GpuPolygonizer& poly, const GpuField& field, const GpuPolygonizeSettings& s,
+                     GpuPolygonizeStats* stats = nullptr) {
+  auto st = poly.polygonize(field, s);
+  INFO(st.error());
+  REQUIRE(st.ok());
+  if (stats) *stats = *st;
+  auto mesh = poly.readBack();
+  INFO(mesh.error());
+  REQUIRE(mesh.ok());
+  REQUIRE(mesh->triangleCount() == st->triangles);
+  return std::move(*mesh);
+}
+
+TriangleMesh cpuMesh(const FieldProgram& p, int res, const std::optional<Bounds>& bounds, bool cull = true) {
+  PolygonizeSettings s;
+  s.resolution = res;
+  s.bounds = bounds;
+  s.culling = cull;
+  auto r = polygonize(p, s);
+  INFO(r.error());
+  REQUIRE(r.ok());
+  return std::move(r->mesh);
+}
+
+// Largest distance from a point of `from` to its nearest point of `to`; searches
+// one cell of size h around each point, so it reports at least h when nothing is that close.
+float maxNearestDistance(const std::vector<glm::vec3>& from, const std::vector<glm::vec3>& to, float h) {
+  auto key = [&](const glm::ivec3& c) {
+    return (uint64_t(uint32_t(c.x) & 0x1fffff) << 42) | (uint64_t(uint32_t(c.y) & 0x1fffff) << 21) |
+           uint64_t(uint32_t(c.z) & 0x1fffff);
+  };
+  std::unordered_map<uint64_t, std::vector<uint32_t>> cells;
+  for (uint32_t i = 0; i < to.size(); ++i) cells[key(glm::ivec3(glm::floor(to[i] / h)))].push_back(i);
+  float worst = 0.0f;
+  for (const glm::vec3& p : from) {
+    glm::ivec3 c(glm::floor(p / h));
+    float best = h;
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          auto it = cells.find(key(c + glm::ivec3(dx, dy, dz)));
+          if (it == cells.end()) continue;
+          for (uint32_t j : it->second) best = std::min(best, glm::length(to[j] - p));
+        }
+    worst = std::max(worst, best);
+  }
+  return worst;
+}
+
+void requireClosedManifold(const TriangleMesh& m) {
+  MeshTopology t = analyzeMesh(m);
+  CHECK(t.boundaryEdges == 0);
+  CHECK(t.nonManifoldEdges == 0);
+  CHECK(t.misorientedEdges == 0);
+  CHECK(t.nonManifoldVertices == 0);
+  CHECK(t.degenerateTriangles == 0);
+}
+
+// The GPU mesh agrees with the reference: triangle counts within 0.5 %, vertex
+// sets within 0.05 cell of each other both ways, closed manifold.
+void requireAgrees(const TriangleMesh& gpu, const TriangleMesh& ref, float cell) {
+  double n = double(ref.triangleCount());
+  INFO("GPU " << gpu.triangleCount() << " triangles, reference " << ref.triangleCount());
+  CHECK(std::abs(double(gpu.triangleCount()) - n) <= 0.005 * n);
+  if (ref.triangleCount() == 0 || gpu.triangleCount() == 0) {
+    CHECK(gpu.triangleCount() == ref.triangleCount());
+    return;
+  }
+  CHECK(maxNearestDistance(gpu.positions, ref.positions, cell) <= 0.05f * cell);
+  CHECK(maxNearestDistance(ref.positions, gpu.positions, cell) <= 0.05f * cell);
+  requireClosedManifold(gpu);
+}
+
+// Triangles as sorted position triples: compares meshes whatever their vertex numbering.
+std::vector<std::array<float, 9>> triangleSet(const TriangleMesh& m) {
+  std::vector<std::array<float, 9>> out;
+  for (size_t t = 0; t < m.indices.size(); t += 3) {
+    std::array<glm::vec3, 3> v = {m.positions[m.indices[t]], m.positions[m.indices[t + 1]],
+                                  m.positions[m.indices[t + 2]]};
+    auto less = [](const glm::vec3& a, const glm::vec3& b) {
+      return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
+    };
+    int first = less(v[1], v[0]) ? (less(v[2], v[1]) ? 2 : 1) : (less(v[2], v[0]) ? 2 : 0);
+    std::array<float, 9> k;
+    for (int i = 0; i < 3; ++i)
+      for (int a = 0; a < 3; ++a) k[size_t(3 * i + a)] = v[size_t((first + i) % 3)][a];  // keeps the winding
+    out.push_back(k);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// A chain of n convolution segments heading up +z; radii scaled, the whole shifted.
+BlobTree chainTree(int n, unsigned seed, float radiusScale = 1.0f, glm::vec3 shift = glm::vec3(0.0f)) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  BlobNode root = makeBlobNode(NodeType::Blend, 1);
+  glm::vec3 p(0.3f * u(rng), 0.3f * u(rng), -0.35f);
+  for (int i = 0; i < n; ++i) {
+    glm::vec3 q = p + 0.1f * glm::normalize(glm::vec3(u(rng), u(rng), 1.2f));
+    root.children.push_back(convSegmentNode(2 + i, p + shift, q + shift, radiusScale * (0.05f + 0.015f * u(rng)), 12.0f));
+    p = q;
+  }
+  return treeOf(root, 1.0f);
+}
+
+Bounds cube(float half) {
+  Bounds b;
+  b.add(glm::vec3(-half));
+  b.add(glm::vec3(half));
+  return b;
+}
+
+// Marching cubes of an arbitrary field sampled on the GPU polygoniser's grid
+// for a bounds override: the reference for morphs, which the CPU polygoniser
+// (one program) cannot express. Same boundary rule, interpolation and table.
+TriangleMesh referenceMesh(const std::function<float(const glm::vec3&)>& f, const Bounds& box, int res,
+                           float boundaryValue) {
+  float L = std::max({box.size().x, box.size().y, box.size().z});
+  float h = L / float(res);
+  int n[3];
+  for (int a = 0; a < 3; ++a) n[a] = std::max(1, int(std::lround(box.size()[a] / h)));
+  glm::vec3 origin = box.center() - 0.5f * h * glm::vec3(float(n[0]), float(n[1]), float(n[2]));
+  const int cx = n[0] + 1, cy = n[1] + 1, cz = n[2] + 1;
+  std::vector<float> v(size_t(cx) * cy * cz);
+  auto corner = [&](int i, int j, int k) { return origin + h * glm::vec3(float(i), float(j), float(k)); };
+  for (int k = 0; k < cz; ++k)
+    for (int j = 0; j < cy; ++j)
+      for (int i = 0; i < cx; ++i) {
+        float x = f(corner(i, j, k));
+        if (i == 0 || j == 0 || k == 0 || i == n[0] || j == n[1] || k == n[2]) x = std::min(x, boundaryValue);
+        v[size_t((k * cy + j) * cx + i)] = x;
+      }
+  auto val = [&](int i, int j, int k) { return v[size_t((k * cy + j) * cx + i)]; };
+  const MarchingCubesTable& table = marchingCubesTable();
+  TriangleMesh mesh;
+  std::unordered_map<uint64_t, uint32_t> vertexOf;
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i) {
+        int mask = 0;
+        for (int c = 0; c < 8; ++c)
+          if (val(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1)) >= 0.0f) mask |= 1 << c;
+        for (int q = 0; table.triangles[size_t(mask)][size_t(q)] != 255; ++q) {
+          int e = table.triangles[size_t(mask)][size_t(q)];
+          int c0 = table.edgeCorners[size_t(e)][0], axis = table.edgeAxis[size_t(e)];
+          int gi = i + (c0 & 1), gj = j + ((c0 >> 1) & 1), gk = k + ((c0 >> 2) & 1);
+          uint64_t key = ((uint64_t(gk) * uint64_t(cy) + uint64_t(gj)) * uint64_t(cx) + uint64_t(gi)) * 3 + uint64_t(axis);
+          auto it = vertexOf.find(key);
+          if (it == vertexOf.end()) {
+            int gi1 = gi + (axis == 0), gj1 = gj + (axis == 1), gk1 = gk + (axis == 2);
+            float f0 = val(gi, gj, gk), f1 = val(gi1, gj1, gk1);
+            float t = std::clamp(f0 / (f0 - f1), 1e-3f, 1.0f - 1e-3f);
+            glm::vec3 p0 = corner(gi, gj, gk), p1 = corner(gi1, gj1, gk1);
+            mesh.positions.push_back(p0 + t * (p1 - p0));
+            it = vertexOf.emplace(key, uint32_t(mesh.positions.size() - 1)).first;
+          }
+          mesh.indices.push_back(it->second);
+        }
+      }
+  return mesh;
+}
+
+// Which op codes, primitive classes, skeleton kinds and map kinds a program uses.
+struct Coverage {
+  std::set<int> ops, classes, skeletons, maps;
+  void add(const FieldProgram& p) {
+    for (const FieldOp& op : p.ops) {
+      ops.insert(int(op.code));
+      if (op.code == OpCode::Prims) classes.insert(int(op.primClass));
+    }
+    for (const SkeletalPrimitive& s : p.skeletal) skeletons.insert(int(s.skeleton.kind));
+    for (const SpaceMap& m : p.maps) maps.insert(int(m.kind));
+  }
+};
+
+}  // namespace
+
+TEST_CASE("GPU polygoniser matches the CPU on a convolution chain, culled and dense", "[gpu][gpupoly]") {
+  Rig r = makeRig();
+  FieldProgram p = compileFieldProgram(chainTree(20, 7), 0.0);
+  GpuPolygonizeSettings s;
+  s.resolution = 64;
+  GpuPolygonizeStats culledStats, denseStats;
+  TriangleMesh culled = gpuMesh(*r.poly, GpuField::single(p), s, &culledStats);
+  TriangleMesh cpu = cpuMesh(p, 64, std::nullopt);
+  REQUIRE(cpu.triangleCount() > 2000);
+  float cell = culledStats.cellSize;
+  requireAgrees(culled, cpu, cell);
+  CHECK(analyzeMesh(culled).components == analyzeMesh(cpu).components);
+  CHECK(std::abs(meshVolume(culled) - meshVolume(cpu)) <= 1e-3 * std::abs(meshVolume(cpu)));
+
+  s.culling = false;
+  TriangleMesh dense = gpuMesh(*r.poly, GpuField::single(p), s, &denseStats);
+  CHECK(denseStats.blocksActive == denseStats.blocksTotal);
+  CHECK(culledStats.blocksActive < culledStats.blocksTotal);
+  CHECK(triangleSet(dense) == triangleSet(culled));  // same field values, bit for bit
+  s.culling = true;
+  for (auto pool : {GpuPolygonizeSettings::PoolBuffer::Uniform, GpuPolygonizeSettings::PoolBuffer::Storage}) {
+    s.poolBuffer = pool;
+    GpuPolygonizeStats st;
+    TriangleMesh other = gpuMesh(*r.poly, GpuField::single(p), s, &st);
+    CHECK(st.uniformPool == (pool == GpuPolygonizeSettings::PoolBuffer::Uniform));
+    CHECK(triangleSet(other) == triangleSet(culled));
+  }
+
+  // Normals: the field gradient, as the CPU's (analytic there, central differences here).
+  std::unordered_map<uint64_t, glm::vec3> cpuNormal;
+  auto key = [&](const glm::vec3& q) {
+    glm::ivec3 c(glm::round(q / (1e-3f * cell)));
+    return (uint64_t(uint32_t(c.x) & 0x1fffff) << 42) | (uint64_t(uint32_t(c.y) & 0x1fffff) << 21) |
+           uint64_t(uint32_t(c.z) & 0x1fffff);
+  };
+  for (size_t i = 0; i < cpu.positions.size(); ++i) cpuNormal[key(cpu.positions[i])] = cpu.normals[i];
+  size_t matched = 0, close = 0;
+  for (size_t i = 0; i < culled.positions.size(); ++i) {
+    auto it = cpuNormal.find(key(culled.positions[i]));
+    if (it == cpuNormal.end()) continue;
+    ++matched;
+    CHECK(std::abs(glm::length(culled.normals[i]) - 1.0f) < 1e-3f);
+    close += glm::dot(culled.normals[i], it->second) > std::cos(glm::radians(3.0f));
+  }
+  CHECK(matched > culled.positions.size() / 2);
+  CHECK(close >= matched * 99 / 100);
+  CHECK(r.ctx->validationErrorCount() == 0);
+}
+
+TEST_CASE("GPU polygoniser covers every op, primitive, skeleton and map of the CPU program", "[gpu][gpupoly]") {
+  Rig r = makeRig();
+  Coverage coverage;
+  for (unsigned seed : {1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u, 9u, 10u, 11u, 12u, 13u, 14u, 15u, 16u}) {
+    std::mt19937 rng(seed);
+    int id = 1;
+    BlobTree tree = treeOf(randomNode(rng, 3, id), 0.5f);
+    FieldProgram p = compileFieldProgram(tree, 0.5);
+    INFO("seed " << seed);
+    REQUIRE(GpuPolygonizer::unsupported(GpuField::single(p)).empty());
+    coverage.add(p);
+    GpuPolygonizeSettings s;
+    s.resolution = 40;
+    s.bounds = cube(1.2f);  // some random trees are unbounded
+    GpuPolygonizeStats st;
+    TriangleMesh gpu = gpuMesh(*r.poly, GpuField::single(p), s, &st);
+    requireAgrees(gpu, cpuMesh(p, 40, s.bounds), st.cellSize);
+  }
+  // Ops the compiler makes rarely: an R-union node, and a constant (a hand-built program).
+  {
+    BlobTree tree = treeOf(operatorNode(NodeType::RUnion, 1,
+                                        {pointNode(2, glm::vec3(-0.2f, 0, 0), 0.5f), segmentNode(3, glm::vec3(0.1f, -0.3f, 0), glm::vec3(0.2f, 0.3f, 0.1f), 0.3f)}),
+                           0.5f);
+    FieldProgram withConst;
+    withConst.threshold = 0.5f;
+    withConst.addConstant(0.2f);
+    withConst.addCapsule({glm::vec3(-0.3f, 0, 0), glm::vec3(0.3f, 0.1f, 0), 0.15f}, false, false);
+    withConst.addOperator(OpCode::Sum, 2);
+    withConst.finish();
+    for (const FieldProgram& p : {compileFieldProgram(tree, 0.0), withConst}) {
+      coverage.add(p);
+      GpuPolygonizeSettings s;
+      s.resolution = 40;
+      s.bounds = cube(0.8f);
+      GpuPolygonizeStats st;
+      TriangleMesh gpu = gpuMesh(*r.poly, GpuField::single(p), s, &st);
+      TriangleMesh cpu = cpuMesh(p, 40, s.bounds);
+      REQUIRE(cpu.triangleCount() > 500);
+      requireAgrees(gpu, cpu, st.cellSize);
+    }
+  }
+  for (OpCode op : {OpCode::Prims, OpCode::Const, OpCode::Sum, OpCode::Max, OpCode::Min, OpCode::HyperBlend,
+                    OpCode::Difference, OpCode::RUnion, OpCode::RIntersection, OpCode::BoundedBlend,
+                    OpCode::BeginMap, OpCode::EndMap}) {
+    INFO("op " << int(op));
+    CHECK(coverage.ops.count(int(op)) == 1);
+  }
+  CHECK(coverage.classes.size() == 3);
+  CHECK(coverage.skeletons.size() == 9);
+  CHECK(coverage.maps.size() == 4);
+  CHECK(r.ctx->validationErrorCount() == 0);
+}
+
+TEST_CASE("GPU polygoniser grows its buffers from tiny capacities and redoes the frame", "[gpu][gpupoly]") {
+  Rig r = makeRig();
+  FieldProgram p = compileFieldProgram(chainTree(12, 3), 0.0);
+  GpuPolygonizeSettings s;
+  s.resolution = 48;
+  GpuPolygonizeStats normal, tiny;
+  TriangleMesh reference = gpuMesh(*r.poly, GpuField::single(p), s, &normal);
+  CHECK(normal.regrows == 0);
+  s.initialBlockCapacity = 1;
+  s.initialVertexCapacity = 3;
+  s.initialTriangleCapacity = 1;
+  TriangleMesh grown = gpuMesh(*r.poly, GpuField::single(p), s, &tiny);
+  CHECK(tiny.regrows >= 1);
+  REQUIRE(reference.triangleCount() > 1000);
+  CHECK(triangleSet(grown) == triangleSet(reference));
+  requireClosedManifold(grown);
+  CHECK(r.ctx->validationErrorCount() == 0);
+}
+
+TEST_CASE("GPU polygoniser morphs two programs by interpolation and by space-time blending", "[gpu][gpupoly]") {
+  Rig r = makeRig();
+  // Two overlapping stand-ins: the same walk, thicker and shifted in the target.
+  BlobTree ta = chainTree(8, 11, 1.3f), tb = chainTree(8, 11, 1.8f, glm::vec3(0.06f, 0.0f, 0.0f));
+  FieldProgram a = compileFieldProgram(ta, 0.0), b = compileFieldProgram(tb, 0.0);
+  const Bounds box = cube(0.6f);
+  const int res = 48;
+  GpuPolygonizeSettings s;
+  s.resolution = res;
+  s.bounds = box;
+  FieldEvaluator ea, eb;
+
+  SECTION("interpolation equals the CPU polygoniser on the weight-scaled merged program") {
+    const float w = 0.4f;
+    // (1 - w) (pA - T) + w (pB - T) = (1 - w) pA + w pB - T: one program with scaled weights.
+    BlobNode both = makeBlobNode(NodeType::Blend, 1000);
+    both.children = {ta.root, tb.root};
+    FieldProgram merged = compileFieldProgram(treeOf(both, 1.0f), 0.0);
+    REQUIRE(merged.convolution.size() == 16);
+    for (size_t i = 0; i < 16; ++i) merged.convolution.weight[i] *= i < 8 ? 1.0f - w : w;
+    GpuPolygonizeStats st;
+    TriangleMesh gpu = gpuMesh(*r.poly, GpuField::interpolation(a, b, w), s, &st);
+    TriangleMesh cpu = cpuMesh(merged, res, box);
+    REQUIRE(cpu.triangleCount() > 1000);
+    requireAgrees(gpu, cpu, st.cellSize);
+    TriangleMesh ref = referenceMesh(
+        [&](const glm::vec3& x) {
+          return morphfield::amMorphInterpolate(ea.evaluatePoint(a, x), eb.evaluatePoint(b, x), w);
+        },
+        box, res, -1e-6f);
+    requireAgrees(gpu, ref, st.cellSize);
+    // The ends of the interpolation are the programs themselves.
+    TriangleMesh atZero = gpuMesh(*r.poly, GpuField::interpolation(a, b, 0.0f), s);
+    requireAgrees(atZero, cpuMesh(a, res, box), st.cellSize);
+  }
+  SECTION("space-time blending equals the reference of the shared formula") {
+    for (float t : {-0.3f, 0.5f}) {
+      GpuField f = GpuField::spaceTime(a, b, t, 1.0f, 2.0f, 1.0f, 1.0f, 0.2f);
+      GpuPolygonizeStats st;
+      TriangleMesh gpu = gpuMesh(*r.poly, f, s, &st);
+      TriangleMesh ref = referenceMesh(
+          [&](const glm::vec3& x) {
+            return morphfield::amMorphSpaceTime(ea.evaluatePoint(a, x), eb.evaluatePoint(b, x), f.morphTime,
+                                                f.timeScale, f.a0, f.a1, f.a2, f.a3);
+          },
+          box, res, -1e-6f);
+      INFO("t = " << t);
+      REQUIRE(ref.triangleCount() > 500);
+      requireAgrees(gpu, ref, st.cellSize);
+      // Culling (intervals of the morph) changes nothing.
+      s.culling = false;
+      TriangleMesh dense = gpuMesh(*r.poly, f, s);
+      s.culling = true;
+      CHECK(triangleSet(dense) == triangleSet(gpu));
+    }
+  }
+  CHECK(r.ctx->validationErrorCount() == 0);
+}
+
+TEST_CASE("GPU polygoniser draws its mesh with an indirect draw, no read-back", "[gpu][gpupoly]") {
+  Rig r = makeRig();
+  BlobTree tree = treeOf(pointNode(2, glm::vec3(0.0f), 0.8f), 0.5f);
+  FieldProgram p = compileFieldProgram(tree, 0.0);
+  auto target = OffscreenTarget::create(*r.ctx, 96, 96);
+  REQUIRE(target.ok());
+  auto renderer = SceneRenderer::create(*r.ctx, (*target)->renderPass());
+  INFO(renderer.error());
+  REQUIRE(renderer.ok());
+  GpuPolygonizeSettings s;
+  s.resolution = 32;
+  Status recorded;
+  Status submitted = r.ctx->submitImmediate([&](VkCommandBuffer cmd) {
+    recorded = r.poly->record(cmd, 0, GpuField::single(p), s);
+  });
+  INFO(recorded.error() + submitted.error());
+  REQUIRE(recorded.ok());
+  REQUIRE(submitted.ok());
+  OrbitCamera cam;
+  cam.target = glm::vec3(0.0f);
+  cam.yawRad = 0.0f;
+  cam.pitchRad = 0.0f;
+  cam.distanceM = 3.0f;
+  Scene scene;
+  scene.options.grid = false;
+  scene.options.axisIndicator = false;
+  scene.options.background = {0.1f, 0.2f, 0.3f, 1.0f};
+  scene.generatedMeshes.push_back(r.poly->generatedMesh({0.9f, 0.3f, 0.2f, 1.0f}));
+  Status drawn;
+  Status rendered = (*target)->render([&](VkCommandBuffer cmd) {
+    drawn = (*renderer)->record(cmd, (*target)->serial(), {0, 0, 96, 96}, cam, scene);
+  });
+  REQUIRE(drawn.ok());
+  REQUIRE(rendered.ok());
+  const RgbaImage& img = (*target)->image();
+  // A sphere of radius ~0.46 m (g = 0.5 at d = R sqrt(1 - 0.5^(1/3))) seen from 3 m fills the middle.
+  CHECK(differs(img.at(48, 48), scene.options.background));
+  CHECK(!differs(img.at(3, 3), scene.options.background));
+  size_t covered = countDiffering(img, scene.options.background);
+  CHECK(covered > 96 * 96 / 20);
+  CHECK(covered < 96 * 96 / 2);
+  CHECK(r.ctx->validationErrorCount() == 0);
+}
+
+TEST_CASE("GPU polygoniser reports what it cannot do and bad settings", "[gpu][gpupoly]") {
+  FieldProgram deep;
+  deep.threshold = 1.0f;
+  for (int i = 0; i < 20; ++i) deep.addConstant(0.0f);
+  deep.addOperator(OpCode::Sum, 20);
+  deep.finish();
+  std::string why = GpuPolygonizer::unsupported(GpuField::single(deep));
+  CHECK(why.find("stack") != std::string::npos);
+  Rig r = makeRig();
+  GpuPolygonizeSettings s;
+  s.bounds = cube(1.0f);
+  auto refused = r.poly->polygonize(GpuField::single(deep), s);
+  REQUIRE(!refused.ok());
+  CHECK(refused.error().find("stack depth 20") != std::string::npos);
+  FieldProgram ok = compileFieldProgram(chainTree(3, 1), 0.0);
+  s.resolution = 1000;
+  auto tooFine = r.poly->polygonize(GpuField::single(ok), s);
+  REQUIRE(!tooFine.ok());
+  CHECK(tooFine.error().find("resolution") != std::string::npos);
+  CHECK(!r.poly->readBack().ok());  // nothing polygonised yet
+  CHECK(r.ctx->validationErrorCount() == 0);
+}
