@@ -250,11 +250,9 @@ TEST_CASE("morph: the space-time method gives closed, non-empty meshes", "[morph
   }
 }
 
-// Known issue (poly/polygonizer, not the morph): on some ambiguous cell faces
-// the marching-cubes table emits the same triangle from both cells sharing the
-// face (opposite orientations), making 2 edges non-manifold at frame 75 of
-// this morph at 24^3. Reported; kept here so the fix shows up.
-TEST_CASE("morph: the space-time method gives manifold meshes", "[morph][!mayfail]") {
+// Frame 75 at 24^3 used to have 2 non-manifold edges: both cells sharing an
+// ambiguous face drew the same triangle in it (see the polygoniser's tests).
+TEST_CASE("morph: the space-time method gives manifold meshes", "[morph]") {
   for (const MorphFrame& fr : spaceTimeFrames()) {
     INFO("t = " << fr.timeSec);
     const MeshTopology topo = analyzeMesh(fr.mesh);

@@ -25,6 +25,14 @@ MarchingCubesTable build() {
       t.edgeAxis[size_t(e)] = uint8_t(a);
       edgeOf[c0][c1] = edgeOf[c1][c0] = e;
     }
+  // Faces holding each edge, as bits 2 * axis + side.
+  int edgeFaces[12];
+  for (int e = 0; e < 12; ++e) {
+    int c0 = t.edgeCorners[size_t(e)][0], c1 = t.edgeCorners[size_t(e)][1];
+    edgeFaces[e] = 0;
+    for (int a = 0; a < 3; ++a)
+      if (((c0 >> a) & 1) == ((c1 >> a) & 1)) edgeFaces[e] |= 1 << (2 * a + ((c0 >> a) & 1));
+  }
   // Faces: corners in counter-clockwise order seen from outside the cube.
   int faces[6][4];
   for (int a = 0, f = 0; a < 3; ++a)
@@ -67,8 +75,26 @@ MarchingCubesTable build() {
           used[x] = true;
           loop.push_back(x);
         }
-        for (size_t k = 1; k + 1 < loop.size(); ++k) {
-          int a = loop[0], b = loop[k], c = loop[k + 1];
+        // Fan from the first apex whose diagonals all join edges on no common
+        // face. A diagonal between two edges of one face (possible when the
+        // loop crosses an ambiguous face twice) would also be drawable by the
+        // neighbour across that face: both cells could emit it, even the same
+        // triangle lying flat in the face with opposite windings, and the edge
+        // would get four triangles. Such an apex exists for every case (the
+        // table test checks it); it also keeps every triangle out of a face
+        // plane, so none is degenerate.
+        const size_t n = loop.size();
+        size_t apex = 0;
+        for (size_t r = 0; r < n; ++r) {
+          bool ok = true;
+          for (size_t k = 2; k + 1 < n && ok; ++k) ok = (edgeFaces[loop[r]] & edgeFaces[loop[(r + k) % n]]) == 0;
+          if (ok) {
+            apex = r;
+            break;
+          }
+        }
+        for (size_t k = 1; k + 1 < n; ++k) {
+          int a = loop[apex], b = loop[(apex + k) % n], c = loop[(apex + k + 1) % n];
           if (flip) std::swap(b, c);
           tri[size_t(3 * nt)] = uint8_t(a);
           tri[size_t(3 * nt + 1)] = uint8_t(b);

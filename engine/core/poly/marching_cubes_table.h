@@ -3,7 +3,10 @@
 // (after Bloomenthal): on every face the crossing points are joined so that
 // each run of inside corners is cut off on its own. The rule depends only on
 // the face's own corner signs, so two cells sharing a face always agree
-// (watertight, manifold); triangles are wound so their normals point outside.
+// (watertight). Each loop is fanned from an apex whose diagonals never join two
+// edges of one face, so a cell never draws an edge its face neighbour may draw
+// too (manifold) and no triangle lies in a face plane (none degenerate).
+// Triangles are wound so their normals point outside.
 #include <array>
 #include <cstdint>
 
