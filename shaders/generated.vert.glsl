@@ -7,14 +7,7 @@
 layout(location = AM_VERTEX_POSITION) in vec3 inPosition;
 layout(location = AM_VERTEX_NORMAL) in vec3 inNormal;
 
-layout(push_constant) uniform MeshPush {
-  mat4 model;
-  vec4 color;
-  uint jointOffset;
-  uint jointCount;
-  uint flags;
-  float depthPull;
-} pc;
+#include "mesh_push.glsl"
 
 layout(location = 0) out vec3 outWorldPos;
 layout(location = 1) out vec3 outWorldNormal;

@@ -4,14 +4,7 @@
 // readable on any base colour (like Maya's default shading); selection adds a rim.
 #include "frame.glsl"
 
-layout(push_constant) uniform MeshPush {
-  mat4 model;
-  vec4 color;
-  uint jointOffset;
-  uint jointCount;
-  uint flags;
-  float depthPull;
-} pc;
+#include "mesh_push.glsl"
 
 layout(location = 0) in vec3 inWorldPos;
 layout(location = 1) in vec3 inWorldNormal;

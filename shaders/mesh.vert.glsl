@@ -17,14 +17,7 @@ layout(set = 0, binding = AM_BINDING_JOINTS, std430) readonly buffer Joints {
   mat4 joints[];
 };
 
-layout(push_constant) uniform MeshPush {
-  mat4 model;
-  vec4 color;
-  uint jointOffset;
-  uint jointCount;
-  uint flags;
-  float depthPull;
-} pc;
+#include "mesh_push.glsl"
 
 layout(location = 0) out vec3 outWorldPos;
 layout(location = 1) out vec3 outWorldNormal;

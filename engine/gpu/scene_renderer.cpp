@@ -27,7 +27,7 @@ struct FrameUniforms {
 };
 static_assert(sizeof(FrameUniforms) == 2 * 64 + 5 * 16);
 
-// Push constants of mesh.vert/mesh.frag (MeshPush); line.vert reads the first 64 bytes as LinePush.
+// Push constants of the mesh pipelines (shaders/include/mesh_push.glsl); line.vert reads the first 64 bytes as LinePush.
 struct MeshPush {
   glm::mat4 model;
   glm::vec4 color;

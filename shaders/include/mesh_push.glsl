@@ -1,0 +1,10 @@
+// Push constants of the mesh pipelines (skinned mesh, wireframe, GPU-generated
+// mesh); mirrors struct MeshPush in engine/gpu/scene_renderer.cpp.
+layout(push_constant) uniform MeshPush {
+  mat4 model;
+  vec4 color;
+  uint jointOffset;
+  uint jointCount;
+  uint flags;
+  float depthPull;
+} pc;
