@@ -76,6 +76,42 @@ void drawMorphSettings(Document& doc, DragMerge& drag) {
   ImGui::PopItemWidth();
 }
 
+namespace {
+// Handle of a marker on the ruler: a small flag above the stage bands.
+constexpr float kHandleW = 12.0f, kHandleTop = 22.0f, kHandleBottom = 8.0f;
+float markerX(int frame, float x0, float x1, double viewStart, double viewEnd) {
+  return static_cast<float>(x0 + (frame - viewStart) * (x1 - x0) / (viewEnd - viewStart));
+}
+}  // namespace
+
+int morphMarkerAt(const Document& doc, glm::vec2 pos, float x0, float x1, float /*y0*/, float y1, double viewStart,
+                  double viewEnd) {
+  const MorphSetup& m = doc.project().morph;
+  if (!m.enabled() || viewEnd <= viewStart) return -1;
+  if (pos.y < y1 - kHandleTop - 2.0f || pos.y > y1 - kHandleBottom + 2.0f) return -1;
+  const int marks[4] = {m.markers.a, m.markers.b, m.markers.c, m.markers.d};
+  // Later markers first: when handles overlap, the one drawn on top wins.
+  for (int i = 3; i >= 0; --i) {
+    float x = markerX(marks[i], x0, x1, viewStart, viewEnd);
+    if (pos.x >= x - 2.0f && pos.x <= x + kHandleW + 2.0f) return i;
+  }
+  return -1;
+}
+
+void moveMorphMarker(Document& doc, int index, int frame) {
+  const Project& p = doc.project();
+  MorphMarkers mk = p.morph.markers;
+  int* v[4] = {&mk.a, &mk.b, &mk.c, &mk.d};
+  const int lo = index > 0 ? *v[index - 1] : p.timeline.frameStart;
+  const int hi = index < 3 ? *v[index + 1] : p.timeline.frameEnd;
+  frame = std::clamp(frame, lo, std::max(lo, hi));
+  if (*v[index] == frame) return;
+  *v[index] = frame;
+  static const char* names[4] = {"A", "B", "C", "D"};
+  doc.execute(setMorphField(p, &MorphSetup::markers, mk, std::string("Move morph marker ") + names[index],
+                            "morph/markers"));
+}
+
 void drawMorphMarkers(const Document& doc, float x0, float x1, float y0, float y1, double viewStart, double viewEnd) {
   const MorphSetup& m = doc.project().morph;
   if (!m.enabled() || viewEnd <= viewStart) return;
@@ -92,8 +128,9 @@ void drawMorphMarkers(const Document& doc, float x0, float x1, float y0, float y
     float x = xOf(marks[i]);
     if (x < x0 - 1.0f || x > x1 + 1.0f) continue;
     dl->AddLine(ImVec2(x, y0), ImVec2(x, y1), IM_COL32(240, 170, 70, 200), 1.0f);
-    dl->AddRectFilled(ImVec2(x + 1.0f, y1 - 22.0f), ImVec2(x + 13.0f, y1 - 8.0f), IM_COL32(240, 170, 70, 230), 2.0f);
-    dl->AddText(ImVec2(x + 3.0f, y1 - 22.0f), IM_COL32(20, 20, 20, 255), names[i]);
+    dl->AddRectFilled(ImVec2(x + 1.0f, y1 - kHandleTop), ImVec2(x + 1.0f + kHandleW, y1 - kHandleBottom),
+                      IM_COL32(240, 170, 70, 230), 2.0f);
+    dl->AddText(ImVec2(x + 3.0f, y1 - kHandleTop), IM_COL32(20, 20, 20, 255), names[i]);
   }
 }
 

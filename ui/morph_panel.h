@@ -2,6 +2,8 @@
 // The morph's settings in the inspector (shown when no actor is selected in a
 // project with a morph): the stage markers A..D, the implicit method and its
 // parameters, the weight-map shift. Every edit is a command; a drag is one step.
+#include <glm/glm.hpp>
+
 #include "doc/document.h"
 #include "drag_merge.h"
 
@@ -12,5 +14,13 @@ void drawMorphSettings(Document& doc, DragMerge& drag);
 // Draws the markers A..D of the project's morph on a timeline ruler spanning
 // [x0, x1] pixels for frames [viewStart, viewEnd], from y0 to y1.
 void drawMorphMarkers(const Document& doc, float x0, float x1, float y0, float y1, double viewStart, double viewEnd);
+
+// The marker (0..3 = A..D) whose handle on such a ruler is under pos, or -1.
+int morphMarkerAt(const Document& doc, glm::vec2 pos, float x0, float x1, float y0, float y1, double viewStart,
+                  double viewEnd);
+
+// Moves marker index (0..3) to frame, kept between its neighbours and in the
+// timeline range; a command merged while a drag is open.
+void moveMorphMarker(Document& doc, int index, int frame);
 
 }  // namespace animorph

@@ -32,7 +32,8 @@ void fitView(TimelineState& st, const Timeline& tl) {
   st.viewEndFrame = tl.frameEnd + margin;
 }
 
-void drawRuler(Document& doc, Playback& playback, const std::vector<int>& keyFrames, TimelineState& st) {
+void drawRuler(Document& doc, Playback& playback, const std::vector<int>& keyFrames, TimelineState& st,
+               DragMerge& drag) {
   const Timeline& tl = doc.project().timeline;
   if (st.fitToRange) fitView(st, tl);
   ImVec2 size = ImGui::GetContentRegionAvail();
@@ -70,7 +71,20 @@ void drawRuler(Document& doc, Playback& playback, const std::vector<int>& keyFra
   if (hovered && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Middle)) st.fitToRange = true;
 
   // Scrub: click or drag anywhere on the ruler.
-  st.scrubbing = active && ImGui::IsMouseDown(ImGuiMouseButton_Left);
+  // A press on a morph marker's handle drags that marker instead of scrubbing;
+  // the whole drag is one undo step.
+  drag.begin(doc);
+  if (ImGui::IsItemActivated() && ImGui::IsMouseDown(ImGuiMouseButton_Left))
+    st.draggingMarker = morphMarkerAt(doc, glm::vec2(io.MousePos.x, io.MousePos.y), p0.x, p0.x + size.x, p0.y,
+                                      p0.y + size.y, st.viewStartFrame, st.viewEndFrame);
+  if (st.draggingMarker >= 0) {
+    if (active && ImGui::IsMouseDown(ImGuiMouseButton_Left))
+      moveMorphMarker(doc, st.draggingMarker, static_cast<int>(std::lround(frameAt(io.MousePos.x))));
+    else
+      st.draggingMarker = -1;
+  }
+  drag.end(doc);
+  st.scrubbing = active && ImGui::IsMouseDown(ImGuiMouseButton_Left) && st.draggingMarker < 0;
   if (st.scrubbing) {
     int f = static_cast<int>(std::lround(frameAt(io.MousePos.x)));
     f = std::clamp(f, tl.frameStart, std::max(tl.frameStart, tl.frameEnd));
@@ -216,7 +230,7 @@ void drawTimelinePanel(const LayoutRect& rect, Document& doc, Playback& playback
   ImGui::SameLine();
   ImGui::TextDisabled("%.2f s", tl.fps > 0.0 ? tl.currentFrame / tl.fps : 0.0);
 
-  drawRuler(doc, playback, keyFrames, st);
+  drawRuler(doc, playback, keyFrames, st, drag);
   ImGui::End();
 }
 

@@ -19,6 +19,7 @@ struct TimelineState {
   double viewEndFrame = 100.0;
   bool fitToRange = true;  // follow the range until the user zooms or pans
   bool scrubbing = false;
+  int draggingMarker = -1;  // morph marker (0..3 = A..D) being dragged on the ruler, or -1
 };
 
 // Frame spacing of the numbered ticks for a zoom level: the smallest of
