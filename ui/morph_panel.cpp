@@ -131,6 +131,8 @@ void drawMorphMarkers(const Document& doc, float x0, float x1, float y0, float y
     dl->AddRectFilled(ImVec2(x + 1.0f, y1 - kHandleTop), ImVec2(x + 1.0f + kHandleW, y1 - kHandleBottom),
                       IM_COL32(240, 170, 70, 230), 2.0f);
     dl->AddText(ImVec2(x + 3.0f, y1 - kHandleTop), IM_COL32(20, 20, 20, 255), names[i]);
+    noteWidgetRect(std::string("timeline/marker/") + names[i], {x + 1.0f, y1 - kHandleTop},
+                   {x + 1.0f + kHandleW, y1 - kHandleBottom});
   }
 }
 

@@ -22,4 +22,8 @@ void noteWidget(const std::string& key) {
   g_active->set(key, {{a.x, a.y}, {b.x, b.y}});
 }
 
+void noteWidgetRect(const std::string& key, glm::vec2 min, glm::vec2 max) {
+  if (g_active) g_active->set(key, {min, max});
+}
+
 }  // namespace animorph

@@ -33,5 +33,7 @@ void setActiveWidgetRects(WidgetRects* r);
 WidgetRects* activeWidgetRects();
 // Records ImGui's last item rect under key (no-op without an active registry).
 void noteWidget(const std::string& key);
+// Records a custom-drawn control's rect (e.g. a handle drawn on a ruler).
+void noteWidgetRect(const std::string& key, glm::vec2 min, glm::vec2 max);
 
 }  // namespace animorph
