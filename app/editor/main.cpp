@@ -93,8 +93,8 @@ double percentile(std::vector<double> v, double p) {
 
 // Writes the rectangles of named widgets, and a little state, for scripted GUI tests.
 void writeUiMap(const std::string& path, const WidgetRects& rects, const EditorOutput& out, const Document& doc,
-                int frameCount) {
-  nlohmann::json j;
+                int frameCount, const nlohmann::json& extra) {
+  nlohmann::json j = extra;
   j["frame_count"] = frameCount;
   j["project"] = doc.path();
   j["selected"] = doc.selection.actorId;
@@ -316,7 +316,8 @@ int main(int argc, char** argv) {
     }
     if (args.screenshot.empty() && args.quit && frameCount > 3) break;
 
-    if (!uiMapPath.empty() && frameCount % 3 == 0) writeUiMap(uiMapPath, ui.widgets(), out, doc, frameCount);
+    if (!uiMapPath.empty() && frameCount % 3 == 0) writeUiMap(uiMapPath, ui.widgets(), out, doc, frameCount,
+                 {{"preview_busy", blobPreviews->busy()}, {"preview", ectx.stats.previewInfo}});
     std::string title = "Animorph - " + doc.displayName() + (doc.dirty() ? " *" : "");
     if (title != lastTitle) {
       glfwSetWindowTitle(window, title.c_str());

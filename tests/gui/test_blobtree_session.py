@@ -36,8 +36,11 @@ def set_frame(ed, frame):
 
 
 def settle_preview(ed):
-    # The surface is polygonised off the UI thread: give the refined level time to land.
-    time.sleep(2.0)
+    # The surface is polygonised off the UI thread: wait until the worker has
+    # delivered the refined level (the editor reports it in the UI map).
+    ed.fresh_map(3)
+    ed.wait_until(lambda m: not m.get("preview_busy", False) and "^3" in m.get("preview", ""),
+                  "the preview is refined", timeout=60)
     ed.fresh_map(6)
 
 
