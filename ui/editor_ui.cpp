@@ -11,6 +11,7 @@
 #include "help_windows.h"
 #include "menu_bar.h"
 #include "preferences_window.h"
+#include "preview_controls.h"
 #include "project_commands.h"
 #include "selection_info.h"
 #include "transport.h"
@@ -162,12 +163,15 @@ void EditorUI::drawViewport(EditorContext& ctx) {
   ImGui::TextDisabled("%s camera  |  frame %d%s%s", st_.prefs.cameraScheme == CameraScheme::Maya ? "Maya" : "Blender",
                       d.project().timeline.currentFrame, ctx.viewportNote.empty() ? "" : "  |  ",
                       ctx.viewportNote.c_str());
+  ImGui::SameLine();
+  bool previewControlHovered = false;
+  if (drawPreviewQuickControl(st_.prefs, previewControlHovered)) savePreferences();
   if (d.project().actors.empty())
     ImGui::TextDisabled("File > Import glTF... adds a character; Create > New BlobTree Actor an implicit shape.");
   ImGui::End();
   widgets_.set("viewport", {r.min, r.min + r.size});
 
-  PointerInput in = pointerFromImGui(ImGui::GetIO(), !hovered);
+  PointerInput in = pointerFromImGui(ImGui::GetIO(), !hovered || previewControlHovered);
   ViewportRect vr{r.min, r.size};
   // The gizmo goes first: while the mouse is on it, the camera and picking stay still.
   ImGui::Begin("##viewport", nullptr, kOverlayFlags);
