@@ -103,13 +103,14 @@ std::vector<Row> runScrub(const animorph::bench::Options& opt) {
     ps.gpu = gpuPath;
     ps.threads = 2;
     std::vector<double> frameMs, latencyMs;
-    std::map<double, Clock::time_point> askedAt;  // time -> when a frame first asked for it
-    double lastAnswered = -1.0;
+    std::map<double, Clock::time_point> askedAt;  // time -> when a frame last started asking for it
+    double lastAnswered = -1.0, lastAsked = -1.0;
     std::string error;
     auto oneFrame = [&](double timeSec) {
       SceneFrame frame = evaluateScene(*project, baseDir, assets, timeSec);
       applyMorph(frame, **rt, timeSec, MorphFrameSettings{}, /*implicitStage=*/false);
-      askedAt.emplace(timeSec, Clock::now());
+      if (timeSec != lastAsked) askedAt[timeSec] = Clock::now();  // a new time (re)starts its clock
+      lastAsked = timeSec;
       preview.update(morphPreviewSource(*rt, timeSec), timeSec, ps);
       gpu::buildScene(frame, project->view, {}, meshes, scene);
       preview.draw(scene, glm::mat4(1.0f), {0.62f, 0.62f, 0.62f, 1.0f}, false);

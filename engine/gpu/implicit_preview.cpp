@@ -263,7 +263,8 @@ bool ImplicitPreview::busy() const {
       if (p) return true;
     return recordsOfShape_ < kSettleRecords;
   }
-  return worker_ && worker_->busy();
+  // A finished result not uploaded yet (the next update() does) still counts.
+  return worker_ && (worker_->busy() || worker_->latestSerial() != uploadedSerial_);
 }
 
 bool ImplicitPreview::waitIdle(double timeoutSec) {
