@@ -28,6 +28,8 @@
 #include "scene_from_frame.h"
 #include "scene_renderer.h"
 #include "swapchain.h"
+#include "paint/paint_mesh.h"
+#include "weight_overlay_scene.h"
 
 using namespace animorph;
 using Clock = std::chrono::steady_clock;
@@ -177,6 +179,7 @@ int main(int argc, char** argv) {
   const std::string uiMapPath = uiMapEnv ? uiMapEnv : "";
   gpu::Scene scene;
   MorphCache morphCache;
+  std::vector<float> overlayWeights;  // the weight overlay's data, alive until the frame is recorded
   MorphFrameSettings morphPreview;
   morphPreview.resolution = 32;  // coarse CPU preview of the implicit stage
   std::string lastTitle;
@@ -221,7 +224,10 @@ int main(int argc, char** argv) {
     const Timeline& tl = doc.project().timeline;
     const double timeSec = tl.frameToSec(tl.currentFrame);
     SceneFrame frame = evaluateScene(doc.project(), doc.baseDir(), assets, timeSec);
-    if (auto rt = morphCache.get(doc.project(), doc.baseDir(), assets, &doc, doc.revision())) {
+    if (out.weightPaintMode) {  // the painted actor as itself, posed, without the morph
+      isolateForPainting(frame, doc.project().morph, out.weightOverlay.actorId);
+      ectx.viewportNote.clear();
+    } else if (auto rt = morphCache.get(doc.project(), doc.baseDir(), assets, &doc, doc.revision())) {
       ectx.viewportNote = "morph: " + describeMorphStage(applyMorph(frame, *rt, timeSec, morphPreview));
     } else {
       ectx.viewportNote = morphCache.error().empty() ? "" : "morph: " + morphCache.error();
@@ -259,6 +265,10 @@ int main(int argc, char** argv) {
     const Actor* selActor = doc.project().findActor(doc.selection.actorId);
     int selBlobNode = selActor && selActor->kind == ActorKind::BlobTree ? doc.selection.node : -1;
     gpu::buildScene(frame, doc.project().view, doc.selection.actorId, meshes, scene, blobPreviews.get(), selBlobNode);
+    if (!out.weightOverlay.actorId.empty()) {
+      overlayWeights = out.weightOverlay.weights;
+      gpu::addWeightOverlay(frame, out.weightOverlay.actorId, overlayWeights, meshes, scene);
+    }
     {
       // Status bar: the preview of the selected BlobTree actor (else the first one).
       std::string id = selBlobNode >= 0 || (selActor && selActor->kind == ActorKind::BlobTree)
