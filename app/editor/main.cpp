@@ -30,6 +30,8 @@
 #include "scene_from_frame.h"
 #include "scene_renderer.h"
 #include "swapchain.h"
+#include "paint/paint_mesh.h"
+#include "weight_overlay_scene.h"
 
 using namespace animorph;
 using Clock = std::chrono::steady_clock;
@@ -182,6 +184,7 @@ int main(int argc, char** argv) {
   gpu::Scene scene;
   MorphCache morphCache;
   MorphFrameSettings morphSettings;  // the transitions; the B->C stage is morphPreview's
+  std::vector<float> overlayWeights;  // the weight overlay's data, alive until the frame is recorded
   std::string lastTitle;
   std::vector<double> frameMs;
   double firstFrameMs = -1.0;
@@ -238,7 +241,10 @@ int main(int argc, char** argv) {
     }
     bool morphStageShown = false;
     std::string morphSourceId;
-    if (auto rt = morphCache.get(doc.project(), doc.baseDir(), assets, &doc, doc.revision())) {
+    if (out.weightPaintMode) {  // the painted actor as itself, posed, without the morph
+      isolateForPainting(frame, doc.project().morph, out.weightOverlay.actorId);
+      ectx.viewportNote.clear();
+    } else if (auto rt = morphCache.get(doc.project(), doc.baseDir(), assets, &doc, doc.revision())) {
       MorphSceneInfo info = applyMorph(frame, *rt, timeSec, morphSettings, /*implicitStage=*/false);
       ectx.viewportNote = "morph: " + describeMorphStage(info);
       if (info.stage == MorphStage::Morph) {
@@ -286,6 +292,10 @@ int main(int argc, char** argv) {
     gpu::buildScene(frame, doc.project().view, doc.selection.actorId, meshes, scene, blobPreviews.get(), selBlobNode);
     if (morphStageShown)
       morphPreview->draw(scene, glm::mat4(1.0f), {0.62f, 0.62f, 0.62f, 1.0f}, doc.selection.actorId == morphSourceId);
+    if (!out.weightOverlay.actorId.empty()) {
+      overlayWeights = out.weightOverlay.weights;
+      gpu::addWeightOverlay(frame, out.weightOverlay.actorId, overlayWeights, meshes, scene);
+    }
     {
       // Status bar: the morph stage's preview, else the selected BlobTree actor's (else the first one's).
       std::string id = selBlobNode >= 0 || (selActor && selActor->kind == ActorKind::BlobTree)
