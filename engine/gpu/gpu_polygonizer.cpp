@@ -413,7 +413,7 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   prm.morph0 = glm::vec4(field.weight, field.morphTime, field.timeScale, field.a0);
   const float normalStep = 0.05f * g.h;
   prm.morph1 = glm::vec4(field.a1, field.a2, field.a3, normalStep);
-  prm.caps = glm::uvec4(vertexCapacity, triangleCapacity, pk.primitiveTotal(), uint32_t(AM_POLY_POINTS));
+  prm.caps = glm::uvec4(vertexCapacity, triangleCapacity, pk.primitiveTotal(), 1u);
   prm.extra = glm::vec4(2.0f * normalStep, 0.0f, 0.0f, 0.0f);
 
   stats.gridX = int(g.n[0]);
