@@ -47,8 +47,7 @@ void main() {
   if (t < uint(AM_POLY_EDGE_WORDS)) sMask[t] = 0u;
   if (t == 0u) sTriangles = 0u;
   const uint kPoints = 4u * uint(AM_POLY_CORNER_V);
-  uint first = t * kPoints;
-  if (first < uint(AM_POLY_BLOCK_CORNERS)) {
+  for (uint first = t * kPoints; first < uint(AM_POLY_BLOCK_CORNERS); first += kPoints * AM_POLY_WG_CELLS) {
     PointsV w;
 #define AM_CORNER_AT(j, c) AM_SET_POINT(w, j, c, cornerPosition(c0 + cornerLocal(min(first + 4u * j + c, uint(AM_POLY_BLOCK_CORNERS) - 1u))))
 #define AM_CORNERS_AT(j) AM_CORNER_AT(j, 0) AM_CORNER_AT(j, 1) AM_CORNER_AT(j, 2) AM_CORNER_AT(j, 3)

@@ -1,6 +1,6 @@
 // Batched value interpreter of a packed FieldProgram (FieldEvaluator::runChunk,
 // values only) at 4 * AM_FIELD_V points per invocation (AM_FIELD_V vec4 per
-// coordinate; the including shader defines it: 2, 4 or 8). On lavapipe every
+// coordinate; the including shader defines it: 1 or 2). On lavapipe every
 // buffer load inside a loop is a per-lane gather costing far more than the
 // arithmetic, so a primitive's record is loaded once and applied to all the
 // invocation's points; the convolution loop touches the point arrays only at
@@ -10,14 +10,12 @@
 #ifndef AM_FIELD_V
 #define AM_FIELD_V 2
 #endif
-#if AM_FIELD_V == 2
+#if AM_FIELD_V == 1
+#define AM_EACH(M) M(0)
+#elif AM_FIELD_V == 2
 #define AM_EACH(M) M(0) M(1)
-#elif AM_FIELD_V == 4
-#define AM_EACH(M) M(0) M(1) M(2) M(3)
-#elif AM_FIELD_V == 8
-#define AM_EACH(M) M(0) M(1) M(2) M(3) M(4) M(5) M(6) M(7)
 #else
-#error "AM_FIELD_V must be 2, 4 or 8"
+#error "AM_FIELD_V must be 1 or 2 (16 and 32 points per invocation measured slower on lavapipe)"
 #endif
 
 struct PointsV {
@@ -77,10 +75,14 @@ void programV(uint opBegin, uint opCount, float T, uint maskBase, PointsV w, out
           bool skeletal = cls == AM_PRIM_SKELETAL;
           uint r = op0.y + k * (skeletal ? AM_REC_SKEL : AM_REC_CAPSULE);
           for (uint p = 0u; p < 4u * uint(V) * P.caps.w; ++p) {
-            uint j = p >> 2, c = p & 3u;
-            vec3 q = vec3(x[j][c], y[j][c], z[j][c]);
-            float v = skeletal ? skeletalValue(r, q) : capsuleValue(r, q, T);
-            a[j][c] = cmax ? max(a[j][c], v) : a[j][c] + v;
+            bool hi = p >= 4u;  // second vec4 (V = 2); the arrays are only indexed by constants
+            uint c = p & 3u;
+            vec4 px = hi ? x[V - 1] : x[0], py = hi ? y[V - 1] : y[0], pz = hi ? z[V - 1] : z[0];
+            float v = skeletal ? skeletalValue(r, vec3(px[c], py[c], pz[c])) : capsuleValue(r, vec3(px[c], py[c], pz[c]), T);
+            vec4 acc = hi ? a[V - 1] : a[0];
+            acc[c] = cmax ? max(acc[c], v) : acc[c] + v;
+            if (hi) a[V - 1] = acc;
+            else a[0] = acc;
           }
         }
       }
@@ -94,27 +96,32 @@ void programV(uint opBegin, uint opCount, float T, uint maskBase, PointsV w, out
     } else if (code == AM_OP_BEGINMAP) {
       uint m = POOLU(o + 1u).y;
       int s = 3 * V * level;
-      for (int h = 0; h < V; ++h) {
-        saved[s + h] = x[h];
-        saved[s + V + h] = y[h];
-        saved[s + 2 * V + h] = z[h];
-      }
+#define AM_SAVE(j) saved[s + j] = x[j]; saved[s + V + j] = y[j]; saved[s + 2 * V + j] = z[j];
+      AM_EACH(AM_SAVE)
       for (uint p = 0u; p < 4u * uint(V) * P.caps.w; ++p) {  // one copy of the map code (see above)
-        uint j = p >> 2, c = p & 3u;
-        vec3 q = mapToLocal(m, vec3(x[j][c], y[j][c], z[j][c]));
-        x[j][c] = q.x;
-        y[j][c] = q.y;
-        z[j][c] = q.z;
+        bool hi = p >= 4u;
+        uint c = p & 3u;
+        vec4 px = hi ? x[V - 1] : x[0], py = hi ? y[V - 1] : y[0], pz = hi ? z[V - 1] : z[0];
+        vec3 q = mapToLocal(m, vec3(px[c], py[c], pz[c]));
+        px[c] = q.x;
+        py[c] = q.y;
+        pz[c] = q.z;
+        if (hi) {
+          x[V - 1] = px;
+          y[V - 1] = py;
+          z[V - 1] = pz;
+        } else {
+          x[0] = px;
+          y[0] = py;
+          z[0] = pz;
+        }
       }
       ++level;
     } else if (code == AM_OP_ENDMAP) {
       --level;
       int s = 3 * V * level;
-      for (int h = 0; h < V; ++h) {
-        x[h] = saved[s + h];
-        y[h] = saved[s + V + h];
-        z[h] = saved[s + 2 * V + h];
-      }
+#define AM_RESTORE(j) x[j] = saved[s + j]; y[j] = saved[s + V + j]; z[j] = saved[s + 2 * V + j];
+      AM_EACH(AM_RESTORE)
     } else {
       int n = int(op0.z);
       int base = sp - n;

@@ -20,10 +20,10 @@
 // Workgroup sizes (x only; multiples of 8 suit lavapipe's 8-wide SIMD).
 #define AM_POLY_WG_BLOCKS 64   // coarse pass: one invocation per block
 #define AM_POLY_WG_CELLS 96    // fine passes: one workgroup per active block
-// Points per invocation of the batched field evaluation, in vec4 (shaders/include/poly_field_batch.glsl):
+// Points per invocation of the batched field evaluation, in vec4, 1 or 2 (shaders/include/poly_field_batch.glsl):
 // a primitive's record is loaded once per invocation and applied to all its points (on lavapipe a
 // load inside a loop costs far more than the arithmetic).
-#define AM_POLY_CORNER_V 2     // corners: 8 per invocation (16 and 32 measured no faster on lavapipe)
+#define AM_POLY_CORNER_V 2     // corners: 8 per invocation (4, 16 and 32 measured no faster on lavapipe)
 #define AM_POLY_NORMAL_V 2     // normals: 2 vertices per invocation, 4 points each (tetrahedral gradient)
 #define AM_POLY_WG_SCAN 256
 #define AM_POLY_SCAN_PER_GROUP 1024  // elements per scan workgroup (4 per invocation)
