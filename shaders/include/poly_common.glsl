@@ -17,6 +17,7 @@ layout(set = 0, binding = AM_PB_PARAMS, std430) readonly buffer PolyParams {
   vec4 morph1;      // x: a1, y: a2, z: a3, w: normal step (m)
   uvec4 caps;       // x: vertex capacity, y: triangle capacity, z: total primitives, w: 1 (kept opaque to the compiler: no unrolling)
   vec4 extra;       // x: reach dilation of a block box (m)
+  uvec4 superBlocks; // xyz: superblocks per axis; w: total
 } P;
 
 #if AM_POOL_STORAGE
