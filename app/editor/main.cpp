@@ -27,6 +27,7 @@
 #include "scene/scene_frame.h"
 #include "scene_from_frame.h"
 #include "scene_renderer.h"
+#include "standin_binding_cache.h"
 #include "swapchain.h"
 
 using namespace animorph;
@@ -168,6 +169,7 @@ int main(int argc, char** argv) {
   auto meshCache = std::make_unique<gpu::MeshCache>(ctx);
   gpu::MeshCache& meshes = *meshCache;
   auto blobPreviews = std::make_unique<gpu::BlobPreviewSet>(ctx);
+  auto standinBindings = std::make_unique<gpu::StandinBindingCache>(ctx);
   std::unique_ptr<Document> document = std::make_unique<Document>();
   if (!args.project.empty()) ui.requestOpen(args.project);
   EditorContext ectx(document, assets);
@@ -179,6 +181,8 @@ int main(int argc, char** argv) {
   MorphCache morphCache;
   MorphFrameSettings morphPreview;
   morphPreview.resolution = 32;  // coarse CPU preview of the implicit stage
+  // Collapse and expansion run in the vertex shader (ANIMORPH_CPU_TRANSITIONS=1: on the CPU, for comparison).
+  morphPreview.gpuTransitions = !std::getenv("ANIMORPH_CPU_TRANSITIONS");
   std::string lastTitle;
   std::vector<double> frameMs;
   double firstFrameMs = -1.0;
@@ -222,7 +226,7 @@ int main(int argc, char** argv) {
     const double timeSec = tl.frameToSec(tl.currentFrame);
     SceneFrame frame = evaluateScene(doc.project(), doc.baseDir(), assets, timeSec);
     if (auto rt = morphCache.get(doc.project(), doc.baseDir(), assets, &doc, doc.revision())) {
-      ectx.viewportNote = "morph: " + describeMorphStage(applyMorph(frame, *rt, timeSec, morphPreview));
+      ectx.viewportNote = "morph: " + describeMorphStage(applyMorph(frame, rt, timeSec, morphPreview));
     } else {
       ectx.viewportNote = morphCache.error().empty() ? "" : "morph: " + morphCache.error();
     }
@@ -258,7 +262,8 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "animorph: BlobTree preview still computing at the screenshot\n");
     const Actor* selActor = doc.project().findActor(doc.selection.actorId);
     int selBlobNode = selActor && selActor->kind == ActorKind::BlobTree ? doc.selection.node : -1;
-    gpu::buildScene(frame, doc.project().view, doc.selection.actorId, meshes, scene, blobPreviews.get(), selBlobNode);
+    gpu::buildScene(frame, doc.project().view, doc.selection.actorId, meshes, scene, blobPreviews.get(), selBlobNode,
+                    standinBindings.get());
     {
       // Status bar: the preview of the selected BlobTree actor (else the first one).
       std::string id = selBlobNode >= 0 || (selActor && selActor->kind == ActorKind::BlobTree)
@@ -309,6 +314,7 @@ int main(int argc, char** argv) {
     }
     meshes.endFrame();
     blobPreviews->endFrame();
+    standinBindings->endFrame();
     ++frameCount;
     if (args.benchFrames > 0 && frameCount > 10) {
       frameMs.push_back(dt * 1000.0);
@@ -338,6 +344,7 @@ int main(int argc, char** argv) {
     exitCode = 3;
   }
   blobPreviews.reset();
+  standinBindings.reset();
   meshCache.reset();
   imguiR->reset();
   ImGui::DestroyContext();

@@ -17,8 +17,16 @@ struct MorphSceneInfo {
   std::string error;      // evaluation failed (the actors are shown as they are)
 };
 
-// Replaces the source and target actors of frame by the morph at timeSec.
+// Replaces the source and target actors of frame by the morph at timeSec:
+// the transitioned mesh (collapse, expansion) or the polygonised implicit
+// morph, both (with complementary opacity) within the cross-fade window
+// around B and C when the setup enables it. Transitions are CPU meshes.
 MorphSceneInfo applyMorph(SceneFrame& frame, const MorphRuntime& rt, double timeSec,
+                          const MorphFrameSettings& settings);
+
+// The same; with settings.gpuTransitions the transitions become
+// frame.transitions (deformed in the vertex shader; they keep rt alive).
+MorphSceneInfo applyMorph(SceneFrame& frame, const std::shared_ptr<const MorphRuntime>& rt, double timeSec,
                           const MorphFrameSettings& settings);
 
 // "collapse 40%", "morph 75%", "source", ...
