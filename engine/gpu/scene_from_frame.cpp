@@ -47,6 +47,11 @@ void buildScene(const SceneFrame& frame, const ViewOptions& view, const std::str
     td.firstVertex = static_cast<uint32_t>(t.firstVertex);
     td.frame = t.frame.get();
     out.transitionMeshes.push_back(td);
+    Bounds mb = gm->bounds();  // bind pose, like the meshes': sizes the skeleton markers
+    if (!mb.empty()) {
+      b.add(glm::vec3(t.mesh.model * glm::vec4(mb.min, 1.0f)));
+      b.add(glm::vec3(t.mesh.model * glm::vec4(mb.max, 1.0f)));
+    }
   }
   for (const auto& d : frame.blobs) {
     const GpuMesh* gm = blobs ? blobs->mesh(d.actorId) : nullptr;
