@@ -44,7 +44,7 @@ constexpr VkShaderStageFlags kPushStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADE
 // Clip-space depth pulled toward the camera by the wireframe pass (in NDC depth units).
 constexpr float kWireDepthPull = 5e-5f;
 
-enum class VertexInput { None, Mesh, Line, Generated, Transition };
+enum class VertexInput { None, Mesh, MeshWeights, Line, Generated, Transition };
 
 struct PipelineDesc {
   const char* vert;
@@ -72,7 +72,7 @@ Result<VkPipeline> createPipeline(VkDevice device, VkRenderPass pass, VkPipeline
 
   std::vector<VkVertexInputBindingDescription> bindings;
   std::vector<VkVertexInputAttributeDescription> attributes;
-  if (d.input == VertexInput::Mesh || d.input == VertexInput::Transition) {
+  if (d.input == VertexInput::Mesh || d.input == VertexInput::MeshWeights || d.input == VertexInput::Transition) {
     const struct { uint32_t stride; VkFormat format; } streams[6] = {
         {12, VK_FORMAT_R32G32B32_SFLOAT}, {12, VK_FORMAT_R32G32B32_SFLOAT}, {8, VK_FORMAT_R16G16B16A16_UINT},
         {8, VK_FORMAT_R16G16B16A16_UINT}, {16, VK_FORMAT_R32G32B32A32_SFLOAT}, {16, VK_FORMAT_R32G32B32A32_SFLOAT}};
@@ -84,6 +84,10 @@ Result<VkPipeline> createPipeline(VkDevice device, VkRenderPass pass, VkPipeline
       bindings.push_back({AM_VERTEX_STANDIN_OFFSET, uint32_t(GpuStandinBinding::kVertexStride), VK_VERTEX_INPUT_RATE_VERTEX});
       attributes.push_back({AM_VERTEX_STANDIN_OFFSET, AM_VERTEX_STANDIN_OFFSET, VK_FORMAT_R32G32B32A32_SFLOAT, 0});
       attributes.push_back({AM_VERTEX_STANDIN_NORMAL, AM_VERTEX_STANDIN_OFFSET, VK_FORMAT_R32G32B32A32_SFLOAT, 16});
+    }
+    if (d.input == VertexInput::MeshWeights) {
+      bindings.push_back({kVertexPaintWeight, 4, VK_VERTEX_INPUT_RATE_VERTEX});
+      attributes.push_back({kVertexPaintWeight, kVertexPaintWeight, VK_FORMAT_R32_SFLOAT, 0});
     }
   } else if (d.input == VertexInput::Generated) {
     for (uint32_t s = 0; s < 2; ++s) {  // AM_VERTEX_POSITION, AM_VERTEX_NORMAL
@@ -167,7 +171,8 @@ struct SceneRenderer::Slot {
   Buffer frame;                  // FrameUniforms records at uniformStride_ (dynamic offset)
   Buffer joints;                 // mat4 per joint of every draw
   Buffer lines;                  // LineVertex
-  VkDeviceSize frameUsed = 0, jointsUsed = 0, linesUsed = 0;
+  Buffer weights;                // float per vertex of every weight overlay
+  VkDeviceSize frameUsed = 0, jointsUsed = 0, linesUsed = 0, weightsUsed = 0;
   VkDescriptorSet set = VK_NULL_HANDLE;  // frame + joints
   bool setBound = false;                 // set is referenced by commands of this frame
   Buffer transitionParams;               // TransitionParams records at transitionParamStride_ (dynamic offset)
@@ -264,6 +269,7 @@ Status SceneRenderer::init(VkRenderPass renderPass, SceneRendererSettings settin
       {&meshPipeline_[0], meshDesc(back)},
       {&meshPipeline_[1], meshDesc(none)},
       {&meshDitherPipeline_[0], withShaders(meshDesc(back), "mesh.vert", "mesh_dither.frag", VertexInput::Mesh)},
+      {&generatedDitherPipeline_, withShaders(meshDesc(back), "generated.vert", "mesh_dither.frag", VertexInput::Generated)},
       {&meshDitherPipeline_[1], withShaders(meshDesc(none), "mesh.vert", "mesh_dither.frag", VertexInput::Mesh)},
       {&transitionPipeline_[0], withShaders(meshDesc(back), "transition.vert", "mesh.frag", VertexInput::Transition),
        transitionLayout_},
@@ -277,6 +283,8 @@ Status SceneRenderer::init(VkRenderPass renderPass, SceneRendererSettings settin
       {&wirePipeline_[1], wireDesc(none)},
       {&generatedPipeline_, {"generated.vert", "mesh.frag", VertexInput::Generated, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST,
                              VK_POLYGON_MODE_FILL, true, true, false, back}},
+      {&weightPipeline_, {"weight_overlay.vert", "weight_overlay.frag", VertexInput::MeshWeights,
+                          VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, VK_POLYGON_MODE_FILL, true, true, false, none}},
       {&gridPipeline_, {"grid.vert", "grid.frag", VertexInput::None, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST,
                         VK_POLYGON_MODE_FILL, true, false, true}},
       {&linePipeline_, {"line.vert", "line.frag", VertexInput::Line, VK_PRIMITIVE_TOPOLOGY_LINE_LIST,
@@ -306,10 +314,11 @@ SceneRenderer::~SceneRenderer() {
     destroyBuffer(dev, s->frame);
     destroyBuffer(dev, s->joints);
     destroyBuffer(dev, s->lines);
+    destroyBuffer(dev, s->weights);
     destroyBuffer(dev, s->transitionParams);
   }
-  for (VkPipeline p : {meshPipeline_[0], meshPipeline_[1], wirePipeline_[0], wirePipeline_[1], generatedPipeline_, gridPipeline_,
-                       linePipeline_, overlayPipeline_, meshDitherPipeline_[0], meshDitherPipeline_[1],
+  for (VkPipeline p : {meshPipeline_[0], meshPipeline_[1], wirePipeline_[0], wirePipeline_[1], generatedPipeline_, weightPipeline_, gridPipeline_,
+                       linePipeline_, overlayPipeline_, meshDitherPipeline_[0], meshDitherPipeline_[1], generatedDitherPipeline_,
                        transitionPipeline_[0], transitionPipeline_[1], transitionDitherPipeline_[0],
                        transitionDitherPipeline_[1]})
     if (p) vkDestroyPipeline(dev, p, nullptr);
@@ -327,13 +336,13 @@ void SceneRenderer::rewind(Slot& slot, uint64_t frameSerial) {
   if (!slot.retiredSets.empty())
     vkFreeDescriptorSets(dev, descriptorPool_, static_cast<uint32_t>(slot.retiredSets.size()), slot.retiredSets.data());
   slot.retiredSets.clear();
-  slot.frameUsed = slot.jointsUsed = slot.linesUsed = slot.transitionParamsUsed = 0;
+  slot.frameUsed = slot.jointsUsed = slot.linesUsed = slot.weightsUsed = slot.transitionParamsUsed = 0;
   slot.setBound = false;
   slot.transitionSetBound = false;
   slot.serial = frameSerial;
 }
 
-Status SceneRenderer::reserve(Slot& slot, VkDeviceSize jointBytes, VkDeviceSize lineBytes) {
+Status SceneRenderer::reserve(Slot& slot, VkDeviceSize jointBytes, VkDeviceSize lineBytes, VkDeviceSize weightBytes) {
   bool setStale = slot.set == VK_NULL_HANDLE;
   auto fit = [&](Buffer& b, VkDeviceSize& used, VkDeviceSize need, VkDeviceSize minimum, VkBufferUsageFlags usage,
                  const char* what) -> Status {
@@ -350,6 +359,7 @@ Status SceneRenderer::reserve(Slot& slot, VkDeviceSize jointBytes, VkDeviceSize 
   Status s = fit(slot.frame, slot.frameUsed, uniformStride_, 16 * uniformStride_, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "frame uniform");
   if (s) s = fit(slot.joints, slot.jointsUsed, jointBytes, 256 * sizeof(glm::mat4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "joint matrix");
   if (s) s = fit(slot.lines, slot.linesUsed, lineBytes, 4096 * sizeof(LineVertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "line");
+  if (s && weightBytes) s = fit(slot.weights, slot.weightsUsed, weightBytes, 4096 * sizeof(float), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "weight");
   if (!s) return s;
   setStale |= slot.frame.buffer != oldFrame || slot.joints.buffer != oldJoints;
   if (!setStale) return Status::success();
@@ -422,7 +432,17 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
     else jointScratch_.insert(jointScratch_.end(), d.jointMatrices.begin(), d.jointMatrices.end());
   };
   for (const MeshDraw& d : scene.meshes) addJoints(d);
-  for (const TransitionMeshDraw& t : scene.transitionMeshes) addJoints(t.draw);  // after the meshes'
+  weightScratch_.clear();
+  std::vector<VkDeviceSize> weightOffsets;  // per overlay, in bytes from this call's start
+  for (const WeightOverlayDraw& d : scene.weightOverlays) {
+    jointOffsets.push_back(static_cast<uint32_t>(jointScratch_.size()));
+    if (d.jointMatrices.empty()) jointScratch_.push_back(glm::mat4(1.0f));
+    else jointScratch_.insert(jointScratch_.end(), d.jointMatrices.begin(), d.jointMatrices.end());
+    weightOffsets.push_back(weightScratch_.size() * sizeof(float));
+    if (d.mesh && d.weights.size() == d.mesh->vertexCount())
+      weightScratch_.insert(weightScratch_.end(), d.weights.begin(), d.weights.end());
+  }
+  for (const TransitionMeshDraw& t : scene.transitionMeshes) addJoints(t.draw);  // after the overlays'
   lineScratch_.clear();
   const auto& depthLines = scene.lines.vertices();
   const auto& overlayLines = scene.overlay.vertices();
@@ -438,7 +458,8 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
   }
   const VkDeviceSize jointBytes = jointScratch_.size() * sizeof(glm::mat4);
   const VkDeviceSize lineBytes = lineScratch_.size() * sizeof(LineVertex);
-  Status cap = reserve(slot, jointBytes, lineBytes);
+  const VkDeviceSize weightBytes = weightScratch_.size() * sizeof(float);
+  Status cap = reserve(slot, jointBytes, lineBytes, weightBytes);
   if (cap && !scene.transitionMeshes.empty())
     cap = reserveTransitionParams(slot, scene.transitionMeshes.size() * transitionParamStride_);
   if (!cap) return cap;
@@ -446,6 +467,9 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
   const uint32_t frameOffset = static_cast<uint32_t>(slot.frameUsed);
   const uint32_t jointBase = static_cast<uint32_t>(slot.jointsUsed / sizeof(glm::mat4));
   const VkDeviceSize lineOffset = slot.linesUsed;
+  const VkDeviceSize weightBase = slot.weightsUsed;
+  if (weightBytes) std::memcpy(static_cast<uint8_t*>(slot.weights.mapped) + weightBase, weightScratch_.data(), weightBytes);
+  slot.weightsUsed += weightBytes;
   if (jointBytes) std::memcpy(static_cast<uint8_t*>(slot.joints.mapped) + slot.jointsUsed, jointScratch_.data(), jointBytes);
   if (lineBytes) std::memcpy(static_cast<uint8_t*>(slot.lines.mapped) + lineOffset, lineScratch_.data(), lineBytes);
   slot.frameUsed += uniformStride_;
@@ -500,11 +524,11 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
     bound = p;
   };
   // Cross-fading draws (opacity < 1) are dithered: colour alpha carries the opacity.
-  auto fadeFlags = [](const MeshDraw& d) {
+  auto fadeFlags = [](const auto& d) {
     if (!(d.opacity < 1.0f)) return 0u;
     return AM_DRAW_DITHER | (d.complementDither ? AM_DRAW_DITHER_INVERT : 0u);
   };
-  auto fadeColor = [](const MeshDraw& d) { return d.opacity < 1.0f ? glm::vec4(glm::vec3(d.color), std::max(0.0f, d.opacity)) : d.color; };
+  auto fadeColor = [](const auto& d) { return d.opacity < 1.0f ? glm::vec4(glm::vec3(d.color), std::max(0.0f, d.opacity)) : d.color; };
   for (size_t i = 0; i < scene.meshes.size(); ++i) {
     const MeshDraw& d = scene.meshes[i];
     if (!d.mesh || d.mesh->indexCount() == 0 || !(d.opacity > 0.0f)) continue;
@@ -527,25 +551,40 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, transitionLayout_, 1, 1, &slot.transitionSet, 1,
                             &paramOffset);
     slot.transitionSetBound = true;
-    pushMesh(d, scene.meshes.size() + k, (d.selected ? kDrawSelected : 0u) | fadeFlags(d), fadeColor(d), 0.0f);
+    pushMesh(d, scene.meshes.size() + scene.weightOverlays.size() + k, (d.selected ? kDrawSelected : 0u) | fadeFlags(d), fadeColor(d), 0.0f);
     d.mesh->bindTriangles(cmd);
     t.binding->bind(cmd, t.firstVertex);
     vkCmdDrawIndexed(cmd, d.mesh->indexCount(), 1, 0, 0, 0);
   }
   for (const GeneratedMeshDraw& g : scene.generatedMeshes) {
-    if (!g.positions || !g.normals || !g.indices || !g.indirect) continue;
-    bind(generatedPipeline_);
+    if (!g.positions || !g.normals || !g.indices || !g.indirect || !(g.opacity > 0.0f)) continue;
+    bind(g.opacity < 1.0f ? generatedDitherPipeline_ : generatedPipeline_);
     MeshPush p{};
     p.model = g.model;
-    p.color = g.color;
+    p.color = fadeColor(g);
     p.jointCount = 1;
-    p.flags = g.selected ? kDrawSelected : 0u;
+    p.flags = (g.selected ? kDrawSelected : 0u) | fadeFlags(g);
     vkCmdPushConstants(cmd, layout_, kPushStages, 0, sizeof(p), &p);
     VkBuffer streams[2] = {g.positions, g.normals};
     VkDeviceSize offsets[2] = {0, 0};
     vkCmdBindVertexBuffers(cmd, 0, 2, streams, offsets);
     vkCmdBindIndexBuffer(cmd, g.indices, 0, VK_INDEX_TYPE_UINT32);
     vkCmdDrawIndexedIndirect(cmd, g.indirect, g.indirectOffset, 1, sizeof(VkDrawIndexedIndirectCommand));
+  }
+  for (size_t k = 0; k < scene.weightOverlays.size(); ++k) {
+    const WeightOverlayDraw& d = scene.weightOverlays[k];
+    if (!d.mesh || d.mesh->indexCount() == 0 || d.weights.size() != d.mesh->vertexCount()) continue;
+    bind(weightPipeline_);
+    MeshPush p{};
+    p.model = d.model;
+    p.color = glm::vec4(1.0f);
+    p.jointOffset = jointBase + jointOffsets[scene.meshes.size() + k];
+    p.jointCount = d.jointMatrices.empty() ? 1u : static_cast<uint32_t>(d.jointMatrices.size());
+    vkCmdPushConstants(cmd, layout_, kPushStages, 0, sizeof(p), &p);
+    d.mesh->bindTriangles(cmd);
+    const VkDeviceSize offset = weightBase + weightOffsets[k];
+    vkCmdBindVertexBuffers(cmd, kVertexPaintWeight, 1, &slot.weights.buffer, &offset);
+    vkCmdDrawIndexed(cmd, d.mesh->indexCount(), 1, 0, 0, 0);
   }
   if (opt.wireframe) {
     for (size_t i = 0; i < scene.meshes.size(); ++i) {

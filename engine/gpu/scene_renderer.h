@@ -72,6 +72,19 @@ struct GeneratedMeshDraw {
   glm::mat4 model{1.0f};
   glm::vec4 color{0.62f, 0.62f, 0.62f, 1.0f};
   bool selected = false;
+  float opacity = 1.0f;           // < 1: dithered cross-fade, as MeshDraw::opacity
+  bool complementDither = false;
+};
+
+// A skinned mesh drawn as its weight map in heat colours (0 blue .. 1 red)
+// instead of shaded (weight_overlay shaders). weights has one entry per
+// vertex of mesh (a draw with another count is skipped); it is copied while
+// recording, so it only has to live until record() returns.
+struct WeightOverlayDraw {
+  const GpuMesh* mesh = nullptr;
+  glm::mat4 model{1.0f};
+  std::span<const glm::mat4> jointMatrices;
+  std::span<const float> weights;
 };
 
 struct SceneOptions {
@@ -89,6 +102,7 @@ struct Scene {
   std::vector<MeshDraw> meshes;
   std::vector<GeneratedMeshDraw> generatedMeshes;  // GPU-polygonised previews
   std::vector<TransitionMeshDraw> transitionMeshes;  // collapse / expansion (vertex-shader transition)
+  std::vector<WeightOverlayDraw> weightOverlays;   // weight painting
   LineBatch lines;    // depth-tested lines (guides, bounds)
   LineBatch overlay;  // drawn on top of everything (skeleton overlay)
   SceneOptions options;
@@ -127,7 +141,7 @@ class SceneRenderer {
   struct Slot;
   explicit SceneRenderer(Context& ctx);
   Status init(VkRenderPass renderPass, SceneRendererSettings settings);
-  Status reserve(Slot& slot, VkDeviceSize jointBytes, VkDeviceSize lineBytes);
+  Status reserve(Slot& slot, VkDeviceSize jointBytes, VkDeviceSize lineBytes, VkDeviceSize weightBytes = 0);
   Status reserveTransitionParams(Slot& slot, VkDeviceSize bytes);
   void rewind(Slot& slot, uint64_t frameSerial);
 
@@ -140,11 +154,13 @@ class SceneRenderer {
   VkPipeline wirePipeline_[2]{};  // [doubleSided]
   VkPipeline generatedPipeline_ = VK_NULL_HANDLE;  // GeneratedMeshDraw: positions + normals, indirect
   VkPipeline meshDitherPipeline_[2]{};             // [doubleSided], MeshDraw::opacity < 1
+  VkPipeline generatedDitherPipeline_ = VK_NULL_HANDLE;  // GeneratedMeshDraw::opacity < 1
   VkDescriptorSetLayout transitionSetLayout_ = VK_NULL_HANDLE;  // set 1: TransitionParams (dynamic offset)
   VkPipelineLayout transitionLayout_ = VK_NULL_HANDLE;
   VkPipeline transitionPipeline_[2]{};             // [doubleSided]
   VkPipeline transitionDitherPipeline_[2]{};       // [doubleSided]
   VkDeviceSize transitionParamStride_ = 0;         // sizeof(TransitionParams), storage-offset aligned
+  VkPipeline weightPipeline_ = VK_NULL_HANDLE;     // WeightOverlayDraw: mesh streams + a weight stream
   VkPipeline gridPipeline_ = VK_NULL_HANDLE;
   VkPipeline linePipeline_ = VK_NULL_HANDLE;     // depth-tested
   VkPipeline overlayPipeline_ = VK_NULL_HANDLE;  // always on top
@@ -152,7 +168,8 @@ class SceneRenderer {
   VkDeviceSize uniformStride_ = 256;  // sizeof(FrameUniforms) rounded to the device's UBO offset alignment
   std::vector<glm::mat4> jointScratch_;
   std::vector<LineVertex> lineScratch_;
-  std::vector<uint32_t> drawJointOffsets_;
+  std::vector<uint32_t> drawJointOffsets_;  // per mesh draw, then per weight overlay
+  std::vector<float> weightScratch_;
 };
 
 }  // namespace animorph::gpu

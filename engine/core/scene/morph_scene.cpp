@@ -55,7 +55,7 @@ void addMeshDraw(SceneFrame& frame, const std::string& actorId, const TriangleMe
 }
 
 MorphSceneInfo apply(SceneFrame& frame, const MorphRuntime& rt, const std::shared_ptr<const MorphRuntime>& shared,
-                     double timeSec, const MorphFrameSettings& settings) {
+                     double timeSec, const MorphFrameSettings& settings, bool implicitStage) {
   MorphSceneInfo info;
   info.stage = morphStageAt(rt.setup, rt.timeline, timeSec, info.progress);
   const std::string& src = rt.setup.sourceActorId;
@@ -86,6 +86,8 @@ MorphSceneInfo apply(SceneFrame& frame, const MorphRuntime& rt, const std::share
   const double meshU = info.stage == MorphStage::Morph ? (expand ? 0.0 : 1.0) : info.progress;
   const double implicitU = info.stage == MorphStage::Morph ? info.progress : (expand ? 1.0 : 0.0);
   const float meshOpacity = float(1.0 - implicitOpacity);
+  info.implicitOpacity = implicitOpacity;
+  info.implicitProgress = implicitU;
   if (meshOpacity > 0.0f) {
     if (shared && settings.gpuTransitions) {
       addGpuTransition(frame, shared, expand, timeSec, meshU, settings, meshOpacity);
@@ -94,7 +96,7 @@ MorphSceneInfo apply(SceneFrame& frame, const MorphRuntime& rt, const std::share
       addMeshDraw(frame, t.actorId, t.mesh, meshOpacity, false);
     }
   }
-  if (implicitOpacity > 0.0) {
+  if (implicitOpacity > 0.0 && implicitStage) {
     auto out = evaluateMorphImplicit(rt, timeSec, implicitU, settings);
     if (!out) {
       info.error = out.error();
@@ -108,13 +110,13 @@ MorphSceneInfo apply(SceneFrame& frame, const MorphRuntime& rt, const std::share
 }  // namespace
 
 MorphSceneInfo applyMorph(SceneFrame& frame, const MorphRuntime& rt, double timeSec,
-                          const MorphFrameSettings& settings) {
-  return apply(frame, rt, nullptr, timeSec, settings);
+                          const MorphFrameSettings& settings, bool implicitStage) {
+  return apply(frame, rt, nullptr, timeSec, settings, implicitStage);
 }
 
 MorphSceneInfo applyMorph(SceneFrame& frame, const std::shared_ptr<const MorphRuntime>& rt, double timeSec,
-                          const MorphFrameSettings& settings) {
-  return apply(frame, *rt, rt, timeSec, settings);
+                          const MorphFrameSettings& settings, bool implicitStage) {
+  return apply(frame, *rt, rt, timeSec, settings, implicitStage);
 }
 
 std::string describeMorphStage(const MorphSceneInfo& info) {
