@@ -26,7 +26,8 @@ json morphSetupToJson(const MorphSetup& m) {
   j["projection"] = {{"pose", p.atClipTime ? "clip" : "rest"}, {"clip_time", p.clipTimeSec},
                      {"max_iterations", p.maxIterations}, {"tolerance", p.tolerance},
                      {"max_step_radii", p.maxStepRadii}, {"reproject_from", p.reprojectFrom}};
-  j["cross_fade"] = {{"enabled", m.crossFade.enabled}, {"width_frames", m.crossFade.widthFrames}};
+  if (!(m.crossFade == MorphCrossFade{}))  // written when set, so projects without it stay byte-identical
+    j["cross_fade"] = {{"enabled", m.crossFade.enabled}, {"width_frames", m.crossFade.widthFrames}};
   json actors = json::array();
   for (const ActorMorph& a : m.actors) {
     json ja = {{"id", a.actorId}, {"standin", standinToJson(a.standin)}};
