@@ -221,7 +221,8 @@ int main(int argc, char** argv) {
     const Timeline& tl = doc.project().timeline;
     const double timeSec = tl.frameToSec(tl.currentFrame);
     SceneFrame frame = evaluateScene(doc.project(), doc.baseDir(), assets, timeSec);
-    if (auto rt = morphCache.get(doc.project(), doc.baseDir(), assets, &doc, doc.revision())) {
+    ectx.morphRuntime = morphCache.get(doc.project(), doc.baseDir(), assets, &doc, doc.revision());
+    if (auto rt = ectx.morphRuntime) {
       ectx.viewportNote = "morph: " + describeMorphStage(applyMorph(frame, *rt, timeSec, morphPreview));
     } else {
       ectx.viewportNote = morphCache.error().empty() ? "" : "morph: " + morphCache.error();

@@ -95,17 +95,19 @@ TriangleMesh assemble(const Character& c, std::vector<glm::vec3>&& pos, std::vec
   return m;
 }
 
+// reprojectFrom: alpha from which vertices are pulled onto the posed stand-in (>= 1: never).
 TransitionStats transitionMesh(const MorphActorRuntime& a, double timeSec, const std::vector<float>& alpha,
-                               bool reproject, int threads, TriangleMesh& out) {
+                               float reprojectFrom, int threads, TriangleMesh& out) {
   const auto globals = actorGlobals(a, timeSec);
   const glm::mat4 root = a.actor.transform.matrix();
   TransitionSettings ts;
   ts.threads = threads;
+  ts.reprojectFrom = reprojectFrom;
   std::vector<glm::vec3> pos, nrm;
   TransitionStats st;
   bool anyHigh = false;
   for (float x : alpha) anyHigh |= x > 0.0f;
-  if (reproject && anyHigh) {
+  if (reprojectFrom < 1.0f && anyHigh) {
     const auto segs = poseStandin(a.morph.standin, globals, root);
     const FieldProgram prog = standinProgram(a.morph.standin.kind, a.morph.standin.sharpness, segs);
     st = evaluateTransition(*a.character, a.binding, globals, root, alpha, &prog, &segs, ts, pos, nrm);
@@ -180,7 +182,7 @@ Result<MorphFrame> evaluateMorphFrame(const MorphRuntime& rt, double timeSec, co
       const MorphActorRuntime& a = fr.stage == MorphStage::Source ? rt.source : rt.target;
       fr.actorId = a.actor.id;
       std::vector<float> zero(a.vertexCount, 0.0f);
-      fr.transition = transitionMesh(a, timeSec, zero, false, settings.threads, fr.mesh);
+      fr.transition = transitionMesh(a, timeSec, zero, 1.0f, settings.threads, fr.mesh);
       break;
     }
     case MorphStage::Collapse:
@@ -190,7 +192,7 @@ Result<MorphFrame> evaluateMorphFrame(const MorphRuntime& rt, double timeSec, co
       fr.actorId = a.actor.id;
       std::vector<float> alpha;
       transitionAlphas(fr.progress, m.easing, a.morph.weightMap, m.weightMapShift, expand, a.vertexCount, alpha);
-      fr.transition = transitionMesh(a, timeSec, alpha, settings.reproject && m.projection.reprojectFrom < 1.0f,
+      fr.transition = transitionMesh(a, timeSec, alpha, settings.reproject ? m.projection.reprojectFrom : 1.0f,
                                      settings.threads, fr.mesh);
       break;
     }
@@ -233,7 +235,7 @@ Result<SeamGap> measureSeamGap(const MorphRuntime& rt, bool atB, int resolution)
   const MorphActorRuntime& a = atB ? rt.source : rt.target;
   std::vector<float> one(a.vertexCount, 1.0f);
   TriangleMesh transition;
-  transitionMesh(a, timeSec, one, m.projection.reprojectFrom < 1.0f, 0, transition);
+  transitionMesh(a, timeSec, one, m.projection.reprojectFrom, 0, transition);
   MorphFrameSettings fs;
   fs.resolution = resolution;
   auto frame = evaluateMorphFrame(rt, timeSec, fs);
