@@ -329,8 +329,13 @@ void drawCurveEditorPanel(const LayoutRect& area, Document& doc, CurveEditorStat
 
   // ---- mouse: press ----
   const std::string mergeKey = "curve/" + src.id();
-  if (hovered && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) {
-    // A key on the nearest visible curve at the mouse's x.
+  // Double-click, or Ctrl+click off the keys: a key on the nearest visible curve at the mouse's x.
+  bool addKey = hovered && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left);
+  if (hovered && io.KeyCtrl && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+    addKey = true;
+    for (const auto& k : keys) addKey &= glm::length(k.px - mouse) > kKeyPickPx;
+  }
+  if (addKey) {
     const double x = pixelToCurve(st, mouse).x;
     const CurveChannel* best = nullptr;
     float bestPx = 1e30f;
@@ -345,7 +350,7 @@ void drawCurveEditorPanel(const LayoutRect& area, Document& doc, CurveEditorStat
     }
     if (best) {
       double t = x / xPerTime;
-      if (st.snap && !io.KeyCtrl) t = std::round(x / ax.snapStep) * ax.snapStep / xPerTime;
+      if (st.snap) t = std::round(x / ax.snapStep) * ax.snapStep / xPerTime;
       const CurveChannel chosen = *best;
       int index = -1;
       bool ok = run("Add key", [&](const TrackSet& s) -> Status {

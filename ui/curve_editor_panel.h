@@ -7,8 +7,8 @@
 // channels with visibility boxes (x red, y green, z blue; rotations as Euler
 // degrees). Right: the graph, with the current frame (or its u) as playhead.
 //   click a key: select it (Shift: add / remove); drag on empty space: box
-//   select (Shift adds); double-click: a key on the nearest visible curve at
-//   that x; drag keys: move them (snapped to whole frames, or 0.01 of u,
+//   select (Shift adds); double-click (or Ctrl+click): a key on the nearest
+//   visible curve at that x; drag keys: move them (snapped to whole frames, or 0.01 of u,
 //   unless Ctrl is held); Del: delete the selected keys; handles of selected Hermite keys:
 //   drag to set the slope (the key switches to user tangents); right-click a
 //   key: interpolation (constant / linear / Hermite), auto / user tangents,

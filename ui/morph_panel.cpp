@@ -124,11 +124,16 @@ void drawMorphCurveSettings(Document& doc, DragMerge& drag, StatusMessage& statu
   auto presets = [&](const char* label, const char* key, FloatTrack MorphSetup::*field) {
     ImGui::AlignTextToFramePadding();
     ImGui::TextUnformatted(label);
+    // Short captions so the row fits the inspector; the tooltip names the shape.
+    static const char* kCaptions[4] = {"linear", "smooth", "in", "out"};
+    static const char* kShapes[4] = {"linear: u", "smoothstep: 3u^2 - 2u^3", "ease-in: u^2", "ease-out: 1 - (1 - u)^2"};
     for (EasingPreset p : {EasingPreset::Linear, EasingPreset::Smoothstep, EasingPreset::EaseIn, EasingPreset::EaseOut}) {
       ImGui::SameLine();
       const std::string name = easingPresetName(p);
       ImGui::PushID(key);
-      if (ImGui::SmallButton(name.c_str())) {
+      const bool clicked = ImGui::SmallButton(kCaptions[int(p)]);
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", kShapes[int(p)]);
+      if (clicked) {
         FloatTrack t = easingPresetTrack(p);
         run(doc,
             editMorphTracks(doc.project(), std::string("Set ") + key + " to " + name,
@@ -142,10 +147,8 @@ void drawMorphCurveSettings(Document& doc, DragMerge& drag, StatusMessage& statu
       noteWidget(std::string("morph/") + key + "/" + name);
     }
   };
-  presets("Easing", "easing", &MorphSetup::easing);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("alpha over a transition's progress (A->B collapse, C->D expansion)");
-  presets("Blend ", "blend", &MorphSetup::blend);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("w over the morph's progress (B->C)");
+  presets("Easing", "easing", &MorphSetup::easing);  // alpha over a transition's progress (A->B, C->D)
+  presets("Blend ", "blend", &MorphSetup::blend);    // w over the morph's progress (B->C)
   ImGui::TextDisabled("Edit them as curves: Ctrl+G.");
 
   // Solid noise: amplitude keyed over the morph's progress; frequency constant.

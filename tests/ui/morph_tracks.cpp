@@ -127,6 +127,13 @@ TEST_CASE("curve editor: double-click adds a blend key, Del removes it", "[morph
   h.tapKey(GLFW_KEY_DELETE);
   CHECK(f.morph().blend.keys().size() == 2);
   CHECK(h.doc().history().undoLabel() == "Delete key");
+  // Ctrl+click on the curve adds one too (snapped to 0.01 of u).
+  h.setModifiers(true);
+  h.click(curveToPixel(ce, 0.252, 0.25));
+  h.setModifiers(false);
+  REQUIRE(f.morph().blend.keys().size() == 3);
+  CHECK(f.morph().blend.keys()[1].timeSec == Approx(0.25));
+  CHECK(h.doc().history().undoLabel() == "Add key");
 }
 
 TEST_CASE("easing and blend presets set the whole track in one command", "[morph]") {
