@@ -16,6 +16,7 @@
 #include "timeline_panel.h"
 #include "util/prefs.h"
 #include "viewport_input.h"
+#include "weight_paint_tool.h"
 
 namespace animorph {
 
@@ -45,6 +46,7 @@ struct EditorState {
   TimelineState timeline;
   CurveEditorState curveEditor;
   GizmoState gizmo;
+  WeightPaintState paint;  // Weight Paint mode
   DragMerge drag;
 
   // Dialogs.

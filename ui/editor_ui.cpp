@@ -11,6 +11,7 @@
 #include "help_windows.h"
 #include "menu_bar.h"
 #include "preferences_window.h"
+#include "preview_controls.h"
 #include "project_commands.h"
 #include "selection_info.h"
 #include "transport.h"
@@ -99,7 +100,7 @@ void EditorUI::draw(EditorContext& ctx) {
   external_.clear();
 
   // Menu bar, then the panels laid out below it.
-  MenuResult menu = drawMenuBar(doc(ctx), st_.prefs.recentFiles, st_.menuBarHeight, st_.curveEditor.visible);
+  MenuResult menu = drawMenuBar(doc(ctx), st_.prefs.recentFiles, st_.menuBarHeight, st_.curveEditor.visible, st_.paint);
   actions.insert(actions.end(), menu.actions.begin(), menu.actions.end());
   float statusHeight = ImGui::GetFrameHeight();
   LayoutSizes sizes{st_.prefs.outlinerWidth, st_.prefs.inspectorWidth, st_.prefs.timelineHeight};
@@ -113,6 +114,7 @@ void EditorUI::draw(EditorContext& ctx) {
   drawStatusBar(st_.layout.statusBar, doc(ctx), ctx.stats, st_.status);
   drawViewport(ctx);
   drawCurveEditorPanel(st_.layout.viewport, doc(ctx), st_.curveEditor, st_.status);
+  drawWeightPaintPanel(st_.layout.viewport, doc(ctx), ctx.assets, st_.paint, st_.status);
   drawSplitters();
 
   // Keyboard shortcuts: not while typing, not while a menu or dialog is open.
@@ -120,7 +122,8 @@ void EditorUI::draw(EditorContext& ctx) {
   if (!ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel)) {
     std::vector<Action> keys = pollShortcuts(io);
     for (Action a : keys)
-      if (!st_.curveEditor.focused || (a != Action::DeleteSelection && a != Action::FrameSelection))
+      if ((!st_.curveEditor.focused || (a != Action::DeleteSelection && a != Action::FrameSelection)) &&
+          !(st_.paint.active && a == Action::FrameSelection))  // F sets the brush radius while painting
         actions.push_back(a);
   }
   if (menu.addNodeType) addNodeToSelection(*menu.addNodeType, ctx);
@@ -135,6 +138,8 @@ void EditorUI::draw(EditorContext& ctx) {
 
   st_.drag.endFrame(doc(ctx));
   out_.camera = st_.camera;
+  out_.weightPaintMode = st_.paint.active;
+  out_.weightOverlay = weightOverlayRequest(doc(ctx), st_.paint);
   const LayoutRect& vp = st_.layout.viewport;
   out_.viewport = {vp.min, vp.size};
   setActiveWidgetRects(nullptr);
@@ -160,22 +165,29 @@ void EditorUI::drawViewport(EditorContext& ctx) {
   ImGui::PopStyleVar();
   bool hovered = ImGui::IsWindowHovered();
   const Document& d = doc(ctx);
-  ImGui::TextDisabled("%s camera  |  frame %d%s%s", st_.prefs.cameraScheme == CameraScheme::Maya ? "Maya" : "Blender",
+  const std::string paintNote = weightPaintNote(d, st_.paint);
+  ImGui::TextDisabled("%s camera  |  frame %d%s%s%s%s", st_.prefs.cameraScheme == CameraScheme::Maya ? "Maya" : "Blender",
                       d.project().timeline.currentFrame, ctx.viewportNote.empty() ? "" : "  |  ",
-                      ctx.viewportNote.c_str());
+                      ctx.viewportNote.c_str(), paintNote.empty() ? "" : "  |  ", paintNote.c_str());
+  if (!paintNote.empty()) noteWidget("viewport/paint_note");
+  ImGui::SameLine();
+  bool previewControlHovered = false;
+  if (drawPreviewQuickControl(st_.prefs, previewControlHovered)) savePreferences();
   if (d.project().actors.empty())
     ImGui::TextDisabled("File > Import glTF... adds a character; Create > New BlobTree Actor an implicit shape.");
   ImGui::End();
   widgets_.set("viewport", {r.min, r.min + r.size});
 
-  PointerInput in = pointerFromImGui(ImGui::GetIO(), !hovered);
+  PointerInput in = pointerFromImGui(ImGui::GetIO(), !hovered || previewControlHovered);
   ViewportRect vr{r.min, r.size};
   // The gizmo goes first: while the mouse is on it, the camera and picking stay still.
   ImGui::Begin("##viewport", nullptr, kOverlayFlags);
   drawGizmo(doc(ctx), st_.camera, vr, in, st_.gizmo, st_.status, ImGui::GetWindowDrawList());
   ImGui::End();
   if (st_.gizmo.hot()) in.blockedByUi = true;
+  updateWeightPaint(doc(ctx), ctx.assets, st_.camera, vr, in, st_.paint, st_.status, ImGui::GetForegroundDrawList());
   out_.pick = st_.viewportInput.update(in, vr, st_.prefs.cameraScheme, st_.prefs.otherSchemeToo, st_.camera);
+  if (st_.paint.active) out_.pick.reset();  // a click paints instead of selecting
   if (st_.viewportInput.activeDrag() != CameraDrag::None)
     ImGui::SetMouseCursor(st_.viewportInput.activeDrag() == CameraDrag::Pan ? ImGuiMouseCursor_ResizeAll
                                                                              : ImGuiMouseCursor_Hand);
@@ -332,6 +344,12 @@ void EditorUI::dispatch(Action a, EditorContext& ctx) {
     case Action::Preferences: st_.showPreferences = true; break;
     case Action::About: st_.showAbout = true; break;
     case Action::ShowShortcuts: st_.showShortcuts = true; break;
+    case Action::ToggleWeightPaint: toggleWeightPaint(d, st_.paint, st_.status); break;
+    case Action::ToggleWeightOverlay: st_.paint.overlayAlways = !st_.paint.overlayAlways; break;
+    case Action::ImportWeights:
+      if (weightPaintActor(d).empty() && d.project().morph.enabled()) d.selection = {d.project().morph.sourceActorId, -1};
+      st_.paint.openImportPopup = true;
+      break;
   }
 }
 
@@ -439,6 +457,8 @@ void EditorUI::replaceDocument(std::unique_ptr<Document> d, EditorContext& ctx) 
   st_.curveEditor.selection.clear();
   st_.curveEditor.sourceId.clear();
   st_.gizmo = {};
+  st_.paint.stroke.reset();
+  st_.paint.mesh.reset();
   keysDoc_ = nullptr;
   // Show the whole scene: frame every visible actor that loaded.
   Bounds b = selectionBounds(*ctx.document, ctx.assets, tl.fps > 0.0 ? tl.currentFrame / tl.fps : 0.0);

@@ -9,6 +9,7 @@
 #include "blobtree/node_type.h"
 #include "doc/document.h"
 #include "shortcuts.h"
+#include "weight_paint_tool.h"
 
 namespace animorph {
 
@@ -21,6 +22,6 @@ struct MenuResult {
 // Draws the bar; returns its height in pixels through heightPx. curveEditorShown
 // checks View > Curve Editor.
 MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& recentFiles, float& heightPx,
-                       bool curveEditorShown = false);
+                       bool curveEditorShown = false, const WeightPaintState& paint = {});
 
 }  // namespace animorph

@@ -16,6 +16,7 @@ enum class Action {
   ToggleGrid, ToggleSkeleton, ToggleWireframe, ToggleAxes, FrameSelection,
   PlayPause, StepBack, StepForward, GoToStart, GoToEnd,
   Preferences, About, ShowShortcuts,
+  ToggleWeightPaint, ToggleWeightOverlay, ImportWeights,
 };
 
 struct Shortcut {

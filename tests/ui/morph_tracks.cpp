@@ -11,46 +11,33 @@
 #include "morph/transition.h"
 #include "poly/mesh_checks.h"
 #include "standin/fit_standin.h"
-#include "support/test_character.h"
-#include "support/ui_harness.h"
-#include "util/temp_dir.h"
+#include "support/editor_fixture.h"
 
 using namespace animorph;
 using namespace animorph::test;
 
 namespace {
 
-// A tall window, so the whole morph panel fits in the inspector.
+// The morph scene of EditorFixture (hero -> other, markers 10, 20, 30, 40: the
+// morph runs over frames 20..30) with fitted stand-ins, in a tall window so the
+// whole morph panel fits in the inspector.
 struct MorphFixture {
-  TempDir dir;
-  EditorHarness h{dir.file("config/prefs.json"), {1400.0f, 1300.0f}};
+  EditorFixture fixture{{1400.0f, 1300.0f}};
+  TempDir& dir = fixture.dir;
+  EditorHarness& h = fixture.h;
 
-  // hero.gltf morphing into a second actor of the same asset, both with
-  // fitted stand-ins; markers 10, 20, 30, 40 (the morph runs over frames 20..30).
   MorphFixture() {
-    h.ui->state().prefs.autosaveIntervalSec = 0.0;
-    std::string asset = dir.file("hero.gltf");
-    Character c = writeTestCharacter(asset);
-    registerCharacter(asset, c);
-    auto fit = fitStandin(c);
+    fixture.loadHeroMorphScene();
+    auto fit = fitStandin(*registeredCharacter(dir.file("hero.gltf")));
     REQUIRE(fit);
-    Project p;
+    Project p = h.doc().project();
     for (const char* id : {"hero", "other"}) {
-      Actor a;
-      a.id = id;
-      a.name = id;
-      a.assetPath = "hero.gltf";
-      p.actors.push_back(a);
       ActorMorph am;
       am.actorId = id;
       am.standin = fit->standin;
       p.morph.actors.push_back(am);
     }
-    p.morph.sourceActorId = "hero";
-    p.morph.targetActorId = "other";
-    p.morph.markers = {10, 20, 30, 40};
     h.document->reset(p, dir.file("scene.animorph"));
-    h.doc().selection = {};
     h.frames(2);
   }
   const MorphSetup& morph() { return h.doc().project().morph; }

@@ -11,9 +11,12 @@ namespace animorph::test {
 
 struct EditorFixture {
   TempDir dir;
-  EditorHarness h{dir.file("config/prefs.json")};
+  EditorHarness h;
 
-  EditorFixture() { h.ui->state().prefs.autosaveIntervalSec = 0.0; }  // tests opt in
+  // display: the window size in pixels.
+  explicit EditorFixture(glm::vec2 display = {1280.0f, 800.0f}) : h(dir.file("config/prefs.json"), display) {
+    h.ui->state().prefs.autosaveIntervalSec = 0.0;  // tests opt in
+  }
 
   // Writes hero.gltf into the temp dir (registered for the tests' asset
   // cache) and opens a document "scene.animorph" in that dir with one actor
@@ -31,6 +34,22 @@ struct EditorFixture {
     h.document->reset(p, dir.file("scene.animorph"));
     h.frames(1);
     return c;
+  }
+
+  // loadHeroScene plus a second actor "other" of the same asset and a morph
+  // hero -> other (markers 10, 20, 30, 40; no morph.actors entries), nothing selected.
+  void loadHeroMorphScene() {
+    loadHeroScene();
+    Project p = h.doc().project();
+    Actor b = p.actors[0];
+    b.id = "other";
+    p.actors.push_back(b);
+    p.morph.sourceActorId = "hero";
+    p.morph.targetActorId = "other";
+    p.morph.markers = {10, 20, 30, 40};
+    h.document->reset(p, dir.file("scene.animorph"));
+    h.doc().selection = {};
+    h.frames(2);
   }
 };
 
