@@ -6,8 +6,7 @@
 
 #include <imgui.h>
 
-#include "blob_inspector.h"
-#include "doc/blobtree_commands.h"
+#include "curve_source.h"
 #include "widget_rects.h"
 
 namespace animorph {
@@ -17,56 +16,16 @@ namespace {
 constexpr float kKeyPickPx = 6.0f;
 constexpr float kHandlePx = 40.0f;  // on-screen length of a tangent handle
 
-struct Channel {
-  ParamAddress addr;
-  int channel = 0;
-  std::string name;
-  ImU32 color = 0;
-  bool rotation = false;
-};
-
-ImU32 channelColor(int channel, int count) {
-  if (count == 1) return IM_COL32(235, 200, 90, 255);
-  static const ImU32 kXyz[3] = {IM_COL32(240, 90, 90, 255), IM_COL32(110, 215, 100, 255), IM_COL32(100, 150, 255, 255)};
-  return kXyz[std::clamp(channel, 0, 2)];
+ImU32 channelColor(int index) {
+  static const ImU32 kPalette[6] = {IM_COL32(240, 90, 90, 255),  IM_COL32(110, 215, 100, 255),
+                                    IM_COL32(100, 150, 255, 255), IM_COL32(215, 120, 235, 255),
+                                    IM_COL32(90, 215, 215, 255),  IM_COL32(235, 235, 240, 255)};
+  if (index < 0 || index > 5) return IM_COL32(235, 200, 90, 255);
+  return kPalette[index];
 }
 
-std::vector<Channel> channelsOf(const BlobTree& tree, const BlobNode& node) {
-  std::vector<Channel> out;
-  const auto& specs = nodeTypeInfo(node.type).params;
-  static const char* kAxis[3] = {"x", "y", "z"};
-  auto add = [&](ParamAddress a, const std::string& base, ParamKind kind) {
-    if (!isAnimated(tree, a)) return;
-    int n = channelCount(kind);
-    for (int c = 0; c < n; ++c) {
-      Channel ch;
-      ch.addr = a;
-      ch.channel = c;
-      ch.name = n == 1 ? base : base + "." + kAxis[c];
-      ch.color = channelColor(c, n);
-      ch.rotation = kind == ParamKind::Quat;
-      out.push_back(ch);
-    }
-  };
-  for (size_t i = 0; i < specs.size(); ++i) {
-    if (specs[i].kind == ParamKind::Vec3List) {
-      const auto& pts = std::get<ControlPoints>(node.params[i]);
-      for (size_t k = 0; k < pts.size(); ++k)
-        add({node.id, int(i), int(k)}, std::string(specs[i].name) + "[" + std::to_string(k) + "]", ParamKind::Vec3);
-    } else {
-      add({node.id, int(i), -1}, specs[i].name, specs[i].kind);
-    }
-  }
-  return out;
-}
-
-bool hiddenChannel(const CurveEditorState& st, const Channel& c) {
-  return st.hidden.count({c.addr.param, c.addr.point, c.channel}) > 0;
-}
-
-void run(Document& doc, Result<std::unique_ptr<Command>> cmd, StatusMessage& status) {
-  if (cmd) doc.execute(std::move(*cmd));
-  else status = {cmd.error(), true};
+bool hiddenChannel(const CurveEditorState& st, const CurveChannel& c) {
+  return st.hidden.count({c.addr, c.channel}) > 0;
 }
 
 std::vector<KeyRef> selectedKeys(const CurveEditorState& st) {
@@ -75,34 +34,35 @@ std::vector<KeyRef> selectedKeys(const CurveEditorState& st) {
   return {keys.begin(), keys.end()};
 }
 
-void frameAll(CurveEditorState& st, const BlobTree& tree, const std::vector<Channel>& channels, double fps,
-              const Timeline& tl) {
+void frameAll(CurveEditorState& st, const CurveSource& src, const std::vector<CurveChannel>& channels,
+              const CurveAxis& ax) {
   double f0 = 1e300, f1 = -1e300, v0 = 1e300, v1 = -1e300;
   for (const auto& c : channels) {
     if (hiddenChannel(st, c)) continue;
-    int n = keyCount(tree, c.addr);
-    for (int k = 0; k < n; ++k) {
+    ConstTrackPtr tp = src.track(c.addr);
+    for (int k = 0, n = keyCount(tp); k < n; ++k) {
       double t = 0.0;
       ParamSample v;
-      if (!keyAt(tree, {c.addr, k}, t, v)) continue;
-      f0 = std::min(f0, t * fps);
-      f1 = std::max(f1, t * fps);
+      if (!keyAt(tp, k, t, v)) continue;
+      f0 = std::min(f0, t * ax.xPerTime);
+      f1 = std::max(f1, t * ax.xPerTime);
     }
   }
   if (f0 > f1) {
-    f0 = tl.frameStart;
-    f1 = tl.frameEnd;
+    f0 = ax.rangeStart;
+    f1 = ax.rangeEnd;
   }
-  if (f1 - f0 < 2.0) {
-    f0 -= 1.0;
-    f1 += 1.0;
+  if (f1 - f0 < 2.0 * ax.snapStep) {
+    f0 -= ax.snapStep;
+    f1 += ax.snapStep;
   }
   // Values: sample the curves over the key range (overshoot between keys counts).
   for (const auto& c : channels) {
     if (hiddenChannel(st, c)) continue;
+    ConstTrackPtr tp = src.track(c.addr);
     for (int i = 0; i <= 200; ++i) {
       ParamSample v;
-      if (!sampleParam(tree, c.addr, (f0 + (f1 - f0) * i / 200.0) / fps, v)) break;
+      if (!sampleTrack(tp, (f0 + (f1 - f0) * i / 200.0) / ax.xPerTime, v)) break;
       double x = channelOf(v, c.channel);
       v0 = std::min(v0, x);
       v1 = std::max(v1, x);
@@ -171,32 +131,33 @@ void drawCurveEditorPanel(const LayoutRect& area, Document& doc, CurveEditorStat
     if (WidgetRects* r = activeWidgetRects()) r->set("curve/window", {{p.x, p.y}, {p.x + s.x, p.y + s.y}});
   }
 
-  const Actor* actor = doc.project().findActor(doc.selection.actorId);
-  const BlobNode* nodePtr =
-      actor && actor->kind == ActorKind::BlobTree ? actor->blobTree.find(doc.selection.node) : nullptr;
-  if (!nodePtr) {
-    ImGui::TextDisabled("Select a node of a BlobTree actor to see its animation curves.");
+  std::unique_ptr<CurveSource> source = curveSourceForSelection(doc);
+  if (!source) {
+    ImGui::TextDisabled("Select a node of a BlobTree actor, or the morph (nothing selected), to see its curves.");
     ImGui::End();
     return;
   }
-  if (st.actorId != actor->id || st.node != nodePtr->id) {
-    st.actorId = actor->id;
-    st.node = nodePtr->id;
+  const CurveSource& src = *source;
+  if (st.sourceId != src.id()) {
+    st.sourceId = src.id();
     st.selection.clear();
     st.frameAllNext = true;
     st.drag = CurveEditorState::Drag::None;
   }
-  const std::string actorId = actor->id;
-  const BlobTree tree = actor->blobTree;  // copy: commands below replace the actor's tree
-  const BlobNode& node = *tree.find(st.node);
-  const Timeline& tl = doc.project().timeline;
-  const double fps = tl.fps > 0.0 ? tl.fps : 24.0;
-  const double nowFrame = blobTreeTimeNow(doc, *actor) * fps;
-  std::vector<Channel> channels = channelsOf(tree, node);
+  const CurveAxis ax = src.axis();
+  const double xPerTime = ax.xPerTime;
+  std::vector<CurveChannel> channels = src.channels();
+  auto trackOf = [&](const KeyRef& k) { return src.track(k.param); };
+  auto run = [&](const std::string& label, const KeyEditFn& fn) {
+    auto cmd = src.edit(label, fn);
+    if (cmd) doc.execute(std::move(*cmd));
+    else status = {cmd.error(), true};
+    return bool(cmd);
+  };
 
   // The selection keeps only keys that still exist (undo, edits elsewhere).
   for (auto it = st.selection.begin(); it != st.selection.end();) {
-    bool ok = it->key.key >= 0 && it->key.key < keyCount(tree, it->key.param);
+    bool ok = it->key.key >= 0 && it->key.key < keyCount(trackOf(it->key));
     it = ok ? std::next(it) : st.selection.erase(it);
   }
 
@@ -204,8 +165,18 @@ void drawCurveEditorPanel(const LayoutRect& area, Document& doc, CurveEditorStat
   // ---- toolbar ----
   std::vector<KeyRef> selKeys = selectedKeys(st);
   bool haveSel = !selKeys.empty();
+  auto setInterp = [&](KeyInterp mode) {
+    run(interpLabel(mode), [&](const TrackSet& s) { return setKeyInterp(s, selKeys, mode); });
+  };
+  auto setTangentMode = [&](bool user) {
+    run(user ? "User tangents" : "Auto tangents", [&](const TrackSet& s) { return setKeyTangentMode(s, selKeys, user); });
+  };
+  auto deleteSelected = [&]() {
+    run(keysLabel("Delete", selKeys.size()), [&](const TrackSet& s) { return deleteKeys(s, selKeys); });
+    st.selection.clear();
+  };
   auto interpButton = [&](const char* label, KeyInterp mode, const char* key) {
-    if (ImGui::Button(label) && haveSel) run(doc, setBlobKeyInterpCommand(doc.project(), actorId, selKeys, mode), status);
+    if (ImGui::Button(label) && haveSel) setInterp(mode);
     noteWidget(std::string("curve/") + key);
     ImGui::SameLine();
   };
@@ -215,10 +186,10 @@ void drawCurveEditorPanel(const LayoutRect& area, Document& doc, CurveEditorStat
   interpButton("Hermite", KeyInterp::Hermite, "hermite");
   ImGui::TextDisabled("|");
   ImGui::SameLine();
-  if (ImGui::Button("Auto tangents")) run(doc, setBlobKeyTangentModeCommand(doc.project(), actorId, selKeys, false), status);
+  if (ImGui::Button("Auto tangents")) setTangentMode(false);
   noteWidget("curve/auto_tangents");
   ImGui::SameLine();
-  if (ImGui::Button("User tangents")) run(doc, setBlobKeyTangentModeCommand(doc.project(), actorId, selKeys, true), status);
+  if (ImGui::Button("User tangents")) setTangentMode(true);
   noteWidget("curve/user_tangents");
   ImGui::EndDisabled();
   ImGui::SameLine();
@@ -227,23 +198,23 @@ void drawCurveEditorPanel(const LayoutRect& area, Document& doc, CurveEditorStat
   bool frameAllNow = ImGui::Button("Frame all (F)");
   noteWidget("curve/frame_all");
   ImGui::SameLine();
-  ImGui::Checkbox("Snap to frames", &st.snap);
+  ImGui::Checkbox(ax.snapLabel.c_str(), &st.snap);
   noteWidget("curve/snap");
   if (st.selection.size() == 1) {
     const KeyChannelRef k = *st.selection.begin();
     double t = 0.0;
     ParamSample v;
-    if (keyAt(tree, k.key, t, v)) {
+    if (keyAt(trackOf(k.key), k.key.key, t, v)) {
       ImGui::SameLine();
       ImGui::TextDisabled("|");
       ImGui::SameLine();
-      double frame = t * fps;
+      double x = t * xPerTime;
       float value = channelOf(v, k.channel);
       ImGui::AlignTextToFramePadding();
-      ImGui::TextUnformatted("Frame");
+      ImGui::TextUnformatted(xPerTime == 1.0 ? "u" : "Frame");
       ImGui::SameLine();
       ImGui::SetNextItemWidth(70.0f);
-      ImGui::InputDouble("##key_frame", &frame, 0.0, 0.0, "%.2f");
+      ImGui::InputDouble("##key_frame", &x, 0.0, 0.0, xPerTime == 1.0 ? "%.3f" : "%.2f");
       noteWidget("curve/key_frame");
       bool commitFrame = ImGui::IsItemDeactivatedAfterEdit();
       ImGui::SameLine();
@@ -255,39 +226,35 @@ void drawCurveEditorPanel(const LayoutRect& area, Document& doc, CurveEditorStat
       bool commitValue = ImGui::IsItemDeactivatedAfterEdit();
       if (commitFrame || commitValue) {
         KeyChannelRef moved = k;
-        auto cmd = editBlobTree(doc.project(), actorId, "Set key", [&](BlobTree& tr) -> Status {
-          auto r = setKeyTimeValue(tr, k, frame / fps, value);
+        bool ok = run("Set key", [&](const TrackSet& s) -> Status {
+          auto r = setKeyTimeValue(s, k, x / xPerTime, value);
           if (!r) return Error{r.error()};
           moved = *r;
           return Status::success();
         });
-        if (cmd) {
-          doc.execute(std::move(*cmd));
-          st.selection = {moved};
-        } else {
-          status = {cmd.error(), true};
-        }
+        if (ok) st.selection = {moved};
       }
     }
   }
 
   // ---- channel list ----
-  ImGui::BeginChild("##channels", ImVec2(190.0f, 0.0f), true);
-  ImGui::TextDisabled("%s", node.name.empty() ? nodeTypeInfo(node.type).name : node.name.c_str());
-  if (channels.empty()) ImGui::TextWrapped("No animated parameters. Key one in the inspector (diamond buttons).");
+  ImGui::BeginChild("##channels", ImVec2(210.0f, 0.0f), true);
+  ImGui::TextDisabled("%s", src.title().c_str());
+  if (channels.empty()) ImGui::TextWrapped("%s", src.emptyHint().c_str());
   for (const auto& c : channels) {
     ImGui::PushID(c.name.c_str());
     bool shown = !hiddenChannel(st, c);
-    ImGui::PushStyleColor(ImGuiCol_CheckMark, ImGui::ColorConvertU32ToFloat4(c.color));
+    const ImU32 color = channelColor(c.colorIndex);
+    ImGui::PushStyleColor(ImGuiCol_CheckMark, ImGui::ColorConvertU32ToFloat4(color));
     if (ImGui::Checkbox("##show", &shown)) {
-      auto key = std::make_tuple(c.addr.param, c.addr.point, c.channel);
+      auto key = std::make_pair(c.addr, c.channel);
       if (shown) st.hidden.erase(key);
       else st.hidden.insert(key);
     }
     ImGui::PopStyleColor();
     noteWidget("curve/channel/" + c.name);
     ImGui::SameLine();
-    ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(c.color), "%s%s", c.name.c_str(), c.rotation ? " (deg)" : "");
+    ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(color), "%s%s", c.name.c_str(), c.rotation ? " (deg)" : "");
     ImGui::PopID();
   }
   ImGui::EndChild();
@@ -308,12 +275,12 @@ void drawCurveEditorPanel(const LayoutRect& area, Document& doc, CurveEditorStat
   st.graphMax = {g0.x + avail.x, g0.y + avail.y};
   if (st.frameAllNext || frameAllNow || (st.focused && !io.WantTextInput && ImGui::IsKeyPressed('F', false) &&
                                          !io.KeyCtrl && !io.KeyAlt)) {
-    frameAll(st, tree, channels, fps, tl);
+    frameAll(st, src, channels, ax);
     st.frameAllNext = false;
   }
   const glm::vec2 mouse(io.MousePos.x, io.MousePos.y);
 
-  // Zoom (wheel: time, Ctrl+wheel: values) around the mouse; middle drag pans.
+  // Zoom (wheel: x, Ctrl+wheel: values) around the mouse; middle drag pans.
   if (hovered && io.MouseWheel != 0.0f) {
     glm::dvec2 pivot = pixelToCurve(st, mouse);
     double f = std::pow(0.85, io.MouseWheel);
@@ -343,30 +310,59 @@ void drawCurveEditorPanel(const LayoutRect& area, Document& doc, CurveEditorStat
   std::vector<KeyPx> keys;
   for (const auto& c : channels) {
     if (hiddenChannel(st, c)) continue;
-    ConstTrackPtr tp = findTrack(tree, c.addr);
-    int n = keyCount(tree, c.addr);
-    for (int k = 0; k < n; ++k) {
+    ConstTrackPtr tp = src.track(c.addr);
+    for (int k = 0, n = keyCount(tp); k < n; ++k) {
       double t = 0.0;
       ParamSample v;
-      if (!keyAt(tree, {c.addr, k}, t, v)) continue;
       KeyInterp interp = KeyInterp::Hermite;
-      if (auto* f = std::get_if<const FloatTrack*>(&tp)) interp = (*f)->keys()[size_t(k)].interp;
-      else if (auto* p = std::get_if<const Vec3Track*>(&tp)) interp = (*p)->keys()[size_t(k)].interp;
-      else if (auto* q = std::get_if<const QuatTrack*>(&tp)) interp = (*q)->keys()[size_t(k)].interp;
-      keys.push_back({{{c.addr, k}, c.channel}, curveToPixel(st, t * fps, channelOf(v, c.channel)), interp, c.rotation});
+      if (!keyAt(tp, k, t, v, &interp)) continue;
+      keys.push_back({{{c.addr, k}, c.channel}, curveToPixel(st, t * xPerTime, channelOf(v, c.channel)), interp, c.rotation});
     }
   }
   auto handleDir = [&](const KeyChannelRef& k) {
-    float slope = keySlope(tree, k);  // value per second
-    glm::vec2 d(float(fps / (st.frame1 - st.frame0) * avail.x), float(-slope / (st.value1 - st.value0) * avail.y));
+    float slope = keySlope(trackOf(k.key), k.key.key, k.channel);  // value per time unit
+    glm::vec2 d(float(xPerTime / (st.frame1 - st.frame0) * avail.x), float(-slope / (st.value1 - st.value0) * avail.y));
     float len = glm::length(d);
     return len > 0.0f ? d / len * kHandlePx : glm::vec2(kHandlePx, 0.0f);
   };
   auto showsHandles = [&](const KeyPx& k) { return !k.rotation && st.selection.count(k.ref); };
 
   // ---- mouse: press ----
-  const std::string mergeKey = "curve/" + actorId + "/" + std::to_string(st.node);
-  if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+  const std::string mergeKey = "curve/" + src.id();
+  // Double-click, or Ctrl+click off the keys: a key on the nearest visible curve at the mouse's x.
+  bool addKey = hovered && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left);
+  if (hovered && io.KeyCtrl && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+    addKey = true;
+    for (const auto& k : keys) addKey &= glm::length(k.px - mouse) > kKeyPickPx;
+  }
+  if (addKey) {
+    const double x = pixelToCurve(st, mouse).x;
+    const CurveChannel* best = nullptr;
+    float bestPx = 1e30f;
+    for (const auto& c : channels) {
+      ParamSample v;
+      if (hiddenChannel(st, c) || !sampleTrack(src.track(c.addr), x / xPerTime, v)) continue;
+      float d = std::abs(curveToPixel(st, x, channelOf(v, c.channel)).y - mouse.y);
+      if (d < bestPx) {
+        bestPx = d;
+        best = &c;
+      }
+    }
+    if (best) {
+      double t = x / xPerTime;
+      if (st.snap) t = std::round(x / ax.snapStep) * ax.snapStep / xPerTime;
+      const CurveChannel chosen = *best;
+      int index = -1;
+      bool ok = run("Add key", [&](const TrackSet& s) -> Status {
+        auto r = insertKey(s, chosen.addr, t);
+        if (!r) return Error{r.error()};
+        index = *r;
+        return Status::success();
+      });
+      if (ok) st.selection = {KeyChannelRef{{chosen.addr, index}, chosen.channel}};
+    }
+    st.drag = CurveEditorState::Drag::None;
+  } else if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
     st.dragStart = mouse;
     st.drag = CurveEditorState::Drag::Box;
     // Tangent handles of selected keys first, then keys.
@@ -406,7 +402,7 @@ void drawCurveEditorPanel(const LayoutRect& area, Document& doc, CurveEditorStat
       }
     }
     if (st.drag == CurveEditorState::Drag::Move || st.drag == CurveEditorState::Drag::Tangent) {
-      st.dragOriginal = tree;
+      st.dragOriginal = src.snapshot();
       st.dragKeys.assign(st.selection.begin(), st.selection.end());
       st.lastDt = st.lastDv = 0.0;
       st.dragChanged = false;
@@ -424,24 +420,34 @@ void drawCurveEditorPanel(const LayoutRect& area, Document& doc, CurveEditorStat
 
   // ---- mouse: drag ----
   bool leftDown = ImGui::IsMouseDown(ImGuiMouseButton_Left);
+  auto originalKey = [&](const KeyChannelRef& k, double& t, ParamSample& v) {
+    return keyAt(src.track(st.dragOriginal, k.key.param), k.key.key, t, v);
+  };
   if (st.drag == CurveEditorState::Drag::Move && leftDown) {
-    double dFrames = (mouse.x - st.dragStart.x) / avail.x * (st.frame1 - st.frame0);
+    double dx = (mouse.x - st.dragStart.x) / avail.x * (st.frame1 - st.frame0);
     double dv = -(mouse.y - st.dragStart.y) / avail.y * (st.value1 - st.value0);
     if (st.snap && !io.KeyCtrl) {
-      // The key under the mouse lands on a whole frame; the others keep their offsets.
+      // The key under the mouse lands on a snap step; the others keep their offsets.
       double t0 = 0.0;
       ParamSample v0;
-      keyAt(st.dragOriginal, st.dragAnchor.key, t0, v0);
-      double f0 = t0 * fps;
-      dFrames = std::round(f0 + dFrames) - f0;
+      originalKey(st.dragAnchor, t0, v0);
+      double x0 = t0 * xPerTime;
+      dx = std::round((x0 + dx) / ax.snapStep) * ax.snapStep - x0;
     }
-    double dt = dFrames / fps;
+    double dt = dx / xPerTime;
     if (dt != st.lastDt || dv != st.lastDv) {
       st.lastDt = dt;
       st.lastDv = dv;
       std::vector<KeyChannelRef> moved;
-      auto cmd = moveBlobKeysCommand(doc.project(), actorId, st.dragOriginal, st.dragKeys, dt, float(dv), mergeKey,
-                                     &moved);
+      auto cmd = src.edit(
+          keysLabel("Move", st.dragKeys.size()),
+          [&](const TrackSet& s) -> Status {
+            auto r = moveKeys(s, st.dragKeys, dt, float(dv));
+            if (!r) return Error{r.error()};
+            moved = *r;
+            return Status::success();
+          },
+          mergeKey, &st.dragOriginal);
       if (cmd) {
         doc.execute(std::move(*cmd));
         st.selection = std::set<KeyChannelRef>(moved.begin(), moved.end());
@@ -453,17 +459,21 @@ void drawCurveEditorPanel(const LayoutRect& area, Document& doc, CurveEditorStat
   } else if (st.drag == CurveEditorState::Drag::Tangent && leftDown) {
     double t0 = 0.0;
     ParamSample v0;
-    if (keyAt(st.dragOriginal, st.dragAnchor.key, t0, v0)) {
-      glm::vec2 keyPx = curveToPixel(st, t0 * fps, channelOf(v0, st.dragAnchor.channel));
+    if (originalKey(st.dragAnchor, t0, v0)) {
+      glm::vec2 keyPx = curveToPixel(st, t0 * xPerTime, channelOf(v0, st.dragAnchor.channel));
       glm::vec2 d = (mouse - keyPx) * float(st.tangentSide);
       if (d.x < 1.0f) d.x = 1.0f;  // a handle never turns back in time
-      double dtSec = d.x / avail.x * (st.frame1 - st.frame0) / fps;
+      double dtSec = d.x / avail.x * (st.frame1 - st.frame0) / xPerTime;
       double dVal = -d.y / avail.y * (st.value1 - st.value0);
       float slope = float(dVal / dtSec);
       if (slope != float(st.lastDv) || !st.dragChanged) {
         st.lastDv = slope;
-        run(doc, setBlobKeyTangentCommand(doc.project(), actorId, st.dragOriginal, st.dragAnchor, slope, mergeKey),
-            status);
+        const KeyChannelRef anchor = st.dragAnchor;
+        auto cmd = src.edit(
+            "Change tangent", [&](const TrackSet& s) { return setKeyTangent(s, anchor, slope); }, mergeKey,
+            &st.dragOriginal);
+        if (cmd) doc.execute(std::move(*cmd));
+        else status = {cmd.error(), true};
         st.dragChanged = true;
       }
     }
@@ -477,6 +487,7 @@ void drawCurveEditorPanel(const LayoutRect& area, Document& doc, CurveEditorStat
         if (k.px.x >= lo.x && k.px.x <= hi.x && k.px.y >= lo.y && k.px.y <= hi.y) st.selection.insert(k.ref);
     } else if (st.drag == CurveEditorState::Drag::Move || st.drag == CurveEditorState::Drag::Tangent) {
       doc.endDrag();
+      st.dragOriginal.reset();
     }
     st.drag = CurveEditorState::Drag::None;
   }
@@ -484,24 +495,21 @@ void drawCurveEditorPanel(const LayoutRect& area, Document& doc, CurveEditorStat
   // ---- keyboard: Del deletes the selected keys ----
   if (st.focused && !io.WantTextInput && !st.selection.empty() &&
       ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Delete), false)) {
-    run(doc, deleteBlobKeysCommand(doc.project(), actorId, selectedKeys(st)), status);
-    st.selection.clear();
+    selKeys = selectedKeys(st);
+    deleteSelected();
   }
 
   // ---- context menu of a key ----
   if (ImGui::BeginPopup("##key_menu")) {
-    std::vector<KeyRef> ks = selectedKeys(st);
-    if (ImGui::MenuItem("Constant")) run(doc, setBlobKeyInterpCommand(doc.project(), actorId, ks, KeyInterp::Constant), status);
-    if (ImGui::MenuItem("Linear")) run(doc, setBlobKeyInterpCommand(doc.project(), actorId, ks, KeyInterp::Linear), status);
-    if (ImGui::MenuItem("Hermite")) run(doc, setBlobKeyInterpCommand(doc.project(), actorId, ks, KeyInterp::Hermite), status);
+    selKeys = selectedKeys(st);
+    if (ImGui::MenuItem("Constant")) setInterp(KeyInterp::Constant);
+    if (ImGui::MenuItem("Linear")) setInterp(KeyInterp::Linear);
+    if (ImGui::MenuItem("Hermite")) setInterp(KeyInterp::Hermite);
     ImGui::Separator();
-    if (ImGui::MenuItem("Auto tangents")) run(doc, setBlobKeyTangentModeCommand(doc.project(), actorId, ks, false), status);
-    if (ImGui::MenuItem("User tangents")) run(doc, setBlobKeyTangentModeCommand(doc.project(), actorId, ks, true), status);
+    if (ImGui::MenuItem("Auto tangents")) setTangentMode(false);
+    if (ImGui::MenuItem("User tangents")) setTangentMode(true);
     ImGui::Separator();
-    if (ImGui::MenuItem("Delete", "Del")) {
-      run(doc, deleteBlobKeysCommand(doc.project(), actorId, ks), status);
-      st.selection.clear();
-    }
+    if (ImGui::MenuItem("Delete", "Del")) deleteSelected();
     ImGui::EndPopup();
   }
 
@@ -510,19 +518,21 @@ void drawCurveEditorPanel(const LayoutRect& area, Document& doc, CurveEditorStat
   ImVec2 g1(st.graphMax.x, st.graphMax.y);
   dl->PushClipRect(g0, g1, true);
   dl->AddRectFilled(g0, g1, IM_COL32(30, 30, 34, 255));
-  // Playback range in a lighter tone.
+  // The range (playback range, or u in [0, 1]) in a lighter tone.
   {
-    float rx0 = curveToPixel(st, tl.frameStart, 0.0).x, rx1 = curveToPixel(st, tl.frameEnd, 0.0).x;
+    float rx0 = curveToPixel(st, ax.rangeStart, 0.0).x, rx1 = curveToPixel(st, ax.rangeEnd, 0.0).x;
     dl->AddRectFilled(ImVec2(std::max(g0.x, rx0), g0.y), ImVec2(std::min(g1.x, rx1), g1.y), IM_COL32(38, 38, 44, 255));
   }
-  // Grid with labels: frames along the bottom, values along the left.
+  // Grid with labels: x along the bottom, values along the left.
   char buf[32];
-  double fStep = std::max(1.0, niceStep((st.frame1 - st.frame0) / avail.x, 60.0));
+  const float lineH = ImGui::GetTextLineHeight();
+  double fStep = niceStep((st.frame1 - st.frame0) / avail.x, 60.0);
+  if (xPerTime != 1.0) fStep = std::max(1.0, fStep);  // whole frames
   for (double f = std::ceil(st.frame0 / fStep) * fStep; f <= st.frame1; f += fStep) {
     float x = curveToPixel(st, f, 0.0).x;
     dl->AddLine(ImVec2(x, g0.y), ImVec2(x, g1.y), IM_COL32(55, 55, 62, 255));
     std::snprintf(buf, sizeof buf, "%g", std::abs(f) < fStep * 1e-6 ? 0.0 : f);  // never "-0"
-    dl->AddText(ImVec2(x + 3.0f, g1.y - ImGui::GetTextLineHeight() - 2.0f), IM_COL32(150, 150, 160, 255), buf);
+    dl->AddText(ImVec2(x + 3.0f, g1.y - lineH - 2.0f), IM_COL32(150, 150, 160, 255), buf);
   }
   double vStep = niceStep((st.value1 - st.value0) / avail.y, 40.0);
   for (double v = std::ceil(st.value0 / vStep) * vStep; v <= st.value1; v += vStep) {
@@ -530,24 +540,37 @@ void drawCurveEditorPanel(const LayoutRect& area, Document& doc, CurveEditorStat
     bool zero = std::abs(v) < vStep * 1e-3;
     dl->AddLine(ImVec2(g0.x, y), ImVec2(g1.x, y), zero ? IM_COL32(85, 85, 95, 255) : IM_COL32(55, 55, 62, 255));
     std::snprintf(buf, sizeof buf, "%g", zero ? 0.0 : v);
-    dl->AddText(ImVec2(g0.x + 3.0f, y - ImGui::GetTextLineHeight()), IM_COL32(150, 150, 160, 255), buf);
+    dl->AddText(ImVec2(g0.x + 3.0f, y - lineH), IM_COL32(150, 150, 160, 255), buf);
+  }
+  // The axis' name, bottom right.
+  {
+    ImVec2 sz = ImGui::CalcTextSize(ax.label.c_str());
+    dl->AddText(ImVec2(g1.x - sz.x - 6.0f, g1.y - 2.0f * lineH - 4.0f), IM_COL32(170, 170, 185, 255), ax.label.c_str());
   }
   // Curves, sampled every 2 pixels.
   for (const auto& c : channels) {
     if (hiddenChannel(st, c)) continue;
+    ConstTrackPtr tp = src.track(c.addr);
     std::vector<ImVec2> pts;
     for (float x = g0.x; x <= g1.x + 2.0f; x += 2.0f) {
-      double frame = pixelToCurve(st, {x, 0.0f}).x;
+      double fx = pixelToCurve(st, {x, 0.0f}).x;
       ParamSample v;
-      if (!sampleParam(tree, c.addr, frame / fps, v)) break;
-      glm::vec2 p = curveToPixel(st, frame, channelOf(v, c.channel));
+      if (!sampleTrack(tp, fx / xPerTime, v)) break;
+      glm::vec2 p = curveToPixel(st, fx, channelOf(v, c.channel));
       pts.push_back(ImVec2(p.x, std::clamp(p.y, g0.y - 1000.0f, g1.y + 1000.0f)));
     }
-    if (pts.size() >= 2) dl->AddPolyline(pts.data(), int(pts.size()), c.color, 0, 1.5f);
+    if (pts.size() >= 2) dl->AddPolyline(pts.data(), int(pts.size()), channelColor(c.colorIndex), 0, 1.5f);
   }
-  // Current frame.
-  float cx = curveToPixel(st, nowFrame, 0.0).x;
-  dl->AddLine(ImVec2(cx, g0.y), ImVec2(cx, g1.y), IM_COL32(90, 160, 255, 255), 2.0f);
+  // Playheads: the current frame (or its progress u).
+  for (const CurvePlayhead& ph : ax.playheads) {
+    const ImU32 col = ph.secondary ? IM_COL32(240, 160, 70, 255) : IM_COL32(90, 160, 255, 255);
+    float cx = curveToPixel(st, ph.x, 0.0).x;
+    dl->AddLine(ImVec2(cx, g0.y), ImVec2(cx, g1.y), col, 2.0f);
+    if (!ph.label.empty()) {
+      std::snprintf(buf, sizeof buf, "%.2f", ph.x);
+      dl->AddText(ImVec2(cx + 4.0f, g0.y + 2.0f + (ph.secondary ? lineH : 0.0f)), col, (ph.label + " " + buf).c_str());
+    }
+  }
   // Keys and the handles of selected ones.
   for (const auto& k : keys) {
     bool sel = st.selection.count(k.ref) > 0;

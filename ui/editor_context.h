@@ -8,6 +8,7 @@
 #include "doc/asset_cache.h"
 #include "doc/document.h"
 #include "math/bounds.h"
+#include "morph/morph_runtime.h"
 #include "view/camera.h"
 #include "status_bar.h"
 #include "viewport_input.h"
@@ -26,6 +27,8 @@ struct EditorContext {
   double nowSec = 0.0; // monotonic clock in seconds (autosave timing)
   double dtSec = 0.0;  // wall-clock seconds since the previous frame (playback)
   std::string viewportNote;  // shown after the frame number in the viewport (e.g. the morph stage)
+  // The prepared morph the viewport shows (null: none); the morph panel shows its projection report.
+  std::shared_ptr<const MorphRuntime> morphRuntime;
   // Optional: world bounds of the selection at a timeline time as the
   // renderer sees them (F frames them). Without it, EditorUI skins the
   // selection on the CPU.

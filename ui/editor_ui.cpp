@@ -108,6 +108,7 @@ void EditorUI::draw(EditorContext& ctx) {
   st_.layout = computeLayout(display, st_.menuBarHeight, statusHeight, sizes);
 
   drawOutlinerPanel(st_.layout.outliner, doc(ctx), ctx.assets, st_.outliner, actions, st_.status);
+  st_.inspector.morph.runtime = ctx.morphRuntime;
   drawInspectorPanel(st_.layout.inspector, doc(ctx), ctx.assets, st_.inspector, st_.drag, st_.status);
   drawTimelinePanel(st_.layout.timeline, doc(ctx), st_.playback, keyFrames(ctx), st_.timeline, st_.drag, actions);
   drawStatusBar(st_.layout.statusBar, doc(ctx), ctx.stats, st_.status);
@@ -454,7 +455,7 @@ void EditorUI::replaceDocument(std::unique_ptr<Document> d, EditorContext& ctx) 
   st_.inspector = {};
   st_.timeline = {};
   st_.curveEditor.selection.clear();
-  st_.curveEditor.actorId.clear();
+  st_.curveEditor.sourceId.clear();
   st_.gizmo = {};
   st_.paint.stroke.reset();
   st_.paint.mesh.reset();

@@ -10,6 +10,7 @@
 #include <imgui_stdlib.h>
 
 #include "actor_commands.h"
+#include "actor_timing.h"
 #include "selection_info.h"
 #include "widget_rects.h"
 
@@ -73,7 +74,7 @@ void drawInspectorPanel(const LayoutRect& rect, Document& doc, AssetCache& asset
   }
   const Actor* found = doc.project().findActor(doc.selection.actorId);
   if (!found) {
-    if (doc.project().morph.enabled()) drawMorphSettings(doc, drag);
+    if (doc.project().morph.enabled()) drawMorphSettings(doc, assets, st.morph, drag, status);
     else ImGui::TextDisabled("Nothing selected.");
     ImGui::End();
     return;
@@ -137,26 +138,7 @@ void drawInspectorPanel(const LayoutRect& rect, Document& doc, AssetCache& asset
   }
 
   // Timing.
-  double offset = actor.timeOffsetSec;
-  bool changed = ImGui::DragScalar("Offset (s)", ImGuiDataType_Double, &offset, 0.01f, nullptr, nullptr, "%.3f");
-  noteWidget("inspector/offset");
-  drag.begin(doc);
-  if (changed)
-    doc.execute(setActorField(doc.project(), id, &Actor::timeOffsetSec, offset, "Set time offset of " + actor.name,
-                              id + "/offset"));
-  drag.end(doc);
-
-  double speed = actor.speed;
-  changed = ImGui::DragScalar("Speed", ImGuiDataType_Double, &speed, 0.01f, nullptr, nullptr, "%.3fx");
-  noteWidget("inspector/speed");
-  drag.begin(doc);
-  if (changed)
-    doc.execute(setActorField(doc.project(), id, &Actor::speed, speed, "Set speed of " + actor.name, id + "/speed"));
-  drag.end(doc);
-
-  bool loop = actor.loop;
-  if (ImGui::Checkbox("Loop", &loop))
-    doc.execute(setActorField(doc.project(), id, &Actor::loop, loop, "Set loop of " + actor.name));
+  drawActorTiming(doc, actor, drag, "inspector");
   ImGui::SameLine();
   bool visible = actor.visible;
   if (ImGui::Checkbox("Visible", &visible))
@@ -168,7 +150,7 @@ void drawInspectorPanel(const LayoutRect& rect, Document& doc, AssetCache& asset
   ImGui::TextUnformatted("Transform");
   Transform tr = actor.transform;
   glm::vec3 t = tr.translation;
-  changed = ImGui::DragFloat3("Translate", &t.x, 0.01f, 0.0f, 0.0f, "%.3f");
+  bool changed = ImGui::DragFloat3("Translate", &t.x, 0.01f, 0.0f, 0.0f, "%.3f");
   noteWidget("inspector/translate");
   drag.begin(doc);
   if (changed) {

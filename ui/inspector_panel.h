@@ -13,6 +13,7 @@
 #include "doc/document.h"
 #include "drag_merge.h"
 #include "layout.h"
+#include "morph_panel.h"
 
 namespace animorph {
 
@@ -26,6 +27,7 @@ struct InspectorState {
   std::string nameBuffer;
   std::string nameActorId;
   BlobInspectorState blob;  // a selected BlobTree node
+  MorphPanelState morph;    // the morph's settings (nothing selected)
 };
 
 // Refused edits (BlobTree nodes) report to status.

@@ -3,7 +3,12 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cmath>
 
+#include "actor_timing.h"
+#include "blob_inspector.h"
+#include "doc/morph_tracks.h"
+#include "morph_sections.h"
 #include "widget_rects.h"
 
 namespace animorph {
@@ -20,7 +25,8 @@ std::unique_ptr<Command> setMorphField(const Project& p, T MorphSetup::*field, T
 
 }  // namespace
 
-void drawMorphSettings(Document& doc, DragMerge& drag) {
+void drawMorphSettings(Document& doc, AssetCache& assets, MorphPanelState& st, DragMerge& drag,
+                       StatusMessage& status) {
   const MorphSetup m = doc.project().morph;  // copy: commands below change the project
   ImGui::TextUnformatted("Morph");
   ImGui::Separator();
@@ -86,6 +92,110 @@ void drawMorphSettings(Document& doc, DragMerge& drag) {
   }
   if (fc && !(fade == m.crossFade))
     doc.execute(setMorphField(doc.project(), &MorphSetup::crossFade, fade, "Set morph cross-fade", "morph/crossfade"));
+  drag.end(doc);
+  ImGui::PopItemWidth();
+
+  drawMorphCurveSettings(doc, drag, status);
+  if (ImGui::CollapsingHeader("Clips")) {
+    noteWidget("morph/clips");
+    ImGui::PushItemWidth(-90.0f);
+    for (const std::string* id : {&m.sourceActorId, &m.targetActorId}) {
+      const Actor* a = doc.project().findActor(*id);
+      if (!a) continue;
+      const bool source = id == &m.sourceActorId;
+      ImGui::TextDisabled("%s: %s", source ? "Source" : "Target", a->name.c_str());
+      drawActorTiming(doc, Actor(*a), drag, source ? "morph/source" : "morph/target");
+    }
+    ImGui::PopItemWidth();
+  } else {
+    noteWidget("morph/clips");
+  }
+  drawMorphProjection(doc, st, drag);
+  drawMorphSegments(doc, assets, st, drag, status);
+}
+
+namespace {
+
+void run(Document& doc, Result<std::unique_ptr<Command>> cmd, StatusMessage& status) {
+  if (cmd) doc.execute(std::move(*cmd));
+  else status = {cmd.error(), true};
+}
+
+// True when track has two or more keys and one of them at time t.
+bool keyedAt(const FloatTrack& track, double t) {
+  if (track.keys().size() < 2) return false;
+  for (const auto& k : track.keys())
+    if (std::abs(k.timeSec - t) < 1e-6) return true;
+  return false;
+}
+
+}  // namespace
+
+void drawMorphCurveSettings(Document& doc, DragMerge& drag, StatusMessage& status) {
+  if (!ImGui::CollapsingHeader("Curves", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  const MorphSetup m = doc.project().morph;
+  // Preset rows: one command sets the whole track.
+  auto presets = [&](const char* label, const char* key, FloatTrack MorphSetup::*field) {
+    ImGui::AlignTextToFramePadding();
+    ImGui::TextUnformatted(label);
+    // Short captions so the row fits the inspector; the tooltip names the shape.
+    static const char* kCaptions[4] = {"linear", "smooth", "in", "out"};
+    static const char* kShapes[4] = {"linear: u", "smoothstep: 3u^2 - 2u^3", "ease-in: u^2", "ease-out: 1 - (1 - u)^2"};
+    for (EasingPreset p : {EasingPreset::Linear, EasingPreset::Smoothstep, EasingPreset::EaseIn, EasingPreset::EaseOut}) {
+      ImGui::SameLine();
+      const std::string name = easingPresetName(p);
+      ImGui::PushID(key);
+      const bool clicked = ImGui::SmallButton(kCaptions[int(p)]);
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", kShapes[int(p)]);
+      if (clicked) {
+        FloatTrack t = easingPresetTrack(p);
+        run(doc,
+            editMorphTracks(doc.project(), std::string("Set ") + key + " to " + name,
+                            [&](MorphSetup& next) -> Status {
+                              next.*field = t;
+                              return Status::success();
+                            }),
+            status);
+      }
+      ImGui::PopID();
+      noteWidget(std::string("morph/") + key + "/" + name);
+    }
+  };
+  presets("Easing", "easing", &MorphSetup::easing);  // alpha over a transition's progress (A->B, C->D)
+  presets("Blend ", "blend", &MorphSetup::blend);    // w over the morph's progress (B->C)
+  ImGui::TextDisabled("Edit them as curves: Ctrl+G.");
+
+  // Solid noise: amplitude keyed over the morph's progress; frequency constant.
+  const double u = morphProgressAt(m, doc.project().timeline.currentFrame);
+  ImGui::PushItemWidth(-110.0f);
+  float amp = m.noiseAmplitude.evaluate(u);
+  const bool animated = m.noiseAmplitude.keys().size() >= 2;
+  bool key = keyButton("##noise_key", keyedAt(m.noiseAmplitude, u), animated);
+  noteWidget("morph/noise/key");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Key the noise amplitude at the current morph progress u = %.2f", u);
+  ImGui::SameLine();
+  bool changed = ImGui::DragFloat("Noise (m)", &amp, 0.0005f, 0.0f, 1.0f, "%.4f");
+  noteWidget("morph/noise/amplitude");
+  drag.begin(doc);
+  if (changed || key) {
+    const float v = std::max(0.0f, amp);
+    run(doc,
+        editMorphTracks(
+            doc.project(), key ? "Key noise amplitude" : "Set noise amplitude",
+            [&](MorphSetup& next) -> Status {
+              setTrackValue(next.noiseAmplitude, u, v, key);
+              return Status::success();
+            },
+            key ? std::string() : std::string("morph/noise")),
+        status);
+  }
+  drag.end(doc);
+  float freq = m.noiseFrequency;
+  changed = ImGui::DragFloat("Frequency (1/m)", &freq, 0.05f, 0.01f, 1000.0f, "%.2f");
+  noteWidget("morph/noise/frequency");
+  drag.begin(doc);
+  if (changed && freq > 0.0f)
+    doc.execute(setMorphField(doc.project(), &MorphSetup::noiseFrequency, freq, "Set noise frequency", "morph/noise_freq"));
   drag.end(doc);
   ImGui::PopItemWidth();
 }

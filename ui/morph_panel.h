@@ -1,15 +1,33 @@
 #pragma once
 // The morph's settings in the inspector (shown when no actor is selected in a
 // project with a morph): the stage markers A..D, the implicit method and its
-// parameters, the weight-map shift. Every edit is a command; a drag is one step.
+// parameters, the weight-map shift, easing and blend presets, solid noise, the
+// source and target clips' timing, the projection settings and report, and
+// the keyed stand-in segment tracks (user-controlled morphing; see
+// morph_sections.h). Every edit is a command; a drag is one step.
+#include <memory>
+
 #include <glm/glm.hpp>
 
+#include "doc/asset_cache.h"
 #include "doc/document.h"
 #include "drag_merge.h"
+#include "morph/morph_runtime.h"
+#include "status_bar.h"
 
 namespace animorph {
 
-void drawMorphSettings(Document& doc, DragMerge& drag);
+struct MorphPanelState {
+  int segmentSlot = 0;  // whose stand-in segment is selected: 0 source, 1 target
+  int segment = -1;     // the selected segment, -1: none
+  // The prepared morph the viewport shows (the app sets it; null: none yet).
+  // Its projection statistics and notes are the projection report.
+  std::shared_ptr<const MorphRuntime> runtime;
+};
+
+// Refused edits report to status.
+void drawMorphSettings(Document& doc, AssetCache& assets, MorphPanelState& st, DragMerge& drag,
+                       StatusMessage& status);
 
 // Draws the markers A..D of the project's morph on a timeline ruler spanning
 // [x0, x1] pixels for frames [viewStart, viewEnd], from y0 to y1.

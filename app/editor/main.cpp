@@ -243,13 +243,15 @@ int main(int argc, char** argv) {
       morphPreview->clearGpuFailure();
       blobPreviews->clearGpuFailures();
     }
+    // Not while painting: every stroke is a new revision and would bind the vertices again.
+    if (!out.weightPaintMode) ectx.morphRuntime = morphCache.get(doc.project(), doc.baseDir(), assets, &doc, doc.revision());
     bool morphStageShown = false;
     float morphOpacity = 0.0f;  // below 1: the cross-fade (dithered, complementary to the mesh)
     std::string morphSourceId;
     if (out.weightPaintMode) {  // the painted actor as itself, posed, without the morph
       isolateForPainting(frame, doc.project().morph, out.weightOverlay.actorId);
       ectx.viewportNote.clear();
-    } else if (auto rt = morphCache.get(doc.project(), doc.baseDir(), assets, &doc, doc.revision())) {
+    } else if (auto rt = ectx.morphRuntime) {
       MorphSceneInfo info = applyMorph(frame, rt, timeSec, morphSettings, /*implicitStage=*/false);
       ectx.viewportNote = "morph: " + describeMorphStage(info);
       morphOpacity = float(info.implicitOpacity);

@@ -77,21 +77,23 @@ void Track<T>::keyDerivatives(size_t i, T& d1, T& d2) const {
       d2 = k.d2;
       return;
     }
-    size_t n = keys_.size();
-    d1 = d2 = T(0.0f);
-    if (n < 2) return;
-    if (i == 0) {
-      d1 = (keys_[1].value - k.value) / float(keys_[1].timeSec - k.timeSec);
-    } else if (i + 1 == n) {
-      d1 = (k.value - keys_[i - 1].value) / float(k.timeSec - keys_[i - 1].timeSec);
-    } else {
-      const auto& a = keys_[i - 1];
-      const auto& b = keys_[i + 1];
-      float h0 = float(k.timeSec - a.timeSec), h1 = float(b.timeSec - k.timeSec);
-      d1 = (b.value - a.value) / (h0 + h1);
-      d2 = ((b.value - k.value) / h1 - (k.value - a.value) / h0) * (2.0f / (h0 + h1));
-    }
+    catmullRomDerivatives(keys_, i, d1, d2);
   }
+}
+
+FloatTrack hermiteRampTrack(float slope0, float slope1) {
+  FloatTrack t;
+  t.clearKeys();
+  for (int k = 0; k < 2; ++k) {
+    TrackKey<float> key;
+    key.timeSec = k;
+    key.value = float(k);
+    key.interp = KeyInterp::Hermite;
+    key.userDerivatives = true;
+    key.d1 = k == 0 ? slope0 : slope1;
+    t.setKey(key);
+  }
+  return t;
 }
 
 template <class T>

@@ -84,6 +84,31 @@ extern template class Track<float>;
 extern template class Track<glm::vec3>;
 extern template class Track<glm::quat>;
 
+// Automatic (Catmull-Rom finite difference) derivatives of key i of sorted
+// float / vec3 keys, as Track uses them for keys without user derivatives.
+template <class T>
+void catmullRomDerivatives(const std::vector<TrackKey<T>>& keys, size_t i, T& d1, T& d2) {
+  d1 = d2 = T(0.0f);
+  size_t n = keys.size();
+  if (n < 2) return;
+  const auto& k = keys[i];
+  if (i == 0) {
+    d1 = (keys[1].value - k.value) / float(keys[1].timeSec - k.timeSec);
+  } else if (i + 1 == n) {
+    d1 = (k.value - keys[i - 1].value) / float(k.timeSec - keys[i - 1].timeSec);
+  } else {
+    const auto& a = keys[i - 1];
+    const auto& b = keys[i + 1];
+    float h0 = float(k.timeSec - a.timeSec), h1 = float(b.timeSec - k.timeSec);
+    d1 = (b.value - a.value) / (h0 + h1);
+    d2 = ((b.value - k.value) / h1 - (k.value - a.value) / h0) * (2.0f / (h0 + h1));
+  }
+}
+
+// A cubic Hermite ramp from 0 at t = 0 to 1 at t = 1 with end slopes slope0
+// and slope1 (0, 0: smoothstep; 0, 2: u^2; 2, 0: 1 - (1 - u)^2).
+FloatTrack hermiteRampTrack(float slope0, float slope1);
+
 // JSON: a constant track is written as its bare value (number, [x,y,z], or
 // quaternion [x,y,z,w]); otherwise {"degree": n, "keys": [{"t", "v", "interp",
 // "d1", "d2"}]}. A driver is not serialised: its keys (if any) are written.

@@ -6,13 +6,10 @@
 #include <set>
 
 #include "blobtree/validate.h"
-#include "math/euler.h"
 
 namespace animorph {
 
 namespace {
-
-constexpr double kSameTimeSec = 1e-6;  // keys closer than this are at "the same time"
 
 template <class N>
 N* parentOf(N& n, int id, int* index) {
@@ -61,26 +58,6 @@ void renumber(BlobNode& n, int& nextId) {
   for (auto& c : n.children) renumber(c, nextId);
 }
 
-// Automatic (Catmull-Rom) derivatives of key i, as track.cpp computes them.
-template <class T>
-void autoDerivatives(const std::vector<TrackKey<T>>& keys, size_t i, T& d1, T& d2) {
-  d1 = d2 = T(0.0f);
-  size_t n = keys.size();
-  if (n < 2) return;
-  const auto& k = keys[i];
-  if (i == 0) {
-    d1 = (keys[1].value - k.value) / float(keys[1].timeSec - k.timeSec);
-  } else if (i + 1 == n) {
-    d1 = (k.value - keys[i - 1].value) / float(k.timeSec - keys[i - 1].timeSec);
-  } else {
-    const auto& a = keys[i - 1];
-    const auto& b = keys[i + 1];
-    float h0 = float(k.timeSec - a.timeSec), h1 = float(b.timeSec - k.timeSec);
-    d1 = (b.value - a.value) / (h0 + h1);
-    d2 = ((b.value - k.value) / h1 - (k.value - a.value) / h0) * (2.0f / (h0 + h1));
-  }
-}
-
 float clampToRule(float v, ParamRule rule) {
   switch (rule) {
     case ParamRule::NonNegative: return std::max(0.0f, v);
@@ -90,47 +67,10 @@ float clampToRule(float v, ParamRule rule) {
   }
 }
 
-// Adds (or replaces at the same time, keeping its interpolation) a key.
-template <class T>
-void putKey(Track<T>& t, double timeSec, const T& value) {
-  auto& keys = t.keys();
-  for (auto& k : keys) {
-    if (std::abs(k.timeSec - timeSec) < kSameTimeSec) {
-      k.value = value;
-      return;
-    }
-  }
-  KeyInterp interp = KeyInterp::Hermite;
-  // A new key inherits the interpolation of the segment it splits.
-  for (const auto& k : keys)
-    if (k.timeSec < timeSec) interp = k.interp;
-  t.setKey(timeSec, value, interp);
-}
-
-template <class T>
-void setTrackValue(Track<T>& t, double timeSec, const T& value, bool key) {
-  if (t.keys().empty()) {
-    t.setKey(key ? timeSec : 0.0, value);
-    return;
-  }
-  if (t.keys().size() == 1 && !key) {
-    t.keys()[0].value = value;  // no animation: the value holds at all times
-    return;
-  }
-  putKey(t, timeSec, value);
-}
-
 template <class T>
 Track<T>* asTrack(const TrackPtr& p) {
   if (auto* t = std::get_if<Track<T>*>(&p)) return *t;
   return nullptr;
-}
-
-template <class F>
-auto visitTrack(const TrackPtr& p, F&& f) {
-  if (auto* t = std::get_if<FloatTrack*>(&p)) return f(**t);
-  if (auto* t = std::get_if<Vec3Track*>(&p)) return f(**t);
-  return f(*std::get<QuatTrack*>(p));
 }
 
 Error noParam(const ParamAddress& a) {
@@ -156,54 +96,26 @@ bool paramKindAt(const BlobTree& tree, const ParamAddress& a, ParamKind& kind) {
   return true;
 }
 
-float channelOf(const ParamSample& v, int channel) {
-  if (auto* f = std::get_if<float>(&v)) return *f;
-  if (auto* p = std::get_if<glm::vec3>(&v)) return (*p)[std::clamp(channel, 0, 2)];
-  return eulerDegreesOf(std::get<glm::quat>(v))[std::clamp(channel, 0, 2)];
-}
-
-ParamSample withChannel(const ParamSample& v, int channel, float x) {
-  if (std::holds_alternative<float>(v)) return x;
-  int c = std::clamp(channel, 0, 2);
-  if (auto* p = std::get_if<glm::vec3>(&v)) {
-    glm::vec3 r = *p;
-    r[c] = x;
-    return r;
-  }
-  glm::vec3 e = eulerDegreesOf(std::get<glm::quat>(v));
-  e[c] = x;
-  return quatFromEulerDegrees(e);
-}
-
-int keyCount(const BlobTree& tree, const ParamAddress& a) {
-  ConstTrackPtr t = findTrack(tree, a);
-  if (auto* f = std::get_if<const FloatTrack*>(&t)) return int((*f)->keys().size());
-  if (auto* v = std::get_if<const Vec3Track*>(&t)) return int((*v)->keys().size());
-  if (auto* q = std::get_if<const QuatTrack*>(&t)) return int((*q)->keys().size());
-  return 0;
-}
+int keyCount(const BlobTree& tree, const ParamAddress& a) { return keyCount(findTrack(tree, a)); }
 
 bool keyAt(const BlobTree& tree, const KeyRef& k, double& timeSec, ParamSample& value) {
-  ConstTrackPtr t = findTrack(tree, k.param);
-  auto read = [&](const auto* track) {
-    if (!track || k.key < 0 || k.key >= int(track->keys().size())) return false;
-    timeSec = track->keys()[size_t(k.key)].timeSec;
-    value = track->keys()[size_t(k.key)].value;
-    return true;
-  };
-  if (auto* f = std::get_if<const FloatTrack*>(&t)) return read(*f);
-  if (auto* v = std::get_if<const Vec3Track*>(&t)) return read(*v);
-  if (auto* q = std::get_if<const QuatTrack*>(&t)) return read(*q);
-  return false;
+  return keyAt(findTrack(tree, k.param), k.key, timeSec, value);
 }
 
 bool sampleParam(const BlobTree& tree, const ParamAddress& a, double timeSec, ParamSample& value) {
-  ConstTrackPtr t = findTrack(tree, a);
-  if (auto* f = std::get_if<const FloatTrack*>(&t)) value = (*f)->evaluate(timeSec);
-  else if (auto* v = std::get_if<const Vec3Track*>(&t)) value = (*v)->evaluate(timeSec);
-  else if (auto* q = std::get_if<const QuatTrack*>(&t)) value = (*q)->evaluate(timeSec);
-  else return false;
-  return true;
+  return sampleTrack(findTrack(tree, a), timeSec, value);
+}
+
+TrackSet blobTrackSet(BlobTree& tree) {
+  TrackSet set;
+  set.find = [&tree](const ParamAddress& a) { return findTrack(tree, a); };
+  set.name = [](const ParamAddress& a) { return "node " + std::to_string(a.node); };
+  set.clampValue = [&tree](const ParamAddress& a, float v) {
+    const BlobNode* n = tree.find(a.node);
+    if (!n || a.param < 0 || a.param >= int(nodeTypeInfo(n->type).params.size())) return v;
+    return clampToRule(v, nodeTypeInfo(n->type).params[size_t(a.param)].rule);
+  };
+  return set;
 }
 
 bool isAnimated(const BlobTree& tree, const ParamAddress& a) { return keyCount(tree, a) >= 2; }
@@ -405,172 +317,32 @@ Status setParamValue(BlobTree& tree, const ParamAddress& a, double timeSec, cons
 }
 
 Status deleteKeys(BlobTree& tree, const std::vector<KeyRef>& keys) {
-  std::map<ParamAddress, std::set<int>> byTrack;
-  for (const KeyRef& k : keys) byTrack[k.param].insert(k.key);
-  for (const auto& [addr, idx] : byTrack) {
-    TrackPtr t = findTrack(tree, addr);
-    if (std::holds_alternative<std::monostate>(t)) return noParam(addr);
-    Status st = visitTrack(t, [&](auto& track) -> Status {
-      auto& ks = track.keys();
-      for (int i : idx)
-        if (i < 0 || i >= int(ks.size()))
-          return Error{"node " + std::to_string(addr.node) + ": no key " + std::to_string(i)};
-      auto first = ks.front();
-      for (auto it = idx.rbegin(); it != idx.rend(); ++it) ks.erase(ks.begin() + *it);
-      if (ks.empty()) {
-        first.timeSec = 0.0;
-        first.userDerivatives = false;
-        ks.push_back(first);
-      }
-      return Status::success();
-    });
-    if (!st) return st;
-  }
-  return Status::success();
+  return deleteKeys(blobTrackSet(tree), keys);
 }
 
 Result<std::vector<KeyChannelRef>> moveKeys(BlobTree& tree, const std::vector<KeyChannelRef>& channels, double dtSec,
                                             float dValue) {
-  // Per track: which keys move, and which of their channels change.
-  std::map<ParamAddress, std::map<int, std::set<int>>> byTrack;
-  for (const auto& c : channels) byTrack[c.key.param][c.key.key].insert(c.channel);
-  std::map<KeyRef, KeyRef> remap;
-  for (const auto& [addr, moving] : byTrack) {
-    TrackPtr t = findTrack(tree, addr);
-    if (std::holds_alternative<std::monostate>(t)) return noParam(addr);
-    BlobNode* node = tree.find(addr.node);
-    const ParamSpec& spec = nodeTypeInfo(node->type).params[size_t(addr.param)];
-    Status st = visitTrack(t, [&](auto& track) -> Status {
-      using T = std::decay_t<decltype(track.keys()[0].value)>;
-      auto& ks = track.keys();
-      for (const auto& [i, chs] : moving)
-        if (i < 0 || i >= int(ks.size()))
-          return Error{"node " + std::to_string(addr.node) + ": no key " + std::to_string(i)};
-      struct Tagged {
-        TrackKey<T> key;
-        int oldIndex;
-        bool moved;
-      };
-      std::vector<Tagged> all;
-      for (size_t i = 0; i < ks.size(); ++i) {
-        Tagged tg{ks[i], int(i), moving.count(int(i)) > 0};
-        if (tg.moved) {
-          tg.key.timeSec = std::max(0.0, tg.key.timeSec + dtSec);
-          ParamSample v = tg.key.value;
-          for (int c : moving.at(int(i))) v = withChannel(v, c, channelOf(v, c) + dValue);
-          T nv = std::get<T>(v);
-          if constexpr (std::is_same_v<T, float>) nv = clampToRule(nv, spec.rule);
-          tg.key.value = nv;
-        }
-        all.push_back(tg);
-      }
-      // Moved keys replace unmoved ones at the same time.
-      std::vector<Tagged> kept;
-      for (const auto& a : all) {
-        bool covered = false;
-        if (!a.moved)
-          for (const auto& b : all)
-            if (b.moved && std::abs(b.key.timeSec - a.key.timeSec) < kSameTimeSec) covered = true;
-        if (!covered) kept.push_back(a);
-      }
-      std::stable_sort(kept.begin(), kept.end(),
-                       [](const Tagged& x, const Tagged& y) { return x.key.timeSec < y.key.timeSec; });
-      // Two moved keys on one time: the later in the list wins.
-      std::vector<Tagged> uniq;
-      for (const auto& k : kept) {
-        if (!uniq.empty() && std::abs(uniq.back().key.timeSec - k.key.timeSec) < kSameTimeSec) uniq.back() = k;
-        else uniq.push_back(k);
-      }
-      ks.clear();
-      for (size_t i = 0; i < uniq.size(); ++i) {
-        ks.push_back(uniq[i].key);
-        if (uniq[i].moved) remap[KeyRef{addr, uniq[i].oldIndex}] = KeyRef{addr, int(i)};
-      }
-      return Status::success();
-    });
-    if (!st) return Error{st.error()};
-  }
-  std::vector<KeyChannelRef> out;
-  for (const auto& c : channels) {
-    auto it = remap.find(c.key);
-    if (it != remap.end()) out.push_back({it->second, c.channel});
-  }
-  return out;
+  return moveKeys(blobTrackSet(tree), channels, dtSec, dValue);
 }
 
 Result<KeyChannelRef> setKeyTimeValue(BlobTree& tree, const KeyChannelRef& k, double timeSec, float value) {
-  double t0 = 0.0;
-  ParamSample v;
-  if (!keyAt(tree, k.key, t0, v)) return Error{"node " + std::to_string(k.key.param.node) + ": no such key"};
-  if (!std::isfinite(timeSec) || !std::isfinite(value)) return Error{"key time and value must be finite"};
-  auto moved = moveKeys(tree, {k}, std::max(0.0, timeSec) - t0, value - channelOf(v, k.channel));
-  if (!moved) return Error{moved.error()};
-  if (moved->empty()) return Error{"the key vanished"};
-  return moved->front();
+  return setKeyTimeValue(blobTrackSet(tree), k, timeSec, value);
 }
 
 Status setKeyInterp(BlobTree& tree, const std::vector<KeyRef>& keys, KeyInterp interp) {
-  for (const KeyRef& k : keys) {
-    TrackPtr t = findTrack(tree, k.param);
-    if (std::holds_alternative<std::monostate>(t)) return noParam(k.param);
-    Status st = visitTrack(t, [&](auto& track) -> Status {
-      if (k.key < 0 || k.key >= int(track.keys().size())) return Error{"no key " + std::to_string(k.key)};
-      track.keys()[size_t(k.key)].interp = interp;
-      return Status::success();
-    });
-    if (!st) return st;
-  }
-  return Status::success();
+  return setKeyInterp(blobTrackSet(tree), keys, interp);
 }
 
 Status setKeyTangentMode(BlobTree& tree, const std::vector<KeyRef>& keys, bool user) {
-  for (const KeyRef& k : keys) {
-    TrackPtr t = findTrack(tree, k.param);
-    if (std::holds_alternative<std::monostate>(t)) return noParam(k.param);
-    if (std::holds_alternative<QuatTrack*>(t)) continue;  // rotations slerp: no tangents
-    Status st = visitTrack(t, [&](auto& track) -> Status {
-      using T = std::decay_t<decltype(track.keys()[0].value)>;
-      if constexpr (std::is_same_v<T, glm::quat>) {
-        return Status::success();
-      } else {
-        auto& ks = track.keys();
-        if (k.key < 0 || k.key >= int(ks.size())) return Error{"no key " + std::to_string(k.key)};
-        auto& key = ks[size_t(k.key)];
-        if (user && !key.userDerivatives) autoDerivatives(ks, size_t(k.key), key.d1, key.d2);
-        key.userDerivatives = user;
-        return Status::success();
-      }
-    });
-    if (!st) return st;
-  }
-  return Status::success();
+  return setKeyTangentMode(blobTrackSet(tree), keys, user);
 }
 
 Status setKeyTangent(BlobTree& tree, const KeyChannelRef& k, float slopePerSec) {
-  TrackPtr t = findTrack(tree, k.key.param);
-  if (std::holds_alternative<std::monostate>(t)) return noParam(k.key.param);
-  if (std::holds_alternative<QuatTrack*>(t)) return Error{"rotation keys have no tangents (they slerp)"};
-  if (!std::isfinite(slopePerSec)) return Error{"tangent slope must be finite"};
-  if (Status s = setKeyTangentMode(tree, {k.key}, true); !s) return s;
-  if (auto* f = asTrack<float>(t)) f->keys()[size_t(k.key.key)].d1 = slopePerSec;
-  else asTrack<glm::vec3>(t)->keys()[size_t(k.key.key)].d1[std::clamp(k.channel, 0, 2)] = slopePerSec;
-  return Status::success();
+  return setKeyTangent(blobTrackSet(tree), k, slopePerSec);
 }
 
 float keySlope(const BlobTree& tree, const KeyChannelRef& k) {
-  ConstTrackPtr t = findTrack(tree, k.key.param);
-  auto slope = [&](const auto* track) -> float {
-    using T = std::decay_t<decltype(track->keys()[0].value)>;
-    const auto& ks = track->keys();
-    if (k.key.key < 0 || k.key.key >= int(ks.size())) return 0.0f;
-    T d1 = ks[size_t(k.key.key)].d1, d2{};
-    if (!ks[size_t(k.key.key)].userDerivatives) autoDerivatives(ks, size_t(k.key.key), d1, d2);
-    if constexpr (std::is_same_v<T, float>) return d1;
-    else return d1[std::clamp(k.channel, 0, 2)];
-  };
-  if (auto* f = std::get_if<const FloatTrack*>(&t)) return slope(*f);
-  if (auto* v = std::get_if<const Vec3Track*>(&t)) return slope(*v);
-  return 0.0f;
+  return keySlope(findTrack(tree, k.key.param), k.key.key, k.channel);
 }
 
 namespace {
@@ -601,7 +373,7 @@ std::vector<double> animatedKeyTimes(const BlobTree& tree, int id) {
     keyTimesOf(*n, false, out);
   }
   std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end(), [](double a, double b) { return std::abs(a - b) < kSameTimeSec; }),
+  out.erase(std::unique(out.begin(), out.end(), [](double a, double b) { return std::abs(a - b) < kSameKeyTimeSec; }),
             out.end());
   return out;
 }

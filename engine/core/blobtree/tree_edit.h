@@ -9,44 +9,11 @@
 #include <variant>
 #include <vector>
 
+#include "anim/key_edit.h"
 #include "blobtree/blob_tree.h"
 #include "util/result.h"
 
 namespace animorph {
-
-// One parameter of one node: index into nodeTypeInfo(type).params; for a
-// control-point list (Vec3List) the point index, else -1.
-struct ParamAddress {
-  int node = -1;
-  int param = -1;
-  int point = -1;
-  bool operator==(const ParamAddress&) const = default;
-  auto operator<=>(const ParamAddress&) const = default;
-};
-
-// One key of one parameter's track.
-struct KeyRef {
-  ParamAddress param;
-  int key = -1;
-  bool operator==(const KeyRef&) const = default;
-  auto operator<=>(const KeyRef&) const = default;
-};
-
-// One scalar channel of one key: channel 0 for floats, 0..2 = x, y, z for
-// vectors, 0..2 = Euler X, Y, Z degrees for rotations.
-struct KeyChannelRef {
-  KeyRef key;
-  int channel = 0;
-  bool operator==(const KeyChannelRef&) const = default;
-  auto operator<=>(const KeyChannelRef&) const = default;
-};
-
-// A parameter value at one time.
-using ParamSample = std::variant<float, glm::vec3, glm::quat>;
-
-// Pointer to a track inside a tree (monostate: no such parameter).
-using TrackPtr = std::variant<std::monostate, FloatTrack*, Vec3Track*, QuatTrack*>;
-using ConstTrackPtr = std::variant<std::monostate, const FloatTrack*, const Vec3Track*, const QuatTrack*>;
 
 // The track at address (a Vec3List point's track when point >= 0), or monostate.
 TrackPtr findTrack(BlobTree& tree, const ParamAddress& a);
@@ -56,10 +23,10 @@ ConstTrackPtr findTrack(const BlobTree& tree, const ParamAddress& a);
 int channelCount(ParamKind kind);
 // Kind of the parameter at address (Vec3List points read as Vec3); false when absent.
 bool paramKindAt(const BlobTree& tree, const ParamAddress& a, ParamKind& kind);
-// Scalar channel of a value (quaternions as Euler degrees).
-float channelOf(const ParamSample& v, int channel);
-// v with one channel replaced (quaternions through Euler degrees).
-ParamSample withChannel(const ParamSample& v, int channel, float x);
+// The tree's parameters as a TrackSet for the key edits of anim/key_edit.h
+// (errors name the node, float values keep their parameter's rule). The set
+// refers to tree: it must outlive the set's use.
+TrackSet blobTrackSet(BlobTree& tree);
 
 // Number of keys of the track at address (0 when absent).
 int keyCount(const BlobTree& tree, const ParamAddress& a);

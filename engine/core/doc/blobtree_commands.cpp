@@ -128,7 +128,7 @@ Result<std::unique_ptr<Command>> setBlobParamCommand(const Project& p, const std
 Result<std::unique_ptr<Command>> deleteBlobKeysCommand(const Project& p, const std::string& actorId,
                                                        const std::vector<KeyRef>& keys) {
   if (keys.empty()) return Error{"no keys selected"};
-  return editBlobTree(p, actorId, keys.size() == 1 ? "Delete key" : "Delete " + std::to_string(keys.size()) + " keys",
+  return editBlobTree(p, actorId, keysLabel("Delete", keys.size()),
                       [&](BlobTree& t) { return deleteKeys(t, keys); });
 }
 
@@ -145,15 +145,14 @@ Result<std::unique_ptr<Command>> moveBlobKeysCommand(const Project& p, const std
   if (!r) return Error{"actor '" + actorId + "': " + r.error()};
   if (moved) *moved = *r;
   return setBlobTreeCommand(p, actorId, std::move(copy),
-                            channels.size() == 1 ? "Move key" : "Move " + std::to_string(channels.size()) + " keys",
+                            keysLabel("Move", channels.size()),
                             std::move(mergeKey));
 }
 
 Result<std::unique_ptr<Command>> setBlobKeyInterpCommand(const Project& p, const std::string& actorId,
                                                          const std::vector<KeyRef>& keys, KeyInterp interp) {
   if (keys.empty()) return Error{"no keys selected"};
-  const char* name = interp == KeyInterp::Constant ? "constant" : interp == KeyInterp::Linear ? "linear" : "Hermite";
-  return editBlobTree(p, actorId, std::string("Set key interpolation to ") + name,
+  return editBlobTree(p, actorId, interpLabel(interp),
                       [&](BlobTree& t) { return setKeyInterp(t, keys, interp); });
 }
 

@@ -12,21 +12,7 @@
 
 namespace animorph {
 
-FloatTrack smoothstepTrack() {
-  FloatTrack t;
-  t.clearKeys();
-  for (int k = 0; k < 2; ++k) {
-    TrackKey<float> key;
-    key.timeSec = k;
-    key.value = float(k);
-    key.interp = KeyInterp::Hermite;
-    key.userDerivatives = true;
-    key.d1 = 0.0f;
-    key.d2 = 0.0f;
-    t.setKey(key);
-  }
-  return t;
-}
+FloatTrack smoothstepTrack() { return hermiteRampTrack(0.0f, 0.0f); }
 
 StandinBinding bindToStandin(const Character& c, const Standin& s, const AnimationClip* clip, float clipTimeSec,
                              const ProjectionSettings& settings) {

@@ -11,9 +11,12 @@ namespace animorph::test {
 
 struct EditorFixture {
   TempDir dir;
-  EditorHarness h{dir.file("config/prefs.json")};
+  EditorHarness h;
 
-  EditorFixture() { h.ui->state().prefs.autosaveIntervalSec = 0.0; }  // tests opt in
+  // display: the window size in pixels.
+  explicit EditorFixture(glm::vec2 display = {1280.0f, 800.0f}) : h(dir.file("config/prefs.json"), display) {
+    h.ui->state().prefs.autosaveIntervalSec = 0.0;  // tests opt in
+  }
 
   // Writes hero.gltf into the temp dir (registered for the tests' asset
   // cache) and opens a document "scene.animorph" in that dir with one actor
