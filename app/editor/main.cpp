@@ -23,6 +23,7 @@
 #include "imgui_vulkan.h"
 #include "mesh_cache.h"
 #include "scene/morph_preview_source.h"
+#include "scene/morph_pick.h"
 #include "scene/morph_scene.h"
 #include "scene/blob_pick.h"
 #include "scene/pick.h"
@@ -281,6 +282,11 @@ int main(int argc, char** argv) {
         if (!r) continue;
         auto bh = pickBlobSurface(b.actorId, b.model, r->mesh, ray);
         if (bh && (!hit || bh->distance < hit->distance)) hit = bh;
+      }
+      if (ectx.morphRuntime && !out.weightPaintMode) {
+        auto cpu = morphStageShown ? morphPreview->cpuResult() : nullptr;
+        auto mh = pickMorphSurface(*ectx.morphRuntime, timeSec, ray, cpu ? &cpu->mesh : nullptr);
+        if (mh && (!hit || mh->distance < hit->distance)) hit = mh;
       }
       // A skeleton marker under the cursor selects its node; with the skeleton
       // hidden, markers are not there to click.
