@@ -7,6 +7,7 @@
 
 #include "actor_commands.h"
 #include "doc/blobtree_commands.h"
+#include "doc/standin_commands.h"
 #include "node_type_menu.h"
 #include "help_windows.h"
 #include "menu_bar.h"
@@ -99,7 +100,8 @@ void EditorUI::draw(EditorContext& ctx) {
   external_.clear();
 
   // Menu bar, then the panels laid out below it.
-  MenuResult menu = drawMenuBar(doc(ctx), st_.prefs.recentFiles, st_.menuBarHeight, st_.curveEditor.visible);
+  MenuResult menu =
+      drawMenuBar(doc(ctx), st_.prefs.recentFiles, st_.menuBarHeight, st_.curveEditor.visible, st_.viewportMode);
   actions.insert(actions.end(), menu.actions.begin(), menu.actions.end());
   float statusHeight = ImGui::GetFrameHeight();
   LayoutSizes sizes{st_.prefs.outlinerWidth, st_.prefs.inspectorWidth, st_.prefs.timelineHeight};
@@ -107,7 +109,8 @@ void EditorUI::draw(EditorContext& ctx) {
   st_.layout = computeLayout(display, st_.menuBarHeight, statusHeight, sizes);
 
   drawOutlinerPanel(st_.layout.outliner, doc(ctx), ctx.assets, st_.outliner, actions, st_.status);
-  drawInspectorPanel(st_.layout.inspector, doc(ctx), ctx.assets, st_.inspector, st_.drag, st_.status);
+  drawInspectorPanel(st_.layout.inspector, doc(ctx), ctx.assets, st_.inspector, st_.drag, st_.status,
+                     st_.standinTool);
   drawTimelinePanel(st_.layout.timeline, doc(ctx), st_.playback, keyFrames(ctx), st_.timeline, st_.drag, actions);
   drawStatusBar(st_.layout.statusBar, doc(ctx), ctx.stats, st_.status);
   drawViewport(ctx);
@@ -162,6 +165,8 @@ void EditorUI::drawViewport(EditorContext& ctx) {
   ImGui::TextDisabled("%s camera  |  frame %d%s%s", st_.prefs.cameraScheme == CameraScheme::Maya ? "Maya" : "Blender",
                       d.project().timeline.currentFrame, ctx.viewportNote.empty() ? "" : "  |  ",
                       ctx.viewportNote.c_str());
+  if (st_.viewportMode != ViewportMode::Object)
+    ImGui::TextColored(ImVec4(0.5f, 0.9f, 1.0f, 1.0f), "%s mode", viewportModeName(st_.viewportMode));
   if (d.project().actors.empty())
     ImGui::TextDisabled("File > Import glTF... adds a character; Create > New BlobTree Actor an implicit shape.");
   ImGui::End();
@@ -172,9 +177,16 @@ void EditorUI::drawViewport(EditorContext& ctx) {
   // The gizmo goes first: while the mouse is on it, the camera and picking stay still.
   ImGui::Begin("##viewport", nullptr, kOverlayFlags);
   drawGizmo(doc(ctx), st_.camera, vr, in, st_.gizmo, st_.status, ImGui::GetWindowDrawList());
+  const bool standinEdit = st_.viewportMode == ViewportMode::StandinEdit;
+  if (standinEdit)
+    drawStandinTool(doc(ctx), ctx.assets, st_.camera, vr, in, st_.standinTool, st_.status, ImGui::GetWindowDrawList());
   ImGui::End();
-  if (st_.gizmo.hot()) in.blockedByUi = true;
+  if (st_.gizmo.hot() || (standinEdit && st_.standinTool.hot())) in.blockedByUi = true;
   out_.pick = st_.viewportInput.update(in, vr, st_.prefs.cameraScheme, st_.prefs.otherSchemeToo, st_.camera);
+  // In the Stand-in edit mode a click on a capsule selects its segment instead of the mesh.
+  if (standinEdit && out_.pick &&
+      pickStandinClick(doc(ctx), ctx.assets, st_.camera, vr, out_.pick->windowPos, st_.standinTool))
+    out_.pick.reset();
   if (st_.viewportInput.activeDrag() != CameraDrag::None)
     ImGui::SetMouseCursor(st_.viewportInput.activeDrag() == CameraDrag::Pan ? ImGuiMouseCursor_ResizeAll
                                                                              : ImGuiMouseCursor_Hand);
@@ -257,6 +269,20 @@ void EditorUI::dispatch(Action a, EditorContext& ctx) {
       break;
     }
     case Action::DeleteSelection: {
+      if (st_.viewportMode == ViewportMode::StandinEdit) {
+        int seg = selectedStandinSegment(d, st_.standinTool);
+        if (seg >= 0) {
+          auto cmd = deleteStandinSegmentCommand(d.project(), st_.standinTool.actorId, seg);
+          if (cmd) {
+            setStatus((*cmd)->label());
+            d.execute(std::move(*cmd));
+            st_.standinTool.segment = -1;
+          } else {
+            setStatus(cmd.error(), true);
+          }
+          break;
+        }
+      }
       if (d.selection.actorId.empty()) break;
       const Actor* sel = d.project().findActor(d.selection.actorId);
       if (sel && sel->kind == ActorKind::BlobTree && d.selection.node >= 0) {
@@ -321,6 +347,17 @@ void EditorUI::dispatch(Action a, EditorContext& ctx) {
       break;
     case Action::ToggleAxes:
       d.execute(setViewOption(d.project(), &ViewOptions::showAxes, !d.project().view.showAxes, "Toggle axes"));
+      break;
+    case Action::ToggleStandins:
+      d.execute(setViewOption(d.project(), &ViewOptions::showStandins, !d.project().view.showStandins,
+                              "Toggle stand-ins"));
+      break;
+    case Action::ToggleStandinEdit:
+      st_.viewportMode = st_.viewportMode == ViewportMode::StandinEdit ? ViewportMode::Object : ViewportMode::StandinEdit;
+      if (st_.viewportMode == ViewportMode::StandinEdit && !d.project().morph.enabled())
+        setStatus("Stand-in edit mode: the project has no morph, so no stand-ins to edit");
+      else
+        setStatus(std::string(viewportModeName(st_.viewportMode)) + " mode");
       break;
     case Action::FrameSelection: frameSelection(ctx); break;
     case Action::PlayPause: togglePlayback(d, st_.playback); break;
@@ -438,6 +475,7 @@ void EditorUI::replaceDocument(std::unique_ptr<Document> d, EditorContext& ctx) 
   st_.curveEditor.selection.clear();
   st_.curveEditor.actorId.clear();
   st_.gizmo = {};
+  st_.standinTool = {};
   keysDoc_ = nullptr;
   // Show the whole scene: frame every visible actor that loaded.
   Bounds b = selectionBounds(*ctx.document, ctx.assets, tl.fps > 0.0 ? tl.currentFrame / tl.fps : 0.0);

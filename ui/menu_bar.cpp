@@ -21,7 +21,7 @@ bool beginMenu(const char* label, bool enabled = true) {
 }  // namespace
 
 MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& recentFiles, float& heightPx,
-                       bool curveEditorShown) {
+                       bool curveEditorShown, ViewportMode mode) {
   MenuResult r;
   heightPx = 0.0f;
   if (!ImGui::BeginMainMenuBar()) return r;
@@ -95,6 +95,9 @@ MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& rece
     item("Skeleton", Action::ToggleSkeleton, true, v.showSkeleton);
     item("Wireframe", Action::ToggleWireframe, true, v.wireframe);
     item("Axes", Action::ToggleAxes, true, v.showAxes);
+    item("Stand-ins", Action::ToggleStandins, true, v.showStandins);
+    ImGui::Separator();
+    item("Stand-in Edit Mode", Action::ToggleStandinEdit, true, mode == ViewportMode::StandinEdit);
     ImGui::Separator();
     item("Frame Selection", Action::FrameSelection);
     ImGui::Separator();

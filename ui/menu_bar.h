@@ -9,6 +9,7 @@
 #include "blobtree/node_type.h"
 #include "doc/document.h"
 #include "shortcuts.h"
+#include "viewport_mode.h"
 
 namespace animorph {
 
@@ -19,8 +20,8 @@ struct MenuResult {
 };
 
 // Draws the bar; returns its height in pixels through heightPx. curveEditorShown
-// checks View > Curve Editor.
+// checks View > Curve Editor, mode the viewport mode entries.
 MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& recentFiles, float& heightPx,
-                       bool curveEditorShown = false);
+                       bool curveEditorShown = false, ViewportMode mode = ViewportMode::Object);
 
 }  // namespace animorph

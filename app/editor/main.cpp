@@ -24,9 +24,11 @@
 #include "scene/morph_scene.h"
 #include "scene/blob_pick.h"
 #include "scene/pick.h"
+#include "scene/standin_guides.h"
 #include "scene/scene_frame.h"
 #include "scene_from_frame.h"
 #include "scene_renderer.h"
+#include "standin_overlay.h"
 #include "swapchain.h"
 
 using namespace animorph;
@@ -259,6 +261,9 @@ int main(int argc, char** argv) {
     const Actor* selActor = doc.project().findActor(doc.selection.actorId);
     int selBlobNode = selActor && selActor->kind == ActorKind::BlobTree ? doc.selection.node : -1;
     gpu::buildScene(frame, doc.project().view, doc.selection.actorId, meshes, scene, blobPreviews.get(), selBlobNode);
+    if (doc.project().view.showStandins || ui.state().viewportMode == ViewportMode::StandinEdit)
+      gpu::addStandinOverlay(projectStandinGuides(doc.project(), doc.baseDir(), assets, timeSec),
+                             doc.selection.actorId, selectedStandinSegment(doc, ui.state().standinTool), scene.overlay);
     {
       // Status bar: the preview of the selected BlobTree actor (else the first one).
       std::string id = selBlobNode >= 0 || (selActor && selActor->kind == ActorKind::BlobTree)
@@ -317,7 +322,8 @@ int main(int argc, char** argv) {
     if (args.screenshot.empty() && args.quit && frameCount > 3) break;
 
     if (!uiMapPath.empty() && frameCount % 3 == 0) writeUiMap(uiMapPath, ui.widgets(), out, doc, frameCount,
-                 {{"preview_busy", blobPreviews->busy()}, {"preview", ectx.stats.previewInfo}});
+                 {{"preview_busy", blobPreviews->busy()}, {"preview", ectx.stats.previewInfo},
+                  {"standin_segment", selectedStandinSegment(doc, ui.state().standinTool)}});
     std::string title = "Animorph - " + doc.displayName() + (doc.dirty() ? " *" : "");
     if (title != lastTitle) {
       glfwSetWindowTitle(window, title.c_str());
