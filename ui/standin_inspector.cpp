@@ -87,8 +87,8 @@ void drawStandinInspector(Document& doc, const Character& c, const std::string& 
   ImGui::Separator();
   if (!ImGui::CollapsingHeader("Stand-in", ImGuiTreeNodeFlags_DefaultOpen)) return;
   noteWidget("inspector/standin");
-  ImGui::TextDisabled("%zu segments, %s; the viewport's Stand-in edit mode (E) edits them", standin.segments.size(),
-                      standinKindName(standin.kind));
+  ImGui::TextDisabled("%zu segments (%s)", standin.segments.size(), standinKindName(standin.kind));
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("View > Stand-in Edit Mode (E) edits them in the viewport");
   int sel = selectedStandinSegment(doc, st);
   if (st.actorId != actorId) sel = -1;
 
