@@ -12,6 +12,7 @@
 #include "help_windows.h"
 #include "menu_bar.h"
 #include "preferences_window.h"
+#include "preview_controls.h"
 #include "project_commands.h"
 #include "selection_info.h"
 #include "transport.h"
@@ -165,6 +166,9 @@ void EditorUI::drawViewport(EditorContext& ctx) {
   ImGui::TextDisabled("%s camera  |  frame %d%s%s", st_.prefs.cameraScheme == CameraScheme::Maya ? "Maya" : "Blender",
                       d.project().timeline.currentFrame, ctx.viewportNote.empty() ? "" : "  |  ",
                       ctx.viewportNote.c_str());
+  ImGui::SameLine();
+  bool previewControlHovered = false;
+  if (drawPreviewQuickControl(st_.prefs, previewControlHovered)) savePreferences();
   if (st_.viewportMode != ViewportMode::Object)
     ImGui::TextColored(ImVec4(0.5f, 0.9f, 1.0f, 1.0f), "%s mode", viewportModeName(st_.viewportMode));
   if (d.project().actors.empty())
@@ -172,7 +176,7 @@ void EditorUI::drawViewport(EditorContext& ctx) {
   ImGui::End();
   widgets_.set("viewport", {r.min, r.min + r.size});
 
-  PointerInput in = pointerFromImGui(ImGui::GetIO(), !hovered);
+  PointerInput in = pointerFromImGui(ImGui::GetIO(), !hovered || previewControlHovered);
   ViewportRect vr{r.min, r.size};
   // The gizmo goes first: while the mouse is on it, the camera and picking stay still.
   ImGui::Begin("##viewport", nullptr, kOverlayFlags);

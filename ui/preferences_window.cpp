@@ -2,6 +2,7 @@
 
 #include <imgui.h>
 
+#include "preview_controls.h"
 #include "widget_rects.h"
 
 namespace animorph {
@@ -38,12 +39,8 @@ bool drawPreferencesWindow(bool& open, Preferences& prefs, const std::string& pr
   }
 
   ImGui::Separator();
-  ImGui::TextUnformatted("BlobTree preview (cells along the longest side)");
-  if (ImGui::SliderInt("Refined", &prefs.previewResolution, 16, 512)) changed = true;
-  noteWidget("prefs/preview_resolution");
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Shown once the time and the tree stop changing");
-  if (ImGui::SliderInt("While scrubbing", &prefs.previewCoarseResolution, 8, 256)) changed = true;
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Shown first after every change");
+  ImGui::TextUnformatted("Implicit preview (BlobTrees, the morph's B-C stage)");
+  if (drawPreviewSettings(prefs)) changed = true;
 
   ImGui::Separator();
   ImGui::TextUnformatted("Layout");

@@ -19,8 +19,10 @@
 #include "context.h"
 #include "doc/atomic_file.h"
 #include "editor_ui.h"
+#include "implicit_preview.h"
 #include "imgui_vulkan.h"
 #include "mesh_cache.h"
+#include "scene/morph_preview_source.h"
 #include "scene/morph_scene.h"
 #include "scene/blob_pick.h"
 #include "scene/pick.h"
@@ -170,6 +172,8 @@ int main(int argc, char** argv) {
   auto meshCache = std::make_unique<gpu::MeshCache>(ctx);
   gpu::MeshCache& meshes = *meshCache;
   auto blobPreviews = std::make_unique<gpu::BlobPreviewSet>(ctx);
+  auto morphPreview = std::make_unique<gpu::ImplicitPreview>(ctx);  // the morph's B->C stage
+  PreviewDevice previewDevice = ui.state().prefs.previewDevice;
   std::unique_ptr<Document> document = std::make_unique<Document>();
   if (!args.project.empty()) ui.requestOpen(args.project);
   EditorContext ectx(document, assets);
@@ -179,8 +183,7 @@ int main(int argc, char** argv) {
   const std::string uiMapPath = uiMapEnv ? uiMapEnv : "";
   gpu::Scene scene;
   MorphCache morphCache;
-  MorphFrameSettings morphPreview;
-  morphPreview.resolution = 32;  // coarse CPU preview of the implicit stage
+  MorphFrameSettings morphSettings;  // the transitions; the B->C stage is morphPreview's
   std::string lastTitle;
   std::vector<double> frameMs;
   double firstFrameMs = -1.0;
@@ -223,14 +226,39 @@ int main(int argc, char** argv) {
     const Timeline& tl = doc.project().timeline;
     const double timeSec = tl.frameToSec(tl.currentFrame);
     SceneFrame frame = evaluateScene(doc.project(), doc.baseDir(), assets, timeSec);
+    if (out.screenshotPath) pendingCapture = *out.screenshotPath;
+    if (!args.screenshot.empty() && screenshotAt < 0 && frameApplied == (args.frame >= 0) && frameCount >= 6) {
+      pendingCapture = args.screenshot;
+      screenshotAt = frameCount;
+    }
+    const Preferences& prefs = ui.state().prefs;
+    const gpu::PreviewBackend backend = gpu::choosePreviewBackend(prefs.previewDevice, ctx.deviceType());
+    if (prefs.previewDevice != previewDevice) {  // the user switched: try the GPU again
+      previewDevice = prefs.previewDevice;
+      morphPreview->clearGpuFailure();
+      blobPreviews->clearGpuFailures();
+    }
+    bool morphStageShown = false;
+    std::string morphSourceId;
     if (auto rt = morphCache.get(doc.project(), doc.baseDir(), assets, &doc, doc.revision())) {
-      ectx.viewportNote = "morph: " + describeMorphStage(applyMorph(frame, *rt, timeSec, morphPreview));
+      MorphSceneInfo info = applyMorph(frame, *rt, timeSec, morphSettings, /*implicitStage=*/false);
+      ectx.viewportNote = "morph: " + describeMorphStage(info);
+      if (info.stage == MorphStage::Morph) {
+        gpu::ImplicitPreviewSettings ps;
+        ps.interactiveResolution = prefs.previewCoarseResolution;
+        ps.refinedResolution = prefs.previewResolution;
+        ps.gpu = backend.gpu;
+        ps.settle = !pendingCapture.empty();
+        morphPreview->update(morphPreviewSource(rt, timeSec), timeSec, ps);
+        morphStageShown = true;
+        morphSourceId = rt->setup.sourceActorId;
+      }
     } else {
       ectx.viewportNote = morphCache.error().empty() ? "" : "morph: " + morphCache.error();
     }
-    const Preferences& prefs = ui.state().prefs;
     blobPreviews->update(doc.project(), frame,
-                         {prefs.previewCoarseResolution, prefs.previewResolution, /*threads=*/0});
+                         {prefs.previewCoarseResolution, prefs.previewResolution, /*threads=*/0, backend.gpu,
+                          /*settle=*/!pendingCapture.empty()});
     if (out.pick) {
       glm::vec2 local = out.pick->windowPos - out.viewport.min;
       Ray ray = out.camera.rayThroughPixel(local.x, local.y, out.viewport.size);
@@ -250,33 +278,27 @@ int main(int argc, char** argv) {
       else if (!out.pick->extend) doc.selection = {};
     }
 
-    if (out.screenshotPath) pendingCapture = *out.screenshotPath;
-    if (!args.screenshot.empty() && screenshotAt < 0 && frameApplied == (args.frame >= 0) && frameCount >= 6) {
-      pendingCapture = args.screenshot;
-      screenshotAt = frameCount;
-    }
-    // A screenshot shows the refined BlobTree surfaces, not whatever is ready.
+    // A screenshot shows the refined implicit surfaces, not whatever is ready.
     if (!pendingCapture.empty() && !blobPreviews->waitIdle(120.0))
       std::fprintf(stderr, "animorph: BlobTree preview still computing at the screenshot\n");
+    if (!pendingCapture.empty() && morphStageShown && !morphPreview->waitIdle(120.0))
+      std::fprintf(stderr, "animorph: morph preview still computing at the screenshot\n");
     const Actor* selActor = doc.project().findActor(doc.selection.actorId);
     int selBlobNode = selActor && selActor->kind == ActorKind::BlobTree ? doc.selection.node : -1;
     gpu::buildScene(frame, doc.project().view, doc.selection.actorId, meshes, scene, blobPreviews.get(), selBlobNode);
+    if (morphStageShown)
+      morphPreview->draw(scene, glm::mat4(1.0f), {0.62f, 0.62f, 0.62f, 1.0f}, doc.selection.actorId == morphSourceId);
     if (doc.project().view.showStandins || ui.state().viewportMode == ViewportMode::StandinEdit)
       gpu::addStandinOverlay(projectStandinGuides(doc.project(), doc.baseDir(), assets, timeSec),
                              doc.selection.actorId, selectedStandinSegment(doc, ui.state().standinTool), scene.overlay);
     {
-      // Status bar: the preview of the selected BlobTree actor (else the first one).
+      // Status bar: the morph stage's preview, else the selected BlobTree actor's (else the first one's).
       std::string id = selBlobNode >= 0 || (selActor && selActor->kind == ActorKind::BlobTree)
                            ? doc.selection.actorId
                            : (frame.blobs.empty() ? std::string() : frame.blobs.front().actorId);
-      auto r = id.empty() ? nullptr : blobPreviews->result(id);
-      char buf[160] = "";
-      if (r && !r->error.empty()) std::snprintf(buf, sizeof buf, "preview error: %s", r->error.c_str());
-      else if (r)
-        std::snprintf(buf, sizeof buf, "preview %d^3%s %.0f ms, %zu tris", r->resolution,
-                      blobPreviews->busy() ? " (refining)" : "", r->stats.milliseconds, r->mesh.triangleCount());
-      else if (!id.empty()) std::snprintf(buf, sizeof buf, "preview: computing");
-      ectx.stats.previewInfo = buf;
+      if (morphStageShown) ectx.stats.previewInfo = gpu::describePreviewStatus(morphPreview->status(), backend);
+      else if (!id.empty()) ectx.stats.previewInfo = gpu::describePreviewStatus(blobPreviews->status(id), backend);
+      else ectx.stats.previewInfo.clear();
     }
     if (!pendingCapture.empty()) swapchain.requestCapture();
 
@@ -314,6 +336,7 @@ int main(int argc, char** argv) {
     }
     meshes.endFrame();
     blobPreviews->endFrame();
+    morphPreview->endFrame();
     ++frameCount;
     if (args.benchFrames > 0 && frameCount > 10) {
       frameMs.push_back(dt * 1000.0);
@@ -322,7 +345,9 @@ int main(int argc, char** argv) {
     if (args.screenshot.empty() && args.quit && frameCount > 3) break;
 
     if (!uiMapPath.empty() && frameCount % 3 == 0) writeUiMap(uiMapPath, ui.widgets(), out, doc, frameCount,
-                 {{"preview_busy", blobPreviews->busy()}, {"preview", ectx.stats.previewInfo},
+                 {{"preview_busy", blobPreviews->busy() || (morphStageShown && morphPreview->busy())},
+                  {"preview", ectx.stats.previewInfo},
+                  {"preview_gpu", backend.gpu},
                   {"standin_segment", selectedStandinSegment(doc, ui.state().standinTool)}});
     std::string title = "Animorph - " + doc.displayName() + (doc.dirty() ? " *" : "");
     if (title != lastTitle) {
@@ -344,6 +369,7 @@ int main(int argc, char** argv) {
     exitCode = 3;
   }
   blobPreviews.reset();
+  morphPreview.reset();
   meshCache.reset();
   imguiR->reset();
   ImGui::DestroyContext();

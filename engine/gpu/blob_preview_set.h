@@ -1,71 +1,64 @@
 #pragma once
-// The polygonised previews of a project's BlobTree actors, on the GPU. Per
-// actor: a PreviewPolygonizer (worker thread) fed with the actor's tree and
-// time every frame, and the GPU mesh of its newest result, uploaded when a new
-// result arrives. Replaced meshes are freed once no frame in flight can use
-// them. The frame loop never waits for a polygoniser.
+// The polygonised previews of a project's BlobTree actors: one ImplicitPreview
+// per actor (CPU worker or GPU polygoniser, implicit_preview.h), fed with the
+// actor's tree and time every frame. The frame loop never waits for a polygoniser.
 #include <map>
 #include <memory>
 #include <string>
-#include <vector>
 
 #include "context.h"
 #include "doc/project.h"
-#include "gpu_mesh.h"
-#include "poly/preview_polygonizer.h"
+#include "implicit_preview.h"
 #include "scene/scene_frame.h"
 
 namespace animorph::gpu {
 
 struct BlobPreviewSettings {
-  int coarseResolution = 48;  // first answer while scrubbing or editing
+  int coarseResolution = 96;  // first answer while scrubbing or editing
   int fineResolution = 128;   // refined answer once nothing changes
   int threads = 0;            // polygoniser threads per actor run (0: all)
+  bool gpu = false;           // polygonise on the GPU (falls back to the CPU on failure)
+  bool settle = false;        // GPU: straight to the fine resolution (screenshots)
 };
 
 class BlobPreviewSet {
  public:
   explicit BlobPreviewSet(Context& ctx) : ctx_(ctx) {}
-  ~BlobPreviewSet();
   BlobPreviewSet(const BlobPreviewSet&) = delete;
   BlobPreviewSet& operator=(const BlobPreviewSet&) = delete;
 
   // Once per frame: submits every BlobTree actor of frame (its tree from
-  // project, at its tree time), uploads new results, forgets actors gone from
-  // the project. Upload errors go to lastError().
+  // project, at its tree time), forgets actors gone from the project.
   void update(const Project& project, const SceneFrame& frame, const BlobPreviewSettings& settings);
-  // The actor's newest uploaded mesh (null before its first result or for an empty shape).
-  const GpuMesh* mesh(const std::string& actorId) const;
-  // The newest result of the actor (CPU mesh, stats, error), or null.
+  // Appends the actor's newest mesh to scene (nothing before its first result).
+  void draw(const std::string& actorId, Scene& scene, const glm::mat4& model, const glm::vec4& color,
+            bool selected) const;
+  // The newest CPU result of the actor (mesh, stats, error), or null (none yet, or on the GPU path).
   std::shared_ptr<const PreviewResult> result(const std::string& actorId) const;
+  // The actor's preview status (empty for an unknown actor).
+  ImplicitPreviewStatus status(const std::string& actorId) const;
   // True while some actor's preview is being computed.
   bool busy() const;
-  // Waits until every actor's worker is idle, then uploads (tests, screenshots). Returns idle.
+  // Waits until every actor's preview is idle (tests, screenshots). Returns idle.
   bool waitIdle(double timeoutSec);
-  // Call once per frame after submitting: frees meshes replaced kFramesInFlight + 1 frames ago.
+  // Forgets GPU failures (the user switched devices).
+  void clearGpuFailures();
+  // Call once per frame after submitting: frees meshes no frame in flight uses.
   void endFrame();
-  const std::string& lastError() const { return lastError_; }
 
  private:
   struct Entry {
-    std::unique_ptr<PreviewPolygonizer> worker;
+    std::unique_ptr<ImplicitPreview> preview;
     std::shared_ptr<const BlobTree> submittedTree;
     double submittedTimeSec = -1.0;
-    int submittedCoarse = 0, submittedFine = 0;
-    uint64_t uploadedSerial = 0;
-    std::shared_ptr<const PreviewResult> result;
-    std::unique_ptr<GpuMesh> mesh;
+    std::shared_ptr<const PreviewSource> source;
   };
-  void uploadNew(Entry& e);
 
   Context& ctx_;
   std::map<std::string, Entry> entries_;
-  std::vector<std::pair<uint64_t, std::unique_ptr<GpuMesh>>> retired_;  // (frame retired, mesh)
+  // Previews of removed actors, kept until no frame in flight draws their meshes: (frame, preview).
+  std::vector<std::pair<uint64_t, std::unique_ptr<ImplicitPreview>>> retired_;
   uint64_t frame_ = 0;
-  std::string lastError_;
 };
-
-// The GPU-side Mesh of a polygonised surface (positions, normals, triangles; no skin).
-Mesh meshFromTriangles(const TriangleMesh& tm, const std::string& name);
 
 }  // namespace animorph::gpu

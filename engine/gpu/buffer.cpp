@@ -1,5 +1,6 @@
 #include "buffer.h"
 
+#include <cstdlib>
 #include <cstring>
 
 #include "vk_check.h"
@@ -8,6 +9,15 @@ namespace animorph::gpu {
 
 Result<Buffer> createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage,
                             VkMemoryPropertyFlags props) {
+  // Testing the out-of-memory paths for real: ANIMORPH_DEBUG_GPU_BUFFER_LIMIT_KB
+  // refuses device-local storage buffers (compute data) larger than the limit,
+  // as a device out of memory would.
+  if (const char* limit = std::getenv("ANIMORPH_DEBUG_GPU_BUFFER_LIMIT_KB");
+      limit && (usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) && !(props & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) &&
+      size > VkDeviceSize(std::atoll(limit)) * 1024)
+    return vkError("allocating " + std::to_string(size) + " bytes of buffer memory (ANIMORPH_DEBUG_GPU_BUFFER_LIMIT_KB=" +
+                       limit + ")",
+                   VK_ERROR_OUT_OF_DEVICE_MEMORY);
   Buffer b;
   b.size = size;
   VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};

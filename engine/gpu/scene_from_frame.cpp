@@ -28,22 +28,15 @@ void buildScene(const SceneFrame& frame, const ViewOptions& view, const std::str
       b.add(glm::vec3(d.model * glm::vec4(mb.max, 1.0f)));
     }
   }
+  out.generatedMeshes.clear();
   for (const auto& d : frame.blobs) {
-    const GpuMesh* gm = blobs ? blobs->mesh(d.actorId) : nullptr;
-    if (!gm) continue;
-    gpu::MeshDraw md;
-    md.mesh = gm;
-    md.model = d.model;
-    md.color = glm::vec4(0.55f, 0.68f, 0.82f, 1.0f);  // implicit surfaces: a cool clay tone
-    md.doubleSided = true;  // a surface cut by the grid bounds shows its inside
-    md.selected = !selectedActorId.empty() && d.actorId == selectedActorId;
-    out.meshes.push_back(md);
-    Bounds mb = gm->bounds();
-    if (!mb.empty()) {
-      b.add(glm::vec3(d.model * glm::vec4(mb.min, 1.0f)));
-      b.add(glm::vec3(d.model * glm::vec4(mb.max, 1.0f)));
-    }
+    // implicit surfaces: a cool clay tone
+    if (blobs)
+      blobs->draw(d.actorId, out, d.model, glm::vec4(0.55f, 0.68f, 0.82f, 1.0f),
+                  !selectedActorId.empty() && d.actorId == selectedActorId);
   }
+  for (const auto& g : frame.blobGuides)
+    for (const auto& m : g.markers) b.add(m.position);
   if (view.showSkeleton && !frame.blobGuides.empty()) {
     float radius = std::max(0.006f, 0.006f * b.diagonal());
     const uint32_t guide = packRgba({0.45f, 0.95f, 0.55f, 1.0f});

@@ -169,6 +169,30 @@ MorphOperand posedOperand(const MorphActorRuntime& a, double timeSec, double u) 
   return op;
 }
 
+MorphImplicitField morphImplicitField(const MorphRuntime& rt, double timeSec, int resolution) {
+  MorphImplicitField out;
+  const MorphSetup& m = rt.setup;
+  morphStageAt(m, rt.timeline, timeSec, out.progress);
+  out.blend = std::clamp(m.blend.evaluate(out.progress), 0.0f, 1.0f);
+  const MorphOperand src = posedOperand(rt.source, timeSec, out.progress);
+  const MorphOperand dst = posedOperand(rt.target, timeSec, out.progress);
+  out.program = buildMorphProgram(src, dst, m.method, out.blend, m.spaceTime);
+  out.noiseAmplitude = m.noiseAmplitude.evaluate(out.progress);
+  if (out.program.unbounded()) {
+    // Space-time blending: the bound solid makes the field positive far
+    // away in principle; the grid covers both stand-ins with a margin.
+    Bounds box;
+    if (out.blend < 1.0f) box.add(posedStandinBounds(src.segments, 0.0f));
+    if (out.blend > 0.0f) box.add(posedStandinBounds(dst.segments, 0.0f));
+    const float cell =
+        box.empty() ? 0.0f : std::max(box.size().x, std::max(box.size().y, box.size().z)) / float(std::max(2, resolution));
+    box.min -= glm::vec3(2.0f * cell);
+    box.max += glm::vec3(2.0f * cell);
+    out.bounds = box;
+  }
+  return out;
+}
+
 Result<MorphFrame> evaluateMorphFrame(const MorphRuntime& rt, double timeSec, const MorphFrameSettings& settings) {
   MorphFrame fr;
   fr.timeSec = timeSec;
@@ -195,32 +219,19 @@ Result<MorphFrame> evaluateMorphFrame(const MorphRuntime& rt, double timeSec, co
       break;
     }
     case MorphStage::Morph: {
-      fr.blend = std::clamp(m.blend.evaluate(fr.progress), 0.0f, 1.0f);
-      const MorphOperand src = posedOperand(rt.source, timeSec, fr.progress);
-      const MorphOperand dst = posedOperand(rt.target, timeSec, fr.progress);
-      const FieldProgram prog = buildMorphProgram(src, dst, m.method, fr.blend, m.spaceTime);
+      MorphImplicitField field = morphImplicitField(rt, timeSec, settings.resolution);
+      fr.blend = field.blend;
       PolygonizeSettings ps;
       ps.resolution = settings.resolution;
       ps.threads = settings.threads;
       ps.cancel = settings.cancel;
-      if (prog.unbounded()) {
-        // Space-time blending: the bound solid makes the field positive far
-        // away in principle; the grid covers both stand-ins with a margin.
-        Bounds box;
-        if (fr.blend < 1.0f) box.add(posedStandinBounds(src.segments, 0.0f));
-        if (fr.blend > 0.0f) box.add(posedStandinBounds(dst.segments, 0.0f));
-        const float cell = box.empty() ? 0.0f : std::max(box.size().x, std::max(box.size().y, box.size().z)) /
-                                                    float(std::max(2, settings.resolution));
-        box.min -= glm::vec3(2.0f * cell);
-        box.max += glm::vec3(2.0f * cell);
-        ps.bounds = box;
-      }
-      auto r = polygonize(prog, ps);
+      ps.bounds = field.bounds;
+      auto r = polygonize(field.program, ps);
       if (!r) return Error{"morph at " + std::to_string(timeSec) + " s: " + r.error()};
       fr.cancelled = r->cancelled;
       fr.mesh = std::move(r->mesh);
       fr.polygonize = r->stats;
-      displaceBySolidNoise(fr.mesh, m.noiseAmplitude.evaluate(fr.progress), m.noiseFrequency);
+      displaceBySolidNoise(fr.mesh, field.noiseAmplitude, m.noiseFrequency);
       break;
     }
   }

@@ -8,6 +8,7 @@
 // per document revision and calls it every frame).
 #include <atomic>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -66,6 +67,20 @@ struct MorphFrame {
 
 // The stage and its progress u at timeSec.
 MorphStage morphStageAt(const MorphSetup& setup, const Timeline& tl, double timeSec, double& progress);
+
+// The B->C field at timeSec as one program (for any polygoniser: the CPU's,
+// the GPU's): the morph of the posed stand-ins at the blend w(u), the grid
+// bounds it needs (set for space-time blending, whose field is unbounded; with
+// a margin of two cells of resolution), and the solid-noise amplitude the
+// polygonised mesh is displaced by afterwards (0: none).
+struct MorphImplicitField {
+  double progress = 0.0;  // u within the stage
+  float blend = 0.0f;     // w(u)
+  FieldProgram program;
+  std::optional<Bounds> bounds;
+  float noiseAmplitude = 0.0f;
+};
+MorphImplicitField morphImplicitField(const MorphRuntime& rt, double timeSec, int resolution);
 
 // The output of the morph at timeSec. Errors: polygonisation failed (bad resolution).
 Result<MorphFrame> evaluateMorphFrame(const MorphRuntime& rt, double timeSec, const MorphFrameSettings& settings);

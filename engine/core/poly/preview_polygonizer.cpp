@@ -12,10 +12,43 @@ namespace {
 bool sameRequest(const PreviewRequest& a, const PreviewRequest& b) {
   if (a.timeSec != b.timeSec || a.coarseResolution != b.coarseResolution || a.fineResolution != b.fineResolution)
     return false;
+  if (a.source || b.source) return a.source && b.source && a.source->sameAs(*b.source);
   if (a.tree == b.tree) return true;
   return a.tree && b.tree && *a.tree == *b.tree;
 }
+
+class BlobTreeSource final : public PreviewSource {
+ public:
+  BlobTreeSource(std::shared_ptr<const BlobTree> tree, double timeSec) : tree_(std::move(tree)), timeSec_(timeSec) {}
+  bool sameAs(const PreviewSource& other) const override {
+    auto* o = dynamic_cast<const BlobTreeSource*>(&other);
+    return o && o->timeSec_ == timeSec_ && (o->tree_ == tree_ || *o->tree_ == *tree_);
+  }
+  Status validate() const override { return validateBlobTree(*tree_); }
+  Result<PolygonizeResult> polygonize(int resolution, int threads, const std::atomic<bool>* cancel) const override {
+    std::call_once(compiled_, [&] { program_ = compileFieldProgram(*tree_, timeSec_); });
+    PolygonizeSettings settings;
+    settings.resolution = resolution;
+    settings.threads = threads;
+    settings.cancel = cancel;
+    return animorph::polygonize(program_, settings);
+  }
+  Result<PreviewField> field(int) const override {
+    if (Status s = validateBlobTree(*tree_); !s) return Error{s.error()};
+    return PreviewField{compileFieldProgram(*tree_, timeSec_), std::nullopt};
+  }
+
+ private:
+  std::shared_ptr<const BlobTree> tree_;
+  double timeSec_;
+  mutable std::once_flag compiled_;  // the worker compiles once for both levels
+  mutable FieldProgram program_;
+};
 }  // namespace
+
+std::shared_ptr<const PreviewSource> blobTreePreviewSource(std::shared_ptr<const BlobTree> tree, double timeSec) {
+  return std::make_shared<const BlobTreeSource>(std::move(tree), timeSec);
+}
 
 PreviewPolygonizer::PreviewPolygonizer(int threads) : threads_(threads), worker_([this] { run(); }) {}
 
@@ -30,7 +63,7 @@ PreviewPolygonizer::~PreviewPolygonizer() {
 }
 
 uint64_t PreviewPolygonizer::submit(PreviewRequest request) {
-  if (!request.tree) return 0;
+  if (!request.tree && !request.source) return 0;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (pendingId_ != 0 && sameRequest(request, pending_)) return pendingId_;
@@ -97,23 +130,20 @@ void PreviewPolygonizer::run() {
       r->error = std::move(message);
       publish(std::move(r));
     };
-    if (Status s = validateBlobTree(*req.tree); !s) {
+    std::shared_ptr<const PreviewSource> source = req.source ? req.source : blobTreePreviewSource(req.tree, req.timeSec);
+    if (Status s = source->validate(); !s) {
       fail(s.error());
     } else {
-      FieldProgram program = compileFieldProgram(*req.tree, req.timeSec);
       int levels[2] = {req.coarseResolution, req.fineResolution};
       int first = req.coarseResolution >= req.fineResolution ? 1 : 0;
       for (int level = first; level < 2; ++level) {
         if (newer()) break;
-        PolygonizeSettings settings;
-        settings.resolution = std::clamp(levels[level], 2, 4096);
-        settings.threads = threads_;
-        settings.cancel = &cancel_;
+        const int resolution = std::clamp(levels[level], 2, 4096);
         {
           std::lock_guard<std::mutex> lock(mutex_);
           ++counters_.runsStarted;
         }
-        auto result = polygonize(program, settings);
+        auto result = source->polygonize(resolution, threads_, &cancel_);
         if (!result) {
           fail(result.error());
           break;
@@ -126,7 +156,7 @@ void PreviewPolygonizer::run() {
         auto r = std::make_shared<PreviewResult>();
         r->requestId = id;
         r->timeSec = req.timeSec;
-        r->resolution = settings.resolution;
+        r->resolution = resolution;
         r->final = level == 1;
         r->mesh = std::move(result->mesh);
         r->stats = result->stats;

@@ -5,12 +5,14 @@
 // polygoniser's cancel flag) and replaces any request still waiting. Each
 // request is answered first at a coarse resolution, then, if no newer request
 // came in meanwhile, at the fine one. The UI thread submits and polls; it
-// never waits.
+// never waits. A request previews a BlobTree, or any other PreviewSource (the
+// morph's B->C stage: scene/morph_preview_source.h).
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -19,8 +21,35 @@
 
 namespace animorph {
 
+// A preview's field as one program, for polygonisers other than the worker's
+// (the GPU's): the program and the grid bounds (nullopt: the program's own).
+struct PreviewField {
+  FieldProgram program;
+  std::optional<Bounds> bounds;
+};
+
+// A shape to preview: an immutable snapshot (shared with the worker thread).
+class PreviewSource {
+ public:
+  virtual ~PreviewSource() = default;
+  // True when other shows the same shape (resubmitting it changes nothing).
+  virtual bool sameAs(const PreviewSource& other) const = 0;
+  // Checked once per request before polygonising; the error is published as the result's.
+  virtual Status validate() const { return {}; }
+  // Polygonises at resolution (cells along the longest side) with threads;
+  // *cancel turning true stops it early (result.cancelled). Errors: polygoniser errors.
+  virtual Result<PolygonizeResult> polygonize(int resolution, int threads, const std::atomic<bool>* cancel) const = 0;
+  // The same shape as one program at resolution. Errors: what one program
+  // cannot express (the caller polygonises with polygonize() instead).
+  virtual Result<PreviewField> field(int resolution) const = 0;
+};
+
+// A BlobTree at a tree time as a PreviewSource.
+std::shared_ptr<const PreviewSource> blobTreePreviewSource(std::shared_ptr<const BlobTree> tree, double timeSec);
+
 struct PreviewRequest {
   std::shared_ptr<const BlobTree> tree;  // a snapshot: never modified after submission
+  std::shared_ptr<const PreviewSource> source;  // used when tree is null
   double timeSec = 0.0;                  // tree time to evaluate at
   int coarseResolution = 48;             // first answer (skipped when >= fineResolution)
   int fineResolution = 128;              // refined answer once the request stays unchanged
@@ -54,7 +83,8 @@ class PreviewPolygonizer {
 
   // Submits a request and returns its id. A request equal to the latest one
   // (same tree contents, time and resolutions) changes nothing and returns the
-  // latest id; any other cancels the work in progress. Requests without a tree are ignored (id 0).
+  // latest id; any other cancels the work in progress. Requests without a tree
+  // or a source are ignored (id 0).
   uint64_t submit(PreviewRequest request);
   // The newest published result, or null before the first. Never blocks on the worker's runs.
   std::shared_ptr<const PreviewResult> latest() const;

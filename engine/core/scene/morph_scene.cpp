@@ -8,7 +8,7 @@
 namespace animorph {
 
 MorphSceneInfo applyMorph(SceneFrame& frame, const MorphRuntime& rt, double timeSec,
-                          const MorphFrameSettings& settings) {
+                          const MorphFrameSettings& settings, bool implicitStage) {
   MorphSceneInfo info;
   info.stage = morphStageAt(rt.setup, rt.timeline, timeSec, info.progress);
   const std::string& src = rt.setup.sourceActorId;
@@ -22,7 +22,7 @@ MorphSceneInfo applyMorph(SceneFrame& frame, const MorphRuntime& rt, double time
   auto drop = [&](const std::string& id, const std::string& kept) { return (id == src || id == dst) && id != kept; };
   std::erase_if(frame.meshes, [&](const MeshDraw& d) { return drop(d.actorId, keep); });
   std::erase_if(frame.bones, [&](const BoneDraw& b) { return drop(b.actorId, bonesOf); });
-  if (!keep.empty()) return info;
+  if (!keep.empty() || (info.stage == MorphStage::Morph && !implicitStage)) return info;
 
   auto out = evaluateMorphFrame(rt, timeSec, settings);
   if (!out) {

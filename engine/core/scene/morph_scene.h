@@ -18,8 +18,10 @@ struct MorphSceneInfo {
 };
 
 // Replaces the source and target actors of frame by the morph at timeSec.
+// implicitStage false: during B->C the actors go but no mesh is added (the
+// caller draws the stage from a preview: scene/morph_preview_source.h).
 MorphSceneInfo applyMorph(SceneFrame& frame, const MorphRuntime& rt, double timeSec,
-                          const MorphFrameSettings& settings);
+                          const MorphFrameSettings& settings, bool implicitStage = true);
 
 // "collapse 40%", "morph 75%", "source", ...
 std::string describeMorphStage(const MorphSceneInfo& info);

@@ -24,6 +24,15 @@ std::string defaultPreferencesPath() {
   return (base / "animorph" / "prefs.json").string();
 }
 
+const char* previewDeviceName(PreviewDevice d) {
+  switch (d) {
+    case PreviewDevice::Gpu: return "gpu";
+    case PreviewDevice::Cpu: return "cpu";
+    case PreviewDevice::Auto: break;
+  }
+  return "auto";
+}
+
 std::string preferencesToJson(const Preferences& p) {
   json j;
   j["layout"] = {{"outlinerWidth", p.outlinerWidth},
@@ -35,6 +44,7 @@ std::string preferencesToJson(const Preferences& p) {
   j["autosaveIntervalSec"] = p.autosaveIntervalSec;
   j["previewResolution"] = p.previewResolution;
   j["previewCoarseResolution"] = p.previewCoarseResolution;
+  j["previewDevice"] = previewDeviceName(p.previewDevice);
   return j.dump(2) + "\n";
 }
 
@@ -104,9 +114,19 @@ Result<Preferences> preferencesFromJson(const std::string& text, const std::stri
     }
   }
   p.autosaveIntervalSec = number(j, "autosaveIntervalSec", "", p.autosaveIntervalSec, 0, 86400);
-  p.previewResolution = static_cast<int>(number(j, "previewResolution", "", p.previewResolution, 16, 512));
+  p.previewResolution = static_cast<int>(number(j, "previewResolution", "", p.previewResolution, 8, 512));
   p.previewCoarseResolution =
-      static_cast<int>(number(j, "previewCoarseResolution", "", p.previewCoarseResolution, 8, 256));
+      static_cast<int>(number(j, "previewCoarseResolution", "", p.previewCoarseResolution, 8, 512));
+  // Older files allowed 8..512: clamp into today's range rather than refuse them.
+  p.previewResolution = std::clamp(p.previewResolution, kMinPreviewResolution, kMaxPreviewResolution);
+  p.previewCoarseResolution = std::clamp(p.previewCoarseResolution, kMinPreviewResolution, kMaxPreviewResolution);
+  if (j.contains("previewDevice")) {
+    const json& d = j["previewDevice"];
+    if (d == "auto") p.previewDevice = PreviewDevice::Auto;
+    else if (d == "gpu") p.previewDevice = PreviewDevice::Gpu;
+    else if (d == "cpu") p.previewDevice = PreviewDevice::Cpu;
+    else fail("previewDevice", "expected \"auto\", \"gpu\" or \"cpu\"");
+  }
   if (!err.empty()) {
     // "prefs.json: .autosaveIntervalSec" reads badly for top-level keys.
     auto pos = err.find(": .");

@@ -14,6 +14,16 @@ enum class CameraScheme { Maya, Blender };
 
 inline constexpr size_t kMaxRecentFiles = 8;
 
+// Where the implicit previews (BlobTree actors, the morph's B->C stage) are
+// polygonised. Auto: the GPU on discrete/integrated/virtual GPUs, the CPU
+// worker on a CPU Vulkan device (lavapipe), where the worker is faster.
+enum class PreviewDevice { Auto, Gpu, Cpu };
+const char* previewDeviceName(PreviewDevice d);  // "auto", "gpu", "cpu"
+
+// Limits of the preview resolutions (cells along the longest side).
+inline constexpr int kMinPreviewResolution = 32;
+inline constexpr int kMaxPreviewResolution = 256;
+
 struct Preferences {
   float outlinerWidth = 260.0f;   // pixels; the UI clamps it to the window
   float inspectorWidth = 320.0f;  // pixels
@@ -24,10 +34,12 @@ struct Preferences {
   bool otherSchemeToo = true;
   std::vector<std::string> recentFiles;  // absolute paths, most recent first
   double autosaveIntervalSec = 60.0;     // 0 disables autosave
-  // BlobTree preview: cells along the longest side for the refined surface
-  // (shown once scrubbing stops) and for the quick one while things change.
-  int previewResolution = 128;           // 16..512
-  int previewCoarseResolution = 48;      // 8..256
+  // Implicit previews (BlobTrees, the morph's B->C stage): cells along the
+  // longest side for the refined surface (shown once scrubbing stops) and for
+  // the interactive one while things change. Both kMinPreviewResolution..kMaxPreviewResolution.
+  int previewResolution = 128;
+  int previewCoarseResolution = 96;
+  PreviewDevice previewDevice = PreviewDevice::Auto;
   bool operator==(const Preferences&) const = default;
 };
 

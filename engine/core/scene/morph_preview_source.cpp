@@ -1,0 +1,45 @@
+#include "scene/morph_preview_source.h"
+
+namespace animorph {
+
+namespace {
+
+class MorphStageSource final : public PreviewSource {
+ public:
+  MorphStageSource(std::shared_ptr<const MorphRuntime> rt, double timeSec) : rt_(std::move(rt)), timeSec_(timeSec) {}
+  bool sameAs(const PreviewSource& other) const override {
+    auto* o = dynamic_cast<const MorphStageSource*>(&other);
+    return o && o->rt_ == rt_ && o->timeSec_ == timeSec_;
+  }
+  Result<PolygonizeResult> polygonize(int resolution, int threads, const std::atomic<bool>* cancel) const override {
+    MorphFrameSettings fs;
+    fs.resolution = resolution;
+    fs.threads = threads;
+    fs.cancel = cancel;
+    auto fr = evaluateMorphFrame(*rt_, timeSec_, fs);
+    if (!fr) return Error{fr.error()};
+    PolygonizeResult r;
+    r.mesh = std::move(fr->mesh);
+    r.stats = fr->polygonize;
+    r.cancelled = fr->cancelled;
+    return r;
+  }
+  Result<PreviewField> field(int resolution) const override {
+    MorphImplicitField f = morphImplicitField(*rt_, timeSec_, resolution);
+    // The noise displaces the polygonised mesh, which the GPU path never reads back.
+    if (f.noiseAmplitude != 0.0f) return Error{"solid noise is applied on the CPU only"};
+    return PreviewField{std::move(f.program), f.bounds};
+  }
+
+ private:
+  std::shared_ptr<const MorphRuntime> rt_;
+  double timeSec_;
+};
+
+}  // namespace
+
+std::shared_ptr<const PreviewSource> morphPreviewSource(std::shared_ptr<const MorphRuntime> rt, double timeSec) {
+  return std::make_shared<const MorphStageSource>(std::move(rt), timeSec);
+}
+
+}  // namespace animorph

@@ -1,0 +1,16 @@
+#pragma once
+// The morph's B->C stage at one time as a PreviewSource, so the editor
+// polygonises it on the preview worker (poly/preview_polygonizer.h) or on the
+// GPU (one program: morphImplicitField) instead of on the UI thread.
+#include <memory>
+
+#include "morph/morph_runtime.h"
+#include "poly/preview_polygonizer.h"
+
+namespace animorph {
+
+// rt at scene time timeSec (expected inside B..C; elsewhere polygonize() gives
+// that stage's mesh). Two sources are the same when they share rt and the time.
+std::shared_ptr<const PreviewSource> morphPreviewSource(std::shared_ptr<const MorphRuntime> rt, double timeSec);
+
+}  // namespace animorph

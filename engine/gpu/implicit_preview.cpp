@@ -1,0 +1,289 @@
+#include "implicit_preview.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+#include "gpu_polygonizer.h"
+#include "vk_check.h"
+
+namespace animorph::gpu {
+
+namespace {
+double nowSec() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+// Records of one shape before the GPU preview goes quiet: the counters of a
+// record are read kFramesInFlight records later, so an overflow is grown and
+// redone within this many.
+constexpr int kSettleRecords = 2 * int(kFramesInFlight) + 1;
+}  // namespace
+
+PreviewBackend choosePreviewBackend(PreviewDevice preference, VkPhysicalDeviceType deviceType) {
+  if (preference == PreviewDevice::Gpu) return {true, "GPU (preference)"};
+  if (preference == PreviewDevice::Cpu) return {false, "CPU (preference)"};
+  switch (deviceType) {
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return {false, "CPU (auto: the Vulkan device is a CPU, the worker is faster)"};
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return {true, "GPU (auto: discrete GPU)"};
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return {true, "GPU (auto: integrated GPU)"};
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return {true, "GPU (auto: virtual GPU)"};
+    default: return {false, "CPU (auto: unknown device type)"};
+  }
+}
+
+std::string describePreviewStatus(const ImplicitPreviewStatus& st, const PreviewBackend& backend) {
+  std::string s;
+  char buf[160];
+  if (!st.error.empty()) {
+    s = "preview error: " + st.error;
+  } else if (!st.hasMesh) {
+    s = "preview: computing";
+  } else {
+    std::snprintf(buf, sizeof buf, "preview %d^3 %s %.0f ms, %zu tris%s", st.resolution, st.gpu ? "GPU" : "CPU",
+                  st.milliseconds, st.triangles, st.refining ? " (refining)" : "");
+    s = buf;
+  }
+  if (!st.gpuFallback.empty()) s += " | " + st.gpuFallback + ": using the CPU";
+  else s += " | " + backend.why;
+  return s;
+}
+
+ImplicitPreview::ImplicitPreview(Context& ctx) : ctx_(ctx) {}
+
+ImplicitPreview::~ImplicitPreview() {
+  worker_.reset();  // cancels and joins
+  VkDevice dev = ctx_.device();
+  for (uint32_t i = 0; i < kFramesInFlight; ++i)
+    if (fences_[i]) {
+      if (pending_[i]) vkWaitForFences(dev, 1, &fences_[i], VK_TRUE, UINT64_MAX);
+      vkDestroyFence(dev, fences_[i], nullptr);
+    }
+  if (pool_) vkDestroyCommandPool(dev, pool_, nullptr);
+  poly_.reset();
+  retired_.clear();
+  mesh_.reset();
+}
+
+void ImplicitPreview::update(std::shared_ptr<const PreviewSource> source, double timeSec,
+                             const ImplicitPreviewSettings& s) {
+  if (!source) return;
+  if (s.gpu && gpuFailure_.empty() && updateGpu(source, s)) {
+    gpuActive_ = true;
+    return;
+  }
+  gpuActive_ = false;
+  gpuSource_.reset();  // back on the GPU later, the shape starts over
+  updateCpu(std::move(source), timeSec, s);
+}
+
+void ImplicitPreview::updateCpu(std::shared_ptr<const PreviewSource> source, double timeSec,
+                                const ImplicitPreviewSettings& s) {
+  if (!worker_ || workerThreads_ != s.threads) {
+    worker_ = std::make_unique<PreviewPolygonizer>(s.threads);
+    workerThreads_ = s.threads;
+    uploadedSerial_ = 0;
+  }
+  PreviewRequest r;
+  r.source = std::move(source);
+  r.timeSec = timeSec;
+  r.coarseResolution = s.interactiveResolution;
+  r.fineResolution = s.refinedResolution;
+  worker_->submit(std::move(r));
+  uploadNew();
+}
+
+void ImplicitPreview::uploadNew() {
+  if (!worker_ || worker_->latestSerial() == uploadedSerial_) return;
+  auto r = worker_->latest();
+  if (!r) return;
+  uploadedSerial_ = r->serial;
+  result_ = r;
+  if (mesh_) retired_.emplace_back(frame_, std::move(mesh_));
+  uploadError_.clear();
+  if (!r->error.empty() || r->mesh.positions.empty()) return;  // nothing inside: draw nothing
+  Mesh m;
+  m.name = "implicit preview";
+  m.positions = r->mesh.positions;
+  m.normals = r->mesh.normals;
+  m.indices = r->mesh.indices;
+  auto up = GpuMesh::upload(ctx_, m);
+  if (up) mesh_ = std::move(*up);
+  else uploadError_ = up.error();
+}
+
+Status ImplicitPreview::initGpu() {
+  auto p = GpuPolygonizer::create(ctx_);
+  if (!p) return Error{p.error()};
+  VkDevice dev = ctx_.device();
+  VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  pci.queueFamilyIndex = ctx_.queueFamily();
+  AM_VK_TRY(vkCreateCommandPool(dev, &pci, nullptr, &pool_), "vkCreateCommandPool");
+  VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  ai.commandPool = pool_;
+  ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  ai.commandBufferCount = kFramesInFlight;
+  AM_VK_TRY(vkAllocateCommandBuffers(dev, &ai, cmds_), "vkAllocateCommandBuffers");
+  VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  for (uint32_t i = 0; i < kFramesInFlight; ++i)
+    AM_VK_TRY(vkCreateFence(dev, &fci, nullptr, &fences_[i]), "vkCreateFence");
+  poly_ = std::move(*p);
+  return {};
+}
+
+void ImplicitPreview::pollGpu() {
+  for (uint32_t i = 0; i < kFramesInFlight; ++i) {
+    if (!pending_[i]) continue;
+    VkResult r = vkGetFenceStatus(ctx_.device(), fences_[i]);
+    if (r == VK_NOT_READY) continue;
+    pending_[i] = false;
+    if (r != VK_SUCCESS) {
+      gpuFailure_ = "GPU preview: " + std::string(vkResultName(r));
+      continue;
+    }
+    gpuShownMs_ = 1000.0 * (nowSec() - submittedAt_[i]);
+    gpuShownRes_ = submittedRes_[i];
+  }
+}
+
+bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& source, const ImplicitPreviewSettings& s) {
+  if (!poly_) {
+    if (Status st = initGpu(); !st) {
+      gpuFailure_ = "GPU preview unavailable: " + st.error();
+      return false;
+    }
+  }
+  pollGpu();
+  if (!gpuFailure_.empty()) return false;
+  const bool sameShape = gpuSource_ && gpuSource_->sameAs(*source);
+  const int res = sameShape || s.settle ? s.refinedResolution : s.interactiveResolution;
+  if (sameShape && res == gpuResolution_ && recordsOfShape_ >= kSettleRecords) return true;  // quiet
+  if (!sameShape || res != gpuResolution_) recordsOfShape_ = 0;
+
+  auto field = source->field(res);
+  if (!field) {
+    fieldFallback_ = field.error();
+    return false;
+  }
+  const GpuField gf = GpuField::single(field->program);
+  if (std::string why = GpuPolygonizer::unsupported(gf); !why.empty()) {
+    fieldFallback_ = why;
+    return false;
+  }
+  fieldFallback_.clear();
+  const uint32_t slot = uint32_t(serial_ % kFramesInFlight);
+  VkDevice dev = ctx_.device();
+  // The record kFramesInFlight ago used this slot; GpuPolygonizer::record reads its counters.
+  if (pending_[slot]) {
+    VkResult w = vkWaitForFences(dev, 1, &fences_[slot], VK_TRUE, UINT64_MAX);
+    if (w != VK_SUCCESS) {
+      gpuFailure_ = "GPU preview: " + std::string(vkResultName(w));
+      return false;
+    }
+    pollGpu();
+  }
+  VkCommandBuffer cmd = cmds_[slot];
+  vkResetCommandBuffer(cmd, 0);
+  VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  vkBeginCommandBuffer(cmd, &bi);
+  GpuPolygonizeSettings gs;
+  gs.resolution = res;
+  gs.bounds = field->bounds;
+  Status st = poly_->record(cmd, serial_, gf, gs);
+  vkEndCommandBuffer(cmd);
+  if (!st) {
+    gpuFailure_ = "GPU preview: " + st.error();
+    return false;
+  }
+  vkResetFences(dev, 1, &fences_[slot]);
+  VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  si.commandBufferCount = 1;
+  si.pCommandBuffers = &cmd;
+  if (VkResult r = vkQueueSubmit(ctx_.queue(), 1, &si, fences_[slot]); r != VK_SUCCESS) {
+    gpuFailure_ = "GPU preview: vkQueueSubmit: " + std::string(vkResultName(r));
+    return false;
+  }
+  pending_[slot] = true;
+  submittedAt_[slot] = nowSec();
+  submittedRes_[slot] = res;
+  ++serial_;
+  ++recordsOfShape_;
+  gpuSource_ = source;
+  gpuResolution_ = res;
+  gpuDrawable_ = true;
+  return true;
+}
+
+void ImplicitPreview::draw(Scene& scene, const glm::mat4& model, const glm::vec4& color, bool selected) const {
+  if (usingGpu()) {
+    if (!gpuDrawable_) return;
+    GeneratedMeshDraw g = poly_->generatedMesh(color);
+    g.model = model;
+    g.selected = selected;
+    scene.generatedMeshes.push_back(g);
+    return;
+  }
+  if (!mesh_) return;
+  MeshDraw md;
+  md.mesh = mesh_.get();
+  md.model = model;
+  md.color = color;
+  md.doubleSided = true;  // a surface cut by the grid bounds shows its inside
+  md.selected = selected;
+  scene.meshes.push_back(md);
+}
+
+ImplicitPreviewStatus ImplicitPreview::status() const {
+  ImplicitPreviewStatus st;
+  st.gpuFallback = !gpuFailure_.empty() ? gpuFailure_ : fieldFallback_;
+  if (usingGpu()) {
+    st.gpu = true;
+    st.hasMesh = gpuDrawable_;
+    st.resolution = gpuShownRes_;
+    st.milliseconds = gpuShownMs_;
+    st.triangles = poly_ ? poly_->lastStats().triangles : 0;
+    st.refining = busy();
+    return st;
+  }
+  st.refining = busy();
+  if (!uploadError_.empty()) st.error = uploadError_;
+  if (!result_) return st;
+  if (!result_->error.empty()) st.error = result_->error;
+  st.hasMesh = true;
+  st.resolution = result_->resolution;
+  st.milliseconds = result_->stats.milliseconds;
+  st.triangles = result_->mesh.triangleCount();
+  return st;
+}
+
+bool ImplicitPreview::busy() const {
+  if (usingGpu()) {
+    for (bool p : pending_)
+      if (p) return true;
+    return recordsOfShape_ < kSettleRecords;
+  }
+  // A finished result not uploaded yet (the next update() does) still counts.
+  return worker_ && (worker_->busy() || worker_->latestSerial() != uploadedSerial_);
+}
+
+bool ImplicitPreview::waitIdle(double timeoutSec) {
+  if (usingGpu()) {
+    const uint64_t ns = uint64_t(std::max(0.0, timeoutSec) * 1e9);
+    bool idle = true;
+    for (uint32_t i = 0; i < kFramesInFlight; ++i)
+      if (pending_[i] && vkWaitForFences(ctx_.device(), 1, &fences_[i], VK_TRUE, ns) != VK_SUCCESS) idle = false;
+    pollGpu();
+    return idle;
+  }
+  bool idle = !worker_ || worker_->waitIdle(timeoutSec);
+  uploadNew();
+  return idle;
+}
+
+void ImplicitPreview::endFrame() {
+  ++frame_;
+  std::erase_if(retired_, [&](const auto& r) { return frame_ - r.first > kFramesInFlight + 1; });
+}
+
+}  // namespace animorph::gpu

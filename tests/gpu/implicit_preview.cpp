@@ -1,0 +1,146 @@
+// The editor's implicit preview on lavapipe (implicit_preview.h): the GPU path
+// of the morph's B->C stage gives the CPU's surface, and GPU failures (a
+// device out of memory, a field the GPU cannot express) fall back to the CPU
+// worker with a message. Validation on, no errors.
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+
+#include "gpu_fixture.h"
+#include "gpu_polygonizer.h"
+#include "implicit_preview.h"
+#include "morph/mesh_distance.h"
+#include "poly/mesh_checks.h"
+#include "scene/morph_preview_source.h"
+#include "util/morph_fixtures.h"
+
+using namespace animorph;
+using namespace animorph::gpu;
+
+namespace {
+
+double midStageSec(const MorphRuntime& rt, double u) {
+  const MorphMarkers& mk = rt.setup.markers;
+  return rt.timeline.frameToSec(int(mk.b + u * (mk.c - mk.b)));
+}
+
+// Frames of the editor's loop on one time until the preview settles.
+ImplicitPreviewStatus settle(ImplicitPreview& p, const std::shared_ptr<const PreviewSource>& source, double t,
+                             const ImplicitPreviewSettings& s) {
+  for (int i = 0; i < 40; ++i) {
+    p.update(source, t, s);
+    p.endFrame();
+    if (!p.busy()) break;
+    p.waitIdle(60.0);
+  }
+  REQUIRE(p.waitIdle(60.0));
+  return p.status();
+}
+
+}  // namespace
+
+TEST_CASE("implicit preview: the GPU path of the morph stage matches the CPU mesh", "[gpu][preview]") {
+  auto ctx = test::makeTestContext();
+  const auto rt = test::demoMorph().runtime;
+  const double t = midStageSec(*rt, 0.5);
+  auto source = morphPreviewSource(rt, t);
+  const int res = 48;
+
+  // The field the preview hands the GPU, polygonised and read back, against the CPU stage mesh.
+  auto field = source->field(res);
+  REQUIRE(field.ok());
+  auto poly = GpuPolygonizer::create(*ctx);
+  REQUIRE(poly.ok());
+  GpuPolygonizeSettings gs;
+  gs.resolution = res;
+  gs.bounds = field->bounds;
+  auto st = (*poly)->polygonize(GpuField::single(field->program), gs);
+  INFO(st.error());
+  REQUIRE(st.ok());
+  auto gpuMesh = (*poly)->readBack();
+  REQUIRE(gpuMesh.ok());
+  auto cpu = source->polygonize(res, 0, nullptr);
+  REQUIRE(cpu.ok());
+  const double cpuTris = double(cpu->mesh.triangleCount());
+  REQUIRE(cpuTris > 100);
+  CHECK(std::abs(double(gpuMesh->triangleCount()) - cpuTris) <= 0.005 * cpuTris);
+  const float cell = cpu->stats.cellSize;
+  CHECK(pointsToMeshDistance(gpuMesh->positions, cpu->mesh).maxDistance < 0.05 * cell);
+  CHECK(pointsToMeshDistance(cpu->mesh.positions, *gpuMesh).maxDistance < 0.05 * cell);
+
+  // The preview itself on the GPU path: its own submissions, the draw, the same triangle count.
+  ImplicitPreview preview(*ctx);
+  ImplicitPreviewSettings ps;
+  ps.interactiveResolution = 32;
+  ps.refinedResolution = res;
+  ps.gpu = true;
+  ImplicitPreviewStatus s = settle(preview, source, t, ps);
+  INFO(s.gpuFallback);
+  CHECK(s.gpuFallback.empty());
+  CHECK(s.gpu);
+  CHECK(s.hasMesh);
+  CHECK(s.resolution == res);
+  CHECK_FALSE(s.refining);
+  CHECK(std::abs(double(s.triangles) - cpuTris) <= 0.005 * cpuTris);
+  Scene scene;
+  preview.draw(scene, glm::mat4(1.0f), glm::vec4(1.0f), false);
+  CHECK(scene.generatedMeshes.size() == 1);
+  CHECK(scene.meshes.empty());
+  CHECK(preview.cpuResult() == nullptr);
+  CHECK(ctx->validationErrorCount() == 0);
+}
+
+TEST_CASE("implicit preview: a GPU out of memory falls back to the CPU worker with a message", "[gpu][preview]") {
+  auto ctx = test::makeTestContext();
+  const auto rt = test::demoMorph().runtime;
+  const double t = midStageSec(*rt, 0.3);
+  auto source = morphPreviewSource(rt, t);
+  ImplicitPreviewSettings ps;
+  ps.interactiveResolution = 24;
+  ps.refinedResolution = 40;
+  ps.gpu = true;
+  ImplicitPreview preview(*ctx);
+  ::setenv("ANIMORPH_DEBUG_GPU_BUFFER_LIMIT_KB", "16", 1);
+  preview.update(source, t, ps);
+  ::unsetenv("ANIMORPH_DEBUG_GPU_BUFFER_LIMIT_KB");
+  INFO(preview.gpuFailure());
+  CHECK(preview.gpuFailure().find("VK_ERROR_OUT_OF_DEVICE_MEMORY") != std::string::npos);
+  ImplicitPreviewStatus s = settle(preview, source, t, ps);
+  CHECK_FALSE(s.gpu);
+  CHECK(s.hasMesh);
+  CHECK(s.error.empty());
+  CHECK(s.resolution == 40);
+  CHECK(s.triangles > 100);
+  CHECK(s.gpuFallback == preview.gpuFailure());
+  CHECK(describePreviewStatus(s, {true, "GPU (preference)"}).find("using the CPU") != std::string::npos);
+  auto r = preview.cpuResult();
+  REQUIRE(r);
+  CHECK(r->mesh.triangleCount() == s.triangles);
+  // The failure sticks for this preview until cleared (the user switching devices); then the GPU works again.
+  preview.update(source, t, ps);
+  CHECK_FALSE(preview.status().gpu);
+  preview.clearGpuFailure();
+  s = settle(preview, source, t, ps);
+  CHECK(s.gpu);
+  CHECK(s.gpuFallback.empty());
+  CHECK(s.triangles == r->mesh.triangleCount());
+  CHECK(ctx->validationErrorCount() == 0);
+}
+
+TEST_CASE("implicit preview: a stage the GPU cannot express (solid noise) is polygonised on the CPU", "[gpu][preview]") {
+  auto ctx = test::makeTestContext();
+  auto noisy = std::make_shared<MorphRuntime>(*test::demoMorph().runtime);
+  noisy->setup.noiseAmplitude = FloatTrack(0.01f);
+  const double t = midStageSec(*noisy, 0.5);
+  ImplicitPreview preview(*ctx);
+  ImplicitPreviewSettings ps;
+  ps.interactiveResolution = 24;
+  ps.refinedResolution = 32;
+  ps.gpu = true;
+  ImplicitPreviewStatus s = settle(preview, morphPreviewSource(noisy, t), t, ps);
+  CHECK_FALSE(s.gpu);
+  CHECK(s.gpuFallback.find("solid noise") != std::string::npos);
+  CHECK(preview.gpuFailure().empty());  // only this shape: not a sticky failure
+  CHECK(s.triangles > 100);
+  CHECK(ctx->validationErrorCount() == 0);
+}
