@@ -158,7 +158,9 @@ void drawStandinInspector(Document& doc, const Character& c, const std::string& 
     const auto rig = rigNodes(c);
     for (int n = 0; n < int(rig.size()); ++n) {
       if (!rig[size_t(n)]) continue;
-      if (ImGui::Selectable(nodeName(c, n).c_str(), n == seg.node) && n != seg.node) {
+      const bool picked = ImGui::Selectable(nodeName(c, n).c_str(), n == seg.node);
+      noteWidget("inspector/standin/joint/" + nodeName(c, n));
+      if (picked && n != seg.node) {
         const Actor* actor = doc.project().findActor(actorId);
         const auto globals = actorPoseGlobals(*actor, c, documentTimeSec(doc));
         run(doc, setStandinSegmentCommand(doc.project(), actorId, sel, rebindSegment(seg, n, globals),

@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 
 #include "doc/document.h"
+#include "doc/project_io.h"
 #include "doc/standin_commands.h"
 #include "rig/pose.h"
 #include "scene/scene_frame.h"
@@ -295,4 +296,30 @@ TEST_CASE("standin edit: rebinding keeps the segment in place, refit restores th
   }
   REQUIRE(doc.undo());
   CHECK(doc.project() == p);
+}
+
+TEST_CASE("standin edits and the Stand-ins view switch are saved in the project", "[standin_edit]") {
+  Document doc;
+  doc.reset(editProject(), "");
+  const std::string id = doc.project().morph.sourceActorId;
+  StandinSegment s = doc.project().morph.findActor(id)->standin.segments[4];
+  s.radius *= 2.0f;
+  s.b += glm::vec3(0.0f, 0.03f, 0.0f);
+  auto cmd = setStandinSegmentCommand(doc.project(), id, 4, s, "edit");
+  REQUIRE(cmd);
+  doc.execute(std::move(*cmd));
+  auto del = deleteStandinSegmentCommand(doc.project(), id, 1);
+  REQUIRE(del);
+  doc.execute(std::move(*del));
+  Project p = doc.project();
+  p.view.showStandins = true;
+  auto back = projectFromJson(projectToJson(p), "edited.animorph");
+  REQUIRE(back);
+  CHECK(back->view.showStandins);
+  CHECK(back->morph == p.morph);
+  CHECK(back->morph.findActor(id)->standin.segments[3] == s);  // renumbered after the delete
+  p.view.showStandins = false;
+  auto off = projectFromJson(projectToJson(p), "edited.animorph");
+  REQUIRE(off);
+  CHECK_FALSE(off->view.showStandins);
 }

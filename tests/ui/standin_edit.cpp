@@ -3,6 +3,7 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include "standin/fit_standin.h"
 #include "standin_tool.h"
 #include "support/editor_fixture.h"
 
@@ -141,5 +142,54 @@ TEST_CASE("stand-in edit: Del deletes the selected segment with its tracks; undo
   CHECK(am.segmentTracks[0].segment == 0);  // renumbered with its segment
   CHECK(h.doc().project().findActor("hero"));  // the actor stays
   h.tapKey(GLFW_KEY_Z, true);
+  CHECK(h.doc().project() == before);
+}
+
+TEST_CASE("stand-in inspector: duplicate, rebind and refit all are undoable commands", "[standin]") {
+  EditorFixture f;
+  addStandinMorph(f);
+  auto& h = f.h;
+  const Project before = h.doc().project();
+  h.doc().selection = {"hero", -1};
+  h.frames(1);
+  h.clickWidget("inspector/standin/segment/0");
+  h.frames(1);
+  REQUIRE(selectedStandinSegment(h.doc(), h.ui->state().standinTool) == 0);
+
+  // Duplicate: the copy goes right after the original and is selected; the keyed track follows its segment.
+  h.clickWidget("inspector/standin/duplicate");
+  h.frames(1);
+  {
+    const ActorMorph& am = *h.doc().project().morph.findActor("hero");
+    REQUIRE(am.standin.segments.size() == 3);
+    CHECK(am.standin.segments[1] == am.standin.segments[0]);
+    REQUIRE(am.segmentTracks.size() == 1);
+    CHECK(am.segmentTracks[0].segment == 2);
+    CHECK(selectedStandinSegment(h.doc(), h.ui->state().standinTool) == 1);
+  }
+
+  // Rebind the copy (on hip) to spine: it stays where it is at the current frame.
+  const auto guidesBefore = documentStandinGuides(h.doc(), h.assets)[0].segments[1];
+  h.clickWidget("inspector/standin/joint");
+  h.frames(1);
+  h.clickWidget("inspector/standin/joint/spine");
+  h.frames(1);
+  REQUIRE(h.doc().project().morph.findActor("hero")->standin.segments[1].node == 3);
+  const auto guidesAfter = documentStandinGuides(h.doc(), h.assets)[0].segments[1];
+  CHECK(glm::length(guidesAfter.a - guidesBefore.a) < 1e-4f);
+  CHECK(glm::length(guidesAfter.b - guidesBefore.b) < 1e-4f);
+
+  // Refit all: the automatic fit of the hero replaces the stand-in.
+  h.clickWidget("inspector/standin/refit_all");
+  h.frames(1);
+  const Character& c = *h.assets.get(h.doc().resolveAsset("hero.gltf")).character;
+  FitSettings fs;
+  fs.measure = false;
+  auto fit = fitStandin(c, fs);
+  REQUIRE(fit);
+  CHECK(h.doc().project().morph.findActor("hero")->standin == fit->standin);
+
+  // Three undo steps back to the start.
+  for (int i = 0; i < 3; ++i) h.tapKey(GLFW_KEY_Z, true);
   CHECK(h.doc().project() == before);
 }
