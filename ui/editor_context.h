@@ -11,6 +11,7 @@
 #include "view/camera.h"
 #include "status_bar.h"
 #include "viewport_input.h"
+#include "weight_paint_tool.h"
 
 namespace animorph {
 
@@ -38,6 +39,8 @@ struct EditorOutput {
   std::optional<std::string> screenshotPath; // File > Save Screenshot chose this PNG path
   bool quit = false;                         // the user confirmed quitting
   bool documentReplaced = false;             // ctx.document is a different document now
+  bool weightPaintMode = false;              // Weight Paint mode: show weightOverlay.actorId alone, unmorphed
+  WeightOverlayRequest weightOverlay;        // draw this actor in heat colours of these weights
 };
 
 }  // namespace animorph

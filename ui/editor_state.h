@@ -18,6 +18,7 @@
 #include "util/prefs.h"
 #include "viewport_input.h"
 #include "viewport_mode.h"
+#include "weight_paint_tool.h"
 
 namespace animorph {
 
@@ -49,6 +50,7 @@ struct EditorState {
   GizmoState gizmo;
   ViewportMode viewportMode = ViewportMode::Object;
   StandinToolState standinTool;  // the selected stand-in segment and its handles
+  WeightPaintState paint;  // Weight Paint mode
   DragMerge drag;
 
   // Dialogs.

@@ -101,8 +101,8 @@ void EditorUI::draw(EditorContext& ctx) {
   external_.clear();
 
   // Menu bar, then the panels laid out below it.
-  MenuResult menu =
-      drawMenuBar(doc(ctx), st_.prefs.recentFiles, st_.menuBarHeight, st_.curveEditor.visible, st_.viewportMode);
+  MenuResult menu = drawMenuBar(doc(ctx), st_.prefs.recentFiles, st_.menuBarHeight, st_.curveEditor.visible, st_.paint,
+                                st_.viewportMode);
   actions.insert(actions.end(), menu.actions.begin(), menu.actions.end());
   float statusHeight = ImGui::GetFrameHeight();
   LayoutSizes sizes{st_.prefs.outlinerWidth, st_.prefs.inspectorWidth, st_.prefs.timelineHeight};
@@ -116,6 +116,7 @@ void EditorUI::draw(EditorContext& ctx) {
   drawStatusBar(st_.layout.statusBar, doc(ctx), ctx.stats, st_.status);
   drawViewport(ctx);
   drawCurveEditorPanel(st_.layout.viewport, doc(ctx), st_.curveEditor, st_.status);
+  drawWeightPaintPanel(st_.layout.viewport, doc(ctx), ctx.assets, st_.paint, st_.status);
   drawSplitters();
 
   // Keyboard shortcuts: not while typing, not while a menu or dialog is open.
@@ -123,7 +124,8 @@ void EditorUI::draw(EditorContext& ctx) {
   if (!ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel)) {
     std::vector<Action> keys = pollShortcuts(io);
     for (Action a : keys)
-      if (!st_.curveEditor.focused || (a != Action::DeleteSelection && a != Action::FrameSelection))
+      if ((!st_.curveEditor.focused || (a != Action::DeleteSelection && a != Action::FrameSelection)) &&
+          !(st_.paint.active && a == Action::FrameSelection))  // F sets the brush radius while painting
         actions.push_back(a);
   }
   if (menu.addNodeType) addNodeToSelection(*menu.addNodeType, ctx);
@@ -138,6 +140,8 @@ void EditorUI::draw(EditorContext& ctx) {
 
   st_.drag.endFrame(doc(ctx));
   out_.camera = st_.camera;
+  out_.weightPaintMode = st_.paint.active;
+  out_.weightOverlay = weightOverlayRequest(doc(ctx), st_.paint);
   const LayoutRect& vp = st_.layout.viewport;
   out_.viewport = {vp.min, vp.size};
   setActiveWidgetRects(nullptr);
@@ -163,9 +167,11 @@ void EditorUI::drawViewport(EditorContext& ctx) {
   ImGui::PopStyleVar();
   bool hovered = ImGui::IsWindowHovered();
   const Document& d = doc(ctx);
-  ImGui::TextDisabled("%s camera  |  frame %d%s%s", st_.prefs.cameraScheme == CameraScheme::Maya ? "Maya" : "Blender",
+  const std::string paintNote = weightPaintNote(d, st_.paint);
+  ImGui::TextDisabled("%s camera  |  frame %d%s%s%s%s", st_.prefs.cameraScheme == CameraScheme::Maya ? "Maya" : "Blender",
                       d.project().timeline.currentFrame, ctx.viewportNote.empty() ? "" : "  |  ",
-                      ctx.viewportNote.c_str());
+                      ctx.viewportNote.c_str(), paintNote.empty() ? "" : "  |  ", paintNote.c_str());
+  if (!paintNote.empty()) noteWidget("viewport/paint_note");
   ImGui::SameLine();
   bool previewControlHovered = false;
   if (drawPreviewQuickControl(st_.prefs, previewControlHovered)) savePreferences();
@@ -186,7 +192,9 @@ void EditorUI::drawViewport(EditorContext& ctx) {
     drawStandinTool(doc(ctx), ctx.assets, st_.camera, vr, in, st_.standinTool, st_.status, ImGui::GetWindowDrawList());
   ImGui::End();
   if (st_.gizmo.hot() || (standinEdit && st_.standinTool.hot())) in.blockedByUi = true;
+  updateWeightPaint(doc(ctx), ctx.assets, st_.camera, vr, in, st_.paint, st_.status, ImGui::GetForegroundDrawList());
   out_.pick = st_.viewportInput.update(in, vr, st_.prefs.cameraScheme, st_.prefs.otherSchemeToo, st_.camera);
+  if (st_.paint.active) out_.pick.reset();  // a click paints instead of selecting
   // In the Stand-in edit mode a click on a capsule selects its segment instead of the mesh.
   if (standinEdit && out_.pick &&
       pickStandinClick(doc(ctx), ctx.assets, st_.camera, vr, out_.pick->windowPos, st_.standinTool))
@@ -358,6 +366,8 @@ void EditorUI::dispatch(Action a, EditorContext& ctx) {
       break;
     case Action::ToggleStandinEdit:
       st_.viewportMode = st_.viewportMode == ViewportMode::StandinEdit ? ViewportMode::Object : ViewportMode::StandinEdit;
+      // One viewport mode at a time: entering stand-in editing leaves Weight Paint.
+      if (st_.viewportMode == ViewportMode::StandinEdit && st_.paint.active) toggleWeightPaint(d, st_.paint, st_.status);
       if (st_.viewportMode == ViewportMode::StandinEdit && !d.project().morph.enabled())
         setStatus("Stand-in edit mode: the project has no morph, so no stand-ins to edit");
       else
@@ -372,6 +382,15 @@ void EditorUI::dispatch(Action a, EditorContext& ctx) {
     case Action::Preferences: st_.showPreferences = true; break;
     case Action::About: st_.showAbout = true; break;
     case Action::ShowShortcuts: st_.showShortcuts = true; break;
+    case Action::ToggleWeightPaint:
+      toggleWeightPaint(d, st_.paint, st_.status);
+      if (st_.paint.active) st_.viewportMode = ViewportMode::Object;  // one viewport mode at a time
+      break;
+    case Action::ToggleWeightOverlay: st_.paint.overlayAlways = !st_.paint.overlayAlways; break;
+    case Action::ImportWeights:
+      if (weightPaintActor(d).empty() && d.project().morph.enabled()) d.selection = {d.project().morph.sourceActorId, -1};
+      st_.paint.openImportPopup = true;
+      break;
   }
 }
 
@@ -480,6 +499,8 @@ void EditorUI::replaceDocument(std::unique_ptr<Document> d, EditorContext& ctx) 
   st_.curveEditor.actorId.clear();
   st_.gizmo = {};
   st_.standinTool = {};
+  st_.paint.stroke.reset();
+  st_.paint.mesh.reset();
   keysDoc_ = nullptr;
   // Show the whole scene: frame every visible actor that loaded.
   Bounds b = selectionBounds(*ctx.document, ctx.assets, tl.fps > 0.0 ? tl.currentFrame / tl.fps : 0.0);

@@ -21,7 +21,7 @@ bool beginMenu(const char* label, bool enabled = true) {
 }  // namespace
 
 MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& recentFiles, float& heightPx,
-                       bool curveEditorShown, ViewportMode mode) {
+                       bool curveEditorShown, const WeightPaintState& paint, ViewportMode mode) {
   MenuResult r;
   heightPx = 0.0f;
   if (!ImGui::BeginMainMenuBar()) return r;
@@ -40,6 +40,7 @@ MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& rece
     item("Save As...", Action::SaveAs);
     ImGui::Separator();
     item("Import glTF...", Action::ImportGltf);
+    item("Import Weights from Vertex Colour...", Action::ImportWeights, doc.project().morph.enabled());
     item("Save Screenshot...", Action::SaveScreenshot);
     ImGui::Separator();
     bool recentOpen = beginMenu("Recent", !recentFiles.empty());
@@ -97,11 +98,12 @@ MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& rece
     item("Axes", Action::ToggleAxes, true, v.showAxes);
     item("Stand-ins", Action::ToggleStandins, true, v.showStandins);
     ImGui::Separator();
-    item("Stand-in Edit Mode", Action::ToggleStandinEdit, true, mode == ViewportMode::StandinEdit);
-    ImGui::Separator();
     item("Frame Selection", Action::FrameSelection);
     ImGui::Separator();
     item("Curve Editor", Action::ToggleCurveEditor, true, curveEditorShown);
+    item("Weight Paint Mode", Action::ToggleWeightPaint, doc.project().morph.enabled(), paint.active);
+    item("Stand-in Edit Mode", Action::ToggleStandinEdit, true, mode == ViewportMode::StandinEdit);
+    item("Weight Overlay", Action::ToggleWeightOverlay, true, paint.overlayAlways);
     ImGui::Separator();
     item("Preferences...", Action::Preferences);
     ImGui::EndMenu();

@@ -10,6 +10,7 @@
 #include "doc/document.h"
 #include "shortcuts.h"
 #include "viewport_mode.h"
+#include "weight_paint_tool.h"
 
 namespace animorph {
 
@@ -22,6 +23,7 @@ struct MenuResult {
 // Draws the bar; returns its height in pixels through heightPx. curveEditorShown
 // checks View > Curve Editor, mode the viewport mode entries.
 MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& recentFiles, float& heightPx,
-                       bool curveEditorShown = false, ViewportMode mode = ViewportMode::Object);
+                       bool curveEditorShown = false, const WeightPaintState& paint = {},
+                       ViewportMode mode = ViewportMode::Object);
 
 }  // namespace animorph

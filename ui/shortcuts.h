@@ -16,6 +16,7 @@ enum class Action {
   ToggleGrid, ToggleSkeleton, ToggleWireframe, ToggleAxes, ToggleStandins, ToggleStandinEdit, FrameSelection,
   PlayPause, StepBack, StepForward, GoToStart, GoToEnd,
   Preferences, About, ShowShortcuts,
+  ToggleWeightPaint, ToggleWeightOverlay, ImportWeights,
 };
 
 struct Shortcut {

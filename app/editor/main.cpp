@@ -32,6 +32,8 @@
 #include "scene_renderer.h"
 #include "standin_overlay.h"
 #include "swapchain.h"
+#include "paint/paint_mesh.h"
+#include "weight_overlay_scene.h"
 
 using namespace animorph;
 using Clock = std::chrono::steady_clock;
@@ -184,6 +186,7 @@ int main(int argc, char** argv) {
   gpu::Scene scene;
   MorphCache morphCache;
   MorphFrameSettings morphSettings;  // the transitions; the B->C stage is morphPreview's
+  std::vector<float> overlayWeights;  // the weight overlay's data, alive until the frame is recorded
   std::string lastTitle;
   std::vector<double> frameMs;
   double firstFrameMs = -1.0;
@@ -240,7 +243,10 @@ int main(int argc, char** argv) {
     }
     bool morphStageShown = false;
     std::string morphSourceId;
-    if (auto rt = morphCache.get(doc.project(), doc.baseDir(), assets, &doc, doc.revision())) {
+    if (out.weightPaintMode) {  // the painted actor as itself, posed, without the morph
+      isolateForPainting(frame, doc.project().morph, out.weightOverlay.actorId);
+      ectx.viewportNote.clear();
+    } else if (auto rt = morphCache.get(doc.project(), doc.baseDir(), assets, &doc, doc.revision())) {
       MorphSceneInfo info = applyMorph(frame, *rt, timeSec, morphSettings, /*implicitStage=*/false);
       ectx.viewportNote = "morph: " + describeMorphStage(info);
       if (info.stage == MorphStage::Morph) {
@@ -291,6 +297,10 @@ int main(int argc, char** argv) {
     if (doc.project().view.showStandins || ui.state().viewportMode == ViewportMode::StandinEdit)
       gpu::addStandinOverlay(projectStandinGuides(doc.project(), doc.baseDir(), assets, timeSec),
                              doc.selection.actorId, selectedStandinSegment(doc, ui.state().standinTool), scene.overlay);
+    if (!out.weightOverlay.actorId.empty()) {
+      overlayWeights = out.weightOverlay.weights;
+      gpu::addWeightOverlay(frame, out.weightOverlay.actorId, overlayWeights, meshes, scene);
+    }
     {
       // Status bar: the morph stage's preview, else the selected BlobTree actor's (else the first one's).
       std::string id = selBlobNode >= 0 || (selActor && selActor->kind == ActorKind::BlobTree)

@@ -7,6 +7,7 @@ namespace animorph::gpu {
 void buildScene(const SceneFrame& frame, const ViewOptions& view, const std::string& selectedActorId,
                 MeshCache& meshes, Scene& out, const BlobPreviewSet* blobs, int selectedBlobNode) {
   out.meshes.clear();
+  out.weightOverlays.clear();
   out.lines.clear();
   out.overlay.clear();
   out.options.grid = view.showGrid;

@@ -42,7 +42,7 @@ constexpr VkShaderStageFlags kPushStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADE
 // Clip-space depth pulled toward the camera by the wireframe pass (in NDC depth units).
 constexpr float kWireDepthPull = 5e-5f;
 
-enum class VertexInput { None, Mesh, Line, Generated };
+enum class VertexInput { None, Mesh, MeshWeights, Line, Generated };
 
 struct PipelineDesc {
   const char* vert;
@@ -70,13 +70,17 @@ Result<VkPipeline> createPipeline(VkDevice device, VkRenderPass pass, VkPipeline
 
   std::vector<VkVertexInputBindingDescription> bindings;
   std::vector<VkVertexInputAttributeDescription> attributes;
-  if (d.input == VertexInput::Mesh) {
+  if (d.input == VertexInput::Mesh || d.input == VertexInput::MeshWeights) {
     const struct { uint32_t stride; VkFormat format; } streams[6] = {
         {12, VK_FORMAT_R32G32B32_SFLOAT}, {12, VK_FORMAT_R32G32B32_SFLOAT}, {8, VK_FORMAT_R16G16B16A16_UINT},
         {8, VK_FORMAT_R16G16B16A16_UINT}, {16, VK_FORMAT_R32G32B32A32_SFLOAT}, {16, VK_FORMAT_R32G32B32A32_SFLOAT}};
     for (uint32_t s = 0; s < 6; ++s) {
       bindings.push_back({s, streams[s].stride, VK_VERTEX_INPUT_RATE_VERTEX});
       attributes.push_back({s, s, streams[s].format, 0});
+    }
+    if (d.input == VertexInput::MeshWeights) {
+      bindings.push_back({kVertexPaintWeight, 4, VK_VERTEX_INPUT_RATE_VERTEX});
+      attributes.push_back({kVertexPaintWeight, kVertexPaintWeight, VK_FORMAT_R32_SFLOAT, 0});
     }
   } else if (d.input == VertexInput::Generated) {
     for (uint32_t s = 0; s < 2; ++s) {  // AM_VERTEX_POSITION, AM_VERTEX_NORMAL
@@ -160,7 +164,8 @@ struct SceneRenderer::Slot {
   Buffer frame;                  // FrameUniforms records at uniformStride_ (dynamic offset)
   Buffer joints;                 // mat4 per joint of every draw
   Buffer lines;                  // LineVertex
-  VkDeviceSize frameUsed = 0, jointsUsed = 0, linesUsed = 0;
+  Buffer weights;                // float per vertex of every weight overlay
+  VkDeviceSize frameUsed = 0, jointsUsed = 0, linesUsed = 0, weightsUsed = 0;
   VkDescriptorSet set = VK_NULL_HANDLE;  // frame + joints
   bool setBound = false;                 // set is referenced by commands of this frame
   std::vector<Buffer> retiredBuffers;
@@ -235,6 +240,8 @@ Status SceneRenderer::init(VkRenderPass renderPass, SceneRendererSettings settin
       {&wirePipeline_[1], wireDesc(none)},
       {&generatedPipeline_, {"generated.vert", "mesh.frag", VertexInput::Generated, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST,
                              VK_POLYGON_MODE_FILL, true, true, false, back}},
+      {&weightPipeline_, {"weight_overlay.vert", "weight_overlay.frag", VertexInput::MeshWeights,
+                          VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, VK_POLYGON_MODE_FILL, true, true, false, none}},
       {&gridPipeline_, {"grid.vert", "grid.frag", VertexInput::None, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST,
                         VK_POLYGON_MODE_FILL, true, false, true}},
       {&linePipeline_, {"line.vert", "line.frag", VertexInput::Line, VK_PRIMITIVE_TOPOLOGY_LINE_LIST,
@@ -264,8 +271,9 @@ SceneRenderer::~SceneRenderer() {
     destroyBuffer(dev, s->frame);
     destroyBuffer(dev, s->joints);
     destroyBuffer(dev, s->lines);
+    destroyBuffer(dev, s->weights);
   }
-  for (VkPipeline p : {meshPipeline_[0], meshPipeline_[1], wirePipeline_[0], wirePipeline_[1], generatedPipeline_, gridPipeline_,
+  for (VkPipeline p : {meshPipeline_[0], meshPipeline_[1], wirePipeline_[0], wirePipeline_[1], generatedPipeline_, weightPipeline_, gridPipeline_,
                        linePipeline_, overlayPipeline_})
     if (p) vkDestroyPipeline(dev, p, nullptr);
   if (layout_) vkDestroyPipelineLayout(dev, layout_, nullptr);
@@ -280,12 +288,12 @@ void SceneRenderer::rewind(Slot& slot, uint64_t frameSerial) {
   if (!slot.retiredSets.empty())
     vkFreeDescriptorSets(dev, descriptorPool_, static_cast<uint32_t>(slot.retiredSets.size()), slot.retiredSets.data());
   slot.retiredSets.clear();
-  slot.frameUsed = slot.jointsUsed = slot.linesUsed = 0;
+  slot.frameUsed = slot.jointsUsed = slot.linesUsed = slot.weightsUsed = 0;
   slot.setBound = false;
   slot.serial = frameSerial;
 }
 
-Status SceneRenderer::reserve(Slot& slot, VkDeviceSize jointBytes, VkDeviceSize lineBytes) {
+Status SceneRenderer::reserve(Slot& slot, VkDeviceSize jointBytes, VkDeviceSize lineBytes, VkDeviceSize weightBytes) {
   bool setStale = slot.set == VK_NULL_HANDLE;
   auto fit = [&](Buffer& b, VkDeviceSize& used, VkDeviceSize need, VkDeviceSize minimum, VkBufferUsageFlags usage,
                  const char* what) -> Status {
@@ -302,6 +310,7 @@ Status SceneRenderer::reserve(Slot& slot, VkDeviceSize jointBytes, VkDeviceSize 
   Status s = fit(slot.frame, slot.frameUsed, uniformStride_, 16 * uniformStride_, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "frame uniform");
   if (s) s = fit(slot.joints, slot.jointsUsed, jointBytes, 256 * sizeof(glm::mat4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "joint matrix");
   if (s) s = fit(slot.lines, slot.linesUsed, lineBytes, 4096 * sizeof(LineVertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "line");
+  if (s && weightBytes) s = fit(slot.weights, slot.weightsUsed, weightBytes, 4096 * sizeof(float), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "weight");
   if (!s) return s;
   setStale |= slot.frame.buffer != oldFrame || slot.joints.buffer != oldJoints;
   if (!setStale) return Status::success();
@@ -344,6 +353,16 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
     if (d.jointMatrices.empty()) jointScratch_.push_back(glm::mat4(1.0f));
     else jointScratch_.insert(jointScratch_.end(), d.jointMatrices.begin(), d.jointMatrices.end());
   }
+  weightScratch_.clear();
+  std::vector<VkDeviceSize> weightOffsets;  // per overlay, in bytes from this call's start
+  for (const WeightOverlayDraw& d : scene.weightOverlays) {
+    jointOffsets.push_back(static_cast<uint32_t>(jointScratch_.size()));
+    if (d.jointMatrices.empty()) jointScratch_.push_back(glm::mat4(1.0f));
+    else jointScratch_.insert(jointScratch_.end(), d.jointMatrices.begin(), d.jointMatrices.end());
+    weightOffsets.push_back(weightScratch_.size() * sizeof(float));
+    if (d.mesh && d.weights.size() == d.mesh->vertexCount())
+      weightScratch_.insert(weightScratch_.end(), d.weights.begin(), d.weights.end());
+  }
   lineScratch_.clear();
   const auto& depthLines = scene.lines.vertices();
   const auto& overlayLines = scene.overlay.vertices();
@@ -359,12 +378,16 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
   }
   const VkDeviceSize jointBytes = jointScratch_.size() * sizeof(glm::mat4);
   const VkDeviceSize lineBytes = lineScratch_.size() * sizeof(LineVertex);
-  Status cap = reserve(slot, jointBytes, lineBytes);
+  const VkDeviceSize weightBytes = weightScratch_.size() * sizeof(float);
+  Status cap = reserve(slot, jointBytes, lineBytes, weightBytes);
   if (!cap) return cap;
   // This call's places in the slot's buffers.
   const uint32_t frameOffset = static_cast<uint32_t>(slot.frameUsed);
   const uint32_t jointBase = static_cast<uint32_t>(slot.jointsUsed / sizeof(glm::mat4));
   const VkDeviceSize lineOffset = slot.linesUsed;
+  const VkDeviceSize weightBase = slot.weightsUsed;
+  if (weightBytes) std::memcpy(static_cast<uint8_t*>(slot.weights.mapped) + weightBase, weightScratch_.data(), weightBytes);
+  slot.weightsUsed += weightBytes;
   if (jointBytes) std::memcpy(static_cast<uint8_t*>(slot.joints.mapped) + slot.jointsUsed, jointScratch_.data(), jointBytes);
   if (lineBytes) std::memcpy(static_cast<uint8_t*>(slot.lines.mapped) + lineOffset, lineScratch_.data(), lineBytes);
   slot.frameUsed += uniformStride_;
@@ -440,6 +463,21 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
     vkCmdBindVertexBuffers(cmd, 0, 2, streams, offsets);
     vkCmdBindIndexBuffer(cmd, g.indices, 0, VK_INDEX_TYPE_UINT32);
     vkCmdDrawIndexedIndirect(cmd, g.indirect, g.indirectOffset, 1, sizeof(VkDrawIndexedIndirectCommand));
+  }
+  for (size_t k = 0; k < scene.weightOverlays.size(); ++k) {
+    const WeightOverlayDraw& d = scene.weightOverlays[k];
+    if (!d.mesh || d.mesh->indexCount() == 0 || d.weights.size() != d.mesh->vertexCount()) continue;
+    bind(weightPipeline_);
+    MeshPush p{};
+    p.model = d.model;
+    p.color = glm::vec4(1.0f);
+    p.jointOffset = jointBase + jointOffsets[scene.meshes.size() + k];
+    p.jointCount = d.jointMatrices.empty() ? 1u : static_cast<uint32_t>(d.jointMatrices.size());
+    vkCmdPushConstants(cmd, layout_, kPushStages, 0, sizeof(p), &p);
+    d.mesh->bindTriangles(cmd);
+    const VkDeviceSize offset = weightBase + weightOffsets[k];
+    vkCmdBindVertexBuffers(cmd, kVertexPaintWeight, 1, &slot.weights.buffer, &offset);
+    vkCmdDrawIndexed(cmd, d.mesh->indexCount(), 1, 0, 0, 0);
   }
   if (opt.wireframe) {
     for (size_t i = 0; i < scene.meshes.size(); ++i) {

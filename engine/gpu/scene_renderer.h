@@ -51,6 +51,17 @@ struct GeneratedMeshDraw {
   bool selected = false;
 };
 
+// A skinned mesh drawn as its weight map in heat colours (0 blue .. 1 red)
+// instead of shaded (weight_overlay shaders). weights has one entry per
+// vertex of mesh (a draw with another count is skipped); it is copied while
+// recording, so it only has to live until record() returns.
+struct WeightOverlayDraw {
+  const GpuMesh* mesh = nullptr;
+  glm::mat4 model{1.0f};
+  std::span<const glm::mat4> jointMatrices;
+  std::span<const float> weights;
+};
+
 struct SceneOptions {
   glm::vec4 background{0.23f, 0.24f, 0.26f, 1.0f};  // the viewport rectangle is cleared to this
   bool grid = true;
@@ -65,6 +76,7 @@ struct SceneOptions {
 struct Scene {
   std::vector<MeshDraw> meshes;
   std::vector<GeneratedMeshDraw> generatedMeshes;  // GPU-polygonised previews
+  std::vector<WeightOverlayDraw> weightOverlays;   // weight painting
   LineBatch lines;    // depth-tested lines (guides, bounds)
   LineBatch overlay;  // drawn on top of everything (skeleton overlay)
   SceneOptions options;
@@ -103,7 +115,7 @@ class SceneRenderer {
   struct Slot;
   explicit SceneRenderer(Context& ctx);
   Status init(VkRenderPass renderPass, SceneRendererSettings settings);
-  Status reserve(Slot& slot, VkDeviceSize jointBytes, VkDeviceSize lineBytes);
+  Status reserve(Slot& slot, VkDeviceSize jointBytes, VkDeviceSize lineBytes, VkDeviceSize weightBytes = 0);
   void rewind(Slot& slot, uint64_t frameSerial);
 
   Context& ctx_;
@@ -114,6 +126,7 @@ class SceneRenderer {
   VkPipeline meshPipeline_[2]{};  // [doubleSided]
   VkPipeline wirePipeline_[2]{};  // [doubleSided]
   VkPipeline generatedPipeline_ = VK_NULL_HANDLE;  // GeneratedMeshDraw: positions + normals, indirect
+  VkPipeline weightPipeline_ = VK_NULL_HANDLE;     // WeightOverlayDraw: mesh streams + a weight stream
   VkPipeline gridPipeline_ = VK_NULL_HANDLE;
   VkPipeline linePipeline_ = VK_NULL_HANDLE;     // depth-tested
   VkPipeline overlayPipeline_ = VK_NULL_HANDLE;  // always on top
@@ -121,7 +134,8 @@ class SceneRenderer {
   VkDeviceSize uniformStride_ = 256;  // sizeof(FrameUniforms) rounded to the device's UBO offset alignment
   std::vector<glm::mat4> jointScratch_;
   std::vector<LineVertex> lineScratch_;
-  std::vector<uint32_t> drawJointOffsets_;
+  std::vector<uint32_t> drawJointOffsets_;  // per mesh draw, then per weight overlay
+  std::vector<float> weightScratch_;
 };
 
 }  // namespace animorph::gpu

@@ -434,3 +434,29 @@ TEST_CASE("PNG output", "[gpu][render]") {
   CHECK_FALSE(bad.ok());
   CHECK(bad.error().find("/nonexistent-dir/x.png") != std::string::npos);
 }
+
+TEST_CASE("weight overlay: heat colours per vertex on the skinned mesh", "[gpu][render][paint]") {
+  Rig r = makeRig(256, 192);
+  OrbitCamera cam = frontCamera();
+  const std::vector<glm::mat4> joints = liftJoints();
+  // Quad A (vertices 0..3) unpainted, quad B (4..7) fully painted.
+  const std::vector<float> weights = {0, 0, 0, 0, 1, 1, 1, 1};
+  Scene s = meshScene(r, joints);
+  s.meshes.clear();
+  WeightOverlayDraw w;
+  w.mesh = r.mesh.get();
+  w.jointMatrices = joints;
+  w.weights = weights;
+  s.weightOverlays.push_back(w);
+  const RgbaImage& img = render(r, cam, s);
+  glm::u8vec4 a = pixelAt(img, cam, {-1, 0, 0});
+  glm::u8vec4 b = pixelAt(img, cam, {1, 1, 0});  // skinned: quad B is lifted by 1
+  CHECK(int(a.b) > int(a.r) + 80);  // 0: blue
+  CHECK(int(b.r) > int(b.b) + 80);  // 1: red
+  CHECK_FALSE(differs(pixelAt(img, cam, {1, 0, 0}), kBackground, 10));  // B's unskinned place is empty
+  // A weight array of the wrong length draws nothing rather than reading past it.
+  s.weightOverlays[0].weights = std::span<const float>(weights.data(), 5);
+  const RgbaImage& none = render(r, cam, s);
+  CHECK_FALSE(differs(pixelAt(none, cam, {-1, 0, 0}), kBackground));
+  CHECK(r.ctx->validationErrorCount() == 0);
+}

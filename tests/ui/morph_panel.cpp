@@ -10,20 +10,7 @@ using namespace animorph;
 using namespace animorph::test;
 
 namespace {
-// The hero scene with a morph from the hero to a second actor of the same asset.
-void addMorph(EditorFixture& f) {
-  f.loadHeroScene();
-  Project p = f.h.doc().project();
-  Actor b = p.actors[0];
-  b.id = "other";
-  p.actors.push_back(b);
-  p.morph.sourceActorId = "hero";
-  p.morph.targetActorId = "other";
-  p.morph.markers = {10, 20, 30, 40};
-  f.h.document->reset(p, f.dir.file("scene.animorph"));
-  f.h.doc().selection = {};
-  f.h.frames(2);
-}
+void addMorph(EditorFixture& f) { f.loadHeroMorphScene(); }
 }  // namespace
 
 TEST_CASE("morph settings show with nothing selected, and a marker drag is one undo step", "[morph]") {

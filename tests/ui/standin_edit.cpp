@@ -193,3 +193,20 @@ TEST_CASE("stand-in inspector: duplicate, rebind and refit all are undoable comm
   for (int i = 0; i < 3; ++i) h.tapKey(GLFW_KEY_Z, true);
   CHECK(h.doc().project() == before);
 }
+
+TEST_CASE("stand-in edit and weight paint are one viewport mode at a time", "[standin]") {
+  EditorFixture f;
+  addStandinMorph(f);
+  auto& h = f.h;
+  h.tapKey(GLFW_KEY_P);
+  REQUIRE(h.ui->state().paint.active);
+  h.tapKey(GLFW_KEY_E);
+  CHECK(h.ui->state().viewportMode == ViewportMode::StandinEdit);
+  CHECK_FALSE(h.ui->state().paint.active);
+  h.tapKey(GLFW_KEY_P);
+  CHECK(h.ui->state().paint.active);
+  CHECK(h.ui->state().viewportMode == ViewportMode::Object);
+  h.tapKey(GLFW_KEY_P);
+  CHECK_FALSE(h.ui->state().paint.active);
+  CHECK(h.doc().history().size() == 0);  // modes are not edits
+}

@@ -178,6 +178,10 @@ Result<std::string> exportGlbBytes(const Character& c) {
       n = len > 1e-20f ? n / len : glm::vec3(0, 1, 0);
     }
     attrs["NORMAL"] = w.floats(&unit.data()->x, nv, 3, "VEC3", kArrayBuffer, false);
+    if (!m.colors.empty()) {
+      if (m.colors.size() != nv) return Error{label + ": " + std::to_string(m.colors.size()) + " colours for " + std::to_string(nv) + " vertices"};
+      attrs["COLOR_0"] = w.floats(&m.colors.data()->x, nv, 4, "VEC4", kArrayBuffer, false);
+    }
     const int skin = skinOfMesh[mi];
     if (skin >= 0 && nv > 0) {
       const size_t jointCount = c.skins[skin].joints.size();

@@ -7,7 +7,7 @@
 
 namespace animorph {
 
-// Serialises c as GLB bytes: nodes (TRS), meshes (POSITION, NORMAL, indices,
+// Serialises c as GLB bytes: nodes (TRS), meshes (POSITION, NORMAL, COLOR_0 when present, indices,
 // JOINTS_0/WEIGHTS_0 and _1 when used, for meshes drawn with a skin), skins
 // with inverse bind matrices, animations with STEP/LINEAR/CUBICSPLINE
 // samplers, one scene of c.roots. Fails (naming the element) on data glTF

@@ -338,6 +338,7 @@ struct PrimitiveGeometry {
   std::vector<glm::vec3> positions, normals;
   std::vector<uint32_t> indices;
   std::vector<std::vector<Influence>> influences;  // empty when the primitive has no JOINTS_0
+  std::vector<glm::vec4> colors;                   // COLOR_0; empty when the primitive has none
   bool computedNormals = false;
 };
 
@@ -433,6 +434,21 @@ Result<PrimitiveGeometry> readPrimitive(const Ctx& c, int meshIndex, int primInd
     g.computedNormals = true;
   }
 
+  int colAcc = attr("COLOR_0");
+  if (colAcc >= 0) {
+    std::vector<float> col;
+    int cc = 0;
+    auto k = readAccessor(c, colAcc, {{TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4}, kFloatOrNormalised, "COLOR_0"}, col, cc);
+    if (!k) return Error{k.error()};
+    if (*k != vcount)
+      return err(c, label, "COLOR_0 has " + std::to_string(*k) + " elements but POSITION has " + std::to_string(vcount));
+    if (auto s = checkFinite(c, colAcc, col, cc, "colour"); !s) return Error{s.error()};
+    g.colors.resize(vcount);
+    for (size_t v = 0; v < vcount; ++v)
+      g.colors[v] = glm::clamp(glm::vec4(col[v * cc], col[v * cc + 1], col[v * cc + 2], cc == 4 ? col[v * cc + 3] : 1.0f),
+                               0.0f, 1.0f);
+  }
+
   // Every JOINTS_n / WEIGHTS_n pair contributes influences.
   for (int set = 0;; ++set) {
     int ja = attr(("JOINTS_" + std::to_string(set)).c_str());
@@ -486,7 +502,12 @@ Result<Mesh> readMesh(const Ctx& c, int meshIndex) {
   }
   InfluenceStats stats;
   bool needSecondSet = false;
+  const bool anyColors = std::any_of(prims.begin(), prims.end(), [](const auto& g) { return !g.colors.empty(); });
   for (auto& g : prims) {
+    if (anyColors) {  // a primitive without COLOR_0 is white, as glTF renders it
+      if (g.colors.empty()) mesh.colors.insert(mesh.colors.end(), g.positions.size(), glm::vec4(1.0f));
+      else mesh.colors.insert(mesh.colors.end(), g.colors.begin(), g.colors.end());
+    }
     const auto base = static_cast<uint32_t>(mesh.positions.size());
     mesh.positions.insert(mesh.positions.end(), g.positions.begin(), g.positions.end());
     mesh.normals.insert(mesh.normals.end(), g.normals.begin(), g.normals.end());

@@ -34,6 +34,7 @@ struct Mesh {
   std::vector<uint32_t> indices;  // triangle list
   std::vector<glm::uvec4> joints0, joints1;
   std::vector<glm::vec4> weights0, weights1;
+  std::vector<glm::vec4> colors;  // glTF COLOR_0 (RGBA, 0..1; RGB files get alpha 1); empty: none
 
   size_t vertexCount() const { return positions.size(); }
   size_t triangleCount() const { return indices.size() / 3; }

@@ -15,6 +15,7 @@
 #define AM_VERTEX_JOINTS1 3
 #define AM_VERTEX_WEIGHTS0 4
 #define AM_VERTEX_WEIGHTS1 5
+#define AM_VERTEX_PAINT_WEIGHT 6  // weight-map overlay only: one float per vertex (its own buffer)
 
 // Joint influences per vertex (two sets of four, glTF JOINTS_0/1, WEIGHTS_0/1).
 #define AM_MAX_INFLUENCES 8
@@ -32,6 +33,7 @@ namespace animorph::gpu {
 inline constexpr uint32_t kBindingFrame = AM_BINDING_FRAME;
 inline constexpr uint32_t kBindingJoints = AM_BINDING_JOINTS;
 inline constexpr uint32_t kMaxInfluences = AM_MAX_INFLUENCES;
+inline constexpr uint32_t kVertexPaintWeight = AM_VERTEX_PAINT_WEIGHT;
 inline constexpr uint32_t kDrawSelected = AM_DRAW_SELECTED;
 inline constexpr uint32_t kDrawWireframe = AM_DRAW_WIREFRAME;
 inline constexpr uint32_t kFramesInFlight = AM_FRAMES_IN_FLIGHT;

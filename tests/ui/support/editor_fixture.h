@@ -32,6 +32,22 @@ struct EditorFixture {
     h.frames(1);
     return c;
   }
+
+  // loadHeroScene plus a second actor "other" of the same asset and a morph
+  // hero -> other (markers 10, 20, 30, 40; no morph.actors entries), nothing selected.
+  void loadHeroMorphScene() {
+    loadHeroScene();
+    Project p = h.doc().project();
+    Actor b = p.actors[0];
+    b.id = "other";
+    p.actors.push_back(b);
+    p.morph.sourceActorId = "hero";
+    p.morph.targetActorId = "other";
+    p.morph.markers = {10, 20, 30, 40};
+    h.document->reset(p, dir.file("scene.animorph"));
+    h.doc().selection = {};
+    h.frames(2);
+  }
 };
 
 }  // namespace animorph::test

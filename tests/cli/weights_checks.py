@@ -1,0 +1,110 @@
+"""animorph-cli weights import, end to end: on a copy of the demo project,
+importing from a glTF without vertex colours fails naming the file and leaves
+the project untouched; a copy of the creature with a COLOR_0 written into it
+(red = a known ramp over the vertices) imports as the creature's weight map,
+and the saved project holds exactly those values.
+
+usage: weights_checks.py CLI DEMO_DIR"""
+import base64
+import json
+import os
+import shutil
+import struct
+import subprocess
+import sys
+import tempfile
+
+cli, demo = sys.argv[1], sys.argv[2]
+
+
+def fail(msg):
+    print("FAIL: " + msg, flush=True)
+    raise SystemExit(1)
+
+
+def check(cond, msg):
+    if not cond:
+        fail(msg)
+    print("ok: " + msg, flush=True)
+
+
+def read_glb(path):
+    data = open(path, "rb").read()
+    magic, _, _ = struct.unpack_from("<III", data, 0)
+    assert magic == 0x46546C67
+    jlen, _ = struct.unpack_from("<II", data, 12)
+    doc = json.loads(data[20:20 + jlen])
+    blen, _ = struct.unpack_from("<II", data, 20 + jlen)
+    return doc, bytearray(data[28 + jlen:28 + jlen + blen])
+
+
+def write_glb(path, doc, binary):
+    while len(binary) % 4:
+        binary.append(0)
+    doc["buffers"][0]["byteLength"] = len(binary)
+    text = json.dumps(doc).encode()
+    text += b" " * ((4 - len(text) % 4) % 4)
+    out = struct.pack("<III", 0x46546C67, 2, 12 + 8 + len(text) + 8 + len(binary))
+    out += struct.pack("<II", len(text), 0x4E4F534A) + text + struct.pack("<II", len(binary), 0x004E4942) + bytes(binary)
+    open(path, "wb").write(out)
+
+
+def with_colours(src, dst):
+    """Adds COLOR_0 (float RGBA; red = i / (n - 1) over each primitive's vertices) to every primitive."""
+    doc, binary = read_glb(src)
+    reds = []
+    for mesh in doc["meshes"]:
+        for prim in mesh["primitives"]:
+            n = doc["accessors"][prim["attributes"]["POSITION"]]["count"]
+            while len(binary) % 4:
+                binary.append(0)
+            offset = len(binary)
+            for i in range(n):
+                r = i / max(1, n - 1)
+                reds.append(r)
+                binary += struct.pack("<4f", r, 0.5, 0.0, 1.0)
+            doc["bufferViews"].append({"buffer": 0, "byteOffset": offset, "byteLength": 16 * n})
+            doc["accessors"].append({"bufferView": len(doc["bufferViews"]) - 1, "componentType": 5126,
+                                     "count": n, "type": "VEC4"})
+            prim["attributes"]["COLOR_0"] = len(doc["accessors"]) - 1
+    write_glb(dst, doc, binary)
+    return reds
+
+
+work = tempfile.mkdtemp(prefix="animorph-cli-weights-")
+for name in ("demo.animorph", "creature.glb", "gear.glb"):
+    shutil.copy(os.path.join(demo, name), work)
+project = os.path.join(work, "demo.animorph")
+before = open(project).read()
+
+r = subprocess.run([cli, "weights", "import", project, "--actor", "creature", "--from", "red"],
+                   capture_output=True, text=True)
+check(r.returncode == 1, f"importing from a glTF without COLOR_0 fails (exit {r.returncode})")
+check("creature.glb: no vertex colours (COLOR_0)" in r.stderr, f"the error names the file: {r.stderr.strip()}")
+check(open(project).read() == before, "the project is left untouched")
+
+r = subprocess.run([cli, "weights", "import", project, "--actor", "nobody"], capture_output=True, text=True)
+check(r.returncode == 1 and "'nobody'" in r.stderr, f"an unknown actor is named: {r.stderr.strip()}")
+r = subprocess.run([cli, "weights", "import", project, "--actor", "creature", "--from", "green"],
+                   capture_output=True, text=True)
+check(r.returncode == 2, "an unknown channel is a usage error")
+
+painted = os.path.join(work, "creature_painted.glb")
+reds = with_colours(os.path.join(work, "creature.glb"), painted)
+r = subprocess.run([cli, "weights", "import", project, "--actor", "creature", "--from", "color", "--gltf", painted],
+                   capture_output=True, text=True)
+check(r.returncode == 0, f"importing the red channel of a coloured copy works: {r.stdout.strip()} {r.stderr.strip()}")
+doc = json.load(open(project))
+actor = next(a for a in doc["morph"]["actors"] if a["id"] == "creature")
+raw = base64.b64decode(actor["weight_map"])
+weights = struct.unpack("<%df" % (len(raw) // 4), raw)
+check(len(weights) == len(reds), f"one weight per creature vertex ({len(weights)})")
+check(max(abs(a - b) for a, b in zip(weights, reds)) < 1e-6, "the weights are the red channel exactly")
+r = subprocess.run([cli, "info", "--json", project], capture_output=True, text=True)
+check(r.returncode == 0, "the project still loads (info --json)")
+
+r = subprocess.run([cli, "weights", "import", project, "--actor", "creature", "--gltf",
+                    os.path.join(work, "gear.glb")], capture_output=True, text=True)
+check(r.returncode == 1 and "gear.glb" in r.stderr and "vertices" in r.stderr,
+      f"a glTF with other vertices is refused, naming it: {r.stderr.strip()}")
+print("weights import: all checks passed")
