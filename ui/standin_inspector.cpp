@@ -108,6 +108,10 @@ void drawStandinInspector(Document& doc, const Character& c, const std::string& 
         sel = i;
       }
       noteWidget("inspector/standin/segment/" + std::to_string(i));
+      if (i == sel && st.scrollList) {
+        ImGui::SetScrollHereY();
+        st.scrollList = false;
+      }
     }
   }
   ImGui::EndChild();

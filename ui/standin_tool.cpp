@@ -186,6 +186,7 @@ bool pickStandinClick(Document& doc, AssetCache& assets, const OrbitCamera& came
   if (st.actorId != hit->actorId || st.segment != hit->segment) st.part = StandinPart::Whole;
   st.actorId = hit->actorId;
   st.segment = hit->segment;
+  st.scrollList = true;
   doc.selection = Selection{hit->actorId, -1};
   return true;
 }

@@ -31,6 +31,7 @@ struct StandinToolState {
   TranslateArrows arrows;
   bool hoverHandle = false;  // an end, middle or radius handle is under the mouse
   bool radiusDrag = false;
+  bool scrollList = false;   // the inspector's list scrolls to the selection (set by a viewport pick)
   StandinSegment dragStart;       // the segment when the drag started
   StandinGuideSegment dragGuide;  // its pose then
   glm::vec2 radiusDirPx{1.0f, 0.0f};  // screen direction the radius handle moves along
