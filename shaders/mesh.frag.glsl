@@ -1,35 +1,15 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Viewport shading: a headlight plus a key light over a little ambient, two-sided,
-// readable on any base colour (like Maya's default shading); selection adds a rim.
+// Viewport shading of opaque meshes (include/mesh_shading.glsl).
 #include "frame.glsl"
 
 #include "mesh_push.glsl"
+#include "mesh_shading.glsl"
 
 layout(location = 0) in vec3 inWorldPos;
 layout(location = 1) in vec3 inWorldNormal;
 layout(location = 0) out vec4 outColor;
 
 void main() {
-  if ((pc.flags & AM_DRAW_WIREFRAME) != 0u) {
-    outColor = pc.color;
-    return;
-  }
-  vec3 v = normalize(frame.cameraPos.xyz - inWorldPos);
-  vec3 n = inWorldNormal;
-  float len = length(n);
-  n = len > 1e-12 ? n / len : v;
-  if (dot(n, v) < 0.0) n = -n;  // two-sided: back faces and flipped normals shade like front faces
-  vec3 l = frame.keyLightDir.xyz;
-  float head = max(dot(n, v), 0.0);
-  float key = max(dot(n, l), 0.0);
-  float spec = pow(max(dot(n, normalize(v + l)), 0.0), 40.0);
-  vec3 base = pow(clamp(pc.color.rgb, 0.0, 1.0), vec3(2.2));
-  vec3 lit = base * (0.10 + 0.60 * head + 0.45 * key) + vec3(0.06) * spec;
-  if ((pc.flags & AM_DRAW_SELECTED) != 0u) {
-    vec3 sel = pow(frame.selectColor.rgb, vec3(2.2));
-    float rim = pow(1.0 - head, 2.0);
-    lit = mix(lit, sel * (0.3 + 0.7 * head), 0.25) + sel * rim * 0.8;
-  }
-  outColor = vec4(pow(lit, vec3(1.0 / 2.2)), pc.color.a);
+  outColor = amShadeMesh(inWorldPos, inWorldNormal);
 }

@@ -18,20 +18,13 @@ layout(set = 0, binding = AM_BINDING_JOINTS, std430) readonly buffer Joints {
 };
 
 #include "mesh_push.glsl"
+#include "skinning.glsl"
 
 layout(location = 0) out vec3 outWorldPos;
 layout(location = 1) out vec3 outWorldNormal;
 
-void accumulate(inout mat4 skin, uvec4 j, vec4 w) {
-  for (int k = 0; k < 4; ++k)
-    if (w[k] != 0.0 && j[k] < pc.jointCount) skin += w[k] * joints[pc.jointOffset + j[k]];
-}
-
 void main() {
-  mat4 skin = mat4(0.0);
-  accumulate(skin, inJoints0, inWeights0);
-  accumulate(skin, inJoints1, inWeights1);
-  mat4 world = pc.model * skin;
+  mat4 world = pc.model * amSkinMatrix(inJoints0, inWeights0, inJoints1, inWeights1);
   vec4 wp = world * vec4(inPosition, 1.0);
   outWorldPos = wp.xyz;
   outWorldNormal = transpose(inverse(mat3(world))) * inNormal;

@@ -73,6 +73,20 @@ void drawMorphSettings(Document& doc, DragMerge& drag) {
   drag.end(doc);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("How much earlier painted vertices start their transition (fraction of the transition)");
+
+  MorphCrossFade fade = m.crossFade;
+  bool fc = ImGui::Checkbox("Cross-fade at B, C", &fade.enabled);
+  noteWidget("morph/crossfade");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Around markers B and C, draw the mesh and the implicit surface dithered with\n"
+                      "complementary opacity (hides the switch on coarse meshes)");
+  if (fade.enabled) {
+    fc |= ImGui::SliderInt("Fade width", &fade.widthFrames, 1, 24, "%d frames");
+    drag.begin(doc);
+  }
+  if (fc && !(fade == m.crossFade))
+    doc.execute(setMorphField(doc.project(), &MorphSetup::crossFade, fade, "Set morph cross-fade", "morph/crossfade"));
+  drag.end(doc);
   ImGui::PopItemWidth();
 }
 

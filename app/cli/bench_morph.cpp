@@ -7,6 +7,7 @@
 #include <cstdlib>
 
 #include "cli/bench.h"
+#include "cli/bench_gpu_transition.h"
 #include "demo/creature.h"
 #include "demo/dense.h"
 #include "demo/gear.h"
@@ -80,6 +81,7 @@ std::vector<Row> benchMorph(const bench::Options& opt) {
   });
   std::snprintf(note, sizeof note, "%zu vertices, alpha 0.9: every vertex re-projected onto the posed field", verts);
   rows.push_back({"transition per frame with re-projection", reprojMs, "ms", "", note});
+  for (Row& r : bench::gpuTransitionRows(opt, dense, fit->standin, binding)) rows.push_back(std::move(r));
 
   // ---- bake the demo morph
   std::string tmpl = (std::filesystem::temp_directory_path() / "animorph-bench-XXXXXX").string();

@@ -14,9 +14,11 @@
 #include "scene/mesh_character.h"
 #include "doc/project_io.h"
 #include "morph/morph_runtime.h"
+#include "morph/solid_noise.h"
 #include "poly/mesh_io.h"
 #if ANIMORPH_HAS_GPU
 #include "context.h"
+#include "gpu_polygonizer.h"
 #include "mesh_cache.h"
 #include "offscreen_target.h"
 #include "scene_from_frame.h"
@@ -117,7 +119,7 @@ int renderPngs(const std::vector<TriangleMesh>& meshes, int first, const fs::pat
 int runBake(const std::vector<std::string>& args) {
   std::string project, output, frames;
   int res = 48, jobs = 1;
-  bool png = false;
+  bool png = false, gpu = false;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     auto value = [&]() -> const std::string* { return i + 1 < args.size() ? &args[++i] : nullptr; };
@@ -130,6 +132,8 @@ int runBake(const std::vector<std::string>& args) {
       else output = *v;
     } else if (a == "--png") {
       png = true;
+    } else if (a == "--gpu") {
+      gpu = true;
     } else if (!a.empty() && a[0] == '-') {
       return cli::fail("bake", "unknown option " + a, 2);
     } else if (project.empty()) {
@@ -148,6 +152,7 @@ int runBake(const std::vector<std::string>& args) {
   if (jobs < 1 || jobs > 256) return cli::fail("bake", "--jobs: expected 1..256", 2);
 #if !ANIMORPH_HAS_GPU
   if (png) return cli::fail("bake", "--png: this animorph-cli was built without the GPU library", 2);
+  if (gpu) return cli::fail("bake", "--gpu: this animorph-cli was built without the GPU library", 2);
 #endif
 
   auto p = loadProject(project);
@@ -160,6 +165,55 @@ int runBake(const std::vector<std::string>& args) {
   std::error_code ec;
   fs::create_directories(output, ec);
   if (ec) return cli::fail("bake", output + ": cannot create directory: " + ec.message());
+
+#if ANIMORPH_HAS_GPU
+  // --gpu: the B->C stage on the Vulkan compute polygoniser (one device, its
+  // frames one at a time); the other stages are the same as on the CPU. No
+  // device, or a device failure, is an error: no silent fallback to the CPU.
+  std::unique_ptr<gpu::Context> gpuCtx;
+  std::unique_ptr<gpu::GpuPolygonizer> gpuPoly;
+  std::mutex gpuMutex;
+  if (gpu) {
+    auto c = gpu::Context::create(gpu::ContextSettings{});
+    if (!c) return cli::fail("bake", "--gpu: no usable Vulkan device: " + c.error());
+    gpuCtx = std::move(*c);
+    auto poly = gpu::GpuPolygonizer::create(*gpuCtx);
+    if (!poly) return cli::fail("bake", "--gpu: " + poly.error());
+    gpuPoly = std::move(*poly);
+    std::printf("B->C polygonised on the GPU: %s\n", gpuCtx->deviceName().c_str());
+  }
+  // The B->C frame at timeSec polygonised on the GPU (same field and grid as the CPU's).
+  auto gpuMorphFrame = [&](double timeSec) -> Result<MorphFrame> {
+    MorphFrame fr;
+    fr.timeSec = timeSec;
+    fr.stage = MorphStage::Morph;
+    MorphImplicitField field = morphImplicitField(**rt, timeSec, res);
+    fr.progress = field.progress;
+    fr.blend = field.blend;
+    gpu::GpuField gf = gpu::GpuField::single(field.program);
+    if (std::string why = gpu::GpuPolygonizer::unsupported(gf); !why.empty())
+      return Error{"the GPU polygoniser cannot evaluate this morph: " + why};
+    gpu::GpuPolygonizeSettings gs;
+    gs.resolution = res;
+    gs.bounds = field.bounds;
+    std::lock_guard<std::mutex> lock(gpuMutex);
+    auto stats = gpuPoly->polygonize(gf, gs);
+    if (!stats) return Error{stats.error()};
+    auto mesh = gpuPoly->readBack();
+    if (!mesh) return Error{mesh.error()};
+    fr.mesh = std::move(*mesh);
+    fr.polygonize.gridX = stats->gridX;
+    fr.polygonize.gridY = stats->gridY;
+    fr.polygonize.gridZ = stats->gridZ;
+    fr.polygonize.cellSize = stats->cellSize;
+    fr.polygonize.blocksTotal = stats->blocksTotal;
+    fr.polygonize.blocksEvaluated = stats->blocksActive;
+    fr.polygonize.blocksCulled = stats->blocksTotal - stats->blocksActive;
+    fr.polygonize.milliseconds = stats->milliseconds;
+    displaceBySolidNoise(fr.mesh, field.noiseAmplitude, (*rt)->setup.noiseFrequency);
+    return fr;
+  };
+#endif
 
   const auto t0 = std::chrono::steady_clock::now();
   const int count = last - first + 1;
@@ -175,7 +229,15 @@ int runBake(const std::vector<std::string>& args) {
       MorphFrameSettings fs;
       fs.resolution = res;
       fs.threads = jobs > 1 ? 1 : 0;
-      auto fr = evaluateMorphFrame(**rt, p->timeline.frameToSec(f), fs);
+      const double timeSec = p->timeline.frameToSec(f);
+      double u = 0.0;
+      const bool onGpu = gpu && morphStageAt((*rt)->setup, (*rt)->timeline, timeSec, u) == MorphStage::Morph;
+#if ANIMORPH_HAS_GPU
+      auto fr = onGpu ? gpuMorphFrame(timeSec) : evaluateMorphFrame(**rt, timeSec, fs);
+#else
+      (void)onGpu;
+      auto fr = evaluateMorphFrame(**rt, timeSec, fs);
+#endif
       if (!fr) { errors[size_t(k)] = fr.error(); bar.step(); continue; }
       if (Status st = writePly(fr->mesh, frameName(output, f, "ply")); !st) errors[size_t(k)] = st.error();
       {
@@ -197,6 +259,11 @@ int runBake(const std::vector<std::string>& args) {
               first, last, stageCount[0], stageCount[1], stageCount[2], stageCount[3], stageCount[4], res,
               output.c_str(), sec);
 #if ANIMORPH_HAS_GPU
+  if (gpuCtx && gpuCtx->validationEnabled() && gpuCtx->validationErrorCount() > 0) {
+    std::fprintf(stderr, "animorph-cli bake: %u Vulkan validation error(s) in the GPU polygoniser\n",
+                 gpuCtx->validationErrorCount());
+    return 3;
+  }
   if (png) {
     int code = renderPngs(kept, first, output, p->view);
     if (code != 0) return code;
@@ -209,13 +276,16 @@ int runBake(const std::vector<std::string>& args) {
 }  // namespace
 
 ANIMORPH_CLI_COMMAND("bake", "bake a project's morph into meshes (and PNG frames) frame by frame",
-                     "usage: animorph-cli bake PROJECT.animorph --frames A:B --res N -o DIR [--png] [--jobs J]\n"
+                     "usage: animorph-cli bake PROJECT.animorph --frames A:B --res N -o DIR [--png] [--gpu] [--jobs J]\n"
                      "  Writes DIR/frame_NNNN.ply (binary PLY, world space) for every frame A..B:\n"
                      "  the source's skinned mesh before marker A, its collapse onto the stand-in\n"
                      "  A->B, the polygonised implicit morph B->C (N cells along the longest side),\n"
                      "  the target's expansion C->D and its skinned mesh after D.\n"
                      "  --png      also DIR/frame_NNNN.png, rendered offscreen (Vulkan; set\n"
                      "             ANIMORPH_VALIDATION=1 for validation layers)\n"
+                     "  --gpu      the B->C stage on the Vulkan compute polygoniser (offscreen, no\n"
+                     "             display needed); exits 1 with a message when no device is usable\n"
+                     "             or the device fails (no silent fallback to the CPU)\n"
                      "  --jobs J   frames baked in parallel (the output is the same for any J)\n"
                      "  A progress bar is drawn when stdout is a terminal.\n"
                      "  Exit status: 0 on success, 1 when the project cannot be read or a frame fails,\n"

@@ -1,6 +1,7 @@
 // animorph-cli polygonize: BlobTree scene -> mesh (OBJ, PLY or GLB) on the CPU,
-// or with --gpu on the Vulkan compute polygoniser (headless; falls back to the
-// CPU with a note on stderr when there is no device or the scene is unsupported).
+// or with --gpu on the Vulkan compute polygoniser (headless). An explicit --gpu
+// that cannot run (no device, a program beyond the GPU's limits, a device
+// failure) exits 1 with the reason: no silent fallback to the CPU.
 #include <cstdio>
 #include <iostream>
 #include <thread>
@@ -124,41 +125,33 @@ int polygonizeCommand(const std::vector<std::string>& args) {
   if (gpu) {
     namespace g = animorph::gpu;
     auto field = g::GpuField::single(program);
-    std::string why = g::GpuPolygonizer::unsupported(field);
-    std::unique_ptr<g::Context> ctx;
-    std::unique_ptr<g::GpuPolygonizer> poly;
-    if (why.empty()) {
-      auto c = g::Context::create(g::ContextSettings{});
-      if (c) {
-        ctx = std::move(*c);
-        auto p = g::GpuPolygonizer::create(*ctx);
-        if (p) poly = std::move(*p);
-        else why = p.error();
-      } else {
-        why = c.error();
-      }
-    }
-    if (poly) {
-      g::GpuPolygonizeSettings gs;
-      gs.resolution = int(res);
-      gs.culling = cull;
-      auto stats = poly->polygonize(field, gs);
-      if (!stats) return fail(me, what + ": " + stats.error());
-      auto mesh = poly->readBack();
-      if (!mesh) return fail(me, scene + ": " + mesh.error());
-      toWorld(*mesh, model);
-      if (auto s = animorph::writeMesh(*mesh, output); !s) return fail(me, s.error());
-      std::printf("%s at t = %g s: %zu triangles, %zu vertices in %.1f ms (GPU: %s)\n", what.c_str(), timeSec,
-                  mesh->triangleCount(), mesh->positions.size(), stats->milliseconds, ctx->deviceName().c_str());
-      std::printf("  grid %d x %d x %d (cell %.4g m), %zu primitives, blocks %u evaluated / %u culled of %u -> %s\n",
-                  stats->gridX, stats->gridY, stats->gridZ, stats->cellSize, program.primitiveCount(),
-                  stats->blocksActive, stats->blocksTotal - stats->blocksActive, stats->blocksTotal, output.c_str());
-      return 0;
-    }
-    std::fprintf(stderr, "animorph-cli polygonize: --gpu unavailable (%s); using the CPU\n", why.c_str());
+    if (std::string why = g::GpuPolygonizer::unsupported(field); !why.empty())
+      return fail(me, what + ": --gpu: the GPU polygoniser cannot evaluate this scene: " + why +
+                          " (run without --gpu for the CPU)");
+    auto ctx = g::Context::create(g::ContextSettings{});
+    if (!ctx) return fail(me, "--gpu: no usable Vulkan device: " + ctx.error() + " (run without --gpu for the CPU)");
+    auto poly = g::GpuPolygonizer::create(**ctx);
+    if (!poly) return fail(me, "--gpu: " + poly.error());
+    g::GpuPolygonizeSettings gs;
+    gs.resolution = int(res);
+    gs.culling = cull;
+    auto stats = (*poly)->polygonize(field, gs);
+    if (!stats) return fail(me, what + ": " + stats.error());
+    auto mesh = (*poly)->readBack();
+    if (!mesh) return fail(me, scene + ": " + mesh.error());
+    toWorld(*mesh, model);
+    if (auto s = animorph::writeMesh(*mesh, output); !s) return fail(me, s.error());
+    std::printf("%s at t = %g s: %zu triangles, %zu vertices in %.1f ms (GPU: %s)\n", what.c_str(), timeSec,
+                mesh->triangleCount(), mesh->positions.size(), stats->milliseconds, (*ctx)->deviceName().c_str());
+    std::printf("  grid %d x %d x %d (cell %.4g m), %zu primitives, blocks %u evaluated / %u culled of %u -> %s\n",
+                stats->gridX, stats->gridY, stats->gridZ, stats->cellSize, program.primitiveCount(),
+                stats->blocksActive, stats->blocksTotal - stats->blocksActive, stats->blocksTotal, output.c_str());
+    if ((*ctx)->validationEnabled() && (*ctx)->validationErrorCount() > 0)
+      return fail(me, std::to_string((*ctx)->validationErrorCount()) + " Vulkan validation error(s)", 3);
+    return 0;
   }
 #else
-  if (gpu) std::fprintf(stderr, "animorph-cli polygonize: built without Vulkan; --gpu uses the CPU\n");
+  if (gpu) return fail(me, "--gpu: this animorph-cli was built without Vulkan (run without --gpu for the CPU)", 2);
 #endif
   animorph::PolygonizeSettings settings;
   settings.resolution = int(res);
@@ -188,8 +181,9 @@ ANIMORPH_CLI_COMMAND("polygonize", "polygonise a BlobTree scene at a time into a
                      "  --res   cells along the longest side of the bounds (default 128)\n"
                      "  --no-cull  evaluate every grid corner with every primitive (same mesh, slower)\n"
                      "  --threads  worker threads (default: all)\n"
-                     "  --gpu   Vulkan compute polygoniser (offscreen, no display needed); falls back to\n"
-                     "          the CPU with a note on stderr when no device is usable. --res up to 512.\n"
+                     "  --gpu   Vulkan compute polygoniser (offscreen, no display needed), --res up to 512;\n"
+                     "          exits 1 with the reason when no device is usable, the scene is beyond the\n"
+                     "          GPU's limits or the device fails (no silent fallback to the CPU)\n"
                      "  -o      output mesh: .obj, .ply (binary) or .glb\n"
                      "  Prints the triangle count and the time taken. Errors name the file and the node.\n",
                      polygonizeCommand);

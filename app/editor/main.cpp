@@ -30,6 +30,7 @@
 #include "scene/scene_frame.h"
 #include "scene_from_frame.h"
 #include "scene_renderer.h"
+#include "standin_binding_cache.h"
 #include "standin_overlay.h"
 #include "swapchain.h"
 #include "paint/paint_mesh.h"
@@ -174,6 +175,7 @@ int main(int argc, char** argv) {
   auto meshCache = std::make_unique<gpu::MeshCache>(ctx);
   gpu::MeshCache& meshes = *meshCache;
   auto blobPreviews = std::make_unique<gpu::BlobPreviewSet>(ctx);
+  auto standinBindings = std::make_unique<gpu::StandinBindingCache>(ctx);
   auto morphPreview = std::make_unique<gpu::ImplicitPreview>(ctx);  // the morph's B->C stage
   PreviewDevice previewDevice = ui.state().prefs.previewDevice;
   std::unique_ptr<Document> document = std::make_unique<Document>();
@@ -187,6 +189,8 @@ int main(int argc, char** argv) {
   MorphCache morphCache;
   MorphFrameSettings morphSettings;  // the transitions; the B->C stage is morphPreview's
   std::vector<float> overlayWeights;  // the weight overlay's data, alive until the frame is recorded
+  // Collapse and expansion run in the vertex shader (ANIMORPH_CPU_TRANSITIONS=1: on the CPU, for comparison).
+  morphSettings.gpuTransitions = !std::getenv("ANIMORPH_CPU_TRANSITIONS");
   std::string lastTitle;
   std::vector<double> frameMs;
   double firstFrameMs = -1.0;
@@ -242,20 +246,23 @@ int main(int argc, char** argv) {
       blobPreviews->clearGpuFailures();
     }
     bool morphStageShown = false;
+    float morphOpacity = 0.0f;  // below 1: the cross-fade (dithered, complementary to the mesh)
     std::string morphSourceId;
     if (out.weightPaintMode) {  // the painted actor as itself, posed, without the morph
       isolateForPainting(frame, doc.project().morph, out.weightOverlay.actorId);
       ectx.viewportNote.clear();
     } else if (auto rt = morphCache.get(doc.project(), doc.baseDir(), assets, &doc, doc.revision())) {
-      MorphSceneInfo info = applyMorph(frame, *rt, timeSec, morphSettings, /*implicitStage=*/false);
+      MorphSceneInfo info = applyMorph(frame, rt, timeSec, morphSettings, /*implicitStage=*/false);
       ectx.viewportNote = "morph: " + describeMorphStage(info);
-      if (info.stage == MorphStage::Morph) {
+      morphOpacity = float(info.implicitOpacity);
+      if (morphOpacity > 0.0f) {  // B..C, or the cross-fade's window around B and C
         gpu::ImplicitPreviewSettings ps;
         ps.interactiveResolution = prefs.previewCoarseResolution;
         ps.refinedResolution = prefs.previewResolution;
         ps.gpu = backend.gpu;
         ps.settle = !pendingCapture.empty();
-        morphPreview->update(morphPreviewSource(rt, timeSec), timeSec, ps);
+        const double u = info.stage == MorphStage::Morph ? -1.0 : info.implicitProgress;
+        morphPreview->update(morphPreviewSource(rt, timeSec, u), timeSec, ps);
         morphStageShown = true;
         morphSourceId = rt->setup.sourceActorId;
       }
@@ -291,9 +298,13 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "animorph: morph preview still computing at the screenshot\n");
     const Actor* selActor = doc.project().findActor(doc.selection.actorId);
     int selBlobNode = selActor && selActor->kind == ActorKind::BlobTree ? doc.selection.node : -1;
-    gpu::buildScene(frame, doc.project().view, doc.selection.actorId, meshes, scene, blobPreviews.get(), selBlobNode);
-    if (morphStageShown)
+    gpu::buildScene(frame, doc.project().view, doc.selection.actorId, meshes, scene, blobPreviews.get(), selBlobNode,
+                    standinBindings.get());
+    if (morphStageShown) {
+      const size_t meshCount = scene.meshes.size(), generatedCount = scene.generatedMeshes.size();
       morphPreview->draw(scene, glm::mat4(1.0f), {0.62f, 0.62f, 0.62f, 1.0f}, doc.selection.actorId == morphSourceId);
+      gpu::setCrossFade(scene, meshCount, generatedCount, morphOpacity);
+    }
     if (doc.project().view.showStandins || ui.state().viewportMode == ViewportMode::StandinEdit)
       gpu::addStandinOverlay(projectStandinGuides(doc.project(), doc.baseDir(), assets, timeSec),
                              doc.selection.actorId, selectedStandinSegment(doc, ui.state().standinTool), scene.overlay);
@@ -346,6 +357,7 @@ int main(int argc, char** argv) {
     }
     meshes.endFrame();
     blobPreviews->endFrame();
+    standinBindings->endFrame();
     morphPreview->endFrame();
     ++frameCount;
     if (args.benchFrames > 0 && frameCount > 10) {
@@ -379,6 +391,7 @@ int main(int argc, char** argv) {
     exitCode = 3;
   }
   blobPreviews.reset();
+  standinBindings.reset();
   morphPreview.reset();
   meshCache.reset();
   imguiR->reset();

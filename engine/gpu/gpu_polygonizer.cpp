@@ -31,8 +31,9 @@ struct PolyParams {
   glm::vec4 morph1;
   glm::uvec4 caps;
   glm::vec4 extra;
+  glm::uvec4 superBlocks;
 };
-static_assert(sizeof(PolyParams) == 11 * 16);
+static_assert(sizeof(PolyParams) == 12 * 16);
 
 constexpr uint32_t kTableVec4 = 2 * 256 + 3;
 constexpr uint32_t kTimestamps = 7;
@@ -43,6 +44,8 @@ struct Grid {
   uint32_t n[3] = {1, 1, 1};
   uint32_t nb[3] = {1, 1, 1};
   uint32_t blocks() const { return nb[0] * nb[1] * nb[2]; }
+  uint32_t superAxis(int a) const { return (nb[a] + AM_POLY_SUPER - 1) / AM_POLY_SUPER; }
+  uint32_t superBlocks() const { return superAxis(0) * superAxis(1) * superAxis(2); }
 };
 
 // The CPU polygoniser's grid rule (poly/polygonizer.cpp), so both meet on the same grid.
@@ -124,6 +127,7 @@ struct GpuPolygonizer::Impl {
   VkQueryPool timestamps = VK_NULL_HANDLE;  // kTimestamps per frame of polygonize(); null when unsupported
 
   Buffer params, pool, bounds, table, blockMask, blockFlag, blockPrefix, blockSlot, partials, control;
+  Buffer superFlag;
   Buffer active, corners, edges, counts, offsets;  // per active-block slot
   Buffer positions, normals, indices;
   Buffer readback;  // host: AM_CTL_READBACK_UINTS per frame slot
@@ -151,7 +155,7 @@ GpuPolygonizer::Impl::~Impl() {
   VkDevice dev = ctx.device();
   vkDeviceWaitIdle(dev);
   for (Buffer* b : {&params, &pool, &bounds, &table, &blockMask, &blockFlag, &blockPrefix, &blockSlot, &partials,
-                    &control, &active, &corners, &edges, &counts, &offsets, &positions, &normals, &indices, &readback})
+                    &superFlag, &control, &active, &corners, &edges, &counts, &offsets, &positions, &normals, &indices, &readback})
     destroyBuffer(dev, *b);
   for (VkPipeline p : {blocks[0], blocks[1], cells[0], cells[1], emit[0], emit[1], scan, compact, args})
     if (p) vkDestroyPipeline(dev, p, nullptr);
@@ -255,6 +259,7 @@ Status GpuPolygonizer::Impl::init() {
   if (s) s = ensure(blockFlag, 4096, ssbo);
   if (s) s = ensure(blockPrefix, 4096, ssbo);
   if (s) s = ensure(blockSlot, 4096, ssbo);
+  if (s) s = ensure(superFlag, 4096, ssbo);
   if (s) s = ensureCapacities(64, 4096, 8192);
   if (!s) return s;
   Result<Buffer> rb = createHostBuffer(ctx, (kFramesInFlight + 1) * AM_CTL_READBACK_UINTS * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
@@ -347,6 +352,7 @@ void GpuPolygonizer::Impl::writeSet() {
   info[AM_PB_BLOCK_FLAG] = whole(blockFlag);
   info[AM_PB_BLOCK_PREFIX] = whole(blockPrefix);
   info[AM_PB_BLOCK_SLOT] = whole(blockSlot);
+  info[AM_PB_SUPER_FLAG] = whole(superFlag);
   info[AM_PB_ACTIVE] = whole(active);
   info[AM_PB_CORNERS] = whole(corners);
   info[AM_PB_EDGES] = whole(edges);
@@ -389,10 +395,12 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   Status st = ensure(pool, std::max<VkDeviceSize>(AM_POLY_UNIFORM_POOL_VEC4 * 16, pk.pool.size() * 16),
                      VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | ssbo);
   if (st) st = ensure(bounds, pk.bounds.size() * 16, ssbo);
-  if (st) st = ensure(blockMask, VkDeviceSize(nBlocks) * words * 4, ssbo);
+  const uint32_t nSuper = g.superBlocks();
+  if (st) st = ensure(blockMask, VkDeviceSize(nBlocks + nSuper) * words * 4, ssbo);
   if (st) st = ensure(blockFlag, VkDeviceSize(nBlocks) * 8, ssbo);
   if (st) st = ensure(blockPrefix, VkDeviceSize(nBlocks) * 8, ssbo);
   if (st) st = ensure(blockSlot, VkDeviceSize(nBlocks) * 4, ssbo);
+  if (st) st = ensure(superFlag, VkDeviceSize(nSuper) * 4, ssbo);
   if (!st) return st;
   if (nBlocks > AM_POLY_SCAN_PER_GROUP * AM_POLY_SCAN_MAX_GROUPS)
     return Error{"GPU polygoniser: " + std::to_string(nBlocks) + " blocks exceed the scan's limit"};
@@ -413,8 +421,9 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   prm.morph0 = glm::vec4(field.weight, field.morphTime, field.timeScale, field.a0);
   const float normalStep = 0.05f * g.h;
   prm.morph1 = glm::vec4(field.a1, field.a2, field.a3, normalStep);
-  prm.caps = glm::uvec4(vertexCapacity, triangleCapacity, pk.primitiveTotal(), uint32_t(AM_POLY_POINTS));
+  prm.caps = glm::uvec4(vertexCapacity, triangleCapacity, pk.primitiveTotal(), 1u);
   prm.extra = glm::vec4(2.0f * normalStep, 0.0f, 0.0f, 0.0f);
+  prm.superBlocks = glm::uvec4(g.superAxis(0), g.superAxis(1), g.superAxis(2), nSuper);
 
   stats.gridX = int(g.n[0]);
   stats.gridY = int(g.n[1]);
@@ -468,8 +477,14 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   };
   const uint32_t linearGroups = (nBlocks + AM_POLY_WG_BLOCKS - 1) / AM_POLY_WG_BLOCKS;
 
-  // Coarse: per-block primitive lists and interval culling.
+  // Coarse: superblock bounds, then per-block primitive lists and interval culling.
   vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, blocks[v]);
+  if (s.culling) {
+    push(AM_COARSE_SUPERBLOCKS, 0, 0);
+    vkCmdDispatch(cb, (nSuper + AM_POLY_WG_BLOCKS - 1) / AM_POLY_WG_BLOCKS, 1, 1);
+    computeToCompute(cb);
+  }
+  push(AM_COARSE_BLOCKS, 0, 0);
   vkCmdDispatch(cb, linearGroups, 1, 1);
   computeToCompute(cb);
   timestamp();

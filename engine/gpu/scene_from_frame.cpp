@@ -5,8 +5,10 @@
 namespace animorph::gpu {
 
 void buildScene(const SceneFrame& frame, const ViewOptions& view, const std::string& selectedActorId,
-                MeshCache& meshes, Scene& out, const BlobPreviewSet* blobs, int selectedBlobNode) {
+                MeshCache& meshes, Scene& out, const BlobPreviewSet* blobs, int selectedBlobNode,
+                StandinBindingCache* bindings) {
   out.meshes.clear();
+  out.transitionMeshes.clear();
   out.weightOverlays.clear();
   out.lines.clear();
   out.overlay.clear();
@@ -22,11 +24,34 @@ void buildScene(const SceneFrame& frame, const ViewOptions& view, const std::str
     md.model = d.model;
     md.jointMatrices = d.joints;
     md.selected = !selectedActorId.empty() && d.actorId == selectedActorId;
+    md.opacity = d.opacity;
+    md.complementDither = d.complementDither;
     out.meshes.push_back(md);
     Bounds mb = gm->bounds();
     if (!mb.empty()) {
       b.add(glm::vec3(d.model * glm::vec4(mb.min, 1.0f)));
       b.add(glm::vec3(d.model * glm::vec4(mb.max, 1.0f)));
+    }
+  }
+  for (const auto& t : frame.transitions) {
+    const GpuMesh* gm = meshes.get(t.mesh.character, t.mesh.meshIndex);
+    const GpuStandinBinding* gb = bindings ? bindings->get(t.runtime, t.targetActor) : nullptr;
+    if (!gm || !gb || !t.frame) continue;
+    gpu::TransitionMeshDraw td;
+    td.draw.mesh = gm;
+    td.draw.model = t.mesh.model;
+    td.draw.jointMatrices = t.mesh.joints;
+    td.draw.selected = !selectedActorId.empty() && t.mesh.actorId == selectedActorId;
+    td.draw.opacity = t.mesh.opacity;
+    td.draw.complementDither = t.mesh.complementDither;
+    td.binding = gb;
+    td.firstVertex = static_cast<uint32_t>(t.firstVertex);
+    td.frame = t.frame.get();
+    out.transitionMeshes.push_back(td);
+    Bounds mb = gm->bounds();  // bind pose, like the meshes': sizes the skeleton markers
+    if (!mb.empty()) {
+      b.add(glm::vec3(t.mesh.model * glm::vec4(mb.min, 1.0f)));
+      b.add(glm::vec3(t.mesh.model * glm::vec4(mb.max, 1.0f)));
     }
   }
   out.generatedMeshes.clear();
@@ -69,6 +94,18 @@ void buildScene(const SceneFrame& frame, const ViewOptions& view, const std::str
       out.overlay.octahedron(bd.head, radius, c);
       out.overlay.octahedron(bd.tail, radius, c);
     }
+  }
+}
+
+void setCrossFade(Scene& scene, size_t firstMesh, size_t firstGenerated, float opacity) {
+  if (!(opacity < 1.0f)) return;
+  for (size_t i = firstMesh; i < scene.meshes.size(); ++i) {
+    scene.meshes[i].opacity = opacity;
+    scene.meshes[i].complementDither = true;
+  }
+  for (size_t i = firstGenerated; i < scene.generatedMeshes.size(); ++i) {
+    scene.generatedMeshes[i].opacity = opacity;
+    scene.generatedMeshes[i].complementDither = true;
   }
 }
 

@@ -8,6 +8,7 @@
 #include "mesh_cache.h"
 #include "scene/scene_frame.h"
 #include "scene_renderer.h"
+#include "standin_binding_cache.h"
 
 namespace animorph::gpu {
 
@@ -16,7 +17,16 @@ namespace animorph::gpu {
 // skipped (meshes.lastError()). BlobTree actors are drawn from blobs' newest
 // preview meshes (double-sided) when blobs is given; their skeleton guides
 // join the overlay, selectedBlobNode's (a node id of the selected actor) highlighted.
+// Transition draws (collapse, expansion) need bindings for their stand-in
+// bindings; without it they are skipped.
+// Cross-fade of the implicit stage drawn by a preview: the meshes from
+// scene.meshes[firstMesh] and scene.generatedMeshes[firstGenerated] on get
+// opacity (dithered with the complementary pattern of the transition's mesh)
+// when it is below 1.
+void setCrossFade(Scene& scene, size_t firstMesh, size_t firstGenerated, float opacity);
+
 void buildScene(const SceneFrame& frame, const ViewOptions& view, const std::string& selectedActorId,
-                MeshCache& meshes, Scene& out, const BlobPreviewSet* blobs = nullptr, int selectedBlobNode = -1);
+                MeshCache& meshes, Scene& out, const BlobPreviewSet* blobs = nullptr, int selectedBlobNode = -1,
+                StandinBindingCache* bindings = nullptr);
 
 }  // namespace animorph::gpu

@@ -9,6 +9,8 @@
 #include "buffer.h"
 #include "shader_module.h"
 #include "shared_constants.h"
+#include "transition_constants.h"
+#include "transition_params.h"
 #include "vk_check.h"
 
 namespace animorph::gpu {
@@ -42,7 +44,7 @@ constexpr VkShaderStageFlags kPushStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADE
 // Clip-space depth pulled toward the camera by the wireframe pass (in NDC depth units).
 constexpr float kWireDepthPull = 5e-5f;
 
-enum class VertexInput { None, Mesh, MeshWeights, Line, Generated };
+enum class VertexInput { None, Mesh, MeshWeights, Line, Generated, Transition };
 
 struct PipelineDesc {
   const char* vert;
@@ -70,13 +72,18 @@ Result<VkPipeline> createPipeline(VkDevice device, VkRenderPass pass, VkPipeline
 
   std::vector<VkVertexInputBindingDescription> bindings;
   std::vector<VkVertexInputAttributeDescription> attributes;
-  if (d.input == VertexInput::Mesh || d.input == VertexInput::MeshWeights) {
+  if (d.input == VertexInput::Mesh || d.input == VertexInput::MeshWeights || d.input == VertexInput::Transition) {
     const struct { uint32_t stride; VkFormat format; } streams[6] = {
         {12, VK_FORMAT_R32G32B32_SFLOAT}, {12, VK_FORMAT_R32G32B32_SFLOAT}, {8, VK_FORMAT_R16G16B16A16_UINT},
         {8, VK_FORMAT_R16G16B16A16_UINT}, {16, VK_FORMAT_R32G32B32A32_SFLOAT}, {16, VK_FORMAT_R32G32B32A32_SFLOAT}};
     for (uint32_t s = 0; s < 6; ++s) {
       bindings.push_back({s, streams[s].stride, VK_VERTEX_INPUT_RATE_VERTEX});
       attributes.push_back({s, s, streams[s].format, 0});
+    }
+    if (d.input == VertexInput::Transition) {  // the stand-in binding: (dp, m), (n~, 0) interleaved
+      bindings.push_back({AM_VERTEX_STANDIN_OFFSET, uint32_t(GpuStandinBinding::kVertexStride), VK_VERTEX_INPUT_RATE_VERTEX});
+      attributes.push_back({AM_VERTEX_STANDIN_OFFSET, AM_VERTEX_STANDIN_OFFSET, VK_FORMAT_R32G32B32A32_SFLOAT, 0});
+      attributes.push_back({AM_VERTEX_STANDIN_NORMAL, AM_VERTEX_STANDIN_OFFSET, VK_FORMAT_R32G32B32A32_SFLOAT, 16});
     }
     if (d.input == VertexInput::MeshWeights) {
       bindings.push_back({kVertexPaintWeight, 4, VK_VERTEX_INPUT_RATE_VERTEX});
@@ -168,6 +175,10 @@ struct SceneRenderer::Slot {
   VkDeviceSize frameUsed = 0, jointsUsed = 0, linesUsed = 0, weightsUsed = 0;
   VkDescriptorSet set = VK_NULL_HANDLE;  // frame + joints
   bool setBound = false;                 // set is referenced by commands of this frame
+  Buffer transitionParams;               // TransitionParams records at transitionParamStride_ (dynamic offset)
+  VkDeviceSize transitionParamsUsed = 0;
+  VkDescriptorSet transitionSet = VK_NULL_HANDLE;  // set 1 of the transition pipelines
+  bool transitionSetBound = false;
   std::vector<Buffer> retiredBuffers;
   std::vector<VkDescriptorSet> retiredSets;
 };
@@ -201,14 +212,28 @@ Status SceneRenderer::init(VkRenderPass renderPass, SceneRendererSettings settin
   pli.pPushConstantRanges = &push;
   AM_VK_TRY(vkCreatePipelineLayout(dev, &pli, nullptr, &layout_), "vkCreatePipelineLayout");
 
+  // Set 1 of the transition pipelines: the per-draw TransitionParams.
+  VkDescriptorSetLayoutBinding tb{AM_TRANSITION_BINDING_PARAMS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC, 1,
+                                  VK_SHADER_STAGE_VERTEX_BIT, nullptr};
+  sli.bindingCount = 1;
+  sli.pBindings = &tb;
+  AM_VK_TRY(vkCreateDescriptorSetLayout(dev, &sli, nullptr, &transitionSetLayout_), "vkCreateDescriptorSetLayout");
+  const VkDescriptorSetLayout transitionSets[2] = {setLayout_, transitionSetLayout_};
+  pli.setLayoutCount = 2;
+  pli.pSetLayouts = transitionSets;
+  AM_VK_TRY(vkCreatePipelineLayout(dev, &pli, nullptr, &transitionLayout_), "vkCreatePipelineLayout");
+  const VkDeviceSize storageAlign = std::max<VkDeviceSize>(ctx_.properties().limits.minStorageBufferOffsetAlignment, 16);
+  transitionParamStride_ = (sizeof(TransitionParams) + storageAlign - 1) / storageAlign * storageAlign;
+
   // Sets are replaced only when a ring buffer grows: a few per slot over a session.
   constexpr uint32_t kMaxSets = 64;
-  VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, kMaxSets},
-                                   {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kMaxSets}};
+  VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, kMaxSets},
+                                   {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kMaxSets},
+                                   {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC, kMaxSets}};
   VkDescriptorPoolCreateInfo dpi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   dpi.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
-  dpi.maxSets = kMaxSets;
-  dpi.poolSizeCount = 2;
+  dpi.maxSets = 2 * kMaxSets;
+  dpi.poolSizeCount = 3;
   dpi.pPoolSizes = sizes;
   AM_VK_TRY(vkCreateDescriptorPool(dev, &dpi, nullptr, &descriptorPool_), "vkCreateDescriptorPool");
   const VkDeviceSize align = std::max<VkDeviceSize>(ctx_.properties().limits.minUniformBufferOffsetAlignment, 16);
@@ -230,12 +255,30 @@ Status SceneRenderer::init(VkRenderPass renderPass, SceneRendererSettings settin
     }
     return d;
   };
+  auto withShaders = [](PipelineDesc d, const char* vert, const char* frag, VertexInput input) {
+    d.vert = vert;
+    d.frag = frag;
+    d.input = input;
+    return d;
+  };
   struct Want {
     VkPipeline* out;
     PipelineDesc desc;
+    VkPipelineLayout layout = VK_NULL_HANDLE;  // null: layout_
   } wants[] = {
       {&meshPipeline_[0], meshDesc(back)},
       {&meshPipeline_[1], meshDesc(none)},
+      {&meshDitherPipeline_[0], withShaders(meshDesc(back), "mesh.vert", "mesh_dither.frag", VertexInput::Mesh)},
+      {&generatedDitherPipeline_, withShaders(meshDesc(back), "generated.vert", "mesh_dither.frag", VertexInput::Generated)},
+      {&meshDitherPipeline_[1], withShaders(meshDesc(none), "mesh.vert", "mesh_dither.frag", VertexInput::Mesh)},
+      {&transitionPipeline_[0], withShaders(meshDesc(back), "transition.vert", "mesh.frag", VertexInput::Transition),
+       transitionLayout_},
+      {&transitionPipeline_[1], withShaders(meshDesc(none), "transition.vert", "mesh.frag", VertexInput::Transition),
+       transitionLayout_},
+      {&transitionDitherPipeline_[0],
+       withShaders(meshDesc(back), "transition.vert", "mesh_dither.frag", VertexInput::Transition), transitionLayout_},
+      {&transitionDitherPipeline_[1],
+       withShaders(meshDesc(none), "transition.vert", "mesh_dither.frag", VertexInput::Transition), transitionLayout_},
       {&wirePipeline_[0], wireDesc(back)},
       {&wirePipeline_[1], wireDesc(none)},
       {&generatedPipeline_, {"generated.vert", "mesh.frag", VertexInput::Generated, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST,
@@ -250,7 +293,7 @@ Status SceneRenderer::init(VkRenderPass renderPass, SceneRendererSettings settin
                            VK_POLYGON_MODE_FILL, false, false, true}},
   };
   for (auto& w : wants) {
-    Result<VkPipeline> p = createPipeline(dev, renderPass, layout_, w.desc);
+    Result<VkPipeline> p = createPipeline(dev, renderPass, w.layout ? w.layout : layout_, w.desc);
     if (!p) return Error{p.error()};
     *w.out = *p;
   }
@@ -272,11 +315,16 @@ SceneRenderer::~SceneRenderer() {
     destroyBuffer(dev, s->joints);
     destroyBuffer(dev, s->lines);
     destroyBuffer(dev, s->weights);
+    destroyBuffer(dev, s->transitionParams);
   }
   for (VkPipeline p : {meshPipeline_[0], meshPipeline_[1], wirePipeline_[0], wirePipeline_[1], generatedPipeline_, weightPipeline_, gridPipeline_,
-                       linePipeline_, overlayPipeline_})
+                       linePipeline_, overlayPipeline_, meshDitherPipeline_[0], meshDitherPipeline_[1], generatedDitherPipeline_,
+                       transitionPipeline_[0], transitionPipeline_[1], transitionDitherPipeline_[0],
+                       transitionDitherPipeline_[1]})
     if (p) vkDestroyPipeline(dev, p, nullptr);
   if (layout_) vkDestroyPipelineLayout(dev, layout_, nullptr);
+  if (transitionLayout_) vkDestroyPipelineLayout(dev, transitionLayout_, nullptr);
+  if (transitionSetLayout_) vkDestroyDescriptorSetLayout(dev, transitionSetLayout_, nullptr);
   if (descriptorPool_) vkDestroyDescriptorPool(dev, descriptorPool_, nullptr);  // frees the sets
   if (setLayout_) vkDestroyDescriptorSetLayout(dev, setLayout_, nullptr);
 }
@@ -288,8 +336,9 @@ void SceneRenderer::rewind(Slot& slot, uint64_t frameSerial) {
   if (!slot.retiredSets.empty())
     vkFreeDescriptorSets(dev, descriptorPool_, static_cast<uint32_t>(slot.retiredSets.size()), slot.retiredSets.data());
   slot.retiredSets.clear();
-  slot.frameUsed = slot.jointsUsed = slot.linesUsed = slot.weightsUsed = 0;
+  slot.frameUsed = slot.jointsUsed = slot.linesUsed = slot.weightsUsed = slot.transitionParamsUsed = 0;
   slot.setBound = false;
+  slot.transitionSetBound = false;
   slot.serial = frameSerial;
 }
 
@@ -336,6 +385,35 @@ Status SceneRenderer::reserve(Slot& slot, VkDeviceSize jointBytes, VkDeviceSize 
   return Status::success();
 }
 
+Status SceneRenderer::reserveTransitionParams(Slot& slot, VkDeviceSize bytes) {
+  if (slot.transitionParams.buffer && slot.transitionParamsUsed + bytes <= slot.transitionParams.size &&
+      slot.transitionSet)
+    return Status::success();
+  VkDevice dev = ctx_.device();
+  if (!slot.transitionParams.buffer || slot.transitionParamsUsed + bytes > slot.transitionParams.size) {
+    const VkDeviceSize size = std::max({bytes, slot.transitionParams.size * 2, 4 * transitionParamStride_});
+    Result<Buffer> nb = createHostBuffer(ctx_, size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    if (!nb) return Error{"transition parameter ring buffer: " + nb.error()};
+    if (slot.transitionParams.buffer) slot.retiredBuffers.push_back(slot.transitionParams);
+    slot.transitionParams = *nb;
+    slot.transitionParamsUsed = 0;
+    if (slot.transitionSet && slot.transitionSetBound) slot.retiredSets.push_back(slot.transitionSet);
+    if (slot.transitionSet && !slot.transitionSetBound) vkFreeDescriptorSets(dev, descriptorPool_, 1, &slot.transitionSet);
+    slot.transitionSet = VK_NULL_HANDLE;
+  }
+  VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  ai.descriptorPool = descriptorPool_;
+  ai.descriptorSetCount = 1;
+  ai.pSetLayouts = &transitionSetLayout_;
+  AM_VK_TRY(vkAllocateDescriptorSets(dev, &ai, &slot.transitionSet), "vkAllocateDescriptorSets");
+  slot.transitionSetBound = false;
+  VkDescriptorBufferInfo info{slot.transitionParams.buffer, 0, sizeof(TransitionParams)};
+  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, slot.transitionSet, AM_TRANSITION_BINDING_PARAMS,
+                         0, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC, nullptr, &info, nullptr};
+  vkUpdateDescriptorSets(dev, 1, &w, 0, nullptr);
+  return Status::success();
+}
+
 Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const ViewportRect& rect,
                              const OrbitCamera& camera, const Scene& scene) {
   if (rect.width == 0 || rect.height == 0) return Status::success();
@@ -348,11 +426,12 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
   jointScratch_.clear();
   std::vector<uint32_t>& jointOffsets = drawJointOffsets_;
   jointOffsets.clear();
-  for (const MeshDraw& d : scene.meshes) {
+  auto addJoints = [&](const MeshDraw& d) {
     jointOffsets.push_back(static_cast<uint32_t>(jointScratch_.size()));
     if (d.jointMatrices.empty()) jointScratch_.push_back(glm::mat4(1.0f));
     else jointScratch_.insert(jointScratch_.end(), d.jointMatrices.begin(), d.jointMatrices.end());
-  }
+  };
+  for (const MeshDraw& d : scene.meshes) addJoints(d);
   weightScratch_.clear();
   std::vector<VkDeviceSize> weightOffsets;  // per overlay, in bytes from this call's start
   for (const WeightOverlayDraw& d : scene.weightOverlays) {
@@ -363,6 +442,7 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
     if (d.mesh && d.weights.size() == d.mesh->vertexCount())
       weightScratch_.insert(weightScratch_.end(), d.weights.begin(), d.weights.end());
   }
+  for (const TransitionMeshDraw& t : scene.transitionMeshes) addJoints(t.draw);  // after the overlays'
   lineScratch_.clear();
   const auto& depthLines = scene.lines.vertices();
   const auto& overlayLines = scene.overlay.vertices();
@@ -380,6 +460,8 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
   const VkDeviceSize lineBytes = lineScratch_.size() * sizeof(LineVertex);
   const VkDeviceSize weightBytes = weightScratch_.size() * sizeof(float);
   Status cap = reserve(slot, jointBytes, lineBytes, weightBytes);
+  if (cap && !scene.transitionMeshes.empty())
+    cap = reserveTransitionParams(slot, scene.transitionMeshes.size() * transitionParamStride_);
   if (!cap) return cap;
   // This call's places in the slot's buffers.
   const uint32_t frameOffset = static_cast<uint32_t>(slot.frameUsed);
@@ -441,22 +523,47 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
     if (p != bound) vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
     bound = p;
   };
+  // Cross-fading draws (opacity < 1) are dithered: colour alpha carries the opacity.
+  auto fadeFlags = [](const auto& d) {
+    if (!(d.opacity < 1.0f)) return 0u;
+    return AM_DRAW_DITHER | (d.complementDither ? AM_DRAW_DITHER_INVERT : 0u);
+  };
+  auto fadeColor = [](const auto& d) { return d.opacity < 1.0f ? glm::vec4(glm::vec3(d.color), std::max(0.0f, d.opacity)) : d.color; };
   for (size_t i = 0; i < scene.meshes.size(); ++i) {
     const MeshDraw& d = scene.meshes[i];
-    if (!d.mesh || d.mesh->indexCount() == 0) continue;
-    bind(meshPipeline_[d.doubleSided]);
-    pushMesh(d, i, d.selected ? kDrawSelected : 0u, d.color, 0.0f);
+    if (!d.mesh || d.mesh->indexCount() == 0 || !(d.opacity > 0.0f)) continue;
+    bind(d.opacity < 1.0f ? meshDitherPipeline_[d.doubleSided] : meshPipeline_[d.doubleSided]);
+    pushMesh(d, i, (d.selected ? kDrawSelected : 0u) | fadeFlags(d), fadeColor(d), 0.0f);
     d.mesh->bindTriangles(cmd);
     vkCmdDrawIndexed(cmd, d.mesh->indexCount(), 1, 0, 0, 0);
   }
+  // Transitions: set 0 stays bound (the layouts agree on it); set 1 per draw at its record's offset.
+  for (size_t k = 0; k < scene.transitionMeshes.size(); ++k) {
+    const TransitionMeshDraw& t = scene.transitionMeshes[k];
+    const MeshDraw& d = t.draw;
+    if (!d.mesh || !t.binding || !t.frame || d.mesh->indexCount() == 0 || !(d.opacity > 0.0f)) continue;
+    if (size_t(t.firstVertex) + d.mesh->vertexCount() > t.binding->vertexCount()) continue;
+    const uint32_t paramOffset = static_cast<uint32_t>(slot.transitionParamsUsed);
+    packTransitionParams(*t.frame, *reinterpret_cast<TransitionParams*>(
+                                       static_cast<uint8_t*>(slot.transitionParams.mapped) + paramOffset));
+    slot.transitionParamsUsed += transitionParamStride_;
+    bind(d.opacity < 1.0f ? transitionDitherPipeline_[d.doubleSided] : transitionPipeline_[d.doubleSided]);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, transitionLayout_, 1, 1, &slot.transitionSet, 1,
+                            &paramOffset);
+    slot.transitionSetBound = true;
+    pushMesh(d, scene.meshes.size() + scene.weightOverlays.size() + k, (d.selected ? kDrawSelected : 0u) | fadeFlags(d), fadeColor(d), 0.0f);
+    d.mesh->bindTriangles(cmd);
+    t.binding->bind(cmd, t.firstVertex);
+    vkCmdDrawIndexed(cmd, d.mesh->indexCount(), 1, 0, 0, 0);
+  }
   for (const GeneratedMeshDraw& g : scene.generatedMeshes) {
-    if (!g.positions || !g.normals || !g.indices || !g.indirect) continue;
-    bind(generatedPipeline_);
+    if (!g.positions || !g.normals || !g.indices || !g.indirect || !(g.opacity > 0.0f)) continue;
+    bind(g.opacity < 1.0f ? generatedDitherPipeline_ : generatedPipeline_);
     MeshPush p{};
     p.model = g.model;
-    p.color = g.color;
+    p.color = fadeColor(g);
     p.jointCount = 1;
-    p.flags = g.selected ? kDrawSelected : 0u;
+    p.flags = (g.selected ? kDrawSelected : 0u) | fadeFlags(g);
     vkCmdPushConstants(cmd, layout_, kPushStages, 0, sizeof(p), &p);
     VkBuffer streams[2] = {g.positions, g.normals};
     VkDeviceSize offsets[2] = {0, 0};

@@ -13,8 +13,13 @@
 
 #include "context.h"
 #include "gpu_mesh.h"
+#include "gpu_standin_binding.h"
 #include "line_batch.h"
 #include "view/camera.h"
+
+namespace animorph {
+struct TransitionFrame;
+}
 
 namespace animorph::gpu {
 
@@ -35,6 +40,24 @@ struct MeshDraw {
   // them (counter-clockwise is front, as in glTF), which also halves the
   // rasterisation work on CPU renderers.
   bool doubleSided = false;
+  // Cross-fade (screen-door transparency, mesh_dither.frag): below 1 the mesh
+  // covers this fraction of its pixels in a 4x4 Bayer pattern;
+  // complementDither takes the complementary pattern, so two draws at
+  // opacities o and 1 - o share the pixels without sorting.
+  float opacity = 1.0f;
+  bool complementDither = false;
+};
+
+// A skinned mesh collapsing onto / expanding from its stand-in, deformed in
+// transition.vert (shaders/include/transition.glsl): the mesh and its pose as
+// in MeshDraw, the vertices' stand-in binding (uploaded once per prepared
+// morph) and the frame's parameters (a few KiB per draw, written to a ring
+// buffer): no CPU transition and no mesh upload per frame.
+struct TransitionMeshDraw {
+  MeshDraw draw;
+  const GpuStandinBinding* binding = nullptr;
+  uint32_t firstVertex = 0;                // this mesh's first vertex in the binding
+  const TransitionFrame* frame = nullptr;  // must stay valid until record() returns
 };
 
 // A non-skinned mesh that lives only in device buffers (made by GpuPolygonizer),
@@ -49,6 +72,8 @@ struct GeneratedMeshDraw {
   glm::mat4 model{1.0f};
   glm::vec4 color{0.62f, 0.62f, 0.62f, 1.0f};
   bool selected = false;
+  float opacity = 1.0f;           // < 1: dithered cross-fade, as MeshDraw::opacity
+  bool complementDither = false;
 };
 
 // A skinned mesh drawn as its weight map in heat colours (0 blue .. 1 red)
@@ -76,6 +101,7 @@ struct SceneOptions {
 struct Scene {
   std::vector<MeshDraw> meshes;
   std::vector<GeneratedMeshDraw> generatedMeshes;  // GPU-polygonised previews
+  std::vector<TransitionMeshDraw> transitionMeshes;  // collapse / expansion (vertex-shader transition)
   std::vector<WeightOverlayDraw> weightOverlays;   // weight painting
   LineBatch lines;    // depth-tested lines (guides, bounds)
   LineBatch overlay;  // drawn on top of everything (skeleton overlay)
@@ -116,6 +142,7 @@ class SceneRenderer {
   explicit SceneRenderer(Context& ctx);
   Status init(VkRenderPass renderPass, SceneRendererSettings settings);
   Status reserve(Slot& slot, VkDeviceSize jointBytes, VkDeviceSize lineBytes, VkDeviceSize weightBytes = 0);
+  Status reserveTransitionParams(Slot& slot, VkDeviceSize bytes);
   void rewind(Slot& slot, uint64_t frameSerial);
 
   Context& ctx_;
@@ -126,6 +153,13 @@ class SceneRenderer {
   VkPipeline meshPipeline_[2]{};  // [doubleSided]
   VkPipeline wirePipeline_[2]{};  // [doubleSided]
   VkPipeline generatedPipeline_ = VK_NULL_HANDLE;  // GeneratedMeshDraw: positions + normals, indirect
+  VkPipeline meshDitherPipeline_[2]{};             // [doubleSided], MeshDraw::opacity < 1
+  VkPipeline generatedDitherPipeline_ = VK_NULL_HANDLE;  // GeneratedMeshDraw::opacity < 1
+  VkDescriptorSetLayout transitionSetLayout_ = VK_NULL_HANDLE;  // set 1: TransitionParams (dynamic offset)
+  VkPipelineLayout transitionLayout_ = VK_NULL_HANDLE;
+  VkPipeline transitionPipeline_[2]{};             // [doubleSided]
+  VkPipeline transitionDitherPipeline_[2]{};       // [doubleSided]
+  VkDeviceSize transitionParamStride_ = 0;         // sizeof(TransitionParams), storage-offset aligned
   VkPipeline weightPipeline_ = VK_NULL_HANDLE;     // WeightOverlayDraw: mesh streams + a weight stream
   VkPipeline gridPipeline_ = VK_NULL_HANDLE;
   VkPipeline linePipeline_ = VK_NULL_HANDLE;     // depth-tested

@@ -1,5 +1,5 @@
 // Fine pass 1: one workgroup per active block. Evaluates the field at the
-// block's 9^3 grid corners (8 per invocation),
+// block's 9^3 grid corners (4 AM_POLY_CORNER_V per invocation),
 // applies the grid-boundary rule, classifies the 8^3 cells (marching-cubes case)
 // and marks the crossing edges this block makes vertices for (edgeOwner).
 // Writes the corner values, the edge bitmask with its popcount prefixes, and
@@ -8,7 +8,8 @@
 #include "poly_field.glsl"
 #include "poly_table.glsl"
 
-#include "poly_field8.glsl"
+#define AM_FIELD_V AM_POLY_CORNER_V
+#include "poly_field_batch.glsl"
 
 layout(local_size_x = AM_POLY_WG_CELLS) in;
 
@@ -20,6 +21,22 @@ shared float sCorner[AM_POLY_BLOCK_CORNERS];
 shared uint sMask[AM_POLY_EDGE_WORDS];
 shared uint sTriangles;
 
+uvec3 cornerLocal(uint idx) { return uvec3(idx % 9u, (idx / 9u) % 9u, idx / 81u); }
+
+// Stores the values of corners idx .. idx + 3 (those of the block), with the
+// grid-boundary rule: the boundary counts as outside, so a surface cut by it is closed.
+void storeCorner(uint slot, uvec3 c0, uint idx, vec4 f) {
+  for (uint c = 0u; c < 4u; ++c) {
+    uint i = idx + c;
+    if (i >= uint(AM_POLY_BLOCK_CORNERS)) break;
+    uvec3 g = c0 + cornerLocal(i);
+    float v = f[c];
+    if (any(equal(g, uvec3(0u))) || any(equal(g, P.gridCells.xyz))) v = min(v, P.thresholds.w);
+    sCorner[i] = v;
+    corners[slot * AM_POLY_BLOCK_CORNERS + i] = v;
+  }
+}
+
 void main() {
   uint slot = gl_WorkGroupID.x;
   uint t = gl_LocalInvocationID.x;
@@ -27,29 +44,18 @@ void main() {
   uvec3 bc = blockCoord(b);
   uvec3 c0 = bc * uint(AM_POLY_BLOCK);
   uvec3 cnt = blockCells(bc);
-  uvec3 n = P.gridCells.xyz;
   if (t < uint(AM_POLY_EDGE_WORDS)) sMask[t] = 0u;
   if (t == 0u) sTriangles = 0u;
-  uint first = t * uint(AM_POLY_POINTS);
-  if (first < uint(AM_POLY_BLOCK_CORNERS)) {
-    uvec3 g[8];
-    for (uint k = 0u; k < 8u; ++k) {
-      uint idx = min(first + k, uint(AM_POLY_BLOCK_CORNERS) - 1u);
-      g[k] = c0 + uvec3(idx % 9u, (idx / 9u) % 9u, idx / 81u);
-    }
-    Points8 w = points8(cornerPosition(g[0]), cornerPosition(g[1]), cornerPosition(g[2]), cornerPosition(g[3]),
-                        cornerPosition(g[4]), cornerPosition(g[5]), cornerPosition(g[6]), cornerPosition(g[7]));
-    vec4 f0, f1;
-    field8(b * P.modes.y, w, f0, f1);
-    for (uint k = 0u; k < 8u; ++k) {
-      uint idx = first + k;
-      if (idx >= uint(AM_POLY_BLOCK_CORNERS)) break;
-      float v = k < 4u ? f0[k] : f1[k - 4u];
-      // The grid boundary counts as outside, so a surface cut by it is closed.
-      if (any(equal(g[k], uvec3(0u))) || any(equal(g[k], n))) v = min(v, P.thresholds.w);
-      sCorner[idx] = v;
-      corners[slot * AM_POLY_BLOCK_CORNERS + idx] = v;
-    }
+  const uint kPoints = 4u * uint(AM_POLY_CORNER_V);
+  for (uint first = t * kPoints; first < uint(AM_POLY_BLOCK_CORNERS); first += kPoints * AM_POLY_WG_CELLS) {
+    PointsV w;
+#define AM_CORNER_AT(j, c) AM_SET_POINT(w, j, c, cornerPosition(c0 + cornerLocal(min(first + 4u * j + c, uint(AM_POLY_BLOCK_CORNERS) - 1u))))
+#define AM_CORNERS_AT(j) AM_CORNER_AT(j, 0) AM_CORNER_AT(j, 1) AM_CORNER_AT(j, 2) AM_CORNER_AT(j, 3)
+    AM_EACH(AM_CORNERS_AT)
+    vec4 f[AM_FIELD_V];
+    fieldV(b * P.modes.y, w, f);
+#define AM_CORNER_STORE(j) storeCorner(slot, c0, first + 4u * j, f[j]);
+    AM_EACH(AM_CORNER_STORE)
   }
   barrier();
   uint tris = 0u;

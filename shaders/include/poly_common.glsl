@@ -15,8 +15,9 @@ layout(set = 0, binding = AM_PB_PARAMS, std430) readonly buffer PolyParams {
   uvec4 modes;      // x: AM_COMBINE_*, y: primitive-mask words per block, z: culling on, w: block capacity
   vec4 morph0;      // x: weight w, y: morph time t, z: time scale, w: a0
   vec4 morph1;      // x: a1, y: a2, z: a3, w: normal step (m)
-  uvec4 caps;       // x: vertex capacity, y: triangle capacity, z: total primitives, w: 8 (points per batch, kept opaque to the compiler)
+  uvec4 caps;       // x: vertex capacity, y: triangle capacity, z: total primitives, w: 1 (kept opaque to the compiler: no unrolling)
   vec4 extra;       // x: reach dilation of a block box (m)
+  uvec4 superBlocks; // xyz: superblocks per axis; w: total
 } P;
 
 #if AM_POOL_STORAGE

@@ -1,7 +1,8 @@
 // Fine pass 2: one workgroup per active block, after the scan gave every
 // block its first vertex and first triangle. Writes the block's vertices
 // (one per owned crossing edge, interpolated like the CPU polygoniser, normal
-// from the field gradient by central differences) and its triangles, whose
+// from the field gradient by a tetrahedral difference stencil, two vertices per
+// invocation) and its triangles, whose
 // corners are the vertices of their edges wherever those were made (edgeOwner),
 // so vertices are shared and the mesh is watertight. Nothing is written past
 // the capacities (the args pass has flagged the overflow).
@@ -9,7 +10,8 @@
 #include "poly_field.glsl"
 #include "poly_table.glsl"
 
-#include "poly_field8.glsl"
+#define AM_FIELD_V AM_POLY_NORMAL_V
+#include "poly_field_batch.glsl"
 
 layout(local_size_x = AM_POLY_WG_CELLS) in;
 
@@ -47,6 +49,36 @@ uint vertexIndex(uvec3 bc, uvec3 l, uint a, uint slot) {
   return offsets[owner].x + edges[info + AM_POLY_EDGE_WORDS + word] + bitCount(below);
 }
 
+// Position of the vertex on closed-box edge e of the block at grid corner c0
+// (t = f0 / (f0 - f1) kept in [snap, 1 - snap]); dir: the edge's direction, f0: its base value.
+void placeVertex(uint e, uvec3 c0, out vec3 pos, out vec3 dir, out float f0) {
+  uint a;
+  uvec3 l = edgeLocal(e, a);
+  uvec3 l1 = l;
+  l1[a] += 1u;
+  f0 = sCorner[cornerIndex(l)];
+  float f1 = sCorner[cornerIndex(l1)];
+  float s = clamp(f0 / (f0 - f1), float(AM_POLY_SNAP), 1.0 - float(AM_POLY_SNAP));
+  vec3 p0 = cornerPosition(c0 + l), p1 = cornerPosition(c0 + l1);
+  pos = p0 + s * (p1 - p0);
+  dir = normalize(p1 - p0);
+}
+
+// Writes vertex out_ (unless past the capacity) with the normal -grad f / |grad f| from the
+// stencil values f; where the gradient vanishes, along the edge towards outside.
+void writeVertex(uint out_, vec3 pos, vec4 f, vec3 dir, float f0) {
+  vec3 g = vec3(dot(f, vec4(1, -1, -1, 1)), dot(f, vec4(-1, -1, 1, 1)), dot(f, vec4(-1, 1, -1, 1)));
+  float len = length(g);
+  vec3 normal = len > 1e-30 && !isinf(len) && !isnan(len) ? -g / len : (f0 >= 0.0 ? dir : -dir);
+  if (out_ >= P.caps.x) return;
+  positions[3u * out_] = pos.x;
+  positions[3u * out_ + 1u] = pos.y;
+  positions[3u * out_ + 2u] = pos.z;
+  normals[3u * out_] = normal.x;
+  normals[3u * out_ + 1u] = normal.y;
+  normals[3u * out_ + 2u] = normal.z;
+}
+
 void main() {
   uint slot = gl_WorkGroupID.x;
   uint t = gl_LocalInvocationID.x;
@@ -69,35 +101,26 @@ void main() {
   barrier();
   uint vertices = sPrefix[AM_POLY_EDGE_WORDS - 1] + bitCount(sMask[AM_POLY_EDGE_WORDS - 1]);
   uint vertexBase = offsets[slot].x;
-  float h = P.gridOrigin.w;
-  float delta = P.morph1.w;
-  for (uint v = t; v < vertices; v += AM_POLY_WG_CELLS) {
-    uint a;
-    uvec3 l = edgeLocal(sVertexEdge[v], a);
-    uvec3 l1 = l;
-    l1[a] += 1u;
-    float f0 = sCorner[cornerIndex(l)], f1 = sCorner[cornerIndex(l1)];
-    float s = clamp(f0 / (f0 - f1), float(AM_POLY_SNAP), 1.0 - float(AM_POLY_SNAP));
-    vec3 p0 = cornerPosition(c0 + l), p1 = cornerPosition(c0 + l1);
-    vec3 pos = p0 + s * (p1 - p0);
-    // Central differences: +x -x +y / -y +z -z (the last two points repeat).
-    Points8 w = points8(pos + vec3(delta, 0, 0), pos - vec3(delta, 0, 0), pos + vec3(0, delta, 0),
-                        pos - vec3(0, delta, 0), pos + vec3(0, 0, delta), pos - vec3(0, 0, delta), pos, pos);
-    vec4 f0_, f1_;
-    field8(b * P.modes.y, w, f0_, f1_);
-    vec3 g = vec3(f0_.x - f0_.y, f0_.z - f0_.w, f1_.x - f1_.y);
-    float len = length(g);
-    vec3 dir = normalize(p1 - p0);
-    vec3 normal = len > 1e-30 && !isinf(len) && !isnan(len) ? -g / len : (f0 >= 0.0 ? dir : -dir);
-    uint out_ = vertexBase + v;
-    if (out_ < P.caps.x) {
-      positions[3u * out_] = pos.x;
-      positions[3u * out_ + 1u] = pos.y;
-      positions[3u * out_ + 2u] = pos.z;
-      normals[3u * out_] = normal.x;
-      normals[3u * out_ + 1u] = normal.y;
-      normals[3u * out_ + 2u] = normal.z;
-    }
+  const float d = P.morph1.w;
+  // Gradient by the tetrahedral stencil (4 points, second-order like central
+  // differences): offsets d (1,-1,-1), d (-1,-1,1), d (-1,1,-1), d (1,1,1).
+  const vec3 k0 = vec3(1, -1, -1), k1 = vec3(-1, -1, 1), k2 = vec3(-1, 1, -1), k3 = vec3(1, 1, 1);
+  uint pairs = (vertices + 1u) / 2u;
+  for (uint pr = t; pr < pairs; pr += AM_POLY_WG_CELLS) {
+    uint va = 2u * pr, vb = min(va + 1u, vertices - 1u);
+    vec3 posA, dirA, posB, dirB;
+    float fa, fb;
+    placeVertex(sVertexEdge[va], c0, posA, dirA, fa);
+    placeVertex(sVertexEdge[vb], c0, posB, dirB, fb);
+    PointsV w;
+    AM_SET_POINT(w, 0, 0, posA + d * k0) AM_SET_POINT(w, 0, 1, posA + d * k1)
+    AM_SET_POINT(w, 0, 2, posA + d * k2) AM_SET_POINT(w, 0, 3, posA + d * k3)
+    AM_SET_POINT(w, 1, 0, posB + d * k0) AM_SET_POINT(w, 1, 1, posB + d * k1)
+    AM_SET_POINT(w, 1, 2, posB + d * k2) AM_SET_POINT(w, 1, 3, posB + d * k3)
+    vec4 f[AM_FIELD_V];
+    fieldV(b * P.modes.y, w, f);
+    writeVertex(vertexBase + va, posA, f[0], dirA, fa);
+    if (va + 1u < vertices) writeVertex(vertexBase + va + 1u, posB, f[1], dirB, fb);
   }
   // Triangles: a contiguous run of cells per invocation, in cell order.
   uint firstCell = t * kCellsPerInvocation;

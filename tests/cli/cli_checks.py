@@ -11,6 +11,9 @@ usage: cli_checks.py MODE CLI [ARGS...]
   fit CLI                                   fit the demo creature: report printed, stand-in file loads
   bake CLI                                  bake a few frames per stage: file names, binary PLY headers,
                                             same bytes for --jobs 1 and --jobs 2
+  gpu CLI RESOURCES_DIR                     bake --gpu: morph frames as the CPU's (triangle counts within
+                                            0.5 %), other stages byte-identical; with no Vulkan device
+                                            bake --gpu and polygonize --gpu exit 1 naming the reason
 """
 import json
 import os
@@ -230,12 +233,48 @@ def mode_bake(cli):
             fail(f"bake with a reversed frame range: exit {r.returncode}")
 
 
+def mode_gpu(cli, resources):
+    with tempfile.TemporaryDirectory() as tmp:
+        demo = make_demo_dir(cli, tmp)
+        proj = os.path.join(demo, "demo.animorph")
+        frames = {}
+        for label, extra in (("cpu", []), ("gpu", ["--gpu"])):
+            out = os.path.join(tmp, label)
+            for a, b in ((22, 23), (48, 49), (60, 61)):  # source, then two pairs of morph (B->C) frames
+                r = run(cli, "bake", proj, "--frames", f"{a}:{b}", "--res", "24", "-o", out, *extra)
+                if r.returncode != 0:
+                    fail(f"bake {a}:{b} {extra}: exit {r.returncode}: {r.stderr}")
+                if extra and "on the GPU" not in r.stdout:
+                    fail(f"bake --gpu does not say the morph ran on the GPU: {r.stdout}")
+            frames[label] = out
+        for f in (22, 23, 48, 49, 60, 61):
+            n = f"frame_{f:04d}.ply"
+            cv, cf = read_ply_header(os.path.join(frames["cpu"], n))
+            gv, gf = read_ply_header(os.path.join(frames["gpu"], n))
+            if f < 48:
+                with open(os.path.join(frames["cpu"], n), "rb") as f1, open(os.path.join(frames["gpu"], n), "rb") as f2:
+                    if f1.read() != f2.read():
+                        fail(f"{n} (before the morph) differs between bake and bake --gpu")
+            elif abs(gf - cf) > 0.005 * cf:
+                fail(f"{n}: bake --gpu made {gf} triangles, the CPU {cf}")
+        # No Vulkan device: explicit --gpu fails with the reason, no silent CPU fallback.
+        env = dict(os.environ, VK_ICD_FILENAMES=os.path.join(tmp, "no-such-icd.json"))
+        for args in (["bake", proj, "--frames", "48:48", "--res", "16", "-o", os.path.join(tmp, "none"), "--gpu"],
+                     ["polygonize", os.path.join(resources, "blob_creature.json"), "--res", "16", "--gpu",
+                      "-o", os.path.join(tmp, "none.ply")]):
+            r = subprocess.run([cli, *args], capture_output=True, text=True, timeout=120, env=env)
+            if r.returncode != 1 or "Vulkan" not in r.stderr or "--gpu" not in r.stderr:
+                fail(f"{args[0]} --gpu without a device: exit {r.returncode}, stderr {r.stderr!r}")
+            if os.path.exists(args[-1]) and args[0] == "polygonize":
+                fail("polygonize --gpu without a device wrote a mesh")
+
+
 def main():
     if len(sys.argv) < 3:
         fail(__doc__)
     mode, cli, args = sys.argv[1], sys.argv[2], sys.argv[3:]
     {"info-json": mode_info_json, "info-bad": mode_info_bad, "make-demo": mode_make_demo, "new-info": mode_new_info,
-     "fit": mode_fit, "bake": mode_bake}[mode](cli, *args)
+     "fit": mode_fit, "bake": mode_bake, "gpu": mode_gpu}[mode](cli, *args)
     print("ok")
 
 

@@ -61,7 +61,7 @@ try:
     ed.click_widget("preview/device_cpu")
     ed.click_widget("status/document")  # a click outside closes the popup
     m = ed.wait_until(lambda m: "CPU (preference)" in m.get("preview", ""), "the CPU preference in the status",
-                      timeout=30)
+                      timeout=120)
     m = ed.wait_until(refined, "the refined CPU preview", timeout=120)
     g.check("CPU" in m["preview"], f"the preview runs on the CPU: '{m['preview']}'")
     g.xdo("key", "--clearmodifiers", "ctrl+q")  # not ed.key: the editor is gone before another frame

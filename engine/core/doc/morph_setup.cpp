@@ -40,7 +40,8 @@ bool MorphSetup::operator==(const MorphSetup& o) const {
   if (sourceActorId != o.sourceActorId || targetActorId != o.targetActorId || !(markers == o.markers) ||
       method != o.method || !(spaceTime == o.spaceTime) || !sameTrack(easing, o.easing) || !sameTrack(blend, o.blend) ||
       weightMapShift != o.weightMapShift || !sameTrack(noiseAmplitude, o.noiseAmplitude) ||
-      noiseFrequency != o.noiseFrequency || !(projection == o.projection) || actors.size() != o.actors.size())
+      noiseFrequency != o.noiseFrequency || !(projection == o.projection) || !(crossFade == o.crossFade) ||
+      actors.size() != o.actors.size())
     return false;
   for (size_t i = 0; i < actors.size(); ++i) {
     const ActorMorph &x = actors[i], &y = o.actors[i];

@@ -49,6 +49,17 @@ struct MorphProjection {
   bool operator==(const MorphProjection&) const = default;
 };
 
+// Optional cross-fade between the transitioned mesh and the implicit surface
+// around markers B and C (for coarse meshes, where the switch shows): within
+// widthFrames of the marker both are drawn, with complementary opacity
+// (dithered), the implicit surface from 0 at B - width to 1 at B + width (and
+// back to 0 from C - width to C + width). Display only: bake is unaffected.
+struct MorphCrossFade {
+  bool enabled = false;
+  int widthFrames = 3;  // half-width of the window around each marker, >= 1
+  bool operator==(const MorphCrossFade&) const = default;
+};
+
 struct MorphSetup {
   std::string sourceActorId;  // empty: the project has no morph
   std::string targetActorId;
@@ -61,6 +72,7 @@ struct MorphSetup {
   FloatTrack noiseAmplitude{0.0f};  // solid-noise displacement (m) over the morph's progress
   float noiseFrequency = 8.0f;      // 1/m
   MorphProjection projection;
+  MorphCrossFade crossFade;
   std::vector<ActorMorph> actors;
 
   MorphSetup();

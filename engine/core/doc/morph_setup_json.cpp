@@ -26,6 +26,8 @@ json morphSetupToJson(const MorphSetup& m) {
   j["projection"] = {{"pose", p.atClipTime ? "clip" : "rest"}, {"clip_time", p.clipTimeSec},
                      {"max_iterations", p.maxIterations}, {"tolerance", p.tolerance},
                      {"max_step_radii", p.maxStepRadii}, {"reproject_from", p.reprojectFrom}};
+  if (!(m.crossFade == MorphCrossFade{}))  // written when set, so projects without it stay byte-identical
+    j["cross_fade"] = {{"enabled", m.crossFade.enabled}, {"width_frames", m.crossFade.widthFrames}};
   json actors = json::array();
   for (const ActorMorph& a : m.actors) {
     json ja = {{"id", a.actorId}, {"standin", standinToJson(a.standin)}};
@@ -170,6 +172,20 @@ Result<MorphSetup> morphSetupFromJson(const json& j, const std::string& sourceNa
       if (r.ok() && !(mp.tolerance > 0.0f)) r.fail(wp + ".tolerance", "must be positive");
       if (r.ok() && !(mp.maxStepRadii > 0.0f)) r.fail(wp + ".max_step_radii", "must be positive");
       if (r.ok() && !(mp.reprojectFrom >= 0.0f && mp.reprojectFrom <= 1.0f)) r.fail(wp + ".reproject_from", "must be in [0, 1]");
+    }
+  }
+  if (r.ok() && j.contains("cross_fade")) {  // absent in older projects: off
+    const json& c = j["cross_fade"];
+    const std::string wc = w + ".cross_fade";
+    if (!c.is_object()) r.fail(wc, "expected an object {enabled, width_frames}");
+    else {
+      if (c.contains("enabled")) {
+        if (c["enabled"].is_boolean()) m.crossFade.enabled = c["enabled"].get<bool>();
+        else r.fail(wc + ".enabled", "expected true or false");
+      }
+      m.crossFade.widthFrames = r.integer(c, "width_frames", wc, m.crossFade.widthFrames);
+      if (r.ok() && !(m.crossFade.widthFrames >= 1 && m.crossFade.widthFrames <= 1000))
+        r.fail(wc + ".width_frames", "must be in 1..1000");
     }
   }
   if (r.ok() && j.contains("actors")) {

@@ -96,11 +96,12 @@ TriangleMesh assemble(const Character& c, std::vector<glm::vec3>&& pos, std::vec
 }
 
 TransitionStats transitionMesh(const MorphActorRuntime& a, double timeSec, const std::vector<float>& alpha,
-                               bool reproject, int threads, TriangleMesh& out) {
+                               bool reproject, float reprojectFrom, int threads, TriangleMesh& out) {
   const auto globals = actorGlobals(a, timeSec);
   const glm::mat4 root = a.actor.transform.matrix();
   TransitionSettings ts;
   ts.threads = threads;
+  ts.reprojectFrom = reprojectFrom;
   std::vector<glm::vec3> pos, nrm;
   TransitionStats st;
   bool anyHigh = false;
@@ -169,10 +170,11 @@ MorphOperand posedOperand(const MorphActorRuntime& a, double timeSec, double u) 
   return op;
 }
 
-MorphImplicitField morphImplicitField(const MorphRuntime& rt, double timeSec, int resolution) {
+MorphImplicitField morphImplicitField(const MorphRuntime& rt, double timeSec, int resolution, double progress) {
   MorphImplicitField out;
   const MorphSetup& m = rt.setup;
   morphStageAt(m, rt.timeline, timeSec, out.progress);
+  if (progress >= 0.0) out.progress = std::min(progress, 1.0);
   out.blend = std::clamp(m.blend.evaluate(out.progress), 0.0f, 1.0f);
   const MorphOperand src = posedOperand(rt.source, timeSec, out.progress);
   const MorphOperand dst = posedOperand(rt.target, timeSec, out.progress);
@@ -197,44 +199,58 @@ Result<MorphFrame> evaluateMorphFrame(const MorphRuntime& rt, double timeSec, co
   MorphFrame fr;
   fr.timeSec = timeSec;
   fr.stage = morphStageAt(rt.setup, rt.timeline, timeSec, fr.progress);
-  const MorphSetup& m = rt.setup;
   switch (fr.stage) {
     case MorphStage::Source:
     case MorphStage::Target: {
       const MorphActorRuntime& a = fr.stage == MorphStage::Source ? rt.source : rt.target;
       fr.actorId = a.actor.id;
       std::vector<float> zero(a.vertexCount, 0.0f);
-      fr.transition = transitionMesh(a, timeSec, zero, false, settings.threads, fr.mesh);
+      fr.transition = transitionMesh(a, timeSec, zero, false, 1.0f, settings.threads, fr.mesh);
       break;
     }
     case MorphStage::Collapse:
-    case MorphStage::Expand: {
-      const bool expand = fr.stage == MorphStage::Expand;
-      const MorphActorRuntime& a = expand ? rt.target : rt.source;
-      fr.actorId = a.actor.id;
-      std::vector<float> alpha;
-      transitionAlphas(fr.progress, m.easing, a.morph.weightMap, m.weightMapShift, expand, a.vertexCount, alpha);
-      fr.transition = transitionMesh(a, timeSec, alpha, settings.reproject && m.projection.reprojectFrom < 1.0f,
-                                     settings.threads, fr.mesh);
-      break;
-    }
-    case MorphStage::Morph: {
-      MorphImplicitField field = morphImplicitField(rt, timeSec, settings.resolution);
-      fr.blend = field.blend;
-      PolygonizeSettings ps;
-      ps.resolution = settings.resolution;
-      ps.threads = settings.threads;
-      ps.cancel = settings.cancel;
-      ps.bounds = field.bounds;
-      auto r = polygonize(field.program, ps);
-      if (!r) return Error{"morph at " + std::to_string(timeSec) + " s: " + r.error()};
-      fr.cancelled = r->cancelled;
-      fr.mesh = std::move(r->mesh);
-      fr.polygonize = r->stats;
-      displaceBySolidNoise(fr.mesh, field.noiseAmplitude, m.noiseFrequency);
-      break;
-    }
+    case MorphStage::Expand:
+      return evaluateMorphTransition(rt, timeSec, fr.stage == MorphStage::Expand, fr.progress, settings);
+    case MorphStage::Morph: return evaluateMorphImplicit(rt, timeSec, fr.progress, settings);
   }
+  return fr;
+}
+
+MorphFrame evaluateMorphTransition(const MorphRuntime& rt, double timeSec, bool expand, double u,
+                                   const MorphFrameSettings& settings) {
+  const MorphSetup& m = rt.setup;
+  MorphFrame fr;
+  fr.timeSec = timeSec;
+  fr.stage = expand ? MorphStage::Expand : MorphStage::Collapse;
+  fr.progress = std::clamp(u, 0.0, 1.0);
+  const MorphActorRuntime& a = expand ? rt.target : rt.source;
+  fr.actorId = a.actor.id;
+  std::vector<float> alpha;
+  transitionAlphas(fr.progress, m.easing, a.morph.weightMap, m.weightMapShift, expand, a.vertexCount, alpha);
+  fr.transition = transitionMesh(a, timeSec, alpha, settings.reproject && m.projection.reprojectFrom < 1.0f,
+                                 m.projection.reprojectFrom, settings.threads, fr.mesh);
+  return fr;
+}
+
+Result<MorphFrame> evaluateMorphImplicit(const MorphRuntime& rt, double timeSec, double u,
+                                         const MorphFrameSettings& settings) {
+  MorphImplicitField field = morphImplicitField(rt, timeSec, settings.resolution, std::clamp(u, 0.0, 1.0));
+  MorphFrame fr;
+  fr.timeSec = timeSec;
+  fr.stage = MorphStage::Morph;
+  fr.progress = field.progress;
+  fr.blend = field.blend;
+  PolygonizeSettings ps;
+  ps.resolution = settings.resolution;
+  ps.threads = settings.threads;
+  ps.cancel = settings.cancel;
+  ps.bounds = field.bounds;
+  auto r = polygonize(field.program, ps);
+  if (!r) return Error{"morph at " + std::to_string(timeSec) + " s: " + r.error()};
+  fr.cancelled = r->cancelled;
+  fr.mesh = std::move(r->mesh);
+  fr.polygonize = r->stats;
+  displaceBySolidNoise(fr.mesh, field.noiseAmplitude, rt.setup.noiseFrequency);
   return fr;
 }
 
@@ -244,7 +260,7 @@ Result<SeamGap> measureSeamGap(const MorphRuntime& rt, bool atB, int resolution)
   const MorphActorRuntime& a = atB ? rt.source : rt.target;
   std::vector<float> one(a.vertexCount, 1.0f);
   TriangleMesh transition;
-  transitionMesh(a, timeSec, one, m.projection.reprojectFrom < 1.0f, 0, transition);
+  transitionMesh(a, timeSec, one, m.projection.reprojectFrom < 1.0f, m.projection.reprojectFrom, 0, transition);
   MorphFrameSettings fs;
   fs.resolution = resolution;
   auto frame = evaluateMorphFrame(rt, timeSec, fs);

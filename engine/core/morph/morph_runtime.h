@@ -51,6 +51,9 @@ struct MorphFrameSettings {
   int threads = 0;         // 0: all hardware threads
   bool reproject = true;   // pull vertices onto the posed stand-in near alpha = 1
   const std::atomic<bool>* cancel = nullptr;  // polygonisation stops early; the frame comes back empty
+  // applyMorph (scene/morph_scene.h) only: collapse and expansion become
+  // TransitionDraws deformed in the vertex shader instead of CPU meshes.
+  bool gpuTransitions = false;
 };
 
 struct MorphFrame {
@@ -80,10 +83,25 @@ struct MorphImplicitField {
   std::optional<Bounds> bounds;
   float noiseAmplitude = 0.0f;
 };
-MorphImplicitField morphImplicitField(const MorphRuntime& rt, double timeSec, int resolution);
+// progress >= 0 overrides the stage's u (the cross-fade shows the surface
+// just before B at u = 0 and just after C at u = 1).
+MorphImplicitField morphImplicitField(const MorphRuntime& rt, double timeSec, int resolution, double progress = -1.0);
 
 // The output of the morph at timeSec. Errors: polygonisation failed (bad resolution).
 Result<MorphFrame> evaluateMorphFrame(const MorphRuntime& rt, double timeSec, const MorphFrameSettings& settings);
+
+// The collapse (expand false: the source, alpha rising) or the expansion
+// (expand true: the target, alpha falling) at scene time timeSec and stage
+// progress u (clamped), computed on the CPU, whatever stage timeSec is in.
+MorphFrame evaluateMorphTransition(const MorphRuntime& rt, double timeSec, bool expand, double u,
+                                   const MorphFrameSettings& settings);
+
+// The implicit morph (B -> C) polygonised at scene time timeSec and morph
+// progress u (clamped to [0, 1]), whatever stage timeSec is in: the
+// cross-fade draws the surface just before B (u = 0) and just after C (u = 1).
+// Errors: polygonisation failed.
+Result<MorphFrame> evaluateMorphImplicit(const MorphRuntime& rt, double timeSec, double u,
+                                         const MorphFrameSettings& settings);
 
 // Seam between a transition and the polygonised morph: the transition's
 // vertices at alpha = 1 at marker B (atB) or C, against the surface

@@ -56,6 +56,14 @@ StandinBinding bindToStandin(const Character& c, const Standin& s, const Animati
   return b;
 }
 
+void transitionEasingTable(const FloatTrack& easing, std::vector<float>& table) {
+  constexpr int kLut = kTransitionEasingIntervals;
+  table.resize(kLut + 1);
+  for (int k = 0; k <= kLut; ++k) table[size_t(k)] = std::clamp(easing.evaluate(float(k) / kLut), 0.0f, 1.0f);
+  table[0] = 0.0f;
+  table[kLut] = 1.0f;
+}
+
 void transitionAlphas(double u, const FloatTrack& easing, const std::vector<float>& weightMap, float shift, bool expand,
                       size_t n, std::vector<float>& alpha) {
   alpha.resize(n);
@@ -69,11 +77,9 @@ void transitionAlphas(double u, const FloatTrack& easing, const std::vector<floa
     return;
   }
   // The easing sampled once per call (a table), then read per vertex.
-  constexpr int kLut = 512;
-  float lut[kLut + 1];
-  for (int k = 0; k <= kLut; ++k) lut[k] = ease(float(k) / kLut);
-  lut[0] = 0.0f;
-  lut[kLut] = 1.0f;
+  constexpr int kLut = kTransitionEasingIntervals;
+  std::vector<float> lut;
+  transitionEasingTable(easing, lut);
   const float s = std::min(shift, 0.999f);
   const float dur = 1.0f - s;
   for (size_t i = 0; i < n; ++i) {

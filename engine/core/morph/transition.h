@@ -51,6 +51,14 @@ struct TransitionStats {
 // shift * (1 - m_i) and lasts 1 - shift, so painted vertices (m = 1) move
 // first and every vertex reaches its end at u = 1. expand: alpha = 1 - that
 // (the target's expansion, painted vertices again first).
+// Intervals of the easing table transitionAlphas reads with a weight map.
+inline constexpr int kTransitionEasingIntervals = 512;
+
+// The easing sampled at kTransitionEasingIntervals + 1 evenly spaced u in
+// [0, 1], clamped to [0, 1], with exact ends (0 and 1): the table that
+// transitionAlphas interpolates per vertex (and the GPU transition reads).
+void transitionEasingTable(const FloatTrack& easing, std::vector<float>& table);
+
 void transitionAlphas(double u, const FloatTrack& easing, const std::vector<float>& weightMap, float shift, bool expand,
                       size_t vertexCount, std::vector<float>& alpha);
 

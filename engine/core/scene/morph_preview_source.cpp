@@ -6,17 +6,18 @@ namespace {
 
 class MorphStageSource final : public PreviewSource {
  public:
-  MorphStageSource(std::shared_ptr<const MorphRuntime> rt, double timeSec) : rt_(std::move(rt)), timeSec_(timeSec) {}
+  MorphStageSource(std::shared_ptr<const MorphRuntime> rt, double timeSec, double progress)
+      : rt_(std::move(rt)), timeSec_(timeSec), progress_(progress) {}
   bool sameAs(const PreviewSource& other) const override {
     auto* o = dynamic_cast<const MorphStageSource*>(&other);
-    return o && o->rt_ == rt_ && o->timeSec_ == timeSec_;
+    return o && o->rt_ == rt_ && o->timeSec_ == timeSec_ && o->progress_ == progress_;
   }
   Result<PolygonizeResult> polygonize(int resolution, int threads, const std::atomic<bool>* cancel) const override {
     MorphFrameSettings fs;
     fs.resolution = resolution;
     fs.threads = threads;
     fs.cancel = cancel;
-    auto fr = evaluateMorphFrame(*rt_, timeSec_, fs);
+    auto fr = progress_ >= 0.0 ? evaluateMorphImplicit(*rt_, timeSec_, progress_, fs) : evaluateMorphFrame(*rt_, timeSec_, fs);
     if (!fr) return Error{fr.error()};
     PolygonizeResult r;
     r.mesh = std::move(fr->mesh);
@@ -25,7 +26,7 @@ class MorphStageSource final : public PreviewSource {
     return r;
   }
   Result<PreviewField> field(int resolution) const override {
-    MorphImplicitField f = morphImplicitField(*rt_, timeSec_, resolution);
+    MorphImplicitField f = morphImplicitField(*rt_, timeSec_, resolution, progress_);
     // The noise displaces the polygonised mesh, which the GPU path never reads back.
     if (f.noiseAmplitude != 0.0f) return Error{"solid noise is applied on the CPU only"};
     return PreviewField{std::move(f.program), f.bounds};
@@ -34,12 +35,14 @@ class MorphStageSource final : public PreviewSource {
  private:
   std::shared_ptr<const MorphRuntime> rt_;
   double timeSec_;
+  double progress_;
 };
 
 }  // namespace
 
-std::shared_ptr<const PreviewSource> morphPreviewSource(std::shared_ptr<const MorphRuntime> rt, double timeSec) {
-  return std::make_shared<const MorphStageSource>(std::move(rt), timeSec);
+std::shared_ptr<const PreviewSource> morphPreviewSource(std::shared_ptr<const MorphRuntime> rt, double timeSec,
+                                                        double progress) {
+  return std::make_shared<const MorphStageSource>(std::move(rt), timeSec, progress);
 }
 
 }  // namespace animorph

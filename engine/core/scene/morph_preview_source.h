@@ -10,7 +10,10 @@
 namespace animorph {
 
 // rt at scene time timeSec (expected inside B..C; elsewhere polygonize() gives
-// that stage's mesh). Two sources are the same when they share rt and the time.
-std::shared_ptr<const PreviewSource> morphPreviewSource(std::shared_ptr<const MorphRuntime> rt, double timeSec);
+// that stage's mesh). progress >= 0: the implicit morph at that u whatever the
+// stage (the cross-fade's surface just before B and after C). Two sources are
+// the same when they share rt, the time and the progress.
+std::shared_ptr<const PreviewSource> morphPreviewSource(std::shared_ptr<const MorphRuntime> rt, double timeSec,
+                                                        double progress = -1.0);
 
 }  // namespace animorph

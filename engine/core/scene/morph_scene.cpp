@@ -3,12 +3,59 @@
 #include <algorithm>
 #include <cmath>
 
+#include "morph/transition_frame.h"
+#include "rig/pose.h"
 #include "scene/mesh_character.h"
 
 namespace animorph {
 
-MorphSceneInfo applyMorph(SceneFrame& frame, const MorphRuntime& rt, double timeSec,
-                          const MorphFrameSettings& settings, bool implicitStage) {
+namespace {
+
+// The collapse / expansion of one actor as vertex-shader draws, one per mesh node.
+void addGpuTransition(SceneFrame& frame, const std::shared_ptr<const MorphRuntime>& rt, bool expand, double timeSec,
+                      double u, const MorphFrameSettings& settings, float opacity) {
+  const MorphActorRuntime& a = expand ? rt->target : rt->source;
+  const Character& c = *a.character;
+  auto params = std::make_shared<const TransitionFrame>(transitionFrame(*rt, expand, timeSec, u, settings.reproject));
+  const float clipT = a.clip ? float(actorClipTimeSec(a.actor, *a.clip, timeSec)) : 0.0f;
+  const std::vector<glm::mat4> globals = poseGlobals(c, a.clip, clipT);
+  const glm::mat4 root = a.actor.transform.matrix();
+  size_t first = 0;
+  for (int node : c.meshNodes()) {
+    const int meshIndex = c.nodes[size_t(node)].mesh;
+    TransitionDraw t;
+    t.mesh.actorId = a.actor.id;
+    t.mesh.character = a.character;
+    t.mesh.meshNode = node;
+    t.mesh.meshIndex = meshIndex;
+    t.mesh.model = root * globals[size_t(node)];
+    t.mesh.joints = jointMatrices(c, node, globals);
+    t.mesh.opacity = opacity;
+    t.runtime = rt;
+    t.targetActor = expand;
+    t.firstVertex = first;
+    t.frame = params;
+    frame.transitions.push_back(std::move(t));
+    first += c.meshes[size_t(meshIndex)].vertexCount();
+  }
+}
+
+void addMeshDraw(SceneFrame& frame, const std::string& actorId, const TriangleMesh& mesh, float opacity,
+                 bool complementDither) {
+  if (mesh.positions.empty()) return;
+  MeshDraw d;
+  d.actorId = actorId;
+  d.character = characterFromMesh(mesh, "morph");
+  d.meshNode = 0;
+  d.meshIndex = 0;
+  d.joints = {glm::mat4(1.0f)};
+  d.opacity = opacity;
+  d.complementDither = complementDither;
+  frame.meshes.push_back(std::move(d));
+}
+
+MorphSceneInfo apply(SceneFrame& frame, const MorphRuntime& rt, const std::shared_ptr<const MorphRuntime>& shared,
+                     double timeSec, const MorphFrameSettings& settings, bool implicitStage) {
   MorphSceneInfo info;
   info.stage = morphStageAt(rt.setup, rt.timeline, timeSec, info.progress);
   const std::string& src = rt.setup.sourceActorId;
@@ -22,22 +69,54 @@ MorphSceneInfo applyMorph(SceneFrame& frame, const MorphRuntime& rt, double time
   auto drop = [&](const std::string& id, const std::string& kept) { return (id == src || id == dst) && id != kept; };
   std::erase_if(frame.meshes, [&](const MeshDraw& d) { return drop(d.actorId, keep); });
   std::erase_if(frame.bones, [&](const BoneDraw& b) { return drop(b.actorId, bonesOf); });
-  if (!keep.empty() || (info.stage == MorphStage::Morph && !implicitStage)) return info;
+  if (!keep.empty()) return info;
 
-  auto out = evaluateMorphFrame(rt, timeSec, settings);
-  if (!out) {
-    info.error = out.error();
-    return info;
+  // What is drawn: the transition of one actor at progress meshU, the implicit
+  // morph at implicitU, with complementary opacity (1 and 0 outside the cross-fade).
+  const MorphSetup& m = rt.setup;
+  const double f = timeSec * rt.timeline.fps;
+  const bool nearB = std::abs(f - m.markers.b) <= std::abs(f - m.markers.c);
+  double implicitOpacity = info.stage == MorphStage::Morph ? 1.0 : 0.0;
+  if (m.crossFade.enabled) {
+    const double w = std::max(1, m.crossFade.widthFrames);
+    if (nearB && std::abs(f - m.markers.b) < w) implicitOpacity = std::clamp((f - (m.markers.b - w)) / (2.0 * w), 0.0, 1.0);
+    if (!nearB && std::abs(f - m.markers.c) < w) implicitOpacity = std::clamp((m.markers.c + w - f) / (2.0 * w), 0.0, 1.0);
   }
-  if (out->mesh.positions.empty()) return info;
-  MeshDraw d;
-  d.actorId = out->actorId.empty() ? src : out->actorId;
-  d.character = characterFromMesh(out->mesh, "morph");
-  d.meshNode = 0;
-  d.meshIndex = 0;
-  d.joints = {glm::mat4(1.0f)};
-  frame.meshes.push_back(std::move(d));
+  const bool expand = info.stage == MorphStage::Expand || (info.stage == MorphStage::Morph && !nearB);
+  const double meshU = info.stage == MorphStage::Morph ? (expand ? 0.0 : 1.0) : info.progress;
+  const double implicitU = info.stage == MorphStage::Morph ? info.progress : (expand ? 1.0 : 0.0);
+  const float meshOpacity = float(1.0 - implicitOpacity);
+  info.implicitOpacity = implicitOpacity;
+  info.implicitProgress = implicitU;
+  if (meshOpacity > 0.0f) {
+    if (shared && settings.gpuTransitions) {
+      addGpuTransition(frame, shared, expand, timeSec, meshU, settings, meshOpacity);
+    } else {
+      MorphFrame t = evaluateMorphTransition(rt, timeSec, expand, meshU, settings);
+      addMeshDraw(frame, t.actorId, t.mesh, meshOpacity, false);
+    }
+  }
+  if (implicitOpacity > 0.0 && implicitStage) {
+    auto out = evaluateMorphImplicit(rt, timeSec, implicitU, settings);
+    if (!out) {
+      info.error = out.error();
+      return info;
+    }
+    addMeshDraw(frame, src, out->mesh, float(implicitOpacity), true);
+  }
   return info;
+}
+
+}  // namespace
+
+MorphSceneInfo applyMorph(SceneFrame& frame, const MorphRuntime& rt, double timeSec,
+                          const MorphFrameSettings& settings, bool implicitStage) {
+  return apply(frame, rt, nullptr, timeSec, settings, implicitStage);
+}
+
+MorphSceneInfo applyMorph(SceneFrame& frame, const std::shared_ptr<const MorphRuntime>& rt, double timeSec,
+                          const MorphFrameSettings& settings, bool implicitStage) {
+  return apply(frame, *rt, rt, timeSec, settings, implicitStage);
 }
 
 std::string describeMorphStage(const MorphSceneInfo& info) {

@@ -15,12 +15,26 @@ struct MorphSceneInfo {
   MorphStage stage = MorphStage::Source;
   double progress = 0.0;  // within the stage, 0..1
   std::string error;      // evaluation failed (the actors are shown as they are)
+  // The implicit surface's share of the picture: 1 in B..C, the cross-fade's
+  // ramp within its window around B and C, else 0; and the morph progress u
+  // it is shown at (0 just before B, 1 just after C). A caller drawing the
+  // surface itself (implicitStage false) draws it at this opacity.
+  double implicitOpacity = 0.0;
+  double implicitProgress = 0.0;
 };
 
-// Replaces the source and target actors of frame by the morph at timeSec.
-// implicitStage false: during B->C the actors go but no mesh is added (the
-// caller draws the stage from a preview: scene/morph_preview_source.h).
+// Replaces the source and target actors of frame by the morph at timeSec:
+// the transitioned mesh (collapse, expansion) or the polygonised implicit
+// morph, both (with complementary opacity) within the cross-fade window
+// around B and C when the setup enables it. Transitions are CPU meshes.
+// implicitStage false: no implicit surface is added (the caller draws it from
+// a preview, scene/morph_preview_source.h, at info.implicitOpacity).
 MorphSceneInfo applyMorph(SceneFrame& frame, const MorphRuntime& rt, double timeSec,
+                          const MorphFrameSettings& settings, bool implicitStage = true);
+
+// The same; with settings.gpuTransitions the transitions become
+// frame.transitions (deformed in the vertex shader; they keep rt alive).
+MorphSceneInfo applyMorph(SceneFrame& frame, const std::shared_ptr<const MorphRuntime>& rt, double timeSec,
                           const MorphFrameSettings& settings, bool implicitStage = true);
 
 // "collapse 40%", "morph 75%", "source", ...

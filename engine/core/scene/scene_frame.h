@@ -16,6 +16,9 @@
 
 namespace animorph {
 
+struct MorphRuntime;
+struct TransitionFrame;
+
 // One mesh of one actor, posed.
 struct MeshDraw {
   std::string actorId;
@@ -24,6 +27,20 @@ struct MeshDraw {
   int meshIndex = -1;  // index into character->meshes
   glm::mat4 model{1.0f};             // actor transform * global(meshNode)
   std::vector<glm::mat4> joints;     // skinning matrices (rig/pose.h jointMatrices)
+  float opacity = 1.0f;              // < 1: cross-fade, drawn dithered (gpu::MeshDraw::opacity)
+  bool complementDither = false;     // the complementary dither pattern
+};
+
+// A mesh of a morph actor in its collapse or expansion, deformed on the GPU
+// (scene/morph_scene.h): the posed mesh, the prepared morph whose stand-in
+// binding the vertices use (uploaded once per runtime), and the frame's
+// transition parameters.
+struct TransitionDraw {
+  MeshDraw mesh;
+  std::shared_ptr<const MorphRuntime> runtime;
+  bool targetActor = false;   // the runtime's target (expansion), else its source
+  size_t firstVertex = 0;     // of this mesh in the binding (concatenated over meshNodes())
+  std::shared_ptr<const TransitionFrame> frame;
 };
 
 // A bone of the skeleton overlay: from a joint's parent to the joint.
@@ -45,6 +62,7 @@ struct BlobDraw {
 struct SceneFrame {
   double timeSec = 0.0;
   std::vector<MeshDraw> meshes;
+  std::vector<TransitionDraw> transitions;
   std::vector<BlobDraw> blobs;
   std::vector<BlobGuides> blobGuides;     // skeleton drawing of each BlobTree actor
   std::vector<BoneDraw> bones;

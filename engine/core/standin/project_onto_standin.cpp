@@ -23,7 +23,9 @@ struct Scratch {
   std::vector<uint32_t> live;
 };
 
-float medianRadius(const std::vector<PosedSegment>& segs) {
+}  // namespace
+
+float medianSegmentRadius(const std::vector<PosedSegment>& segs) {
   std::vector<float> r;
   for (const auto& s : segs)
     if (s.radius > 0.0f) r.push_back(s.radius);
@@ -32,14 +34,12 @@ float medianRadius(const std::vector<PosedSegment>& segs) {
   return r[r.size() / 2];
 }
 
-}  // namespace
-
 ProjectionStats projectOntoField(const FieldProgram& prog, const std::vector<PosedSegment>& segs, const glm::vec3* in,
                                  size_t n, glm::vec3* out, glm::vec3* normals, const ProjectionSettings& s) {
   const auto t0 = std::chrono::steady_clock::now();
   ProjectionStats st;
   st.points = n;
-  const float maxStep = std::max(1e-6f, s.maxStepRadii * medianRadius(segs));
+  const float maxStep = std::max(1e-6f, s.maxStepRadii * medianSegmentRadius(segs));
   const float tol = s.tolerance;
   const float T = prog.threshold;
   const size_t chunks = (n + kChunk - 1) / kChunk;

@@ -38,4 +38,8 @@ struct ProjectionStats {
 ProjectionStats projectOntoField(const FieldProgram& prog, const std::vector<PosedSegment>& segs, const glm::vec3* in,
                                  size_t n, glm::vec3* out, glm::vec3* normals, const ProjectionSettings& settings);
 
+// Median radius of the segments with a positive radius (0.05 when there are
+// none): the unit of ProjectionSettings::maxStepRadii.
+float medianSegmentRadius(const std::vector<PosedSegment>& segs);
+
 }  // namespace animorph

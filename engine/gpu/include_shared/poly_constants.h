@@ -7,6 +7,10 @@
 // Blocks of 8^3 cells: the unit of culling, of per-block primitive lists and of
 // one workgroup in the fine passes.
 #define AM_POLY_BLOCK 8
+// Superblocks of 4^3 blocks (32^3 cells): the coarse pass first bounds the field
+// per superblock, then only the blocks of superblocks that can hold surface do
+// the per-block lists and intervals (the coarse pass was ~20% of a 256^3 frame).
+#define AM_POLY_SUPER 4
 #define AM_POLY_BLOCK_CORNERS 729  // (8 + 1)^3 grid corners of a block
 #define AM_POLY_BLOCK_CELLS 512
 // Edges of a block's closed box (base corner in [0,8] on the two other axes,
@@ -19,8 +23,12 @@
 
 // Workgroup sizes (x only; multiples of 8 suit lavapipe's 8-wide SIMD).
 #define AM_POLY_WG_BLOCKS 64   // coarse pass: one invocation per block
-#define AM_POLY_WG_CELLS 96    // fine passes: one workgroup per active block; 8 corners per invocation (92 busy)
-#define AM_POLY_POINTS 8       // points per invocation of the batched field evaluation
+#define AM_POLY_WG_CELLS 96    // fine passes: one workgroup per active block
+// Points per invocation of the batched field evaluation, in vec4, 1 or 2 (shaders/include/poly_field_batch.glsl):
+// a primitive's record is loaded once per invocation and applied to all its points (on lavapipe a
+// load inside a loop costs far more than the arithmetic).
+#define AM_POLY_CORNER_V 2     // corners: 8 per invocation (4, 16 and 32 measured no faster on lavapipe)
+#define AM_POLY_NORMAL_V 2     // normals: 2 vertices per invocation, 4 points each (tetrahedral gradient)
 #define AM_POLY_WG_SCAN 256
 #define AM_POLY_SCAN_PER_GROUP 1024  // elements per scan workgroup (4 per invocation)
 #define AM_POLY_SCAN_MAX_GROUPS 1024 // so at most 1M elements per scan
@@ -93,7 +101,7 @@
 #define AM_PB_POOL_SSBO 2    // storage: vec4 pool[]
 #define AM_PB_BOUNDS 3       // storage: vec4 per primitive bound (AM_REC_BOUND each)
 #define AM_PB_TABLE 4        // uniform: marching-cubes table
-#define AM_PB_BLOCK_MASK 5   // storage: primitive bitmask per block
+#define AM_PB_BLOCK_MASK 5   // storage: primitive bitmask per block, then per superblock
 #define AM_PB_BLOCK_FLAG 6   // storage: uvec2 per block (active, 0): scan input
 #define AM_PB_BLOCK_PREFIX 7 // storage: uvec2 per block: scan output
 #define AM_PB_BLOCK_SLOT 8   // storage: uint per block: active slot or AM_POLY_NONE
@@ -107,7 +115,9 @@
 #define AM_PB_POSITIONS 16   // storage: float xyz per vertex (vertex buffer)
 #define AM_PB_NORMALS 17     // storage: float xyz per vertex (vertex buffer)
 #define AM_PB_INDICES 18     // storage: uint per triangle corner (index buffer)
-#define AM_PB_COUNT 19
+#define AM_PB_SUPER_FLAG 19  // storage: uint per superblock: can hold surface (their primitive
+                             // bitmasks follow the blocks' in AM_PB_BLOCK_MASK)
+#define AM_PB_COUNT 20
 
 #define AM_POLY_NONE 0xffffffffu
 
@@ -132,6 +142,8 @@
 #define AM_SCAN_DOWNSWEEP 2
 #define AM_SCAN_SOURCE_BLOCKS 0  // block flags -> block prefix
 #define AM_SCAN_SOURCE_COUNTS 1  // per-slot counts -> offsets
+#define AM_COARSE_SUPERBLOCKS 0  // coarse pass: one invocation per superblock
+#define AM_COARSE_BLOCKS 1       // coarse pass: one invocation per block
 #define AM_ARGS_AFTER_BLOCKS 0
 #define AM_ARGS_AFTER_COUNTS 1
 
