@@ -12,10 +12,12 @@
 #include "layout.h"
 #include "view/camera.h"
 #include "outliner_panel.h"
+#include "standin_tool.h"
 #include "status_bar.h"
 #include "timeline_panel.h"
 #include "util/prefs.h"
 #include "viewport_input.h"
+#include "viewport_mode.h"
 #include "weight_paint_tool.h"
 
 namespace animorph {
@@ -46,6 +48,8 @@ struct EditorState {
   TimelineState timeline;
   CurveEditorState curveEditor;
   GizmoState gizmo;
+  ViewportMode viewportMode = ViewportMode::Object;
+  StandinToolState standinTool;  // the selected stand-in segment and its handles
   WeightPaintState paint;  // Weight Paint mode
   DragMerge drag;
 

@@ -7,6 +7,7 @@
 
 #include "actor_commands.h"
 #include "doc/blobtree_commands.h"
+#include "doc/standin_commands.h"
 #include "node_type_menu.h"
 #include "help_windows.h"
 #include "menu_bar.h"
@@ -100,7 +101,8 @@ void EditorUI::draw(EditorContext& ctx) {
   external_.clear();
 
   // Menu bar, then the panels laid out below it.
-  MenuResult menu = drawMenuBar(doc(ctx), st_.prefs.recentFiles, st_.menuBarHeight, st_.curveEditor.visible, st_.paint);
+  MenuResult menu = drawMenuBar(doc(ctx), st_.prefs.recentFiles, st_.menuBarHeight, st_.curveEditor.visible, st_.paint,
+                                st_.viewportMode);
   actions.insert(actions.end(), menu.actions.begin(), menu.actions.end());
   float statusHeight = ImGui::GetFrameHeight();
   LayoutSizes sizes{st_.prefs.outlinerWidth, st_.prefs.inspectorWidth, st_.prefs.timelineHeight};
@@ -109,7 +111,8 @@ void EditorUI::draw(EditorContext& ctx) {
 
   drawOutlinerPanel(st_.layout.outliner, doc(ctx), ctx.assets, st_.outliner, actions, st_.status);
   st_.inspector.morph.runtime = ctx.morphRuntime;
-  drawInspectorPanel(st_.layout.inspector, doc(ctx), ctx.assets, st_.inspector, st_.drag, st_.status);
+  drawInspectorPanel(st_.layout.inspector, doc(ctx), ctx.assets, st_.inspector, st_.drag, st_.status,
+                     st_.standinTool);
   drawTimelinePanel(st_.layout.timeline, doc(ctx), st_.playback, keyFrames(ctx), st_.timeline, st_.drag, actions);
   drawStatusBar(st_.layout.statusBar, doc(ctx), ctx.stats, st_.status);
   drawViewport(ctx);
@@ -173,6 +176,8 @@ void EditorUI::drawViewport(EditorContext& ctx) {
   ImGui::SameLine();
   bool previewControlHovered = false;
   if (drawPreviewQuickControl(st_.prefs, previewControlHovered)) savePreferences();
+  if (st_.viewportMode != ViewportMode::Object)
+    ImGui::TextColored(ImVec4(0.5f, 0.9f, 1.0f, 1.0f), "%s mode", viewportModeName(st_.viewportMode));
   if (d.project().actors.empty())
     ImGui::TextDisabled("File > Import glTF... adds a character; Create > New BlobTree Actor an implicit shape.");
   ImGui::End();
@@ -183,11 +188,18 @@ void EditorUI::drawViewport(EditorContext& ctx) {
   // The gizmo goes first: while the mouse is on it, the camera and picking stay still.
   ImGui::Begin("##viewport", nullptr, kOverlayFlags);
   drawGizmo(doc(ctx), st_.camera, vr, in, st_.gizmo, st_.status, ImGui::GetWindowDrawList());
+  const bool standinEdit = st_.viewportMode == ViewportMode::StandinEdit;
+  if (standinEdit)
+    drawStandinTool(doc(ctx), ctx.assets, st_.camera, vr, in, st_.standinTool, st_.status, ImGui::GetWindowDrawList());
   ImGui::End();
-  if (st_.gizmo.hot()) in.blockedByUi = true;
+  if (st_.gizmo.hot() || (standinEdit && st_.standinTool.hot())) in.blockedByUi = true;
   updateWeightPaint(doc(ctx), ctx.assets, st_.camera, vr, in, st_.paint, st_.status, ImGui::GetForegroundDrawList());
   out_.pick = st_.viewportInput.update(in, vr, st_.prefs.cameraScheme, st_.prefs.otherSchemeToo, st_.camera);
   if (st_.paint.active) out_.pick.reset();  // a click paints instead of selecting
+  // In the Stand-in edit mode a click on a capsule selects its segment instead of the mesh.
+  if (standinEdit && out_.pick &&
+      pickStandinClick(doc(ctx), ctx.assets, st_.camera, vr, out_.pick->windowPos, st_.standinTool))
+    out_.pick.reset();
   if (st_.viewportInput.activeDrag() != CameraDrag::None)
     ImGui::SetMouseCursor(st_.viewportInput.activeDrag() == CameraDrag::Pan ? ImGuiMouseCursor_ResizeAll
                                                                              : ImGuiMouseCursor_Hand);
@@ -270,6 +282,20 @@ void EditorUI::dispatch(Action a, EditorContext& ctx) {
       break;
     }
     case Action::DeleteSelection: {
+      if (st_.viewportMode == ViewportMode::StandinEdit) {
+        int seg = selectedStandinSegment(d, st_.standinTool);
+        if (seg >= 0) {
+          auto cmd = deleteStandinSegmentCommand(d.project(), st_.standinTool.actorId, seg);
+          if (cmd) {
+            setStatus((*cmd)->label());
+            d.execute(std::move(*cmd));
+            st_.standinTool.segment = -1;
+          } else {
+            setStatus(cmd.error(), true);
+          }
+          break;
+        }
+      }
       if (d.selection.actorId.empty()) break;
       const Actor* sel = d.project().findActor(d.selection.actorId);
       if (sel && sel->kind == ActorKind::BlobTree && d.selection.node >= 0) {
@@ -335,6 +361,19 @@ void EditorUI::dispatch(Action a, EditorContext& ctx) {
     case Action::ToggleAxes:
       d.execute(setViewOption(d.project(), &ViewOptions::showAxes, !d.project().view.showAxes, "Toggle axes"));
       break;
+    case Action::ToggleStandins:
+      d.execute(setViewOption(d.project(), &ViewOptions::showStandins, !d.project().view.showStandins,
+                              "Toggle stand-ins"));
+      break;
+    case Action::ToggleStandinEdit:
+      st_.viewportMode = st_.viewportMode == ViewportMode::StandinEdit ? ViewportMode::Object : ViewportMode::StandinEdit;
+      // One viewport mode at a time: entering stand-in editing leaves Weight Paint.
+      if (st_.viewportMode == ViewportMode::StandinEdit && st_.paint.active) toggleWeightPaint(d, st_.paint, st_.status);
+      if (st_.viewportMode == ViewportMode::StandinEdit && !d.project().morph.enabled())
+        setStatus("Stand-in edit mode: the project has no morph, so no stand-ins to edit");
+      else
+        setStatus(std::string(viewportModeName(st_.viewportMode)) + " mode");
+      break;
     case Action::FrameSelection: frameSelection(ctx); break;
     case Action::PlayPause: togglePlayback(d, st_.playback); break;
     case Action::StepBack: stepFrames(d, st_.playback, -1); break;
@@ -344,7 +383,10 @@ void EditorUI::dispatch(Action a, EditorContext& ctx) {
     case Action::Preferences: st_.showPreferences = true; break;
     case Action::About: st_.showAbout = true; break;
     case Action::ShowShortcuts: st_.showShortcuts = true; break;
-    case Action::ToggleWeightPaint: toggleWeightPaint(d, st_.paint, st_.status); break;
+    case Action::ToggleWeightPaint:
+      toggleWeightPaint(d, st_.paint, st_.status);
+      if (st_.paint.active) st_.viewportMode = ViewportMode::Object;  // one viewport mode at a time
+      break;
     case Action::ToggleWeightOverlay: st_.paint.overlayAlways = !st_.paint.overlayAlways; break;
     case Action::ImportWeights:
       if (weightPaintActor(d).empty() && d.project().morph.enabled()) d.selection = {d.project().morph.sourceActorId, -1};
@@ -457,6 +499,7 @@ void EditorUI::replaceDocument(std::unique_ptr<Document> d, EditorContext& ctx) 
   st_.curveEditor.selection.clear();
   st_.curveEditor.sourceId.clear();
   st_.gizmo = {};
+  st_.standinTool = {};
   st_.paint.stroke.reset();
   st_.paint.mesh.reset();
   keysDoc_ = nullptr;

@@ -15,6 +15,7 @@
 #include "blobtree/tree_edit.h"
 #include "doc/document.h"
 #include "status_bar.h"
+#include "translate_arrows.h"
 #include "view/camera.h"
 #include "viewport_input.h"
 
@@ -26,16 +27,13 @@ struct GizmoState {
   std::string actorId;  // node the gizmo belongs to
   int node = -1;
   ParamAddress active;  // parameter it sits on (reset when the node changes)
-  int hoverAxis = -1;   // arrow under the mouse (0..2), -1: none
   bool hoverHandle = false;
-  int dragAxis = -1;    // arrow being dragged
-  glm::vec3 dragOrigin{0.0f}, dragDir{0.0f};  // world axis line of the drag
-  float dragStartS = 0.0f;                    // mouse ray's closest parameter on it at the press
+  TranslateArrows arrows;
   glm::vec3 dragStartLocal{0.0f};
   glm::mat3 dragInvJacobian{1.0f};
   double dragTimeSec = 0.0;
   // True while the mouse is on the gizmo or dragging it: the viewport must not orbit or pick.
-  bool hot() const { return hoverAxis >= 0 || hoverHandle || dragAxis >= 0; }
+  bool hot() const { return arrows.hot() || hoverHandle; }
 };
 
 // Position-like parameters of a node, in drawing order.

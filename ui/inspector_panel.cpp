@@ -12,6 +12,8 @@
 #include "actor_commands.h"
 #include "actor_timing.h"
 #include "selection_info.h"
+#include "standin/character_pose.h"
+#include "standin_inspector.h"
 #include "widget_rects.h"
 
 namespace animorph {
@@ -62,7 +64,7 @@ void drawJoint(const Character& c, int node) {
 }  // namespace
 
 void drawInspectorPanel(const LayoutRect& rect, Document& doc, AssetCache& assets, InspectorState& st,
-                        DragMerge& drag, StatusMessage& status) {
+                        DragMerge& drag, StatusMessage& status, StandinToolState& standin) {
   ImGui::SetNextWindowPos(ImVec2(rect.min.x, rect.min.y));
   ImGui::SetNextWindowSize(ImVec2(rect.size.x, rect.size.y));
   constexpr ImGuiWindowFlags kFlags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
@@ -91,8 +93,13 @@ void drawInspectorPanel(const LayoutRect& rect, Document& doc, AssetCache& asset
   if (doc.selection.node >= 0) {
     ImGui::Text("Actor: %s", actor.name.c_str());
     ImGui::Separator();
-    if (c && doc.selection.node < static_cast<int>(c->nodes.size())) drawJoint(*c, doc.selection.node);
-    else ImGui::TextDisabled("The node is not in the loaded asset.");
+    if (c && doc.selection.node < static_cast<int>(c->nodes.size())) {
+      drawJoint(*c, doc.selection.node);
+      if (rigNodes(*c)[size_t(doc.selection.node)])
+        drawJointStandinButton(doc, *c, id, doc.selection.node, standin, status);
+    } else {
+      ImGui::TextDisabled("The node is not in the loaded asset.");
+    }
     ImGui::End();
     return;
   }
@@ -195,6 +202,7 @@ void drawInspectorPanel(const LayoutRect& rect, Document& doc, AssetCache& asset
     ImGui::TextDisabled("%zu meshes, %zu vertices, %zu triangles, %zu joints, %zu clips", c->meshes.size(),
                         c->totalVertices(), c->totalTriangles(), c->totalJoints(), c->clips.size());
     for (const std::string& w : c->report.warnings) ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "%s", w.c_str());
+    drawStandinInspector(doc, *c, id, standin, drag, status);
   }
   ImGui::End();
 }

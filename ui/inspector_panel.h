@@ -14,6 +14,7 @@
 #include "drag_merge.h"
 #include "layout.h"
 #include "morph_panel.h"
+#include "standin_tool.h"
 
 namespace animorph {
 
@@ -31,8 +32,9 @@ struct InspectorState {
 };
 
 // Refused edits (BlobTree nodes) report to status.
+// standin: the selected stand-in segment (a morph actor's inspector lists its segments).
 void drawInspectorPanel(const LayoutRect& rect, Document& doc, AssetCache& assets, InspectorState& st,
-                        DragMerge& drag, StatusMessage& status);
+                        DragMerge& drag, StatusMessage& status, StandinToolState& standin);
 
 // XYZ Euler angles in degrees (R = Rz * Ry * Rx) of q, and back.
 glm::vec3 quatToEulerDeg(const glm::quat& q);

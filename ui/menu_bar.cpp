@@ -21,7 +21,7 @@ bool beginMenu(const char* label, bool enabled = true) {
 }  // namespace
 
 MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& recentFiles, float& heightPx,
-                       bool curveEditorShown, const WeightPaintState& paint) {
+                       bool curveEditorShown, const WeightPaintState& paint, ViewportMode mode) {
   MenuResult r;
   heightPx = 0.0f;
   if (!ImGui::BeginMainMenuBar()) return r;
@@ -96,11 +96,13 @@ MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& rece
     item("Skeleton", Action::ToggleSkeleton, true, v.showSkeleton);
     item("Wireframe", Action::ToggleWireframe, true, v.wireframe);
     item("Axes", Action::ToggleAxes, true, v.showAxes);
+    item("Stand-ins", Action::ToggleStandins, true, v.showStandins);
     ImGui::Separator();
     item("Frame Selection", Action::FrameSelection);
     ImGui::Separator();
     item("Curve Editor", Action::ToggleCurveEditor, true, curveEditorShown);
     item("Weight Paint Mode", Action::ToggleWeightPaint, doc.project().morph.enabled(), paint.active);
+    item("Stand-in Edit Mode", Action::ToggleStandinEdit, true, mode == ViewportMode::StandinEdit);
     item("Weight Overlay", Action::ToggleWeightOverlay, true, paint.overlayAlways);
     ImGui::Separator();
     item("Preferences...", Action::Preferences);

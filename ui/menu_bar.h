@@ -9,6 +9,7 @@
 #include "blobtree/node_type.h"
 #include "doc/document.h"
 #include "shortcuts.h"
+#include "viewport_mode.h"
 #include "weight_paint_tool.h"
 
 namespace animorph {
@@ -20,8 +21,9 @@ struct MenuResult {
 };
 
 // Draws the bar; returns its height in pixels through heightPx. curveEditorShown
-// checks View > Curve Editor.
+// checks View > Curve Editor, mode the viewport mode entries.
 MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& recentFiles, float& heightPx,
-                       bool curveEditorShown = false, const WeightPaintState& paint = {});
+                       bool curveEditorShown = false, const WeightPaintState& paint = {},
+                       ViewportMode mode = ViewportMode::Object);
 
 }  // namespace animorph

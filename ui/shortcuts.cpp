@@ -27,6 +27,7 @@ const std::vector<Shortcut>& shortcutTable() {
       {Action::GoToStart, GLFW_KEY_HOME, false, false, false, "Go to range start"},
       {Action::GoToEnd, GLFW_KEY_END, false, false, false, "Go to range end"},
       {Action::FrameSelection, GLFW_KEY_F, false, false, false, "Frame the selection"},
+      {Action::ToggleStandinEdit, GLFW_KEY_E, false, false, false, "Stand-in edit mode on / off"},
       {Action::ToggleWeightPaint, GLFW_KEY_P, false, false, false,
        "Weight Paint mode (LMB paints; [ ] or F set the brush radius)"},
   };

@@ -13,7 +13,7 @@ namespace animorph {
 enum class Action {
   New, Open, Save, SaveAs, ImportGltf, SaveScreenshot, Quit,
   Undo, Redo, DeleteSelection, DuplicateSelection, NewBlobActor, ToggleCurveEditor,
-  ToggleGrid, ToggleSkeleton, ToggleWireframe, ToggleAxes, FrameSelection,
+  ToggleGrid, ToggleSkeleton, ToggleWireframe, ToggleAxes, ToggleStandins, ToggleStandinEdit, FrameSelection,
   PlayPause, StepBack, StepForward, GoToStart, GoToEnd,
   Preferences, About, ShowShortcuts,
   ToggleWeightPaint, ToggleWeightOverlay, ImportWeights,

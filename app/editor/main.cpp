@@ -27,10 +27,12 @@
 #include "scene/morph_scene.h"
 #include "scene/blob_pick.h"
 #include "scene/pick.h"
+#include "scene/standin_guides.h"
 #include "scene/scene_frame.h"
 #include "scene_from_frame.h"
 #include "scene_renderer.h"
 #include "standin_binding_cache.h"
+#include "standin_overlay.h"
 #include "swapchain.h"
 #include "paint/paint_mesh.h"
 #include "weight_overlay_scene.h"
@@ -311,6 +313,9 @@ int main(int argc, char** argv) {
       morphPreview->draw(scene, glm::mat4(1.0f), {0.62f, 0.62f, 0.62f, 1.0f}, doc.selection.actorId == morphSourceId);
       gpu::setCrossFade(scene, meshCount, generatedCount, morphOpacity);
     }
+    if (doc.project().view.showStandins || ui.state().viewportMode == ViewportMode::StandinEdit)
+      gpu::addStandinOverlay(projectStandinGuides(doc.project(), doc.baseDir(), assets, timeSec),
+                             doc.selection.actorId, selectedStandinSegment(doc, ui.state().standinTool), scene.overlay);
     if (!out.weightOverlay.actorId.empty()) {
       overlayWeights = out.weightOverlay.weights;
       gpu::addWeightOverlay(frame, out.weightOverlay.actorId, overlayWeights, meshes, scene);
@@ -372,7 +377,8 @@ int main(int argc, char** argv) {
     if (!uiMapPath.empty() && frameCount % 3 == 0) writeUiMap(uiMapPath, ui.widgets(), out, doc, frameCount,
                  {{"preview_busy", blobPreviews->busy() || (morphStageShown && morphPreview->busy())},
                   {"preview", ectx.stats.previewInfo},
-                  {"preview_gpu", backend.gpu}});
+                  {"preview_gpu", backend.gpu},
+                  {"standin_segment", selectedStandinSegment(doc, ui.state().standinTool)}});
     std::string title = "Animorph - " + doc.displayName() + (doc.dirty() ? " *" : "");
     if (title != lastTitle) {
       glfwSetWindowTitle(window, title.c_str());

@@ -23,6 +23,16 @@ def ensure_display(argv):
     os.execvp("xvfb-run", ["xvfb-run", "-a", "-s", f"-screen 0 {SCREEN}", sys.executable] + argv)
 
 
+def demo_copy(demo_dir, prefix):
+    """A temporary copy of the demo project and its characters: (work dir, project path, its JSON)."""
+    work = tempfile.mkdtemp(prefix=prefix)
+    for name in ("demo.animorph", "creature.glb", "gear.glb"):
+        shutil.copy(os.path.join(demo_dir, name), work)
+    project = os.path.join(work, "demo.animorph")
+    with open(project) as f:
+        return work, project, json.load(f)
+
+
 def fail(msg):
     print("FAIL: " + msg, flush=True)
     raise SystemExit(1)

@@ -50,6 +50,7 @@ struct ViewOptions {
   bool showSkeleton = true;
   bool wireframe = false;
   bool showAxes = true;
+  bool showStandins = false;  // morph actors' stand-in capsules over the meshes
   bool operator==(const ViewOptions&) const = default;
 };
 

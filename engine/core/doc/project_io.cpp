@@ -86,7 +86,8 @@ std::string projectToJson(const Project& p) {
   j["timeline"] = {{"fps", t.fps},         {"frame_start", t.frameStart},       {"frame_end", t.frameEnd},
                    {"current_frame", t.currentFrame}, {"playback_speed", t.playbackSpeed}, {"loop", t.loop}};
   j["view"] = {{"grid", p.view.showGrid}, {"skeleton", p.view.showSkeleton},
-               {"wireframe", p.view.wireframe}, {"axes", p.view.showAxes}};
+               {"wireframe", p.view.wireframe}, {"axes", p.view.showAxes},
+               {"standins", p.view.showStandins}};
   json actors = json::array();
   for (const Actor& a : p.actors) {
     const glm::quat& q = a.transform.rotation;
@@ -162,6 +163,7 @@ Result<Project> projectFromJson(const std::string& text, const std::string& sour
     p.view.showSkeleton = r.boolean(v, "skeleton", "view", p.view.showSkeleton);
     p.view.wireframe = r.boolean(v, "wireframe", "view", p.view.wireframe);
     p.view.showAxes = r.boolean(v, "axes", "view", p.view.showAxes);
+    p.view.showStandins = r.boolean(v, "standins", "view", p.view.showStandins);
   }
   if (j.contains("actors")) {
     const json& actors = j["actors"];
