@@ -18,18 +18,14 @@ layout(set = 0, binding = AM_BINDING_JOINTS, std430) readonly buffer Joints {
 };
 
 #include "mesh_push.glsl"
+#include "skinning.glsl"
 
 layout(location = 0) out vec3 outWorldPos;
 layout(location = 1) out vec3 outWorldNormal;
 layout(location = 2) out float outPaintWeight;
 
 void main() {
-  mat4 skin = mat4(0.0);
-  for (int k = 0; k < 4; ++k) {
-    if (inWeights0[k] != 0.0 && inJoints0[k] < pc.jointCount) skin += inWeights0[k] * joints[pc.jointOffset + inJoints0[k]];
-    if (inWeights1[k] != 0.0 && inJoints1[k] < pc.jointCount) skin += inWeights1[k] * joints[pc.jointOffset + inJoints1[k]];
-  }
-  mat4 world = pc.model * skin;
+  mat4 world = pc.model * amSkinMatrix(inJoints0, inWeights0, inJoints1, inWeights1);
   vec4 wp = world * vec4(inPosition, 1.0);
   outWorldPos = wp.xyz;
   outWorldNormal = transpose(inverse(mat3(world))) * inNormal;
