@@ -101,7 +101,7 @@ std::vector<Row> runScrub(const animorph::bench::Options& opt) {
     ps.interactiveResolution = interactive;
     ps.refinedResolution = refined;
     ps.gpu = gpuPath;
-    ps.threads = 2;
+    ps.threads = interactivePreviewThreads();  // as the editor
     std::vector<double> frameMs, latencyMs;
     std::map<double, Clock::time_point> askedAt;  // time -> when a frame last started asking for it
     double lastAnswered = -1.0, lastAsked = -1.0;

@@ -260,6 +260,7 @@ int main(int argc, char** argv) {
       morphOpacity = float(info.implicitOpacity);
       if (morphOpacity > 0.0f) {  // B..C, or the cross-fade's window around B and C
         gpu::ImplicitPreviewSettings ps;
+        ps.threads = interactivePreviewThreads();
         ps.interactiveResolution = prefs.previewCoarseResolution;
         ps.refinedResolution = prefs.previewResolution;
         ps.gpu = backend.gpu;
@@ -273,7 +274,7 @@ int main(int argc, char** argv) {
       ectx.viewportNote = morphCache.error().empty() ? "" : "morph: " + morphCache.error();
     }
     blobPreviews->update(doc.project(), frame,
-                         {prefs.previewCoarseResolution, prefs.previewResolution, /*threads=*/0, backend.gpu,
+                         {prefs.previewCoarseResolution, prefs.previewResolution, interactivePreviewThreads(), backend.gpu,
                           /*settle=*/!pendingCapture.empty()});
     if (out.pick) {
       glm::vec2 local = out.pick->windowPos - out.viewport.min;

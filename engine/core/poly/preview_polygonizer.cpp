@@ -2,11 +2,17 @@
 
 #include <algorithm>
 #include <chrono>
+#include <thread>
 
 #include "blobtree/compile.h"
 #include "blobtree/validate.h"
 
 namespace animorph {
+
+int interactivePreviewThreads() {
+  const int hw = int(std::thread::hardware_concurrency());
+  return std::max(1, hw - 1);
+}
 
 namespace {
 bool sameRequest(const PreviewRequest& a, const PreviewRequest& b) {
