@@ -42,7 +42,7 @@ double documentTimeSec(const Document& doc) {
 }
 
 std::vector<StandinGuides> documentStandinGuides(const Document& doc, AssetCache& assets) {
-  return projectStandinGuides(doc.project(), doc.baseDir(), assets, documentTimeSec(doc));
+  return projectStandinGuides(doc.project(), doc.baseDir(), assets, documentTimeSec(doc), doc.selection.actorId);
 }
 
 void drawStandinTool(Document& doc, AssetCache& assets, const OrbitCamera& camera, const ViewportRect& viewport,

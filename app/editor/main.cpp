@@ -315,7 +315,7 @@ int main(int argc, char** argv) {
       gpu::setCrossFade(scene, meshCount, generatedCount, morphOpacity);
     }
     if (doc.project().view.showStandins || ui.state().viewportMode == ViewportMode::StandinEdit)
-      gpu::addStandinOverlay(projectStandinGuides(doc.project(), doc.baseDir(), assets, timeSec),
+      gpu::addStandinOverlay(projectStandinGuides(doc.project(), doc.baseDir(), assets, timeSec, doc.selection.actorId),
                              doc.selection.actorId, selectedStandinSegment(doc, ui.state().standinTool), scene.overlay);
     if (!out.weightOverlay.actorId.empty()) {
       overlayWeights = out.weightOverlay.weights;

@@ -87,19 +87,30 @@ TEST_CASE("standin guides: the wire capsule lies on the capsule's surface", "[st
   }
 }
 
-TEST_CASE("standin guides: every visible morph actor of a project, hidden ones skipped", "[standin_edit]") {
+TEST_CASE("standin guides: the morph actors on screen at the time, the selected one always, hidden ones skipped",
+          "[standin_edit]") {
   const auto& dm = test::demoMorph();
   Project p = dm.project;
   AssetCache assets;
-  auto all = projectStandinGuides(p, dm.dir, assets, 1.0);
+  const MorphMarkers mk = p.morph.markers;
+  const double during = p.timeline.frameToSec((mk.b + mk.c) / 2.0);  // the implicit morph: both stand-ins
+  auto all = projectStandinGuides(p, dm.dir, assets, during);
   REQUIRE(all.size() == 2);
   CHECK(all[0].segments.size() == p.morph.actors[0].standin.segments.size());
+  const double before = p.timeline.frameToSec(mk.a - 1), after = p.timeline.frameToSec(mk.d + 1);
+  auto early = projectStandinGuides(p, dm.dir, assets, before);
+  REQUIRE(early.size() == 1);
+  CHECK(early[0].actorId == p.morph.sourceActorId);
+  auto late = projectStandinGuides(p, dm.dir, assets, after);
+  REQUIRE(late.size() == 1);
+  CHECK(late[0].actorId == p.morph.targetActorId);
+  CHECK(projectStandinGuides(p, dm.dir, assets, before, p.morph.targetActorId).size() == 2);  // selected: shown
   p.findActor(p.morph.targetActorId)->visible = false;
-  auto some = projectStandinGuides(p, dm.dir, assets, 1.0);
+  auto some = projectStandinGuides(p, dm.dir, assets, during, p.morph.targetActorId);
   REQUIRE(some.size() == 1);
   CHECK(some[0].actorId == p.morph.sourceActorId);
   p.morph.sourceActorId.clear();
-  CHECK(projectStandinGuides(p, dm.dir, assets, 1.0).empty());
+  CHECK(projectStandinGuides(p, dm.dir, assets, during).empty());
 }
 
 TEST_CASE("standin pick: rays against capsules, sides and caps", "[standin_edit]") {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "morph/morph_runtime.h"
 #include "rig/pose.h"
 #include "scene/scene_frame.h"
 
@@ -56,13 +57,20 @@ StandinGuides standinGuides(const Actor& actor, const Character& c, const Standi
 }
 
 std::vector<StandinGuides> projectStandinGuides(const Project& p, const std::string& baseDir, AssetCache& assets,
-                                                double timeSec) {
+                                                double timeSec, const std::string& alsoActorId) {
   namespace fs = std::filesystem;
   std::vector<StandinGuides> out;
   if (!p.morph.enabled()) return out;
+  double u = 0.0;
+  const MorphStage stage = morphStageAt(p.morph, p.timeline, timeSec, u);
+  const bool sourceShown = stage == MorphStage::Source || stage == MorphStage::Collapse || stage == MorphStage::Morph;
+  const bool targetShown = stage == MorphStage::Target || stage == MorphStage::Expand || stage == MorphStage::Morph;
   for (const ActorMorph& am : p.morph.actors) {
     const Actor* actor = p.findActor(am.actorId);
     if (!actor || !actor->visible || actor->kind != ActorKind::Gltf || am.standin.segments.empty()) continue;
+    const bool shown = (am.actorId == p.morph.sourceActorId && sourceShown) ||
+                       (am.actorId == p.morph.targetActorId && targetShown) || am.actorId == alsoActorId;
+    if (!shown) continue;
     fs::path path(actor->assetPath);
     const std::string abs = (path.is_absolute() ? path : fs::path(baseDir) / path).lexically_normal().string();
     const AssetCache::Entry& e = assets.get(abs);

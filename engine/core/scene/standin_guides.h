@@ -41,10 +41,13 @@ std::vector<glm::mat4> actorPoseGlobals(const Actor& actor, const Character& c, 
 // pose the scene and the morph use (the actor's clip, offset, speed, loop).
 StandinGuides standinGuides(const Actor& actor, const Character& c, const Standin& s, double timeSec);
 
-// Guides of every visible actor of the project's morph whose asset loads
-// (actors that fail are skipped: the scene reports them).
+// Guides of the visible morph actors whose asset loads (actors that fail are
+// skipped: the scene reports them) and whose shape is on screen at timeSec:
+// the source up to B, the target from C, both in between. alsoActorId (the
+// selected actor) is shown at any time, so a stand-in can be edited while its
+// actor is not drawn.
 std::vector<StandinGuides> projectStandinGuides(const Project& p, const std::string& baseDir, AssetCache& assets,
-                                                double timeSec);
+                                                double timeSec, const std::string& alsoActorId = {});
 
 // The wire capsule of one posed segment: `circleSteps` lines per ring.
 std::vector<StandinGuideLine> standinCapsuleLines(const StandinGuideSegment& s, int circleSteps = 24);
