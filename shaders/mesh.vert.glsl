@@ -5,20 +5,7 @@
 // skin = sum_k w_k * joint[j_k] (joints beyond the draw's joint count ignored),
 // position = model * skin * p, normal = inverse-transpose of (model * skin) * n.
 #include "frame.glsl"
-
-layout(location = AM_VERTEX_POSITION) in vec3 inPosition;
-layout(location = AM_VERTEX_NORMAL) in vec3 inNormal;
-layout(location = AM_VERTEX_JOINTS0) in uvec4 inJoints0;
-layout(location = AM_VERTEX_JOINTS1) in uvec4 inJoints1;
-layout(location = AM_VERTEX_WEIGHTS0) in vec4 inWeights0;
-layout(location = AM_VERTEX_WEIGHTS1) in vec4 inWeights1;
-
-layout(set = 0, binding = AM_BINDING_JOINTS, std430) readonly buffer Joints {
-  mat4 joints[];
-};
-
-#include "mesh_push.glsl"
-#include "skinning.glsl"
+#include "skinned_vertex.glsl"
 
 layout(location = 0) out vec3 outWorldPos;
 layout(location = 1) out vec3 outWorldNormal;

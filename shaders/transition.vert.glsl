@@ -5,22 +5,10 @@
 // binding, the per-draw transition parameters in set 1. Shares mesh.frag.
 #include "frame.glsl"
 #include "transition_constants.h"
-
-layout(location = AM_VERTEX_POSITION) in vec3 inPosition;
-layout(location = AM_VERTEX_NORMAL) in vec3 inNormal;
-layout(location = AM_VERTEX_JOINTS0) in uvec4 inJoints0;
-layout(location = AM_VERTEX_JOINTS1) in uvec4 inJoints1;
-layout(location = AM_VERTEX_WEIGHTS0) in vec4 inWeights0;
-layout(location = AM_VERTEX_WEIGHTS1) in vec4 inWeights1;
+#include "skinned_vertex.glsl"
 layout(location = AM_VERTEX_STANDIN_OFFSET) in vec4 inStandinOffset;  // dp, m
 layout(location = AM_VERTEX_STANDIN_NORMAL) in vec4 inStandinNormal;  // n~, 0
 
-layout(set = 0, binding = AM_BINDING_JOINTS, std430) readonly buffer Joints {
-  mat4 joints[];
-};
-
-#include "mesh_push.glsl"
-#include "skinning.glsl"
 #include "transition.glsl"
 
 layout(location = 0) out vec3 outWorldPos;
