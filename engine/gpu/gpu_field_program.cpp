@@ -48,6 +48,8 @@ void packOne(const FieldProgram& prog, uint32_t primOffset, PackedFieldPrograms&
 
   for (size_t i = 0; i < prog.ops.size(); ++i) {
     const FieldOp& op = prog.ops[i];
+    out.features |= AM_FEAT_OP_BIT(uint32_t(op.code));
+    if (op.code == OpCode::Prims) out.features |= AM_FEAT_CLASS_BIT(uint32_t(op.primClass));
     glm::uvec4 op0(uint32_t(op.code), 0u, op.count, 0u);
     glm::uvec4 op1(paramsBase * 4u + op.param, 0u, bits(op.emptyValue), 0u);
     if (op.code == OpCode::Prims) {
@@ -66,6 +68,7 @@ void packOne(const FieldProgram& prog, uint32_t primOffset, PackedFieldPrograms&
   for (size_t i = 0; i < prog.params.size(); ++i) pool[paramsBase + i / 4][int(i % 4)] = bits(prog.params[i]);
   for (size_t i = 0; i < prog.maps.size(); ++i) {
     const SpaceMap& m = prog.maps[i];
+    out.kinds |= AM_KIND_MAP_BIT(uint32_t(m.kind));
     uint32_t r = mapsBase + AM_REC_MAP * uint32_t(i);
     pool[r] = words(m.linear[0], uint32_t(m.kind));
     pool[r + 1] = words(m.linear[1], m.length);
@@ -82,6 +85,7 @@ void packOne(const FieldProgram& prog, uint32_t primOffset, PackedFieldPrograms&
   for (size_t i = 0; i < prog.skeletal.size(); ++i) {
     const SkeletalPrimitive& p = prog.skeletal[i];
     Skeleton s = p.skeleton;
+    out.kinds |= AM_KIND_SKEL_BIT(uint32_t(s.kind));
     if (s.kind == SkeletonKind::Curve) s.curve = prog.curvePoints.data() + p.curveFirst;
     glm::vec3 ca, cb;
     float cr;

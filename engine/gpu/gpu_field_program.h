@@ -24,6 +24,10 @@ struct PackedFieldPrograms {
   uint32_t primBegin[2] = {0, 0};  // first global primitive id
   uint32_t primCount[2] = {0, 0};
   float threshold[2] = {1.0f, 1.0f};
+  // What the programs use, for the shaders' specialisation (poly_constants.h):
+  // AM_FEAT_OP_BIT / AM_FEAT_CLASS_BIT bits, and AM_KIND_SKEL_BIT / AM_KIND_MAP_BIT bits.
+  uint32_t features = 0;
+  uint32_t kinds = 0;
   uint32_t primitiveTotal() const { return primCount[0] + primCount[1]; }
 };
 

@@ -6,6 +6,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <map>
+#include <tuple>
 
 #include "gpu_field_program.h"
 #include "poly/marching_cubes_table.h"
@@ -119,7 +121,12 @@ struct GpuPolygonizer::Impl {
   VkPipelineLayout layout = VK_NULL_HANDLE;
   VkDescriptorPool descriptorPool = VK_NULL_HANDLE;
   VkDescriptorSet set = VK_NULL_HANDLE;
-  VkPipeline blocks[2]{}, cells[2]{}, emit[2]{};  // [storage pool]
+  // The field passes per variant: (features, kinds, storage pool) -> pipelines,
+  // created on first use (docs/gpu-polygonizer.md, "Specialisation").
+  struct FieldPipelines {
+    VkPipeline blocks = VK_NULL_HANDLE, cells = VK_NULL_HANDLE, emit = VK_NULL_HANDLE;
+  };
+  std::map<std::tuple<uint32_t, uint32_t, int>, FieldPipelines> variants;
   VkPipeline scan = VK_NULL_HANDLE, compact = VK_NULL_HANDLE, args = VK_NULL_HANDLE;
   VkCommandPool commandPool = VK_NULL_HANDLE;
   VkCommandBuffer cmd = VK_NULL_HANDLE;
@@ -143,7 +150,8 @@ struct GpuPolygonizer::Impl {
   explicit Impl(Context& c) : ctx(c) { slotSerial.fill(UINT64_MAX); }
   ~Impl();
   Status init();
-  Result<VkPipeline> pipeline(const char* name);
+  Result<VkPipeline> pipeline(const char* name, const VkSpecializationInfo* spec = nullptr);
+  Result<FieldPipelines> fieldPipelines(uint32_t features, uint32_t kinds, bool storage);
   Status ensure(Buffer& b, VkDeviceSize bytes, VkBufferUsageFlags usage);
   Status ensureCapacities(uint32_t blocksWanted, uint32_t verticesWanted, uint32_t trianglesWanted);
   void writeSet();
@@ -157,7 +165,10 @@ GpuPolygonizer::Impl::~Impl() {
   for (Buffer* b : {&params, &pool, &bounds, &table, &blockMask, &blockFlag, &blockPrefix, &blockSlot, &partials,
                     &superFlag, &control, &active, &corners, &edges, &counts, &offsets, &positions, &normals, &indices, &readback})
     destroyBuffer(dev, *b);
-  for (VkPipeline p : {blocks[0], blocks[1], cells[0], cells[1], emit[0], emit[1], scan, compact, args})
+  for (auto& [key, v] : variants)
+    for (VkPipeline p : {v.blocks, v.cells, v.emit})
+      if (p) vkDestroyPipeline(dev, p, nullptr);
+  for (VkPipeline p : {scan, compact, args})
     if (p) vkDestroyPipeline(dev, p, nullptr);
   if (fence) vkDestroyFence(dev, fence, nullptr);
   if (timestamps) vkDestroyQueryPool(dev, timestamps, nullptr);
@@ -167,12 +178,12 @@ GpuPolygonizer::Impl::~Impl() {
   if (setLayout) vkDestroyDescriptorSetLayout(dev, setLayout, nullptr);
 }
 
-Result<VkPipeline> GpuPolygonizer::Impl::pipeline(const char* name) {
+Result<VkPipeline> GpuPolygonizer::Impl::pipeline(const char* name, const VkSpecializationInfo* spec) {
   Result<VkShaderModule> module = createShaderModule(ctx.device(), name);
   if (!module) return Error{module.error()};
   VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
   ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, *module,
-              "main", nullptr};
+              "main", spec};
   ci.layout = layout;
   VkPipeline p = VK_NULL_HANDLE;
   VkResult r = vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &p);
@@ -215,11 +226,7 @@ Status GpuPolygonizer::Impl::init() {
   struct Want {
     VkPipeline* out;
     const char* name;
-  } wants[] = {{&blocks[0], "poly_blocks.comp"}, {&blocks[1], "poly_blocks_ssbo.comp"},
-               {&cells[0], "poly_cells.comp"},   {&cells[1], "poly_cells_ssbo.comp"},
-               {&emit[0], "poly_emit.comp"},     {&emit[1], "poly_emit_ssbo.comp"},
-               {&scan, "poly_scan.comp"},        {&compact, "poly_compact.comp"},
-               {&args, "poly_args.comp"}};
+  } wants[] = {{&scan, "poly_scan.comp"}, {&compact, "poly_compact.comp"}, {&args, "poly_args.comp"}};
   for (const Want& w : wants) {
     Result<VkPipeline> p = pipeline(w.name);
     if (!p) return Error{p.error()};
@@ -286,6 +293,33 @@ Status GpuPolygonizer::Impl::init() {
   if (!tb) return Error{"marching-cubes table: " + tb.error()};
   table = *tb;
   return Status::success();
+}
+
+Result<GpuPolygonizer::Impl::FieldPipelines> GpuPolygonizer::Impl::fieldPipelines(uint32_t features, uint32_t kinds,
+                                                                                   bool storage) {
+  auto key = std::make_tuple(features, kinds, storage ? 1 : 0);
+  if (auto it = variants.find(key); it != variants.end()) return it->second;
+  const uint32_t values[2] = {features, kinds};
+  const VkSpecializationMapEntry entries[2] = {{0, 0, 4}, {1, 4, 4}};
+  VkSpecializationInfo spec{2, entries, sizeof values, values};
+  FieldPipelines v;
+  struct Want {
+    VkPipeline* out;
+    const char* name;
+  } wants[] = {{&v.blocks, storage ? "poly_blocks_ssbo.comp" : "poly_blocks.comp"},
+               {&v.cells, storage ? "poly_cells_ssbo.comp" : "poly_cells.comp"},
+               {&v.emit, storage ? "poly_emit_ssbo.comp" : "poly_emit.comp"}};
+  for (const Want& w : wants) {
+    Result<VkPipeline> p = pipeline(w.name, &spec);
+    if (!p) {
+      for (VkPipeline made : {v.blocks, v.cells, v.emit})
+        if (made) vkDestroyPipeline(ctx.device(), made, nullptr);
+      return Error{p.error()};
+    }
+    *w.out = *p;
+  }
+  variants.emplace(key, v);
+  return v;
 }
 
 Status GpuPolygonizer::Impl::ensure(Buffer& b, VkDeviceSize bytes, VkBufferUsageFlags usage) {
@@ -431,6 +465,10 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   stats.cellSize = g.h;
   stats.blocksTotal = nBlocks;
   stats.uniformPool = !storagePool;
+  stats.features = s.specialise ? pk.features | AM_FEAT_COMBINE_BIT(combine) : AM_FEAT_ALL;
+  stats.kinds = s.specialise ? pk.kinds : AM_FEAT_ALL;
+  Result<FieldPipelines> fp = fieldPipelines(stats.features, stats.kinds, storagePool);
+  if (!fp) return Error{fp.error()};
   lastGrid = g;
 
   timed = timed && timestamps != VK_NULL_HANDLE;
@@ -456,7 +494,6 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
           VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_UNIFORM_READ_BIT);
 
   timestamp();
-  const int v = storagePool ? 1 : 0;
   vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
   auto push = [&](uint32_t x, uint32_t y, uint32_t z) {
     glm::uvec4 pc(x, y, z, 0u);
@@ -478,7 +515,7 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   const uint32_t linearGroups = (nBlocks + AM_POLY_WG_BLOCKS - 1) / AM_POLY_WG_BLOCKS;
 
   // Coarse: superblock bounds, then per-block primitive lists and interval culling.
-  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, blocks[v]);
+  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, fp->blocks);
   if (s.culling) {
     push(AM_COARSE_SUPERBLOCKS, 0, 0);
     vkCmdDispatch(cb, (nSuper + AM_POLY_WG_BLOCKS - 1) / AM_POLY_WG_BLOCKS, 1, 1);
@@ -499,7 +536,7 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   computeToCompute(cb);
   timestamp();
   // Fine: corner values, cell cases, vertex and triangle counts.
-  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, cells[v]);
+  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, fp->cells);
   vkCmdDispatchIndirect(cb, control.buffer, AM_CTL_DISPATCH * 4);
   computeToCompute(cb);
   timestamp();
@@ -510,7 +547,7 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   computeToCompute(cb);
   timestamp();
   // Vertices, normals, triangles.
-  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, emit[v]);
+  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, fp->emit);
   vkCmdDispatchIndirect(cb, control.buffer, AM_CTL_DISPATCH * 4);
   barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
           VK_PIPELINE_STAGE_VERTEX_INPUT_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,

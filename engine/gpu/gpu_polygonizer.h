@@ -80,6 +80,12 @@ struct GpuPolygonizeSettings {
   // beyond. Same results either way; tests force each.
   enum class PoolBuffer : uint8_t { Auto, Uniform, Storage };
   PoolBuffer poolBuffer = PoolBuffer::Auto;
+  // Specialise the field shaders on what the programs use (op codes, primitive
+  // classes, skeleton and map kinds, combine mode): one pipeline variant per set,
+  // created on first use and kept. Off: the generic variant (same mesh; tests
+  // compare both). On lavapipe the generic interpreter runs every op's code at
+  // every op (no real branches), so specialising halves the fine passes.
+  bool specialise = true;
   // Initial buffer capacities (0: automatic). They grow when a frame overflows.
   uint32_t initialBlockCapacity = 0;
   uint32_t initialVertexCapacity = 0;
@@ -94,6 +100,7 @@ struct GpuPolygonizeStats {
   uint32_t vertices = 0, triangles = 0;
   uint32_t regrows = 0;       // polygonize(): frames redone after growing the buffers
   bool uniformPool = true;    // programs read from a uniform buffer (else storage)
+  uint32_t features = 0, kinds = 0;  // the pipeline variant (AM_FEAT_* / AM_KIND_*; all bits: generic)
   double milliseconds = 0.0;  // polygonize(): wall time from submit to completion (all passes)
   // polygonize(): GPU time per pass from timestamps (0 when the queue has none):
   // uploads, coarse (lists + intervals), block compaction, corners + cells, vertex/triangle scan, emit.

@@ -4,6 +4,38 @@
 // declared; the compiler drops them.
 #include "poly_constants.h"
 
+// (Only bit tests on the constants: glslang 12 emits invalid SPIR-V for logical
+// operators applied to specialisation-constant booleans, so negations and
+// alternatives are written as one mask test.)
+// What this pipeline variant evaluates (poly_constants.h, AM_FEAT_* / AM_KIND_*):
+// set at pipeline creation by gpu_polygonizer.cpp; all bits (the default) is the
+// generic interpreter. Tests of a feature are constant after specialisation, so
+// the code of what a program does not use is removed.
+layout(constant_id = 0) const uint kAmFeatures = AM_FEAT_ALL;
+layout(constant_id = 1) const uint kAmKinds = AM_FEAT_ALL;
+#define AM_HAS_OP(c) ((kAmFeatures & AM_FEAT_OP_BIT(c)) != 0u)
+#define AM_HAS_CLASS(k) ((kAmFeatures & AM_FEAT_CLASS_BIT(k)) != 0u)
+#define AM_HAS_COMBINE(m) ((kAmFeatures & AM_FEAT_COMBINE_BIT(m)) != 0u)
+#define AM_HAS_SKEL(k) ((kAmKinds & AM_KIND_SKEL_BIT(k)) != 0u)
+#define AM_HAS_MAP(k) ((kAmKinds & AM_KIND_MAP_BIT(k)) != 0u)
+// Any n-ary operator (Sum .. BoundedBlend); maps; whether programs need the operand stack at all
+// (a program of one Prims op and nothing else does not).
+#define AM_FEAT_OPERATORS                                                                                          \
+  (AM_FEAT_OP_BIT(AM_OP_SUM) | AM_FEAT_OP_BIT(AM_OP_MAX) | AM_FEAT_OP_BIT(AM_OP_MIN) | AM_FEAT_OP_BIT(AM_OP_HYPERBLEND) | \
+   AM_FEAT_OP_BIT(AM_OP_DIFFERENCE) | AM_FEAT_OP_BIT(AM_OP_RUNION) | AM_FEAT_OP_BIT(AM_OP_RINTERSECTION) |               \
+   AM_FEAT_OP_BIT(AM_OP_BOUNDEDBLEND))
+#define AM_HAS_OPERATORS ((kAmFeatures & AM_FEAT_OPERATORS) != 0u)
+#define AM_STACKLESS                                                                                                     \
+  ((kAmFeatures & (AM_FEAT_OPERATORS | AM_FEAT_OP_BIT(AM_OP_BEGINMAP) | AM_FEAT_OP_BIT(AM_OP_ENDMAP) |                   \
+                   AM_FEAT_OP_BIT(AM_OP_CONST))) == 0u)
+// Only one program (no morph); no spatially varying map (every map is affine); no curve skeletons.
+#define AM_SINGLE_ONLY \
+  ((kAmFeatures & (AM_FEAT_COMBINE_BIT(AM_COMBINE_INTERPOLATE) | AM_FEAT_COMBINE_BIT(AM_COMBINE_SPACETIME))) == 0u)
+#define AM_AFFINE_MAPS_ONLY \
+  ((kAmKinds & (AM_KIND_MAP_BIT(AM_MAP_TWIST) | AM_KIND_MAP_BIT(AM_MAP_TAPER) | AM_KIND_MAP_BIT(AM_MAP_BEND))) == 0u)
+#define AM_LACKS_SKEL(k) ((kAmKinds & AM_KIND_SKEL_BIT(k)) == 0u)
+#define AM_LACKS_COMBINE(m) ((kAmFeatures & AM_FEAT_COMBINE_BIT(m)) == 0u)
+
 // C++ mirror: PolyParams in engine/gpu/gpu_polygonizer.cpp (std140).
 layout(set = 0, binding = AM_PB_PARAMS, std430) readonly buffer PolyParams {
   vec4 gridOrigin;  // xyz: world position of grid corner (0,0,0); w: cell size h (m)

@@ -255,14 +255,15 @@ vec3 closestOnSkeleton(uint rec, vec3 x) {
   vec4 r0 = POOLF(rec), r1 = POOLF(rec + 1u), r2 = POOLF(rec + 2u);
   uint kindBits = floatBitsToUint(r0.w);
   uint kind = kindBits & 0xffu;
-  if (kind == AM_SKEL_POINT) return r0.xyz;
-  if (kind == AM_SKEL_SPHERE) return closestOnBall(x, r0.xyz, r1.w);
-  if (kind == AM_SKEL_SEGMENT) return closestOnSegment(x, r0.xyz, r1.xyz);
-  if (kind == AM_SKEL_CYLINDER) return closestOnCone(x, r0.xyz, r1.xyz, r1.w, r1.w);
-  if (kind == AM_SKEL_CONE) return closestOnCone(x, r0.xyz, r1.xyz, r1.w, r2.w);
-  if (kind == AM_SKEL_DISC) return closestOnDisc(x, r0.xyz, r1.xyz, r1.w);
-  if (kind == AM_SKEL_CIRCLE) return closestOnCircle(x, r0.xyz, r1.xyz, r1.w);
-  if (kind == AM_SKEL_TRIANGLE) return closestOnTriangle(x, r0.xyz, r1.xyz, r2.xyz);
+  if (AM_HAS_SKEL(AM_SKEL_POINT) && kind == AM_SKEL_POINT) return r0.xyz;
+  if (AM_HAS_SKEL(AM_SKEL_SPHERE) && kind == AM_SKEL_SPHERE) return closestOnBall(x, r0.xyz, r1.w);
+  if (AM_HAS_SKEL(AM_SKEL_SEGMENT) && kind == AM_SKEL_SEGMENT) return closestOnSegment(x, r0.xyz, r1.xyz);
+  if (AM_HAS_SKEL(AM_SKEL_CYLINDER) && kind == AM_SKEL_CYLINDER) return closestOnCone(x, r0.xyz, r1.xyz, r1.w, r1.w);
+  if (AM_HAS_SKEL(AM_SKEL_CONE) && kind == AM_SKEL_CONE) return closestOnCone(x, r0.xyz, r1.xyz, r1.w, r2.w);
+  if (AM_HAS_SKEL(AM_SKEL_DISC) && kind == AM_SKEL_DISC) return closestOnDisc(x, r0.xyz, r1.xyz, r1.w);
+  if (AM_HAS_SKEL(AM_SKEL_CIRCLE) && kind == AM_SKEL_CIRCLE) return closestOnCircle(x, r0.xyz, r1.xyz, r1.w);
+  if (AM_HAS_SKEL(AM_SKEL_TRIANGLE) && kind == AM_SKEL_TRIANGLE) return closestOnTriangle(x, r0.xyz, r1.xyz, r2.xyz);
+  if (AM_LACKS_SKEL(AM_SKEL_CURVE)) return r0.xyz;  // unreachable: the variant has every kind its programs use
   return closestOnCurve(floatBitsToUint(POOLF(rec + 3u).w), int(kindBits >> 8), x);
 }
 
@@ -313,19 +314,20 @@ vec3 mapToLocal(uint m, vec3 x) {
   mat3 L = mat3(r0.xyz, r1.xyz, r2.xyz);
   uint kind = floatBitsToUint(r0.w);
   vec3 Pw = L * (x - r3.xyz);
-  if (kind == AM_MAP_AFFINE) return Pw;
+  if (AM_AFFINE_MAPS_ONLY) return Pw;
+  if (AM_HAS_MAP(AM_MAP_AFFINE) && kind == AM_MAP_AFFINE) return Pw;
   float len = r1.w, k0 = r2.w, k1 = r3.w;
   vec3 Lc = Pw;
-  if (kind == AM_MAP_TWIST) {
+  if (AM_HAS_MAP(AM_MAP_TWIST) && kind == AM_MAP_TWIST) {
     float zc = clamp(Pw.z, 0.0, len);
     float phi = k0 * zc;
     float c = cos(phi), s = sin(phi);
     Lc = vec3(Pw.x * c + Pw.y * s, -Pw.x * s + Pw.y * c, Pw.z);
-  } else if (kind == AM_MAP_TAPER) {
+  } else if (AM_HAS_MAP(AM_MAP_TAPER) && kind == AM_MAP_TAPER) {
     float zc = clamp(Pw.z, 0.0, len);
     float sc = k0 + (k1 - k0) * (zc / len);
     Lc = vec3(Pw.x / sc, Pw.y / sc, Pw.z);
-  } else {
+  } else if (AM_HAS_MAP(AM_MAP_BEND)) {
     if (abs(k0) < 1e-6) {
       Lc = Pw;
     } else if (k0 > 0.0) {
@@ -342,13 +344,15 @@ vec3 mapToLocal(uint m, vec3 x) {
 float mapStretchBound(uint m, vec3 centre, float radius) {
   vec4 r0 = POOLF(m), r1 = POOLF(m + 1u), r2 = POOLF(m + 2u), r3 = POOLF(m + 3u);
   uint kind = floatBitsToUint(r0.w);
+  if (AM_AFFINE_MAPS_ONLY)
+    return sqrt(dot(r0.xyz, r0.xyz) + dot(r1.xyz, r1.xyz) + dot(r2.xyz, r2.xyz));
   if (kind == AM_MAP_AFFINE) return sqrt(dot(r0.xyz, r0.xyz) + dot(r1.xyz, r1.xyz) + dot(r2.xyz, r2.xyz));
   mat3 L = mat3(r0.xyz, r1.xyz, r2.xyz);
   vec3 Lc = L * (centre - r3.xyz);
   float rMax = sqrt(Lc.x * Lc.x + Lc.y * Lc.y) + radius;
   float len = r1.w, k0 = r2.w, k1 = r3.w;
-  if (kind == AM_MAP_TWIST) return 1.0 + abs(k0) * rMax;
-  if (kind == AM_MAP_TAPER) {
+  if (AM_HAS_MAP(AM_MAP_TWIST) && kind == AM_MAP_TWIST) return 1.0 + abs(k0) * rMax;
+  if (AM_HAS_MAP(AM_MAP_TAPER) && kind == AM_MAP_TAPER) {
     float smin = min(k0, k1);
     if (smin <= 0.0) return kInf;
     return 1.0 / smin + abs(k1 - k0) / len * rMax / (smin * smin);
@@ -371,6 +375,7 @@ vec2 programInterval(uint opBegin, uint opCount, float T, vec3 centre, float rad
   vec2 st[AM_POLY_MAX_STACK];
   vec4 balls[AM_POLY_MAX_MAP_DEPTH];
   int sp = 0, level = 0;
+  vec2 last = vec2(-T);  // AM_STACKLESS: the interval of the program's only op
   vec3 c = centre;
   float rho = radius;
   for (uint i = 0u; i < opCount; ++i) {
@@ -378,18 +383,18 @@ vec2 programInterval(uint opBegin, uint opCount, float T, vec3 centre, float rad
     uvec4 op0 = POOLU(o);
     vec4 op1 = POOLF(o + 1u);
     uint code = op0.x & 0xffu;
-    if (code == AM_OP_PRIMS) {
+    if (AM_HAS_OP(AM_OP_PRIMS) && code == AM_OP_PRIMS) {
       uint cls = (op0.x >> 8) & 0xffu;
       bool cmax = ((op0.x >> 16) & 1u) != 0u;
       vec2 acc = vec2(0.0);
       for (uint k = 0u; k < op0.z; ++k) {
         if (!primActive(maskBase, op0.w + k)) continue;
-        vec2 v;
-        if (cls == AM_PRIM_CONVOLUTION) {
+        vec2 v = vec2(0.0);
+        if (AM_HAS_CLASS(AM_PRIM_CONVOLUTION) && cls == AM_PRIM_CONVOLUTION) {
           uint r = op0.y + k * AM_REC_CONV;
           acc += convolutionInterval(c, rho, POOLF(r), POOLF(r + 1u), POOLF(r + 2u));
           continue;
-        } else if (cls == AM_PRIM_SKELETAL) {
+        } else if (AM_HAS_CLASS(AM_PRIM_SKELETAL) && cls == AM_PRIM_SKELETAL) {
           uint r = op0.y + k * AM_REC_SKEL;
           vec4 r3 = POOLF(r + 3u);
           float d = length(c - closestOnSkeleton(r, c));
@@ -397,7 +402,7 @@ vec2 programInterval(uint opBegin, uint opCount, float T, vec3 centre, float rad
           float g0 = skeletalPotential(dm * dm, r3.x, r3.y, r3.z);
           float g1 = skeletalPotential((d + rho) * (d + rho), r3.x, r3.y, r3.z);
           v = vec2(min(g0, g1), max(g0, g1));
-        } else {
+        } else if (AM_HAS_CLASS(AM_PRIM_CAPSULE)) {
           uint r = op0.y + k * AM_REC_CAPSULE;
           vec4 r0 = POOLF(r), r1 = POOLF(r + 1u);
           float d = length(c - closestOnSegment(c, r0.xyz, r1.xyz));
@@ -408,31 +413,32 @@ vec2 programInterval(uint opBegin, uint opCount, float T, vec3 centre, float rad
         }
         acc = cmax ? max(acc, v) : acc + v;
       }
-      st[sp++] = acc;
-    } else if (code == AM_OP_CONST) {
+      if (AM_STACKLESS) last = acc - vec2(T);
+      else st[sp++] = acc;
+    } else if (AM_HAS_OP(AM_OP_CONST) && code == AM_OP_CONST) {
       st[sp++] = vec2(op1.z);
-    } else if (code == AM_OP_BEGINMAP) {
+    } else if (AM_HAS_OP(AM_OP_BEGINMAP) && code == AM_OP_BEGINMAP) {
       uint m = floatBitsToUint(op1.y);
       balls[level++] = vec4(c, rho);
       float stretch = mapStretchBound(m, c, rho);
       c = mapToLocal(m, c);
       rho = isinf(stretch) ? kInf : rho * stretch * 1.0001;
-    } else if (code == AM_OP_ENDMAP) {
+    } else if (AM_HAS_OP(AM_OP_ENDMAP) && code == AM_OP_ENDMAP) {
       vec4 b = balls[--level];
       c = b.xyz;
       rho = b.w;
-    } else {
+    } else if (AM_HAS_OPERATORS) {
       int n = int(op0.z);
       int base = sp - n;
       uint prm = floatBitsToUint(op1.x);
       vec2 r = st[base];
-      if (code == AM_OP_SUM) {
+      if (AM_HAS_OP(AM_OP_SUM) && code == AM_OP_SUM) {
         for (int k = 1; k < n; ++k) r += st[base + k];
-      } else if (code == AM_OP_MAX) {
+      } else if (AM_HAS_OP(AM_OP_MAX) && code == AM_OP_MAX) {
         for (int k = 1; k < n; ++k) r = max(r, st[base + k]);
-      } else if (code == AM_OP_MIN) {
+      } else if (AM_HAS_OP(AM_OP_MIN) && code == AM_OP_MIN) {
         for (int k = 1; k < n; ++k) r = min(r, st[base + k]);
-      } else if (code == AM_OP_HYPERBLEND) {
+      } else if (AM_HAS_OP(AM_OP_HYPERBLEND) && code == AM_OP_HYPERBLEND) {
         float q = paramAt(prm);
         vec2 sum = vec2(0.0);
         for (int k = 0; k < n; ++k) {
@@ -441,16 +447,16 @@ vec2 programInterval(uint opBegin, uint opCount, float T, vec3 centre, float rad
           sum.y += v.y > 0.0 ? pow(v.y, q) : 0.0;
         }
         r = vec2(sum.x > 0.0 ? pow(sum.x, 1.0 / q) : 0.0, sum.y > 0.0 ? pow(sum.y, 1.0 / q) : 0.0);
-      } else if (code == AM_OP_DIFFERENCE) {
+      } else if (AM_HAS_OP(AM_OP_DIFFERENCE) && code == AM_OP_DIFFERENCE) {
         vec2 b = st[base + 1];
         r = vec2(min(r.x, 2.0 * T - b.y), min(r.y, 2.0 * T - b.x));
-      } else if (code == AM_OP_RUNION) {
+      } else if (AM_HAS_OP(AM_OP_RUNION) && code == AM_OP_RUNION) {
         vec2 b = st[base + 1];
         r = vec2(T + amRUnion(r.x - T, b.x - T), T + amRUnion(r.y - T, b.y - T));
-      } else if (code == AM_OP_RINTERSECTION) {
+      } else if (AM_HAS_OP(AM_OP_RINTERSECTION) && code == AM_OP_RINTERSECTION) {
         vec2 b = st[base + 1];
         r = vec2(T + amRIntersection(r.x - T, b.x - T), T + amRIntersection(r.y - T, b.y - T));
-      } else if (code == AM_OP_BOUNDEDBLEND) {
+      } else if (AM_HAS_OP(AM_OP_BOUNDEDBLEND) && code == AM_OP_BOUNDEDBLEND) {
         vec2 b = st[base + 1];
         float a0 = paramAt(prm);
         r = vec2(T + amRUnion(r.x - T, b.x - T) + min(0.0, a0), T + amRUnion(r.y - T, b.y - T) + max(0.0, a0));
@@ -461,6 +467,7 @@ vec2 programInterval(uint opBegin, uint opCount, float T, vec3 centre, float rad
       st[base] = r;
     }
   }
+  if (AM_STACKLESS) return last;
   return sp > 0 ? st[0] - vec2(T) : vec2(-T);
 }
 
@@ -469,13 +476,15 @@ vec2 guardInterval(vec2 r) { return vec2(isnan(r.x) ? -kInf : r.x, isnan(r.y) ? 
 // Interval of the combined field (one program, or the morph of two) over the ball.
 vec2 combinedInterval(vec3 centre, float radius, uint maskBase) {
   vec2 a = programInterval(P.progA.x, P.progA.y, P.thresholds.x, centre, radius, maskBase);
+  if (AM_SINGLE_ONLY) return a;
   if (P.modes.x == AM_COMBINE_SINGLE) return a;
   vec2 b = programInterval(P.progB.x, P.progB.y, P.thresholds.y, centre, radius, maskBase);
-  if (P.modes.x == AM_COMBINE_INTERPOLATE) {
+  if (AM_HAS_COMBINE(AM_COMBINE_INTERPOLATE) && P.modes.x == AM_COMBINE_INTERPOLATE) {
     float w = P.morph0.x;
     vec2 ia = (1.0 - w) * a, ib = w * b;
     return guardInterval(vec2(min(ia.x, ia.y) + min(ib.x, ib.y), max(ia.x, ia.y) + max(ib.x, ib.y)));
   }
+  if (AM_LACKS_COMBINE(AM_COMBINE_SPACETIME)) return a;  // unreachable: the variant has its combine mode
   float tau = P.morph0.z * P.morph0.y, tau1 = P.morph0.z * (P.morph0.y - 1.0);
   // R-functions are non-decreasing in each argument: map the ends.
   vec2 g1 = guardInterval(vec2(amRIntersection(a.x, -tau), amRIntersection(a.y, -tau)));

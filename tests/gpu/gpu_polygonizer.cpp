@@ -21,6 +21,7 @@
 #include "poly/marching_cubes_table.h"
 #include "poly/mesh_checks.h"
 #include "poly/polygonizer.h"
+#include "poly_constants.h"
 #include "scene_renderer.h"
 #include "util/blob_builders.h"
 
@@ -243,6 +244,18 @@ TEST_CASE("GPU polygoniser matches the CPU on a convolution chain, culled and de
   CHECK(culledStats.blocksActive < culledStats.blocksTotal);
   CHECK(triangleSet(dense) == triangleSet(culled));  // same field values, bit for bit
   s.culling = true;
+  // The specialised variant (convolution only, one program) and the generic interpreter.
+  CHECK(culledStats.features != AM_FEAT_ALL);
+  CHECK(culledStats.features == (AM_FEAT_OP_BIT(AM_OP_PRIMS) | AM_FEAT_CLASS_BIT(AM_PRIM_CONVOLUTION) |
+                                 AM_FEAT_COMBINE_BIT(AM_COMBINE_SINGLE)));
+  {
+    s.specialise = false;
+    GpuPolygonizeStats st;
+    TriangleMesh generic = gpuMesh(*r.poly, GpuField::single(p), s, &st);
+    CHECK(st.features == AM_FEAT_ALL);
+    CHECK(triangleSet(generic) == triangleSet(culled));
+    s.specialise = true;
+  }
   for (auto pool : {GpuPolygonizeSettings::PoolBuffer::Uniform, GpuPolygonizeSettings::PoolBuffer::Storage}) {
     s.poolBuffer = pool;
     GpuPolygonizeStats st;

@@ -82,6 +82,20 @@
 #define AM_MAP_TAPER 2
 #define AM_MAP_BEND 3
 
+// Pipeline variants: the field shaders are specialised (constant_id 0 and 1)
+// on what the programs use, so code for anything else is removed when the
+// pipeline is created. On lavapipe an `if` is not a branch (both sides run
+// under a lane mask), so an interpreter that tests every op code pays for
+// every op's code at every op; specialised, it pays for its own only.
+// Features (constant_id 0): op codes, primitive classes, how programs combine.
+#define AM_FEAT_OP_BIT(c) (1u << (c))                 // bits 0..11: AM_OP_*
+#define AM_FEAT_CLASS_BIT(k) (1u << (12 + (k)))       // bits 12..14: AM_PRIM_*
+#define AM_FEAT_COMBINE_BIT(m) (1u << (16 + (m)))     // bits 16..18: AM_COMBINE_*
+// Kinds (constant_id 1): skeleton kinds and space-map kinds.
+#define AM_KIND_SKEL_BIT(k) (1u << (k))               // bits 0..8: AM_SKEL_*
+#define AM_KIND_MAP_BIT(k) (1u << (16 + (k)))         // bits 16..19: AM_MAP_*
+#define AM_FEAT_ALL 0xffffffffu                       // the generic variant
+
 // Pool record sizes in vec4.
 #define AM_REC_OP 2
 #define AM_REC_CONV 3
