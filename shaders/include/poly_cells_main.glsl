@@ -114,6 +114,7 @@ void main() {
   if (rowInvocation) {
     if (sColumn[t] >= 0.0) signs |= 1u << 8;
     sRow[t] = signs;
+    edges[slot * AM_POLY_EDGE_INFO + AM_POLY_EDGE_ROWS + t] = signs;
   }
   barrier();
 

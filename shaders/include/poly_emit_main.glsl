@@ -6,6 +6,12 @@
 // corners are the vertices of their edges wherever those were made (edgeOwner),
 // so vertices are shared and the mesh is watertight. Nothing is written past
 // the capacities (the args pass has flagged the overflow).
+//
+// As in the cells pass, the bookkeeping avoids per-element loads (each one a
+// loop over the SIMD lanes on lavapipe): the vertex list comes from the 64
+// mask words (one invocation per word, a loop over its set bits), corner
+// values are read only at the vertices' edges, and the cell cases of a row of
+// 8 cells come from four corner-row sign masks written by the cells pass.
 #include "poly_common.glsl"
 #include "poly_field.glsl"
 #include "poly_table.glsl"
@@ -22,42 +28,34 @@ layout(set = 0, binding = AM_PB_POSITIONS, std430) writeonly buffer Positions { 
 layout(set = 0, binding = AM_PB_NORMALS, std430) writeonly buffer Normals { float normals[]; };
 layout(set = 0, binding = AM_PB_INDICES, std430) writeonly buffer Indices { uint indices[]; };
 
-const uint kCellsPerInvocation = (AM_POLY_BLOCK_CELLS + AM_POLY_WG_CELLS - 1) / AM_POLY_WG_CELLS;
 
-shared float sCorner[AM_POLY_BLOCK_CORNERS];
 shared uint sMask[AM_POLY_EDGE_WORDS];
 shared uint sPrefix[AM_POLY_EDGE_WORDS];
 shared uint sVertexEdge[AM_POLY_BLOCK_EDGES];
 shared uint sTriangleRun[AM_POLY_WG_CELLS];
 
-uint cellCase(uvec3 l) {
-  uint cubeCase = 0u;
-  for (uint q = 0u; q < 8u; ++q)
-    if (sCorner[cornerIndex(l + uvec3(q & 1u, (q >> 1) & 1u, q >> 2))] >= 0.0) cubeCase |= 1u << q;
-  return cubeCase;
-}
-
 // Global index of the vertex of the edge (base corner l, axis a) of block bc.
-uint vertexIndex(uvec3 bc, uvec3 l, uint a, uint slot) {
+uint vertexIndex(uvec3 bc, uvec3 l, uint a, uint slot, uint vertexBase) {
   uvec3 ownerLocal;
   uint owner = edgeOwner(bc, l, a, slot, ownerLocal);
   if (owner == AM_POLY_NONE) return 0u;  // unreachable for a crossing edge of an active block
   uint bit = edgeBit(ownerLocal, a);
   uint word = bit >> 5;
+  uint below = (1u << (bit & 31u)) - 1u;
+  if (owner == slot) return vertexBase + sPrefix[word] + bitCount(sMask[word] & below);
   uint info = owner * AM_POLY_EDGE_INFO;
-  uint below = edges[info + word] & ((1u << (bit & 31u)) - 1u);
-  return offsets[owner].x + edges[info + AM_POLY_EDGE_WORDS + word] + bitCount(below);
+  return offsets[owner].x + edges[info + AM_POLY_EDGE_WORDS + word] + bitCount(edges[info + word] & below);
 }
 
 // Position of the vertex on closed-box edge e of the block at grid corner c0
 // (t = f0 / (f0 - f1) kept in [snap, 1 - snap]); dir: the edge's direction, f0: its base value.
-void placeVertex(uint e, uvec3 c0, out vec3 pos, out vec3 dir, out float f0) {
+void placeVertex(uint e, uvec3 c0, uint cornerBase, out vec3 pos, out vec3 dir, out float f0) {
   uint a;
   uvec3 l = edgeLocal(e, a);
   uvec3 l1 = l;
   l1[a] += 1u;
-  f0 = sCorner[cornerIndex(l)];
-  float f1 = sCorner[cornerIndex(l1)];
+  f0 = corners[cornerBase + cornerIndex(l)];
+  float f1 = corners[cornerBase + cornerIndex(l1)];
   float s = clamp(f0 / (f0 - f1), float(AM_POLY_SNAP), 1.0 - float(AM_POLY_SNAP));
   vec3 p0 = cornerPosition(c0 + l), p1 = cornerPosition(c0 + l1);
   pos = p0 + s * (p1 - p0);
@@ -86,21 +84,22 @@ void main() {
   uvec3 bc = blockCoord(b);
   uvec3 c0 = bc * uint(AM_POLY_BLOCK);
   uvec3 cnt = blockCells(bc);
-  for (uint i = t; i < uint(AM_POLY_BLOCK_CORNERS); i += AM_POLY_WG_CELLS)
-    sCorner[i] = corners[slot * AM_POLY_BLOCK_CORNERS + i];
+  const uint info = slot * AM_POLY_EDGE_INFO;
+  // This block's vertices in edge order: invocation t lists the set bits of mask word t.
   if (t < uint(AM_POLY_EDGE_WORDS)) {
-    sMask[t] = edges[slot * AM_POLY_EDGE_INFO + t];
-    sPrefix[t] = edges[slot * AM_POLY_EDGE_INFO + AM_POLY_EDGE_WORDS + t];
-  }
-  barrier();
-  // Compact this block's vertices (edge order), so every invocation works on one.
-  for (uint e = t; e < uint(AM_POLY_BLOCK_EDGES); e += AM_POLY_WG_CELLS) {
-    uint word = e >> 5, bit = e & 31u;
-    if (((sMask[word] >> bit) & 1u) != 0u) sVertexEdge[sPrefix[word] + bitCount(sMask[word] & ((1u << bit) - 1u))] = e;
+    uint m = edges[info + t], p = edges[info + AM_POLY_EDGE_WORDS + t];
+    sMask[t] = m;
+    sPrefix[t] = p;
+    while (m != 0u) {
+      uint bit = uint(findLSB(m));
+      m &= m - 1u;
+      sVertexEdge[p++] = 32u * t + bit;
+    }
   }
   barrier();
   uint vertices = sPrefix[AM_POLY_EDGE_WORDS - 1] + bitCount(sMask[AM_POLY_EDGE_WORDS - 1]);
   uint vertexBase = offsets[slot].x;
+  const uint cornerBase = slot * AM_POLY_BLOCK_CORNERS;
   const float d = P.morph1.w;
   // Gradient by the tetrahedral stencil (4 points, second-order like central
   // differences): offsets d (1,-1,-1), d (-1,-1,1), d (-1,1,-1), d (1,1,1).
@@ -110,8 +109,8 @@ void main() {
     uint va = 2u * pr, vb = min(va + 1u, vertices - 1u);
     vec3 posA, dirA, posB, dirB;
     float fa, fb;
-    placeVertex(sVertexEdge[va], c0, posA, dirA, fa);
-    placeVertex(sVertexEdge[vb], c0, posB, dirB, fb);
+    placeVertex(sVertexEdge[va], c0, cornerBase, posA, dirA, fa);
+    placeVertex(sVertexEdge[vb], c0, cornerBase, posB, dirB, fb);
     PointsV w;
     AM_SET_POINT(w, 0, 0, posA + d * k0) AM_SET_POINT(w, 0, 1, posA + d * k1)
     AM_SET_POINT(w, 0, 2, posA + d * k2) AM_SET_POINT(w, 0, 3, posA + d * k3)
@@ -122,38 +121,47 @@ void main() {
     writeVertex(vertexBase + va, posA, f[0], dirA, fa);
     if (va + 1u < vertices) writeVertex(vertexBase + va + 1u, posB, f[1], dirB, fb);
   }
-  // Triangles: a contiguous run of cells per invocation, in cell order.
-  uint firstCell = t * kCellsPerInvocation;
-  uint lastCell = min(firstCell + kCellsPerInvocation, uint(AM_POLY_BLOCK_CELLS));
+  // Triangles: invocation t < 64 writes those of the 8 cells of row (y, z) = (t % 8, t / 8),
+  // in cell order (x + 8 (y + 8 z)); cases from the corner-row sign masks.
+  uint y = t & 7u, z = t >> 3;
+  bool rowInvocation = t < 64u && y < cnt.y && z < cnt.z;
+  uint row = y + 9u * z;
+  uint rows = info + AM_POLY_EDGE_ROWS;
+  uint r00 = 0u, r10 = 0u, r01 = 0u, r11 = 0u;
   uint mine = 0u;
-  for (uint c = firstCell; c < lastCell; ++c) {
-    uvec3 l = uvec3(c & 7u, (c >> 3) & 7u, c >> 6);
-    if (!any(greaterThanEqual(l, cnt))) mine += mcTriangleCount(cellCase(l));
+  if (rowInvocation) {
+    r00 = edges[rows + row];
+    r10 = edges[rows + row + 1u];
+    r01 = edges[rows + row + 9u];
+    r11 = edges[rows + row + 10u];
+    for (uint x = 0u; x < cnt.x; ++x)
+      mine += mcTriangleCount(((r00 >> x) & 3u) | (((r10 >> x) & 3u) << 2) | (((r01 >> x) & 3u) << 4) |
+                              (((r11 >> x) & 3u) << 6));
   }
   sTriangleRun[t] = mine;
   barrier();
   if (t == 0u) {
     uint run = 0u;
-    for (uint k = 0u; k < uint(AM_POLY_WG_CELLS); ++k) {
+    for (uint k = 0u; k < 64u; ++k) {
       uint c = sTriangleRun[k];
       sTriangleRun[k] = run;
       run += c;
     }
   }
   barrier();
+  if (!rowInvocation) return;
   uint tri = offsets[slot].y + sTriangleRun[t];
-  for (uint c = firstCell; c < lastCell; ++c) {
-    uvec3 l = uvec3(c & 7u, (c >> 3) & 7u, c >> 6);
-    if (any(greaterThanEqual(l, cnt))) continue;
-    uint cubeCase = cellCase(l);
+  for (uint x = 0u; x < cnt.x; ++x) {
+    uint cubeCase = ((r00 >> x) & 3u) | (((r10 >> x) & 3u) << 2) | (((r01 >> x) & 3u) << 4) | (((r11 >> x) & 3u) << 6);
     uint nt = mcTriangleCount(cubeCase);
+    uvec3 l = uvec3(x, y, z);
     for (uint k = 0u; k < nt; ++k, ++tri) {
       if (tri >= P.caps.y) continue;
       for (uint q = 0u; q < 3u; ++q) {
-        uint info = mcEdgeInfo(mcEdge(cubeCase, k, q));
-        uint corner = info & 15u, axis = info >> 8;
+        uint einfo = mcEdgeInfo(mcEdge(cubeCase, k, q));
+        uint corner = einfo & 15u, axis = einfo >> 8;
         uvec3 el = l + uvec3(corner & 1u, (corner >> 1) & 1u, corner >> 2);
-        indices[3u * tri + q] = vertexIndex(bc, el, axis, slot);
+        indices[3u * tri + q] = vertexIndex(bc, el, axis, slot, vertexBase);
       }
     }
   }

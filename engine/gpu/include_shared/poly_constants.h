@@ -19,7 +19,8 @@
 #define AM_POLY_BLOCK_EDGES 1944
 #define AM_POLY_EDGES_PER_AXIS 648
 #define AM_POLY_EDGE_WORDS 64  // bitmask words per block (>= 1944 / 32), then 64 prefix counts
-#define AM_POLY_EDGE_INFO 128  // uints per block: 64 mask words + 64 exclusive popcount prefixes
+#define AM_POLY_EDGE_ROWS 128  // then 81 corner-row sign masks (bit x: corner (x, y, z) inside; row y + 9 z)
+#define AM_POLY_EDGE_INFO 256  // uints per block: 64 mask words + 64 exclusive popcount prefixes + rows
 
 // Workgroup sizes (x only; multiples of 8 suit lavapipe's 8-wide SIMD).
 #define AM_POLY_WG_BLOCKS 64   // coarse pass: one invocation per block
