@@ -22,6 +22,9 @@
 #if AM_POLY_CORNER_V != 2
 #error "the row layout evaluates 8 corners per invocation"
 #endif
+#if AM_POLY_WG_CELLS < 92
+#error "the row layout needs 81 row invocations and 11 for the x = 8 column"
+#endif
 
 layout(local_size_x = AM_POLY_WG_CELLS) in;
 
@@ -30,6 +33,7 @@ layout(set = 0, binding = AM_PB_EDGES, std430) writeonly buffer Edges { uint edg
 layout(set = 0, binding = AM_PB_COUNTS, std430) writeonly buffer Counts { uvec2 counts[]; };
 
 const uint kRows = 81u;  // corner rows along x of a block: (y, z) in [0, 8]^2
+const uint kEvaluators = kRows + (kRows + 7u) / 8u;  // row invocations, then those of the x = 8 column
 
 shared float sColumn[kRows];  // the x = 8 corner of each row
 shared uint sRow[kRows];      // bit x: corner (x, y, z) of the row is inside (f >= 0)
@@ -90,7 +94,7 @@ void main() {
 #define AM_ROW_CORNERS(j) AM_ROW_CORNER(j, 0) AM_ROW_CORNER(j, 1) AM_ROW_CORNER(j, 2) AM_ROW_CORNER(j, 3)
   AM_EACH(AM_ROW_CORNERS)
   vec4 f[AM_FIELD_V];
-  if (t < kRows + 11u) fieldV(b * P.modes.y, w, f);
+  if (t < kEvaluators) fieldV(b * P.modes.y, w, f);
   uint signs = 0u;
   const uint base = slot * AM_POLY_BLOCK_CORNERS;
   if (rowInvocation) {
@@ -100,7 +104,7 @@ void main() {
       corners[base + cornerIndex(l)] = v;
       if (v >= 0.0) signs |= 1u << x;
     }
-  } else if (t < kRows + 11u) {
+  } else if (t < kEvaluators) {
     for (uint c = 0u; c < 8u; ++c) {
       uint k = columnFirst + c;
       if (k >= kRows) break;
