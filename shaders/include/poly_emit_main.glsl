@@ -33,6 +33,8 @@ shared uint sMask[AM_POLY_EDGE_WORDS];
 shared uint sPrefix[AM_POLY_EDGE_WORDS];
 shared uint sVertexEdge[AM_POLY_BLOCK_EDGES];
 shared uint sTriangleRun[AM_POLY_WG_CELLS];
+shared uint sTriangle[AM_POLY_BLOCK_CELLS * 5];  // cell | triangle << 9 | case << 12, in cell order
+shared uint sTriangleTotal;
 
 // Global index of the vertex of the edge (base corner l, axis a) of block bc.
 uint vertexIndex(uvec3 bc, uvec3 l, uint a, uint slot, uint vertexBase) {
@@ -121,8 +123,10 @@ void main() {
     writeVertex(vertexBase + va, posA, f[0], dirA, fa);
     if (va + 1u < vertices) writeVertex(vertexBase + va + 1u, posB, f[1], dirB, fb);
   }
-  // Triangles: invocation t < 64 writes those of the 8 cells of row (y, z) = (t % 8, t / 8),
-  // in cell order (x + 8 (y + 8 z)); cases from the corner-row sign masks.
+  // Triangles: invocation t < 64 lists those of the 8 cells of row (y, z) = (t % 8, t / 8) in cell
+  // order (x + 8 (y + 8 z)), cases from the corner-row sign masks; then each invocation writes whole
+  // triangles from the list, so the per-corner work runs once per triangle, not once per cell and
+  // triangle slot of every lane.
   uint y = t & 7u, z = t >> 3;
   bool rowInvocation = t < 64u && y < cnt.y && z < cnt.z;
   uint row = y + 9u * z;
@@ -147,22 +151,32 @@ void main() {
       sTriangleRun[k] = run;
       run += c;
     }
+    sTriangleTotal = run;
   }
   barrier();
-  if (!rowInvocation) return;
-  uint tri = offsets[slot].y + sTriangleRun[t];
-  for (uint x = 0u; x < cnt.x; ++x) {
-    uint cubeCase = ((r00 >> x) & 3u) | (((r10 >> x) & 3u) << 2) | (((r01 >> x) & 3u) << 4) | (((r11 >> x) & 3u) << 6);
-    uint nt = mcTriangleCount(cubeCase);
-    uvec3 l = uvec3(x, y, z);
-    for (uint k = 0u; k < nt; ++k, ++tri) {
-      if (tri >= P.caps.y) continue;
-      for (uint q = 0u; q < 3u; ++q) {
-        uint einfo = mcEdgeInfo(mcEdge(cubeCase, k, q));
-        uint corner = einfo & 15u, axis = einfo >> 8;
-        uvec3 el = l + uvec3(corner & 1u, (corner >> 1) & 1u, corner >> 2);
-        indices[3u * tri + q] = vertexIndex(bc, el, axis, slot, vertexBase);
-      }
+  if (rowInvocation && mine > 0u) {
+    uint at = sTriangleRun[t];
+    for (uint x = 0u; x < cnt.x; ++x) {
+      uint cubeCase = ((r00 >> x) & 3u) | (((r10 >> x) & 3u) << 2) | (((r01 >> x) & 3u) << 4) | (((r11 >> x) & 3u) << 6);
+      uint nt = mcTriangleCount(cubeCase);
+      uint cell = x + 8u * (y + 8u * z);
+      for (uint k = 0u; k < nt; ++k) sTriangle[at++] = cell | k << 9 | cubeCase << 12;
+    }
+  }
+  barrier();
+  uint total = sTriangleTotal;
+  uint firstTriangle = offsets[slot].y;
+  for (uint i = t; i < total; i += AM_POLY_WG_CELLS) {
+    uint entry = sTriangle[i];
+    uint cell = entry & 511u, k = (entry >> 9) & 7u, cubeCase = entry >> 12;
+    uint tri = firstTriangle + i;
+    if (tri >= P.caps.y) continue;
+    uvec3 l = uvec3(cell & 7u, (cell >> 3) & 7u, cell >> 6);
+    for (uint q = 0u; q < 3u; ++q) {
+      uint einfo = mcEdgeInfo(mcEdge(cubeCase, k, q));
+      uint corner = einfo & 15u, axis = einfo >> 8;
+      uvec3 el = l + uvec3(corner & 1u, (corner >> 1) & 1u, corner >> 2);
+      indices[3u * tri + q] = vertexIndex(bc, el, axis, slot, vertexBase);
     }
   }
 }
