@@ -132,7 +132,7 @@ void main() {
     uint cornerBits = (2u << cnt.x) - 1u;        // x <= cnt.x
     if (y < cnt.y && z < cnt.z) {
       for (uint x = 0u; x < 8u; ++x) {
-        uint cubeCase = ((r00 >> x) & 3u) | (((r10 >> x) & 3u) << 2) | (((r01 >> x) & 3u) << 4) | (((r11 >> x) & 3u) << 6);
+        uint cubeCase = rowCellCase(r00, r10, r01, r11, x);
         if (((cellBits >> x) & 1u) != 0u) tris += mcTriangleCount(cubeCase);
       }
     }

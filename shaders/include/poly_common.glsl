@@ -99,6 +99,12 @@ uvec3 edgeLocal(uint e, out uint a) {
 
 uint cornerIndex(uvec3 l) { return (l.z * 9u + l.y) * 9u + l.x; }
 
+// Marching-cubes case of cell x of a row of cells, from the sign masks (bit x: corner x is
+// inside) of its four corner rows: (y, z), (y + 1, z), (y, z + 1), (y + 1, z + 1).
+uint rowCellCase(uint r00, uint r10, uint r01, uint r11, uint x) {
+  return ((r00 >> x) & 3u) | (((r10 >> x) & 3u) << 2) | (((r01 >> x) & 3u) << 4) | (((r11 >> x) & 3u) << 6);
+}
+
 // The active slot that makes the vertex of the edge at local base corner l
 // (axis a) of block bc, and the edge's base corner local to that block. The
 // owner is the block holding the base corner when it is active, else the

@@ -139,8 +139,7 @@ void main() {
     r01 = edges[rows + row + 9u];
     r11 = edges[rows + row + 10u];
     for (uint x = 0u; x < cnt.x; ++x)
-      mine += mcTriangleCount(((r00 >> x) & 3u) | (((r10 >> x) & 3u) << 2) | (((r01 >> x) & 3u) << 4) |
-                              (((r11 >> x) & 3u) << 6));
+      mine += mcTriangleCount(rowCellCase(r00, r10, r01, r11, x));
   }
   sTriangleRun[t] = mine;
   barrier();
@@ -157,7 +156,7 @@ void main() {
   if (rowInvocation && mine > 0u) {
     uint at = sTriangleRun[t];
     for (uint x = 0u; x < cnt.x; ++x) {
-      uint cubeCase = ((r00 >> x) & 3u) | (((r10 >> x) & 3u) << 2) | (((r01 >> x) & 3u) << 4) | (((r11 >> x) & 3u) << 6);
+      uint cubeCase = rowCellCase(r00, r10, r01, r11, x);
       uint nt = mcTriangleCount(cubeCase);
       uint cell = x + 8u * (y + 8u * z);
       for (uint k = 0u; k < nt; ++k) sTriangle[at++] = cell | k << 9 | cubeCase << 12;
