@@ -220,8 +220,9 @@ std::vector<Row> runGpuPoly(const animorph::bench::Options& opt) {
     rows.push_back({tag + " GPU dense/culled", msGpuDense / msGpu, "ratio", "", ""});
     }
     rows.push_back({tag + " GPU triangles/s", gpuCulled.triangles / (msGpu * 1e-3), "tris/s", "", ""});
-    std::snprintf(note, sizeof note, "%zu tris, %zu/%zu blocks evaluated, 2 threads", cpuCulled.mesh.triangleCount(),
-                  cpuCulled.stats.blocksEvaluated, cpuCulled.stats.blocksTotal);
+    std::snprintf(note, sizeof note, "%zu tris, %zu/%zu blocks evaluated, %zu cells, %zu points, %zu pairs, 2 threads",
+                  cpuCulled.mesh.triangleCount(), cpuCulled.stats.blocksEvaluated, cpuCulled.stats.blocksTotal,
+                  cpuCulled.stats.cellsVisited, cpuCulled.stats.pointsEvaluated, cpuCulled.stats.primitiveEvaluations);
     rows.push_back({tag + " CPU culled", msCpu, "ms", "", note});
     rows.push_back({tag + " CPU culled, CPU time", cpuMsCpu, "ms", "", "mean per run, both threads"});
     if (withDense) {

@@ -28,16 +28,6 @@ bool reaches(uint g, vec3 dlo, vec3 dhi) {
   return length(dc - closestOnSegment(dc, ba.xyz, bb.xyz)) <= ba.w + 0.5 * length(dhi - dlo);
 }
 
-// Whether the field over the cell box [c0, c0 + cnt] can hold surface (its
-// interval, over the primitives of the mask at maskBase, does not prove one sign).
-bool canHoldSurface(uvec3 c0, uvec3 cnt, uint maskBase) {
-  vec3 lo = cornerPosition(c0), hi = cornerPosition(c0 + cnt);
-  bool boundary = any(equal(c0, uvec3(0u))) || any(greaterThanEqual(c0 + cnt, P.gridCells.xyz));
-  vec2 iv = combinedInterval(0.5 * (lo + hi), 0.5 * length(hi - lo), maskBase);
-  float margin = P.thresholds.z;
-  return !(iv.y < -margin || (iv.x > margin && !boundary));
-}
-
 void main() {
   uint words = P.modes.y;
   uint total = P.caps.z;

@@ -1,17 +1,23 @@
 // Fine pass 1: one workgroup per active block. Evaluates the field at the
-// block's 9^3 grid corners, applies the grid-boundary rule, classifies the 8^3
-// cells (marching-cubes case) and marks the crossing edges this block makes
-// vertices for (edgeOwner). Writes the corner values, the edge bitmask with
-// its popcount prefixes, and the block's (vertex, triangle) counts for the scan.
+// block's 9^3 grid corners that can matter, applies the grid-boundary rule,
+// classifies the 8^3 cells (marching-cubes case) and marks the crossing edges
+// this block makes vertices for (edgeOwner). Writes the corner values, the
+// edge bitmask with its popcount prefixes, the corner-row sign masks and the
+// block's (vertex, triangle) counts for the scan.
 //
-// Work is split by corner rows along x, so the bookkeeping is bit arithmetic
-// on registers: invocation t < 81 evaluates corners x = 0..7 of row
-// (y, z) = (t % 9, t / 9), invocations 81..91 the x = 8 column. Each row's
-// signs become a 9-bit mask; a row's cells and its x, y and z edges come from
-// its mask and those of the rows at +y, +z and +y+z, and its edges are
-// contiguous bits of the block's edge mask (edgeBit), so they are set with a
-// few atomics. On lavapipe every shared or storage load is a loop over the 8
-// SIMD lanes: per-cell and per-edge loads cost most of this pass before.
+// Sub-block culling (as the CPU polygoniser): the intervals of the block's
+// eight 4^3-cell sub-blocks (invocations 0..7) leave out the corners only
+// sub-blocks proved one-signed need. The corners left are listed in groups of
+// 4 (half rows x = 0..3 or 4..7 of a row (y, z), or 4 corners of the x = 8
+// column) and each invocation evaluates two groups, so the work follows the
+// list's length: on lavapipe only a loop's trip count skips work.
+//
+// The bookkeeping is bit arithmetic on registers: each row's signs are a
+// 9-bit mask; a row's cells and its x, y and z edges come from its mask and
+// those of the rows at +y, +z and +y+z, and its edges are contiguous bits of
+// the block's edge mask (edgeBit), so they are set with a few atomics. On
+// lavapipe every shared or storage load is a loop over the 8 SIMD lanes:
+// per-cell and per-edge loads cost most of this pass before.
 #include "poly_common.glsl"
 #include "poly_field.glsl"
 #include "poly_table.glsl"
@@ -23,7 +29,7 @@
 #error "the row layout evaluates 8 corners per invocation"
 #endif
 #if AM_POLY_WG_CELLS < 92
-#error "the row layout needs 81 row invocations and 11 for the x = 8 column"
+#error "the row layout needs 92 invocations: 183 groups of 4 corners, two per invocation"
 #endif
 
 layout(local_size_x = AM_POLY_WG_CELLS) in;
@@ -32,10 +38,15 @@ layout(set = 0, binding = AM_PB_CORNERS, std430) writeonly buffer Corners { floa
 layout(set = 0, binding = AM_PB_EDGES, std430) writeonly buffer Edges { uint edges[]; };
 layout(set = 0, binding = AM_PB_COUNTS, std430) writeonly buffer Counts { uvec2 counts[]; };
 
-const uint kRows = 81u;  // corner rows along x of a block: (y, z) in [0, 8]^2
-const uint kEvaluators = kRows + (kRows + 7u) / 8u;  // row invocations, then those of the x = 8 column
+const uint kRows = 81u;                        // corner rows along x of a block: (y, z) in [0, 8]^2
+const uint kHalfRows = 2u * kRows;             // groups of 4 corners: x = 0..3 or 4..7 of a row
+const uint kColumnQuads = (kRows + 3u) / 4u;   // groups of 4 corners of the x = 8 column (rows 4 q ..)
+const uint kGroups = kHalfRows + kColumnQuads;
+const uint kEvaluators = (kGroups + 1u) / 2u;  // two groups (8 corners) per invocation
 
-shared float sColumn[kRows];  // the x = 8 corner of each row
+shared uint sSub;             // bit q: sub-block q may hold surface; bit 8 + q: proved inside
+shared uint sGroup[kGroups];  // the groups to evaluate
+shared uint sGroups;
 shared uint sRow[kRows];      // bit x: corner (x, y, z) of the row is inside (f >= 0)
 shared uint sMask[AM_POLY_EDGE_WORDS];
 shared uint sTriangles;
@@ -70,6 +81,51 @@ uint ownedEdges(uvec3 bc, uint slot, uint cross, uint highBits, uint y, uint z, 
   return owned;
 }
 
+// Sub-blocks: the 8 blocks of 4^3 cells of a block, q = qx + 2 qy + 4 qz; sub-block q spans
+// corners [4 q, 4 q + 4] on each axis. Bit q of the result: sub-block q's corners include row (y, z).
+uint rowSubBlocks(uint row) {
+  uint y = row % 9u, z = row / 9u;
+  uint ys = (y <= 4u ? 0x33u : 0u) | (y >= 4u ? 0xccu : 0u);  // qy = 0: q in {0, 1, 4, 5}
+  uint zs = (z <= 4u ? 0x0fu : 0u) | (z >= 4u ? 0xf0u : 0u);  // qz = 0: q in {0, 1, 2, 3}
+  return ys & zs;
+}
+
+// Whether column group q (x = 8 of rows 4 q .. 4 q + 3) has a corner of a live sub-block (qx = 1).
+bool columnQuadLive(uint q, uint live) {
+  uint near = 0u;
+  for (uint k = 4u * q; k < min(4u * q + 4u, kRows); ++k) near |= rowSubBlocks(k);
+  return (near & live & 0xaau) != 0u;
+}
+
+// Corner c of group g, local to the block.
+uvec3 groupCorner(uint g, uint c) {
+  if (g < kHalfRows) {
+    uint row = g >> 1;
+    return uvec3(4u * (g & 1u) + c, row % 9u, row / 9u);
+  }
+  uint k = min(4u * (g - kHalfRows) + c, kRows - 1u);
+  return uvec3(8u, k % 9u, k / 9u);
+}
+
+// Stores the 4 corner values f of group g (grid-boundary rule applied) and their sign bits.
+void storeGroup(uint g, vec4 f, uvec3 c0, uint base) {
+  uint bits = 0u;
+  for (uint c = 0u; c < 4u; ++c) {
+    uvec3 l = groupCorner(g, c);
+    float v = boundaryRule(c0 + l, f[c]);
+    corners[base + cornerIndex(l)] = v;
+    if (v >= 0.0) bits |= 1u << c;
+  }
+  if (g < kHalfRows) {
+    if (bits != 0u) atomicOr(sRow[g >> 1], bits << (4u * (g & 1u)));
+  } else {
+    for (uint c = 0u; c < 4u; ++c) {
+      uint k = min(4u * (g - kHalfRows) + c, kRows - 1u);
+      if (((bits >> c) & 1u) != 0u) atomicOr(sRow[k], 1u << 8);
+    }
+  }
+}
+
 void main() {
   uint slot = gl_WorkGroupID.x;
   uint t = gl_LocalInvocationID.x;
@@ -80,47 +136,60 @@ void main() {
   if (t < uint(AM_POLY_EDGE_WORDS)) sMask[t] = 0u;
   if (t == 0u) sTriangles = 0u;
 
-  // Corners: a row's x = 0..7 (t < 81) or eight of the x = 8 column (t >= 81).
+  if (t == 0u) {
+    sSub = 0u;
+    sGroups = 0u;
+  }
+  barrier();
+  // Sub-block culling, as the CPU polygoniser: corners are evaluated only where a sub-block
+  // whose interval does not prove one sign needs them. A sub-block proved one-signed holds
+  // no surface, so its corners that are not evaluated take its sign (sub-blocks sharing a
+  // corner agree: the true value there has both their signs) and its cells and edges stay
+  // empty, as if evaluated.
+  if (t < 8u) {
+    uvec3 h = 4u * uvec3(t & 1u, (t >> 1) & 1u, t >> 2);
+    if (all(lessThan(h, cnt))) {
+      int sign = P.modes.z == 0u ? 0 : boxSign(c0 + h, min(uvec3(4u), cnt - h), b * P.modes.y);
+      if (sign >= 0) atomicOr(sSub, sign == 0 ? 1u << t : 256u << t);
+    }
+  }
+  barrier();
   bool rowInvocation = t < kRows;
   uint y = t % 9u, z = t / 9u;
-  uint columnFirst = (t - kRows) * 8u;  // t >= 81: rows columnFirst .. + 7 (clamped)
+  uint live = sSub & 0xffu;
+  if (rowInvocation) {
+    uint near = rowSubBlocks(t);
+    bool low = (near & live & 0x55u) != 0u;  // x = 0..3: sub-blocks qx = 0
+    bool high = (near & live) != 0u;         // x = 4 (qx = 0 or 1), 5..7 (qx = 1)
+    bool column = columnQuadLive(t / 4u, live);
+    uint inside = near & (sSub >> 8);
+    uint defaults = ((inside & 0x55u) != 0u ? 0x1fu : 0u) | ((inside & 0xaau) != 0u ? 0x1f0u : 0u);
+    sRow[t] = defaults & ~((low ? 0xfu : 0u) | (high ? 0xf0u : 0u) | (column ? 0x100u : 0u));
+    if (low) sGroup[atomicAdd(sGroups, 1u)] = 2u * t;
+    if (high) sGroup[atomicAdd(sGroups, 1u)] = 2u * t + 1u;
+  }
+  if (t < kColumnQuads && columnQuadLive(t, live)) sGroup[atomicAdd(sGroups, 1u)] = kHalfRows + t;
+  barrier();
+
+  // Corners: groups 2 t and 2 t + 1 of the list, 8 corners.
+  uint groups = sGroups;
+  bool evaluator = 2u * t < groups;
+  uint gA = sGroup[min(2u * t, kGroups - 1u)];
+  uint gB = sGroup[min(2u * t + 1u, kGroups - 1u)];
   PointsV w;
-#define AM_ROW_CORNER(j, c)                                                                         \
-  {                                                                                                 \
-    uint k_ = min(columnFirst + 4u * j + c, kRows - 1u);                                            \
-    uvec3 l_ = rowInvocation ? uvec3(4u * j + c, y, z) : uvec3(8u, k_ % 9u, k_ / 9u);             \
-    AM_SET_POINT(w, j, c, cornerPosition(c0 + l_))                                                  \
-  }
-#define AM_ROW_CORNERS(j) AM_ROW_CORNER(j, 0) AM_ROW_CORNER(j, 1) AM_ROW_CORNER(j, 2) AM_ROW_CORNER(j, 3)
-  AM_EACH(AM_ROW_CORNERS)
+#define AM_GROUP_CORNER(j, c) AM_SET_POINT(w, j, c, cornerPosition(c0 + groupCorner(j == 0 ? gA : gB, c)))
+#define AM_GROUP_CORNERS(j) AM_GROUP_CORNER(j, 0) AM_GROUP_CORNER(j, 1) AM_GROUP_CORNER(j, 2) AM_GROUP_CORNER(j, 3)
+  AM_EACH(AM_GROUP_CORNERS)
   vec4 f[AM_FIELD_V];
-  if (t < kEvaluators) fieldV(b * P.modes.y, w, f);
-  uint signs = 0u;
   const uint base = slot * AM_POLY_BLOCK_CORNERS;
-  if (rowInvocation) {
-    for (uint x = 0u; x < 8u; ++x) {
-      uvec3 l = uvec3(x, y, z);
-      float v = boundaryRule(c0 + l, x < 4u ? f[0][x] : f[1][x - 4u]);
-      corners[base + cornerIndex(l)] = v;
-      if (v >= 0.0) signs |= 1u << x;
-    }
-  } else if (t < kEvaluators) {
-    for (uint c = 0u; c < 8u; ++c) {
-      uint k = columnFirst + c;
-      if (k >= kRows) break;
-      uvec3 l = uvec3(8u, k % 9u, k / 9u);
-      float v = boundaryRule(c0 + l, c < 4u ? f[0][c] : f[1][c - 4u]);
-      corners[base + cornerIndex(l)] = v;
-      sColumn[k] = v;
-    }
+  if (evaluator) {
+    fieldV(b * P.modes.y, w, f);
+    storeGroup(gA, f[0], c0, base);
+    if (2u * t + 1u < groups) storeGroup(gB, f[1], c0, base);
   }
   barrier();
-  if (rowInvocation) {
-    if (sColumn[t] >= 0.0) signs |= 1u << 8;
-    sRow[t] = signs;
-    edges[slot * AM_POLY_EDGE_INFO + AM_POLY_EDGE_ROWS + t] = signs;
-  }
-  barrier();
+  uint signs = rowInvocation ? sRow[t] : 0u;
+  if (rowInvocation) edges[slot * AM_POLY_EDGE_INFO + AM_POLY_EDGE_ROWS + t] = signs;
 
   uint tris = 0u;
   if (rowInvocation) {

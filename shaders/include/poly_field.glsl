@@ -492,3 +492,19 @@ vec2 combinedInterval(vec3 centre, float radius, uint maskBase) {
   float a0 = P.morph0.w;
   return guardInterval(vec2(amRUnion(g1.x, g2.x) + min(0.0, a0), amRUnion(g1.y, g2.y) + max(0.0, a0)));
 }
+
+// Sign of the field over the cell box [c0, c0 + cnt], proved by its interval over the
+// primitives of the mask at maskBase with the CPU polygoniser's margin and grid-boundary rule
+// (a box touching the grid boundary is never proved inside): -1 outside, 1 inside, 0 when the
+// box can hold surface.
+int boxSign(uvec3 c0, uvec3 cnt, uint maskBase) {
+  vec3 lo = cornerPosition(c0), hi = cornerPosition(c0 + cnt);
+  bool boundary = any(equal(c0, uvec3(0u))) || any(greaterThanEqual(c0 + cnt, P.gridCells.xyz));
+  vec2 iv = combinedInterval(0.5 * (lo + hi), 0.5 * length(hi - lo), maskBase);
+  float margin = P.thresholds.z;
+  if (iv.y < -margin) return -1;
+  if (iv.x > margin && !boundary) return 1;
+  return 0;
+}
+
+bool canHoldSurface(uvec3 c0, uvec3 cnt, uint maskBase) { return boxSign(c0, cnt, maskBase) == 0; }
