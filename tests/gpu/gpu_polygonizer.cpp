@@ -119,6 +119,27 @@ void requireAgrees(const TriangleMesh& gpu, const TriangleMesh& ref, float cell)
   requireClosedManifold(gpu);
 }
 
+// GPU vertices found at a CPU vertex (same position to 1e-3 cell), and how many of
+// those have a unit normal within 3 degrees of the CPU's.
+std::pair<size_t, size_t> normalAgreement(const TriangleMesh& gpu, const TriangleMesh& cpu, float cell) {
+  std::unordered_map<uint64_t, glm::vec3> cpuNormal;
+  auto key = [&](const glm::vec3& q) {
+    glm::ivec3 c(glm::round(q / (1e-3f * cell)));
+    return (uint64_t(uint32_t(c.x) & 0x1fffff) << 42) | (uint64_t(uint32_t(c.y) & 0x1fffff) << 21) |
+           uint64_t(uint32_t(c.z) & 0x1fffff);
+  };
+  for (size_t i = 0; i < cpu.positions.size(); ++i) cpuNormal[key(cpu.positions[i])] = cpu.normals[i];
+  size_t matched = 0, close = 0;
+  for (size_t i = 0; i < gpu.positions.size(); ++i) {
+    auto it = cpuNormal.find(key(gpu.positions[i]));
+    if (it == cpuNormal.end()) continue;
+    ++matched;
+    close += std::abs(glm::length(gpu.normals[i]) - 1.0f) < 1e-3f &&
+             glm::dot(gpu.normals[i], it->second) > std::cos(glm::radians(3.0f));
+  }
+  return {matched, close};
+}
+
 // Triangles as sorted position triples: compares meshes whatever their vertex numbering.
 std::vector<std::array<float, 9>> triangleSet(const TriangleMesh& m) {
   std::vector<std::array<float, 9>> out;
@@ -264,22 +285,8 @@ TEST_CASE("GPU polygoniser matches the CPU on a convolution chain, culled and de
     CHECK(triangleSet(other) == triangleSet(culled));
   }
 
-  // Normals: the field gradient, as the CPU's (analytic there, central differences here).
-  std::unordered_map<uint64_t, glm::vec3> cpuNormal;
-  auto key = [&](const glm::vec3& q) {
-    glm::ivec3 c(glm::round(q / (1e-3f * cell)));
-    return (uint64_t(uint32_t(c.x) & 0x1fffff) << 42) | (uint64_t(uint32_t(c.y) & 0x1fffff) << 21) |
-           uint64_t(uint32_t(c.z) & 0x1fffff);
-  };
-  for (size_t i = 0; i < cpu.positions.size(); ++i) cpuNormal[key(cpu.positions[i])] = cpu.normals[i];
-  size_t matched = 0, close = 0;
-  for (size_t i = 0; i < culled.positions.size(); ++i) {
-    auto it = cpuNormal.find(key(culled.positions[i]));
-    if (it == cpuNormal.end()) continue;
-    ++matched;
-    CHECK(std::abs(glm::length(culled.normals[i]) - 1.0f) < 1e-3f);
-    close += glm::dot(culled.normals[i], it->second) > std::cos(glm::radians(3.0f));
-  }
+  // Normals: the field gradient, as the CPU's.
+  auto [matched, close] = normalAgreement(culled, cpu, cell);
   CHECK(matched > culled.positions.size() / 2);
   CHECK(close >= matched * 99 / 100);
   CHECK(r.ctx->validationErrorCount() == 0);
@@ -301,7 +308,12 @@ TEST_CASE("GPU polygoniser covers every op, primitive, skeleton and map of the C
     s.bounds = cube(1.2f);  // some random trees are unbounded
     GpuPolygonizeStats st;
     TriangleMesh gpu = gpuMesh(*r.poly, GpuField::single(p), s, &st);
-    requireAgrees(gpu, cpuMesh(p, 40, s.bounds), st.cellSize);
+    TriangleMesh cpu = cpuMesh(p, 40, s.bounds);
+    requireAgrees(gpu, cpu, st.cellSize);
+    // Normals: analytic gradients through every op (the stencil for HyperBlend and curved maps).
+    auto [matched, close] = normalAgreement(gpu, cpu, st.cellSize);
+    CHECK(matched >= gpu.positions.size() / 2);
+    CHECK(close >= matched * 95 / 100);
   }
   // Ops the compiler makes rarely: an R-union node, and a constant (a hand-built program).
   {
@@ -324,6 +336,8 @@ TEST_CASE("GPU polygoniser covers every op, primitive, skeleton and map of the C
       TriangleMesh cpu = cpuMesh(p, 40, s.bounds);
       REQUIRE(cpu.triangleCount() > 500);
       requireAgrees(gpu, cpu, st.cellSize);
+      auto [matched, close] = normalAgreement(gpu, cpu, st.cellSize);
+      CHECK(close >= matched * 95 / 100);
     }
   }
   for (OpCode op : {OpCode::Prims, OpCode::Const, OpCode::Sum, OpCode::Max, OpCode::Min, OpCode::HyperBlend,
