@@ -21,7 +21,7 @@
 #include "poly_field_batch.glsl"
 #include "poly_field_gradient.glsl"
 
-layout(local_size_x = AM_POLY_WG_CELLS) in;
+layout(local_size_x = AM_POLY_WG_EMIT) in;
 
 layout(set = 0, binding = AM_PB_CORNERS, std430) readonly buffer Corners { float corners[]; };
 layout(set = 0, binding = AM_PB_EDGES, std430) readonly buffer Edges { uint edges[]; };
@@ -34,7 +34,7 @@ layout(set = 0, binding = AM_PB_INDICES, std430) writeonly buffer Indices { uint
 shared uint sMask[AM_POLY_EDGE_WORDS];
 shared uint sPrefix[AM_POLY_EDGE_WORDS];
 shared uint sVertexEdge[AM_POLY_BLOCK_EDGES];
-shared uint sTriangleRun[AM_POLY_WG_CELLS];
+shared uint sTriangleRun[AM_POLY_WG_EMIT];
 shared uint sTriangle[AM_POLY_BLOCK_CELLS * 5];  // cell | triangle << 9 | case << 12, in cell order
 shared uint sTriangleTotal;
 
@@ -111,7 +111,7 @@ void main() {
   if (AM_ANALYTIC_GRADIENT) {
     // Four vertices per invocation, each with the analytic gradient at its position.
     uint quads = (vertices + 3u) / 4u;
-    for (uint qd = t; qd < quads; qd += AM_POLY_WG_CELLS) {
+    for (uint qd = t; qd < quads; qd += AM_POLY_WG_EMIT) {
       vec3 pos[4], dir[4];
       float f0[4];
       vec4 px, py, pz;
@@ -131,7 +131,7 @@ void main() {
     // differences): offsets d (1,-1,-1), d (-1,-1,1), d (-1,1,-1), d (1,1,1).
     const vec3 k0 = vec3(1, -1, -1), k1 = vec3(-1, -1, 1), k2 = vec3(-1, 1, -1), k3 = vec3(1, 1, 1);
     uint pairs = (vertices + 1u) / 2u;
-    for (uint pr = t; pr < pairs; pr += AM_POLY_WG_CELLS) {
+    for (uint pr = t; pr < pairs; pr += AM_POLY_WG_EMIT) {
       uint va = 2u * pr, vb = min(va + 1u, vertices - 1u);
       vec3 posA, dirA, posB, dirB;
       float fa, fb;
@@ -190,7 +190,7 @@ void main() {
   barrier();
   uint total = sTriangleTotal;
   uint firstTriangle = offsets[slot].y;
-  for (uint i = t; i < total; i += AM_POLY_WG_CELLS) {
+  for (uint i = t; i < total; i += AM_POLY_WG_EMIT) {
     uint entry = sTriangle[i];
     uint cell = entry & 511u, k = (entry >> 9) & 7u, cubeCase = entry >> 12;
     uint tri = firstTriangle + i;

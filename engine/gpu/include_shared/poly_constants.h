@@ -24,7 +24,8 @@
 
 // Workgroup sizes (x only; multiples of 8 suit lavapipe's 8-wide SIMD).
 #define AM_POLY_WG_BLOCKS 64   // coarse pass: one invocation per block
-#define AM_POLY_WG_CELLS 96    // fine passes: one workgroup per active block
+#define AM_POLY_WG_CELLS 96    // corners + cells pass: one workgroup per active block
+#define AM_POLY_WG_EMIT 64     // emit pass: one workgroup per active block (one invocation per mask word and per row)
 // Points per invocation of the batched field evaluation, in vec4, 1 or 2 (shaders/include/poly_field_batch.glsl):
 // a primitive's record is loaded once per invocation and applied to all its points (on lavapipe a
 // load inside a loop costs far more than the arithmetic).
