@@ -22,27 +22,63 @@ vec4 atan2PositiveY4(vec4 y, vec4 x) {
   return r;
 }
 
-// Weighted, cut convolution-segment field at four points (convolutionValues);
-// record r0 = (b, l), r1 = (a, w), r2 = (S, cut2).
-vec4 convolution4(vec4 x, vec4 y, vec4 z, vec4 r0, vec4 r1, vec4 r2) {
-  vec4 dx = x - r0.x, dy = y - r0.y, dz = z - r0.z;
+// Intermediates of the convolution-segment kernel at four points (convolutionValues,
+// convolutionGradients); record r0 = (b, l), r1 = (a, w), r2 = (S, cut2).
+struct ConvTerms {
+  vec4 dx, dy, dz;  // point - b
+  vec4 u;           // along the axis
+  vec4 lu, D, Q, invP, invDQ;
+  vec4 F;           // the unweighted half kernel: the field is w F inside the cut
+  bvec4 inCut;      // the point is within the cut distance (the field is 0 beyond)
+};
+
+ConvTerms convolutionTerms(vec4 x, vec4 y, vec4 z, vec4 r0, vec4 r1, vec4 r2) {
+  ConvTerms c;
+  c.dx = x - r0.x;
+  c.dy = y - r0.y;
+  c.dz = z - r0.z;
   float l = r0.w, S = r2.x, S2 = S * S;
-  vec4 dd = dx * dx + dy * dy + dz * dz;
-  vec4 u = dx * r1.x + dy * r1.y + dz * r1.z;
-  vec4 perp2 = max(dd - u * u, vec4(0.0));
+  vec4 dd = c.dx * c.dx + c.dy * c.dy + c.dz * c.dz;
+  c.u = c.dx * r1.x + c.dy * r1.y + c.dz * r1.z;
+  vec4 perp2 = max(dd - c.u * c.u, vec4(0.0));
   vec4 Pp = 1.0 + S2 * perp2;
-  vec4 D = 1.0 + S2 * dd;
-  vec4 lu = l - u;
-  vec4 e2 = dd - 2.0 * l * u + l * l;
-  vec4 Q = 1.0 + S2 * e2;
-  vec4 invP = 1.0 / Pp;
+  c.D = 1.0 + S2 * dd;
+  c.lu = l - c.u;
+  vec4 e2 = dd - 2.0 * l * c.u + l * l;
+  c.Q = 1.0 + S2 * e2;
+  c.invP = 1.0 / Pp;
   vec4 p = sqrt(Pp);
-  vec4 A = atan2PositiveY4(S * l * p, Pp - S2 * u * lu);
-  vec4 invDQ = 1.0 / (D * Q);
-  vec4 F = invP * ((u * Q + lu * D) * invDQ + A * p * invP / S);
-  vec4 seg2 = mix(mix(perp2, e2, greaterThan(u, vec4(l))), dd, lessThan(u, vec4(0.0)));
-  return mix(vec4(0.0), 0.5 * r1.w * F, lessThanEqual(seg2, vec4(r2.y)));
+  vec4 A = atan2PositiveY4(S * l * p, Pp - S2 * c.u * c.lu);
+  c.invDQ = 1.0 / (c.D * c.Q);
+  c.F = 0.5 * c.invP * ((c.u * c.Q + c.lu * c.D) * c.invDQ + A * p * c.invP / S);
+  vec4 seg2 = mix(mix(perp2, e2, greaterThan(c.u, vec4(l))), dd, lessThan(c.u, vec4(0.0)));
+  c.inCut = lessThanEqual(seg2, vec4(r2.y));
+  return c;
 }
+
+// Weighted, cut convolution-segment field at four points (convolutionValues).
+vec4 convolution4(vec4 x, vec4 y, vec4 z, vec4 r0, vec4 r1, vec4 r2) {
+  ConvTerms c = convolutionTerms(x, y, z, r0, r1, r2);
+  return mix(vec4(0.0), r1.w * c.F, c.inCut);
+}
+
+// Calls BODY (which reads `r`, the pool record) for each convolution primitive of the
+// Prims op op0 whose bit is set in the block mask at maskBase: one mask load per 32
+// primitives, no loop trips for primitives that do not reach the block.
+#define AM_FOR_BLOCK_CONVOLUTIONS(op0, maskBase, BODY)                  \
+  {                                                                     \
+    uint first_ = (op0).w, end_ = (op0).w + (op0).z;                    \
+    for (uint g0_ = first_ & ~31u; g0_ < end_; g0_ += 32u) {            \
+      uint bits_ = blockMask[(maskBase) + (g0_ >> 5)];                  \
+      if (g0_ < first_) bits_ &= ~0u << (first_ - g0_);                 \
+      if (end_ - g0_ < 32u) bits_ &= (1u << (end_ - g0_)) - 1u;         \
+      while (bits_ != 0u) {                                             \
+        uint r = (op0).y + (g0_ + uint(findLSB(bits_)) - first_) * AM_REC_CONV; \
+        bits_ &= bits_ - 1u;                                            \
+        BODY                                                            \
+      }                                                                 \
+    }                                                                   \
+  }
 
 // Interval of the weighted, cut convolution field over the ball (c, rho) (convolutionIntervals).
 vec2 convolutionInterval(vec3 c, float rho, vec4 r0, vec4 r1, vec4 r2) {

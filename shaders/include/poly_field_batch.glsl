@@ -53,22 +53,9 @@ void programV(uint opBegin, uint opCount, float T, uint maskBase, PointsV w, out
 #define AM_ZERO(j) a[j] = vec4(0.0);
       AM_EACH(AM_ZERO)
       if (AM_HAS_CLASS(AM_PRIM_CONVOLUTION) && cls == AM_PRIM_CONVOLUTION) {
-        // Only the set bits of the block mask: one mask load per 32 primitives,
-        // no loop trips for primitives that do not reach the block.
-        uint first = op0.w, end = op0.w + op0.z;
-        for (uint g0 = first & ~31u; g0 < end; g0 += 32u) {
-          uint bits = blockMask[maskBase + (g0 >> 5)];
-          if (g0 < first) bits &= ~0u << (first - g0);
-          if (end - g0 < 32u) bits &= (1u << (end - g0)) - 1u;
-          while (bits != 0u) {
-            uint k = g0 + uint(findLSB(bits)) - first;
-            bits &= bits - 1u;
-            uint r = op0.y + k * AM_REC_CONV;
-            vec4 r0 = POOLF(r), r1 = POOLF(r + 1u), r2 = POOLF(r + 2u);
 #define AM_CONV(j) a[j] += convolution4(x[j], y[j], z[j], r0, r1, r2);
-            AM_EACH(AM_CONV)
-          }
-        }
+        AM_FOR_BLOCK_CONVOLUTIONS(op0, maskBase, vec4 r0 = POOLF(r); vec4 r1 = POOLF(r + 1u);
+                                  vec4 r2 = POOLF(r + 2u); AM_EACH(AM_CONV))
       } else if (AM_HAS_CLASS(AM_PRIM_SKELETAL) || AM_HAS_CLASS(AM_PRIM_CAPSULE)) {
         // Skeletal and capsule kernels are long (closest points on nine skeleton
         // kinds): one copy in a loop whose trip count the compiler cannot see

@@ -20,31 +20,16 @@ Grad4 zeroGrad4(vec4 f) { return Grad4(f, vec4(0.0), vec4(0.0), vec4(0.0)); }
 
 // convolution4 with its gradient (convolutionGradients), accumulated into g.
 void convolutionGrad4(vec4 x, vec4 y, vec4 z, vec4 r0, vec4 r1, vec4 r2, inout Grad4 g) {
-  vec4 dx = x - r0.x, dy = y - r0.y, dz = z - r0.z;
-  float l = r0.w, S = r2.x, S2 = S * S;
-  vec4 dd = dx * dx + dy * dy + dz * dz;
-  vec4 u = dx * r1.x + dy * r1.y + dz * r1.z;
-  vec4 perp2 = max(dd - u * u, vec4(0.0));
-  vec4 Pp = 1.0 + S2 * perp2;
-  vec4 D = 1.0 + S2 * dd;
-  vec4 lu = l - u;
-  vec4 e2 = dd - 2.0 * l * u + l * l;
-  vec4 Q = 1.0 + S2 * e2;
-  vec4 invP = 1.0 / Pp;
-  vec4 p = sqrt(Pp);
-  vec4 A = atan2PositiveY4(S * l * p, Pp - S2 * u * lu);
-  vec4 invDQ = 1.0 / (D * Q);
-  vec4 invD = Q * invDQ, invQ = D * invDQ;
-  vec4 F = 0.5 * invP * ((u * Q + lu * D) * invDQ + A * p * invP / S);
-  vec4 J0 = 0.25 * invP * (lu * invQ * invQ + u * invD * invD + 3.0 * F);
-  vec4 radial = -4.0 * S2 * J0;
+  ConvTerms c = convolutionTerms(x, y, z, r0, r1, r2);
+  vec4 invD = c.Q * c.invDQ, invQ = c.D * c.invDQ;
+  vec4 J0 = 0.25 * c.invP * (c.lu * invQ * invQ + c.u * invD * invD + 3.0 * c.F);
+  vec4 radial = -4.0 * r2.x * r2.x * J0;
   vec4 axial = invD * invD - invQ * invQ;
-  vec4 seg2 = mix(mix(perp2, e2, greaterThan(u, vec4(l))), dd, lessThan(u, vec4(0.0)));
-  vec4 m = mix(vec4(0.0), vec4(r1.w), lessThanEqual(seg2, vec4(r2.y)));
-  g.f += m * F;
-  g.x += m * (radial * (dx - u * r1.x) + axial * r1.x);
-  g.y += m * (radial * (dy - u * r1.y) + axial * r1.y);
-  g.z += m * (radial * (dz - u * r1.z) + axial * r1.z);
+  vec4 m = mix(vec4(0.0), vec4(r1.w), c.inCut);
+  g.f += m * c.F;
+  g.x += m * (radial * (c.dx - c.u * r1.x) + axial * r1.x);
+  g.y += m * (radial * (c.dy - c.u * r1.y) + axial * r1.y);
+  g.z += m * (radial * (c.dz - c.u * r1.z) + axial * r1.z);
 }
 
 // skeletalValue with its gradient (skeletalLoop).
@@ -132,18 +117,7 @@ Grad4 programGrad(uint opBegin, uint opCount, float T, uint maskBase, vec4 px, v
       bool cmax = ((op0.x >> 16) & 1u) != 0u;
       Grad4 a = zeroGrad4(vec4(0.0));
       if (AM_HAS_CLASS(AM_PRIM_CONVOLUTION) && cls == AM_PRIM_CONVOLUTION) {
-        uint first = op0.w, end = op0.w + op0.z;
-        for (uint g0 = first & ~31u; g0 < end; g0 += 32u) {
-          uint bits = blockMask[maskBase + (g0 >> 5)];
-          if (g0 < first) bits &= ~0u << (first - g0);
-          if (end - g0 < 32u) bits &= (1u << (end - g0)) - 1u;
-          while (bits != 0u) {
-            uint k = g0 + uint(findLSB(bits)) - first;
-            bits &= bits - 1u;
-            uint r = op0.y + k * AM_REC_CONV;
-            convolutionGrad4(x, y, z, POOLF(r), POOLF(r + 1u), POOLF(r + 2u), a);
-          }
-        }
+        AM_FOR_BLOCK_CONVOLUTIONS(op0, maskBase, convolutionGrad4(x, y, z, POOLF(r), POOLF(r + 1u), POOLF(r + 2u), a);)
       } else if (AM_HAS_CLASS(AM_PRIM_SKELETAL) || AM_HAS_CLASS(AM_PRIM_CAPSULE)) {
         for (uint k = 0u; k < op0.z; ++k) {
           if (!primActive(maskBase, op0.w + k)) continue;
