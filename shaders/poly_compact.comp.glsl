@@ -1,8 +1,8 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // Active-block compaction after the block scan: active block b gets slot
-// prefix[b] (block order, so the output is deterministic), the slot's block id
-// is recorded, and blockSlot[] maps blocks to slots (AM_POLY_NONE: inactive, or
+// prefix[b] (block order, so the output is deterministic), the slot's block
+// position is recorded (packBlockCoord), and blockSlot[] maps blocks to slots (AM_POLY_NONE: inactive, or
 // beyond the block capacity, which the args pass reports as an overflow).
 #include "poly_common.glsl"
 
@@ -17,7 +17,7 @@ void main() {
   if (blockFlag[b].x != 0u) {
     uint s = blockPrefix[b].x;
     if (s < P.modes.w) {
-      activeBlocks[s] = b;
+      activeBlocks[s] = packBlockCoord(blockCoord(b));
       slot = s;
     }
   }

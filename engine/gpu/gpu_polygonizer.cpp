@@ -37,7 +37,7 @@ struct PolyParams {
 };
 static_assert(sizeof(PolyParams) == 12 * 16);
 
-constexpr uint32_t kTableVec4 = 2 * 256 + 3;
+constexpr uint32_t kTableVec4 = 256;  // poly_table.glsl
 constexpr uint32_t kTimestamps = 7;
 
 struct Grid {
@@ -278,16 +278,14 @@ Status GpuPolygonizer::Impl::init() {
   const MarchingCubesTable& mc = marchingCubesTable();
   std::vector<glm::uvec4> tableData(kTableVec4, glm::uvec4(0u));
   for (int c = 0; c < 256; ++c) {
-    uint32_t w[5] = {0, 0, 0, 0, 0};
-    for (int k = 0; k < 3 * mc.triangleCount[size_t(c)]; ++k)
-      w[k / 8] |= uint32_t(mc.triangles[size_t(c)][size_t(k)] & 15u) << ((k % 8) * 4);
-    tableData[size_t(2 * c)] = glm::uvec4(w[0], w[1], w[2], w[3]);
-    tableData[size_t(2 * c + 1)] = glm::uvec4(w[4], mc.triangleCount[size_t(c)], 0u, 0u);
+    for (int k = 0; k < 3 * mc.triangleCount[size_t(c)]; ++k) {
+      const int e = mc.triangles[size_t(c)][size_t(k)];
+      const uint32_t resolved = uint32_t(mc.edgeCorners[size_t(e)][0]) | uint32_t(mc.edgeAxis[size_t(e)]) << 3;
+      const int tri = k / 3, q = k % 3;
+      tableData[size_t(c)][tri / 2] |= resolved << (15 * (tri % 2) + 5 * q);
+    }
+    tableData[size_t(c)].w = uint32_t(mc.triangleCount[size_t(c)]);
   }
-  for (int e = 0; e < 12; ++e)
-    tableData[size_t(512 + e / 4)][e % 4] = uint32_t(mc.edgeCorners[size_t(e)][0]) |
-                                             uint32_t(mc.edgeCorners[size_t(e)][1]) << 4 |
-                                             uint32_t(mc.edgeAxis[size_t(e)]) << 8;
   Result<Buffer> tb = createDeviceBuffer(ctx, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, tableData.data(),
                                          tableData.size() * sizeof(glm::uvec4));
   if (!tb) return Error{"marching-cubes table: " + tb.error()};

@@ -129,8 +129,8 @@ void storeGroup(uint g, vec4 f, uvec3 c0, uint base) {
 void main() {
   uint slot = gl_WorkGroupID.x;
   uint t = gl_LocalInvocationID.x;
-  uint b = activeBlocks[slot];
-  uvec3 bc = blockCoord(b);
+  uvec3 bc = unpackBlockCoord(activeBlocks[slot]);
+  uint b = blockIndex(bc);
   uvec3 c0 = bc * uint(AM_POLY_BLOCK);
   uvec3 cnt = blockCells(bc);
   if (t < uint(AM_POLY_EDGE_WORDS)) sMask[t] = 0u;

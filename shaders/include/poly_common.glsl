@@ -74,6 +74,14 @@ uvec3 blockCoord(uint b) {
   return uvec3(b % nb.x, (b / nb.x) % nb.y, b / (nb.x * nb.y));
 }
 
+// activeBlocks[] holds each active block's grid position packed 10 bits per axis, so the
+// fine passes need no integer division by the (run-time) block counts: on lavapipe a
+// vector division by a non-constant is 8 scalar divisions, and LLVM repeated them at
+// each use of the position.
+uint packBlockCoord(uvec3 bc) { return bc.x | bc.y << 10 | bc.z << 20; }
+uvec3 unpackBlockCoord(uint p) { return uvec3(p & 1023u, (p >> 10) & 1023u, p >> 20); }
+uint blockIndex(uvec3 bc) { return bc.x + P.gridBlocks.x * (bc.y + P.gridBlocks.y * bc.z); }
+
 // Cells of block bc along each axis (8, fewer at the far end of the grid).
 uvec3 blockCells(uvec3 bc) { return min(uvec3(AM_POLY_BLOCK), P.gridCells.xyz - bc * uint(AM_POLY_BLOCK)); }
 

@@ -35,7 +35,7 @@ shared uint sMask[AM_POLY_EDGE_WORDS];
 shared uint sPrefix[AM_POLY_EDGE_WORDS];
 shared uint sVertexEdge[AM_POLY_BLOCK_EDGES];
 shared uint sTriangleRun[AM_POLY_WG_EMIT];
-shared uint sTriangle[AM_POLY_BLOCK_CELLS * 5];  // cell | triangle << 9 | case << 12, in cell order
+shared uint sTriangle[AM_POLY_BLOCK_CELLS * 5];  // cell | its 3 edges << 9 (mcTriangleBits), in cell order
 shared uint sTriangleTotal;
 
 // Global index of the vertex of the edge (base corner l, axis a) of block bc.
@@ -88,8 +88,8 @@ vec3 stencilGradient(vec4 f) {
 void main() {
   uint slot = gl_WorkGroupID.x;
   uint t = gl_LocalInvocationID.x;
-  uint b = activeBlocks[slot];
-  uvec3 bc = blockCoord(b);
+  uvec3 bc = unpackBlockCoord(activeBlocks[slot]);
+  uint b = blockIndex(bc);
   uvec3 c0 = bc * uint(AM_POLY_BLOCK);
   uvec3 cnt = blockCells(bc);
   const uint info = slot * AM_POLY_EDGE_INFO;
@@ -181,10 +181,9 @@ void main() {
   if (rowInvocation && mine > 0u) {
     uint at = sTriangleRun[t];
     for (uint x = 0u; x < cnt.x; ++x) {
-      uint cubeCase = rowCellCase(r00, r10, r01, r11, x);
-      uint nt = mcTriangleCount(cubeCase);
+      uvec4 entry = mcTable[rowCellCase(r00, r10, r01, r11, x)];
       uint cell = x + 8u * (y + 8u * z);
-      for (uint k = 0u; k < nt; ++k) sTriangle[at++] = cell | k << 9 | cubeCase << 12;
+      for (uint k = 0u; k < entry.w; ++k) sTriangle[at++] = cell | mcTriangleBits(entry, k) << 9;
     }
   }
   barrier();
@@ -192,13 +191,13 @@ void main() {
   uint firstTriangle = offsets[slot].y;
   for (uint i = t; i < total; i += AM_POLY_WG_EMIT) {
     uint entry = sTriangle[i];
-    uint cell = entry & 511u, k = (entry >> 9) & 7u, cubeCase = entry >> 12;
+    uint cell = entry & 511u;
     uint tri = firstTriangle + i;
     if (tri >= P.caps.y) continue;
     uvec3 l = uvec3(cell & 7u, (cell >> 3) & 7u, cell >> 6);
     for (uint q = 0u; q < 3u; ++q) {
-      uint einfo = mcEdgeInfo(mcEdge(cubeCase, k, q));
-      uint corner = einfo & 15u, axis = einfo >> 8;
+      uint edge = (entry >> (9u + 5u * q)) & 31u;  // base corner | axis << 3
+      uint corner = edge & 7u, axis = edge >> 3;
       uvec3 el = l + uvec3(corner & 1u, (corner >> 1) & 1u, corner >> 2);
       indices[3u * tri + q] = vertexIndex(bc, el, axis, slot, vertexBase);
     }

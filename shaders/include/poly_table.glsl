@@ -1,17 +1,12 @@
 // The marching-cubes table of engine/core/poly/marching_cubes_table.cpp,
-// uploaded once: per case two uvec4, the triangles' edges as 4-bit entries
-// (words 0..4) and the triangle count (second.y); then the 12 edges as
-// corner0 | corner1 << 4 | axis << 8, four per uvec4.
+// uploaded once, one uvec4 per case with every edge already resolved to its
+// base corner and axis (gpu_polygonizer.cpp), so writing a triangle needs no
+// further table load (on lavapipe every load is a loop over the SIMD lanes):
+// x, y, z: triangles 0-1, 2-3 and 4, 15 bits each (corner q of the triangle at
+// bits 5 q: base corner 0..7 | axis << 3); w: the triangle count.
 layout(set = 0, binding = AM_PB_TABLE, std430) readonly buffer MarchingCubes { uvec4 mcTable[]; };
 
-uint mcTriangleCount(uint cubeCase) { return mcTable[2u * cubeCase + 1u].y; }
+uint mcTriangleCount(uint cubeCase) { return mcTable[cubeCase].w; }
 
-// Edge (0..11) of corner q (0..2) of triangle tri in case cubeCase.
-uint mcEdge(uint cubeCase, uint tri, uint q) {
-  uint n = 3u * tri + q;
-  uint word = n >> 3;
-  uint w = word < 4u ? mcTable[2u * cubeCase][word] : mcTable[2u * cubeCase + 1u].x;
-  return (w >> ((n & 7u) * 4u)) & 15u;
-}
-
-uint mcEdgeInfo(uint e) { return mcTable[512u + (e >> 2)][e & 3u]; }
+// The 15 bits of triangle k of a case whose table entry is c.
+uint mcTriangleBits(uvec4 c, uint k) { return (c[k >> 1] >> (15u * (k & 1u))) & 0x7fffu; }

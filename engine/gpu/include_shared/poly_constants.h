@@ -121,7 +121,7 @@
 #define AM_PB_BLOCK_FLAG 6   // storage: uvec2 per block (active, 0): scan input
 #define AM_PB_BLOCK_PREFIX 7 // storage: uvec2 per block: scan output
 #define AM_PB_BLOCK_SLOT 8   // storage: uint per block: active slot or AM_POLY_NONE
-#define AM_PB_ACTIVE 9       // storage: uint per active slot: block id
+#define AM_PB_ACTIVE 9       // storage: uint per active slot: block position (packBlockCoord)
 #define AM_PB_CORNERS 10     // storage: float, AM_POLY_BLOCK_CORNERS per active slot
 #define AM_PB_EDGES 11       // storage: uint, AM_POLY_EDGE_INFO per active slot
 #define AM_PB_COUNTS 12      // storage: uvec2 per active slot (vertices, triangles): scan input
