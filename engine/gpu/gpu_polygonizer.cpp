@@ -38,6 +38,7 @@ struct PolyParams {
 static_assert(sizeof(PolyParams) == 12 * 16);
 
 constexpr uint32_t kTableVec4 = 256;  // poly_table.glsl
+constexpr VkDeviceSize kVertexStride = GeneratedMeshDraw::kVertexStride;  // poly_emit_main.glsl: vec4 positions, normals
 constexpr uint32_t kTimestamps = 7;
 
 struct Grid {
@@ -356,8 +357,8 @@ Status GpuPolygonizer::Impl::ensureCapacities(uint32_t blocksWanted, uint32_t ve
     blockCapacity = blocksWanted;
   }
   if (verticesWanted > vertexCapacity) {
-    s = ensure(positions, VkDeviceSize(verticesWanted) * 12, readable | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-    if (s) s = ensure(normals, VkDeviceSize(verticesWanted) * 12, readable | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    s = ensure(positions, VkDeviceSize(verticesWanted) * kVertexStride, readable | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    if (s) s = ensure(normals, VkDeviceSize(verticesWanted) * kVertexStride, readable | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
     if (!s) return s;
     vertexCapacity = verticesWanted;
   }
@@ -698,7 +699,7 @@ Result<GpuPolygonizeStats> GpuPolygonizer::polygonize(const GpuField& field, con
 Result<TriangleMesh> GpuPolygonizer::readBack() {
   Impl& m = *impl_;
   if (!m.haveMesh) return Error{"GPU polygoniser: nothing polygonised yet"};
-  const VkDeviceSize vbytes = VkDeviceSize(stats_.vertices) * 12, ibytes = VkDeviceSize(stats_.triangles) * 12;
+  const VkDeviceSize vbytes = VkDeviceSize(stats_.vertices) * kVertexStride, ibytes = VkDeviceSize(stats_.triangles) * 12;
   TriangleMesh mesh;
   if (stats_.triangles == 0) return mesh;
   Result<Buffer> host = createHostBuffer(m.ctx, 2 * vbytes + ibytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
@@ -719,8 +720,10 @@ Result<TriangleMesh> GpuPolygonizer::readBack() {
   mesh.positions.resize(stats_.vertices);
   mesh.normals.resize(stats_.vertices);
   mesh.indices.resize(size_t(stats_.triangles) * 3);
-  std::memcpy(mesh.positions.data(), bytes, vbytes);
-  std::memcpy(mesh.normals.data(), bytes + vbytes, vbytes);
+  for (size_t v = 0; v < stats_.vertices; ++v) {  // vec4 per vertex on the device
+    std::memcpy(&mesh.positions[v], bytes + v * kVertexStride, 12);
+    std::memcpy(&mesh.normals[v], bytes + vbytes + v * kVertexStride, 12);
+  }
   std::memcpy(mesh.indices.data(), bytes + 2 * vbytes, ibytes);
   destroyBuffer(m.ctx.device(), *host);
   return mesh;

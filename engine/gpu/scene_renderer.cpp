@@ -91,7 +91,7 @@ Result<VkPipeline> createPipeline(VkDevice device, VkRenderPass pass, VkPipeline
     }
   } else if (d.input == VertexInput::Generated) {
     for (uint32_t s = 0; s < 2; ++s) {  // AM_VERTEX_POSITION, AM_VERTEX_NORMAL
-      bindings.push_back({s, 12, VK_VERTEX_INPUT_RATE_VERTEX});
+      bindings.push_back({s, GeneratedMeshDraw::kVertexStride, VK_VERTEX_INPUT_RATE_VERTEX});
       attributes.push_back({s, s, VK_FORMAT_R32G32B32_SFLOAT, 0});
     }
   } else if (d.input == VertexInput::Line) {

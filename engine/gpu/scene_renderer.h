@@ -64,8 +64,9 @@ struct TransitionMeshDraw {
 // drawn with vkCmdDrawIndexedIndirect: no CPU read-back. Buffers must stay
 // valid until the frame that draws them completes.
 struct GeneratedMeshDraw {
-  VkBuffer positions = VK_NULL_HANDLE;  // float xyz per vertex, tightly packed
-  VkBuffer normals = VK_NULL_HANDLE;    // float xyz per vertex (unit, outward)
+  static constexpr uint32_t kVertexStride = 16;  // positions and normals: vec4 per vertex (xyz used)
+  VkBuffer positions = VK_NULL_HANDLE;  // float xyz(w) per vertex, kVertexStride apart
+  VkBuffer normals = VK_NULL_HANDLE;    // float xyz(w) per vertex (unit, outward), kVertexStride apart
   VkBuffer indices = VK_NULL_HANDLE;    // uint32 triangle list, counter-clockwise from outside
   VkBuffer indirect = VK_NULL_HANDLE;   // one VkDrawIndexedIndirectCommand at indirectOffset
   VkDeviceSize indirectOffset = 0;

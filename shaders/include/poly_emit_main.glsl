@@ -26,8 +26,10 @@ layout(local_size_x = AM_POLY_WG_EMIT) in;
 layout(set = 0, binding = AM_PB_CORNERS, std430) readonly buffer Corners { float corners[]; };
 layout(set = 0, binding = AM_PB_EDGES, std430) readonly buffer Edges { uint edges[]; };
 layout(set = 0, binding = AM_PB_OFFSETS, std430) readonly buffer Offsets { uvec2 offsets[]; };
-layout(set = 0, binding = AM_PB_POSITIONS, std430) writeonly buffer Positions { float positions[]; };
-layout(set = 0, binding = AM_PB_NORMALS, std430) writeonly buffer Normals { float normals[]; };
+// One vec4 per vertex (w unused): on lavapipe each store is a loop over the SIMD lanes, so
+// one vec4 store costs far less than three float stores.
+layout(set = 0, binding = AM_PB_POSITIONS, std430) writeonly buffer Positions { vec4 positions[]; };
+layout(set = 0, binding = AM_PB_NORMALS, std430) writeonly buffer Normals { vec4 normals[]; };
 layout(set = 0, binding = AM_PB_INDICES, std430) writeonly buffer Indices { uint indices[]; };
 
 
@@ -72,12 +74,8 @@ void writeVertex(uint out_, vec3 pos, vec3 g, vec3 dir, float f0) {
   float len = length(g);
   vec3 normal = len > 1e-20 && !isinf(len) && !isnan(len) ? -g / len : (f0 >= 0.0 ? dir : -dir);
   if (out_ >= P.caps.x) return;
-  positions[3u * out_] = pos.x;
-  positions[3u * out_ + 1u] = pos.y;
-  positions[3u * out_ + 2u] = pos.z;
-  normals[3u * out_] = normal.x;
-  normals[3u * out_ + 1u] = normal.y;
-  normals[3u * out_ + 2u] = normal.z;
+  positions[out_] = vec4(pos, 1.0);
+  normals[out_] = vec4(normal, 0.0);
 }
 
 // Gradient from the tetrahedral stencil values f at offsets d k0..k3 (see main).
