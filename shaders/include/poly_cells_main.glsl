@@ -8,9 +8,12 @@
 // Sub-block culling (as the CPU polygoniser): the intervals of the block's
 // eight 4^3-cell sub-blocks (invocations 0..7) leave out the corners only
 // sub-blocks proved one-signed need. The corners left are listed in groups of
-// 4 (half rows x = 0..3 or 4..7 of a row (y, z), or 4 corners of the x = 8
-// column) and each invocation evaluates two groups, so the work follows the
-// list's length: on lavapipe only a loop's trip count skips work.
+// up to 4 along a grid line (half rows x = 0..3 or 4..7 of a row (y, z); on the
+// x = 8 face, y = 0..3, 4..7 or 8 of a column z) and each invocation evaluates
+// two groups, so the work follows the list's length: on lavapipe only a loop's
+// trip count skips work. For programs without maps whose primitives are all
+// convolution segments, a group is evaluated as a line (PointsL): the kernel
+// takes the terms of its two constant coordinates once per group.
 //
 // The bookkeeping is bit arithmetic on registers: each row's signs are a
 // 9-bit mask; a row's cells and its x, y and z edges come from its mask and
@@ -23,13 +26,14 @@
 #include "poly_table.glsl"
 
 #define AM_FIELD_V AM_POLY_CORNER_V
+#define AM_FIELD_LINES 1
 #include "poly_field_batch.glsl"
 
 #if AM_POLY_CORNER_V != 2
 #error "the row layout evaluates 8 corners per invocation"
 #endif
-#if AM_POLY_WG_CELLS < 92
-#error "the row layout needs 92 invocations: 183 groups of 4 corners, two per invocation"
+#if AM_POLY_WG_CELLS < 95
+#error "the row layout needs 95 invocations: 189 groups of corners, two per invocation"
 #endif
 
 layout(local_size_x = AM_POLY_WG_CELLS) in;
@@ -40,8 +44,8 @@ layout(set = 0, binding = AM_PB_COUNTS, std430) writeonly buffer Counts { uvec2 
 
 const uint kRows = 81u;                        // corner rows along x of a block: (y, z) in [0, 8]^2
 const uint kHalfRows = 2u * kRows;             // groups of 4 corners: x = 0..3 or 4..7 of a row
-const uint kColumnQuads = (kRows + 3u) / 4u;   // groups of 4 corners of the x = 8 column (rows 4 q ..)
-const uint kGroups = kHalfRows + kColumnQuads;
+const uint kFaceGroups = 27u;                  // the x = 8 face: y = 0..3, 4..7 and 8 of each column z
+const uint kGroups = kHalfRows + kFaceGroups;
 const uint kEvaluators = (kGroups + 1u) / 2u;  // two groups (8 corners) per invocation
 
 shared uint sSub;             // bit q: sub-block q may hold surface; bit 8 + q: proved inside
@@ -90,40 +94,62 @@ uint rowSubBlocks(uint row) {
   return ys & zs;
 }
 
-// Whether column group q (x = 8 of rows 4 q .. 4 q + 3) has a corner of a live sub-block (qx = 1).
-bool columnQuadLive(uint q, uint live) {
-  uint near = 0u;
-  for (uint k = 4u * q; k < min(4u * q + 4u, kRows); ++k) near |= rowSubBlocks(k);
-  return (near & live & 0xaau) != 0u;
+// Sub-blocks whose corners include a corner of the box [lo, hi] (block-local corners).
+uint cornerBoxSubBlocks(uvec3 lo, uvec3 hi) {
+  uint xs = (lo.x <= 4u ? 0x55u : 0u) | (hi.x >= 4u ? 0xaau : 0u);  // qx = 0: q in {0, 2, 4, 6}
+  uint ys = (lo.y <= 4u ? 0x33u : 0u) | (hi.y >= 4u ? 0xccu : 0u);
+  uint zs = (lo.z <= 4u ? 0x0fu : 0u) | (hi.z >= 4u ? 0xf0u : 0u);
+  return xs & ys & zs;
 }
 
-// Corner c of group g, local to the block.
+// Face group k (0..26) of the x = 8 face: column z = k / 3, y from 4 (k % 3); part 2 is the
+// single corner y = 8.
+uint faceGroupFirstY(uint k) { return 4u * (k % 3u); }
+uint faceGroupCorners(uint k) { return k % 3u == 2u ? 1u : 4u; }
+bool faceGroupLive(uint k, uint live) {
+  uint y0 = faceGroupFirstY(k), z = k / 3u;
+  return (cornerBoxSubBlocks(uvec3(8u, y0, z), uvec3(8u, y0 + faceGroupCorners(k) - 1u, z)) & live) != 0u;
+}
+
+// Corner c of group g, local to the block (c < 4; past the single corner of a face group's
+// part 2 it lies outside the block and is evaluated but not stored).
 uvec3 groupCorner(uint g, uint c) {
   if (g < kHalfRows) {
     uint row = g >> 1;
     return uvec3(4u * (g & 1u) + c, row % 9u, row / 9u);
   }
-  uint k = min(4u * (g - kHalfRows) + c, kRows - 1u);
-  return uvec3(8u, k % 9u, k / 9u);
+  uint k = g - kHalfRows;
+  return uvec3(8u, faceGroupFirstY(k) + c, k / 3u);
 }
 
-// Stores the 4 corner values f of group g (grid-boundary rule applied) and their sign bits.
+// Stores the corner values f of group g (grid-boundary rule applied) and their sign bits.
 void storeGroup(uint g, vec4 f, uvec3 c0, uint base) {
+  uint n = g < kHalfRows ? 4u : faceGroupCorners(g - kHalfRows);
   uint bits = 0u;
   for (uint c = 0u; c < 4u; ++c) {
     uvec3 l = groupCorner(g, c);
     float v = boundaryRule(c0 + l, f[c]);
-    corners[base + cornerIndex(l)] = v;
-    if (v >= 0.0) bits |= 1u << c;
+    if (c < n) corners[base + cornerIndex(l)] = v;
+    if (c < n && v >= 0.0) bits |= 1u << c;
   }
   if (g < kHalfRows) {
     if (bits != 0u) atomicOr(sRow[g >> 1], bits << (4u * (g & 1u)));
   } else {
-    for (uint c = 0u; c < 4u; ++c) {
-      uint k = min(4u * (g - kHalfRows) + c, kRows - 1u);
-      if (((bits >> c) & 1u) != 0u) atomicOr(sRow[k], 1u << 8);
-    }
+    uint k = g - kHalfRows, row0 = faceGroupFirstY(k) + 9u * (k / 3u);
+    for (uint c = 0u; c < 4u; ++c)
+      if (((bits >> c) & 1u) != 0u) atomicOr(sRow[row0 + c], 1u << 8);
   }
+}
+
+// Group g as a line of 4 points (PointsL): the varying coordinate, the two others, the axis.
+void lineOfGroup(uint g, uvec3 c0, out vec4 v, out float s1, out float s2, out uint axis) {
+  vec3 p0 = cornerPosition(c0 + groupCorner(g, 0u)), p1 = cornerPosition(c0 + groupCorner(g, 1u));
+  vec3 p2 = cornerPosition(c0 + groupCorner(g, 2u)), p3 = cornerPosition(c0 + groupCorner(g, 3u));
+  bool alongX = g < kHalfRows;
+  v = alongX ? vec4(p0.x, p1.x, p2.x, p3.x) : vec4(p0.y, p1.y, p2.y, p3.y);
+  s1 = alongX ? p0.y : p0.x;
+  s2 = p0.z;
+  axis = alongX ? 0u : 1u;
 }
 
 void main() {
@@ -161,14 +187,14 @@ void main() {
     uint near = rowSubBlocks(t);
     bool low = (near & live & 0x55u) != 0u;  // x = 0..3: sub-blocks qx = 0
     bool high = (near & live) != 0u;         // x = 4 (qx = 0 or 1), 5..7 (qx = 1)
-    bool column = columnQuadLive(t / 4u, live);
+    bool column = faceGroupLive(3u * z + min(y / 4u, 2u), live);  // the face group holding (8, y, z)
     uint inside = near & (sSub >> 8);
     uint defaults = ((inside & 0x55u) != 0u ? 0x1fu : 0u) | ((inside & 0xaau) != 0u ? 0x1f0u : 0u);
     sRow[t] = defaults & ~((low ? 0xfu : 0u) | (high ? 0xf0u : 0u) | (column ? 0x100u : 0u));
     if (low) sGroup[atomicAdd(sGroups, 1u)] = 2u * t;
     if (high) sGroup[atomicAdd(sGroups, 1u)] = 2u * t + 1u;
   }
-  if (t < kColumnQuads && columnQuadLive(t, live)) sGroup[atomicAdd(sGroups, 1u)] = kHalfRows + t;
+  if (t < kFaceGroups && faceGroupLive(t, live)) sGroup[atomicAdd(sGroups, 1u)] = kHalfRows + t;
   barrier();
 
   // Corners: groups 2 t and 2 t + 1 of the list, 8 corners.
@@ -176,14 +202,21 @@ void main() {
   bool evaluator = 2u * t < groups;
   uint gA = sGroup[min(2u * t, kGroups - 1u)];
   uint gB = sGroup[min(2u * t + 1u, kGroups - 1u)];
-  PointsV w;
-#define AM_GROUP_CORNER(j, c) AM_SET_POINT(w, j, c, cornerPosition(c0 + groupCorner(j == 0 ? gA : gB, c)))
-#define AM_GROUP_CORNERS(j) AM_GROUP_CORNER(j, 0) AM_GROUP_CORNER(j, 1) AM_GROUP_CORNER(j, 2) AM_GROUP_CORNER(j, 3)
-  AM_EACH(AM_GROUP_CORNERS)
   vec4 f[AM_FIELD_V];
   const uint base = slot * AM_POLY_BLOCK_CORNERS;
+  if (AM_LINES_OK) {
+    PointsL wl;
+#define AM_GROUP_LINE(j) lineOfGroup(j == 0 ? gA : gB, c0, wl.x[j], wl.y[j], wl.z[j], wl.axis[j]);
+    AM_EACH(AM_GROUP_LINE)
+    if (evaluator) fieldL(b * P.modes.y, wl, f);
+  } else {
+    PointsV w;
+#define AM_GROUP_CORNER(j, c) AM_SET_POINT(w, j, c, cornerPosition(c0 + groupCorner(j == 0 ? gA : gB, c)))
+#define AM_GROUP_CORNERS(j) AM_GROUP_CORNER(j, 0) AM_GROUP_CORNER(j, 1) AM_GROUP_CORNER(j, 2) AM_GROUP_CORNER(j, 3)
+    AM_EACH(AM_GROUP_CORNERS)
+    if (evaluator) fieldV(b * P.modes.y, w, f);
+  }
   if (evaluator) {
-    fieldV(b * P.modes.y, w, f);
     storeGroup(gA, f[0], c0, base);
     if (2u * t + 1u < groups) storeGroup(gB, f[1], c0, base);
   }

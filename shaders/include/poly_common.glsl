@@ -33,6 +33,11 @@ layout(constant_id = 1) const uint kAmKinds = AM_FEAT_ALL;
   ((kAmFeatures & (AM_FEAT_COMBINE_BIT(AM_COMBINE_INTERPOLATE) | AM_FEAT_COMBINE_BIT(AM_COMBINE_SPACETIME))) == 0u)
 #define AM_AFFINE_MAPS_ONLY \
   ((kAmKinds & (AM_KIND_MAP_BIT(AM_MAP_TWIST) | AM_KIND_MAP_BIT(AM_MAP_TAPER) | AM_KIND_MAP_BIT(AM_MAP_BEND))) == 0u)
+// Programs with no map and only convolution primitives: groups of points along a grid line
+// can share their y and z terms (PointsL).
+#define AM_LINES_OK                                                                                              \
+  ((kAmFeatures & (AM_FEAT_OP_BIT(AM_OP_BEGINMAP) | AM_FEAT_OP_BIT(AM_OP_ENDMAP) | AM_FEAT_CLASS_BIT(AM_PRIM_SKELETAL) | \
+                   AM_FEAT_CLASS_BIT(AM_PRIM_CAPSULE))) == 0u)
 #define AM_LACKS_SKEL(k) ((kAmKinds & AM_KIND_SKEL_BIT(k)) == 0u)
 #define AM_LACKS_COMBINE(m) ((kAmFeatures & AM_FEAT_COMBINE_BIT(m)) == 0u)
 

@@ -32,14 +32,9 @@ struct ConvTerms {
   bvec4 inCut;      // the point is within the cut distance (the field is 0 beyond)
 };
 
-ConvTerms convolutionTerms(vec4 x, vec4 y, vec4 z, vec4 r0, vec4 r1, vec4 r2) {
-  ConvTerms c;
-  c.dx = x - r0.x;
-  c.dy = y - r0.y;
-  c.dz = z - r0.z;
-  float l = r0.w, S = r2.x, S2 = S * S;
-  vec4 dd = c.dx * c.dx + c.dy * c.dy + c.dz * c.dz;
-  c.u = c.dx * r1.x + c.dy * r1.y + c.dz * r1.z;
+// The terms from dd = |p - b|^2 and c.u = (p - b) . a; l, S, cut2 from the record.
+void convolutionCore(inout ConvTerms c, vec4 dd, float l, float S, float cut2) {
+  float S2 = S * S;
   vec4 perp2 = max(dd - c.u * c.u, vec4(0.0));
   vec4 Pp = 1.0 + S2 * perp2;
   c.D = 1.0 + S2 * dd;
@@ -52,13 +47,40 @@ ConvTerms convolutionTerms(vec4 x, vec4 y, vec4 z, vec4 r0, vec4 r1, vec4 r2) {
   c.invDQ = 1.0 / (c.D * c.Q);
   c.F = 0.5 * c.invP * ((c.u * c.Q + c.lu * c.D) * c.invDQ + A * p * c.invP / S);
   vec4 seg2 = mix(mix(perp2, e2, greaterThan(c.u, vec4(l))), dd, lessThan(c.u, vec4(0.0)));
-  c.inCut = lessThanEqual(seg2, vec4(r2.y));
+  c.inCut = lessThanEqual(seg2, vec4(cut2));
+}
+
+ConvTerms convolutionTerms(vec4 x, vec4 y, vec4 z, vec4 r0, vec4 r1, vec4 r2) {
+  ConvTerms c;
+  c.dx = x - r0.x;
+  c.dy = y - r0.y;
+  c.dz = z - r0.z;
+  vec4 dd = c.dx * c.dx + c.dy * c.dy + c.dz * c.dz;
+  c.u = c.dx * r1.x + c.dy * r1.y + c.dz * r1.z;
+  convolutionCore(c, dd, r0.w, r2.x, r2.y);
   return c;
 }
 
 // Weighted, cut convolution-segment field at four points (convolutionValues).
 vec4 convolution4(vec4 x, vec4 y, vec4 z, vec4 r0, vec4 r1, vec4 r2) {
   ConvTerms c = convolutionTerms(x, y, z, r0, r1, r2);
+  return mix(vec4(0.0), r1.w * c.F, c.inCut);
+}
+
+// The same at four points on a grid line: along x (axis 0) the points (v[c], s1, s2), along
+// y (axis 1) (s1, v[c], s2). The constant coordinates' terms are taken once; the sums are
+// those of convolutionTerms with the line's term first, (a + b) + c or (b + a) + c, equal
+// bit for bit, so a group gives the values its points give (PointsL, poly_field_program.glsl).
+vec4 convolutionLine4(vec4 v, float s1, float s2, uint axis, vec4 r0, vec4 r1, vec4 r2) {
+  bool alongY = axis != 0u;
+  float bv = alongY ? r0.y : r0.x, b1 = alongY ? r0.x : r0.y;
+  float av = alongY ? r1.y : r1.x, a1 = alongY ? r1.x : r1.y;
+  ConvTerms c;
+  c.dx = v - bv;  // along the line
+  float d1 = s1 - b1, d2 = s2 - r0.z;
+  vec4 dd = c.dx * c.dx + d1 * d1 + d2 * d2;
+  c.u = c.dx * av + d1 * a1 + d2 * r1.z;
+  convolutionCore(c, dd, r0.w, r2.x, r2.y);
   return mix(vec4(0.0), r1.w * c.F, c.inCut);
 }
 

@@ -1,0 +1,183 @@
+// The batched value interpreter (programV / fieldV), instantiated by
+// poly_field_batch.glsl for two point layouts. AM_LINES 0: any points
+// (PointsV). AM_LINES 1: groups of 4 points along a grid line (PointsL: the two
+// constant coordinates one float per group), for programs without maps whose
+// primitives are convolution segments; the kernel then takes the constant
+// coordinates' terms once per group, with the same operations in an order that
+// gives the same values bit for bit (convolutionLine4).
+// Names: AM_POINTS, AM_PROGRAM, AM_FIELD; AM_YZ: the type of y and z per group.
+
+// f = p - T of one program at the invocation's points.
+void AM_PROGRAM(uint opBegin, uint opCount, float T, uint maskBase, AM_POINTS w, out vec4 res[AM_FIELD_V]) {
+  vec4 st[AM_POLY_MAX_STACK * AM_FIELD_V];
+#if !AM_LINES
+  vec4 saved[AM_POLY_MAX_MAP_DEPTH * 3 * AM_FIELD_V];
+#endif
+  vec4 x[AM_FIELD_V] = w.x;
+  AM_YZ y[AM_FIELD_V] = w.y, z[AM_FIELD_V] = w.z;
+#if AM_LINES
+  uint axis[AM_FIELD_V] = w.axis;
+#endif
+  const int V = AM_FIELD_V;
+  int sp = 0, level = 0;
+  vec4 last[AM_FIELD_V];  // AM_STACKLESS: the value of the program's only op
+#define AM_NONE(j) last[j] = vec4(-T);
+  AM_EACH(AM_NONE)
+  for (uint i = 0u; i < opCount; ++i) {
+    uint o = opBegin + i * AM_REC_OP;
+    uvec4 op0 = POOLU(o);
+    uint code = op0.x & 0xffu;
+    if (AM_HAS_OP(AM_OP_PRIMS) && code == AM_OP_PRIMS) {
+      uint cls = (op0.x >> 8) & 0xffu;
+      bool cmax = ((op0.x >> 16) & 1u) != 0u;
+      vec4 a[AM_FIELD_V];
+#define AM_ZERO(j) a[j] = vec4(0.0);
+      AM_EACH(AM_ZERO)
+      if (AM_HAS_CLASS(AM_PRIM_CONVOLUTION) && cls == AM_PRIM_CONVOLUTION) {
+#if AM_LINES
+#define AM_CONV(j) a[j] += convolutionLine4(x[j], y[j], z[j], axis[j], r0, r1, r2);
+#else
+#define AM_CONV(j) a[j] += convolution4(x[j], y[j], z[j], r0, r1, r2);
+#endif
+        AM_FOR_BLOCK_CONVOLUTIONS(op0, maskBase, vec4 r0 = POOLF(r); vec4 r1 = POOLF(r + 1u);
+                                  vec4 r2 = POOLF(r + 2u); AM_EACH(AM_CONV))
+#if !AM_LINES
+      } else if (AM_HAS_CLASS(AM_PRIM_SKELETAL) || AM_HAS_CLASS(AM_PRIM_CAPSULE)) {
+        // Skeletal and capsule kernels are long (closest points on nine skeleton
+        // kinds): one copy in a loop whose trip count the compiler cannot see
+        // (P.caps.w = 1), rather than 4 V inlined copies.
+        for (uint k = 0u; k < op0.z; ++k) {
+          if (!primActive(maskBase, op0.w + k)) continue;
+          bool skeletal = cls == AM_PRIM_SKELETAL;
+          uint r = op0.y + k * (skeletal ? AM_REC_SKEL : AM_REC_CAPSULE);
+          for (uint p = 0u; p < 4u * uint(V) * P.caps.w; ++p) {
+            bool hi = p >= 4u;  // second vec4 (V = 2); the arrays are only indexed by constants
+            uint c = p & 3u;
+            vec4 px = hi ? x[V - 1] : x[0], py = hi ? y[V - 1] : y[0], pz = hi ? z[V - 1] : z[0];
+            float v = 0.0;
+            if (AM_HAS_CLASS(AM_PRIM_SKELETAL) && skeletal) v = skeletalValue(r, vec3(px[c], py[c], pz[c]));
+            if (AM_HAS_CLASS(AM_PRIM_CAPSULE) && !skeletal) v = capsuleValue(r, vec3(px[c], py[c], pz[c]), T);
+            vec4 acc = hi ? a[V - 1] : a[0];
+            acc[c] = cmax ? max(acc[c], v) : acc[c] + v;
+            if (hi) a[V - 1] = acc;
+            else a[0] = acc;
+          }
+        }
+#endif
+      }
+      if (AM_STACKLESS) {
+#define AM_LAST(j) last[j] = a[j] - T;
+        AM_EACH(AM_LAST)
+      } else {
+#define AM_PUSH(j) st[V * sp + j] = a[j];
+        AM_EACH(AM_PUSH)
+        ++sp;
+      }
+    } else if (AM_HAS_OP(AM_OP_CONST) && code == AM_OP_CONST) {
+      float v = uintBitsToFloat(POOLU(o + 1u).z);
+      for (int h = 0; h < V; ++h) st[V * sp + h] = vec4(v);
+      ++sp;
+#if !AM_LINES
+    } else if (AM_HAS_OP(AM_OP_BEGINMAP) && code == AM_OP_BEGINMAP) {
+      uint m = POOLU(o + 1u).y;
+      int s = 3 * V * level;
+#define AM_SAVE(j) saved[s + j] = x[j]; saved[s + V + j] = y[j]; saved[s + 2 * V + j] = z[j];
+      AM_EACH(AM_SAVE)
+      for (uint p = 0u; p < 4u * uint(V) * P.caps.w; ++p) {  // one copy of the map code (see above)
+        bool hi = p >= 4u;
+        uint c = p & 3u;
+        vec4 px = hi ? x[V - 1] : x[0], py = hi ? y[V - 1] : y[0], pz = hi ? z[V - 1] : z[0];
+        vec3 q = mapToLocal(m, vec3(px[c], py[c], pz[c]));
+        px[c] = q.x;
+        py[c] = q.y;
+        pz[c] = q.z;
+        if (hi) {
+          x[V - 1] = px;
+          y[V - 1] = py;
+          z[V - 1] = pz;
+        } else {
+          x[0] = px;
+          y[0] = py;
+          z[0] = pz;
+        }
+      }
+      ++level;
+    } else if (AM_HAS_OP(AM_OP_ENDMAP) && code == AM_OP_ENDMAP) {
+      --level;
+      int s = 3 * V * level;
+#define AM_RESTORE(j) x[j] = saved[s + j]; y[j] = saved[s + V + j]; z[j] = saved[s + 2 * V + j];
+      AM_EACH(AM_RESTORE)
+#endif
+    } else if (AM_HAS_OPERATORS) {
+      int n = int(op0.z);
+      int base = sp - n;
+      uint prm = POOLU(o + 1u).x;
+      for (int h = 0; h < V; ++h) {
+        vec4 r = st[V * base + h];
+        if (AM_HAS_OP(AM_OP_SUM) && code == AM_OP_SUM) {
+          for (int k = 1; k < n; ++k) r += st[V * (base + k) + h];
+        } else if (AM_HAS_OP(AM_OP_MAX) && code == AM_OP_MAX) {
+          for (int k = 1; k < n; ++k) r = max(r, st[V * (base + k) + h]);
+        } else if (AM_HAS_OP(AM_OP_MIN) && code == AM_OP_MIN) {
+          for (int k = 1; k < n; ++k) r = min(r, st[V * (base + k) + h]);
+        } else if (AM_HAS_OP(AM_OP_HYPERBLEND) && code == AM_OP_HYPERBLEND) {
+          float q = paramAt(prm);
+          vec4 sum = vec4(0.0);
+          for (int k = 0; k < n; ++k) {
+            vec4 v = st[V * (base + k) + h];
+            sum += mix(vec4(0.0), pow(max(v, vec4(0.0)), vec4(q)), greaterThan(v, vec4(0.0)));
+          }
+          r = mix(vec4(0.0), pow(sum, vec4(1.0 / q)), greaterThan(sum, vec4(0.0)));
+        } else if (AM_HAS_OP(AM_OP_DIFFERENCE) && code == AM_OP_DIFFERENCE) {
+          r = min(r, 2.0 * T - st[V * (base + 1) + h]);
+        } else if (AM_HAS_OP(AM_OP_RUNION) && code == AM_OP_RUNION) {
+          r = T + rUnion4(r - T, st[V * (base + 1) + h] - T);
+        } else if (AM_HAS_OP(AM_OP_RINTERSECTION) && code == AM_OP_RINTERSECTION) {
+          r = T + rIntersection4(r - T, st[V * (base + 1) + h] - T);
+        } else if (AM_HAS_OP(AM_OP_BOUNDEDBLEND) && code == AM_OP_BOUNDEDBLEND) {
+          vec4 s1 = r - T, s2 = st[V * (base + 1) + h] - T, s3 = st[V * (base + 2) + h] - T;
+          r = T + rUnion4(s1, s2) +
+              boundedDisplacement4(s1, s2, s3, paramAt(prm), paramAt(prm + 1u), paramAt(prm + 2u), paramAt(prm + 3u));
+        }
+        st[V * base + h] = r;
+      }
+      sp = base + 1;
+    }
+  }
+  if (AM_STACKLESS) {
+    res = last;
+    return;
+  }
+#define AM_RESULT(j) res[j] = sp > 0 ? st[j] - T : vec4(-T);
+  AM_EACH(AM_RESULT)
+}
+
+// The field polygonised at the invocation's points: program A alone, or the
+// morph of A and B (morph_field.h).
+void AM_FIELD(uint maskBase, AM_POINTS w, out vec4 res[AM_FIELD_V]) {
+  AM_PROGRAM(P.progA.x, P.progA.y, P.thresholds.x, maskBase, w, res);
+  if (AM_SINGLE_ONLY) return;
+  if (P.modes.x == AM_COMBINE_SINGLE) return;
+  vec4 b[AM_FIELD_V];
+  AM_PROGRAM(P.progB.x, P.progB.y, P.thresholds.y, maskBase, w, b);
+  if (AM_HAS_COMBINE(AM_COMBINE_INTERPOLATE) && P.modes.x == AM_COMBINE_INTERPOLATE) {
+    float wt = P.morph0.x;
+#define AM_LERP(j) res[j] = (1.0 - wt) * res[j] + wt * b[j];
+    AM_EACH(AM_LERP)
+  } else if (AM_HAS_COMBINE(AM_COMBINE_SPACETIME)) {
+#define AM_SPACETIME(j) res[j] = spaceTime4(res[j], b[j]);
+    AM_EACH(AM_SPACETIME)
+  }
+}
+
+
+#undef AM_CONV
+#undef AM_LAST
+#undef AM_LERP
+#undef AM_NONE
+#undef AM_PUSH
+#undef AM_RESTORE
+#undef AM_RESULT
+#undef AM_SAVE
+#undef AM_SPACETIME
+#undef AM_ZERO
