@@ -3,7 +3,7 @@
 // One invocation between passes: turns scan totals into counters, overflow
 // flags and indirect arguments, so the frame runs without CPU read-back.
 //   AM_ARGS_AFTER_BLOCKS: active block count -> dispatch of the fine passes
-//   AM_ARGS_AFTER_COUNTS: vertex and triangle totals -> indexed indirect draw
+//   AM_ARGS_AFTER_COUNTS: vertex and triangle totals -> indexed indirect draw, normals dispatch
 // On any overflow the draw has no indices (nothing truncated is ever drawn);
 // the host reads the counters, grows the buffers and redoes the frame.
 #include "poly_common.glsl"
@@ -32,5 +32,10 @@ void main() {
     control[AM_CTL_DRAW + 2] = 0u;                    // firstIndex
     control[AM_CTL_DRAW + 3] = 0u;                    // vertexOffset
     control[AM_CTL_DRAW + 4] = 0u;                    // firstInstance
+    // Normals pass: four vertices per invocation over the mesh's vertices (none on overflow).
+    uint perGroup = 4u * uint(AM_POLY_WG_NORMALS);
+    control[AM_CTL_NORMALS] = ok ? (vertices + perGroup - 1u) / perGroup : 0u;
+    control[AM_CTL_NORMALS + 1] = 1u;
+    control[AM_CTL_NORMALS + 2] = 1u;
   }
 }

@@ -125,7 +125,7 @@ struct GpuPolygonizer::Impl {
   // The field passes per variant: (features, kinds, storage pool) -> pipelines,
   // created on first use (docs/gpu-polygonizer.md, "Specialisation").
   struct FieldPipelines {
-    VkPipeline blocks = VK_NULL_HANDLE, cells = VK_NULL_HANDLE, emit = VK_NULL_HANDLE;
+    VkPipeline blocks = VK_NULL_HANDLE, cells = VK_NULL_HANDLE, emit = VK_NULL_HANDLE, normals = VK_NULL_HANDLE;
   };
   std::map<std::tuple<uint32_t, uint32_t, int>, FieldPipelines> variants;
   VkPipeline scan = VK_NULL_HANDLE, compact = VK_NULL_HANDLE, args = VK_NULL_HANDLE;
@@ -167,7 +167,7 @@ GpuPolygonizer::Impl::~Impl() {
                     &superFlag, &control, &active, &corners, &edges, &counts, &offsets, &positions, &normals, &indices, &readback})
     destroyBuffer(dev, *b);
   for (auto& [key, v] : variants)
-    for (VkPipeline p : {v.blocks, v.cells, v.emit})
+    for (VkPipeline p : {v.blocks, v.cells, v.emit, v.normals})
       if (p) vkDestroyPipeline(dev, p, nullptr);
   for (VkPipeline p : {scan, compact, args})
     if (p) vkDestroyPipeline(dev, p, nullptr);
@@ -307,11 +307,12 @@ Result<GpuPolygonizer::Impl::FieldPipelines> GpuPolygonizer::Impl::fieldPipeline
     const char* name;
   } wants[] = {{&v.blocks, storage ? "poly_blocks_ssbo.comp" : "poly_blocks.comp"},
                {&v.cells, storage ? "poly_cells_ssbo.comp" : "poly_cells.comp"},
-               {&v.emit, storage ? "poly_emit_ssbo.comp" : "poly_emit.comp"}};
+               {&v.emit, storage ? "poly_emit_ssbo.comp" : "poly_emit.comp"},
+               {&v.normals, storage ? "poly_normals_ssbo.comp" : "poly_normals.comp"}};
   for (const Want& w : wants) {
     Result<VkPipeline> p = pipeline(w.name, &spec);
     if (!p) {
-      for (VkPipeline made : {v.blocks, v.cells, v.emit})
+      for (VkPipeline made : {v.blocks, v.cells, v.emit, v.normals})
         if (made) vkDestroyPipeline(ctx.device(), made, nullptr);
       return Error{p.error()};
     }
@@ -545,9 +546,12 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   vkCmdDispatch(cb, 1, 1, 1);
   computeToCompute(cb);
   timestamp();
-  // Vertices, normals, triangles.
+  // Vertices and triangles per block, then the normals of all vertices.
   vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, fp->emit);
   vkCmdDispatchIndirect(cb, control.buffer, AM_CTL_DISPATCH * 4);
+  computeToCompute(cb);
+  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, fp->normals);
+  vkCmdDispatchIndirect(cb, control.buffer, AM_CTL_NORMALS * 4);
   barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
           VK_PIPELINE_STAGE_VERTEX_INPUT_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
           VK_ACCESS_SHADER_WRITE_BIT,

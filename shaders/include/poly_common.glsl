@@ -92,7 +92,13 @@ uvec3 blockCells(uvec3 bc) { return min(uvec3(AM_POLY_BLOCK), P.gridCells.xyz - 
 
 vec3 cornerPosition(uvec3 g) { return P.gridOrigin.xyz + P.gridOrigin.w * vec3(g); }
 
-bool primActive(uint maskBase, uint g) { return ((blockMask[maskBase + (g >> 5)] >> (g & 31u)) & 1u) != 0u; }
+// Word w of the primitive bitmask at maskBase (a block's, or a superblock's). The normals pass
+// defines it as the union of its vertices' blocks' masks (poly_normals_main.glsl).
+#ifndef AM_BLOCK_MASK_WORD
+#define AM_BLOCK_MASK_WORD(maskBase, word_) blockMask[(maskBase) + (word_)]
+#endif
+
+bool primActive(uint maskBase, uint g) { return ((AM_BLOCK_MASK_WORD(maskBase, g >> 5) >> (g & 31u)) & 1u) != 0u; }
 
 // Bit of the edge (base corner l, axis a) in its block's closed-box numbering.
 uint edgeBit(uvec3 l, uint a) {

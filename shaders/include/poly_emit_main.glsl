@@ -1,12 +1,10 @@
 // Fine pass 2: one workgroup per active block, after the scan gave every
 // block its first vertex and first triangle. Writes the block's vertices
-// (one per owned crossing edge, interpolated like the CPU polygoniser, normal
-// from the field gradient: analytic as the CPU's, four vertices per invocation
-// (poly_field_gradient.glsl), or for HyperBlend and non-affine maps by a
-// tetrahedral difference stencil, two vertices per invocation) and its triangles, whose
-// corners are the vertices of their edges wherever those were made (edgeOwner),
-// so vertices are shared and the mesh is watertight. Nothing is written past
-// the capacities (the args pass has flagged the overflow).
+// (one per owned crossing edge, interpolated like the CPU polygoniser; their
+// normals come from the normals pass, poly_normals_main.glsl) and its
+// triangles, whose corners are the vertices of their edges wherever those were
+// made (edgeOwner), so vertices are shared and the mesh is watertight. Nothing
+// is written past the capacities (the args pass has flagged the overflow).
 //
 // As in the cells pass, the bookkeeping avoids per-element loads (each one a
 // loop over the SIMD lanes on lavapipe): the vertex list comes from the 64
@@ -14,20 +12,16 @@
 // values are read only at the vertices' edges, and the cell cases of a row of
 // 8 cells come from four corner-row sign masks written by the cells pass.
 #include "poly_common.glsl"
-#include "poly_field.glsl"
 #include "poly_table.glsl"
-
-#define AM_FIELD_V AM_POLY_NORMAL_V
-#include "poly_field_batch.glsl"
-#include "poly_field_gradient.glsl"
 
 layout(local_size_x = AM_POLY_WG_EMIT) in;
 
 layout(set = 0, binding = AM_PB_CORNERS, std430) readonly buffer Corners { float corners[]; };
 layout(set = 0, binding = AM_PB_EDGES, std430) readonly buffer Edges { uint edges[]; };
 layout(set = 0, binding = AM_PB_OFFSETS, std430) readonly buffer Offsets { uvec2 offsets[]; };
-// One vec4 per vertex (w unused): on lavapipe each store is a loop over the SIMD lanes, so
-// one vec4 store costs far less than three float stores.
+// One vec4 per vertex: on lavapipe each store is a loop over the SIMD lanes, so one vec4 store
+// costs far less than three float stores. positions[].w carries the vertex's block primitive
+// mask (its word offset) to the normals pass; the draw reads xyz.
 layout(set = 0, binding = AM_PB_POSITIONS, std430) writeonly buffer Positions { vec4 positions[]; };
 layout(set = 0, binding = AM_PB_NORMALS, std430) writeonly buffer Normals { vec4 normals[]; };
 layout(set = 0, binding = AM_PB_INDICES, std430) writeonly buffer Indices { uint indices[]; };
@@ -68,21 +62,6 @@ void placeVertex(uint e, uvec3 c0, uint cornerBase, out vec3 pos, out vec3 dir, 
   dir = normalize(p1 - p0);
 }
 
-// Writes vertex out_ (unless past the capacity) with the normal -g / |g| for the field
-// gradient g; where the gradient vanishes, along the edge towards outside (outwardNormal).
-void writeVertex(uint out_, vec3 pos, vec3 g, vec3 dir, float f0) {
-  float len = length(g);
-  vec3 normal = len > 1e-20 && !isinf(len) && !isnan(len) ? -g / len : (f0 >= 0.0 ? dir : -dir);
-  if (out_ >= P.caps.x) return;
-  positions[out_] = vec4(pos, 1.0);
-  normals[out_] = vec4(normal, 0.0);
-}
-
-// Gradient from the tetrahedral stencil values f at offsets d k0..k3 (see main).
-vec3 stencilGradient(vec4 f) {
-  return vec3(dot(f, vec4(1, -1, -1, 1)), dot(f, vec4(-1, -1, 1, 1)), dot(f, vec4(-1, 1, -1, 1)));
-}
-
 void main() {
   uint slot = gl_WorkGroupID.x;
   uint t = gl_LocalInvocationID.x;
@@ -106,44 +85,18 @@ void main() {
   uint vertices = sPrefix[AM_POLY_EDGE_WORDS - 1] + bitCount(sMask[AM_POLY_EDGE_WORDS - 1]);
   uint vertexBase = offsets[slot].x;
   const uint cornerBase = slot * AM_POLY_BLOCK_CORNERS;
-  if (AM_ANALYTIC_GRADIENT) {
-    // Four vertices per invocation, each with the analytic gradient at its position.
-    uint quads = (vertices + 3u) / 4u;
-    for (uint qd = t; qd < quads; qd += AM_POLY_WG_EMIT) {
-      vec3 pos[4], dir[4];
-      float f0[4];
-      vec4 px, py, pz;
-      for (uint c = 0u; c < 4u; ++c) {
-        placeVertex(sVertexEdge[min(4u * qd + c, max(vertices, 1u) - 1u)], c0, cornerBase, pos[c], dir[c], f0[c]);
-        px[c] = pos[c].x;
-        py[c] = pos[c].y;
-        pz[c] = pos[c].z;
-      }
-      Grad4 g = fieldGrad(b * P.modes.y, px, py, pz);
-      for (uint c = 0u; c < 4u; ++c)
-        if (4u * qd + c < vertices) writeVertex(vertexBase + 4u * qd + c, pos[c], vec3(g.x[c], g.y[c], g.z[c]), dir[c], f0[c]);
-    }
-  } else {
-    const float d = P.morph1.w;
-    // Gradient by the tetrahedral stencil (4 points, second-order like central
-    // differences): offsets d (1,-1,-1), d (-1,-1,1), d (-1,1,-1), d (1,1,1).
-    const vec3 k0 = vec3(1, -1, -1), k1 = vec3(-1, -1, 1), k2 = vec3(-1, 1, -1), k3 = vec3(1, 1, 1);
-    uint pairs = (vertices + 1u) / 2u;
-    for (uint pr = t; pr < pairs; pr += AM_POLY_WG_EMIT) {
-      uint va = 2u * pr, vb = min(va + 1u, vertices - 1u);
-      vec3 posA, dirA, posB, dirB;
-      float fa, fb;
-      placeVertex(sVertexEdge[va], c0, cornerBase, posA, dirA, fa);
-      placeVertex(sVertexEdge[vb], c0, cornerBase, posB, dirB, fb);
-      PointsV w;
-      AM_SET_POINT(w, 0, 0, posA + d * k0) AM_SET_POINT(w, 0, 1, posA + d * k1)
-      AM_SET_POINT(w, 0, 2, posA + d * k2) AM_SET_POINT(w, 0, 3, posA + d * k3)
-      AM_SET_POINT(w, 1, 0, posB + d * k0) AM_SET_POINT(w, 1, 1, posB + d * k1)
-      AM_SET_POINT(w, 1, 2, posB + d * k2) AM_SET_POINT(w, 1, 3, posB + d * k3)
-      vec4 f[AM_FIELD_V];
-      fieldV(b * P.modes.y, w, f);
-      writeVertex(vertexBase + va, posA, stencilGradient(f[0]), dirA, fa);
-      if (va + 1u < vertices) writeVertex(vertexBase + va + 1u, posB, stencilGradient(f[1]), dirB, fb);
+  // The block's vertices, one per invocation in turn. The normals pass (poly_normals_main.glsl)
+  // then takes the field's gradient at every vertex of the mesh, with no idle lanes per block;
+  // it reads the block's primitive mask from w and keeps the edge direction written here where
+  // the gradient vanishes.
+  for (uint v = t; v < vertices; v += AM_POLY_WG_EMIT) {
+    vec3 pos, dir;
+    float f0;
+    placeVertex(sVertexEdge[v], c0, cornerBase, pos, dir, f0);
+    uint out_ = vertexBase + v;
+    if (out_ < P.caps.x) {
+      positions[out_] = vec4(pos, uintBitsToFloat(b * P.modes.y));
+      normals[out_] = vec4(f0 >= 0.0 ? dir : -dir, 0.0);  // towards outside
     }
   }
   // Triangles: invocation t < 64 lists those of the 8 cells of row (y, z) = (t % 8, t / 8) in cell

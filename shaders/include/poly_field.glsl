@@ -91,7 +91,7 @@ vec4 convolutionLine4(vec4 v, float s1, float s2, uint axis, vec4 r0, vec4 r1, v
   {                                                                     \
     uint first_ = (op0).w, end_ = (op0).w + (op0).z;                    \
     for (uint g0_ = first_ & ~31u; g0_ < end_; g0_ += 32u) {            \
-      uint bits_ = blockMask[(maskBase) + (g0_ >> 5)];                  \
+      uint bits_ = AM_BLOCK_MASK_WORD(maskBase, g0_ >> 5);              \
       if (g0_ < first_) bits_ &= ~0u << (first_ - g0_);                 \
       if (end_ - g0_ < 32u) bits_ &= (1u << (end_ - g0_)) - 1u;         \
       while (bits_ != 0u) {                                             \

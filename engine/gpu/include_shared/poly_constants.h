@@ -26,11 +26,12 @@
 #define AM_POLY_WG_BLOCKS 64   // coarse pass: one invocation per block
 #define AM_POLY_WG_CELLS 96    // corners + cells pass: one workgroup per active block
 #define AM_POLY_WG_EMIT 64     // emit pass: one workgroup per active block (one invocation per mask word and per row)
+#define AM_POLY_WG_NORMALS 64  // normals pass: four vertices per invocation, over all the mesh's vertices
 // Points per invocation of the batched field evaluation, in vec4, 1 or 2 (shaders/include/poly_field_batch.glsl):
 // a primitive's record is loaded once per invocation and applied to all its points (on lavapipe a
 // load inside a loop costs far more than the arithmetic).
 #define AM_POLY_CORNER_V 2     // corners: 8 per invocation (4, 16 and 32 measured no faster on lavapipe)
-#define AM_POLY_NORMAL_V 2     // normals: 2 vertices per invocation, 4 points each (tetrahedral gradient)
+#define AM_POLY_NORMAL_V 2     // stencil normals: 2 vertices per evaluation, 4 points each (tetrahedral gradient)
 #define AM_POLY_WG_SCAN 256
 #define AM_POLY_SCAN_PER_GROUP 1024  // elements per scan workgroup (4 per invocation)
 #define AM_POLY_SCAN_MAX_GROUPS 1024 // so at most 1M elements per scan
@@ -145,7 +146,8 @@
 #define AM_CTL_DISPATCH 4    // VkDispatchIndirectCommand (x, y, z) for the fine passes
 #define AM_CTL_DRAW 8        // VkDrawIndexedIndirectCommand (5 uints)
 #define AM_CTL_SCAN_TOTAL 14 // uvec2 total of the last scan
-#define AM_CTL_UINTS 16
+#define AM_CTL_NORMALS 16     // VkDispatchIndirectCommand of the normals pass
+#define AM_CTL_UINTS 20
 #define AM_CTL_READBACK_UINTS 4  // counters copied to the host after each frame
 
 #define AM_OVERFLOW_BLOCKS 1u
