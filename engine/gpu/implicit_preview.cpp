@@ -67,7 +67,7 @@ ImplicitPreview::~ImplicitPreview() {
 void ImplicitPreview::update(std::shared_ptr<const PreviewSource> source, double timeSec,
                              const ImplicitPreviewSettings& s) {
   if (!source) return;
-  if (s.gpu && gpuFailure_.empty() && updateGpu(source, s)) {
+  if (s.gpu && gpuFailure_.empty() && updateGpu(source, timeSec, s)) {
     gpuActive_ = true;
     return;
   }
@@ -146,7 +146,8 @@ void ImplicitPreview::pollGpu() {
   }
 }
 
-bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& source, const ImplicitPreviewSettings& s) {
+bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& source, double timeSec,
+                                const ImplicitPreviewSettings& s) {
   if (!poly_) {
     if (Status st = initGpu(); !st) {
       gpuFailure_ = "GPU preview unavailable: " + st.error();
@@ -157,7 +158,20 @@ bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& sour
   if (!gpuFailure_.empty()) return false;
   const bool sameShape = gpuSource_ && gpuSource_->sameAs(*source);
   const int res = sameShape || s.settle ? s.refinedResolution : s.interactiveResolution;
+  const double now = nowSec(), frameSec = now - lastUpdateAt_;
+  lastUpdateAt_ = now;
+  const bool recordedLast = lastUpdateRecorded_;
+  lastUpdateRecorded_ = false;
+  deferred_ = false;
   if (sameShape && res == gpuResolution_ && recordsOfShape_ >= kSettleRecords) return true;  // quiet
+  // Frame pacing: after a frame over the 30 fps budget that recorded a new shape, this frame
+  // draws the last mesh and the new shape waits (gpuSource_ stays the old one, so the next
+  // frame records it).
+  constexpr double kFrameBudgetSec = 1.0 / 30.0;
+  if (s.paceGpu && !sameShape && !s.settle && gpuDrawable_ && recordedLast && frameSec > kFrameBudgetSec) {
+    deferred_ = true;
+    return true;
+  }
   if (!sameShape || res != gpuResolution_) recordsOfShape_ = 0;
 
   auto field = source->field(res);
@@ -207,6 +221,8 @@ bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& sour
   pending_[slot] = true;
   submittedAt_[slot] = nowSec();
   submittedRes_[slot] = res;
+  gpuDrawnTime_ = timeSec;
+  lastUpdateRecorded_ = true;
   ++serial_;
   ++recordsOfShape_;
   gpuSource_ = source;
@@ -242,6 +258,7 @@ ImplicitPreviewStatus ImplicitPreview::status() const {
     st.hasMesh = gpuDrawable_;
     st.resolution = gpuShownRes_;
     st.milliseconds = gpuShownMs_;
+    st.timeSec = gpuDrawnTime_;
     st.triangles = poly_ ? poly_->lastStats().triangles : 0;
     st.refining = busy();
     return st;
@@ -253,6 +270,7 @@ ImplicitPreviewStatus ImplicitPreview::status() const {
   st.hasMesh = true;
   st.resolution = result_->resolution;
   st.milliseconds = result_->stats.milliseconds;
+  st.timeSec = result_->timeSec;
   st.triangles = result_->mesh.triangleCount();
   return st;
 }
@@ -261,7 +279,7 @@ bool ImplicitPreview::busy() const {
   if (usingGpu()) {
     for (bool p : pending_)
       if (p) return true;
-    return recordsOfShape_ < kSettleRecords;
+    return deferred_ || recordsOfShape_ < kSettleRecords;
   }
   // A finished result not uploaded yet (the next update() does) still counts.
   return worker_ && (worker_->busy() || worker_->latestSerial() != uploadedSerial_);

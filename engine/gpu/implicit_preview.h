@@ -10,6 +10,12 @@
 //    changes every frame it runs at the interactive resolution; once a frame
 //    repeats the shape, at the refined one (recorded a few more times, so a
 //    buffer overflow is grown and redone before the preview goes quiet).
+//    Where polygonising every frame would hold the editor below 30 fps (a
+//    frame took longer than 1/30 s and recorded a new shape), the next new
+//    shape waits one frame and the viewport keeps the last mesh, as it does
+//    while the CPU worker runs: the UI stays responsive and the preview shows
+//    every other shape. On a fast GPU frames stay within the budget and every
+//    frame's shape is polygonised.
 // Any GPU failure (unsupported field, out of memory, device errors) moves this
 // preview to the CPU worker and says why (status().gpuFallback); a field the
 // GPU cannot express moves only that shape. The viewport always shows the
@@ -37,6 +43,7 @@ struct ImplicitPreviewSettings {
   bool gpu = false;                // polygonise on the GPU (else, or after a GPU failure, the CPU worker)
   int threads = 0;                 // CPU worker threads (0: all)
   bool settle = false;             // GPU: go straight to the refined resolution (screenshots)
+  bool paceGpu = true;             // GPU: skip a frame's new shape after a slow frame that recorded one (see above)
 };
 
 struct ImplicitPreviewStatus {
@@ -44,6 +51,7 @@ struct ImplicitPreviewStatus {
   bool gpu = false;           // the mesh on screen came from the GPU
   int resolution = 0;         // of the mesh on screen
   double milliseconds = 0.0;  // its polygonisation time (GPU: submit to completion, seen from the frame loop)
+  double timeSec = -1.0;      // the scene time of the mesh drawn (-1: none yet; GPU: of the last recorded shape)
   size_t triangles = 0;
   bool refining = false;      // a finer mesh of the current shape is on its way
   std::string error;          // the shape could not be polygonised
@@ -94,7 +102,7 @@ class ImplicitPreview {
   bool usingGpu() const { return gpuActive_; }
   void updateCpu(std::shared_ptr<const PreviewSource> source, double timeSec, const ImplicitPreviewSettings& s);
   // Returns false (and sets gpuFailure_ or fieldFallback_) when the GPU cannot take this shape.
-  bool updateGpu(const std::shared_ptr<const PreviewSource>& source, const ImplicitPreviewSettings& s);
+  bool updateGpu(const std::shared_ptr<const PreviewSource>& source, double timeSec, const ImplicitPreviewSettings& s);
   Status initGpu();
   void pollGpu();
   void uploadNew();
@@ -126,6 +134,10 @@ class ImplicitPreview {
   int recordsOfShape_ = 0;  // records in a row of (gpuSource_, gpuResolution_)
   bool gpuDrawable_ = false;
   int gpuShownRes_ = 0;
+  double gpuDrawnTime_ = -1.0;      // scene time of the last recorded shape (what the next draw shows)
+  double lastUpdateAt_ = 0.0;      // wall clock of the last updateGpu (frame pacing)
+  bool lastUpdateRecorded_ = false;  // it recorded a polygonisation
+  bool deferred_ = false;            // a new shape waits for the next frame
   double gpuShownMs_ = 0.0;
 };
 

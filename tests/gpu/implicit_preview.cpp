@@ -1,10 +1,12 @@
 // The editor's implicit preview on lavapipe (implicit_preview.h): the GPU path
-// of the morph's B->C stage gives the CPU's surface, and GPU failures (a
-// device out of memory, a field the GPU cannot express) fall back to the CPU
-// worker with a message. Validation on, no errors.
+// of the morph's B->C stage gives the CPU's surface, GPU failures (a device
+// out of memory, a field the GPU cannot express) fall back to the CPU worker
+// with a message, and slow frames pace the GPU path. Validation on, no errors.
 #include <catch2/catch.hpp>
 
+#include <chrono>
 #include <cstdlib>
+#include <thread>
 
 #include "gpu_fixture.h"
 #include "gpu_polygonizer.h"
@@ -142,5 +144,52 @@ TEST_CASE("implicit preview: a stage the GPU cannot express (solid noise) is pol
   CHECK(s.gpuFallback.find("solid noise") != std::string::npos);
   CHECK(preview.gpuFailure().empty());  // only this shape: not a sticky failure
   CHECK(s.triangles > 100);
+  CHECK(ctx->validationErrorCount() == 0);
+}
+
+TEST_CASE("implicit preview: after a slow frame that polygonised, the next new shape waits a frame (GPU pacing)",
+          "[gpu][preview]") {
+  auto ctx = test::makeTestContext();
+  const auto rt = test::demoMorph().runtime;
+  ImplicitPreviewSettings ps;
+  ps.interactiveResolution = 24;
+  ps.refinedResolution = 32;
+  ps.gpu = true;
+  const double t0 = midStageSec(*rt, 0.2);
+  for (bool pace : {true, false}) {
+    ps.paceGpu = pace;
+    ImplicitPreview preview(*ctx);
+    settle(preview, morphPreviewSource(rt, t0), t0, ps);  // pipelines compiled, buffers grown
+    REQUIRE(preview.status().gpu);
+    REQUIRE(preview.status().timeSec == t0);
+    // Scrubbing with frames slower than 1/30 s: each frame a new time.
+    std::vector<double> drawn;
+    bool busyWhileWaiting = true;
+    for (int i = 1; i <= 6; ++i) {
+      const double t = midStageSec(*rt, 0.2 + 0.1 * i);
+      preview.update(morphPreviewSource(rt, t), t, ps);
+      drawn.push_back(preview.status().timeSec);
+      if (drawn.back() != t) busyWhileWaiting = busyWhileWaiting && preview.busy();
+      preview.endFrame();
+      preview.waitIdle(60.0);
+      std::this_thread::sleep_for(std::chrono::milliseconds(45));
+    }
+    INFO("pacing " << pace);
+    int recorded = 0;
+    for (int i = 1; i <= 6; ++i) recorded += drawn[size_t(i - 1)] == midStageSec(*rt, 0.2 + 0.1 * i);
+    if (pace) {
+      // Every other frame polygonises; the others keep drawing the mesh before.
+      CHECK(recorded == 3);
+      for (int i = 2; i <= 6; i += 2) CHECK(drawn[size_t(i - 1)] == drawn[size_t(i - 2)]);
+      CHECK(busyWhileWaiting);  // a shape is waiting: the preview is not idle
+    } else {
+      CHECK(recorded == 6);
+    }
+    // Scrubbing stops: the last time is polygonised and drawn.
+    const double tEnd = midStageSec(*rt, 0.8);
+    ImplicitPreviewStatus s = settle(preview, morphPreviewSource(rt, tEnd), tEnd, ps);
+    CHECK(s.timeSec == tEnd);
+    CHECK(s.resolution == ps.refinedResolution);
+  }
   CHECK(ctx->validationErrorCount() == 0);
 }
