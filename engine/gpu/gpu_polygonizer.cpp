@@ -593,6 +593,7 @@ Status GpuPolygonizer::record(VkCommandBuffer cmd, uint64_t frameSerial, const G
     stats_.blocksActive = c[AM_CTL_ACTIVE];
     stats_.vertices = c[AM_CTL_VERTICES];
     stats_.triangles = c[AM_CTL_TRIANGLES];
+    stats_.overflowed = c[AM_CTL_OVERFLOW] != 0;
     if (c[AM_CTL_OVERFLOW] != 0) {
       // That frame drew nothing; grow to what it needed (counts past a block
       // overflow are partial, so those buffers double too) and redo it now.

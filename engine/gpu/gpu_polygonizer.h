@@ -99,6 +99,7 @@ struct GpuPolygonizeStats {
   uint32_t blocksActive = 0;  // blocks the fine passes evaluated
   uint32_t vertices = 0, triangles = 0;
   uint32_t regrows = 0;       // polygonize(): frames redone after growing the buffers
+  bool overflowed = false;    // record(): the frame kFramesInFlight ago did not fit (it is redone now)
   bool uniformPool = true;    // programs read from a uniform buffer (else storage)
   uint32_t features = 0, kinds = 0;  // the pipeline variant (AM_FEAT_* / AM_KIND_*; all bits: generic)
   double milliseconds = 0.0;  // polygonize(): wall time from submit to completion (all passes)

@@ -13,10 +13,6 @@ namespace {
 double nowSec() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
-// Records of one shape before the GPU preview goes quiet: the counters of a
-// record are read kFramesInFlight records later, so an overflow is grown and
-// redone within this many.
-constexpr int kSettleRecords = 2 * int(kFramesInFlight) + 1;
 }  // namespace
 
 PreviewBackend choosePreviewBackend(PreviewDevice preference, VkPhysicalDeviceType deviceType) {
@@ -157,22 +153,29 @@ bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& sour
   pollGpu();
   if (!gpuFailure_.empty()) return false;
   const bool sameShape = gpuSource_ && gpuSource_->sameAs(*source);
-  const int res = sameShape || s.settle ? s.refinedResolution : s.interactiveResolution;
+  // A shape asked for again after it waited a frame (pacing) has stopped changing too.
+  const bool repeated = sameShape || (deferredSource_ && deferredSource_->sameAs(*source));
+  deferredSource_.reset();
+  const int res = repeated || s.settle ? s.refinedResolution : s.interactiveResolution;
   const double now = nowSec(), frameSec = now - lastUpdateAt_;
   lastUpdateAt_ = now;
   const bool recordedLast = lastUpdateRecorded_;
   lastUpdateRecorded_ = false;
   deferred_ = false;
-  if (sameShape && res == gpuResolution_ && recordsOfShape_ >= kSettleRecords) return true;  // quiet
+  if (sameShape && res == gpuResolution_ && settled_) return true;  // quiet
   // Frame pacing: after a frame over the 30 fps budget that recorded a new shape, this frame
   // draws the last mesh and the new shape waits (gpuSource_ stays the old one, so the next
   // frame records it).
   constexpr double kFrameBudgetSec = 1.0 / 30.0;
-  if (s.paceGpu && !sameShape && !s.settle && gpuDrawable_ && recordedLast && frameSec > kFrameBudgetSec) {
+  if (s.paceGpu && !repeated && !s.settle && gpuDrawable_ && recordedLast && frameSec > kFrameBudgetSec) {
     deferred_ = true;
+    deferredSource_ = source;
     return true;
   }
-  if (!sameShape || res != gpuResolution_) recordsOfShape_ = 0;
+  if (!sameShape || res != gpuResolution_) {
+    recordsOfShape_ = 0;
+    settled_ = false;
+  }
 
   auto field = source->field(res);
   if (!field) {
@@ -225,6 +228,10 @@ bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& sour
   lastUpdateRecorded_ = true;
   ++serial_;
   ++recordsOfShape_;
+  // The counters of a record are read kFramesInFlight records later (inside record()): once those
+  // of a record of this shape show it fitted, the records since fit too and the preview goes
+  // quiet; an overflow was grown and redone in the record that read it.
+  settled_ = recordsOfShape_ > int(kFramesInFlight) && !poly_->lastStats().overflowed;
   gpuSource_ = source;
   gpuResolution_ = res;
   gpuDrawable_ = true;
@@ -279,7 +286,7 @@ bool ImplicitPreview::busy() const {
   if (usingGpu()) {
     for (bool p : pending_)
       if (p) return true;
-    return deferred_ || recordsOfShape_ < kSettleRecords;
+    return deferred_ || !settled_;
   }
   // A finished result not uploaded yet (the next update() does) still counts.
   return worker_ && (worker_->busy() || worker_->latestSerial() != uploadedSerial_);

@@ -8,7 +8,8 @@
 //    submitted to the queue before the frame that draws it (same queue, so the
 //    frame sees the result; no CPU read-back, nothing waits). While the shape
 //    changes every frame it runs at the interactive resolution; once a frame
-//    repeats the shape, at the refined one (recorded a few more times, so a
+//    repeats the shape, at the refined one (recorded until the counters of one
+//    of those records, read kFramesInFlight records later, show it fitted: a
 //    buffer overflow is grown and redone before the preview goes quiet).
 //    Where polygonising every frame would hold the editor below 30 fps (a
 //    frame took longer than 1/30 s and recorded a new shape), the next new
@@ -132,12 +133,14 @@ class ImplicitPreview {
   std::shared_ptr<const PreviewSource> gpuSource_;
   int gpuResolution_ = 0;   // of the shape recorded last
   int recordsOfShape_ = 0;  // records in a row of (gpuSource_, gpuResolution_)
+  bool settled_ = false;    // a record of this shape was read back without overflow: no more records
   bool gpuDrawable_ = false;
   int gpuShownRes_ = 0;
   double gpuDrawnTime_ = -1.0;      // scene time of the last recorded shape (what the next draw shows)
   double lastUpdateAt_ = 0.0;      // wall clock of the last updateGpu (frame pacing)
   bool lastUpdateRecorded_ = false;  // it recorded a polygonisation
   bool deferred_ = false;            // a new shape waits for the next frame
+  std::shared_ptr<const PreviewSource> deferredSource_;  // that shape
   double gpuShownMs_ = 0.0;
 };
 
