@@ -19,7 +19,13 @@ void main() {
   vec2 perPixel = max(fwidth(coord), vec2(1e-6));     // cells per pixel (before any discard)
   float fade = 1.0 - smoothstep(frame.grid.y, frame.grid.z, length(inWorldPos - frame.cameraPos.xyz));
   if (fade <= 0.0) discard;
-  float minor = coverage(abs(fract(coord - 0.5) - 0.5) / perPixel, 1.0);
+  // Pixels between the lines go first too: every line (minor, major, axis) lies on a minor line,
+  // and none covers a pixel more than 1.5 px from it (minor < 1, major < 1.25, axis < 1.5). On
+  // llvmpipe a discard ends the work of a group of pixels that all took it, and most of the grid
+  // is empty.
+  vec2 g = abs(fract(coord - 0.5) - 0.5) / perPixel;  // pixels to the nearest minor line, per axis
+  if (min(g.x, g.y) >= 1.5) discard;
+  float minor = coverage(g, 1.0);
   float major = coverage(abs(fract(coord * 0.1 - 0.5) - 0.5) / (perPixel * 0.1), 1.5);
   vec2 axis = 1.0 - clamp(abs(coord) / perPixel - 0.5, 0.0, 1.0);  // x: on the Z axis (x = 0), y: on the X axis (z = 0)
   vec3 color = vec3(0.45);
