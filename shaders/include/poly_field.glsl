@@ -325,14 +325,21 @@ vec3 closestOnSkeleton(uint rec, vec3 x) {
   return closestOnCurve(floatBitsToUint(POOLF(rec + 3u).w), int(kindBits >> 8), x);
 }
 
-// Skeletal potential of record rec at x, with the enclosing-capsule rejection of skeletalLoop.
-float skeletalValue(uint rec, vec3 q) {
-  vec4 r3 = POOLF(rec + 3u), r4 = POOLF(rec + 4u), r5 = POOLF(rec + 5u);
+// Whether q lies outside the capsule enclosing skeletal record rec (the rejection of
+// skeletalLoop: the potential is 0 there).
+bool outsideSkeletalCapsule(uint rec, vec3 q) {
+  vec4 r4 = POOLF(rec + 4u), r5 = POOLF(rec + 5u);
   vec3 ca = r4.xyz, ab = r5.xyz - r4.xyz;
   float l2 = dot(ab, ab);
   float t = l2 > 0.0 ? clamp(dot(q - ca, ab) / l2, 0.0, 1.0) : 0.0;
   vec3 e = q - (ca + t * ab);
-  if (dot(e, e) >= r4.w * r4.w) return 0.0;
+  return dot(e, e) >= r4.w * r4.w;
+}
+
+// Skeletal potential of record rec at x, with the enclosing-capsule rejection of skeletalLoop.
+float skeletalValue(uint rec, vec3 q) {
+  if (outsideSkeletalCapsule(rec, q)) return 0.0;
+  vec4 r3 = POOLF(rec + 3u);
   vec3 d = q - closestOnSkeleton(rec, q);
   return skeletalPotential(dot(d, d), r3.x, r3.y, r3.z);
 }

@@ -35,12 +35,8 @@ void convolutionGrad4(vec4 x, vec4 y, vec4 z, vec4 r0, vec4 r1, vec4 r2, inout G
 // skeletalValue with its gradient (skeletalLoop).
 float skeletalValueGrad(uint rec, vec3 q, out vec3 grad) {
   grad = vec3(0.0);
-  vec4 r3 = POOLF(rec + 3u), r4 = POOLF(rec + 4u), r5 = POOLF(rec + 5u);
-  vec3 ca = r4.xyz, ab = r5.xyz - r4.xyz;
-  float l2 = dot(ab, ab);
-  float t = l2 > 0.0 ? clamp(dot(q - ca, ab) / l2, 0.0, 1.0) : 0.0;
-  vec3 e = q - (ca + t * ab);
-  if (dot(e, e) >= r4.w * r4.w) return 0.0;
+  if (outsideSkeletalCapsule(rec, q)) return 0.0;
+  vec4 r3 = POOLF(rec + 3u);
   vec3 d = q - closestOnSkeleton(rec, q);
   float d2 = dot(d, d), R2 = r3.x * r3.x, I = r3.y, k = r3.z;
   if (!(d2 < R2) || R2 <= 0.0) return 0.0;
