@@ -6,6 +6,7 @@
 //   AM_SCAN_DOWNSWEEP: group g writes the exclusive prefix of its elements plus partials[g]
 // pc.y picks the arrays: block flags -> block prefix, or per-slot counts -> offsets.
 #include "poly_common.glsl"
+#include "poly_scan_group.glsl"
 
 layout(local_size_x = AM_POLY_WG_SCAN) in;
 layout(push_constant) uniform ScanPush { uvec4 pc; };  // x: phase, y: source, z: element count
@@ -16,8 +17,6 @@ layout(set = 0, binding = AM_PB_COUNTS, std430) readonly buffer Counts { uvec2 c
 layout(set = 0, binding = AM_PB_OFFSETS, std430) writeonly buffer Offsets { uvec2 offsets[]; };
 layout(set = 0, binding = AM_PB_PARTIALS, std430) buffer Partials { uvec2 partials[]; };
 
-shared uvec2 sums[AM_POLY_WG_SCAN];
-
 uvec2 readIn(uint i) {
   if (i >= pc.z) return uvec2(0u);
   return pc.y == AM_SCAN_SOURCE_BLOCKS ? blockFlag[i] : counts[i];
@@ -27,20 +26,6 @@ void writeOut(uint i, uvec2 v) {
   if (i >= pc.z) return;
   if (pc.y == AM_SCAN_SOURCE_BLOCKS) blockPrefix[i] = v;
   else offsets[i] = v;
-}
-
-// Exclusive scan of sums[] across the workgroup (Hillis-Steele); returns this invocation's prefix.
-uvec2 workgroupExclusive(uvec2 mine) {
-  uint t = gl_LocalInvocationID.x;
-  sums[t] = mine;
-  barrier();
-  for (uint d = 1u; d < AM_POLY_WG_SCAN; d <<= 1) {
-    uvec2 add = t >= d ? sums[t - d] : uvec2(0u);
-    barrier();
-    sums[t] += add;
-    barrier();
-  }
-  return sums[t] - mine;
 }
 
 void main() {

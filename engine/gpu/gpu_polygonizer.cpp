@@ -128,7 +128,7 @@ struct GpuPolygonizer::Impl {
     VkPipeline blocks = VK_NULL_HANDLE, cells = VK_NULL_HANDLE, emit = VK_NULL_HANDLE, normals = VK_NULL_HANDLE;
   };
   std::map<std::tuple<uint32_t, uint32_t, int>, FieldPipelines> variants;
-  VkPipeline scan = VK_NULL_HANDLE, compact = VK_NULL_HANDLE, args = VK_NULL_HANDLE;
+  VkPipeline scan = VK_NULL_HANDLE, scanSingle = VK_NULL_HANDLE, compact = VK_NULL_HANDLE, args = VK_NULL_HANDLE;
   VkCommandPool commandPool = VK_NULL_HANDLE;
   VkCommandBuffer cmd = VK_NULL_HANDLE;
   VkFence fence = VK_NULL_HANDLE;
@@ -169,7 +169,7 @@ GpuPolygonizer::Impl::~Impl() {
   for (auto& [key, v] : variants)
     for (VkPipeline p : {v.blocks, v.cells, v.emit, v.normals})
       if (p) vkDestroyPipeline(dev, p, nullptr);
-  for (VkPipeline p : {scan, compact, args})
+  for (VkPipeline p : {scan, scanSingle, compact, args})
     if (p) vkDestroyPipeline(dev, p, nullptr);
   if (fence) vkDestroyFence(dev, fence, nullptr);
   if (timestamps) vkDestroyQueryPool(dev, timestamps, nullptr);
@@ -227,7 +227,10 @@ Status GpuPolygonizer::Impl::init() {
   struct Want {
     VkPipeline* out;
     const char* name;
-  } wants[] = {{&scan, "poly_scan.comp"}, {&compact, "poly_compact.comp"}, {&args, "poly_args.comp"}};
+  } wants[] = {{&scan, "poly_scan.comp"},
+               {&scanSingle, "poly_scan_single.comp"},
+               {&compact, "poly_compact.comp"},
+               {&args, "poly_args.comp"}};
   for (const Want& w : wants) {
     Result<VkPipeline> p = pipeline(w.name);
     if (!p) return Error{p.error()};
@@ -499,7 +502,16 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
     glm::uvec4 pc(x, y, z, 0u);
     vkCmdPushConstants(cb, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, 16, &pc);
   };
+  // A scan and what follows it (compaction and/or indirect arguments): one workgroup when the array
+  // is short enough (poly_scan_single.comp: one dispatch), else three scan phases and the helpers.
   auto runScan = [&](uint32_t source, uint32_t n) {
+    if (s.singleWorkgroupScan && n <= AM_POLY_SCAN_SINGLE_MAX) {
+      vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, scanSingle);
+      push(0, source, n);
+      vkCmdDispatch(cb, 1, 1, 1);
+      computeToCompute(cb);
+      return;
+    }
     uint32_t groups = std::max(1u, (n + AM_POLY_SCAN_PER_GROUP - 1) / AM_POLY_SCAN_PER_GROUP);
     vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, scan);
     push(AM_SCAN_REDUCE, source, n);
@@ -510,6 +522,15 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
     computeToCompute(cb);
     push(AM_SCAN_DOWNSWEEP, source, n);
     vkCmdDispatch(cb, groups, 1, 1);
+    computeToCompute(cb);
+    if (source == AM_SCAN_SOURCE_BLOCKS) {
+      vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, compact);
+      vkCmdDispatch(cb, (nBlocks + AM_POLY_WG_LINEAR - 1) / AM_POLY_WG_LINEAR, 1, 1);
+      computeToCompute(cb);
+    }
+    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, args);
+    push(source == AM_SCAN_SOURCE_BLOCKS ? AM_ARGS_AFTER_BLOCKS : AM_ARGS_AFTER_COUNTS, 0, 0);
+    vkCmdDispatch(cb, 1, 1, 1);
     computeToCompute(cb);
   };
   const uint32_t linearGroups = (nBlocks + AM_POLY_WG_BLOCKS - 1) / AM_POLY_WG_BLOCKS;
@@ -525,26 +546,16 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   vkCmdDispatch(cb, linearGroups, 1, 1);
   computeToCompute(cb);
   timestamp();
-  // Active blocks -> slots.
+  // Active blocks -> slots, and the fine passes' dispatch.
   runScan(AM_SCAN_SOURCE_BLOCKS, nBlocks);
-  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, compact);
-  vkCmdDispatch(cb, (nBlocks + AM_POLY_WG_LINEAR - 1) / AM_POLY_WG_LINEAR, 1, 1);
-  computeToCompute(cb);
-  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, args);
-  push(AM_ARGS_AFTER_BLOCKS, 0, 0);
-  vkCmdDispatch(cb, 1, 1, 1);
-  computeToCompute(cb);
   timestamp();
   // Fine: corner values, cell cases, vertex and triangle counts.
   vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, fp->cells);
   vkCmdDispatchIndirect(cb, control.buffer, AM_CTL_DISPATCH * 4);
   computeToCompute(cb);
   timestamp();
+  // Per-slot offsets, the draw's and the normals pass's arguments.
   runScan(AM_SCAN_SOURCE_COUNTS, blockCapacity);
-  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, args);
-  push(AM_ARGS_AFTER_COUNTS, 0, 0);
-  vkCmdDispatch(cb, 1, 1, 1);
-  computeToCompute(cb);
   timestamp();
   // Vertices and triangles per block, then the normals of all vertices.
   vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, fp->emit);

@@ -86,6 +86,11 @@ struct GpuPolygonizeSettings {
   // compare both). On lavapipe the generic interpreter runs every op's code at
   // every op (no real branches), so specialising halves the fine passes.
   bool specialise = true;
+  // Scans of at most AM_POLY_SCAN_SINGLE_MAX elements (grids up to 256^3) run in one
+  // workgroup, compaction and indirect arguments included: one dispatch instead of five
+  // after the coarse pass and four after the cells pass (on lavapipe each costs ~0.1 ms).
+  // Off: the multi-group scan that longer arrays use (same mesh; tests compare both).
+  bool singleWorkgroupScan = true;
   // Initial buffer capacities (0: automatic). They grow when a frame overflows.
   uint32_t initialBlockCapacity = 0;
   uint32_t initialVertexCapacity = 0;

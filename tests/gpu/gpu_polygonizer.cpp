@@ -277,6 +277,14 @@ TEST_CASE("GPU polygoniser matches the CPU on a convolution chain, culled and de
     CHECK(triangleSet(generic) == triangleSet(culled));
     s.specialise = true;
   }
+  {
+    // The multi-group scan (arrays beyond AM_POLY_SCAN_SINGLE_MAX) against the one-workgroup scan.
+    s.singleWorkgroupScan = false;
+    TriangleMesh grouped = gpuMesh(*r.poly, GpuField::single(p), s);
+    CHECK(triangleSet(grouped) == triangleSet(culled));
+    CHECK(grouped.positions == culled.positions);  // same slots, same vertex order
+    s.singleWorkgroupScan = true;
+  }
   for (auto pool : {GpuPolygonizeSettings::PoolBuffer::Uniform, GpuPolygonizeSettings::PoolBuffer::Storage}) {
     s.poolBuffer = pool;
     GpuPolygonizeStats st;
@@ -368,6 +376,11 @@ TEST_CASE("GPU polygoniser grows its buffers from tiny capacities and redoes the
   REQUIRE(reference.triangleCount() > 1000);
   CHECK(triangleSet(grown) == triangleSet(reference));
   requireClosedManifold(grown);
+  s.singleWorkgroupScan = false;  // the multi-group scan's overflow path
+  GpuPolygonizeStats tinyGrouped;
+  TriangleMesh grownGrouped = gpuMesh(*r.poly, GpuField::single(p), s, &tinyGrouped);
+  CHECK(tinyGrouped.regrows >= 1);
+  CHECK(triangleSet(grownGrouped) == triangleSet(reference));
   CHECK(r.ctx->validationErrorCount() == 0);
 }
 

@@ -35,6 +35,7 @@
 #define AM_POLY_WG_SCAN 256
 #define AM_POLY_SCAN_PER_GROUP 1024  // elements per scan workgroup (4 per invocation)
 #define AM_POLY_SCAN_MAX_GROUPS 1024 // so at most 1M elements per scan
+#define AM_POLY_SCAN_SINGLE_MAX 65536 // up to this many elements, one workgroup scans (poly_scan_single.comp)
 #define AM_POLY_WG_LINEAR 64   // compaction and helpers
 
 // Interpreter limits: programs beyond them are reported and polygonised on the CPU.
