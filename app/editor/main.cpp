@@ -49,6 +49,7 @@ struct Args {
   bool quit = false;
   int width = 1600, height = 900;
   int benchFrames = 0;
+  int scrubFrom = -1, scrubTo = -1;  // --scrub A:B: the bench steps the current frame A..B..A instead of playing
 };
 
 void usage() {
@@ -59,6 +60,8 @@ void usage() {
       "  --quit                 exit after the screenshot\n"
       "  --size WxH             window size (default 1600x900)\n"
       "  --bench N              play N frames and print frame-time figures, then exit\n"
+      "  --scrub A:B            with --bench: step the current frame A..B..A, one frame per\n"
+      "                         redraw, as dragging the timeline does, instead of playing\n"
       "environment: ANIMORPH_GPU=name|index picks the Vulkan device; ANIMORPH_VALIDATION=1 enables\n"
       "validation (errors make the exit status non-zero); ANIMORPH_UI_MAP=FILE writes the positions\n"
       "of named widgets to FILE (for scripted GUI tests).\n");
@@ -80,6 +83,13 @@ bool parseArgs(int argc, char** argv, Args& a) {
     else if (s == "--frame") a.frame = std::atoi(next("--frame"));
     else if (s == "--quit") a.quit = true;
     else if (s == "--bench") a.benchFrames = std::max(1, std::atoi(next("--bench")));
+    else if (s == "--scrub") {
+      if (std::sscanf(next("--scrub"), "%d:%d", &a.scrubFrom, &a.scrubTo) != 2 || a.scrubFrom < 0 ||
+          a.scrubTo <= a.scrubFrom) {
+        std::fprintf(stderr, "animorph: --scrub expects A:B with 0 <= A < B, e.g. 48:84\n");
+        return false;
+      }
+    }
     else if (s == "--size") {
       if (std::sscanf(next("--size"), "%dx%d", &a.width, &a.height) != 2 || a.width < 64 || a.height < 64) {
         std::fprintf(stderr, "animorph: --size expects WxH, e.g. 1600x900\n");
@@ -222,7 +232,12 @@ int main(int argc, char** argv) {
       document->setCurrentFrame(args.frame);
       frameApplied = true;
     }
-    if (args.benchFrames > 0 && frameCount == 2 && !ui.state().playback.playing()) ui.state().playback.toggle(document->project().timeline);
+    if (args.benchFrames > 0 && args.scrubFrom >= 0 && frameCount >= 2) {
+      // A..B..A, one step per redraw: the preview sees a new time every frame, as when dragging.
+      const int span = args.scrubTo - args.scrubFrom, k = (frameCount - 2) % (2 * span);
+      document->setCurrentFrame(args.scrubFrom + (k <= span ? k : 2 * span - k));
+    } else if (args.benchFrames > 0 && frameCount == 2 && !ui.state().playback.playing())
+      ui.state().playback.toggle(document->project().timeline);
 
     imgui.newFrame();
     ui.draw(ectx);
@@ -348,7 +363,8 @@ int main(int argc, char** argv) {
         Status st = renderer.record(f.cmd, f.serial, rect, out.camera, scene);
         if (!st) std::fprintf(stderr, "animorph: %s\n", st.error().c_str());
       }
-      imgui.record(f.cmd);
+      Status ui = imgui.record(f.cmd, f.slot);
+      if (!ui) std::fprintf(stderr, "animorph: %s\n", ui.error().c_str());
       Status st = swapchain.endFrame();
       if (!st) std::fprintf(stderr, "animorph: %s\n", st.error().c_str());
       if (firstFrameMs < 0.0) {

@@ -6,7 +6,7 @@
 //   gpu::Frame f;
 //   if (swapchain.beginFrame(f) == gpu::FrameStatus::Ready) {
 //     sceneRenderer.record(f.cmd, f.serial, viewportRect, camera, scene);  // 3D into a rectangle
-//     ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), f.cmd);      // same render pass
+//     imguiVulkan.record(f.cmd, f.slot);                                 // same render pass (ui/)
 //     swapchain.endFrame();
 //   }
 #include <memory>
@@ -74,14 +74,14 @@ class Swapchain {
   // The captured image, once; nullopt when none was taken since the last call.
   std::optional<RgbaImage> takeCapture();
 
-  // For ImGui_ImplVulkan_Init and friends.
+  // For the UI and scene renderers' pipelines.
   VkRenderPass renderPass() const { return renderPass_; }
   uint32_t imageCount() const { return static_cast<uint32_t>(images_.size()); }
   uint32_t minImageCount() const { return minImageCount_; }
   VkFormat colorFormat() const { return format_.format; }
   VkExtent2D extent() const { return extent_; }
   PresentMode presentMode() const { return presentMode_; }  // the one in use after fallback
-  // Times the swapchain was (re)created; ImGui_ImplVulkan_SetMinImageCount after a change.
+  // Times the swapchain was (re)created.
   uint32_t generation() const { return generation_; }
   const std::string& lastError() const { return lastError_; }
 
