@@ -26,8 +26,9 @@ struct FrameUniforms {
   glm::vec4 grid;
   glm::vec4 gridCenter;
   glm::vec4 selectColor;
+  glm::vec4 viewportPx;
 };
-static_assert(sizeof(FrameUniforms) == 2 * 64 + 5 * 16);
+static_assert(sizeof(FrameUniforms) == 2 * 64 + 6 * 16);
 
 // Push constants of the mesh pipelines (shaders/include/mesh_push.glsl); line.vert reads the first 64 bytes as LinePush.
 struct MeshPush {
@@ -488,8 +489,14 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
   const float fadeEnd = std::max(20.0f * cell, 8.0f * camera.distanceM);
   fu.grid = glm::vec4(cell, 0.25f * fadeEnd, fadeEnd, fadeEnd);
   const float snap = 10.0f * cell;
-  fu.gridCenter = glm::vec4(std::round(camera.target.x / snap) * snap, 0.0f, std::round(camera.target.z / snap) * snap, 0);
+  // The lines within the fade radius of the camera's foot (at most a camera distance from the target).
+  const float gridHalf = fadeEnd + camera.distanceM + snap;
+  const uint32_t gridLines = static_cast<uint32_t>(std::min(std::ceil(gridHalf / cell), 2000.0f));
+  fu.gridCenter = glm::vec4(std::round(camera.target.x / snap) * snap, 0.0f, std::round(camera.target.z / snap) * snap,
+                            float(gridLines));
   fu.selectColor = opt.selectColor;
+  fu.viewportPx = glm::vec4(float(rect.width), float(rect.height),
+                            0.5f * float(rect.height) / std::tan(0.5f * camera.fovYRad), 0.0f);
   std::memcpy(static_cast<uint8_t*>(slot.frame.mapped) + frameOffset, &fu, sizeof(fu));
 
   VkViewport viewport{float(rect.x), float(rect.y), float(rect.width), float(rect.height), 0.0f, 1.0f};
@@ -614,7 +621,7 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
   drawLines(linePipeline_, viewProj, 0, static_cast<uint32_t>(depthLines.size()));
   if (opt.grid) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, gridPipeline_);
-    vkCmdDraw(cmd, 6, 1, 0, 0);
+    vkCmdDraw(cmd, 6, 2 * (2 * gridLines + 1), 0, 0);  // one quad per line (grid.vert)
   }
   drawLines(overlayPipeline_, viewProj, static_cast<uint32_t>(depthLines.size()),
             static_cast<uint32_t>(overlayLines.size()));
