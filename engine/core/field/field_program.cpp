@@ -421,6 +421,11 @@ Bounds FieldProgram::tightBounds(int depth) const {
   while (!stack.empty()) {
     Frame fr = stack.back();
     stack.pop_back();
+    // A box inside the bounds found so far cannot grow them, whatever its leaves: skip it (the
+    // result is the same; the preview computes these bounds every frame of a morph).
+    if (!out.empty() && glm::all(glm::greaterThanEqual(fr.box.min, out.min)) &&
+        glm::all(glm::lessThanEqual(fr.box.max, out.max)))
+      continue;
     primitivesReaching(fr.box, reaching);
     specialise(reaching, active);
     Interval iv = interval(active, fr.box.center(), 0.5f * fr.box.diagonal());
