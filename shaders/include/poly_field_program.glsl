@@ -83,6 +83,20 @@ void AM_PROGRAM(uint opBegin, uint opCount, float T, uint maskBase, AM_POINTS w,
       int s = 3 * V * level;
 #define AM_SAVE(j) saved[s + j] = x[j]; saved[s + V + j] = y[j]; saved[s + 2 * V + j] = z[j];
       AM_EACH(AM_SAVE)
+      if (AM_AFFINE_MAPS_ONLY) {
+        // Affine maps only (frames): L (x - o) on whole vec4s of points, as mapToLocal computes it
+        // per point. On lavapipe the per-point loop below, with its run-time component indices,
+        // cost more than the primitives of a frame-heavy BlobTree.
+        vec4 r0 = POOLF(m), r1 = POOLF(m + 1u), r2 = POOLF(m + 2u), r3 = POOLF(m + 3u);
+#define AM_AFFINE(j)                                                                        \
+  {                                                                                         \
+    vec4 dx = x[j] - r3.x, dy = y[j] - r3.y, dz = z[j] - r3.z;                              \
+    x[j] = r0.x * dx + r1.x * dy + r2.x * dz;                                               \
+    y[j] = r0.y * dx + r1.y * dy + r2.y * dz;                                               \
+    z[j] = r0.z * dx + r1.z * dy + r2.z * dz;                                               \
+  }
+        AM_EACH(AM_AFFINE)
+      } else
       for (uint p = 0u; p < 4u * uint(V) * P.caps.w; ++p) {  // one copy of the map code (see above)
         bool hi = p >= 4u;
         uint c = p & 3u;
@@ -171,6 +185,7 @@ void AM_FIELD(uint maskBase, AM_POINTS w, out vec4 res[AM_FIELD_V]) {
 }
 
 
+#undef AM_AFFINE
 #undef AM_CONV
 #undef AM_LAST
 #undef AM_LERP
