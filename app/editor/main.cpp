@@ -263,6 +263,7 @@ int main(int argc, char** argv) {
     }
     // Not while painting: every stroke is a new revision and would bind the vertices again.
     if (!out.weightPaintMode) ectx.morphRuntime = morphCache.get(doc.project(), doc.baseDir(), assets, &doc, doc.revision());
+    gpu::PreviewBackend morphBackend = backend;  // the morph stage's (its stand-ins decide Auto on CPU devices)
     bool morphStageShown = false;
     float morphOpacity = 0.0f;  // below 1: the cross-fade (dithered, complementary to the mesh)
     std::string morphSourceId;
@@ -270,6 +271,10 @@ int main(int argc, char** argv) {
       isolateForPainting(frame, doc.project().morph, out.weightOverlay.actorId);
       ectx.viewportNote.clear();
     } else if (auto rt = ectx.morphRuntime) {
+      const bool convolution = rt->source.morph.standin.kind == StandinKind::Convolution &&
+                               rt->target.morph.standin.kind == StandinKind::Convolution;
+      morphBackend = gpu::choosePreviewBackend(prefs.previewDevice, ctx.deviceType(),
+                                               convolution ? gpu::PreviewWork::ConvolutionMorph : gpu::PreviewWork::Other);
       MorphSceneInfo info = applyMorph(frame, rt, timeSec, morphSettings, /*implicitStage=*/false);
       ectx.viewportNote = "morph: " + describeMorphStage(info);
       morphOpacity = float(info.implicitOpacity);
@@ -278,7 +283,7 @@ int main(int argc, char** argv) {
         ps.threads = interactivePreviewThreads();
         ps.interactiveResolution = prefs.previewCoarseResolution;
         ps.refinedResolution = prefs.previewResolution;
-        ps.gpu = backend.gpu;
+        ps.gpu = morphBackend.gpu;
         ps.settle = !pendingCapture.empty();
         const double u = info.stage == MorphStage::Morph ? -1.0 : info.implicitProgress;
         morphPreview->update(morphPreviewSource(rt, timeSec, u), timeSec, ps);
@@ -341,7 +346,7 @@ int main(int argc, char** argv) {
       std::string id = selBlobNode >= 0 || (selActor && selActor->kind == ActorKind::BlobTree)
                            ? doc.selection.actorId
                            : (frame.blobs.empty() ? std::string() : frame.blobs.front().actorId);
-      if (morphStageShown) ectx.stats.previewInfo = gpu::describePreviewStatus(morphPreview->status(), backend);
+      if (morphStageShown) ectx.stats.previewInfo = gpu::describePreviewStatus(morphPreview->status(), morphBackend);
       else if (!id.empty()) ectx.stats.previewInfo = gpu::describePreviewStatus(blobPreviews->status(id), backend);
       else ectx.stats.previewInfo.clear();
     }
@@ -394,7 +399,7 @@ int main(int argc, char** argv) {
     if (!uiMapPath.empty() && frameCount % 3 == 0) writeUiMap(uiMapPath, ui.widgets(), out, doc, frameCount,
                  {{"preview_busy", blobPreviews->busy() || (morphStageShown && morphPreview->busy())},
                   {"preview", ectx.stats.previewInfo},
-                  {"preview_gpu", backend.gpu},
+                  {"preview_gpu", morphStageShown ? morphBackend.gpu : backend.gpu},
                   {"standin_segment", selectedStandinSegment(doc, ui.state().standinTool)}});
     std::string title = "Animorph - " + doc.displayName() + (doc.dirty() ? " *" : "");
     if (title != lastTitle) {

@@ -15,11 +15,14 @@ double nowSec() {
 }
 }  // namespace
 
-PreviewBackend choosePreviewBackend(PreviewDevice preference, VkPhysicalDeviceType deviceType) {
+PreviewBackend choosePreviewBackend(PreviewDevice preference, VkPhysicalDeviceType deviceType, PreviewWork work) {
   if (preference == PreviewDevice::Gpu) return {true, "GPU (preference)"};
   if (preference == PreviewDevice::Cpu) return {false, "CPU (preference)"};
   switch (deviceType) {
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return {false, "CPU (auto: the Vulkan device is a CPU, the worker is faster)"};
+    case VK_PHYSICAL_DEVICE_TYPE_CPU:
+      if (work == PreviewWork::ConvolutionMorph)
+        return {true, "GPU (auto: convolution stand-ins, faster than the worker even on this CPU device)"};
+      return {false, "CPU (auto: the Vulkan device is a CPU, the worker is faster for this scene)"};
     case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return {true, "GPU (auto: discrete GPU)"};
     case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return {true, "GPU (auto: integrated GPU)"};
     case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return {true, "GPU (auto: virtual GPU)"};

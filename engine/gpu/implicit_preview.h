@@ -65,7 +65,14 @@ struct PreviewBackend {
   bool gpu = false;
   std::string why;
 };
-PreviewBackend choosePreviewBackend(PreviewDevice preference, VkPhysicalDeviceType deviceType);
+// What a preview polygonises, for Auto on CPU devices (lavapipe): a morph of two convolution
+// stand-ins runs the GPU path's line groups, which scrub faster in the editor than the CPU worker
+// there (`bench editor`: ~34-41 ms against ~47-51 ms a frame at 1600x900, 96^3); BlobTrees and
+// capsule stand-ins run the per-point interpreter, several times slower than the worker there
+// (`bench gpu`, blob creature row).
+enum class PreviewWork { ConvolutionMorph, Other };
+PreviewBackend choosePreviewBackend(PreviewDevice preference, VkPhysicalDeviceType deviceType,
+                                    PreviewWork work = PreviewWork::Other);
 
 // The status bar's line: "preview 128^3 CPU 41 ms, 23110 tris (refining) | CPU (auto: ...)",
 // with the error or the GPU fallback when there is one.
