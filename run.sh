@@ -11,7 +11,8 @@ ROOT=$PWD
 
 BUILD_PACKAGES=(build-essential cmake ninja-build pkg-config
   libimgui-dev libglfw3-dev libglm-dev libvulkan-dev mesa-vulkan-drivers
-  glslang-tools libtinygltf-dev nlohmann-json3-dev libstb-dev libtbb-dev)
+  glslang-tools libtinygltf-dev nlohmann-json3-dev libstb-dev libtbb-dev
+  libx11-dev libxext-dev)
 TEST_PACKAGES=(catch2 vulkan-validationlayers xvfb xauth xdotool imagemagick
   assimp-testmodels python3)
 

@@ -400,6 +400,7 @@ int main(int argc, char** argv) {
                  {{"preview_busy", blobPreviews->busy() || (morphStageShown && morphPreview->busy())},
                   {"preview", ectx.stats.previewInfo},
                   {"preview_gpu", morphStageShown ? morphBackend.gpu : backend.gpu},
+                  {"present", swapchain.presentPath()},
                   {"standin_segment", selectedStandinSegment(doc, ui.state().standinTool)}});
     std::string title = "Animorph - " + doc.displayName() + (doc.dirty() ? " *" : "");
     if (title != lastTitle) {
@@ -410,6 +411,7 @@ int main(int argc, char** argv) {
 
   if (args.benchFrames > 0) {
     std::printf("start to first frame: %.1f ms\n", firstFrameMs);
+    std::printf("present: %s\n", swapchain.presentPath().c_str());
     std::printf("frame time over %zu frames: p50 %.2f ms, p95 %.2f ms, max %.2f ms (device: %s)\n", frameMs.size(),
                 percentile(frameMs, 0.5), percentile(frameMs, 0.95), percentile(frameMs, 1.0),
                 ctx.deviceName().c_str());

@@ -1,6 +1,7 @@
 #include "swapchain.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 
 #define GLFW_INCLUDE_VULKAN
@@ -56,8 +57,20 @@ Status Swapchain::init(const SwapchainSettings& settings) {
       format_ = f;
       break;
     }
-  Result<VkRenderPass> pass =
-      createSceneRenderPass(dev, format_.format, ctx_.depthFormat(), VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
+  presentPath_ = "Vulkan WSI";
+  if (settings.hostPresent && ctx_.deviceType() == VK_PHYSICAL_DEVICE_TYPE_CPU) {
+    const char* env = std::getenv("ANIMORPH_PRESENT");
+    std::string why = "ANIMORPH_PRESENT=wsi";
+    if (!env || std::string(env) != "wsi") host_ = X11ShmPresenter::create(ctx_.window(), why);
+    if (host_) {
+      format_ = {VK_FORMAT_B8G8R8A8_UNORM, VK_COLOR_SPACE_SRGB_NONLINEAR_KHR};  // the window's BGRX bytes
+      presentPath_ = "MIT-SHM (host)";
+    } else {
+      presentPath_ += " (no MIT-SHM: " + why + ")";
+    }
+  }
+  Result<VkRenderPass> pass = createSceneRenderPass(
+      dev, format_.format, ctx_.depthFormat(), host_ ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
   if (!pass) return Error{pass.error()};
   renderPass_ = *pass;
 
@@ -101,6 +114,12 @@ Swapchain::~Swapchain() {
 
 void Swapchain::destroyTargets() {
   VkDevice dev = ctx_.device();
+  for (Image& img : hostImages_) destroyImage(dev, img);
+  hostImages_.clear();
+  for (uint32_t i = 0; i < kFramesInFlight; ++i) {
+    destroyBuffer(dev, hostReadback_[i]);
+    hostPending_[i] = false;
+  }
   for (VkFramebuffer fb : framebuffers_) vkDestroyFramebuffer(dev, fb, nullptr);
   for (VkImageView v : views_) vkDestroyImageView(dev, v, nullptr);
   for (VkSemaphore s : renderDone_) vkDestroySemaphore(dev, s, nullptr);
@@ -111,7 +130,63 @@ void Swapchain::destroyTargets() {
   destroyImage(dev, depth_);
 }
 
+// Host presentation: per frame slot a colour image (copied to a host buffer after the render
+// pass), the shared depth buffer, the framebuffers, and the presenter's segments.
+Status Swapchain::recreateHost(VkExtent2D size) {
+  VkDevice dev = ctx_.device();
+  vkDeviceWaitIdle(dev);
+  destroyTargets();
+  if (!host_->resize(size.width, size.height, kFramesInFlight)) return Error{"MIT-SHM: " + host_->lastError()};
+  extent_ = size;
+  ++generation_;
+  minImageCount_ = 2;
+  captureSupported_ = true;
+  Result<Image> depth =
+      createImage(ctx_, extent_, ctx_.depthFormat(), VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+  if (!depth) return Error{depth.error()};
+  depth_ = *depth;
+  const VkDeviceSize bytes = VkDeviceSize(size.width) * size.height * 4;
+  for (uint32_t i = 0; i < kFramesInFlight; ++i) {
+    Result<Image> img = createImage(ctx_, extent_, format_.format,
+                                    VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                                    VK_IMAGE_ASPECT_COLOR_BIT);
+    if (!img) return Error{img.error()};
+    hostImages_.push_back(*img);
+    images_.push_back(img->image);
+    Result<Buffer> rb = createHostBuffer(ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    if (!rb) return Error{rb.error()};
+    hostReadback_[i] = *rb;
+    VkImageView attachments[2] = {img->view, depth_.view};
+    VkFramebufferCreateInfo fci{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+    fci.renderPass = renderPass_;
+    fci.attachmentCount = 2;
+    fci.pAttachments = attachments;
+    fci.width = extent_.width;
+    fci.height = extent_.height;
+    fci.layers = 1;
+    VkFramebuffer fb = VK_NULL_HANDLE;
+    AM_VK_TRY(vkCreateFramebuffer(dev, &fci, nullptr, &fb), "vkCreateFramebuffer (host)");
+    framebuffers_.push_back(fb);
+  }
+  needsRecreate_ = false;
+  return Status::success();
+}
+
+// Puts slot's finished frame (its fence has signalled) into the window.
+void Swapchain::presentHost(uint32_t slot) {
+  hostPending_[slot] = false;
+  uint8_t* dst = host_->pixels(slot);
+  if (!dst) return;
+  const auto* src = static_cast<const uint8_t*>(hostReadback_[slot].mapped);
+  const size_t row = size_t(extent_.width) * 4, stride = host_->stride();
+  if (stride == row) std::memcpy(dst, src, row * extent_.height);
+  else
+    for (uint32_t y = 0; y < extent_.height; ++y) std::memcpy(dst + y * stride, src + y * row, row);
+  host_->present(slot);
+}
+
 Status Swapchain::recreate(VkExtent2D size) {
+  if (host_) return recreateHost(size);
   VkDevice dev = ctx_.device();
   VkPhysicalDevice pd = ctx_.physicalDevice();
   VkSurfaceCapabilitiesKHR caps;
@@ -211,6 +286,22 @@ FrameStatus Swapchain::beginFrame(Frame& frame) {
   if (size.width == 0 || size.height == 0) return FrameStatus::Skipped;  // minimised
   VkResult r = vkWaitForFences(dev, 1, &inFlight_[slot_], VK_TRUE, UINT64_MAX);
   if (r != VK_SUCCESS) return fail(vkError("vkWaitForFences", r).message);
+  if (host_) {
+    // The previous frame, submitted before this one's UI work: put it into the window now.
+    for (uint32_t k = 1; k < kFramesInFlight; ++k) {
+      uint32_t prev = (slot_ + kFramesInFlight - k) % kFramesInFlight;
+      if (!hostPending_[prev]) continue;
+      r = vkWaitForFences(dev, 1, &inFlight_[prev], VK_TRUE, UINT64_MAX);
+      if (r != VK_SUCCESS) return fail(vkError("vkWaitForFences", r).message);
+      presentHost(prev);
+    }
+    if (hostPending_[slot_]) presentHost(slot_);
+    if (needsRecreate_ || hostImages_.empty() || size.width != extent_.width || size.height != extent_.height) {
+      Status s = recreate(size);
+      if (!s) return fail(s.error());
+    }
+    imageIndex_ = slot_;
+  } else {
   if (needsRecreate_ || !swapchain_ || size.width != extent_.width || size.height != extent_.height) {
     Status s = recreate(size);
     if (!s) return fail(s.error());
@@ -223,6 +314,7 @@ FrameStatus Swapchain::beginFrame(Frame& frame) {
   }
   if (r == VK_SUBOPTIMAL_KHR) needsRecreate_ = true;  // still usable for this frame
   else if (r != VK_SUCCESS) return fail(vkError("vkAcquireNextImageKHR", r).message);
+  }
 
   VkCommandBuffer cmd = cmds_[slot_];
   vkResetFences(dev, 1, &inFlight_[slot_]);
@@ -252,6 +344,7 @@ Status Swapchain::endFrame() {
   VkDevice dev = ctx_.device();
   VkCommandBuffer cmd = cmds_[slot_];
   vkCmdEndRenderPass(cmd);
+  if (host_) return endFrameHost(cmd);
 
   captureRecorded_ = false;
   if (captureRequested_ && captureSupported_) {
@@ -336,6 +429,53 @@ Status Swapchain::endFrame() {
       for (size_t i = 0; i < img.pixels.size(); i += 4) std::swap(img.pixels[i], img.pixels[i + 2]);
     for (size_t i = 3; i < img.pixels.size(); i += 4) img.pixels[i] = 255;  // the window is opaque
     capture_ = std::move(img);
+  }
+  ++serial_;
+  slot_ = static_cast<uint32_t>(serial_ % kFramesInFlight);
+  return Status::success();
+}
+
+// Host presentation: the image (TRANSFER_SRC after the render pass) goes to the slot's host
+// buffer; the next beginFrame puts it into the window (a capture waits and puts it now).
+Status Swapchain::endFrameHost(VkCommandBuffer cmd) {
+  VkDevice dev = ctx_.device();
+  VkBufferImageCopy region{};
+  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.imageExtent = {extent_.width, extent_.height, 1};
+  vkCmdCopyImageToBuffer(cmd, hostImages_[slot_].image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, hostReadback_[slot_].buffer,
+                         1, &region);
+  VkBufferMemoryBarrier toHost{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
+  toHost.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+  toHost.srcQueueFamilyIndex = toHost.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  toHost.buffer = hostReadback_[slot_].buffer;
+  toHost.size = VK_WHOLE_SIZE;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1, &toHost, 0,
+                       nullptr);
+  AM_VK_TRY(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+  VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  si.commandBufferCount = 1;
+  si.pCommandBuffers = &cmd;
+  VkResult r = vkQueueSubmit(ctx_.queue(), 1, &si, inFlight_[slot_]);
+  if (r != VK_SUCCESS) {
+    lastError_ = vkError("vkQueueSubmit", r).message;
+    return Error{lastError_};
+  }
+  hostPending_[slot_] = true;
+  if (captureRequested_) {
+    captureRequested_ = false;
+    vkWaitForFences(dev, 1, &inFlight_[slot_], VK_TRUE, UINT64_MAX);
+    RgbaImage img;
+    img.width = extent_.width;
+    img.height = extent_.height;
+    img.pixels.resize(size_t(img.width) * img.height * 4);
+    std::memcpy(img.pixels.data(), hostReadback_[slot_].mapped, img.pixels.size());
+    for (size_t i = 0; i < img.pixels.size(); i += 4) {
+      std::swap(img.pixels[i], img.pixels[i + 2]);  // BGRA -> RGBA
+      img.pixels[i + 3] = 255;                      // the window is opaque
+    }
+    capture_ = std::move(img);
+    presentHost(slot_);
   }
   ++serial_;
   slot_ = static_cast<uint32_t>(serial_ % kFramesInFlight);

@@ -21,6 +21,7 @@
 #include "image.h"
 #include "rgba_image.h"
 #include "shared_constants.h"
+#include "x11_shm_presenter.h"
 
 namespace animorph::gpu {
 
@@ -32,6 +33,11 @@ enum class PresentMode {
 
 struct SwapchainSettings {
   PresentMode presentMode = PresentMode::Fifo;
+  // On a CPU Vulkan device (lavapipe) with an X11 window: render into our own images and put
+  // them into the window through MIT-SHM (x11_shm_presenter.h) instead of the Vulkan WSI, whose
+  // software path sends every frame through the X socket when the server has no DRI3 (Xvfb,
+  // Xvnc, xrdp). ANIMORPH_PRESENT=wsi in the environment turns it off.
+  bool hostPresent = true;
   glm::vec4 clearColor{0.11f, 0.11f, 0.12f, 1.0f};  // the whole window, before UI and 3D
 };
 
@@ -84,12 +90,17 @@ class Swapchain {
   // Times the swapchain was (re)created.
   uint32_t generation() const { return generation_; }
   const std::string& lastError() const { return lastError_; }
+  // How frames reach the window: "Vulkan WSI" or "MIT-SHM (host)", and why not MIT-SHM.
+  const std::string& presentPath() const { return presentPath_; }
 
  private:
   explicit Swapchain(Context& ctx) : ctx_(ctx) {}
   Status init(const SwapchainSettings& settings);
   Status recreate(VkExtent2D framebufferSize);
   void destroyTargets();
+  Status recreateHost(VkExtent2D size);
+  Status endFrameHost(VkCommandBuffer cmd);
+  void presentHost(uint32_t slot);
   FrameStatus fail(const std::string& message);
 
   Context& ctx_;
@@ -121,6 +132,13 @@ class Swapchain {
   Buffer captureBuffer_;
   std::optional<RgbaImage> capture_;
   std::string lastError_;
+  std::string presentPath_;
+  // Host presentation (hostPresent): per frame slot our own colour image, the buffer it is copied
+  // into, and whether that frame still has to be put into the window.
+  std::unique_ptr<X11ShmPresenter> host_;
+  std::vector<Image> hostImages_;
+  Buffer hostReadback_[kFramesInFlight];
+  bool hostPending_[kFramesInFlight]{};
 };
 
 }  // namespace animorph::gpu
