@@ -169,6 +169,15 @@ Status Context::init(const ContextSettings& settings) {
   qci.pQueuePriorities = &priority;
   std::vector<const char*> deviceExts;
   if (window_) deviceExts.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+  if (window_ && hasDeviceExtension(physical_, VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME)) {
+    deviceExts.push_back(VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME);
+    hostMemoryImport_ = true;
+    VkPhysicalDeviceExternalMemoryHostPropertiesEXT hp{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTERNAL_MEMORY_HOST_PROPERTIES_EXT};
+    VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    p2.pNext = &hp;
+    vkGetPhysicalDeviceProperties2(physical_, &p2);
+    hostPointerAlignment_ = std::max<VkDeviceSize>(hp.minImportedHostPointerAlignment, 1);
+  }
   VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   dci.queueCreateInfoCount = 1;
   dci.pQueueCreateInfos = &qci;

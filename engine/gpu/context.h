@@ -59,6 +59,10 @@ class Context {
   VkFormat depthFormat() const { return depthFormat_; }
   // fillModeNonSolid is enabled (wireframe by polygon mode rather than edge lists).
   bool supportsWireframeFill() const { return fillModeNonSolid_; }
+  // VK_EXT_external_memory_host is enabled (windowed contexts): host memory such as an X11
+  // shared-memory segment can back a buffer (the swapchain's host presentation).
+  bool supportsHostMemoryImport() const { return hostMemoryImport_; }
+  VkDeviceSize hostPointerAlignment() const { return hostPointerAlignment_; }
 
   bool validationEnabled() const { return validationEnabled_; }
   uint32_t validationErrorCount() const { return counters_->errors.load(); }
@@ -100,6 +104,8 @@ class Context {
   VkFormat depthFormat_ = VK_FORMAT_UNDEFINED;
   std::string deviceName_;
   bool fillModeNonSolid_ = false;
+  bool hostMemoryImport_ = false;
+  VkDeviceSize hostPointerAlignment_ = 4096;
   bool validationEnabled_ = false;
 };
 

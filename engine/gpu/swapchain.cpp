@@ -30,6 +30,50 @@ VkPresentModeKHR toVk(PresentMode m) {
 
 bool isBgra(VkFormat f) { return f == VK_FORMAT_B8G8R8A8_UNORM || f == VK_FORMAT_B8G8R8A8_SRGB; }
 
+// A transfer-destination buffer whose memory is `bytes` of host memory at `ptr` (an X11 shared
+// segment), through VK_EXT_external_memory_host: the device's copy writes the window's pixels
+// straight into the segment. The Buffer is not mapped (its `mapped` stays null).
+Result<Buffer> importHostBuffer(const Context& ctx, void* ptr, VkDeviceSize bytes) {
+  VkDevice dev = ctx.device();
+  auto hostPointerProperties = reinterpret_cast<PFN_vkGetMemoryHostPointerPropertiesEXT>(
+      vkGetDeviceProcAddr(dev, "vkGetMemoryHostPointerPropertiesEXT"));
+  if (!hostPointerProperties) return Error{"vkGetMemoryHostPointerPropertiesEXT is missing"};
+  VkExternalMemoryBufferCreateInfo ext{VK_STRUCTURE_TYPE_EXTERNAL_MEMORY_BUFFER_CREATE_INFO};
+  ext.handleTypes = VK_EXTERNAL_MEMORY_HANDLE_TYPE_HOST_ALLOCATION_BIT_EXT;
+  VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  bi.pNext = &ext;
+  bi.size = bytes;
+  bi.usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  bi.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  Buffer b;
+  AM_VK_TRY(vkCreateBuffer(dev, &bi, nullptr, &b.buffer), "vkCreateBuffer (imported host memory)");
+  VkMemoryHostPointerPropertiesEXT hp{VK_STRUCTURE_TYPE_MEMORY_HOST_POINTER_PROPERTIES_EXT};
+  VkResult r = hostPointerProperties(dev, VK_EXTERNAL_MEMORY_HANDLE_TYPE_HOST_ALLOCATION_BIT_EXT, ptr, &hp);
+  VkMemoryRequirements req;
+  vkGetBufferMemoryRequirements(dev, b.buffer, &req);
+  const uint32_t bits = req.memoryTypeBits & hp.memoryTypeBits;
+  uint32_t type = r == VK_SUCCESS && bits ? ctx.findMemoryType(bits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) : UINT32_MAX;
+  if (type == UINT32_MAX) {
+    destroyBuffer(dev, b);
+    return Error{"the shared segment cannot back a buffer"};
+  }
+  VkImportMemoryHostPointerInfoEXT imp{VK_STRUCTURE_TYPE_IMPORT_MEMORY_HOST_POINTER_INFO_EXT};
+  imp.handleType = VK_EXTERNAL_MEMORY_HANDLE_TYPE_HOST_ALLOCATION_BIT_EXT;
+  imp.pHostPointer = ptr;
+  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  ai.pNext = &imp;
+  ai.allocationSize = bytes;
+  ai.memoryTypeIndex = type;
+  r = vkAllocateMemory(dev, &ai, nullptr, &b.memory);
+  if (r == VK_SUCCESS) r = vkBindBufferMemory(dev, b.buffer, b.memory, 0);
+  if (r != VK_SUCCESS) {
+    destroyBuffer(dev, b);
+    return vkError("importing the shared segment", r);
+  }
+  b.size = bytes;
+  return b;
+}
+
 }  // namespace
 
 Result<std::unique_ptr<Swapchain>> Swapchain::create(Context& ctx, const SwapchainSettings& settings) {
@@ -136,7 +180,10 @@ Status Swapchain::recreateHost(VkExtent2D size) {
   VkDevice dev = ctx_.device();
   vkDeviceWaitIdle(dev);
   destroyTargets();
-  if (!host_->resize(size.width, size.height, kFramesInFlight)) return Error{"MIT-SHM: " + host_->lastError()};
+  const size_t alignment = ctx_.supportsHostMemoryImport() ? size_t(ctx_.hostPointerAlignment()) : 4096;
+  if (!host_->resize(size.width, size.height, kFramesInFlight, alignment))
+    return Error{"MIT-SHM: " + host_->lastError()};
+  hostImported_ = ctx_.supportsHostMemoryImport();
   extent_ = size;
   ++generation_;
   minImageCount_ = 2;
@@ -145,7 +192,24 @@ Status Swapchain::recreateHost(VkExtent2D size) {
       createImage(ctx_, extent_, ctx_.depthFormat(), VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
   if (!depth) return Error{depth.error()};
   depth_ = *depth;
+  // The copies' destinations: each slot's shared segment itself when the device can import it,
+  // else host buffers copied into the segments when the frames are put.
+  for (uint32_t i = 0; i < kFramesInFlight && hostImported_; ++i) {
+    Result<Buffer> rb = importHostBuffer(ctx_, host_->segment(i), host_->segmentBytes());
+    if (rb) {
+      hostReadback_[i] = *rb;
+      continue;
+    }
+    for (uint32_t k = 0; k < i; ++k) destroyBuffer(dev, hostReadback_[k]);
+    hostImported_ = false;
+    presentPath_ = "MIT-SHM (host, copied: " + rb.error() + ")";
+  }
   const VkDeviceSize bytes = VkDeviceSize(size.width) * size.height * 4;
+  for (uint32_t i = 0; i < kFramesInFlight && !hostImported_; ++i) {
+    Result<Buffer> rb = createHostBuffer(ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    if (!rb) return Error{rb.error()};
+    hostReadback_[i] = *rb;
+  }
   for (uint32_t i = 0; i < kFramesInFlight; ++i) {
     Result<Image> img = createImage(ctx_, extent_, format_.format,
                                     VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
@@ -153,9 +217,6 @@ Status Swapchain::recreateHost(VkExtent2D size) {
     if (!img) return Error{img.error()};
     hostImages_.push_back(*img);
     images_.push_back(img->image);
-    Result<Buffer> rb = createHostBuffer(ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-    if (!rb) return Error{rb.error()};
-    hostReadback_[i] = *rb;
     VkImageView attachments[2] = {img->view, depth_.view};
     VkFramebufferCreateInfo fci{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
     fci.renderPass = renderPass_;
@@ -175,6 +236,10 @@ Status Swapchain::recreateHost(VkExtent2D size) {
 // Puts slot's finished frame (its fence has signalled) into the window.
 void Swapchain::presentHost(uint32_t slot) {
   hostPending_[slot] = false;
+  if (hostImported_) {  // the device's copy wrote the segment
+    host_->present(slot);
+    return;
+  }
   uint8_t* dst = host_->pixels(slot);
   if (!dst) return;
   const auto* src = static_cast<const uint8_t*>(hostReadback_[slot].mapped);
@@ -287,6 +352,9 @@ FrameStatus Swapchain::beginFrame(Frame& frame) {
   VkResult r = vkWaitForFences(dev, 1, &inFlight_[slot_], VK_TRUE, UINT64_MAX);
   if (r != VK_SUCCESS) return fail(vkError("vkWaitForFences", r).message);
   if (host_) {
+    // This frame's copy writes the slot's segment: the server must have read the frame put there
+    // two frames ago (a round trip, before the previous frame is put, so as not to wait for that).
+    if (hostImported_) host_->sync();
     // The previous frame, submitted before this one's UI work: put it into the window now.
     for (uint32_t k = 1; k < kFramesInFlight; ++k) {
       uint32_t prev = (slot_ + kFramesInFlight - k) % kFramesInFlight;
@@ -440,6 +508,7 @@ Status Swapchain::endFrame() {
 Status Swapchain::endFrameHost(VkCommandBuffer cmd) {
   VkDevice dev = ctx_.device();
   VkBufferImageCopy region{};
+  if (hostImported_) region.bufferRowLength = host_->stride() / 4;  // the segment's rows
   region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
   region.imageExtent = {extent_.width, extent_.height, 1};
   vkCmdCopyImageToBuffer(cmd, hostImages_[slot_].image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, hostReadback_[slot_].buffer,
@@ -469,7 +538,9 @@ Status Swapchain::endFrameHost(VkCommandBuffer cmd) {
     img.width = extent_.width;
     img.height = extent_.height;
     img.pixels.resize(size_t(img.width) * img.height * 4);
-    std::memcpy(img.pixels.data(), hostReadback_[slot_].mapped, img.pixels.size());
+    const uint8_t* src = hostImported_ ? host_->segment(slot_) : static_cast<const uint8_t*>(hostReadback_[slot_].mapped);
+    const size_t row = size_t(img.width) * 4, stride = hostImported_ ? host_->stride() : row;
+    for (uint32_t y = 0; y < img.height; ++y) std::memcpy(img.pixels.data() + y * row, src + y * stride, row);
     for (size_t i = 0; i < img.pixels.size(); i += 4) {
       std::swap(img.pixels[i], img.pixels[i + 2]);  // BGRA -> RGBA
       img.pixels[i + 3] = 255;                      // the window is opaque

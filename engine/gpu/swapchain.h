@@ -139,6 +139,7 @@ class Swapchain {
   std::vector<Image> hostImages_;
   Buffer hostReadback_[kFramesInFlight];
   bool hostPending_[kFramesInFlight]{};
+  bool hostImported_ = false;  // hostReadback_ are the presenter's segments (VK_EXT_external_memory_host)
 };
 
 }  // namespace animorph::gpu

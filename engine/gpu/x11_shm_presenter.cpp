@@ -38,6 +38,7 @@ struct X11ShmPresenter::Impl {
   };
   std::vector<Slot> slots;
   uint32_t width = 0, height = 0;
+  size_t bytes = 0;       // of each segment
   bool unsynced = false;  // a put was sent since the last XSync
 
   void freeSlots() {
@@ -103,7 +104,7 @@ std::unique_ptr<X11ShmPresenter> X11ShmPresenter::create(GLFWwindow* window, std
   return p;
 }
 
-bool X11ShmPresenter::resize(uint32_t width, uint32_t height, uint32_t slots) {
+bool X11ShmPresenter::resize(uint32_t width, uint32_t height, uint32_t slots, size_t alignment) {
   Impl& m = *impl_;
   m.freeSlots();
   m.width = width;
@@ -121,7 +122,9 @@ bool X11ShmPresenter::resize(uint32_t width, uint32_t height, uint32_t slots) {
       ok = false;
       break;
     }
-    s.shm.shmid = shmget(IPC_PRIVATE, size_t(s.image->bytes_per_line) * height, IPC_CREAT | 0600);
+    alignment = alignment ? alignment : 1;
+    m.bytes = (size_t(s.image->bytes_per_line) * height + alignment - 1) / alignment * alignment;
+    s.shm.shmid = shmget(IPC_PRIVATE, m.bytes, IPC_CREAT | 0600);
     if (s.shm.shmid < 0) {
       error_ = "shmget failed";
       ok = false;
@@ -149,15 +152,26 @@ bool X11ShmPresenter::resize(uint32_t width, uint32_t height, uint32_t slots) {
   return ok;
 }
 
-uint8_t* X11ShmPresenter::pixels(uint32_t slot) {
+void X11ShmPresenter::sync() {
   Impl& m = *impl_;
-  if (slot >= m.slots.size()) return nullptr;
   if (m.unsynced) {  // the server may still be reading a segment: a round trip makes sure it is done
     XSync(m.dpy, False);
     m.unsynced = false;
   }
+}
+
+uint8_t* X11ShmPresenter::pixels(uint32_t slot) {
+  Impl& m = *impl_;
+  if (slot >= m.slots.size()) return nullptr;
+  sync();
   return reinterpret_cast<uint8_t*>(m.slots[slot].image->data);
 }
+
+uint8_t* X11ShmPresenter::segment(uint32_t slot) const {
+  return slot < impl_->slots.size() ? reinterpret_cast<uint8_t*>(impl_->slots[slot].image->data) : nullptr;
+}
+
+size_t X11ShmPresenter::segmentBytes() const { return impl_->bytes; }
 
 uint32_t X11ShmPresenter::stride() const {
   return impl_->slots.empty() ? 0u : uint32_t(impl_->slots.front().image->bytes_per_line);
@@ -181,8 +195,11 @@ std::unique_ptr<X11ShmPresenter> X11ShmPresenter::create(GLFWwindow*, std::strin
   why = "built without Xlib/Xext";
   return nullptr;
 }
-bool X11ShmPresenter::resize(uint32_t, uint32_t, uint32_t) { return false; }
+bool X11ShmPresenter::resize(uint32_t, uint32_t, uint32_t, size_t) { return false; }
 uint8_t* X11ShmPresenter::pixels(uint32_t) { return nullptr; }
+uint8_t* X11ShmPresenter::segment(uint32_t) const { return nullptr; }
+size_t X11ShmPresenter::segmentBytes() const { return 0; }
+void X11ShmPresenter::sync() {}
 uint32_t X11ShmPresenter::stride() const { return 0; }
 bool X11ShmPresenter::present(uint32_t) { return false; }
 

@@ -26,9 +26,16 @@ class X11ShmPresenter {
   X11ShmPresenter(const X11ShmPresenter&) = delete;
   X11ShmPresenter& operator=(const X11ShmPresenter&) = delete;
 
-  // (Re)creates `slots` segments of width x height. False (and lastError()) when
-  // the server refuses them.
-  bool resize(uint32_t width, uint32_t height, uint32_t slots);
+  // (Re)creates `slots` segments of width x height, each a multiple of `alignment`
+  // bytes long (so a Vulkan buffer can import it). False (and lastError()) when the
+  // server refuses them.
+  bool resize(uint32_t width, uint32_t height, uint32_t slots, size_t alignment = 4096);
+  // Slot's segment and its length in bytes (stride() x height, rounded up to the alignment).
+  uint8_t* segment(uint32_t slot) const;
+  size_t segmentBytes() const;
+  // Waits until the server has finished reading every segment sent so far (before they are
+  // written again, by the CPU or by a device copy).
+  void sync();
   // Where to write slot's pixels: height rows of stride() bytes. Waits until the
   // server has finished reading the slot's previous frame.
   uint8_t* pixels(uint32_t slot);
