@@ -183,7 +183,10 @@ Status Swapchain::recreateHost(VkExtent2D size) {
   const size_t alignment = ctx_.supportsHostMemoryImport() ? size_t(ctx_.hostPointerAlignment()) : 4096;
   if (!host_->resize(size.width, size.height, kFramesInFlight, alignment))
     return Error{"MIT-SHM: " + host_->lastError()};
-  hostImported_ = ctx_.supportsHostMemoryImport();
+  // ANIMORPH_PRESENT=copy: host buffers copied by the CPU even where the segments could be imported (tests).
+  const char* env = std::getenv("ANIMORPH_PRESENT");
+  hostImported_ = ctx_.supportsHostMemoryImport() && !(env && std::string(env) == "copy");
+  if (!hostImported_) presentPath_ = "MIT-SHM (host, copied)";
   extent_ = size;
   ++generation_;
   minImageCount_ = 2;
