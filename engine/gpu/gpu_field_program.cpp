@@ -62,6 +62,23 @@ void packOne(const FieldProgram& prog, uint32_t primOffset, PackedFieldPrograms&
     } else if (op.code == OpCode::BeginMap || op.code == OpCode::EndMap) {
       op1.y = mapsBase + AM_REC_MAP * op.first;
     }
+    if (op.code == OpCode::BeginMap) {
+      // The subtree this map opens (ops i..e, one value): its primitives' global ids [p0, p1) and
+      // how many ops to skip, so that a block none of them reaches pushes ops[e].emptyValue instead
+      // of running the subtree (as FieldProgram::specialise does on the CPU).
+      const uint32_t e = prog.subtreeEnd(uint32_t(i));
+      uint32_t p0 = UINT32_MAX, p1 = 0;
+      for (uint32_t k = uint32_t(i); k <= e; ++k)
+        if (prog.ops[k].code == OpCode::Prims && prog.ops[k].count > 0) {
+          p0 = std::min(p0, prog.ops[k].primBegin);
+          p1 = std::max(p1, prog.ops[k].primBegin + prog.ops[k].count);
+        }
+      if (p0 == UINT32_MAX) p0 = p1 = 0;
+      op0.w = primOffset + p0;
+      op0.y = p1 - p0;
+      op1.z = bits(prog.ops[e].emptyValue);
+      op1.w = e - uint32_t(i);
+    }
     pool[opsBase + AM_REC_OP * i] = op0;
     pool[opsBase + AM_REC_OP * i + 1] = op1;
   }

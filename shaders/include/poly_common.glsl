@@ -100,6 +100,18 @@ vec3 cornerPosition(uvec3 g) { return P.gridOrigin.xyz + P.gridOrigin.w * vec3(g
 
 bool primActive(uint maskBase, uint g) { return ((AM_BLOCK_MASK_WORD(maskBase, g >> 5) >> (g & 31u)) & 1u) != 0u; }
 
+// Whether any of the primitives first .. first + n - 1 reaches the block.
+bool anyPrimActive(uint maskBase, uint first, uint n) {
+  uint end = first + n, bits = 0u;
+  for (uint g0 = first & ~31u; g0 < end; g0 += 32u) {
+    uint w = AM_BLOCK_MASK_WORD(maskBase, g0 >> 5);
+    if (g0 < first) w &= ~0u << (first - g0);
+    if (end - g0 < 32u) w &= (1u << (end - g0)) - 1u;
+    bits |= w;
+  }
+  return bits != 0u;
+}
+
 // Bit of the edge (base corner l, axis a) in its block's closed-box numbering.
 uint edgeBit(uvec3 l, uint a) {
   if (a == 0u) return l.x + 8u * (l.y + 9u * l.z);

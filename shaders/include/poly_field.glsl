@@ -483,6 +483,11 @@ vec2 programInterval(uint opBegin, uint opCount, float T, vec3 centre, float rad
     } else if (AM_HAS_OP(AM_OP_CONST) && code == AM_OP_CONST) {
       st[sp++] = vec2(op1.z);
     } else if (AM_HAS_OP(AM_OP_BEGINMAP) && code == AM_OP_BEGINMAP) {
+      if (!anyPrimActive(maskBase, op0.w, op0.y)) {  // the subtree is constant here (gpu_field_program.cpp)
+        st[sp++] = vec2(op1.z);
+        i += floatBitsToUint(op1.w);
+        continue;
+      }
       uint m = floatBitsToUint(op1.y);
       balls[level++] = vec4(c, rho);
       float stretch = mapStretchBound(m, c, rho);

@@ -149,7 +149,14 @@ Grad4 programGrad(uint opBegin, uint opCount, float T, uint maskBase, vec4 px, v
       st[sp] = zeroGrad4(vec4(uintBitsToFloat(POOLU(o + 1u).z)));
       ++sp;
     } else if (AM_HAS_OP(AM_OP_BEGINMAP) && code == AM_OP_BEGINMAP) {
-      uint m = POOLU(o + 1u).y;
+      uvec4 op1 = POOLU(o + 1u);
+      if (!anyPrimActive(maskBase, op0.w, op0.y)) {  // the subtree is constant here (gpu_field_program.cpp)
+        st[sp] = zeroGrad4(vec4(uintBitsToFloat(op1.z)));
+        ++sp;
+        i += op1.w;
+        continue;
+      }
+      uint m = op1.y;
       vec4 r0 = POOLF(m), r1 = POOLF(m + 1u), r2 = POOLF(m + 2u), r3 = POOLF(m + 3u);
       saved[3 * level] = x;
       saved[3 * level + 1] = y;

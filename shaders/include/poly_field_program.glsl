@@ -79,7 +79,16 @@ void AM_PROGRAM(uint opBegin, uint opCount, float T, uint maskBase, AM_POINTS w,
       ++sp;
 #if !AM_LINES
     } else if (AM_HAS_OP(AM_OP_BEGINMAP) && code == AM_OP_BEGINMAP) {
-      uint m = POOLU(o + 1u).y;
+      uvec4 op1 = POOLU(o + 1u);
+      if (!anyPrimActive(maskBase, op0.w, op0.y)) {
+        // No primitive of the subtree this map opens reaches the block: its value is constant
+        // (as FieldProgram::specialise on the CPU). Push it and go on after the subtree.
+        for (int h = 0; h < V; ++h) st[V * sp + h] = vec4(uintBitsToFloat(op1.z));
+        ++sp;
+        i += op1.w;
+        continue;
+      }
+      uint m = op1.y;
       int s = 3 * V * level;
 #define AM_SAVE(j) saved[s + j] = x[j]; saved[s + V + j] = y[j]; saved[s + 2 * V + j] = z[j];
       AM_EACH(AM_SAVE)

@@ -14,6 +14,7 @@
 #include <unordered_map>
 
 #include "blobtree/compile.h"
+#include "demo/blob_creature.h"
 #include "gpu_fixture.h"
 #include "gpu_polygonizer.h"
 #include "morph_field.h"
@@ -357,6 +358,27 @@ TEST_CASE("GPU polygoniser covers every op, primitive, skeleton and map of the C
   CHECK(coverage.classes.size() == 3);
   CHECK(coverage.skeletons.size() == 9);
   CHECK(coverage.maps.size() == 4);
+  CHECK(r.ctx->validationErrorCount() == 0);
+}
+
+TEST_CASE("GPU polygoniser skips the map subtrees no primitive of a block reaches", "[gpu][gpupoly]") {
+  // The demo BlobTree creature: frames (affine maps) nest its limbs. A block away from a limb
+  // pushes the limb subtree's constant value instead of running it (as the CPU's specialise);
+  // without culling every block runs every subtree. Same surface either way, and as the CPU's.
+  Rig r = makeRig();
+  FieldProgram p = compileFieldProgram(makeBlobCreature(), 0.5);
+  GpuPolygonizeSettings s;
+  s.resolution = 64;
+  GpuPolygonizeStats culledStats;
+  TriangleMesh culled = gpuMesh(*r.poly, GpuField::single(p), s, &culledStats);
+  s.culling = false;
+  TriangleMesh dense = gpuMesh(*r.poly, GpuField::single(p), s);
+  TriangleMesh cpu = cpuMesh(p, 64, std::nullopt);
+  REQUIRE(cpu.triangleCount() > 3000);
+  CHECK(culledStats.blocksActive < culledStats.blocksTotal);
+  requireAgrees(culled, cpu, culledStats.cellSize);
+  requireAgrees(dense, cpu, culledStats.cellSize);
+  requireClosedManifold(culled);
   CHECK(r.ctx->validationErrorCount() == 0);
 }
 

@@ -142,6 +142,9 @@ class FieldProgram {
   // Rigorous interval of f = p - T over the ball (centre, radius) for a specialised
   // program (exact arithmetic; callers add a margin for float rounding).
   Interval interval(const ActiveProgram& prog, const glm::vec3& centre, float radius) const;
+  // The last op of the outermost subtree that op i (a Prims or BeginMap) starts: ops i..end push one
+  // value, ops[end].emptyValue where none of their primitives contributes (specialise).
+  uint32_t subtreeEnd(uint32_t i) const { return i < outermostEnd_.size() ? outermostEnd_[i] : i; }
 
  private:
   bool pushPrims(PrimClass cls, uint32_t local, bool combineWithPrevious, bool combineMax, const PrimitiveBound& b);
