@@ -174,6 +174,22 @@ void Swapchain::destroyTargets() {
   destroyImage(dev, depth_);
 }
 
+// A framebuffer of the render pass over `color` and the depth buffer, at the current extent.
+Status Swapchain::addFramebuffer(VkImageView color) {
+  VkImageView attachments[2] = {color, depth_.view};
+  VkFramebufferCreateInfo fci{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+  fci.renderPass = renderPass_;
+  fci.attachmentCount = 2;
+  fci.pAttachments = attachments;
+  fci.width = extent_.width;
+  fci.height = extent_.height;
+  fci.layers = 1;
+  VkFramebuffer fb = VK_NULL_HANDLE;
+  AM_VK_TRY(vkCreateFramebuffer(ctx_.device(), &fci, nullptr, &fb), "vkCreateFramebuffer");
+  framebuffers_.push_back(fb);
+  return Status::success();
+}
+
 // Host presentation: per frame slot a colour image (copied to a host buffer after the render
 // pass), the shared depth buffer, the framebuffers, and the presenter's segments.
 Status Swapchain::recreateHost(VkExtent2D size) {
@@ -220,17 +236,8 @@ Status Swapchain::recreateHost(VkExtent2D size) {
     if (!img) return Error{img.error()};
     hostImages_.push_back(*img);
     images_.push_back(img->image);
-    VkImageView attachments[2] = {img->view, depth_.view};
-    VkFramebufferCreateInfo fci{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-    fci.renderPass = renderPass_;
-    fci.attachmentCount = 2;
-    fci.pAttachments = attachments;
-    fci.width = extent_.width;
-    fci.height = extent_.height;
-    fci.layers = 1;
-    VkFramebuffer fb = VK_NULL_HANDLE;
-    AM_VK_TRY(vkCreateFramebuffer(dev, &fci, nullptr, &fb), "vkCreateFramebuffer (host)");
-    framebuffers_.push_back(fb);
+    Status st = addFramebuffer(img->view);
+    if (!st) return st;
   }
   needsRecreate_ = false;
   return Status::success();
@@ -322,17 +329,8 @@ Status Swapchain::recreate(VkExtent2D size) {
     VkImageView view = VK_NULL_HANDLE;
     AM_VK_TRY(vkCreateImageView(dev, &vci, nullptr, &view), "vkCreateImageView (swapchain)");
     views_.push_back(view);
-    VkImageView attachments[2] = {view, depth_.view};
-    VkFramebufferCreateInfo fci{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-    fci.renderPass = renderPass_;
-    fci.attachmentCount = 2;
-    fci.pAttachments = attachments;
-    fci.width = extent_.width;
-    fci.height = extent_.height;
-    fci.layers = 1;
-    VkFramebuffer fb = VK_NULL_HANDLE;
-    AM_VK_TRY(vkCreateFramebuffer(dev, &fci, nullptr, &fb), "vkCreateFramebuffer (swapchain)");
-    framebuffers_.push_back(fb);
+    Status st = addFramebuffer(view);
+    if (!st) return st;
     VkSemaphoreCreateInfo semi{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
     VkSemaphore sem = VK_NULL_HANDLE;
     AM_VK_TRY(vkCreateSemaphore(dev, &semi, nullptr, &sem), "vkCreateSemaphore");

@@ -99,6 +99,7 @@ class Swapchain {
   Status recreate(VkExtent2D framebufferSize);
   void destroyTargets();
   Status recreateHost(VkExtent2D size);
+  Status addFramebuffer(VkImageView color);
   Status endFrameHost(VkCommandBuffer cmd);
   void presentHost(uint32_t slot);
   FrameStatus fail(const std::string& message);
