@@ -9,7 +9,7 @@
 #include <cstring>
 #include <vector>
 
-#include "shader_module.h"
+#include "graphics_pipeline.h"
 #include "vk_check.h"
 
 namespace animorph {
@@ -100,85 +100,18 @@ Status ImGuiVulkan::init(VkRenderPass renderPass) {
   pli.pPushConstantRanges = &push;
   AM_VK_TRY(vkCreatePipelineLayout(dev, &pli, nullptr, &layout_), "ImGui: vkCreatePipelineLayout");
 
-  Result<VkShaderModule> vs = gpu::createShaderModule(dev, "ui.vert");
-  if (!vs) return Error{"ImGui: " + vs.error()};
-  Result<VkShaderModule> fs = gpu::createShaderModule(dev, "ui.frag");
-  if (!fs) {
-    vkDestroyShaderModule(dev, *vs, nullptr);
-    return Error{"ImGui: " + fs.error()};
-  }
-  VkPipelineShaderStageCreateInfo stages[2]{};
-  for (int i = 0; i < 2; ++i) {
-    stages[i].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-    stages[i].stage = i == 0 ? VK_SHADER_STAGE_VERTEX_BIT : VK_SHADER_STAGE_FRAGMENT_BIT;
-    stages[i].module = i == 0 ? *vs : *fs;
-    stages[i].pName = "main";
-  }
-  VkVertexInputBindingDescription vb{0, sizeof(ImDrawVert), VK_VERTEX_INPUT_RATE_VERTEX};
-  VkVertexInputAttributeDescription va[3] = {
-      {0, 0, VK_FORMAT_R32G32_SFLOAT, static_cast<uint32_t>(offsetof(ImDrawVert, pos))},
-      {1, 0, VK_FORMAT_R32G32_SFLOAT, static_cast<uint32_t>(offsetof(ImDrawVert, uv))},
-      {2, 0, VK_FORMAT_R8G8B8A8_UNORM, static_cast<uint32_t>(offsetof(ImDrawVert, col))}};
-  VkPipelineVertexInputStateCreateInfo vi{};
-  vi.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
-  vi.vertexBindingDescriptionCount = 1;
-  vi.pVertexBindingDescriptions = &vb;
-  vi.vertexAttributeDescriptionCount = 3;
-  vi.pVertexAttributeDescriptions = va;
-  VkPipelineInputAssemblyStateCreateInfo ia{};
-  ia.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
-  ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-  VkPipelineViewportStateCreateInfo vp{};
-  vp.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO;
-  vp.viewportCount = 1;
-  vp.scissorCount = 1;
-  VkPipelineRasterizationStateCreateInfo rs{};
-  rs.sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO;
-  rs.polygonMode = VK_POLYGON_MODE_FILL;
-  rs.cullMode = VK_CULL_MODE_NONE;
-  rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
-  rs.lineWidth = 1.0f;
-  VkPipelineMultisampleStateCreateInfo ms{};
-  ms.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO;
-  ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-  VkPipelineDepthStencilStateCreateInfo ds{};  // no depth test: the UI draws over the viewport
-  ds.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO;
-  VkPipelineColorBlendAttachmentState att{};  // as the ImGui backends: straight alpha
-  att.blendEnable = VK_TRUE;
-  att.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
-  att.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
-  att.colorBlendOp = VK_BLEND_OP_ADD;
-  att.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-  att.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
-  att.alphaBlendOp = VK_BLEND_OP_ADD;
-  att.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-  VkPipelineColorBlendStateCreateInfo cb{};
-  cb.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO;
-  cb.attachmentCount = 1;
-  cb.pAttachments = &att;
-  VkDynamicState dyn[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-  VkPipelineDynamicStateCreateInfo dy{};
-  dy.sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO;
-  dy.dynamicStateCount = 2;
-  dy.pDynamicStates = dyn;
-  VkGraphicsPipelineCreateInfo pci{};
-  pci.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO;
-  pci.stageCount = 2;
-  pci.pStages = stages;
-  pci.pVertexInputState = &vi;
-  pci.pInputAssemblyState = &ia;
-  pci.pViewportState = &vp;
-  pci.pRasterizationState = &rs;
-  pci.pMultisampleState = &ms;
-  pci.pDepthStencilState = &ds;
-  pci.pColorBlendState = &cb;
-  pci.pDynamicState = &dy;
-  pci.layout = layout_;
-  pci.renderPass = renderPass;
-  VkResult r = vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &pci, nullptr, &pipeline_);
-  vkDestroyShaderModule(dev, *vs, nullptr);
-  vkDestroyShaderModule(dev, *fs, nullptr);
-  if (r != VK_SUCCESS) return gpu::vkError("ImGui: pipeline", r);
+  gpu::GraphicsPipelineDesc d;
+  d.vert = "ui.vert";
+  d.frag = "ui.frag";
+  d.bindings = {{0, sizeof(ImDrawVert), VK_VERTEX_INPUT_RATE_VERTEX}};
+  d.attributes = {{0, 0, VK_FORMAT_R32G32_SFLOAT, static_cast<uint32_t>(offsetof(ImDrawVert, pos))},
+                  {1, 0, VK_FORMAT_R32G32_SFLOAT, static_cast<uint32_t>(offsetof(ImDrawVert, uv))},
+                  {2, 0, VK_FORMAT_R8G8B8A8_UNORM, static_cast<uint32_t>(offsetof(ImDrawVert, col))}};
+  d.depthTest = d.depthWrite = false;  // the UI draws over the viewport
+  d.blend = gpu::BlendMode::StraightAlpha;
+  Result<VkPipeline> p = gpu::createGraphicsPipeline(dev, renderPass, layout_, d);
+  if (!p) return Error{"ImGui: " + p.error()};
+  pipeline_ = *p;
   return Status::success();
 }
 
