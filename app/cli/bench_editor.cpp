@@ -1,6 +1,7 @@
 // Benchmark: the real editor at 1600x900 with the demo character playing
 // (frame time p50/p95, start to first frame) and scrubbing the morph's implicit
-// stage (fps with Auto's choice of preview device and with the CPU worker). Runs `animorph --bench`
+// stage (fps with Auto's choice of preview device and with the CPU worker), and the CPU an idle editor
+// uses (on-demand redraw against continuous). Runs `animorph --bench` / `--idle-bench`
 // in child processes, under xvfb-run when there is no display.
 #include <sys/resource.h>
 #include <unistd.h>
@@ -27,17 +28,19 @@ std::string runCapture(const std::string& cmd) {
   return out;
 }
 
-// One run of `animorph --bench FRAMES ARGS` on the demo with preferences `prefsJson` (empty: defaults)
-// in a private configuration directory.
+// One run of `animorph --bench FRAMES ARGS` (FRAMES 0: `animorph ARGS`) on the demo with preferences
+// `prefsJson` (empty: defaults) in a private configuration directory; `env` is prepended.
 struct EditorRun {
   double first = -1, p50 = -1, p95 = -1, max = -1;
   double cpuSec = 0;  // CPU time of the child processes (the editor and, under xvfb-run, the X server)
   size_t frames = 0;
+  double idleSec = -1, idleCpuMsPerSec = -1;  // --idle-bench
+  int idleFrames = 0;
   std::string device, output;
 };
 
 EditorRun runEditor(const fs::path& editor, const fs::path& demo, const std::string& prefix, int frames,
-                    const std::string& args, const std::string& prefsJson) {
+                    const std::string& args, const std::string& prefsJson, const std::string& env = "") {
   EditorRun r;
   std::error_code ec;
   const fs::path cfg = fs::temp_directory_path() / ("animorph-bench-editor-" + std::to_string(::getpid()));
@@ -47,9 +50,9 @@ EditorRun runEditor(const fs::path& editor, const fs::path& demo, const std::str
       std::fputs(prefsJson.c_str(), f);
       std::fclose(f);
     }
-  const std::string cmd = "XDG_CONFIG_HOME='" + cfg.string() + "' " + prefix + "'" + editor.string() +
-                          "' --size 1600x900 --bench " + std::to_string(frames) + " " + args + " '" + demo.string() +
-                          "' 2>&1";
+  const std::string bench = frames > 0 ? " --bench " + std::to_string(frames) : std::string();
+  const std::string cmd = "XDG_CONFIG_HOME='" + cfg.string() + "' " + env + " " + prefix + "'" + editor.string() +
+                          "' --size 1600x900" + bench + " " + args + " '" + demo.string() + "' 2>&1";
   auto childCpu = [] {
     rusage u{};
     getrusage(RUSAGE_CHILDREN, &u);
@@ -67,6 +70,9 @@ EditorRun runEditor(const fs::path& editor, const fs::path& demo, const std::str
     std::sscanf(out.c_str() + pos, "frame time over %zu frames: p50 %lf ms, p95 %lf ms, max %lf ms (device: %255[^)])",
                 &r.frames, &r.p50, &r.p95, &r.max, device);
   r.device = device;
+  if (auto pos = out.find("idle over"); pos != std::string::npos)
+    std::sscanf(out.c_str() + pos, "idle over %lf s: %d frames, CPU %lf ms per second", &r.idleSec, &r.idleFrames,
+                &r.idleCpuMsPerSec);
   return r;
 }
 
@@ -121,6 +127,24 @@ std::vector<animorph::bench::Row> benchEditor(const animorph::bench::Options& op
     rows.push_back({std::string("scrubbing the morph, ") + sc.name + ", CPU per frame", 1e3 * r.cpuSec / double(r.frames + 10),
                     "ms", "", "editor + X server, all threads, start-up included; 2 cores give 2 ms per ms"});
   }
+  // The editor left alone: it draws on demand (a frame a second, and on input), against the same
+  // editor redrawing every frame (ANIMORPH_REDRAW=continuous), measured in the same run.
+  const std::string idleArgs = std::string("--idle-bench ") + (opt.quick ? "3" : "6");
+  EditorRun idle = runEditor(editor, demo, prefix, 0, idleArgs, "");
+  EditorRun busy = runEditor(editor, demo, prefix, 0, idleArgs, "", "ANIMORPH_REDRAW=continuous");
+  if (idle.idleSec <= 0 || busy.idleSec <= 0) {
+    rows.push_back({"idle editor: failed", 0.0, "", "", (idle.idleSec <= 0 ? idle : busy).output.substr(0, 200)});
+    return rows;
+  }
+  auto idleNote = [](const EditorRun& r) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "%d frames in %.1f s, editor process, all threads", r.idleFrames, r.idleSec);
+    return std::string(buf);
+  };
+  rows.push_back({"idle editor, CPU per second (on demand)", idle.idleCpuMsPerSec, "ms/s", "", idleNote(idle)});
+  rows.push_back({"idle editor, CPU per second (continuous redraw)", busy.idleCpuMsPerSec, "ms/s", "", idleNote(busy)});
+  rows.push_back({"idle editor, continuous / on demand", busy.idleCpuMsPerSec / std::max(1e-3, idle.idleCpuMsPerSec),
+                  "ratio", "", "CPU the on-demand redraw saves while nothing changes"});
   return rows;
 }
 

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,7 @@
 #include "implicit_preview.h"
 #include "imgui_vulkan.h"
 #include "mesh_cache.h"
+#include "redraw_policy.h"
 #include "scene/morph_preview_source.h"
 #include "scene/morph_pick.h"
 #include "scene/morph_scene.h"
@@ -36,6 +38,7 @@
 #include "swapchain.h"
 #include "paint/paint_mesh.h"
 #include "weight_overlay_scene.h"
+#include "window_events.h"
 
 using namespace animorph;
 using Clock = std::chrono::steady_clock;
@@ -50,6 +53,7 @@ struct Args {
   int width = 1600, height = 900;
   int benchFrames = 0;
   int scrubFrom = -1, scrubTo = -1;  // --scrub A:B: the bench steps the current frame A..B..A instead of playing
+  double idleBenchSec = 0.0;          // --idle-bench S: measure S seconds without input, then exit
 };
 
 void usage() {
@@ -62,8 +66,11 @@ void usage() {
       "  --bench N              play N frames and print frame-time figures, then exit\n"
       "  --scrub A:B            with --bench: step the current frame A..B..A, one frame per\n"
       "                         redraw, as dragging the timeline does, instead of playing\n"
+      "  --idle-bench S         leave the editor idle for S seconds after start-up, print the frames\n"
+      "                         drawn and the CPU time used, then exit\n"
       "environment: ANIMORPH_GPU=name|index picks the Vulkan device; ANIMORPH_VALIDATION=1 enables\n"
-      "validation (errors make the exit status non-zero); ANIMORPH_UI_MAP=FILE writes the positions\n"
+      "validation (errors make the exit status non-zero); ANIMORPH_REDRAW=continuous redraws every\n"
+      "frame instead of on demand (for comparison); ANIMORPH_UI_MAP=FILE writes the positions\n"
       "of named widgets to FILE (for scripted GUI tests).\n");
 }
 
@@ -83,6 +90,7 @@ bool parseArgs(int argc, char** argv, Args& a) {
     else if (s == "--frame") a.frame = std::atoi(next("--frame"));
     else if (s == "--quit") a.quit = true;
     else if (s == "--bench") a.benchFrames = std::max(1, std::atoi(next("--bench")));
+    else if (s == "--idle-bench") a.idleBenchSec = std::max(1.0, std::atof(next("--idle-bench")));
     else if (s == "--scrub") {
       if (std::sscanf(next("--scrub"), "%d:%d", &a.scrubFrom, &a.scrubTo) != 2 || a.scrubFrom < 0 ||
           a.scrubTo <= a.scrubFrom) {
@@ -101,6 +109,12 @@ bool parseArgs(int argc, char** argv, Args& a) {
     } else a.project = s;
   }
   return true;
+}
+
+double processCpuSec() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
 }
 
 double percentile(std::vector<double> v, double p) {
@@ -144,6 +158,9 @@ int main(int argc, char** argv) {
     glfwTerminate();
     return 1;
   }
+
+  watchWindowEvents(window);  // before ImGui's backend, which chains to these callbacks
+  PreviewPolygonizer::setPublishHook([] { glfwPostEmptyEvent(); });  // a preview mesh wakes the frame loop
 
   gpu::ContextSettings cs;
   cs.window = window;
@@ -211,9 +228,20 @@ int main(int argc, char** argv) {
   int exitCode = 0;
   auto prev = Clock::now();
   double smoothedMs = 16.0;
+  RedrawPolicy redraw;  // on demand: an idle editor waits for events
+  uint64_t eventsSeen = 0;
+  bool wokeFromWait = false;
+  const char* redrawEnv = std::getenv("ANIMORPH_REDRAW");
+  const bool continuousRedraw = redrawEnv && std::strcmp(redrawEnv, "continuous") == 0;
+  // --idle-bench: from 2 s after start-up (the project open, the preview refined), S seconds without input.
+  double idleStartSec = -1.0, idleStartCpu = 0.0;
+  int idleStartFrames = 0;
 
   for (;;) {
     glfwPollEvents();
+    const uint64_t events = windowEventCount();
+    const bool inputThisFrame = events != eventsSeen;
+    eventsSeen = events;
     if (glfwWindowShouldClose(window)) {
       glfwSetWindowShouldClose(window, GLFW_FALSE);
       ui.requestQuit();
@@ -221,7 +249,10 @@ int main(int argc, char** argv) {
     const auto now = Clock::now();
     const double dt = std::chrono::duration<double>(now - prev).count();
     prev = now;
-    smoothedMs = 0.9 * smoothedMs + 0.1 * dt * 1000.0;
+    // After a wait for events the previous frame's rendering finished during the wait: its
+    // time says nothing of the frame rate, which the status bar shows as of the last run of frames.
+    if (!wokeFromWait) smoothedMs = 0.9 * smoothedMs + 0.1 * dt * 1000.0;
+    wokeFromWait = false;
     ectx.nowSec = std::chrono::duration<double>(now - startTime).count();
     ectx.dtSec = dt;
     ectx.stats.frameMs = static_cast<float>(smoothedMs);
@@ -395,9 +426,41 @@ int main(int argc, char** argv) {
       if (static_cast<int>(frameMs.size()) >= args.benchFrames) break;
     }
     if (args.screenshot.empty() && args.quit && frameCount > 3) break;
+    if (args.idleBenchSec > 0.0) {
+      if (idleStartSec < 0.0 && ectx.nowSec >= 2.0 && !blobPreviews->busy() && !morphPreview->busy()) {
+        idleStartSec = ectx.nowSec;
+        idleStartCpu = processCpuSec();
+        idleStartFrames = frameCount;
+      } else if (idleStartSec >= 0.0 && ectx.nowSec - idleStartSec >= args.idleBenchSec) {
+        const double sec = ectx.nowSec - idleStartSec;
+        std::printf("idle over %.1f s: %d frames, CPU %.1f ms per second (%s redraw)\n", sec,
+                    frameCount - idleStartFrames, 1e3 * (processCpuSec() - idleStartCpu) / sec,
+                    continuousRedraw ? "continuous" : "on-demand");
+        break;
+      }
+    }
 
-    if (!uiMapPath.empty() && frameCount % 3 == 0) writeUiMap(uiMapPath, ui.widgets(), out, doc, frameCount,
-                 {{"preview_busy", blobPreviews->busy() || (morphStageShown && morphPreview->busy())},
+    // Draw the next frame at once, or wait for input (on demand, as Blender does). A skipped
+    // frame (swapchain out of date) is drawn again at once; a minimised window waits.
+    int fbw = 0, fbh = 0;
+    glfwGetFramebufferSize(window, &fbw, &fbh);
+    const bool minimised = fbw == 0 || fbh == 0;
+    const bool previewBusy = blobPreviews->busy() || (morphStageShown && morphPreview->busy());
+    RedrawState rs;
+    rs.input = inputThisFrame;
+    const bool previewNeedsFrames = blobPreviews->needsFrames() || (morphStageShown && morphPreview->needsFrames());
+    rs.animating = ui.state().playback.playing() || previewNeedsFrames || ImGui::IsAnyMouseDown() || frameCount < 10 ||
+                   args.benchFrames > 0 || args.quit || !args.screenshot.empty() || !pendingCapture.empty() ||
+                   (args.frame >= 0 && !frameApplied) || (fs == gpu::FrameStatus::Skipped && !minimised);
+    rs.animating |= continuousRedraw;
+    rs.awaitingWork = previewBusy;
+    rs.textInput = ImGui::GetIO().WantTextInput;
+    const double waitSec = redraw.waitAfterFrame(rs);
+
+    if (!uiMapPath.empty() && (frameCount % 3 == 0 || waitSec > 0.0))
+      writeUiMap(uiMapPath, ui.widgets(), out, doc, frameCount,
+                 {{"preview_busy", previewBusy},
+                  {"idle", waitSec > 0.0},
                   {"preview", ectx.stats.previewInfo},
                   {"preview_gpu", morphStageShown ? morphBackend.gpu : backend.gpu},
                   {"present", swapchain.presentPath()},
@@ -406,6 +469,13 @@ int main(int argc, char** argv) {
     if (title != lastTitle) {
       glfwSetWindowTitle(window, title.c_str());
       lastTitle = title;
+    }
+    if (waitSec > 0.0) {
+      Status shown = swapchain.flushPresentation();  // the last frame is in the window before we wait
+      if (!shown) std::fprintf(stderr, "animorph: %s\n", shown.error().c_str());
+      glfwWaitEventsTimeout(waitSec);
+      prev = Clock::now();  // frame times and playback count from the wake, not the wait
+      wokeFromWait = true;
     }
   }
 

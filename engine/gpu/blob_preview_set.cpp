@@ -61,6 +61,12 @@ bool BlobPreviewSet::busy() const {
   return false;
 }
 
+bool BlobPreviewSet::needsFrames() const {
+  for (const auto& [id, e] : entries_)
+    if (e.preview->needsFrames()) return true;
+  return false;
+}
+
 bool BlobPreviewSet::waitIdle(double timeoutSec) {
   auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeoutSec);
   bool idle = true;

@@ -39,6 +39,8 @@ class BlobPreviewSet {
   ImplicitPreviewStatus status(const std::string& actorId) const;
   // True while some actor's preview is being computed.
   bool busy() const;
+  // True while some actor's preview moves on only with more frames (ImplicitPreview::needsFrames).
+  bool needsFrames() const;
   // Waits until every actor's preview is idle (tests, screenshots). Returns idle.
   bool waitIdle(double timeoutSec);
   // Forgets GPU failures (the user switched devices).

@@ -295,6 +295,11 @@ bool ImplicitPreview::busy() const {
   return worker_ && (worker_->busy() || worker_->latestSerial() != uploadedSerial_);
 }
 
+bool ImplicitPreview::needsFrames() const {
+  if (usingGpu()) return busy();
+  return worker_ && worker_->latestSerial() != uploadedSerial_;
+}
+
 bool ImplicitPreview::waitIdle(double timeoutSec) {
   if (usingGpu()) {
     const uint64_t ns = uint64_t(std::max(0.0, timeoutSec) * 1e9);

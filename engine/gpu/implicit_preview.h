@@ -96,6 +96,9 @@ class ImplicitPreview {
   ImplicitPreviewStatus status() const;
   // True while a finer or newer mesh of the current shape is on its way.
   bool busy() const;
+  // True while only more frames move it on (GPU refinement, a CPU result to upload); false
+  // while it waits for the CPU worker alone, which wakes the frame loop when it publishes.
+  bool needsFrames() const;
   // Waits until the current shape is fully answered (CPU worker idle and its
   // mesh uploaded; GPU work complete), at most timeoutSec. Returns idle.
   bool waitIdle(double timeoutSec);

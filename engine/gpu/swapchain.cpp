@@ -244,6 +244,18 @@ Status Swapchain::recreateHost(VkExtent2D size) {
 }
 
 // Puts slot's finished frame (its fence has signalled) into the window.
+Status Swapchain::flushPresentation() {
+  if (!host_) return Status::success();
+  for (uint32_t k = 0; k < kFramesInFlight; ++k) {  // oldest first: slot_ is the next to be used
+    uint32_t s = (slot_ + k) % kFramesInFlight;
+    if (!hostPending_[s]) continue;
+    VkResult r = vkWaitForFences(ctx_.device(), 1, &inFlight_[s], VK_TRUE, UINT64_MAX);
+    if (r != VK_SUCCESS) return vkError("vkWaitForFences", r);
+    presentHost(s);
+  }
+  return Status::success();
+}
+
 void Swapchain::presentHost(uint32_t slot) {
   hostPending_[slot] = false;
   if (hostImported_) {  // the device's copy wrote the segment

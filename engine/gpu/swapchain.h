@@ -76,6 +76,9 @@ class Swapchain {
   // with takeCapture() after that endFrame(). Needs TRANSFER_SRC support on the
   // swapchain images (captureSupported()).
   void requestCapture() { captureRequested_ = true; }
+  // Puts the frames still waiting for the window into it now (host presentation puts a frame at
+  // the next beginFrame; call this before waiting for events). No-op on the WSI path.
+  Status flushPresentation();
   bool captureSupported() const { return captureSupported_; }
   // The captured image, once; nullopt when none was taken since the last call.
   std::optional<RgbaImage> takeCapture();

@@ -91,9 +91,12 @@ class Editor:
         return {}
 
     def fresh_map(self, frames=3):
-        """The map as of at least `frames` frames after now (input has been processed)."""
+        """The map as of at least `frames` frames after now, or of the editor gone idle after a frame
+        drawn since now (it draws on demand: idle, it has processed all input)."""
         start = self.ui_map().get("frame_count", 0)
-        return self.wait_until(lambda m: m.get("frame_count", 0) >= start + frames, "the editor keeps drawing")
+        return self.wait_until(lambda m: m.get("frame_count", 0) >= start + frames
+                               or (m.get("idle", False) and m.get("frame_count", 0) > start),
+                               "the editor draws after the input")
 
     def wait_until(self, pred, what, timeout=20):
         end = time.time() + timeout

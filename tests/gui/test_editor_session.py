@@ -60,6 +60,19 @@ try:
     d = ed.fresh_map()["current_frame"]
     g.check(c == d, f"Space pauses (frame stays at {d})")
 
+    # Paused and left alone, the editor draws on demand: it waits for input instead of
+    # redrawing (a frame a second for timers), and the next input is drawn at once.
+    m0 = ed.wait_until(lambda m: m.get("idle", False) and not m.get("preview_busy", True), "the editor goes idle",
+                       timeout=30)
+    time.sleep(3.0)
+    m1 = ed.ui_map()
+    idle_frames = m1["frame_count"] - m0["frame_count"]
+    g.check(idle_frames <= 6, f"an idle editor draws on demand ({idle_frames} frames in 3 s)")
+    ed.key("Right")
+    m2 = ed.fresh_map()
+    g.check(m2["current_frame"] == d + 1 and m2["frame_count"] > m1["frame_count"],
+            f"input wakes it: Right steps to frame {m2['current_frame']}")
+
     # Select the first actor in the outliner, drag its Speed field.
     ed.click_widget(f"outliner/{actor}")
     g.check(ed.fresh_map()["selected"] == actor, f"clicking '{actor}' in the outliner selects it")

@@ -102,12 +102,21 @@ PreviewCounters PreviewPolygonizer::counters() const {
   return counters_;
 }
 
+namespace {
+std::atomic<void (*)()> g_publishHook{nullptr};
+}
+
+void PreviewPolygonizer::setPublishHook(void (*hook)()) { g_publishHook = hook; }
+
 void PreviewPolygonizer::publish(std::shared_ptr<PreviewResult> r) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  r->serial = serial_.load() + 1;
-  latest_ = std::move(r);
-  serial_ = latest_->serial;
-  ++counters_.published;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    r->serial = serial_.load() + 1;
+    latest_ = std::move(r);
+    serial_ = latest_->serial;
+    ++counters_.published;
+  }
+  if (auto hook = g_publishHook.load()) hook();
 }
 
 void PreviewPolygonizer::run() {

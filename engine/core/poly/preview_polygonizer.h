@@ -101,6 +101,9 @@ class PreviewPolygonizer {
   // Waits until the worker is idle (the latest request fully answered) or timeoutSec passes. Returns idle.
   bool waitIdle(double timeoutSec) const;
   PreviewCounters counters() const;
+  // Called on a worker thread after every published result, by every PreviewPolygonizer (the
+  // editor wakes its frame loop with it: glfwPostEmptyEvent). Set it before the first is made.
+  static void setPublishHook(void (*hook)());
 
  private:
   void run();
