@@ -1,6 +1,7 @@
 #include "editor_ui.h"
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 
 #include <imgui.h>
@@ -48,6 +49,33 @@ EditorUI::EditorUI(std::string prefsPath) {
 
 void EditorUI::requestQuit() { external_.push_back({PendingKind::Quit, {}}); }
 void EditorUI::requestOpen(const std::string& path) { external_.push_back({PendingKind::OpenPath, path}); }
+void EditorUI::requestDrop(std::vector<std::string> paths) {
+  dropped_.insert(dropped_.end(), std::make_move_iterator(paths.begin()), std::make_move_iterator(paths.end()));
+}
+
+void EditorUI::handleDrop(const std::vector<std::string>& paths, EditorContext& ctx) {
+  auto ext = [](const std::string& p) {
+    std::string e = fs::path(p).extension().string();
+    std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return e;
+  };
+  auto project = std::find_if(paths.begin(), paths.end(), [&](const std::string& p) { return ext(p) == ".animorph"; });
+  if (project != paths.end()) {  // a project replaces the document: the other files are not imported into it
+    guardUnsaved(PendingKind::OpenPath, *project, ctx);
+    if (paths.size() > 1) setStatus("Opened the dropped project " + fileName(*project) + "; the other dropped files were ignored");
+    return;
+  }
+  std::vector<std::string> refused;
+  for (const std::string& p : paths) {
+    if (ext(p) == ".gltf" || ext(p) == ".glb") importGltf(p, ctx);
+    else refused.push_back(fileName(p));
+  }
+  if (!refused.empty()) {
+    std::string names;
+    for (const std::string& n : refused) names += (names.empty() ? "" : ", ") + n;
+    setStatus("Cannot open " + names + ": drop an .animorph project or .gltf / .glb files", true);
+  }
+}
 
 bool EditorUI::savePreferences() {
   Status s = animorph::savePreferences(st_.prefs, st_.prefsPath);
@@ -99,6 +127,11 @@ void EditorUI::draw(EditorContext& ctx) {
   std::vector<Action> actions;
   for (auto& [kind, path] : external_) guardUnsaved(kind, path, ctx);
   external_.clear();
+  if (!dropped_.empty()) {
+    std::vector<std::string> drop = std::move(dropped_);
+    dropped_.clear();
+    handleDrop(drop, ctx);
+  }
 
   // Menu bar, then the panels laid out below it.
   MenuResult menu = drawMenuBar(doc(ctx), st_.prefs.recentFiles, st_.menuBarHeight, st_.curveEditor.visible, st_.paint,
@@ -556,25 +589,27 @@ void EditorUI::handleBrowserResult(const std::string& path, EditorContext& ctx) 
       perform(after, st_.pendingPath, ctx);
       break;
     }
-    case BrowserPurpose::ImportGltf: {
-      std::string projectDir = d.path().empty() ? std::string() : d.baseDir();
-      Actor actor = actorForAsset(d.project(), path, projectDir);
-      std::string id = actor.id;
-      const AssetCache::Entry& e = ctx.assets.get(path);
-      d.execute(addActorCommand(std::move(actor)));
-      d.selection = {id, -1};
-      if (e.character) {
-        setStatus("Imported " + fileName(path));
-        frameSelection(ctx);
-      } else {
-        setStatus("Added " + fileName(path) + ", but it did not load: " + e.error, true);
-      }
-      break;
-    }
+    case BrowserPurpose::ImportGltf: importGltf(path, ctx); break;
     case BrowserPurpose::Screenshot:
       out_.screenshotPath = path;
       setStatus("Screenshot: " + path);
       break;
+  }
+}
+
+void EditorUI::importGltf(const std::string& path, EditorContext& ctx) {
+  Document& d = doc(ctx);
+  std::string projectDir = d.path().empty() ? std::string() : d.baseDir();
+  Actor actor = actorForAsset(d.project(), path, projectDir);
+  std::string id = actor.id;
+  const AssetCache::Entry& e = ctx.assets.get(path);
+  d.execute(addActorCommand(std::move(actor)));
+  d.selection = {id, -1};
+  if (e.character) {
+    setStatus("Imported " + fileName(path));
+    frameSelection(ctx);
+  } else {
+    setStatus("Added " + fileName(path) + ", but it did not load: " + e.error, true);
   }
 }
 

@@ -36,6 +36,9 @@ class EditorUI {
   void requestQuit();
   // Opens a project (command line, drag and drop), asking about unsaved changes first.
   void requestOpen(const std::string& path);
+  // Files dropped on the window: a project (.animorph) opens (asking about unsaved changes
+  // first); glTF files (.gltf, .glb) are imported as actors, each an undoable step.
+  void requestDrop(std::vector<std::string> paths);
 
   EditorState& state() { return st_; }
   const EditorState& state() const { return st_; }
@@ -60,6 +63,8 @@ class EditorUI {
   bool saveOrSaveAs(PendingKind after, EditorContext& ctx);
   void startSaveAs(PendingKind after, EditorContext& ctx);
   void handleBrowserResult(const std::string& path, EditorContext& ctx);
+  void importGltf(const std::string& path, EditorContext& ctx);
+  void handleDrop(const std::vector<std::string>& paths, EditorContext& ctx);
   void frameSelection(EditorContext& ctx);
   void addNodeToSelection(NodeType type, EditorContext& ctx);
   void drawSplitters();
@@ -73,6 +78,7 @@ class EditorUI {
   EditorOutput out_;
   WidgetRects widgets_;
   std::vector<std::pair<PendingKind, std::string>> external_;  // requestQuit/requestOpen
+  std::vector<std::string> dropped_;                           // requestDrop
   // Cache of the selection's key frames.
   const Document* keysDoc_ = nullptr;
   uint64_t keysRevision_ = 0;

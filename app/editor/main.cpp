@@ -242,6 +242,7 @@ int main(int argc, char** argv) {
     const uint64_t events = windowEventCount();
     const bool inputThisFrame = events != eventsSeen;
     eventsSeen = events;
+    if (auto dropped = takeDroppedPaths(); !dropped.empty()) ui.requestDrop(std::move(dropped));
     if (glfwWindowShouldClose(window)) {
       glfwSetWindowShouldClose(window, GLFW_FALSE);
       ui.requestQuit();

@@ -8,6 +8,7 @@ namespace animorph {
 namespace {
 
 std::atomic<uint64_t> g_events{0};
+std::vector<std::string> g_dropped;  // GLFW calls back on the main thread, in glfwPollEvents
 
 void count() { g_events.fetch_add(1, std::memory_order_relaxed); }
 
@@ -21,7 +22,10 @@ void watchWindowEvents(GLFWwindow* w) {
   glfwSetScrollCallback(w, [](GLFWwindow*, double, double) { count(); });
   glfwSetKeyCallback(w, [](GLFWwindow*, int, int, int, int) { count(); });
   glfwSetCharCallback(w, [](GLFWwindow*, unsigned int) { count(); });
-  glfwSetDropCallback(w, [](GLFWwindow*, int, const char**) { count(); });
+  glfwSetDropCallback(w, [](GLFWwindow*, int n, const char** paths) {
+    count();
+    for (int i = 0; i < n; ++i) g_dropped.emplace_back(paths[i]);
+  });
   // The window: size, exposure (the X server keeps no copy of the contents), focus, state.
   glfwSetWindowSizeCallback(w, [](GLFWwindow*, int, int) { count(); });
   glfwSetFramebufferSizeCallback(w, [](GLFWwindow*, int, int) { count(); });
@@ -33,5 +37,11 @@ void watchWindowEvents(GLFWwindow* w) {
 }
 
 uint64_t windowEventCount() { return g_events.load(std::memory_order_relaxed); }
+
+std::vector<std::string> takeDroppedPaths() {
+  std::vector<std::string> out;
+  out.swap(g_dropped);
+  return out;
+}
 
 }  // namespace animorph

@@ -4,6 +4,8 @@
 // watchWindowEvents before ImGui's GLFW backend installs its callbacks: it
 // keeps ours and calls them after its own.
 #include <cstdint>
+#include <string>
+#include <vector>
 
 struct GLFWwindow;
 
@@ -12,5 +14,7 @@ namespace animorph {
 void watchWindowEvents(GLFWwindow* window);
 // Events counted so far (all watched windows).
 uint64_t windowEventCount();
+// Files dropped on a watched window since the last call (main thread).
+std::vector<std::string> takeDroppedPaths();
 
 }  // namespace animorph

@@ -100,3 +100,47 @@ TEST_CASE("Import glTF adds an actor with a project-relative path, undoable", "[
   h.tapKey(GLFW_KEY_Z, true);
   CHECK(h.doc().project().actors.size() == 1);
 }
+
+TEST_CASE("files dropped on the window: glTF files are imported, a project opens, others are refused",
+          "[outliner][drop]") {
+  EditorFixture f;
+  f.loadHeroScene();
+  auto& h = f.h;
+  // Two glTF files (one with an upper-case extension): two actors, each its own undo step.
+  std::string upper = f.dir.file("HERO2.GLTF");
+  registerCharacter(upper, writeTestCharacter(upper));
+  h.ui->requestDrop({f.dir.file("hero.gltf"), upper});
+  h.frames(1);
+  REQUIRE(h.doc().project().actors.size() == 3);
+  CHECK(h.doc().project().actors[2].assetPath == "HERO2.GLTF");
+  CHECK(h.doc().selection.actorId == h.doc().project().actors[2].id);
+  CHECK_FALSE(h.ui->state().status.error);
+  h.tapKey(GLFW_KEY_Z, true);
+  CHECK(h.doc().project().actors.size() == 2);
+
+  // Anything else: nothing changes, and the status bar names the file and says what can be dropped.
+  h.ui->requestDrop({f.dir.file("notes.txt")});
+  h.frames(1);
+  CHECK(h.doc().project().actors.size() == 2);
+  CHECK(h.ui->state().status.error);
+  CHECK_THAT(h.ui->state().status.text, Catch::Contains("notes.txt") && Catch::Contains(".animorph"));
+
+  // A project: the document is dirty, so the unsaved-changes prompt comes first; Don't Save opens it.
+  Project other;
+  Actor a;
+  a.id = "villain";
+  a.assetPath = "hero.gltf";
+  other.actors.push_back(a);
+  Document saved;
+  saved.reset(other, f.dir.file("other.animorph"));
+  REQUIRE(saved.save());
+  h.ui->requestDrop({f.dir.file("hero.gltf"), f.dir.file("other.animorph")});
+  h.frames(2);
+  CHECK(h.ui->state().pending == PendingKind::OpenPath);
+  REQUIRE(h.hasWidget("prompt/dont_save"));
+  h.clickWidget("prompt/dont_save");
+  h.frames(2);
+  REQUIRE(h.doc().project().actors.size() == 1);
+  CHECK(h.doc().project().actors[0].id == "villain");
+  CHECK(h.doc().path() == f.dir.file("other.animorph"));
+}
