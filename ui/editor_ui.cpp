@@ -27,6 +27,7 @@ const std::vector<FileFilter> kProjectFilters = {{"Animorph project (*.animorph)
 const std::vector<FileFilter> kGltfFilters = {{"glTF (*.gltf, *.glb)", {".gltf", ".glb"}}, {"All files", {}}};
 const std::vector<FileFilter> kPngFilters = {{"PNG image (*.png)", {".png"}}};
 
+constexpr float kGapColor[3] = {0.11f, 0.11f, 0.12f};  // between panels
 constexpr ImGuiWindowFlags kOverlayFlags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
                                            ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBackground |
                                            ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoFocusOnAppearing |
@@ -262,6 +263,9 @@ void EditorUI::drawSplitters() {
     std::string key = std::string("splitter/") + (s.id + 8);  // "outliner", "inspector", "timeline"
     noteWidget(key);
     bool active = ImGui::IsItemActive();
+    // The gap between panels (the window is cleared to the panels' colour: windowClearColor).
+    ImGui::GetWindowDrawList()->AddRectFilled(ImVec2(r.min.x, r.min.y), ImVec2(r.max().x, r.max().y),
+                                              ImGui::GetColorU32(ImVec4(kGapColor[0], kGapColor[1], kGapColor[2], 1.0f)));
     if (active || ImGui::IsItemHovered())
       ImGui::SetMouseCursor(s.vertical ? ImGuiMouseCursor_ResizeEW : ImGuiMouseCursor_ResizeNS);
     if (active || ImGui::IsItemHovered()) {
@@ -699,6 +703,14 @@ void EditorUI::drawPrompts(EditorContext& ctx) {
     noteWidget("error/ok");
     ImGui::EndPopup();
   }
+}
+
+void EditorUI::windowClearColor(float rgba[4]) {
+  const ImVec4 c = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
+  rgba[0] = c.x;
+  rgba[1] = c.y;
+  rgba[2] = c.z;
+  rgba[3] = 1.0f;
 }
 
 void EditorUI::applyStyle() {

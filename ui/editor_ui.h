@@ -49,6 +49,10 @@ class EditorUI {
   bool savePreferences();
   // Applies the editor's colours and spacing to the current ImGui style.
   static void applyStyle();
+  // The colour to clear the window to before the UI: the docked panels' background, which they
+  // do not draw themselves (on a CPU device that was half the window shaded and blended again
+  // every frame). Call after applyStyle().
+  static void windowClearColor(float rgba[4]);
 
  private:
   Document& doc(EditorContext& ctx);

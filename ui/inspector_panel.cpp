@@ -70,6 +70,7 @@ void drawInspectorPanel(const LayoutRect& rect, Document& doc, AssetCache& asset
   constexpr ImGuiWindowFlags kFlags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
                                       ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings |
                                       ImGuiWindowFlags_NoBringToFrontOnFocus;
+  ImGui::SetNextWindowBgAlpha(0.0f);  // the window is cleared to it (EditorUI::windowClearColor)
   if (!ImGui::Begin("Inspector", nullptr, kFlags)) {
     ImGui::End();
     return;

@@ -57,6 +57,7 @@ void drawOutlinerPanel(const LayoutRect& rect, Document& doc, AssetCache& assets
   constexpr ImGuiWindowFlags kFlags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
                                       ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings |
                                       ImGuiWindowFlags_NoBringToFrontOnFocus;
+  ImGui::SetNextWindowBgAlpha(0.0f);  // the window is cleared to it (EditorUI::windowClearColor)
   if (!ImGui::Begin("Outliner", nullptr, kFlags)) {
     ImGui::End();
     return;

@@ -16,6 +16,7 @@ void drawStatusBar(const LayoutRect& rect, const Document& doc, const FrameStats
   constexpr ImGuiWindowFlags kFlags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
                                       ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus |
                                       ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoFocusOnAppearing;
+  ImGui::SetNextWindowBgAlpha(0.0f);  // the window is cleared to it (EditorUI::windowClearColor)
   ImGui::Begin("##status_bar", nullptr, kFlags);
   ImGui::PopStyleVar(2);
   ImGui::Text("%5.1f fps  %5.2f ms", stats.fps, stats.frameMs);

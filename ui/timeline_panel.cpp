@@ -153,6 +153,7 @@ void drawTimelinePanel(const LayoutRect& rect, Document& doc, Playback& playback
                                       ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings |
                                       ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoTitleBar |
                                       ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse;
+  ImGui::SetNextWindowBgAlpha(0.0f);  // the window is cleared to it (EditorUI::windowClearColor)
   if (!ImGui::Begin("Timeline", nullptr, kFlags)) {
     ImGui::End();
     return;

@@ -172,7 +172,16 @@ int main(int argc, char** argv) {
     return 1;
   }
   gpu::Context& ctx = **ctxR;
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;  // the layout lives in our preferences
+  EditorUI::applyStyle();                // before the swapchain: the window is cleared to the panels' colour
   gpu::SwapchainSettings ss;
+  {
+    float c[4];
+    EditorUI::windowClearColor(c);
+    ss.clearColor = glm::vec4(c[0], c[1], c[2], c[3]);
+  }
   if (args.benchFrames > 0) ss.presentMode = gpu::PresentMode::Immediate;
   auto swapR = gpu::Swapchain::create(ctx, ss);
   if (!swapR) {
@@ -187,10 +196,6 @@ int main(int argc, char** argv) {
   }
   gpu::SceneRenderer& renderer = **rendR;
 
-  IMGUI_CHECKVERSION();
-  ImGui::CreateContext();
-  ImGui::GetIO().IniFilename = nullptr;  // the layout lives in our preferences
-  EditorUI::applyStyle();
   auto imguiR = ImGuiVulkan::create(ctx, swapchain);
   if (!imguiR) {
     std::fprintf(stderr, "animorph: %s\n", imguiR.error().c_str());
