@@ -39,8 +39,14 @@ struct MeshPush {
   uint32_t jointCount;
   uint32_t flags;
   float depthPull;
+  glm::vec4 baseLinear;  // rgb: color.rgb in linear light (the shaders would take it per pixel)
 };
-static_assert(sizeof(MeshPush) == 96);
+static_assert(sizeof(MeshPush) == 112);  // within the 128 bytes every device has
+
+// The colour's rgb in linear light, as the viewport shading uses it (gamma 2.2).
+glm::vec4 linearRgb(const glm::vec4& c) {
+  return glm::vec4(glm::pow(glm::clamp(glm::vec3(c), 0.0f, 1.0f), glm::vec3(2.2f)), c.a);
+}
 constexpr VkShaderStageFlags kPushStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
 
 // Clip-space depth pulled toward the camera by the wireframe pass (in NDC depth units).
@@ -434,7 +440,7 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
   const uint32_t gridLines = static_cast<uint32_t>(std::min(std::ceil(gridHalf / cell), 2000.0f));
   fu.gridCenter = glm::vec4(std::round(camera.target.x / snap) * snap, 0.0f, std::round(camera.target.z / snap) * snap,
                             float(gridLines));
-  fu.selectColor = opt.selectColor;
+  fu.selectColor = linearRgb(opt.selectColor);
   fu.viewportPx = glm::vec4(float(rect.width), float(rect.height),
                             0.5f * float(rect.height) / std::tan(0.5f * camera.fovYRad), 0.0f);
   std::memcpy(static_cast<uint8_t*>(slot.frame.mapped) + frameOffset, &fu, sizeof(fu));
@@ -458,6 +464,7 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
     MeshPush p{};
     p.model = d.model;
     p.color = color;
+    p.baseLinear = linearRgb(color);
     p.jointOffset = jointBase + jointOffsets[i];
     p.jointCount = d.jointMatrices.empty() ? 1u : static_cast<uint32_t>(d.jointMatrices.size());
     p.flags = flags;
@@ -509,6 +516,7 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
     MeshPush p{};
     p.model = g.model;
     p.color = fadeColor(g);
+    p.baseLinear = linearRgb(p.color);
     p.jointCount = 1;
     p.flags = (g.selected ? kDrawSelected : 0u) | fadeFlags(g);
     vkCmdPushConstants(cmd, layout_, kPushStages, 0, sizeof(p), &p);

@@ -7,4 +7,5 @@ layout(push_constant) uniform MeshPush {
   uint jointCount;
   uint flags;
   float depthPull;
+  vec4 baseLinear;  // rgb: color.rgb in linear light (pow 2.2, taken on the CPU once per draw)
 } pc;
