@@ -467,6 +467,10 @@ int main(int argc, char** argv) {
       writeUiMap(uiMapPath, ui.widgets(), out, doc, frameCount,
                  {{"preview_busy", previewBusy},
                   {"idle", waitSec > 0.0},
+                  {"status", ui.state().status.text},
+                  // CLOCK_MONOTONIC seconds when this frame took its input: a test knows input it sent
+                  // before then has been processed once the editor is idle (gui_driver.fresh_map).
+                  {"polled_at", std::chrono::duration<double>(now.time_since_epoch()).count()},
                   {"preview", ectx.stats.previewInfo},
                   {"preview_gpu", morphStageShown ? morphBackend.gpu : backend.gpu},
                   {"present", swapchain.presentPath()},

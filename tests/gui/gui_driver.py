@@ -92,10 +92,12 @@ class Editor:
 
     def fresh_map(self, frames=3):
         """The map as of at least `frames` frames after now, or of the editor gone idle after a frame
-        drawn since now (it draws on demand: idle, it has processed all input)."""
+        that took its input after now (it draws on demand: idle, it has processed all input; the
+        20 ms are for the X server to deliver input sent just before)."""
+        t0 = time.monotonic()
         start = self.ui_map().get("frame_count", 0)
         return self.wait_until(lambda m: m.get("frame_count", 0) >= start + frames
-                               or (m.get("idle", False) and m.get("frame_count", 0) > start),
+                               or (m.get("idle", False) and m.get("polled_at", 0.0) > t0 + 0.02),
                                "the editor draws after the input")
 
     def wait_until(self, pred, what, timeout=20):
@@ -112,7 +114,13 @@ class Editor:
         fail(f"timed out waiting for: {what}; last map keys: {sorted(m.get('widgets', {}))[:40]}")
 
     def widget(self, key, timeout=10):
-        m = self.wait_until(lambda m: key in m.get("widgets", {}), f"widget {key}", timeout)
+        """The widget's rectangle once its window has settled: a popup is measured on the frame it
+        appears and placed on the next, so take it from a map 3 frames after the first that has
+        it, or from the idle editor's."""
+        first = self.wait_until(lambda m: key in m.get("widgets", {}), f"widget {key}", timeout)
+        seen = first.get("frame_count", 0)
+        m = self.wait_until(lambda m: key in m.get("widgets", {}) and
+                            (m.get("idle", False) or m.get("frame_count", 0) >= seen + 3), f"widget {key} settled", timeout)
         x0, y0, x1, y1 = m["widgets"][key]
         return (x0, y0, x1, y1)
 
@@ -208,3 +216,108 @@ def differing_pixels(png_a, png_b, x, y, w, h, fuzz="3%"):
     out = subprocess.run(["compare", "-metric", "AE", "-fuzz", fuzz, f"{png_a}[{crop}]", f"{png_b}[{crop}]",
                           "null:"], capture_output=True, text=True)
     return int(float(out.stderr.split()[0]))
+
+
+# --- drag and drop from a "file manager" (XDND, the X drag-and-drop protocol) ---------------------
+# xdotool cannot drop files, so this is a minimal XDND source over libX11 (ctypes): it offers
+# text/uri-list, sends Enter / Position / Drop to the target window and answers the target's
+# request for the data, as a file manager does.
+def drop_files(target_window, paths, x, y, timeout=10.0):
+    import ctypes
+    import ctypes.util
+    from urllib.parse import quote
+
+    x11 = ctypes.CDLL(ctypes.util.find_library("X11") or "libX11.so.6")
+    x11.XOpenDisplay.restype = ctypes.c_void_p
+    x11.XOpenDisplay.argtypes = [ctypes.c_char_p]
+    x11.XInternAtom.restype = ctypes.c_ulong
+    x11.XInternAtom.argtypes = [ctypes.c_void_p, ctypes.c_char_p, ctypes.c_int]
+    x11.XDefaultRootWindow.restype = ctypes.c_ulong
+    x11.XDefaultRootWindow.argtypes = [ctypes.c_void_p]
+    x11.XCreateSimpleWindow.restype = ctypes.c_ulong
+    x11.XCreateSimpleWindow.argtypes = [ctypes.c_void_p, ctypes.c_ulong] + [ctypes.c_int] * 4 + [ctypes.c_uint,
+                                                                                               ctypes.c_ulong,
+                                                                                               ctypes.c_ulong]
+    x11.XSetSelectionOwner.argtypes = [ctypes.c_void_p, ctypes.c_ulong, ctypes.c_ulong, ctypes.c_ulong]
+    x11.XSendEvent.argtypes = [ctypes.c_void_p, ctypes.c_ulong, ctypes.c_int, ctypes.c_long, ctypes.c_void_p]
+    x11.XChangeProperty.argtypes = [ctypes.c_void_p, ctypes.c_ulong, ctypes.c_ulong, ctypes.c_ulong, ctypes.c_int,
+                                    ctypes.c_int, ctypes.c_char_p, ctypes.c_int]
+    x11.XPending.argtypes = [ctypes.c_void_p]
+    x11.XNextEvent.argtypes = [ctypes.c_void_p, ctypes.c_void_p]
+    x11.XFlush.argtypes = [ctypes.c_void_p]
+    x11.XDestroyWindow.argtypes = [ctypes.c_void_p, ctypes.c_ulong]
+    x11.XCloseDisplay.argtypes = [ctypes.c_void_p]
+
+    class ClientMessage(ctypes.Structure):
+        _fields_ = [("type", ctypes.c_int), ("serial", ctypes.c_ulong), ("send_event", ctypes.c_int),
+                    ("display", ctypes.c_void_p), ("window", ctypes.c_ulong), ("message_type", ctypes.c_ulong),
+                    ("format", ctypes.c_int), ("l", ctypes.c_long * 5)]
+
+    class SelectionRequest(ctypes.Structure):
+        _fields_ = [("type", ctypes.c_int), ("serial", ctypes.c_ulong), ("send_event", ctypes.c_int),
+                    ("display", ctypes.c_void_p), ("owner", ctypes.c_ulong), ("requestor", ctypes.c_ulong),
+                    ("selection", ctypes.c_ulong), ("target", ctypes.c_ulong), ("property", ctypes.c_ulong),
+                    ("time", ctypes.c_ulong)]
+
+    class SelectionNotify(ctypes.Structure):
+        _fields_ = [("type", ctypes.c_int), ("serial", ctypes.c_ulong), ("send_event", ctypes.c_int),
+                    ("display", ctypes.c_void_p), ("requestor", ctypes.c_ulong), ("selection", ctypes.c_ulong),
+                    ("target", ctypes.c_ulong), ("property", ctypes.c_ulong), ("time", ctypes.c_ulong)]
+
+    class XEvent(ctypes.Union):
+        _fields_ = [("type", ctypes.c_int), ("client", ClientMessage), ("request", SelectionRequest),
+                    ("notify", SelectionNotify), ("pad", ctypes.c_long * 24)]
+
+    CLIENT_MESSAGE, SELECTION_REQUEST, SELECTION_NOTIFY = 33, 30, 31
+    dpy = x11.XOpenDisplay(None)
+    if not dpy:
+        fail("drop_files: cannot open the display")
+    atom = lambda name: x11.XInternAtom(dpy, name.encode(), 0)  # noqa: E731
+    enter, position, status, drop, finished = (atom("Xdnd" + n) for n in ("Enter", "Position", "Status", "Drop",
+                                                                           "Finished"))
+    selection, uri_list, copy = atom("XdndSelection"), atom("text/uri-list"), atom("XdndActionCopy")
+    target = int(target_window)
+    source = x11.XCreateSimpleWindow(dpy, x11.XDefaultRootWindow(dpy), 0, 0, 1, 1, 0, 0, 0)
+    x11.XSetSelectionOwner(dpy, selection, source, 0)
+    data = "".join("file://" + quote(os.path.abspath(p)) + "\r\n" for p in paths).encode()
+
+    def send(message_type, l1=0, l2=0, l3=0, l4=0):
+        ev = XEvent()
+        ev.client.type = CLIENT_MESSAGE
+        ev.client.window = target
+        ev.client.message_type = message_type
+        ev.client.format = 32
+        ev.client.l[:] = [source, l1, l2, l3, l4]
+        x11.XSendEvent(dpy, target, 0, 0, ctypes.byref(ev))
+        x11.XFlush(dpy)
+
+    def wait_for(message_type):
+        end = time.time() + timeout
+        ev = XEvent()
+        while time.time() < end:
+            while x11.XPending(dpy):
+                x11.XNextEvent(dpy, ctypes.byref(ev))
+                if ev.type == CLIENT_MESSAGE and ev.client.message_type == message_type:
+                    return ev.client
+                if ev.type == SELECTION_REQUEST:  # the target asks for the files: put them on its window
+                    r = ev.request
+                    x11.XChangeProperty(dpy, r.requestor, r.property, r.target, 8, 0, data, len(data))
+                    reply = XEvent()
+                    reply.notify.type = SELECTION_NOTIFY
+                    reply.notify.requestor, reply.notify.selection = r.requestor, r.selection
+                    reply.notify.target, reply.notify.property, reply.notify.time = r.target, r.property, r.time
+                    x11.XSendEvent(dpy, r.requestor, 0, 0, ctypes.byref(reply))
+                    x11.XFlush(dpy)
+            time.sleep(0.01)
+        fail(f"drop_files: no {message_type} from the editor within {timeout} s")
+
+    try:
+        send(enter, 5 << 24, uri_list)
+        send(position, 0, (int(x) << 16) | int(y), 0, copy)
+        st = wait_for(status)
+        check(st.l[1] & 1, "the editor accepts the dragged files (XdndStatus)")
+        send(drop, 0, 0)
+        wait_for(finished)
+    finally:
+        x11.XDestroyWindow(dpy, source)
+        x11.XCloseDisplay(dpy)
