@@ -221,6 +221,7 @@ int main(int argc, char** argv) {
   gpu::Scene scene;
   MorphCache morphCache;
   MorphFrameSettings morphSettings;  // the transitions; the B->C stage is morphPreview's
+  const MorphRuntime* prewarmedMorph = nullptr;  // whose B->C pipelines are compiling or compiled
   std::vector<float> overlayWeights;  // the weight overlay's data, alive until the frame is recorded
   // Collapse and expansion run in the vertex shader (ANIMORPH_CPU_TRANSITIONS=1: on the CPU, for comparison).
   morphSettings.gpuTransitions = !std::getenv("ANIMORPH_CPU_TRANSITIONS");
@@ -312,6 +313,16 @@ int main(int argc, char** argv) {
                                rt->target.morph.standin.kind == StandinKind::Convolution;
       morphBackend = gpu::choosePreviewBackend(prefs.previewDevice, ctx.deviceType(),
                                                convolution ? gpu::PreviewWork::ConvolutionMorph : gpu::PreviewWork::Other);
+      if (rt.get() != prewarmedMorph && morphBackend.gpu) {
+        // Compile the GPU pipelines of the morph stage now, in the background, not in the frame
+        // that first reaches B (on lavapipe ~1 s per kind of shape: the cross-fade's stand-ins
+        // alone and the morph between them).
+        prewarmedMorph = rt.get();
+        gpu::ImplicitPreviewSettings ps;
+        ps.interactiveResolution = prefs.previewCoarseResolution;
+        ps.gpu = true;
+        for (double u : {0.0, 0.5, 1.0}) morphPreview->prewarm(*morphPreviewSource(rt, timeSec, u), ps);
+      }
       MorphSceneInfo info = applyMorph(frame, rt, timeSec, morphSettings, /*implicitStage=*/false);
       ectx.viewportNote = "morph: " + describeMorphStage(info);
       morphOpacity = float(info.implicitOpacity);

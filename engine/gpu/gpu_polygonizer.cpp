@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <future>
 #include <map>
 #include <tuple>
 
@@ -127,7 +128,10 @@ struct GpuPolygonizer::Impl {
   struct FieldPipelines {
     VkPipeline blocks = VK_NULL_HANDLE, cells = VK_NULL_HANDLE, emit = VK_NULL_HANDLE, normals = VK_NULL_HANDLE;
   };
-  std::map<std::tuple<uint32_t, uint32_t, int>, FieldPipelines> variants;
+  using VariantKey = std::tuple<uint32_t, uint32_t, int>;
+  std::map<VariantKey, FieldPipelines> variants;
+  // Variants being compiled on a background thread (prewarm); fieldPipelines takes them over.
+  std::map<VariantKey, std::future<Result<FieldPipelines>>> compiling;
   VkPipeline scan = VK_NULL_HANDLE, scanSingle = VK_NULL_HANDLE, compact = VK_NULL_HANDLE, args = VK_NULL_HANDLE;
   VkCommandPool commandPool = VK_NULL_HANDLE;
   VkCommandBuffer cmd = VK_NULL_HANDLE;
@@ -153,6 +157,14 @@ struct GpuPolygonizer::Impl {
   Status init();
   Result<VkPipeline> pipeline(const char* name, const VkSpecializationInfo* spec = nullptr);
   Result<FieldPipelines> fieldPipelines(uint32_t features, uint32_t kinds, bool storage);
+  // Creates a variant's pipelines (any thread: it touches only the device and the layout).
+  Result<FieldPipelines> createFieldPipelines(uint32_t features, uint32_t kinds, bool storage);
+  // The variant (specialisation constants, pool buffer kind) packed programs pk of field need under s.
+  VariantKey variantKey(const PackedFieldPrograms& pk, const GpuField& field, const GpuPolygonizeSettings& s) const;
+  static uint32_t combineMode(const GpuField& field) {
+    return !field.b ? AM_COMBINE_SINGLE
+                    : field.method == MorphMethod::Interpolation ? AM_COMBINE_INTERPOLATE : AM_COMBINE_SPACETIME;
+  }
   Status ensure(Buffer& b, VkDeviceSize bytes, VkBufferUsageFlags usage);
   Status ensureCapacities(uint32_t blocksWanted, uint32_t verticesWanted, uint32_t trianglesWanted);
   void writeSet();
@@ -162,6 +174,8 @@ struct GpuPolygonizer::Impl {
 
 GpuPolygonizer::Impl::~Impl() {
   VkDevice dev = ctx.device();
+  for (auto& [key, f] : compiling)  // let background compilations finish, then destroy what they made
+    if (Result<FieldPipelines> r = f.get(); r) variants.emplace(key, *r);
   vkDeviceWaitIdle(dev);
   for (Buffer* b : {&params, &pool, &bounds, &table, &blockMask, &blockFlag, &blockPrefix, &blockSlot, &partials,
                     &superFlag, &control, &active, &corners, &edges, &counts, &offsets, &positions, &normals, &indices, &readback})
@@ -301,6 +315,30 @@ Result<GpuPolygonizer::Impl::FieldPipelines> GpuPolygonizer::Impl::fieldPipeline
                                                                                    bool storage) {
   auto key = std::make_tuple(features, kinds, storage ? 1 : 0);
   if (auto it = variants.find(key); it != variants.end()) return it->second;
+  Result<FieldPipelines> made = Error{""};
+  if (auto it = compiling.find(key); it != compiling.end()) {  // prewarmed: wait for it
+    made = it->second.get();
+    compiling.erase(it);
+  } else {
+    made = createFieldPipelines(features, kinds, storage);
+  }
+  if (made) variants.emplace(key, *made);
+  return made;
+}
+
+GpuPolygonizer::Impl::VariantKey GpuPolygonizer::Impl::variantKey(const PackedFieldPrograms& pk, const GpuField& field,
+                                                                  const GpuPolygonizeSettings& s) const {
+  const bool fitsUniform = pk.pool.size() <= AM_POLY_UNIFORM_POOL_VEC4 &&
+                           ctx.properties().limits.maxUniformBufferRange >= AM_POLY_UNIFORM_POOL_VEC4 * 16u;
+  const bool storagePool = s.poolBuffer == GpuPolygonizeSettings::PoolBuffer::Storage || !fitsUniform ||
+                           (s.poolBuffer == GpuPolygonizeSettings::PoolBuffer::Auto && !uniformPoolAllowed);
+  const uint32_t features = s.specialise ? pk.features | AM_FEAT_COMBINE_BIT(combineMode(field)) : AM_FEAT_ALL;
+  const uint32_t kinds = s.specialise ? pk.kinds : AM_FEAT_ALL;
+  return {features, kinds, storagePool ? 1 : 0};
+}
+
+Result<GpuPolygonizer::Impl::FieldPipelines> GpuPolygonizer::Impl::createFieldPipelines(uint32_t features,
+                                                                                         uint32_t kinds, bool storage) {
   const uint32_t values[2] = {features, kinds};
   const VkSpecializationMapEntry entries[2] = {{0, 0, 4}, {1, 4, 4}};
   VkSpecializationInfo spec{2, entries, sizeof values, values};
@@ -321,7 +359,6 @@ Result<GpuPolygonizer::Impl::FieldPipelines> GpuPolygonizer::Impl::fieldPipeline
     }
     *w.out = *p;
   }
-  variants.emplace(key, v);
   return v;
 }
 
@@ -423,10 +460,8 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   const PackedFieldPrograms& pk = *packed;
   const uint32_t nBlocks = g.blocks();
   const uint32_t words = std::max(1u, (pk.primitiveTotal() + 31) / 32);
-  const bool fitsUniform = pk.pool.size() <= AM_POLY_UNIFORM_POOL_VEC4 &&
-                           ctx.properties().limits.maxUniformBufferRange >= AM_POLY_UNIFORM_POOL_VEC4 * 16u;
-  const bool storagePool = s.poolBuffer == GpuPolygonizeSettings::PoolBuffer::Storage || !fitsUniform ||
-                           (s.poolBuffer == GpuPolygonizeSettings::PoolBuffer::Auto && !uniformPoolAllowed);
+  const VariantKey variant = variantKey(pk, field, s);
+  const bool storagePool = std::get<2>(variant) != 0;
   const VkBufferUsageFlags ssbo = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
 
   Status st = ensure(pool, std::max<VkDeviceSize>(AM_POLY_UNIFORM_POOL_VEC4 * 16, pk.pool.size() * 16),
@@ -451,9 +486,7 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   prm.progA = glm::uvec4(pk.opBegin[0], pk.opCount[0], pk.primBegin[0], pk.primCount[0]);
   prm.progB = glm::uvec4(pk.opBegin[1], pk.opCount[1], pk.primBegin[1], pk.primCount[1]);
   prm.thresholds = glm::vec4(pk.threshold[0], pk.threshold[1], 1e-3f * Tmax + 1e-7f, -1e-6f * Tmax);
-  uint32_t combine = !field.b ? AM_COMBINE_SINGLE
-                     : field.method == MorphMethod::Interpolation ? AM_COMBINE_INTERPOLATE
-                                                                  : AM_COMBINE_SPACETIME;
+  const uint32_t combine = combineMode(field);
   prm.modes = glm::uvec4(combine, words, s.culling ? 1u : 0u, blockCapacity);
   prm.morph0 = glm::vec4(field.weight, field.morphTime, field.timeScale, field.a0);
   const float normalStep = 0.05f * g.h;
@@ -468,8 +501,8 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   stats.cellSize = g.h;
   stats.blocksTotal = nBlocks;
   stats.uniformPool = !storagePool;
-  stats.features = s.specialise ? pk.features | AM_FEAT_COMBINE_BIT(combine) : AM_FEAT_ALL;
-  stats.kinds = s.specialise ? pk.kinds : AM_FEAT_ALL;
+  stats.features = std::get<0>(variant);
+  stats.kinds = std::get<1>(variant);
   Result<FieldPipelines> fp = fieldPipelines(stats.features, stats.kinds, storagePool);
   if (!fp) return Error{fp.error()};
   lastGrid = g;
@@ -593,6 +626,22 @@ std::string GpuPolygonizer::unsupported(const GpuField& field) {
     if (std::string why = gpuUnsupportedReason(*field.b); !why.empty()) return "target program: " + why;
   return {};
 }
+
+void GpuPolygonizer::prewarm(const GpuField& field, const GpuPolygonizeSettings& s) {
+  Impl& m = *impl_;
+  if (!field.a || !unsupported(field).empty()) return;
+  Result<PackedFieldPrograms> packed = packFieldPrograms(*field.a, field.b);
+  if (!packed) return;
+  const Impl::VariantKey key = m.variantKey(*packed, field, s);
+  if (m.variants.count(key) || m.compiling.count(key)) return;
+  const auto [features, kinds, storage] = key;
+  Impl* impl = &m;
+  m.compiling.emplace(key, std::async(std::launch::async, [impl, features = features, kinds = kinds, storage = storage] {
+                        return impl->createFieldPipelines(features, kinds, storage != 0);
+                      }));
+}
+
+size_t GpuPolygonizer::variantCount() const { return impl_->variants.size() + impl_->compiling.size(); }
 
 Status GpuPolygonizer::record(VkCommandBuffer cmd, uint64_t frameSerial, const GpuField& field,
                               const GpuPolygonizeSettings& s) {

@@ -134,6 +134,16 @@ class GpuPolygonizer {
   // Errors: unsupported field, bad settings or bounds, Vulkan failures.
   Status record(VkCommandBuffer cmd, uint64_t frameSerial, const GpuField& field, const GpuPolygonizeSettings& s);
 
+  // Starts compiling, on a background thread, the shader pipelines record() and polygonize() will
+  // need for fields like this one (same operators, primitive kinds and morph method), so that the
+  // first of them does not stall its frame: on lavapipe a field's four pipelines take about a
+  // second to compile, on the thread that creates them. A record() that needs them meanwhile
+  // waits for the compilation. No-op when they exist or are under way, or for an unsupported
+  // field; compilation errors surface in record().
+  void prewarm(const GpuField& field, const GpuPolygonizeSettings& s = {});
+  // Pipeline variants made or being made (one per kind of field: operators, primitives, morph method).
+  size_t variantCount() const;
+
   // Device buffers of the last recorded mesh for SceneRenderer (Scene::generatedMeshes).
   GeneratedMeshDraw generatedMesh(const glm::vec4& color = {0.62f, 0.62f, 0.62f, 1.0f}) const;
 

@@ -110,6 +110,22 @@ void ImplicitPreview::uploadNew() {
   else uploadError_ = up.error();
 }
 
+void ImplicitPreview::prewarm(const PreviewSource& source, const ImplicitPreviewSettings& s) {
+  if (!s.gpu || !gpuFailure_.empty()) return;
+  if (!poly_) {
+    if (Status st = initGpu(); !st) {
+      gpuFailure_ = "GPU preview unavailable: " + st.error();
+      return;
+    }
+  }
+  auto field = source.field(s.interactiveResolution);
+  if (!field) return;  // update() reports it
+  GpuPolygonizeSettings gs;
+  gs.resolution = s.interactiveResolution;
+  gs.bounds = field->bounds;
+  poly_->prewarm(GpuField::single(field->program), gs);
+}
+
 Status ImplicitPreview::initGpu() {
   auto p = GpuPolygonizer::create(ctx_);
   if (!p) return Error{p.error()};

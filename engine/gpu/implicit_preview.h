@@ -89,6 +89,10 @@ class ImplicitPreview {
   // sameAs decides whether it changed). CPU: submits to the worker, uploads a
   // finished mesh. GPU: records and submits when there is something to do.
   void update(std::shared_ptr<const PreviewSource> source, double timeSec, const ImplicitPreviewSettings& s);
+  // Before the shape is first shown: compiles, in the background, the GPU pipelines shapes like
+  // source need (GpuPolygonizer::prewarm), so the frame that first shows one does not stall on
+  // the compiler. Nothing when s does not ask for the GPU or it failed before.
+  void prewarm(const PreviewSource& source, const ImplicitPreviewSettings& s);
   // Appends the newest mesh to scene (nothing before the first one).
   void draw(Scene& scene, const glm::mat4& model, const glm::vec4& color, bool selected) const;
   // The newest CPU result (picking, tests); null on the GPU path.

@@ -382,6 +382,40 @@ TEST_CASE("GPU polygoniser skips the map subtrees no primitive of a block reache
   CHECK(r.ctx->validationErrorCount() == 0);
 }
 
+TEST_CASE("GPU polygoniser compiles a kind of field's pipelines in the background (prewarm)", "[gpu][gpupoly]") {
+  Rig r = makeRig();
+  BlobTree ta = chainTree(8, 11, 1.3f), tb = chainTree(8, 11, 1.8f, glm::vec3(0.06f, 0.0f, 0.0f));
+  FieldProgram a = compileFieldProgram(ta, 0.0), b = compileFieldProgram(tb, 0.0);
+  GpuPolygonizeSettings s;
+  s.resolution = 40;
+  s.bounds = cube(0.6f);
+  CHECK(r.poly->variantCount() == 0);
+  r.poly->prewarm(GpuField::interpolation(a, b, 0.3f), s);
+  r.poly->prewarm(GpuField::interpolation(a, b, 0.7f), s);  // the same kind of field: already under way
+  CHECK(r.poly->variantCount() == 1);
+  // The polygonisation takes the prewarmed pipelines over instead of compiling its own, and
+  // makes the mesh a polygoniser that compiled them itself makes.
+  TriangleMesh warm = gpuMesh(*r.poly, GpuField::interpolation(a, b, 0.5f), s);
+  CHECK(r.poly->variantCount() == 1);
+  auto cold = GpuPolygonizer::create(*r.ctx);
+  REQUIRE(cold.ok());
+  TriangleMesh reference = gpuMesh(**cold, GpuField::interpolation(a, b, 0.5f), s);
+  REQUIRE(reference.triangleCount() > 100);
+  CHECK(triangleSet(warm) == triangleSet(reference));
+  // Another kind (space-time blending, a single program): its own variant.
+  r.poly->prewarm(GpuField::spaceTime(a, b, 0.5f), s);
+  r.poly->prewarm(GpuField::single(a), s);
+  CHECK(r.poly->variantCount() == 3);
+  // A polygoniser destroyed while it compiles waits for the compiler and frees what it made.
+  {
+    auto brief = GpuPolygonizer::create(*r.ctx);
+    REQUIRE(brief.ok());
+    (*brief)->prewarm(GpuField::single(b), s);
+  }
+  r.poly.reset();
+  CHECK(r.ctx->validationErrorCount() == 0);
+}
+
 TEST_CASE("GPU polygoniser grows its buffers from tiny capacities and redoes the frame", "[gpu][gpupoly]") {
   Rig r = makeRig();
   FieldProgram p = compileFieldProgram(chainTree(12, 3), 0.0);
