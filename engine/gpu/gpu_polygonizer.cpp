@@ -641,6 +641,24 @@ void GpuPolygonizer::prewarm(const GpuField& field, const GpuPolygonizeSettings&
                       }));
 }
 
+bool GpuPolygonizer::ready(const GpuField& field, const GpuPolygonizeSettings& s) const {
+  const Impl& m = *impl_;
+  if (!field.a) return true;  // record() fails at once
+  Result<PackedFieldPrograms> packed = packFieldPrograms(*field.a, field.b);
+  if (!packed) return true;
+  const Impl::VariantKey key = m.variantKey(*packed, field, s);
+  if (m.variants.count(key)) return true;
+  auto it = m.compiling.find(key);
+  return it != m.compiling.end() && it->second.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+}
+
+bool GpuPolygonizer::waitForCompilation(double timeoutSec) const {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(std::max(0.0, timeoutSec));
+  for (const auto& [key, f] : impl_->compiling)
+    if (f.wait_until(deadline) != std::future_status::ready) return false;
+  return true;
+}
+
 size_t GpuPolygonizer::variantCount() const { return impl_->variants.size() + impl_->compiling.size(); }
 
 Status GpuPolygonizer::record(VkCommandBuffer cmd, uint64_t frameSerial, const GpuField& field,

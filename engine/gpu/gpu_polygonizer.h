@@ -141,6 +141,11 @@ class GpuPolygonizer {
   // waits for the compilation. No-op when they exist or are under way, or for an unsupported
   // field; compilation errors surface in record().
   void prewarm(const GpuField& field, const GpuPolygonizeSettings& s = {});
+  // True when record() of field would not wait for pipelines to compile (they exist, or a
+  // prewarm has finished them). Interactive callers prewarm and draw what they have meanwhile.
+  bool ready(const GpuField& field, const GpuPolygonizeSettings& s = {}) const;
+  // Waits up to timeoutSec for the pipelines being compiled in the background. Returns all done.
+  bool waitForCompilation(double timeoutSec) const;
   // Pipeline variants made or being made (one per kind of field: operators, primitives, morph method).
   size_t variantCount() const;
 

@@ -35,6 +35,8 @@ std::string describePreviewStatus(const ImplicitPreviewStatus& st, const Preview
   char buf[160];
   if (!st.error.empty()) {
     s = "preview error: " + st.error;
+  } else if (st.compiling) {
+    s = "preview: compiling GPU shaders";
   } else if (!st.hasMesh) {
     s = "preview: computing";
   } else {
@@ -207,6 +209,19 @@ bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& sour
     return false;
   }
   fieldFallback_.clear();
+  GpuPolygonizeSettings gs;
+  gs.resolution = res;
+  gs.bounds = field->bounds;
+  // A kind of shape whose pipelines are not compiled yet: compile them in the background and keep
+  // drawing what there is (the frame would otherwise stall ~1 s on lavapipe); retried every frame.
+  // A screenshot (settle) waits for them instead: it must show this shape.
+  compiling_ = !s.settle && !poly_->ready(gf, gs);
+  if (compiling_) {
+    poly_->prewarm(gf, gs);
+    deferred_ = true;
+    deferredSource_ = source;
+    return true;
+  }
   const uint32_t slot = uint32_t(serial_ % kFramesInFlight);
   VkDevice dev = ctx_.device();
   // The record kFramesInFlight ago used this slot; GpuPolygonizer::record reads its counters.
@@ -223,9 +238,6 @@ bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& sour
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   vkBeginCommandBuffer(cmd, &bi);
-  GpuPolygonizeSettings gs;
-  gs.resolution = res;
-  gs.bounds = field->bounds;
   Status st = poly_->record(cmd, serial_, gf, gs);
   vkEndCommandBuffer(cmd);
   if (!st) {
@@ -287,6 +299,7 @@ ImplicitPreviewStatus ImplicitPreview::status() const {
     st.timeSec = gpuDrawnTime_;
     st.triangles = poly_ ? poly_->lastStats().triangles : 0;
     st.refining = busy();
+    st.compiling = compiling_;
     return st;
   }
   st.refining = busy();
@@ -319,7 +332,7 @@ bool ImplicitPreview::needsFrames() const {
 bool ImplicitPreview::waitIdle(double timeoutSec) {
   if (usingGpu()) {
     const uint64_t ns = uint64_t(std::max(0.0, timeoutSec) * 1e9);
-    bool idle = true;
+    bool idle = !compiling_ || poly_->waitForCompilation(timeoutSec);  // the next update records it
     for (uint32_t i = 0; i < kFramesInFlight; ++i)
       if (pending_[i] && vkWaitForFences(ctx_.device(), 1, &fences_[i], VK_TRUE, ns) != VK_SUCCESS) idle = false;
     pollGpu();

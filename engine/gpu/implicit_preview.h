@@ -55,6 +55,7 @@ struct ImplicitPreviewStatus {
   double timeSec = -1.0;      // the scene time of the mesh drawn (-1: none yet; GPU: of the last recorded shape)
   size_t triangles = 0;
   bool refining = false;      // a finer mesh of the current shape is on its way
+  bool compiling = false;     // GPU: the pipelines for this kind of shape are compiling (the last mesh stays)
   std::string error;          // the shape could not be polygonised
   std::string gpuFallback;    // why this preview left the GPU for the CPU ("" when it did not)
 };
@@ -154,6 +155,7 @@ class ImplicitPreview {
   double lastUpdateAt_ = 0.0;      // wall clock of the last updateGpu (frame pacing)
   bool lastUpdateRecorded_ = false;  // it recorded a polygonisation
   bool deferred_ = false;            // a new shape waits for the next frame
+  bool compiling_ = false;           // the shape waits for its pipelines (GpuPolygonizer::ready)
   std::shared_ptr<const PreviewSource> deferredSource_;  // that shape
   double gpuShownMs_ = 0.0;
 };

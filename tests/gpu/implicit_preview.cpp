@@ -193,3 +193,48 @@ TEST_CASE("implicit preview: after a slow frame that polygonised, the next new s
   }
   CHECK(ctx->validationErrorCount() == 0);
 }
+
+TEST_CASE("implicit preview: a new kind of shape compiles its GPU pipelines without stalling the frame",
+          "[gpu][preview]") {
+  auto ctx = test::makeTestContext();
+  const auto rt = test::demoMorph().runtime;
+  const double t = midStageSec(*rt, 0.5);
+  auto source = morphPreviewSource(rt, t);
+  ImplicitPreviewSettings ps;
+  ps.interactiveResolution = 32;
+  ps.refinedResolution = 40;
+  ps.gpu = true;
+
+  // The first frame starts the compilation and returns: nothing recorded, nothing to draw yet,
+  // the status bar says why, and the preview asks for more frames.
+  ImplicitPreview preview(*ctx);
+  preview.update(source, t, ps);
+  preview.endFrame();
+  ImplicitPreviewStatus first = preview.status();
+  CHECK(first.compiling);
+  CHECK_FALSE(first.hasMesh);
+  CHECK(preview.busy());
+  CHECK(preview.needsFrames());
+  CHECK_THAT(describePreviewStatus(first, {true, "GPU"}), Catch::Contains("compiling"));
+  Scene none;
+  preview.draw(none, glm::mat4(1.0f), glm::vec4(1.0f), false);
+  CHECK(none.generatedMeshes.empty());
+  // Frames go on; once the pipelines are there the shape is drawn, refined.
+  ImplicitPreviewStatus s = settle(preview, source, t, ps);
+  CHECK_FALSE(s.compiling);
+  CHECK(s.hasMesh);
+  CHECK(s.gpu);
+  CHECK(s.resolution == ps.refinedResolution);
+  CHECK(s.triangles > 100);
+
+  // A screenshot (settle) does not draw a stale shape: it waits for the pipelines in its frame.
+  ImplicitPreview shot(*ctx);
+  ps.settle = true;
+  shot.update(source, t, ps);
+  shot.endFrame();
+  CHECK_FALSE(shot.status().compiling);
+  REQUIRE(shot.waitIdle(60.0));
+  shot.update(source, t, ps);
+  CHECK(shot.status().hasMesh);
+  CHECK(ctx->validationErrorCount() == 0);
+}
