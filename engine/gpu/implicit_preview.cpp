@@ -37,7 +37,7 @@ std::string describePreviewStatus(const ImplicitPreviewStatus& st, const Preview
     s = "preview error: " + st.error;
   } else if (st.compiling) {
     s = "preview: compiling GPU shaders";
-  } else if (!st.hasMesh) {
+  } else if (!st.hasMesh || st.resolution == 0) {  // (GPU: the first record's figures are not read back yet)
     s = "preview: computing";
   } else {
     std::snprintf(buf, sizeof buf, "preview %d^3 %s %.0f ms, %zu tris%s", st.resolution, st.gpu ? "GPU" : "CPU",
