@@ -18,7 +18,7 @@
 
 #include "blob_preview_set.h"
 #include "context.h"
-#include "doc/atomic_file.h"
+#include "editor_args.h"
 #include "editor_ui.h"
 #include "implicit_preview.h"
 #include "imgui_vulkan.h"
@@ -38,78 +38,13 @@
 #include "swapchain.h"
 #include "paint/paint_mesh.h"
 #include "weight_overlay_scene.h"
+#include "ui_map.h"
 #include "window_events.h"
 
 using namespace animorph;
 using Clock = std::chrono::steady_clock;
 
 namespace {
-
-struct Args {
-  std::string project;
-  std::string screenshot;
-  int frame = -1;
-  bool quit = false;
-  int width = 1600, height = 900;
-  int benchFrames = 0;
-  int scrubFrom = -1, scrubTo = -1;  // --scrub A:B: the bench steps the current frame A..B..A instead of playing
-  double idleBenchSec = 0.0;          // --idle-bench S: measure S seconds without input, then exit
-};
-
-void usage() {
-  std::printf(
-      "usage: animorph [PROJECT.animorph] [options]\n"
-      "  --screenshot FILE.png  render the whole editor window to FILE.png\n"
-      "  --frame N              go to frame N first\n"
-      "  --quit                 exit after the screenshot\n"
-      "  --size WxH             window size (default 1600x900)\n"
-      "  --bench N              play N frames and print frame-time figures, then exit\n"
-      "  --scrub A:B            with --bench: step the current frame A..B..A, one frame per\n"
-      "                         redraw, as dragging the timeline does, instead of playing\n"
-      "  --idle-bench S         leave the editor idle for S seconds after start-up, print the frames\n"
-      "                         drawn and the CPU time used, then exit\n"
-      "environment: ANIMORPH_GPU=name|index picks the Vulkan device; ANIMORPH_VALIDATION=1 enables\n"
-      "validation (errors make the exit status non-zero); ANIMORPH_REDRAW=continuous redraws every\n"
-      "frame instead of on demand (for comparison); ANIMORPH_UI_MAP=FILE writes the positions\n"
-      "of named widgets to FILE (for scripted GUI tests).\n");
-}
-
-bool parseArgs(int argc, char** argv, Args& a) {
-  for (int i = 1; i < argc; ++i) {
-    std::string s = argv[i];
-    auto next = [&](const char* what) -> const char* {
-      if (i + 1 >= argc) {
-        std::fprintf(stderr, "animorph: %s needs a value\n", what);
-        std::exit(2);
-      }
-      return argv[++i];
-    };
-    if (s == "--help" || s == "-h") { usage(); std::exit(0); }
-    else if (s == "--version") { std::printf("animorph 0.1.0\n"); std::exit(0); }
-    else if (s == "--screenshot") a.screenshot = next("--screenshot");
-    else if (s == "--frame") a.frame = std::atoi(next("--frame"));
-    else if (s == "--quit") a.quit = true;
-    else if (s == "--bench") a.benchFrames = std::max(1, std::atoi(next("--bench")));
-    else if (s == "--idle-bench") a.idleBenchSec = std::max(1.0, std::atof(next("--idle-bench")));
-    else if (s == "--scrub") {
-      if (std::sscanf(next("--scrub"), "%d:%d", &a.scrubFrom, &a.scrubTo) != 2 || a.scrubFrom < 0 ||
-          a.scrubTo <= a.scrubFrom) {
-        std::fprintf(stderr, "animorph: --scrub expects A:B with 0 <= A < B, e.g. 48:84\n");
-        return false;
-      }
-    }
-    else if (s == "--size") {
-      if (std::sscanf(next("--size"), "%dx%d", &a.width, &a.height) != 2 || a.width < 64 || a.height < 64) {
-        std::fprintf(stderr, "animorph: --size expects WxH, e.g. 1600x900\n");
-        return false;
-      }
-    } else if (!s.empty() && s[0] == '-') {
-      std::fprintf(stderr, "animorph: unknown option %s (see --help)\n", s.c_str());
-      return false;
-    } else a.project = s;
-  }
-  return true;
-}
 
 double processCpuSec() {
   timespec ts{};
@@ -123,28 +58,12 @@ double percentile(std::vector<double> v, double p) {
   return v[std::min(v.size() - 1, static_cast<size_t>(p * static_cast<double>(v.size())))];
 }
 
-// Writes the rectangles of named widgets, and a little state, for scripted GUI tests.
-void writeUiMap(const std::string& path, const WidgetRects& rects, const EditorOutput& out, const Document& doc,
-                int frameCount, const nlohmann::json& extra) {
-  nlohmann::json j = extra;
-  j["frame_count"] = frameCount;
-  j["project"] = doc.path();
-  j["selected"] = doc.selection.actorId;
-  j["current_frame"] = doc.project().timeline.currentFrame;
-  j["dirty"] = doc.dirty();
-  j["viewport"] = {out.viewport.min.x, out.viewport.min.y, out.viewport.size.x, out.viewport.size.y};
-  nlohmann::json w = nlohmann::json::object();
-  for (const auto& [key, r] : rects.all()) w[key] = {r.min.x, r.min.y, r.max.x, r.max.y};
-  j["widgets"] = std::move(w);
-  (void)writeFileAtomic(path, j.dump(1));
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
   const auto startTime = Clock::now();
-  Args args;
-  if (!parseArgs(argc, argv, args)) return 2;
+  EditorArgs args;
+  if (!parseEditorArgs(argc, argv, args)) return 2;
 
   if (!glfwInit()) {
     std::fprintf(stderr, "animorph: cannot open a window (no display?). Run under a virtual X server:\n"

@@ -1,0 +1,22 @@
+#include "ui_map.h"
+
+#include "doc/atomic_file.h"
+
+namespace animorph {
+
+void writeUiMap(const std::string& path, const WidgetRects& rects, const EditorOutput& out, const Document& doc,
+                int frameCount, const nlohmann::json& extra) {
+  nlohmann::json j = extra;
+  j["frame_count"] = frameCount;
+  j["project"] = doc.path();
+  j["selected"] = doc.selection.actorId;
+  j["current_frame"] = doc.project().timeline.currentFrame;
+  j["dirty"] = doc.dirty();
+  j["viewport"] = {out.viewport.min.x, out.viewport.min.y, out.viewport.size.x, out.viewport.size.y};
+  nlohmann::json w = nlohmann::json::object();
+  for (const auto& [key, r] : rects.all()) w[key] = {r.min.x, r.min.y, r.max.x, r.max.y};
+  j["widgets"] = std::move(w);
+  (void)writeFileAtomic(path, j.dump(1));
+}
+
+}  // namespace animorph
