@@ -150,6 +150,7 @@ int main(int argc, char** argv) {
   int frameCount = 0, screenshotAt = -1;
   bool frameApplied = false;
   std::string pendingCapture;
+  int captureFrames = 0;  // frames since pendingCapture was set: the capture is taken on the second
   int exitCode = 0;
   auto prev = Clock::now();
   double smoothedMs = 16.0;
@@ -317,7 +318,8 @@ int main(int argc, char** argv) {
       else if (!id.empty()) ectx.stats.previewInfo = gpu::describePreviewStatus(blobPreviews->status(id), backend);
       else ectx.stats.previewInfo.clear();
     }
-    if (!pendingCapture.empty()) swapchain.requestCapture();
+    // The first frame settles the previews; the second, whose status bar already shows them, is captured.
+    if (!pendingCapture.empty() && captureFrames++ >= 1) swapchain.requestCapture();
 
     gpu::Frame f;
     gpu::FrameStatus fs = swapchain.beginFrame(f);
@@ -346,6 +348,7 @@ int main(int argc, char** argv) {
         Status w = gpu::writePng(pendingCapture, *img);
         if (!w) std::fprintf(stderr, "animorph: %s\n", w.error().c_str());
         pendingCapture.clear();
+        captureFrames = 0;
         if (args.quit && screenshotAt >= 0) break;
       }
     } else if (fs == gpu::FrameStatus::Failed) {

@@ -222,8 +222,33 @@ bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& sour
     deferredSource_ = source;
     return true;
   }
-  const uint32_t slot = uint32_t(serial_ % kFramesInFlight);
   VkDevice dev = ctx_.device();
+  if (s.settle) {
+    // A screenshot: the whole shape in this frame. A record reads its counters frames later, so
+    // the first record of a shape that outgrows the buffers would draw nothing; the synchronous
+    // polygonisation grows them and redoes it until the mesh fits (after this preview's own
+    // records, which use the same buffers).
+    for (uint32_t i = 0; i < kFramesInFlight; ++i)
+      if (pending_[i] && vkWaitForFences(dev, 1, &fences_[i], VK_TRUE, UINT64_MAX) != VK_SUCCESS) {
+        gpuFailure_ = "GPU preview: waiting for the GPU failed";
+        return false;
+      }
+    pollGpu();
+    Result<GpuPolygonizeStats> done = poly_->polygonize(gf, gs);
+    if (!done) {
+      gpuFailure_ = "GPU preview: " + done.error();
+      return false;
+    }
+    gpuShownMs_ = done->milliseconds;
+    gpuShownRes_ = res;
+    gpuDrawnTime_ = timeSec;
+    gpuSource_ = source;
+    gpuResolution_ = res;
+    settled_ = true;
+    gpuDrawable_ = true;
+    return true;
+  }
+  const uint32_t slot = uint32_t(serial_ % kFramesInFlight);
   // The record kFramesInFlight ago used this slot; GpuPolygonizer::record reads its counters.
   if (pending_[slot]) {
     VkResult w = vkWaitForFences(dev, 1, &fences_[slot], VK_TRUE, UINT64_MAX);
