@@ -609,6 +609,15 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   return Status::success();
 }
 
+namespace {
+// Blocks the buffers are first sized for, out of a grid's nb. A record reads its counters
+// kFramesInFlight records later, so a first record that overflows draws nothing for that long
+// (the preview would flash empty when it appears). Grids up to 4096 blocks (128^3) get room for
+// every block (the preview's bounds hug the shape: the demo morph has 283 of ~900 blocks active
+// at 128^3); larger ones a quarter, at least 4096 (~14 KiB a block with its vertices and triangles).
+uint32_t firstBlockCapacity(uint32_t nb) { return nb <= 4096u ? nb : std::max(4096u, nb / 4u); }
+}  // namespace
+
 GpuPolygonizer::GpuPolygonizer(Context& ctx) : impl_(std::make_unique<Impl>(ctx)) {}
 GpuPolygonizer::~GpuPolygonizer() = default;
 
@@ -687,7 +696,7 @@ Status GpuPolygonizer::record(VkCommandBuffer cmd, uint64_t frameSerial, const G
   }
   // First frames: size the buffers for the grid as polygonize() does.
   if (Result<Grid> g = makeGrid(field, s); g) {
-    uint32_t blocks = std::min(g->blocks(), std::max(256u, g->blocks() / 4));
+    uint32_t blocks = firstBlockCapacity(g->blocks());
     if (blocks > m.blockCapacity) {
       Status e = m.ensureCapacities(blocks, blocks * 192, blocks * 384);
       if (!e) return e;
@@ -716,7 +725,7 @@ Result<GpuPolygonizeStats> GpuPolygonizer::polygonize(const GpuField& field, con
     Result<Grid> g = makeGrid(field, s);
     if (!g) return Error{g.error()};
     uint32_t nb = g->blocks();
-    uint32_t blocks = s.initialBlockCapacity ? s.initialBlockCapacity : std::min(nb, std::max(256u, nb / 4));
+    uint32_t blocks = s.initialBlockCapacity ? s.initialBlockCapacity : firstBlockCapacity(nb);
     uint32_t verts = s.initialVertexCapacity ? s.initialVertexCapacity : blocks * 192;
     uint32_t tris = s.initialTriangleCapacity ? s.initialTriangleCapacity : blocks * 384;
     if (s.initialBlockCapacity || s.initialVertexCapacity || s.initialTriangleCapacity) {

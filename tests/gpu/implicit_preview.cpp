@@ -245,3 +245,37 @@ TEST_CASE("implicit preview: a new kind of shape compiles its GPU pipelines with
   shot.endFrame();
   CHECK(ctx->validationErrorCount() == 0);
 }
+
+TEST_CASE("implicit preview: the first GPU record of a shape fits its buffers (no blank frames)", "[gpu][preview]") {
+  // The preview's bounds hug the shape, so most of the grid's blocks hold surface. A record reads
+  // its counters kFramesInFlight records later: if the first one overflowed its initial buffers it
+  // would draw nothing, and the viewport would flash empty when the preview first appears.
+  auto ctx = test::makeTestContext();
+  const auto rt = test::demoMorph().runtime;
+  for (double u : {0.1, 0.5, 0.9}) {
+    const double t = midStageSec(*rt, u);
+    auto source = morphPreviewSource(rt, t);
+    for (int res : {96, 128}) {
+      auto field = source->field(res);
+      REQUIRE(field.ok());
+      auto poly = GpuPolygonizer::create(*ctx);
+      REQUIRE(poly.ok());
+      GpuPolygonizeSettings gs;
+      gs.resolution = res;
+      gs.bounds = field->bounds;
+      const GpuField gf = GpuField::single(field->program);
+      for (uint64_t serial : {uint64_t(0), uint64_t(kFramesInFlight)}) {
+        Status recorded;
+        Status submitted = ctx->submitImmediate([&](VkCommandBuffer cmd) { recorded = (*poly)->record(cmd, serial, gf, gs); });
+        INFO(recorded.error() + submitted.error());
+        REQUIRE(recorded.ok());
+        REQUIRE(submitted.ok());
+      }
+      // The second record read the first one's counters.
+      INFO("u " << u << ", " << res << "^3: " << (*poly)->lastStats().blocksActive << " active blocks");
+      CHECK_FALSE((*poly)->lastStats().overflowed);
+      CHECK((*poly)->lastStats().triangles > 1000);
+    }
+  }
+  CHECK(ctx->validationErrorCount() == 0);
+}
