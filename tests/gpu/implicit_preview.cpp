@@ -39,6 +39,21 @@ ImplicitPreviewStatus settle(ImplicitPreview& p, const std::shared_ptr<const Pre
   return p.status();
 }
 
+// What the preview hands the GPU at res: its field and the settings with the field's bounds.
+struct PreviewGpuField {
+  PreviewField field;
+  GpuPolygonizeSettings settings;
+};
+PreviewGpuField previewGpuField(const PreviewSource& source, int res) {
+  auto field = source.field(res);
+  INFO(field.error());
+  REQUIRE(field.ok());
+  PreviewGpuField f{std::move(*field), {}};
+  f.settings.resolution = res;
+  f.settings.bounds = f.field.bounds;
+  return f;
+}
+
 }  // namespace
 
 TEST_CASE("implicit preview: the GPU path of the morph stage matches the CPU mesh", "[gpu][preview]") {
@@ -49,14 +64,10 @@ TEST_CASE("implicit preview: the GPU path of the morph stage matches the CPU mes
   const int res = 48;
 
   // The field the preview hands the GPU, polygonised and read back, against the CPU stage mesh.
-  auto field = source->field(res);
-  REQUIRE(field.ok());
+  const PreviewGpuField pf = previewGpuField(*source, res);
   auto poly = GpuPolygonizer::create(*ctx);
   REQUIRE(poly.ok());
-  GpuPolygonizeSettings gs;
-  gs.resolution = res;
-  gs.bounds = field->bounds;
-  auto st = (*poly)->polygonize(GpuField::single(field->program), gs);
+  auto st = (*poly)->polygonize(GpuField::single(pf.field.program), pf.settings);
   INFO(st.error());
   REQUIRE(st.ok());
   auto gpuMesh = (*poly)->readBack();
@@ -256,17 +267,13 @@ TEST_CASE("implicit preview: the first GPU record of a shape fits its buffers (n
     const double t = midStageSec(*rt, u);
     auto source = morphPreviewSource(rt, t);
     for (int res : {96, 128}) {
-      auto field = source->field(res);
-      REQUIRE(field.ok());
+      const PreviewGpuField pf = previewGpuField(*source, res);
       auto poly = GpuPolygonizer::create(*ctx);
       REQUIRE(poly.ok());
-      GpuPolygonizeSettings gs;
-      gs.resolution = res;
-      gs.bounds = field->bounds;
-      const GpuField gf = GpuField::single(field->program);
+      const GpuField gf = GpuField::single(pf.field.program);
       for (uint64_t serial : {uint64_t(0), uint64_t(kFramesInFlight)}) {
         Status recorded;
-        Status submitted = ctx->submitImmediate([&](VkCommandBuffer cmd) { recorded = (*poly)->record(cmd, serial, gf, gs); });
+        Status submitted = ctx->submitImmediate([&](VkCommandBuffer cmd) { recorded = (*poly)->record(cmd, serial, gf, pf.settings); });
         INFO(recorded.error() + submitted.error());
         REQUIRE(recorded.ok());
         REQUIRE(submitted.ok());
