@@ -35,6 +35,10 @@ std::string describePreviewStatus(const ImplicitPreviewStatus& st, const Preview
   char buf[160];
   if (!st.error.empty()) {
     s = "preview error: " + st.error;
+  } else if (st.compiling && st.hasMesh && st.resolution > 0) {  // the CPU worker fills in
+    std::snprintf(buf, sizeof buf, "preview %d^3 CPU %.0f ms, %zu tris (GPU shaders compiling)", st.resolution,
+                  st.milliseconds, st.triangles);
+    s = buf;
   } else if (st.compiling) {
     s = "preview: compiling GPU shaders";
   } else if (!st.hasMesh || st.resolution == 0) {  // (GPU: the first record's figures are not read back yet)
@@ -70,11 +74,32 @@ void ImplicitPreview::update(std::shared_ptr<const PreviewSource> source, double
   if (!source) return;
   if (s.gpu && gpuFailure_.empty() && updateGpu(source, timeSec, s)) {
     gpuActive_ = true;
+    if (compiling_) {
+      // The shape's pipelines are compiling (~1 s on lavapipe): the CPU worker draws it meanwhile,
+      // so the viewport shows this shape rather than the last one or nothing.
+      if (!cpuFillIn_) {
+        if (mesh_) retired_.emplace_back(frame_, std::move(mesh_));
+        result_.reset();
+        uploadedSerial_ = 0;  // the worker's newest mesh, even one it made before, is this shape's or newer
+        cpuFillIn_ = true;
+      }
+      updateCpu(std::move(source), timeSec, s);
+    } else if (cpuFillIn_) {
+      endCpuFillIn();
+    }
     return;
   }
   gpuActive_ = false;
+  cpuFillIn_ = false;  // the worker's mesh is the CPU path's now
   gpuSource_.reset();  // back on the GPU later, the shape starts over
   updateCpu(std::move(source), timeSec, s);
+}
+
+void ImplicitPreview::endCpuFillIn() {
+  cpuFillIn_ = false;
+  worker_.reset();  // cancels its run: the GPU path has the cores
+  if (mesh_) retired_.emplace_back(frame_, std::move(mesh_));
+  result_.reset();
 }
 
 void ImplicitPreview::updateCpu(std::shared_ptr<const PreviewSource> source, double timeSec,
@@ -212,8 +237,8 @@ bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& sour
   GpuPolygonizeSettings gs;
   gs.resolution = res;
   gs.bounds = field->bounds;
-  // A kind of shape whose pipelines are not compiled yet: compile them in the background and keep
-  // drawing what there is (the frame would otherwise stall ~1 s on lavapipe); retried every frame.
+  // A kind of shape whose pipelines are not compiled yet: compile them in the background while the
+  // CPU worker draws it (update(); the frame would otherwise stall ~1 s on lavapipe); retried every frame.
   // A screenshot (settle) waits for them instead: it must show this shape.
   compiling_ = !s.settle && !poly_->ready(gf, gs);
   if (compiling_) {
@@ -295,7 +320,7 @@ bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& sour
 }
 
 void ImplicitPreview::draw(Scene& scene, const glm::mat4& model, const glm::vec4& color, bool selected) const {
-  if (usingGpu()) {
+  if (usingGpu() && !(cpuFillIn_ && mesh_)) {
     if (!gpuDrawable_) return;
     GeneratedMeshDraw g = poly_->generatedMesh(color);
     g.model = model;
@@ -316,7 +341,7 @@ void ImplicitPreview::draw(Scene& scene, const glm::mat4& model, const glm::vec4
 ImplicitPreviewStatus ImplicitPreview::status() const {
   ImplicitPreviewStatus st;
   st.gpuFallback = !gpuFailure_.empty() ? gpuFailure_ : fieldFallback_;
-  if (usingGpu()) {
+  if (usingGpu() && !(cpuFillIn_ && result_)) {
     st.gpu = true;
     st.hasMesh = gpuDrawable_;
     st.resolution = gpuShownRes_;
@@ -328,6 +353,7 @@ ImplicitPreviewStatus ImplicitPreview::status() const {
     return st;
   }
   st.refining = busy();
+  st.compiling = cpuFillIn_ && compiling_;
   if (!uploadError_.empty()) st.error = uploadError_;
   if (!result_) return st;
   if (!result_->error.empty()) st.error = result_->error;
@@ -357,6 +383,10 @@ bool ImplicitPreview::needsFrames() const {
 bool ImplicitPreview::waitIdle(double timeoutSec) {
   if (usingGpu()) {
     const uint64_t ns = uint64_t(std::max(0.0, timeoutSec) * 1e9);
+    if (cpuFillIn_ && worker_) {  // the worker's mesh of the shape first, then the compiler
+      worker_->waitIdle(timeoutSec);
+      uploadNew();
+    }
     bool idle = !compiling_ || poly_->waitForCompilation(timeoutSec);  // the next update records it
     for (uint32_t i = 0; i < kFramesInFlight; ++i)
       if (pending_[i] && vkWaitForFences(ctx_.device(), 1, &fences_[i], VK_TRUE, ns) != VK_SUCCESS) idle = false;

@@ -16,7 +16,9 @@
 //    shape waits one frame and the viewport keeps the last mesh, as it does
 //    while the CPU worker runs: the UI stays responsive and the preview shows
 //    every other shape. On a fast GPU frames stay within the budget and every
-//    frame's shape is polygonised.
+//    frame's shape is polygonised. A kind of shape whose pipelines are not
+//    compiled yet (~1 s on lavapipe) does not stall the frame: they compile in
+//    the background and the CPU worker draws the shape meanwhile.
 // Any GPU failure (unsupported field, out of memory, device errors) moves this
 // preview to the CPU worker and says why (status().gpuFallback); a field the
 // GPU cannot express moves only that shape. The viewport always shows the
@@ -55,7 +57,7 @@ struct ImplicitPreviewStatus {
   double timeSec = -1.0;      // the scene time of the mesh drawn (-1: none yet; GPU: of the last recorded shape)
   size_t triangles = 0;
   bool refining = false;      // a finer mesh of the current shape is on its way
-  bool compiling = false;     // GPU: the pipelines for this kind of shape are compiling (the last mesh stays)
+  bool compiling = false;     // GPU: the pipelines for this kind of shape are compiling (the CPU worker fills in)
   std::string error;          // the shape could not be polygonised
   std::string gpuFallback;    // why this preview left the GPU for the CPU ("" when it did not)
 };
@@ -97,7 +99,7 @@ class ImplicitPreview {
   // Appends the newest mesh to scene (nothing before the first one).
   void draw(Scene& scene, const glm::mat4& model, const glm::vec4& color, bool selected) const;
   // The newest CPU result (picking, tests); null on the GPU path.
-  std::shared_ptr<const PreviewResult> cpuResult() const { return usingGpu() ? nullptr : result_; }
+  std::shared_ptr<const PreviewResult> cpuResult() const { return usingGpu() && !cpuFillIn_ ? nullptr : result_; }
   ImplicitPreviewStatus status() const;
   // True while a finer or newer mesh of the current shape is on its way.
   bool busy() const;
@@ -122,6 +124,7 @@ class ImplicitPreview {
   Status initGpu();
   void pollGpu();
   void uploadNew();
+  void endCpuFillIn();
 
   Context& ctx_;
   // CPU path
@@ -156,6 +159,7 @@ class ImplicitPreview {
   bool lastUpdateRecorded_ = false;  // it recorded a polygonisation
   bool deferred_ = false;            // a new shape waits for the next frame
   bool compiling_ = false;           // the shape waits for its pipelines (GpuPolygonizer::ready)
+  bool cpuFillIn_ = false;           // meanwhile the CPU worker polygonises it (mesh_, result_ are its)
   std::shared_ptr<const PreviewSource> deferredSource_;  // that shape
   double gpuShownMs_ = 0.0;
 };

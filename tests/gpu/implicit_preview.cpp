@@ -216,8 +216,8 @@ TEST_CASE("implicit preview: a new kind of shape compiles its GPU pipelines with
   ps.refinedResolution = 40;
   ps.gpu = true;
 
-  // The first frame starts the compilation and returns: nothing recorded, nothing to draw yet,
-  // the status bar says why, and the preview asks for more frames.
+  // The first frame starts the compilation and hands the shape to the CPU worker: nothing
+  // recorded, nothing to draw yet, the status bar says why, and the preview asks for more frames.
   ImplicitPreview preview(*ctx);
   preview.update(source, t, ps);
   preview.endFrame();
@@ -230,13 +230,36 @@ TEST_CASE("implicit preview: a new kind of shape compiles its GPU pipelines with
   Scene none;
   preview.draw(none, glm::mat4(1.0f), glm::vec4(1.0f), false);
   CHECK(none.generatedMeshes.empty());
-  // Frames go on; once the pipelines are there the shape is drawn, refined.
+  CHECK(none.meshes.empty());
+  // Until the pipelines are there the viewport shows the worker's mesh of this shape.
+  preview.waitIdle(60.0);
+  ImplicitPreviewStatus filled = preview.status();
+  CHECK(filled.compiling);
+  CHECK(filled.hasMesh);
+  CHECK_FALSE(filled.gpu);
+  CHECK(filled.resolution == ps.refinedResolution);
+  CHECK(filled.triangles > 100);
+  CHECK(filled.timeSec == t);
+  CHECK_THAT(describePreviewStatus(filled, {true, "GPU"}), Catch::Contains("CPU") && Catch::Contains("compiling"));
+  Scene cpuDrawn;
+  preview.draw(cpuDrawn, glm::mat4(1.0f), glm::vec4(1.0f), false);
+  CHECK(cpuDrawn.meshes.size() == 1);
+  CHECK(cpuDrawn.generatedMeshes.empty());
+  REQUIRE(preview.cpuResult() != nullptr);
+  // Frames go on; once the pipelines are there the GPU draws the shape, refined, and the worker's
+  // mesh is gone.
   ImplicitPreviewStatus s = settle(preview, source, t, ps);
   CHECK_FALSE(s.compiling);
   CHECK(s.hasMesh);
   CHECK(s.gpu);
   CHECK(s.resolution == ps.refinedResolution);
   CHECK(s.triangles > 100);
+  CHECK(std::abs(double(s.triangles) - double(filled.triangles)) <= 0.005 * double(filled.triangles));
+  Scene gpuDrawn;
+  preview.draw(gpuDrawn, glm::mat4(1.0f), glm::vec4(1.0f), false);
+  CHECK(gpuDrawn.generatedMeshes.size() == 1);
+  CHECK(gpuDrawn.meshes.empty());
+  CHECK(preview.cpuResult() == nullptr);
 
   // A screenshot (settle) shows the whole shape in its own frame: on a fresh preview it waits for
   // the pipelines and polygonises until the mesh fits (a first record would overflow the initial
