@@ -198,6 +198,7 @@ int main(int argc, char** argv) {
       ui.state().playback.toggle(document->project().timeline);
 
     imgui.newFrame();
+    const std::string previewInfoDrawn = ectx.stats.previewInfo;  // the status bar below shows this one
     ui.draw(ectx);
     ImGui::Render();
     const EditorOutput& out = ui.output();
@@ -392,7 +393,9 @@ int main(int argc, char** argv) {
     rs.animating = ui.state().playback.playing() || previewNeedsFrames || ImGui::IsAnyMouseDown() || frameCount < 10 ||
                    args.benchFrames > 0 || args.quit || !args.screenshot.empty() || !pendingCapture.empty() ||
                    (args.frame >= 0 && !frameApplied) || (fs == gpu::FrameStatus::Skipped && !minimised);
-    rs.animating |= continuousRedraw;
+    // The status bar is built before the previews update: one more frame shows what they did (a mesh
+    // that arrived without input would otherwise sit under a stale "refining" until the idle tick).
+    rs.animating |= continuousRedraw || ectx.stats.previewInfo != previewInfoDrawn;
     rs.awaitingWork = previewBusy;
     rs.textInput = ImGui::GetIO().WantTextInput;
     const double waitSec = redraw.waitAfterFrame(rs);
