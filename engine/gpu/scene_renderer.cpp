@@ -228,6 +228,10 @@ Status SceneRenderer::init(VkRenderPass renderPass, SceneRendererSettings settin
        withShaders(meshDesc(none), "transition.vert", "mesh_dither.frag", VertexInput::Transition), transitionLayout_},
       {&wirePipeline_[0], wireDesc(back)},
       {&wirePipeline_[1], wireDesc(none)},
+      {&transitionWirePipeline_[0], withShaders(wireDesc(back), "transition.vert", "mesh.frag", VertexInput::Transition),
+       transitionLayout_},
+      {&transitionWirePipeline_[1], withShaders(wireDesc(none), "transition.vert", "mesh.frag", VertexInput::Transition),
+       transitionLayout_},
       {&generatedPipeline_, {"generated.vert", "mesh.frag", VertexInput::Generated, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST,
                              VK_POLYGON_MODE_FILL, true, true, false, back}},
       {&weightPipeline_, {"weight_overlay.vert", "weight_overlay.frag", VertexInput::MeshWeights,
@@ -243,6 +247,12 @@ Status SceneRenderer::init(VkRenderPass renderPass, SceneRendererSettings settin
     Result<VkPipeline> p = createPipeline(dev, renderPass, w.layout ? w.layout : layout_, w.desc);
     if (!p) return Error{p.error()};
     *w.out = *p;
+  }
+  if (!edgeListWireframe_) {
+    Result<VkPipeline> p = createPipeline(dev, renderPass, layout_,
+                                          withShaders(wireDesc(back), "generated.vert", "mesh.frag", VertexInput::Generated));
+    if (!p) return Error{p.error()};
+    generatedWirePipeline_ = *p;
   }
 
   for (uint32_t i = 0; i < kFramesInFlight; ++i) {
@@ -267,6 +277,7 @@ SceneRenderer::~SceneRenderer() {
   for (VkPipeline p : {meshPipeline_[0], meshPipeline_[1], wirePipeline_[0], wirePipeline_[1], generatedPipeline_, weightPipeline_, gridPipeline_,
                        linePipeline_, overlayPipeline_, meshDitherPipeline_[0], meshDitherPipeline_[1], generatedDitherPipeline_,
                        transitionPipeline_[0], transitionPipeline_[1], transitionDitherPipeline_[0],
+                       transitionWirePipeline_[0], transitionWirePipeline_[1], generatedWirePipeline_,
                        transitionDitherPipeline_[1]})
     if (p) vkDestroyPipeline(dev, p, nullptr);
   if (layout_) vkDestroyPipelineLayout(dev, layout_, nullptr);
@@ -492,12 +503,14 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
     vkCmdDrawIndexed(cmd, d.mesh->indexCount(), 1, 0, 0, 0);
   }
   // Transitions: set 0 stays bound (the layouts agree on it); set 1 per draw at its record's offset.
+  transitionParamOffsets_.assign(scene.transitionMeshes.size(), UINT32_MAX);
   for (size_t k = 0; k < scene.transitionMeshes.size(); ++k) {
     const TransitionMeshDraw& t = scene.transitionMeshes[k];
     const MeshDraw& d = t.draw;
     if (!d.mesh || !t.binding || !t.frame || d.mesh->indexCount() == 0 || !(d.opacity > 0.0f)) continue;
     if (size_t(t.firstVertex) + d.mesh->vertexCount() > t.binding->vertexCount()) continue;
     const uint32_t paramOffset = static_cast<uint32_t>(slot.transitionParamsUsed);
+    transitionParamOffsets_[k] = paramOffset;
     packTransitionParams(*t.frame, *reinterpret_cast<TransitionParams*>(
                                        static_cast<uint8_t*>(slot.transitionParams.mapped) + paramOffset));
     slot.transitionParamsUsed += transitionParamStride_;
@@ -510,22 +523,26 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
     t.binding->bind(cmd, t.firstVertex);
     vkCmdDrawIndexed(cmd, d.mesh->indexCount(), 1, 0, 0, 0);
   }
-  for (const GeneratedMeshDraw& g : scene.generatedMeshes) {
-    if (!g.positions || !g.normals || !g.indices || !g.indirect || !(g.opacity > 0.0f)) continue;
-    bind(g.opacity < 1.0f ? generatedDitherPipeline_ : generatedPipeline_);
+  auto drawGenerated = [&](const GeneratedMeshDraw& g, VkPipeline pipeline, const glm::vec4& color, uint32_t flags,
+                           float pull) {
+    if (!g.positions || !g.normals || !g.indices || !g.indirect || !(g.opacity > 0.0f)) return;
+    bind(pipeline);
     MeshPush p{};
     p.model = g.model;
-    p.color = fadeColor(g);
+    p.color = color;
     p.baseLinear = linearRgb(p.color);
     p.jointCount = 1;
-    p.flags = (g.selected ? kDrawSelected : 0u) | fadeFlags(g);
+    p.flags = flags | (g.selected ? kDrawSelected : 0u);
+    p.depthPull = pull;
     vkCmdPushConstants(cmd, layout_, kPushStages, 0, sizeof(p), &p);
     VkBuffer streams[2] = {g.positions, g.normals};
     VkDeviceSize offsets[2] = {0, 0};
     vkCmdBindVertexBuffers(cmd, 0, 2, streams, offsets);
     vkCmdBindIndexBuffer(cmd, g.indices, 0, VK_INDEX_TYPE_UINT32);
     vkCmdDrawIndexedIndirect(cmd, g.indirect, g.indirectOffset, 1, sizeof(VkDrawIndexedIndirectCommand));
-  }
+  };
+  for (const GeneratedMeshDraw& g : scene.generatedMeshes)
+    drawGenerated(g, g.opacity < 1.0f ? generatedDitherPipeline_ : generatedPipeline_, fadeColor(g), fadeFlags(g), 0.0f);
   for (size_t k = 0; k < scene.weightOverlays.size(); ++k) {
     const WeightOverlayDraw& d = scene.weightOverlays[k];
     if (!d.mesh || d.mesh->indexCount() == 0 || d.weights.size() != d.mesh->vertexCount()) continue;
@@ -542,21 +559,41 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
     vkCmdDrawIndexed(cmd, d.mesh->indexCount(), 1, 0, 0, 0);
   }
   if (opt.wireframe) {
+    auto wireColor = [&](bool selected) { return selected ? glm::mix(opt.wireColor, opt.selectColor, 0.6f) : opt.wireColor; };
+    auto drawEdges = [&](const GpuMesh& mesh) {
+      if (edgeListWireframe_) {
+        if (mesh.edgeIndexCount() == 0) return;  // uploaded without an edge list
+        mesh.bindEdges(cmd);
+        vkCmdDrawIndexed(cmd, mesh.edgeIndexCount(), 1, 0, 0, 0);
+      } else if (mesh.indexCount() > 0) {
+        mesh.bindTriangles(cmd);
+        vkCmdDrawIndexed(cmd, mesh.indexCount(), 1, 0, 0, 0);
+      }
+    };
     for (size_t i = 0; i < scene.meshes.size(); ++i) {
       const MeshDraw& d = scene.meshes[i];
       if (!d.mesh) continue;
       bind(wirePipeline_[d.doubleSided]);
-      glm::vec4 color = d.selected ? glm::mix(opt.wireColor, opt.selectColor, 0.6f) : opt.wireColor;
-      pushMesh(d, i, kDrawWireframe | (d.selected ? kDrawSelected : 0u), color, kWireDepthPull);
-      if (edgeListWireframe_) {
-        if (d.mesh->edgeIndexCount() == 0) continue;  // uploaded without an edge list
-        d.mesh->bindEdges(cmd);
-        vkCmdDrawIndexed(cmd, d.mesh->edgeIndexCount(), 1, 0, 0, 0);
-      } else if (d.mesh->indexCount() > 0) {
-        d.mesh->bindTriangles(cmd);
-        vkCmdDrawIndexed(cmd, d.mesh->indexCount(), 1, 0, 0, 0);
-      }
+      pushMesh(d, i, kDrawWireframe | (d.selected ? kDrawSelected : 0u), wireColor(d.selected), kWireDepthPull);
+      drawEdges(*d.mesh);
     }
+    // The transitions' edges where their vertex shader puts them (drawn above: their set 1 record is written).
+    for (size_t k = 0; k < scene.transitionMeshes.size(); ++k) {
+      const TransitionMeshDraw& t = scene.transitionMeshes[k];
+      if (transitionParamOffsets_[k] == UINT32_MAX) continue;
+      const MeshDraw& d = t.draw;
+      bind(transitionWirePipeline_[d.doubleSided]);
+      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, transitionLayout_, 1, 1, &slot.transitionSet, 1,
+                              &transitionParamOffsets_[k]);
+      pushMesh(d, scene.meshes.size() + scene.weightOverlays.size() + k, kDrawWireframe | (d.selected ? kDrawSelected : 0u),
+               wireColor(d.selected), kWireDepthPull);
+      t.binding->bind(cmd, t.firstVertex);
+      drawEdges(*d.mesh);
+    }
+    // Generated meshes (the GPU polygoniser's) have no edge list: polygon-mode lines only.
+    if (generatedWirePipeline_)
+      for (const GeneratedMeshDraw& g : scene.generatedMeshes)
+        drawGenerated(g, generatedWirePipeline_, wireColor(g.selected), kDrawWireframe, kWireDepthPull);
   }
 
   auto drawLines = [&](VkPipeline pipeline, const glm::mat4& matrix, uint32_t first, uint32_t count) {

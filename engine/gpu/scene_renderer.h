@@ -92,7 +92,7 @@ struct SceneOptions {
   glm::vec4 background{0.23f, 0.24f, 0.26f, 1.0f};  // the viewport rectangle is cleared to this
   bool grid = true;
   float gridCellM = 1.0f;            // minor line spacing; a major line every 10 cells
-  bool wireframe = false;            // draw mesh edges over the shaded surface
+  bool wireframe = false;            // draw mesh edges over the shaded surface (meshes, transitions, generated meshes)
   glm::vec4 wireColor{0.05f, 0.05f, 0.05f, 1.0f};
   glm::vec4 selectColor{1.0f, 0.62f, 0.15f, 1.0f};
   bool axisIndicator = true;         // X/Y/Z tripod in the lower-left corner
@@ -160,6 +160,9 @@ class SceneRenderer {
   VkPipelineLayout transitionLayout_ = VK_NULL_HANDLE;
   VkPipeline transitionPipeline_[2]{};             // [doubleSided]
   VkPipeline transitionDitherPipeline_[2]{};       // [doubleSided]
+  VkPipeline transitionWirePipeline_[2]{};         // [doubleSided]: the wireframe pass over transitions
+  VkPipeline generatedWirePipeline_ = VK_NULL_HANDLE;  // null on the edge-list path (generated meshes have no edge list)
+  std::vector<uint32_t> transitionParamOffsets_;   // per transition draw of the current record (the wireframe pass rebinds)
   VkDeviceSize transitionParamStride_ = 0;         // sizeof(TransitionParams), storage-offset aligned
   VkPipeline weightPipeline_ = VK_NULL_HANDLE;     // WeightOverlayDraw: mesh streams + a weight stream
   VkPipeline gridPipeline_ = VK_NULL_HANDLE;

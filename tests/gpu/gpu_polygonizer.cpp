@@ -540,6 +540,33 @@ TEST_CASE("GPU polygoniser draws its mesh with an indirect draw, no read-back", 
   size_t covered = countDiffering(img, scene.options.background);
   CHECK(covered > 96 * 96 / 20);
   CHECK(covered < 96 * 96 / 2);
+
+  // The wireframe overlay covers generated meshes too (polygon-mode lines of the indirect draw):
+  // dark edges over the sphere, nothing outside it.
+  const RgbaImage shaded = img;
+  scene.options.wireframe = true;
+  scene.options.wireColor = {0.0f, 0.0f, 0.0f, 1.0f};
+  Status wired = (*target)->render([&](VkCommandBuffer cmd) {
+    drawn = (*renderer)->record(cmd, (*target)->serial(), {0, 0, 96, 96}, cam, scene);
+  });
+  REQUIRE(drawn.ok());
+  REQUIRE(wired.ok());
+  const RgbaImage& wire = (*target)->image();
+  size_t dark = 0, outside = 0;
+  for (uint32_t y = 0; y < 96; ++y)
+    for (uint32_t x = 0; x < 96; ++x) {
+      if (wire.at(x, y) == shaded.at(x, y)) continue;
+      dark += wire.at(x, y).r < 40;
+      bool nearSurface = false;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const uint32_t nx = uint32_t(std::clamp(int(x) + dx, 0, 95)), ny = uint32_t(std::clamp(int(y) + dy, 0, 95));
+          nearSurface |= differs(shaded.at(nx, ny), scene.options.background);
+        }
+      outside += !nearSurface;
+    }
+  if (r.ctx->supportsWireframeFill()) CHECK(dark > covered / 4);  // 32^3 triangles of a few pixels each
+  CHECK(outside == 0);
   CHECK(r.ctx->validationErrorCount() == 0);
 }
 

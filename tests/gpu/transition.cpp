@@ -262,6 +262,13 @@ TEST_CASE("transition pipeline: at alpha = 0 it draws exactly what plain skinnin
   INFO(covered << " pixels covered by the mesh");
   CHECK(covered > 2000);
   CHECK(countDifferent(reference, atZero, 0) == 0);
+  // The wireframe overlay too: the transition's edges where its vertex shader puts them.
+  skinned.options.wireframe = transition.options.wireframe = true;
+  skinned.options.wireColor = transition.options.wireColor = {0.0f, 0.0f, 0.0f, 1.0f};
+  const RgbaImage wireReference = draw(r, cam, skinned);
+  CHECK(countDifferent(wireReference, reference, 0) > 500);
+  CHECK(countDifferent(wireReference, draw(r, cam, transition), 0) == 0);
+  skinned.options.wireframe = transition.options.wireframe = false;
 
   // Collapsed (alpha = 1, re-projected): the drawn shape is the CPU transition's.
   const TransitionFrame collapsed = transitionFrame(rt, false, t, 1.0, true);
