@@ -13,6 +13,11 @@ bool drawPreviewSettings(Preferences& prefs) {
   bool changed = false;
   const PreviewDevice devices[] = {PreviewDevice::Auto, PreviewDevice::Gpu, PreviewDevice::Cpu};
   const char* labels[] = {"Auto", "GPU", "CPU"};
+  const char* tips[] = {
+      "The GPU. On a CPU Vulkan device (lavapipe) the CPU worker, which is faster there, except for morphs of "
+      "convolution stand-ins (the status bar says which and why)",
+      "Vulkan compute polygonisation; falls back to the CPU worker with a message if the GPU cannot take a shape",
+      "The CPU worker thread, refining when the shape stops changing"};
   ImGui::TextUnformatted("Device");
   for (int i = 0; i < 3; ++i) {
     ImGui::SameLine();
@@ -21,9 +26,8 @@ bool drawPreviewSettings(Preferences& prefs) {
       changed = true;
     }
     noteWidget(std::string("preview/device_") + previewDeviceName(devices[i]));
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tips[i]);
   }
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Auto: the GPU, except on a CPU Vulkan device (lavapipe), where the CPU worker is faster");
   const ImGuiSliderFlags clamp = ImGuiSliderFlags_AlwaysClamp;
   ImGui::SetNextItemWidth(260.0f);
   ImGui::SliderInt("While scrubbing", &prefs.previewCoarseResolution, kMinPreviewResolution, kMaxPreviewResolution,
