@@ -621,7 +621,22 @@ uint32_t firstBlockCapacity(uint32_t nb) { return nb <= 4096u ? nb : std::max(40
 GpuPolygonizer::GpuPolygonizer(Context& ctx) : impl_(std::make_unique<Impl>(ctx)) {}
 GpuPolygonizer::~GpuPolygonizer() = default;
 
+std::string GpuPolygonizer::deviceShortfall(const VkPhysicalDeviceLimits& l) {
+  const uint32_t largestGroup = std::max({AM_POLY_WG_BLOCKS, AM_POLY_WG_CELLS, AM_POLY_WG_EMIT, AM_POLY_WG_NORMALS,
+                                          AM_POLY_WG_SCAN, AM_POLY_WG_LINEAR});
+  std::string why;
+  auto add = [&](const std::string& s) { why += (why.empty() ? "" : "; ") + s; };
+  if (l.maxComputeSharedMemorySize < AM_POLY_EMIT_SHARED_BYTES)
+    add("the device has " + std::to_string(l.maxComputeSharedMemorySize) + " bytes of compute shared memory, the emit pass needs " +
+        std::to_string(AM_POLY_EMIT_SHARED_BYTES));
+  if (l.maxComputeWorkGroupInvocations < largestGroup || l.maxComputeWorkGroupSize[0] < largestGroup)
+    add("the device runs at most " + std::to_string(std::min(l.maxComputeWorkGroupInvocations, l.maxComputeWorkGroupSize[0])) +
+        " invocations in a workgroup, the scan needs " + std::to_string(largestGroup));
+  return why;
+}
+
 Result<std::unique_ptr<GpuPolygonizer>> GpuPolygonizer::create(Context& ctx) {
+  if (std::string why = deviceShortfall(ctx.properties().limits); !why.empty()) return Error{"GPU polygoniser: " + why};
   std::unique_ptr<GpuPolygonizer> p(new GpuPolygonizer(ctx));
   Status s = p->impl_->init();
   if (!s) return Error{"GPU polygoniser: " + s.error()};

@@ -115,9 +115,12 @@ struct GpuPolygonizeStats {
 
 class GpuPolygonizer {
  public:
-  // Pipelines, the marching-cubes table and small initial buffers. Errors:
-  // missing shaders, Vulkan failures (out of memory included).
+  // Pipelines, the marching-cubes table and small initial buffers. Errors: a device short of
+  // what the passes need (deviceShortfall), missing shaders, Vulkan failures (out of memory included).
   static Result<std::unique_ptr<GpuPolygonizer>> create(Context& ctx);
+  // What a device with these limits lacks for the polygoniser's workgroups (shared memory,
+  // invocations), empty when it has enough.
+  static std::string deviceShortfall(const VkPhysicalDeviceLimits& limits);
   ~GpuPolygonizer();
   GpuPolygonizer(const GpuPolygonizer&) = delete;
   GpuPolygonizer& operator=(const GpuPolygonizer&) = delete;

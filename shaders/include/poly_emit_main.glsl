@@ -27,6 +27,7 @@ layout(set = 0, binding = AM_PB_NORMALS, std430) writeonly buffer Normals { vec4
 layout(set = 0, binding = AM_PB_INDICES, std430) writeonly buffer Indices { uint indices[]; };
 
 
+// (AM_POLY_EMIT_SHARED_BYTES counts these: keep it in step.)
 shared uint sMask[AM_POLY_EDGE_WORDS];
 shared uint sPrefix[AM_POLY_EDGE_WORDS];
 shared uint sVertexEdge[AM_POLY_BLOCK_EDGES];

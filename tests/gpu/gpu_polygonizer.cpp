@@ -590,5 +590,19 @@ TEST_CASE("GPU polygoniser reports what it cannot do and bad settings", "[gpu][g
   REQUIRE(!tooFine.ok());
   CHECK(tooFine.error().find("resolution") != std::string::npos);
   CHECK(!r.poly->readBack().ok());  // nothing polygonised yet
+
+  // Devices at Vulkan's minimum limits (16 KiB of shared memory, 128 invocations a workgroup) are
+  // reported, not handed pipelines they cannot run; lavapipe has enough.
+  const VkPhysicalDeviceLimits lvp = r.ctx->properties().limits;
+  CHECK(GpuPolygonizer::deviceShortfall(lvp).empty());
+  VkPhysicalDeviceLimits small = lvp;
+  small.maxComputeSharedMemorySize = 16384;
+  CHECK_THAT(GpuPolygonizer::deviceShortfall(small), Catch::Contains("16384 bytes of compute shared memory") &&
+                                                         Catch::Contains(std::to_string(AM_POLY_EMIT_SHARED_BYTES)));
+  small = lvp;
+  small.maxComputeWorkGroupInvocations = 128;
+  CHECK_THAT(GpuPolygonizer::deviceShortfall(small), Catch::Contains("at most 128 invocations"));
+  small.maxComputeSharedMemorySize = AM_POLY_EMIT_SHARED_BYTES;  // exactly enough
+  CHECK(GpuPolygonizer::deviceShortfall(small).find("shared memory") == std::string::npos);
   CHECK(r.ctx->validationErrorCount() == 0);
 }

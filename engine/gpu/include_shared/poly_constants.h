@@ -37,6 +37,12 @@
 #define AM_POLY_SCAN_MAX_GROUPS 1024 // so at most 1M elements per scan
 #define AM_POLY_SCAN_SINGLE_MAX 65536 // up to this many elements, one workgroup scans (poly_scan_single.comp)
 #define AM_POLY_WG_LINEAR 64   // compaction and helpers
+// Shared memory of the largest workgroup, the emit pass (poly_emit_main.glsl: edge mask and
+// prefixes, vertex list, triangle runs and list, a total), in bytes: 18 788. Vulkan guarantees
+// 16 KiB (maxComputeSharedMemorySize) and 128 invocations a workgroup; desktop GPUs and lavapipe
+// have 32 KiB or more and 1024, and a device short of either is reported (GpuPolygonizer::create).
+#define AM_POLY_EMIT_SHARED_BYTES \
+  (4 * (2 * AM_POLY_EDGE_WORDS + AM_POLY_BLOCK_EDGES + AM_POLY_WG_EMIT + 5 * AM_POLY_BLOCK_CELLS + 1))
 
 // Interpreter limits: programs beyond them are reported and polygonised on the CPU.
 #define AM_POLY_MAX_STACK 16
