@@ -25,7 +25,7 @@ void main() {
   uint t = gl_LocalInvocationID.x;
   bool blocks = pc.y == AM_SCAN_SOURCE_BLOCKS;
   // Counts: only the slots the cells pass ran (the rest are zero).
-  uint n = blocks ? pc.z : min(pc.z, control[AM_CTL_DISPATCH]);
+  uint n = blocks ? pc.z : min(pc.z, fineSlots());
   uint per = (n + AM_POLY_WG_SCAN - 1u) / AM_POLY_WG_SCAN;
   uint first = min(t * per, n), last = min(first + per, n);
   uvec2 s = uvec2(0u);

@@ -481,7 +481,8 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   const float Tmax = std::max(pk.threshold[0], pk.programCount > 1 ? pk.threshold[1] : 0.0f);
   PolyParams prm{};
   prm.gridOrigin = glm::vec4(g.origin, g.h);
-  prm.gridCells = glm::uvec4(g.n[0], g.n[1], g.n[2], 0u);
+  const uint32_t rowLimit = std::min<uint32_t>(AM_POLY_MAX_DISPATCH_X, ctx.properties().limits.maxComputeWorkGroupCount[0]);
+  prm.gridCells = glm::uvec4(g.n[0], g.n[1], g.n[2], s.dispatchRow ? std::min(s.dispatchRow, rowLimit) : rowLimit);
   prm.gridBlocks = glm::uvec4(g.nb[0], g.nb[1], g.nb[2], nBlocks);
   prm.progA = glm::uvec4(pk.opBegin[0], pk.opCount[0], pk.primBegin[0], pk.primCount[0]);
   prm.progB = glm::uvec4(pk.opBegin[1], pk.opCount[1], pk.primBegin[1], pk.primCount[1]);

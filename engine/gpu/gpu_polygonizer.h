@@ -91,6 +91,9 @@ struct GpuPolygonizeSettings {
   // after the coarse pass and four after the cells pass (on lavapipe each costs ~0.1 ms).
   // Off: the multi-group scan that longer arrays use (same mesh; tests compare both).
   bool singleWorkgroupScan = true;
+  // Workgroups a row of the fine passes' dispatch (0: AM_POLY_MAX_DISPATCH_X, the least every
+  // device allows); the blocks past a row go on in the next. Tests narrow it to run that path.
+  uint32_t dispatchRow = 0;
   // Initial buffer capacities (0: automatic). They grow when a frame overflows.
   uint32_t initialBlockCapacity = 0;
   uint32_t initialVertexCapacity = 0;

@@ -4,12 +4,14 @@
 // reads the counters, grows the buffers and redoes the frame. Used by
 // poly_args.comp (after the multi-group scan) and poly_scan_single.comp.
 
-// After the block scan: active block count -> dispatch of the fine passes.
+// After the block scan: active block count -> dispatch of the fine passes, one workgroup per
+// active block in rows of P.gridCells.w (fineSlot()).
 void argsAfterBlocks(uint activeCount) {
   control[AM_CTL_ACTIVE] = activeCount;
   if (activeCount > P.modes.w) control[AM_CTL_OVERFLOW] |= AM_OVERFLOW_BLOCKS;
-  control[AM_CTL_DISPATCH] = min(activeCount, P.modes.w);
-  control[AM_CTL_DISPATCH + 1] = 1u;
+  uint n = min(activeCount, P.modes.w), width = max(P.gridCells.w, 1u);
+  control[AM_CTL_DISPATCH] = min(n, width);
+  control[AM_CTL_DISPATCH + 1] = (n + width - 1u) / width;
   control[AM_CTL_DISPATCH + 2] = 1u;
 }
 

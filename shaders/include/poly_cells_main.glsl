@@ -153,7 +153,8 @@ void lineOfGroup(uint g, uvec3 c0, out vec4 v, out float s1, out float s2, out u
 }
 
 void main() {
-  uint slot = gl_WorkGroupID.x;
+  uint slot = fineSlot();
+  if (slot >= fineSlots()) return;  // the last row's spare workgroups (the whole workgroup returns)
   uint t = gl_LocalInvocationID.x;
   uvec3 bc = unpackBlockCoord(activeBlocks[slot]);
   uint b = blockIndex(bc);

@@ -44,7 +44,7 @@ layout(constant_id = 1) const uint kAmKinds = AM_FEAT_ALL;
 // C++ mirror: PolyParams in engine/gpu/gpu_polygonizer.cpp (std140).
 layout(set = 0, binding = AM_PB_PARAMS, std430) readonly buffer PolyParams {
   vec4 gridOrigin;  // xyz: world position of grid corner (0,0,0); w: cell size h (m)
-  uvec4 gridCells;  // xyz: cells per axis
+  uvec4 gridCells;  // xyz: cells per axis; w: workgroups a row of the fine passes' dispatch
   uvec4 gridBlocks; // xyz: blocks per axis; w: total blocks
   uvec4 progA;      // x: first op record (vec4 index), y: op count, z: first global primitive id, w: primitives
   uvec4 progB;      // the second program (morphs), else zero
@@ -70,6 +70,11 @@ layout(set = 0, binding = AM_PB_BLOCK_MASK, std430) buffer BlockMask { uint bloc
 layout(set = 0, binding = AM_PB_BLOCK_SLOT, std430) buffer BlockSlot { uint blockSlot[]; };
 layout(set = 0, binding = AM_PB_ACTIVE, std430) buffer ActiveBlocks { uint activeBlocks[]; };
 layout(set = 0, binding = AM_PB_CONTROL, std430) buffer Control { uint control[]; };
+
+// The fine passes (one workgroup per active block, dispatched in rows of P.gridCells.w
+// workgroups): this workgroup's slot, and whether it is one of the active slots.
+uint fineSlot() { return gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x; }
+uint fineSlots() { return min(control[AM_CTL_ACTIVE], P.modes.w); }
 
 #define kInf uintBitsToFloat(0x7f800000u)
 

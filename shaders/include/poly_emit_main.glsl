@@ -64,7 +64,8 @@ void placeVertex(uint e, uvec3 c0, uint cornerBase, out vec3 pos, out vec3 dir, 
 }
 
 void main() {
-  uint slot = gl_WorkGroupID.x;
+  uint slot = fineSlot();
+  if (slot >= fineSlots()) return;  // the last row's spare workgroups (the whole workgroup returns)
   uint t = gl_LocalInvocationID.x;
   uvec3 bc = unpackBlockCoord(activeBlocks[slot]);
   uint b = blockIndex(bc);

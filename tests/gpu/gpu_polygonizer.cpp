@@ -286,6 +286,19 @@ TEST_CASE("GPU polygoniser matches the CPU on a convolution chain, culled and de
     CHECK(grouped.positions == culled.positions);  // same slots, same vertex order
     s.singleWorkgroupScan = true;
   }
+  // The fine passes in rows of workgroups (a 512^3 grid can have more active blocks than a
+  // device dispatches in one row): rows of 7, and of 1, give the same mesh, with either scan.
+  REQUIRE(culledStats.blocksActive > 14);
+  for (uint32_t row : {7u, 1u})
+    for (bool single : {true, false}) {
+      s.dispatchRow = row;
+      s.singleWorkgroupScan = single;
+      TriangleMesh rows = gpuMesh(*r.poly, GpuField::single(p), s);
+      CHECK(rows.positions == culled.positions);
+      CHECK(triangleSet(rows) == triangleSet(culled));
+    }
+  s.dispatchRow = 0;
+  s.singleWorkgroupScan = true;
   for (auto pool : {GpuPolygonizeSettings::PoolBuffer::Uniform, GpuPolygonizeSettings::PoolBuffer::Storage}) {
     s.poolBuffer = pool;
     GpuPolygonizeStats st;

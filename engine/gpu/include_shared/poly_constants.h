@@ -37,6 +37,10 @@
 #define AM_POLY_SCAN_MAX_GROUPS 1024 // so at most 1M elements per scan
 #define AM_POLY_SCAN_SINGLE_MAX 65536 // up to this many elements, one workgroup scans (poly_scan_single.comp)
 #define AM_POLY_WG_LINEAR 64   // compaction and helpers
+// Workgroups a row of the fine passes' indirect dispatch (one workgroup per active block): Vulkan's
+// guaranteed maxComputeWorkGroupCount[0]. Beyond it the blocks continue in further rows (y), so a
+// 512^3 grid (262 144 blocks) never dispatches more than a device may.
+#define AM_POLY_MAX_DISPATCH_X 65535
 // Shared memory of the largest workgroup, the emit pass (poly_emit_main.glsl: edge mask and
 // prefixes, vertex list, triangle runs and list, a total), in bytes: 18 788. Vulkan guarantees
 // 16 KiB (maxComputeSharedMemorySize) and 128 invocations a workgroup; desktop GPUs and lavapipe
