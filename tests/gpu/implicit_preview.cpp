@@ -39,6 +39,15 @@ ImplicitPreviewStatus settle(ImplicitPreview& p, const std::shared_ptr<const Pre
   return p.status();
 }
 
+// GPU preview settings at the two resolutions.
+ImplicitPreviewSettings gpuSettings(int interactive, int refined) {
+  ImplicitPreviewSettings ps;
+  ps.interactiveResolution = interactive;
+  ps.refinedResolution = refined;
+  ps.gpu = true;
+  return ps;
+}
+
 // What the preview hands the GPU at res: its field and the settings with the field's bounds.
 struct PreviewGpuField {
   PreviewField field;
@@ -83,10 +92,7 @@ TEST_CASE("implicit preview: the GPU path of the morph stage matches the CPU mes
 
   // The preview itself on the GPU path: its own submissions, the draw, the same triangle count.
   ImplicitPreview preview(*ctx);
-  ImplicitPreviewSettings ps;
-  ps.interactiveResolution = 32;
-  ps.refinedResolution = res;
-  ps.gpu = true;
+  ImplicitPreviewSettings ps = gpuSettings(32, res);
   ImplicitPreviewStatus s = settle(preview, source, t, ps);
   INFO(s.gpuFallback);
   CHECK(s.gpuFallback.empty());
@@ -108,10 +114,7 @@ TEST_CASE("implicit preview: a GPU out of memory falls back to the CPU worker wi
   const auto rt = test::demoMorph().runtime;
   const double t = midStageSec(*rt, 0.3);
   auto source = morphPreviewSource(rt, t);
-  ImplicitPreviewSettings ps;
-  ps.interactiveResolution = 24;
-  ps.refinedResolution = 40;
-  ps.gpu = true;
+  ImplicitPreviewSettings ps = gpuSettings(24, 40);
   ImplicitPreview preview(*ctx);
   ::setenv("ANIMORPH_DEBUG_GPU_BUFFER_LIMIT_KB", "16", 1);
   preview.update(source, t, ps);
@@ -146,10 +149,7 @@ TEST_CASE("implicit preview: a stage the GPU cannot express (solid noise) is pol
   noisy->setup.noiseAmplitude = FloatTrack(0.01f);
   const double t = midStageSec(*noisy, 0.5);
   ImplicitPreview preview(*ctx);
-  ImplicitPreviewSettings ps;
-  ps.interactiveResolution = 24;
-  ps.refinedResolution = 32;
-  ps.gpu = true;
+  ImplicitPreviewSettings ps = gpuSettings(24, 32);
   ImplicitPreviewStatus s = settle(preview, morphPreviewSource(noisy, t), t, ps);
   CHECK_FALSE(s.gpu);
   CHECK(s.gpuFallback.find("solid noise") != std::string::npos);
@@ -162,10 +162,7 @@ TEST_CASE("implicit preview: after a slow frame that polygonised, the next new s
           "[gpu][preview]") {
   auto ctx = test::makeTestContext();
   const auto rt = test::demoMorph().runtime;
-  ImplicitPreviewSettings ps;
-  ps.interactiveResolution = 24;
-  ps.refinedResolution = 32;
-  ps.gpu = true;
+  ImplicitPreviewSettings ps = gpuSettings(24, 32);
   const double t0 = midStageSec(*rt, 0.2);
   for (bool pace : {true, false}) {
     ps.paceGpu = pace;
@@ -211,10 +208,7 @@ TEST_CASE("implicit preview: a new kind of shape compiles its GPU pipelines with
   const auto rt = test::demoMorph().runtime;
   const double t = midStageSec(*rt, 0.5);
   auto source = morphPreviewSource(rt, t);
-  ImplicitPreviewSettings ps;
-  ps.interactiveResolution = 32;
-  ps.refinedResolution = 40;
-  ps.gpu = true;
+  ImplicitPreviewSettings ps = gpuSettings(32, 40);
 
   // The first frame starts the compilation and hands the shape to the CPU worker: nothing
   // recorded, nothing to draw yet, the status bar says why, and the preview asks for more frames.
