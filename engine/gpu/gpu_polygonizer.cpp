@@ -686,30 +686,40 @@ bool GpuPolygonizer::waitForCompilation(double timeoutSec) const {
 
 size_t GpuPolygonizer::variantCount() const { return impl_->variants.size() + impl_->compiling.size(); }
 
+Status GpuPolygonizer::absorbCounters(uint32_t slot) {
+  Impl& m = *impl_;
+  if (m.slotSerial[slot] == UINT64_MAX) return Status::success();  // none, or taken already
+  m.slotSerial[slot] = UINT64_MAX;
+  const auto* c = static_cast<const uint32_t*>(m.readback.mapped) + slot * AM_CTL_READBACK_UINTS;
+  stats_.blocksActive = c[AM_CTL_ACTIVE];
+  stats_.vertices = c[AM_CTL_VERTICES];
+  stats_.triangles = c[AM_CTL_TRIANGLES];
+  stats_.overflowed = c[AM_CTL_OVERFLOW] != 0;
+  if (c[AM_CTL_OVERFLOW] == 0) return Status::success();
+  // That frame drew nothing; grow to what it needed (counts past a block overflow are
+  // partial, so those buffers double too) for the record that redoes it.
+  bool blocksShort = (c[AM_CTL_OVERFLOW] & AM_OVERFLOW_BLOCKS) != 0;
+  uint32_t vw = c[AM_CTL_VERTICES] + c[AM_CTL_VERTICES] / 4, tw = c[AM_CTL_TRIANGLES] + c[AM_CTL_TRIANGLES] / 4;
+  if (blocksShort) {
+    vw = std::max(vw, 2 * m.vertexCapacity);
+    tw = std::max(tw, 2 * m.triangleCapacity);
+  }
+  return m.ensureCapacities(c[AM_CTL_ACTIVE] + c[AM_CTL_ACTIVE] / 4, vw, tw);
+}
+
+Result<bool> GpuPolygonizer::recordFitted(uint64_t frameSerial) {
+  const uint32_t slot = uint32_t(frameSerial % kFramesInFlight);
+  if (impl_->slotSerial[slot] != frameSerial) return Error{"GPU polygoniser: the counters of that record are gone"};
+  if (Status g = absorbCounters(slot); !g) return Error{g.error()};
+  return !stats_.overflowed;
+}
+
 Status GpuPolygonizer::record(VkCommandBuffer cmd, uint64_t frameSerial, const GpuField& field,
                               const GpuPolygonizeSettings& s) {
   Impl& m = *impl_;
   const uint32_t slot = uint32_t(frameSerial % kFramesInFlight);
   // The counters of the frame that last used this slot (complete, by the caller's contract).
-  if (m.slotSerial[slot] != UINT64_MAX) {
-    const auto* c = static_cast<const uint32_t*>(m.readback.mapped) + slot * AM_CTL_READBACK_UINTS;
-    stats_.blocksActive = c[AM_CTL_ACTIVE];
-    stats_.vertices = c[AM_CTL_VERTICES];
-    stats_.triangles = c[AM_CTL_TRIANGLES];
-    stats_.overflowed = c[AM_CTL_OVERFLOW] != 0;
-    if (c[AM_CTL_OVERFLOW] != 0) {
-      // That frame drew nothing; grow to what it needed (counts past a block
-      // overflow are partial, so those buffers double too) and redo it now.
-      bool blocksShort = (c[AM_CTL_OVERFLOW] & AM_OVERFLOW_BLOCKS) != 0;
-      uint32_t vw = c[AM_CTL_VERTICES] + c[AM_CTL_VERTICES] / 4, tw = c[AM_CTL_TRIANGLES] + c[AM_CTL_TRIANGLES] / 4;
-      if (blocksShort) {
-        vw = std::max(vw, 2 * m.vertexCapacity);
-        tw = std::max(tw, 2 * m.triangleCapacity);
-      }
-      Status g = m.ensureCapacities(c[AM_CTL_ACTIVE] + c[AM_CTL_ACTIVE] / 4, vw, tw);
-      if (!g) return g;
-    }
-  }
+  if (Status g = absorbCounters(slot); !g) return g;
   // First frames: size the buffers for the grid as polygonize() does.
   if (Result<Grid> g = makeGrid(field, s); g) {
     uint32_t blocks = firstBlockCapacity(g->blocks());

@@ -169,8 +169,14 @@ class GpuPolygonizer {
 
   // Stats of the last polygonize(), or of the last record() whose counters were read.
   const GpuPolygonizeStats& lastStats() const { return stats_; }
+  // Once the record of frameSerial has completed (the caller's fence): whether its mesh fitted the
+  // buffers. Its counters become lastStats(); if it overflowed the buffers grow now, for the record
+  // that redoes it (which then need not wait kFramesInFlight records to find out). Errors: the
+  // record's counters were taken already or overwritten; growing failed.
+  Result<bool> recordFitted(uint64_t frameSerial);
 
  private:
+  Status absorbCounters(uint32_t slot);  // the counters of the record in a read-back slot, once
   struct Impl;
   explicit GpuPolygonizer(Context& ctx);
   std::unique_ptr<Impl> impl_;

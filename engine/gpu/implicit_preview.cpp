@@ -218,6 +218,24 @@ bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& sour
     deferredSource_ = source;
     return true;
   }
+  // The shape just recorded, again: that record drew it. Once it has completed, its counters say
+  // whether it fitted (then the preview goes quiet); until then nothing new is recorded.
+  if (sameShape && res == gpuResolution_ && recordsOfShape_ > 0 && !s.settle) {
+    const uint64_t last = serial_ - 1;
+    const uint32_t lastSlot = uint32_t(last % kFramesInFlight);
+    if (pending_[lastSlot]) {
+      const VkResult r = vkGetFenceStatus(ctx_.device(), fences_[lastSlot]);
+      if (r == VK_NOT_READY) return true;  // busy() (pending) asks for the frames that look again
+      pollGpu();
+      if (!gpuFailure_.empty()) return false;
+    }
+    Result<bool> fitted = poly_->recordFitted(last);
+    if (fitted && *fitted) {
+      settled_ = true;
+      return true;
+    }
+    // It overflowed (the buffers grew) or its counters are gone: record the shape again.
+  }
   if (!sameShape || res != gpuResolution_) {
     recordsOfShape_ = 0;
     settled_ = false;
@@ -309,9 +327,9 @@ bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& sour
   lastUpdateRecorded_ = true;
   ++serial_;
   ++recordsOfShape_;
-  // The counters of a record are read kFramesInFlight records later (inside record()): once those
-  // of a record of this shape show it fitted, the records since fit too and the preview goes
-  // quiet; an overflow was grown and redone in the record that read it.
+  // Normally the next frame settles it (recordFitted, above). Records that overflowed again are
+  // also read kFramesInFlight records later inside record(): once those of a record of this shape
+  // show it fitted, the records since fit too.
   settled_ = recordsOfShape_ > int(kFramesInFlight) && !poly_->lastStats().overflowed;
   gpuSource_ = source;
   gpuResolution_ = res;

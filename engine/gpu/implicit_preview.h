@@ -8,9 +8,9 @@
 //    submitted to the queue before the frame that draws it (same queue, so the
 //    frame sees the result; no CPU read-back, nothing waits). While the shape
 //    changes every frame it runs at the interactive resolution; once a frame
-//    repeats the shape, at the refined one (recorded until the counters of one
-//    of those records, read kFramesInFlight records later, show it fitted: a
-//    buffer overflow is grown and redone before the preview goes quiet).
+//    repeats the shape, at the refined one, recorded once: when that record has
+//    completed, its counters say whether it fitted and the preview goes quiet
+//    (a buffer overflow is grown and redone first).
 //    Where polygonising every frame would hold the editor below 30 fps (a
 //    frame took longer than 1/30 s and recorded a new shape), the next new
 //    shape waits one frame and the viewport keeps the last mesh, as it does
@@ -113,6 +113,8 @@ class ImplicitPreview {
   void endFrame();
   // Why the GPU path was given up ("" while it works or was never used).
   const std::string& gpuFailure() const { return gpuFailure_; }
+  // GPU polygonisations recorded so far (tests, benches).
+  uint64_t gpuRecordCount() const { return serial_; }
   // Forgets a GPU failure (the user switched devices): the next update tries the GPU again.
   void clearGpuFailure() { gpuFailure_.clear(); }
 

@@ -101,6 +101,12 @@ TEST_CASE("implicit preview: the GPU path of the morph stage matches the CPU mes
   CHECK(s.resolution == res);
   CHECK_FALSE(s.refining);
   CHECK(std::abs(double(s.triangles) - cpuTris) <= 0.005 * cpuTris);
+  // One record: the first frame compiled the pipelines (the CPU worker drew), the next recorded
+  // the shape at the refined resolution, and that record's own counters settled it once it had
+  // completed, with no more records to find out whether it fitted (there were three).
+  CHECK(preview.gpuRecordCount() == 1);
+  preview.update(source, t, ps);  // quiet
+  CHECK(preview.gpuRecordCount() == 1);
   Scene scene;
   preview.draw(scene, glm::mat4(1.0f), glm::vec4(1.0f), false);
   CHECK(scene.generatedMeshes.size() == 1);
