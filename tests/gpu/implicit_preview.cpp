@@ -39,6 +39,20 @@ ImplicitPreviewStatus settle(ImplicitPreview& p, const std::shared_ptr<const Pre
   return p.status();
 }
 
+// A fresh context and the demo morph's B->C stage at progress u: its time and preview source.
+struct DemoStage {
+  std::unique_ptr<Context> ctx;
+  std::shared_ptr<const MorphRuntime> rt;
+  double t;
+  std::shared_ptr<const PreviewSource> source;
+};
+DemoStage demoStage(double u) {
+  DemoStage d{test::makeTestContext(), test::demoMorph().runtime, 0.0, nullptr};
+  d.t = midStageSec(*d.rt, u);
+  d.source = morphPreviewSource(d.rt, d.t);
+  return d;
+}
+
 // GPU preview settings at the two resolutions.
 ImplicitPreviewSettings gpuSettings(int interactive, int refined) {
   ImplicitPreviewSettings ps;
@@ -66,10 +80,7 @@ PreviewGpuField previewGpuField(const PreviewSource& source, int res) {
 }  // namespace
 
 TEST_CASE("implicit preview: the GPU path of the morph stage matches the CPU mesh", "[gpu][preview]") {
-  auto ctx = test::makeTestContext();
-  const auto rt = test::demoMorph().runtime;
-  const double t = midStageSec(*rt, 0.5);
-  auto source = morphPreviewSource(rt, t);
+  auto [ctx, rt, t, source] = demoStage(0.5);
   const int res = 48;
 
   // The field the preview hands the GPU, polygonised and read back, against the CPU stage mesh.
@@ -116,10 +127,7 @@ TEST_CASE("implicit preview: the GPU path of the morph stage matches the CPU mes
 }
 
 TEST_CASE("implicit preview: a GPU out of memory falls back to the CPU worker with a message", "[gpu][preview]") {
-  auto ctx = test::makeTestContext();
-  const auto rt = test::demoMorph().runtime;
-  const double t = midStageSec(*rt, 0.3);
-  auto source = morphPreviewSource(rt, t);
+  auto [ctx, rt, t, source] = demoStage(0.3);
   ImplicitPreviewSettings ps = gpuSettings(24, 40);
   ImplicitPreview preview(*ctx);
   ::setenv("ANIMORPH_DEBUG_GPU_BUFFER_LIMIT_KB", "16", 1);
@@ -210,10 +218,7 @@ TEST_CASE("implicit preview: after a slow frame that polygonised, the next new s
 
 TEST_CASE("implicit preview: a new kind of shape compiles its GPU pipelines without stalling the frame",
           "[gpu][preview]") {
-  auto ctx = test::makeTestContext();
-  const auto rt = test::demoMorph().runtime;
-  const double t = midStageSec(*rt, 0.5);
-  auto source = morphPreviewSource(rt, t);
+  auto [ctx, rt, t, source] = demoStage(0.5);
   ImplicitPreviewSettings ps = gpuSettings(32, 40);
 
   // The first frame starts the compilation and hands the shape to the CPU worker: nothing
