@@ -142,7 +142,7 @@ void packOne(const FieldProgram& prog, uint32_t primOffset, PackedFieldPrograms&
 std::string gpuUnsupportedReason(const FieldProgram& program) {
   if (program.maxStack() > AM_POLY_MAX_STACK)
     return "operator stack depth " + std::to_string(program.maxStack()) + " exceeds the GPU limit " +
-           std::to_string(AM_POLY_MAX_STACK) + " (an operator with many operands, or deep nesting)";
+           std::to_string(AM_POLY_MAX_STACK) + " (operators nested too deep)";
   if (program.maxMapDepth() > AM_POLY_MAX_MAP_DEPTH)
     return "space maps nested " + std::to_string(program.maxMapDepth()) + " deep exceed the GPU limit " +
            std::to_string(AM_POLY_MAX_MAP_DEPTH);

@@ -128,3 +128,46 @@ TEST_CASE("primitives of one class under one operator share one op", "[field_pro
   CHECK(p.ops[2].count == 2);
   CHECK(p.primitiveCount() == 12);
 }
+
+TEST_CASE("wide operators fold into a shallow stack with the values of the tree", "[field_program]") {
+  // 23 children that each push their own operand (a frame around a point): before folding the
+  // stack held 23 values, beyond the GPU's 16 (a spline of nodes with 20 copies did the same).
+  std::mt19937 rng(5);
+  for (NodeType type : {NodeType::Blend, NodeType::Union, NodeType::Intersection, NodeType::HyperBlend}) {
+    int id = 1;
+    BlobNode root = makeBlobNode(type, id++);
+    if (type == NodeType::HyperBlend) root.floatParam("q") = FloatTrack(3.0f);
+    for (int i = 0; i < 23; ++i) {
+      BlobNode frame = makeBlobNode(NodeType::Frame, id++);
+      frame.vec3Param("translation") = Vec3Track(glm::vec3(0.04f * float(i) - 0.44f, 0.0f, 0.0f));
+      // Intersection: balls around the origin, so the intersection is not empty.
+      glm::vec3 c = type == NodeType::Intersection ? -frame.vec3Param("translation").evaluate(0.0) : glm::vec3(0.0f);
+      frame.children.push_back(pointNode(id++, c, type == NodeType::Intersection ? 0.7f : 0.12f));
+      root.children.push_back(frame);
+    }
+    BlobTree tree = treeOf(root, 0.5f);
+    FieldProgram p = compileFieldProgram(tree, 0.0);
+    INFO("node type " << int(type));
+    CHECK(p.maxStack() <= int(kFoldOperands));
+    uint32_t operators = 0;
+    for (const FieldOp& op : p.ops) {
+      if (op.code == OpCode::Prims || op.code == OpCode::Const || op.code == OpCode::BeginMap || op.code == OpCode::EndMap)
+        continue;
+      CHECK(op.count <= kFoldOperands);
+      ++operators;
+    }
+    CHECK(operators == 8);  // 4 + 3 * 6 + 1: ceil(22 / 3) operators
+    FieldEvaluator ev;
+    ActiveProgram all;
+    p.specialiseAll(all);
+    for (int i = 0; i < 64; ++i) {
+      glm::vec3 q = randomIn(rng, 0.6f);
+      float f, gx, gy, gz;
+      ev.evaluate(p, all, &q.x, &q.y, &q.z, 1, &f, &gx, &gy, &gz);
+      glm::vec3 gr;
+      float fr = referenceField(tree, 0.0, q, &gr);
+      CHECK(f == Approx(fr).margin(1e-5));
+      CHECK(glm::length(glm::vec3(gx, gy, gz) - gr) <= 1e-3f * std::max(1.0f, glm::length(gr)));
+    }
+  }
+}

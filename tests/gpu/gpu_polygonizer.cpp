@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <random>
 #include <set>
 #include <unordered_map>
@@ -583,11 +584,65 @@ TEST_CASE("GPU polygoniser draws its mesh with an indirect draw, no read-back", 
   CHECK(r.ctx->validationErrorCount() == 0);
 }
 
+TEST_CASE("GPU polygoniser takes wide operators and deep maps (a tail of 24 beads, a limb of 12 frames)", "[gpu][gpupoly]") {
+  // The demo creature's tail is a spline of nodes: one frame per copy, all summed. With 24
+  // copies the blend had 24 operands, and the GPU's operand stack (16) sent the preview to the
+  // CPU; the compiler's folded operators keep the stack shallow.
+  BlobTree tree = makeBlobCreature();
+  int tails = 0;
+  std::function<void(BlobNode&)> lengthen = [&](BlobNode& n) {
+    if (n.type == NodeType::SplineOfNodes) {
+      n.floatParam("count") = FloatTrack(24.0f);
+      ++tails;
+    }
+    for (BlobNode& c : n.children) lengthen(c);
+  };
+  lengthen(tree.root);
+  REQUIRE(tails == 1);
+  FieldProgram p = compileFieldProgram(tree, 0.5);
+  REQUIRE(GpuPolygonizer::unsupported(GpuField::single(p)).empty());
+  Rig r = makeRig();
+  GpuPolygonizeSettings s;
+  s.resolution = 64;
+  GpuPolygonizeStats st;
+  TriangleMesh gpu = gpuMesh(*r.poly, GpuField::single(p), s, &st);
+  TriangleMesh cpu = cpuMesh(p, 64, std::nullopt);
+  REQUIRE(cpu.triangleCount() > 3000);
+  requireAgrees(gpu, cpu, st.cellSize);
+  requireClosedManifold(gpu);
+
+  // A limb of 12 frames each inside the last (a rig's chain: hips, spine, ..., finger tip), each
+  // with its own bead: maps nest 12 deep (the GPU took 6 before).
+  int id = 1;
+  BlobNode chain = makeBlobNode(NodeType::Frame, id++);
+  chain.children.push_back(pointNode(id++, glm::vec3(0.0f), 0.16f));
+  for (int i = 0; i < 11; ++i) {
+    BlobNode parent = makeBlobNode(NodeType::Frame, id++);
+    parent.vec3Param("translation") = Vec3Track(glm::vec3(0.0f, -0.07f, 0.0f));
+    parent.quatParam("rotation") = QuatTrack(glm::angleAxis(0.15f, glm::vec3(0.0f, 0.0f, 1.0f)));
+    parent.children.push_back(pointNode(id++, glm::vec3(0.0f), 0.16f));
+    parent.children.push_back(chain);
+    chain = parent;
+  }
+  FieldProgram limb = compileFieldProgram(treeOf(chain, 0.5f), 0.0);
+  REQUIRE(limb.maxMapDepth() == 12);
+  REQUIRE(GpuPolygonizer::unsupported(GpuField::single(limb)).empty());
+  s.bounds = cube(0.9f);
+  TriangleMesh gpuLimb = gpuMesh(*r.poly, GpuField::single(limb), s, &st);
+  TriangleMesh cpuLimb = cpuMesh(limb, 64, s.bounds);
+  REQUIRE(cpuLimb.triangleCount() > 1000);
+  requireAgrees(gpuLimb, cpuLimb, st.cellSize);
+  requireClosedManifold(gpuLimb);
+  CHECK(r.ctx->validationErrorCount() == 0);
+}
+
 TEST_CASE("GPU polygoniser reports what it cannot do and bad settings", "[gpu][gpupoly]") {
+  // 20 nested blends, each taking a constant first and the next blend second, keep 20 values on
+  // the stack (wide operators fold into a shallow one: next test).
   FieldProgram deep;
   deep.threshold = 1.0f;
   for (int i = 0; i < 20; ++i) deep.addConstant(0.0f);
-  deep.addOperator(OpCode::Sum, 20);
+  for (int i = 0; i < 19; ++i) deep.addOperator(OpCode::Sum, 2);
   deep.finish();
   std::string why = GpuPolygonizer::unsupported(GpuField::single(deep));
   CHECK(why.find("stack") != std::string::npos);

@@ -87,6 +87,70 @@ float applyScalar(OpCode code, const float* v, uint32_t n, const float* prm, flo
   }
 }
 
+
+// Operators that fold left: op(v0..vn) = op(op(v0..vk), vk+1..vn). Sum, Max and Min
+// exactly (the same left-to-right order); HyperBlend up to rounding, as (sum p^q)^(1/q)
+// of nonnegative operands nests.
+bool foldsLeft(OpCode c) {
+  return c == OpCode::Sum || c == OpCode::Max || c == OpCode::Min || c == OpCode::HyperBlend;
+}
+
+// Rewrites every folding operator with more than kFoldOperands operands as a chain of
+// operators of at most kFoldOperands, each taking the previous one's value first, placed
+// right after the operand that completes its chunk. The operands' own ops are untouched
+// (Prims ops keep their primitives), so a blend of 20 children holds at most 3 pending values
+// on the stack instead of 20: the GPU's operand stack is bounded (AM_POLY_MAX_STACK), and
+// the CPU's chunked stack no longer grows with an operator's width.
+void foldWideOperators(std::vector<FieldOp>& ops) {
+  constexpr uint32_t K = kFoldOperands;
+  bool any = false;
+  for (const FieldOp& op : ops) any |= foldsLeft(op.code) && op.count > K;
+  if (!any) return;
+  // Which op completes each operand: a push, or the EndMap closing a map around it.
+  std::vector<uint32_t> doneAt;
+  std::vector<int32_t> insertFrom(ops.size(), -1);  // insert a copy of ops[from] after this op
+  std::vector<uint32_t> finalCount(ops.size(), 0);
+  for (uint32_t i = 0; i < ops.size(); ++i) {
+    const FieldOp& op = ops[i];
+    switch (op.code) {
+      case OpCode::Prims:
+      case OpCode::Const: doneAt.push_back(i); break;
+      case OpCode::BeginMap: break;
+      case OpCode::EndMap:
+        if (!doneAt.empty()) doneAt.back() = i;
+        break;
+      default: {
+        uint32_t n = std::min<uint32_t>(op.count, uint32_t(doneAt.size()));
+        size_t base = doneAt.size() - n;
+        if (foldsLeft(op.code) && n > K) {
+          // Chunks: operands 0..K-1, then the running value and K-1 more, ...
+          uint32_t next = K;
+          insertFrom[doneAt[base + K - 1]] = int32_t(i);
+          while (n - next > K - 1) {
+            insertFrom[doneAt[base + next + K - 2]] = int32_t(i);
+            next += K - 1;
+          }
+          finalCount[i] = 1 + (n - next);
+        }
+        doneAt.resize(base);
+        doneAt.push_back(i);
+      }
+    }
+  }
+  std::vector<FieldOp> out;
+  out.reserve(ops.size() + ops.size() / (K - 1) + 1);
+  for (uint32_t i = 0; i < ops.size(); ++i) {
+    FieldOp op = ops[i];
+    if (finalCount[i]) op.count = finalCount[i];
+    out.push_back(op);
+    if (insertFrom[i] >= 0) {
+      FieldOp part = ops[size_t(insertFrom[i])];
+      part.count = K;
+      out.push_back(part);
+    }
+  }
+  ops = std::move(out);
+}
 }  // namespace
 
 // ------------------------------------------------------------------ building
@@ -223,6 +287,7 @@ void FieldProgram::endMap() {
 void FieldProgram::finish() {
   static std::atomic<uint64_t> nextIdentity{1};
   identity_ = nextIdentity.fetch_add(1);
+  foldWideOperators(ops);
   // Empty values, subtree extents and stack depth by a symbolic run.
   std::vector<float> vals;
   std::vector<uint32_t> begins;

@@ -37,6 +37,10 @@ enum class OpCode : uint8_t {
   EndMap,         // leave maps[first]: the top gradient returns by the chain rule
 };
 
+// finish() splits Sum, Max, Min and HyperBlend ops of more operands into a chain of ops of at
+// most this many (the stack of an evaluation then stays shallow however wide a blend is).
+inline constexpr uint32_t kFoldOperands = 4;
+
 struct FieldOp {
   OpCode code = OpCode::Const;
   PrimClass primClass = PrimClass::Skeletal;  // Prims

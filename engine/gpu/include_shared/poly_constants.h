@@ -50,7 +50,7 @@
 
 // Interpreter limits: programs beyond them are reported and polygonised on the CPU.
 #define AM_POLY_MAX_STACK 16
-#define AM_POLY_MAX_MAP_DEPTH 6
+#define AM_POLY_MAX_MAP_DEPTH 16
 // Operands of one hyper-blend are read from the stack, so at most the stack size.
 
 // The primitive/op pool in a uniform buffer of this many vec4 (64 KiB) when it
