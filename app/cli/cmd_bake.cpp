@@ -14,7 +14,6 @@
 #include "scene/mesh_character.h"
 #include "doc/project_io.h"
 #include "morph/morph_runtime.h"
-#include "morph/solid_noise.h"
 #include "poly/mesh_io.h"
 #if ANIMORPH_HAS_GPU
 #include "context.h"
@@ -196,6 +195,8 @@ int runBake(const std::vector<std::string>& args) {
     gpu::GpuPolygonizeSettings gs;
     gs.resolution = res;
     gs.bounds = field.bounds;
+    gs.noiseAmplitude = field.noiseAmplitude;  // the GPU's noise pass: the CPU path's displacement
+    gs.noiseFrequency = (*rt)->setup.noiseFrequency;
     std::lock_guard<std::mutex> lock(gpuMutex);
     auto stats = gpuPoly->polygonize(gf, gs);
     if (!stats) return Error{stats.error()};
@@ -210,7 +211,6 @@ int runBake(const std::vector<std::string>& args) {
     fr.polygonize.blocksEvaluated = stats->blocksActive;
     fr.polygonize.blocksCulled = stats->blocksTotal - stats->blocksActive;
     fr.polygonize.milliseconds = stats->milliseconds;
-    displaceBySolidNoise(fr.mesh, field.noiseAmplitude, (*rt)->setup.noiseFrequency);
     return fr;
   };
 #endif

@@ -133,6 +133,7 @@ struct GpuPolygonizer::Impl {
   // Variants being compiled on a background thread (prewarm); fieldPipelines takes them over.
   std::map<VariantKey, std::future<Result<FieldPipelines>>> compiling;
   VkPipeline scan = VK_NULL_HANDLE, scanSingle = VK_NULL_HANDLE, compact = VK_NULL_HANDLE, args = VK_NULL_HANDLE;
+  VkPipeline noise = VK_NULL_HANDLE;  // solid-noise displacement (poly_noise.comp)
   VkCommandPool commandPool = VK_NULL_HANDLE;
   VkCommandBuffer cmd = VK_NULL_HANDLE;
   VkFence fence = VK_NULL_HANDLE;
@@ -183,7 +184,7 @@ GpuPolygonizer::Impl::~Impl() {
   for (auto& [key, v] : variants)
     for (VkPipeline p : {v.blocks, v.cells, v.emit, v.normals})
       if (p) vkDestroyPipeline(dev, p, nullptr);
-  for (VkPipeline p : {scan, scanSingle, compact, args})
+  for (VkPipeline p : {scan, scanSingle, compact, args, noise})
     if (p) vkDestroyPipeline(dev, p, nullptr);
   if (fence) vkDestroyFence(dev, fence, nullptr);
   if (timestamps) vkDestroyQueryPool(dev, timestamps, nullptr);
@@ -244,7 +245,8 @@ Status GpuPolygonizer::Impl::init() {
   } wants[] = {{&scan, "poly_scan.comp"},
                {&scanSingle, "poly_scan_single.comp"},
                {&compact, "poly_compact.comp"},
-               {&args, "poly_args.comp"}};
+               {&args, "poly_args.comp"},
+               {&noise, "poly_noise.comp"}};
   for (const Want& w : wants) {
     Result<VkPipeline> p = pipeline(w.name);
     if (!p) return Error{p.error()};
@@ -493,7 +495,7 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   const float normalStep = 0.05f * g.h;
   prm.morph1 = glm::vec4(field.a1, field.a2, field.a3, normalStep);
   prm.caps = glm::uvec4(vertexCapacity, triangleCapacity, pk.primitiveTotal(), 1u);
-  prm.extra = glm::vec4(2.0f * normalStep, 0.0f, 0.0f, 0.0f);
+  prm.extra = glm::vec4(2.0f * normalStep, s.noiseAmplitude, s.noiseFrequency, 0.0f);
   prm.superBlocks = glm::uvec4(g.superAxis(0), g.superAxis(1), g.superAxis(2), nSuper);
 
   stats.gridX = int(g.n[0]);
@@ -597,6 +599,12 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   computeToCompute(cb);
   vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, fp->normals);
   vkCmdDispatchIndirect(cb, control.buffer, AM_CTL_NORMALS * 4);
+  if (s.noiseAmplitude != 0.0f) {
+    // Solid noise along the normals just made (the CPU's displaceBySolidNoise).
+    computeToCompute(cb);
+    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, noise);
+    vkCmdDispatchIndirect(cb, control.buffer, AM_CTL_NORMALS * 4);
+  }
   barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
           VK_PIPELINE_STAGE_VERTEX_INPUT_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
           VK_ACCESS_SHADER_WRITE_BIT,

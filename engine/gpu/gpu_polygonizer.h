@@ -91,6 +91,11 @@ struct GpuPolygonizeSettings {
   // after the coarse pass and four after the cells pass (on lavapipe each costs ~0.1 ms).
   // Off: the multi-group scan that longer arrays use (same mesh; tests compare both).
   bool singleWorkgroupScan = true;
+  // Solid-noise displacement of the vertices along their normals by amplitude (m) *
+  // solidNoise(frequency (1/m) * p), after polygonising: the CPU's displaceBySolidNoise
+  // (DESIGN.md §5, the morph's noise track). 0: none (no pass).
+  float noiseAmplitude = 0.0f;
+  float noiseFrequency = 1.0f;
   // Workgroups a row of the fine passes' dispatch (0: AM_POLY_MAX_DISPATCH_X, the least every
   // device allows); the blocks past a row go on in the next. Tests narrow it to run that path.
   uint32_t dispatchRow = 0;

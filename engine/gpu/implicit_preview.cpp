@@ -150,6 +150,8 @@ void ImplicitPreview::prewarm(const PreviewSource& source, const ImplicitPreview
   GpuPolygonizeSettings gs;
   gs.resolution = s.interactiveResolution;
   gs.bounds = field->bounds;
+  gs.noiseAmplitude = field->noiseAmplitude;
+  gs.noiseFrequency = field->noiseFrequency;
   poly_->prewarm(GpuField::single(field->program), gs);
 }
 
@@ -255,6 +257,8 @@ bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& sour
   GpuPolygonizeSettings gs;
   gs.resolution = res;
   gs.bounds = field->bounds;
+  gs.noiseAmplitude = field->noiseAmplitude;
+  gs.noiseFrequency = field->noiseFrequency;
   // A kind of shape whose pipelines are not compiled yet: compile them in the background while the
   // CPU worker draws it (update(); the frame would otherwise stall ~1 s on lavapipe); retried every frame.
   // A screenshot (settle) waits for them instead: it must show this shape.

@@ -18,6 +18,7 @@
 #include "demo/blob_creature.h"
 #include "gpu_fixture.h"
 #include "gpu_polygonizer.h"
+#include "morph/solid_noise.h"
 #include "morph_field.h"
 #include "offscreen_target.h"
 #include "poly/marching_cubes_table.h"
@@ -451,6 +452,39 @@ TEST_CASE("GPU polygoniser grows its buffers from tiny capacities and redoes the
   TriangleMesh grownGrouped = gpuMesh(*r.poly, GpuField::single(p), s, &tinyGrouped);
   CHECK(tinyGrouped.regrows >= 1);
   CHECK(triangleSet(grownGrouped) == triangleSet(reference));
+  CHECK(r.ctx->validationErrorCount() == 0);
+}
+
+TEST_CASE("GPU polygoniser displaces its mesh by solid noise as the CPU does", "[gpu][gpupoly]") {
+  // The morph's noise track (DESIGN.md §5): every vertex moves along its normal by
+  // amplitude * solidNoise(frequency * p). On the GPU a pass after the normals; on the CPU
+  // displaceBySolidNoise on the polygonised mesh. Same mesh, and a real displacement.
+  Rig r = makeRig();
+  FieldProgram p = compileFieldProgram(chainTree(12, 3), 0.0);
+  GpuPolygonizeSettings s;
+  s.resolution = 64;
+  GpuPolygonizeStats st;
+  TriangleMesh plain = gpuMesh(*r.poly, GpuField::single(p), s, &st);
+  s.noiseAmplitude = 2.0f * st.cellSize;
+  s.noiseFrequency = 7.0f;
+  TriangleMesh noisy = gpuMesh(*r.poly, GpuField::single(p), s);
+  TriangleMesh cpu = cpuMesh(p, 64, std::nullopt);
+  REQUIRE(cpu.triangleCount() > 1000);
+  displaceBySolidNoise(cpu, s.noiseAmplitude, s.noiseFrequency);
+  requireAgrees(noisy, cpu, st.cellSize);
+  requireClosedManifold(noisy);
+  // The same vertices moved: by up to the amplitude, most of them by a visible fraction of it.
+  REQUIRE(noisy.positions.size() == plain.positions.size());
+  size_t moved = 0;
+  float largest = 0.0f;
+  for (size_t i = 0; i < plain.positions.size(); ++i) {
+    float d = glm::length(noisy.positions[i] - plain.positions[i]);
+    largest = std::max(largest, d);
+    moved += d > 0.1f * s.noiseAmplitude;
+  }
+  CHECK(largest <= 1.01f * s.noiseAmplitude);
+  CHECK(moved > plain.positions.size() / 2);
+  CHECK(noisy.normals == plain.normals);  // normals of the undisplaced surface, as on the CPU
   CHECK(r.ctx->validationErrorCount() == 0);
 }
 

@@ -11,6 +11,7 @@
 #include "gpu_fixture.h"
 #include "gpu_polygonizer.h"
 #include "implicit_preview.h"
+#include "blobtree/blob_tree.h"
 #include "morph/mesh_distance.h"
 #include "poly/mesh_checks.h"
 #include "scene/morph_preview_source.h"
@@ -74,7 +75,40 @@ PreviewGpuField previewGpuField(const PreviewSource& source, int res) {
   PreviewGpuField f{std::move(*field), {}};
   f.settings.resolution = res;
   f.settings.bounds = f.field.bounds;
+  f.settings.noiseAmplitude = f.field.noiseAmplitude;
+  f.settings.noiseFrequency = f.field.noiseFrequency;
   return f;
+}
+
+// The field the preview hands the GPU at res, polygonised and read back, against the CPU stage
+// mesh: triangle counts within 0.5 %, vertices within 0.05 cell both ways. The CPU's mesh.
+PolygonizeResult gpuFieldMatchesCpu(Context& ctx, const PreviewSource& source, int res) {
+  const PreviewGpuField pf = previewGpuField(source, res);
+  auto poly = GpuPolygonizer::create(ctx);
+  REQUIRE(poly.ok());
+  auto st = (*poly)->polygonize(GpuField::single(pf.field.program), pf.settings);
+  INFO(st.error());
+  REQUIRE(st.ok());
+  auto gpuMesh = (*poly)->readBack();
+  REQUIRE(gpuMesh.ok());
+  auto cpu = source.polygonize(res, 0, nullptr);
+  REQUIRE(cpu.ok());
+  const double cpuTris = double(cpu->mesh.triangleCount());
+  REQUIRE(cpuTris > 100);
+  CHECK(std::abs(double(gpuMesh->triangleCount()) - cpuTris) <= 0.005 * cpuTris);
+  const float cell = cpu->stats.cellSize;
+  CHECK(pointsToMeshDistance(gpuMesh->positions, cpu->mesh).maxDistance < 0.05 * cell);
+  CHECK(pointsToMeshDistance(cpu->mesh.positions, *gpuMesh).maxDistance < 0.05 * cell);
+  return std::move(*cpu);
+}
+
+// A preview settled on the GPU path with `triangles`, and no validation error.
+void checkOnGpu(const ImplicitPreviewStatus& s, size_t triangles, const Context& ctx) {
+  INFO(s.gpuFallback);
+  CHECK(s.gpu);
+  CHECK(s.gpuFallback.empty());
+  CHECK(s.triangles == triangles);
+  CHECK(ctx.validationErrorCount() == 0);
 }
 
 }  // namespace
@@ -83,23 +117,7 @@ TEST_CASE("implicit preview: the GPU path of the morph stage matches the CPU mes
   auto [ctx, rt, t, source] = demoStage(0.5);
   const int res = 48;
 
-  // The field the preview hands the GPU, polygonised and read back, against the CPU stage mesh.
-  const PreviewGpuField pf = previewGpuField(*source, res);
-  auto poly = GpuPolygonizer::create(*ctx);
-  REQUIRE(poly.ok());
-  auto st = (*poly)->polygonize(GpuField::single(pf.field.program), pf.settings);
-  INFO(st.error());
-  REQUIRE(st.ok());
-  auto gpuMesh = (*poly)->readBack();
-  REQUIRE(gpuMesh.ok());
-  auto cpu = source->polygonize(res, 0, nullptr);
-  REQUIRE(cpu.ok());
-  const double cpuTris = double(cpu->mesh.triangleCount());
-  REQUIRE(cpuTris > 100);
-  CHECK(std::abs(double(gpuMesh->triangleCount()) - cpuTris) <= 0.005 * cpuTris);
-  const float cell = cpu->stats.cellSize;
-  CHECK(pointsToMeshDistance(gpuMesh->positions, cpu->mesh).maxDistance < 0.05 * cell);
-  CHECK(pointsToMeshDistance(cpu->mesh.positions, *gpuMesh).maxDistance < 0.05 * cell);
+  const double cpuTris = double(gpuFieldMatchesCpu(*ctx, *source, res).mesh.triangleCount());
 
   // The preview itself on the GPU path: its own submissions, the draw, the same triangle count.
   ImplicitPreview preview(*ctx);
@@ -150,23 +168,49 @@ TEST_CASE("implicit preview: a GPU out of memory falls back to the CPU worker wi
   preview.update(source, t, ps);
   CHECK_FALSE(preview.status().gpu);
   preview.clearGpuFailure();
-  s = settle(preview, source, t, ps);
-  CHECK(s.gpu);
-  CHECK(s.gpuFallback.empty());
-  CHECK(s.triangles == r->mesh.triangleCount());
-  CHECK(ctx->validationErrorCount() == 0);
+  checkOnGpu(settle(preview, source, t, ps), r->mesh.triangleCount(), *ctx);
 }
 
-TEST_CASE("implicit preview: a stage the GPU cannot express (solid noise) is polygonised on the CPU", "[gpu][preview]") {
+TEST_CASE("implicit preview: a stage with solid noise is displaced on the GPU as on the CPU", "[gpu][preview]") {
+  // The noise track used to send the stage to the CPU worker ("solid noise is applied on the CPU
+  // only"); the GPU path now displaces the vertices in a pass of its own.
   auto ctx = test::makeTestContext();
   auto noisy = std::make_shared<MorphRuntime>(*test::demoMorph().runtime);
-  noisy->setup.noiseAmplitude = FloatTrack(0.01f);
+  noisy->setup.noiseAmplitude = FloatTrack(0.05f);
+  noisy->setup.noiseFrequency = 4.0f;
   const double t = midStageSec(*noisy, 0.5);
+  const auto source = morphPreviewSource(noisy, t);
+  const int res = 48;
+  REQUIRE(previewGpuField(*source, res).field.noiseAmplitude == 0.05f);
+  const PolygonizeResult cpu = gpuFieldMatchesCpu(*ctx, *source, res);  // CPU: polygonised, then displaced
+  CHECK(0.05f > cpu.stats.cellSize);  // a displacement the comparison sees
   ImplicitPreview preview(*ctx);
-  ImplicitPreviewSettings ps = gpuSettings(24, 32);
-  ImplicitPreviewStatus s = settle(preview, morphPreviewSource(noisy, t), t, ps);
+  checkOnGpu(settle(preview, source, t, gpuSettings(24, res)), cpu.mesh.triangleCount(), *ctx);
+}
+
+TEST_CASE("implicit preview: a shape the GPU cannot express is polygonised on the CPU", "[gpu][preview]") {
+  // Blends nested 20 deep, each holding a bead and the next blend: 20 values on the operand stack,
+  // beyond the GPU interpreter's 16.
+  auto ctx = test::makeTestContext();
+  auto tree = std::make_shared<BlobTree>();
+  tree->threshold = FloatTrack(0.5f);
+  int id = 1;
+  BlobNode inner = makeBlobNode(NodeType::Point, id++);
+  inner.floatParam("radius") = FloatTrack(0.2f);
+  for (int i = 0; i < 20; ++i) {
+    BlobNode bead = makeBlobNode(NodeType::Point, id++);
+    bead.vec3Param("center") = Vec3Track(glm::vec3(0.05f * float(i + 1), 0.0f, 0.0f));
+    bead.floatParam("radius") = FloatTrack(0.2f);
+    BlobNode blend = makeBlobNode(NodeType::Blend, id++);
+    blend.children = {bead, inner};
+    inner = blend;
+  }
+  tree->root = inner;
+  ImplicitPreview preview(*ctx);
+  ImplicitPreviewStatus s = settle(preview, blobTreePreviewSource(tree, 0.0), 0.0, gpuSettings(24, 32));
   CHECK_FALSE(s.gpu);
-  CHECK(s.gpuFallback.find("solid noise") != std::string::npos);
+  INFO(s.gpuFallback);
+  CHECK(s.gpuFallback.find("stack depth 20") != std::string::npos);
   CHECK(preview.gpuFailure().empty());  // only this shape: not a sticky failure
   CHECK(s.triangles > 100);
   CHECK(ctx->validationErrorCount() == 0);

@@ -26,6 +26,10 @@ namespace animorph {
 struct PreviewField {
   FieldProgram program;
   std::optional<Bounds> bounds;
+  // Solid noise moving the polygonised mesh's vertices along their normals (the morph's noise
+  // track, displaceBySolidNoise): amplitude (m), frequency (1/m); 0 amplitude: none.
+  float noiseAmplitude = 0.0f;
+  float noiseFrequency = 1.0f;
 };
 
 // A shape to preview: an immutable snapshot (shared with the worker thread).

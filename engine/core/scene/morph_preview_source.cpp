@@ -27,9 +27,8 @@ class MorphStageSource final : public PreviewSource {
   }
   Result<PreviewField> field(int resolution) const override {
     MorphImplicitField f = morphImplicitField(*rt_, timeSec_, resolution, progress_);
-    // The noise displaces the polygonised mesh, which the GPU path never reads back.
-    if (f.noiseAmplitude != 0.0f) return Error{"solid noise is applied on the CPU only"};
-    return PreviewField{std::move(f.program), f.bounds};
+    // The noise displaces the polygonised mesh (on the GPU: a pass after the normals).
+    return PreviewField{std::move(f.program), f.bounds, f.noiseAmplitude, rt_->setup.noiseFrequency};
   }
 
  private:
