@@ -189,8 +189,9 @@ TEST_CASE("implicit preview: a stage with solid noise is displaced on the GPU as
 }
 
 TEST_CASE("implicit preview: a shape the GPU cannot express is polygonised on the CPU", "[gpu][preview]") {
-  // Blends nested 20 deep, each holding a bead and the next blend: 20 values on the operand stack,
-  // beyond the GPU interpreter's 16.
+  // Differences nested 20 deep in their subtracted operand (a bead minus the next difference):
+  // the operand order is the operator's meaning, so 21 values wait on the operand stack, beyond
+  // the GPU interpreter's 16 (blends and unions nested so are reordered: field_program tests).
   auto ctx = test::makeTestContext();
   auto tree = std::make_shared<BlobTree>();
   tree->threshold = FloatTrack(0.5f);
@@ -201,16 +202,16 @@ TEST_CASE("implicit preview: a shape the GPU cannot express is polygonised on th
     BlobNode bead = makeBlobNode(NodeType::Point, id++);
     bead.vec3Param("center") = Vec3Track(glm::vec3(0.05f * float(i + 1), 0.0f, 0.0f));
     bead.floatParam("radius") = FloatTrack(0.2f);
-    BlobNode blend = makeBlobNode(NodeType::Blend, id++);
-    blend.children = {bead, inner};
-    inner = blend;
+    BlobNode difference = makeBlobNode(NodeType::Difference, id++);
+    difference.children = {bead, inner};
+    inner = difference;
   }
   tree->root = inner;
   ImplicitPreview preview(*ctx);
   ImplicitPreviewStatus s = settle(preview, blobTreePreviewSource(tree, 0.0), 0.0, gpuSettings(24, 32));
   CHECK_FALSE(s.gpu);
   INFO(s.gpuFallback);
-  CHECK(s.gpuFallback.find("stack depth 20") != std::string::npos);
+  CHECK(s.gpuFallback.find("stack depth 21") != std::string::npos);
   CHECK(preview.gpuFailure().empty());  // only this shape: not a sticky failure
   CHECK(s.triangles > 100);
   CHECK(ctx->validationErrorCount() == 0);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <unordered_map>
 
 #include "blobtree/meta_primitives.h"
 
@@ -18,6 +20,74 @@ struct Compiler {
   glm::vec3 v(const BlobNode& n, const char* name) const { return n.vec3Param(name).evaluate(t); }
 
   static bool isPrimitive(NodeType type) { return type <= NodeType::Capsule; }
+
+  // --- a shallow evaluation stack ---
+  // Values an evaluation of a node holds on the stack at most. FieldProgram::finish folds wide
+  // operators into chunks of kFoldOperands, so at most kFoldOperands - 1 values wait below an
+  // operand. Operands of a commuting operator (blend, union, intersection, hyper-blend) are
+  // emitted deepest first when their given order would stack more than kShallowStack values:
+  // blends nested 20 deep, each holding a bead and the next blend, stack 8 values instead of 20
+  // (the GPU interpreter holds 16). Orders that stack less are kept as they are (and so the
+  // primitive ids, and the float order of sums).
+  static constexpr int kShallowStack = 8;
+  std::unordered_map<const BlobNode*, int> needs;
+
+  static int sequenceNeed(const std::vector<int>& operandNeeds) {
+    int m = 1;
+    for (size_t i = 0; i < operandNeeds.size(); ++i)
+      m = std::max(m, operandNeeds[i] + int(std::min<size_t>(i, kFoldOperands - 1)));
+    return m;
+  }
+
+  // Emission order of children[first..] under a commuting operator.
+  std::vector<size_t> operandOrder(const std::vector<BlobNode>& children, size_t first) {
+    std::vector<size_t> order(children.size() - std::min(first, children.size()));
+    std::iota(order.begin(), order.end(), first);
+    std::vector<int> given;
+    for (size_t i : order) given.push_back(need(children[i]));
+    if (sequenceNeed(given) > kShallowStack)
+      std::stable_sort(order.begin(), order.end(),
+                       [&](size_t a, size_t b) { return need(children[a]) > need(children[b]); });
+    return order;
+  }
+
+  int operandsNeed(const std::vector<BlobNode>& children, size_t first) {
+    std::vector<int> ns;
+    for (size_t i : operandOrder(children, first)) ns.push_back(need(children[i]));
+    return sequenceNeed(ns);
+  }
+
+  int need(const BlobNode& n) {
+    if (auto it = needs.find(&n); it != needs.end()) return it->second;
+    int r = 1;
+    switch (n.type) {
+      case NodeType::Blend:
+      case NodeType::Union:
+      case NodeType::Intersection:
+      case NodeType::HyperBlend:
+      case NodeType::Frame:
+      case NodeType::Twist:
+      case NodeType::Taper:
+      case NodeType::Bend: r = operandsNeed(n.children, 0); break;
+      case NodeType::Difference:
+        if (!n.children.empty()) r = std::max(need(n.children[0]), 1 + operandsNeed(n.children, 1));
+        break;
+      case NodeType::RUnion:
+      case NodeType::RIntersection:
+      case NodeType::BoundedBlend:
+        for (size_t i = 0; i < n.children.size(); ++i) r = std::max(r, int(i) + need(n.children[i]));
+        break;
+      case NodeType::SplineOfNodes:
+        if (!n.children.empty()) {
+          int copies = std::clamp(int(std::lround(f(n, "count"))), 1, 1000);
+          r = sequenceNeed(std::vector<int>(size_t(copies), need(n.children[0])));
+        }
+        break;
+      default: break;
+    }
+    needs[&n] = r;
+    return r;
+  }
 
   SkeletalPrimitive skeletal(const BlobNode& n) {
     SkeletalPrimitive p;
@@ -90,7 +160,7 @@ struct Compiler {
   void group(const std::vector<BlobNode>& children, size_t first, OpCode code) {
     uint32_t operands = 0;
     bool prevPrim = false;
-    for (size_t i = first; i < children.size(); ++i) {
+    for (size_t i : operandOrder(children, first)) {
       const BlobNode& c = children[i];
       if (isPrimitive(c.type)) {
         if (primitive(c, prevPrim, code == OpCode::Max)) ++operands;
@@ -114,11 +184,11 @@ struct Compiler {
       case NodeType::Blend: group(n.children, 0, OpCode::Sum); return;
       case NodeType::Union: group(n.children, 0, OpCode::Max); return;
       case NodeType::Intersection:
-        for (const auto& c : n.children) node(c);
+        for (size_t i : operandOrder(n.children, 0)) node(n.children[i]);
         if (n.children.size() > 1) prog.addOperator(OpCode::Min, uint32_t(n.children.size()));
         return;
       case NodeType::HyperBlend: {
-        for (const auto& c : n.children) node(c);
+        for (size_t i : operandOrder(n.children, 0)) node(n.children[i]);
         float q = std::max(1.0f, f(n, "q"));
         prog.addOperator(OpCode::HyperBlend, uint32_t(n.children.size()), &q, 1);
         return;
@@ -201,7 +271,7 @@ struct Compiler {
 FieldProgram compileFieldProgram(const BlobTree& tree, double timeSec, const CompileOptions& options) {
   FieldProgram prog;
   prog.threshold = std::max(1e-6f, tree.threshold.evaluate(timeSec));
-  Compiler c{prog, timeSec, options};
+  Compiler c{prog, timeSec, options, {}};
   c.node(tree.root);
   prog.finish();
   return prog;
