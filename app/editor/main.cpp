@@ -16,8 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "blob_preview_set.h"
-#include "context.h"
+#include "editor_gpu.h"
 #include "editor_args.h"
 #include "editor_ui.h"
 #include "implicit_preview.h"
@@ -36,6 +35,7 @@
 #include "standin_binding_cache.h"
 #include "standin_overlay.h"
 #include "swapchain.h"
+#include "vk_check.h"
 #include "paint/paint_mesh.h"
 #include "weight_overlay_scene.h"
 #include "ui_map.h"
@@ -81,16 +81,6 @@ int main(int argc, char** argv) {
   watchWindowEvents(window);  // before ImGui's backend, which chains to these callbacks
   PreviewPolygonizer::setPublishHook([] { glfwPostEmptyEvent(); });  // a preview mesh wakes the frame loop
 
-  gpu::ContextSettings cs;
-  cs.window = window;
-  auto ctxR = gpu::Context::create(cs);
-  if (!ctxR) {
-    std::fprintf(stderr, "animorph: no usable Vulkan device: %s\n", ctxR.error().c_str());
-    glfwDestroyWindow(window);
-    glfwTerminate();
-    return 1;
-  }
-  gpu::Context& ctx = **ctxR;
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // the layout lives in our preferences
@@ -102,38 +92,23 @@ int main(int argc, char** argv) {
     ss.clearColor = glm::vec4(c[0], c[1], c[2], c[3]);
   }
   if (args.benchFrames > 0) ss.presentMode = gpu::PresentMode::Immediate;
-  auto swapR = gpu::Swapchain::create(ctx, ss);
-  if (!swapR) {
-    std::fprintf(stderr, "animorph: %s\n", swapR.error().c_str());
+  auto gpuR = createEditorGpu(window, ss);
+  if (!gpuR) {
+    std::fprintf(stderr, "animorph: %s\n", gpuR.error().c_str());
+    ImGui::DestroyContext();
+    glfwDestroyWindow(window);
+    glfwTerminate();
     return 1;
   }
-  gpu::Swapchain& swapchain = **swapR;
-  auto rendR = gpu::SceneRenderer::create(ctx, swapchain.renderPass());
-  if (!rendR) {
-    std::fprintf(stderr, "animorph: %s\n", rendR.error().c_str());
-    return 1;
-  }
-  gpu::SceneRenderer& renderer = **rendR;
-
-  auto imguiR = ImGuiVulkan::create(ctx, swapchain);
-  if (!imguiR) {
-    std::fprintf(stderr, "animorph: %s\n", imguiR.error().c_str());
-    return 1;
-  }
-  ImGuiVulkan& imgui = **imguiR;
+  std::unique_ptr<EditorGpu> gpuSide = std::move(*gpuR);
 
   EditorUI ui;
   AssetCache assets;
-  auto meshCache = std::make_unique<gpu::MeshCache>(ctx);
-  gpu::MeshCache& meshes = *meshCache;
-  auto blobPreviews = std::make_unique<gpu::BlobPreviewSet>(ctx);
-  auto standinBindings = std::make_unique<gpu::StandinBindingCache>(ctx);
-  auto morphPreview = std::make_unique<gpu::ImplicitPreview>(ctx);  // the morph's B->C stage
   PreviewDevice previewDevice = ui.state().prefs.previewDevice;
   std::unique_ptr<Document> document = std::make_unique<Document>();
   if (!args.project.empty()) ui.requestOpen(args.project);
   EditorContext ectx(document, assets);
-  ectx.stats.deviceName = ctx.deviceName();
+  ectx.stats.deviceName = gpuSide->ctx->deviceName();
 
   const char* uiMapEnv = std::getenv("ANIMORPH_UI_MAP");
   const std::string uiMapPath = uiMapEnv ? uiMapEnv : "";
@@ -165,6 +140,36 @@ int main(int argc, char** argv) {
 
   for (;;) {
     glfwPollEvents();
+    if (gpu::deviceLost()) {
+      // The device is gone with everything made on it (a driver reset, a GPU removed): save the
+      // work, then remake the Vulkan side; the document, the UI and its state stay as they are.
+      const bool autosaved = document->autosaveIfDue(ectx.nowSec, 0.0);
+      std::fprintf(stderr, "animorph: the GPU device was lost; recreating the renderer%s\n",
+                   autosaved ? (" (work autosaved to " + document->autosavePath() + ")").c_str() : "");
+      gpuSide.reset();
+      gpu::clearDeviceLost();
+      auto again = createEditorGpu(window, ss);
+      if (!again) {
+        std::fprintf(stderr, "animorph: cannot recreate the renderer: %s; quitting%s\n", again.error().c_str(),
+                     document->dirty() ? " (the autosave is offered when the project is opened again)" : "");
+        exitCode = 1;
+        break;
+      }
+      gpuSide = std::move(*again);
+      prewarmedMorph = nullptr;
+      ectx.stats.deviceName = gpuSide->ctx->deviceName();
+      ui.state().status = {std::string("The GPU device was lost; the renderer was recreated") +
+                               (autosaved ? " (work autosaved)" : ""),
+                           true};
+    }
+    gpu::Context& ctx = *gpuSide->ctx;
+    gpu::Swapchain& swapchain = *gpuSide->swapchain;
+    gpu::SceneRenderer& renderer = *gpuSide->renderer;
+    ImGuiVulkan& imgui = *gpuSide->imgui;
+    gpu::MeshCache& meshes = *gpuSide->meshes;
+    gpu::BlobPreviewSet* blobPreviews = gpuSide->blobPreviews.get();
+    gpu::StandinBindingCache* standinBindings = gpuSide->standinBindings.get();
+    gpu::ImplicitPreview* morphPreview = gpuSide->morphPreview.get();
     const uint64_t events = windowEventCount();
     const bool inputThisFrame = events != eventsSeen;
     eventsSeen = events;
@@ -296,8 +301,8 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "animorph: morph preview still computing at the screenshot\n");
     const Actor* selActor = doc.project().findActor(doc.selection.actorId);
     int selBlobNode = selActor && selActor->kind == ActorKind::BlobTree ? doc.selection.node : -1;
-    gpu::buildScene(frame, doc.project().view, doc.selection.actorId, meshes, scene, blobPreviews.get(), selBlobNode,
-                    standinBindings.get());
+    gpu::buildScene(frame, doc.project().view, doc.selection.actorId, meshes, scene, blobPreviews, selBlobNode,
+                    standinBindings);
     if (morphStageShown) {
       const size_t meshCount = scene.meshes.size(), generatedCount = scene.generatedMeshes.size();
       morphPreview->draw(scene, glm::mat4(1.0f), {0.62f, 0.62f, 0.62f, 1.0f}, doc.selection.actorId == morphSourceId);
@@ -426,9 +431,17 @@ int main(int argc, char** argv) {
     }
   }
 
+  if (!gpuSide) {  // the device was lost and could not be remade (said above)
+    ui.savePreferences();
+    ImGui::DestroyContext();
+    glfwDestroyWindow(window);
+    glfwTerminate();
+    return exitCode;
+  }
+  gpu::Context& ctx = *gpuSide->ctx;
   if (args.benchFrames > 0) {
     std::printf("start to first frame: %.1f ms\n", firstFrameMs);
-    std::printf("present: %s\n", swapchain.presentPath().c_str());
+    std::printf("present: %s\n", gpuSide->swapchain->presentPath().c_str());
     std::printf("frame time over %zu frames: p50 %.2f ms, p95 %.2f ms, max %.2f ms (device: %s)\n", frameMs.size(),
                 percentile(frameMs, 0.5), percentile(frameMs, 0.95), percentile(frameMs, 1.0),
                 ctx.deviceName().c_str());
@@ -439,15 +452,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "animorph: %u Vulkan validation error(s)\n", ctx.validationErrorCount());
     exitCode = 3;
   }
-  blobPreviews.reset();
-  standinBindings.reset();
-  morphPreview.reset();
-  meshCache.reset();
-  imguiR->reset();
+  gpuSide.reset();
   ImGui::DestroyContext();
-  rendR->reset();
-  swapR->reset();
-  ctxR->reset();
   glfwDestroyWindow(window);
   glfwTerminate();
   return exitCode;

@@ -4,6 +4,8 @@
 #include <cstdlib>
 #include <cstring>
 
+#include <unistd.h>
+
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
 
@@ -357,12 +359,26 @@ FrameStatus Swapchain::fail(const std::string& message) {
   return FrameStatus::Failed;
 }
 
+namespace {
+// Testing the editor's recovery for real (lavapipe never loses its device): with
+// ANIMORPH_DEBUG_DEVICE_LOST_FILE=PATH, the wait before the first frame that finds PATH existing
+// reports VK_ERROR_DEVICE_LOST, once per process.
+bool debugDeviceLostNow() {
+  static const char* path = std::getenv("ANIMORPH_DEBUG_DEVICE_LOST_FILE");
+  static bool fired = false;
+  if (!path || fired || access(path, F_OK) != 0) return false;
+  fired = true;
+  return true;
+}
+}  // namespace
+
 FrameStatus Swapchain::beginFrame(Frame& frame) {
   VkDevice dev = ctx_.device();
   if (frameOpen_) return fail("beginFrame called twice without endFrame");
   VkExtent2D size = framebufferSize(ctx_.window());
   if (size.width == 0 || size.height == 0) return FrameStatus::Skipped;  // minimised
   VkResult r = vkWaitForFences(dev, 1, &inFlight_[slot_], VK_TRUE, UINT64_MAX);
+  if (r == VK_SUCCESS && debugDeviceLostNow()) r = VK_ERROR_DEVICE_LOST;
   if (r != VK_SUCCESS) return fail(vkError("vkWaitForFences", r).message);
   if (host_) {
     // This frame's copy writes the slot's segment: the server must have read the frame put there

@@ -1,5 +1,7 @@
 #include "vk_check.h"
 
+#include <atomic>
+
 namespace animorph::gpu {
 
 const char* vkResultName(VkResult r) {
@@ -37,6 +39,16 @@ const char* vkResultName(VkResult r) {
   }
 }
 
-Error vkError(const std::string& what, VkResult r) { return Error{what + ": " + vkResultName(r)}; }
+namespace {
+std::atomic<bool> gDeviceLost{false};
+}  // namespace
+
+Error vkError(const std::string& what, VkResult r) {
+  if (r == VK_ERROR_DEVICE_LOST) gDeviceLost.store(true);
+  return Error{what + ": " + vkResultName(r)};
+}
+
+bool deviceLost() { return gDeviceLost.load(); }
+void clearDeviceLost() { gDeviceLost.store(false); }
 
 }  // namespace animorph::gpu
