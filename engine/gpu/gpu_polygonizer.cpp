@@ -11,6 +11,7 @@
 #include <tuple>
 
 #include "gpu_field_program.h"
+#include "morph/solid_noise.h"
 #include "poly/marching_cubes_table.h"
 #include "poly_constants.h"
 #include "shader_module.h"
@@ -38,7 +39,7 @@ struct PolyParams {
 };
 static_assert(sizeof(PolyParams) == 12 * 16);
 
-constexpr uint32_t kTableVec4 = 256;  // poly_table.glsl
+constexpr uint32_t kTableVec4 = 256 + 64;  // poly_table.glsl: the marching-cubes cases, then the noise permutation
 constexpr VkDeviceSize kVertexStride = GeneratedMeshDraw::kVertexStride;  // poly_emit_main.glsl: vec4 positions, normals
 constexpr uint32_t kTimestamps = 7;
 
@@ -306,6 +307,11 @@ Status GpuPolygonizer::Impl::init() {
     }
     tableData[size_t(c)].w = uint32_t(mc.triangleCount[size_t(c)]);
   }
+  // Then the solid noise's permutation, 256 uints (poly_noise.comp.glsl: in a buffer, a load a
+  // lookup; as a constant array in the shader lavapipe's compiler evaluated all 256 entries at
+  // every lookup, and the pass took ~170 ms at 96^3 instead of well under 1).
+  const uint8_t* perm = solidNoisePermutation();
+  for (int i = 0; i < 256; ++i) tableData[256 + size_t(i / 4)][i % 4] = perm[i];
   Result<Buffer> tb = createDeviceBuffer(ctx, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, tableData.data(),
                                          tableData.size() * sizeof(glm::uvec4));
   if (!tb) return Error{"marching-cubes table: " + tb.error()};

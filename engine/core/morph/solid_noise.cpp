@@ -34,6 +34,8 @@ inline float grad(int hash, float x, float y, float z) {
 
 }  // namespace
 
+const uint8_t* solidNoisePermutation() { return kPerm; }
+
 float solidNoise(const glm::vec3& p) {
   const float fx = std::floor(p.x), fy = std::floor(p.y), fz = std::floor(p.z);
   const int X = int(fx) & 255, Y = int(fy) & 255, Z = int(fz) & 255;
