@@ -160,6 +160,12 @@ class ImplicitPreview {
   double lastUpdateAt_ = 0.0;      // wall clock of the last updateGpu (frame pacing)
   bool lastUpdateRecorded_ = false;  // it recorded a polygonisation
   bool deferred_ = false;            // a new shape waits for the next frame
+  // A shape asked for again is refined at once, unless the one before it lasted less than
+  // kInteractionSec (a drag): then once it has held still for kRefineDelaySec (updateGpu).
+  static constexpr double kInteractionSec = 0.3, kRefineDelaySec = 0.15;
+  double shapeSince_ = -1e9;         // wall clock when the shape now asked for first was
+  double previousShapeLasted_ = 1e9; // how long the shape before it was asked for
+  bool refineHeld_ = false;          // a repeated shape waits (still dragging?) before it is refined
   bool compiling_ = false;           // the shape waits for its pipelines (GpuPolygonizer::ready)
   bool cpuFillIn_ = false;           // meanwhile the CPU worker polygonises it (mesh_, result_ are its)
   std::shared_ptr<const PreviewSource> deferredSource_;  // that shape

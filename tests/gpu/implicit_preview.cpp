@@ -261,6 +261,40 @@ TEST_CASE("implicit preview: after a slow frame that polygonised, the next new s
   CHECK(ctx->validationErrorCount() == 0);
 }
 
+TEST_CASE("implicit preview: while dragging, a shape that repeats is refined once it has held still",
+          "[gpu][preview]") {
+  // A mouse that pauses for a frame mid-drag repeats the shape: refining it at once started a
+  // refined polygonisation the next frames waited for (on lavapipe the frame shares the queue).
+  auto ctx = test::makeTestContext();
+  const auto rt = test::demoMorph().runtime;
+  ImplicitPreviewSettings ps = gpuSettings(24, 32);
+  ps.paceGpu = false;
+  ImplicitPreview preview(*ctx);
+  // One editor frame at progress u; `wait`: then until the GPU has finished it.
+  auto frame = [&](double u, bool wait) {
+    const double t = midStageSec(*rt, u);
+    preview.update(morphPreviewSource(rt, t), t, ps);
+    preview.endFrame();
+    if (wait) preview.waitIdle(60.0);
+    return preview.status();
+  };
+  settle(preview, morphPreviewSource(rt, midStageSec(*rt, 0.2)), midStageSec(*rt, 0.2), ps);  // pipelines, buffers
+  // Dragging: a new shape every frame, then the mouse pauses for a frame.
+  for (double u : {0.25, 0.3, 0.35, 0.4}) CHECK(frame(u, true).resolution == ps.interactiveResolution);
+  const uint64_t records = preview.gpuRecordCount();
+  CHECK(frame(0.4, false).resolution == ps.interactiveResolution);
+  CHECK(preview.gpuRecordCount() == records);  // held: no refined record
+  CHECK(preview.busy());                        // and the editor keeps drawing frames
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  ImplicitPreviewStatus s = settle(preview, morphPreviewSource(rt, midStageSec(*rt, 0.4)), midStageSec(*rt, 0.4), ps);
+  CHECK(s.resolution == ps.refinedResolution);  // held still: refined
+  // A single step after a pause (an arrow key): the repeated shape is refined at once.
+  std::this_thread::sleep_for(std::chrono::milliseconds(400));
+  CHECK(frame(0.45, true).resolution == ps.interactiveResolution);
+  CHECK(frame(0.45, true).resolution == ps.refinedResolution);
+  CHECK(ctx->validationErrorCount() == 0);
+}
+
 TEST_CASE("implicit preview: a new kind of shape compiles its GPU pipelines without stalling the frame",
           "[gpu][preview]") {
   auto [ctx, rt, t, source] = demoStage(0.5);
