@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 
+#include <filesystem>
 #include <random>
 
 #include "doc/base64.h"
@@ -321,4 +322,48 @@ TEST_CASE("morph: user-controlled segment tracks change the morph", "[morph]") {
   for (const auto& s : keyed.segments) CHECK(s.weightScale == 0.0f);
   const MorphOperand plain = posedOperand((*rt)->source, mid, -1.0);
   for (const auto& s : plain.segments) CHECK(s.weightScale == 1.0f);
+}
+
+TEST_CASE("prepareMorph keeps the bindings of actors an edit did not touch", "[morph]") {
+  // The editor prepares a runtime per document revision; binding every vertex is the costly part
+  // and depends on the character, its clip and loop, its stand-in and the projection settings.
+  const test::DemoMorph& demo = test::demoMorph();
+  const std::string baseDir = std::filesystem::path(demo.projectPath).parent_path().string();
+  AssetCache assets;
+  auto first = prepareMorph(demo.project, baseDir, assets);
+  REQUIRE(first.ok());
+  auto sameBinding = [](const MorphActorRuntime& a, const MorphActorRuntime& b) {
+    return a.binding.offsets == b.binding.offsets && a.binding.standinNormals == b.binding.standinNormals;
+  };
+  // The noise and the timing: both bindings carried over, equal to binding again.
+  Project edited = demo.project;
+  edited.morph.noiseAmplitude = FloatTrack(0.02f);
+  edited.morph.markers.c += 4;
+  auto kept = prepareMorph(edited, baseDir, assets, first->get());
+  REQUIRE(kept.ok());
+  auto fresh = prepareMorph(edited, baseDir, assets);
+  REQUIRE(fresh.ok());
+  CHECK((*kept)->setup.markers.c == demo.project.morph.markers.c + 4);
+  CHECK((*kept)->source.bindingKept);
+  CHECK((*kept)->target.bindingKept);
+  CHECK_FALSE((*fresh)->source.bindingKept);
+  CHECK(sameBinding((*kept)->source, (*fresh)->source));
+  CHECK(sameBinding((*kept)->target, (*fresh)->target));
+  CHECK((*kept)->source.binding.offsets.data() != (*first)->source.binding.offsets.data());  // a copy, not shared
+  // A stand-in edit binds that actor again: the result differs from the earlier binding.
+  Project thicker = demo.project;
+  ActorMorph* am = nullptr;
+  for (ActorMorph& a : thicker.morph.actors)
+    if (a.actorId == thicker.morph.sourceActorId) am = &a;
+  REQUIRE(am);
+  for (StandinSegment& seg : am->standin.segments) seg.radius *= 1.3f;
+  auto rebound = prepareMorph(thicker, baseDir, assets, first->get());
+  REQUIRE(rebound.ok());
+  CHECK_FALSE((*rebound)->source.bindingKept);
+  CHECK((*rebound)->target.bindingKept);
+  CHECK_FALSE(sameBinding((*rebound)->source, (*first)->source));
+  CHECK(sameBinding((*rebound)->target, (*first)->target));
+  auto reboundFresh = prepareMorph(thicker, baseDir, assets);
+  REQUIRE(reboundFresh.ok());
+  CHECK(sameBinding((*rebound)->source, (*reboundFresh)->source));
 }

@@ -25,8 +25,12 @@ const char* morphStageName(MorphStage s) {
 
 namespace {
 
+// previous: the same role's runtime of an earlier revision (may be null); its binding is reused
+// when nothing it depends on changed (the character, the clip and loop, the stand-in, the
+// projection settings previousProjection).
 Result<MorphActorRuntime> prepareActor(const Project& project, const std::string& baseDir, AssetCache& assets,
-                                       const std::string& id, const char* role, std::vector<std::string>& notes) {
+                                       const std::string& id, const char* role, std::vector<std::string>& notes,
+                                       const MorphActorRuntime* previous, const MorphProjection* previousProjection) {
   namespace fs = std::filesystem;
   MorphActorRuntime out;
   const Actor* a = project.findActor(id);
@@ -68,7 +72,14 @@ Result<MorphActorRuntime> prepareActor(const Project& project, const std::string
   ps.maxStepRadii = mp.maxStepRadii;
   const AnimationClip* bindClip = mp.atClipTime ? out.clip : nullptr;
   const float bindTime = bindClip ? clipTime(*bindClip, mp.clipTimeSec, out.actor.loop) : 0.0f;
-  out.binding = bindToStandin(c, am->standin, bindClip, bindTime, ps);
+  const bool sameBinding = previous && previousProjection && previous->character == out.character &&
+                           previous->actor.clip == a->clip && previous->actor.loop == a->loop &&
+                           previous->morph.standin == am->standin && *previousProjection == mp;
+  // Binding every vertex is the costly part of preparing (fit + projection of a 50k-vertex character:
+  // 37-60 ms, docs/morph.md), and the editor prepares a runtime per revision: an edit of the
+  // timing, the easing, the noise or the segment tracks keeps it.
+  out.binding = sameBinding ? previous->binding : bindToStandin(c, am->standin, bindClip, bindTime, ps);
+  out.bindingKept = sameBinding;
   if (out.binding.stats.failures > 0)
     notes.push_back("actor '" + id + "': " + std::to_string(out.binding.stats.failures) + " of " +
                     std::to_string(out.binding.stats.points) + " vertices could not be projected onto the stand-in");
@@ -120,15 +131,19 @@ TransitionStats transitionMesh(const MorphActorRuntime& a, double timeSec, const
 }  // namespace
 
 Result<std::shared_ptr<const MorphRuntime>> prepareMorph(const Project& project, const std::string& baseDir,
-                                                         AssetCache& assets) {
+                                                         AssetCache& assets, const MorphRuntime* previous) {
   const MorphSetup& m = project.morph;
   if (!m.enabled()) return Error{"the project has no morph (morph.source / morph.target not set)"};
   auto rt = std::make_shared<MorphRuntime>();
   rt->setup = m;
   rt->timeline = project.timeline;
-  auto src = prepareActor(project, baseDir, assets, m.sourceActorId, "source", rt->notes);
+  const MorphProjection* pp = previous ? &previous->setup.projection : nullptr;
+  auto same = [&](const MorphActorRuntime& r, const std::string& id) { return r.actor.id == id ? &r : nullptr; };
+  auto src = prepareActor(project, baseDir, assets, m.sourceActorId, "source", rt->notes,
+                          previous ? same(previous->source, m.sourceActorId) : nullptr, pp);
   if (!src) return Error{src.error()};
-  auto dst = prepareActor(project, baseDir, assets, m.targetActorId, "target", rt->notes);
+  auto dst = prepareActor(project, baseDir, assets, m.targetActorId, "target", rt->notes,
+                          previous ? same(previous->target, m.targetActorId) : nullptr, pp);
   if (!dst) return Error{dst.error()};
   rt->source = std::move(*src);
   rt->target = std::move(*dst);

@@ -30,6 +30,7 @@ struct MorphActorRuntime {
   const AnimationClip* clip = nullptr;  // null: no animation (static rest pose)
   ActorMorph morph;                     // stand-in, weight map, segment tracks
   StandinBinding binding;
+  bool bindingKept = false;  // binding taken from the previous revision's runtime (prepareMorph)
   size_t vertexCount = 0;
 };
 
@@ -43,8 +44,11 @@ struct MorphRuntime {
 // Loads both actors' characters (through assets), checks the stand-ins against
 // the rigs and the weight maps against the vertex counts, and binds every
 // vertex to its stand-in. Errors name the project element and the reason.
+// previous (an earlier revision's runtime, may be null): an actor whose character,
+// clip, loop, stand-in and the projection settings are unchanged keeps its binding
+// (the same result as binding again, without the cost).
 Result<std::shared_ptr<const MorphRuntime>> prepareMorph(const Project& project, const std::string& baseDir,
-                                                         AssetCache& assets);
+                                                         AssetCache& assets, const MorphRuntime* previous = nullptr);
 
 struct MorphFrameSettings {
   int resolution = 48;     // B->C: polygonisation cells along the longest side of the morph's bounds

@@ -138,7 +138,7 @@ std::shared_ptr<const MorphRuntime> MorphCache::get(const Project& project, cons
   if (owner == owner_ && revision == revision_ && (runtime_ || !error_.empty())) return runtime_;
   owner_ = owner;
   revision_ = revision;
-  auto r = prepareMorph(project, baseDir, assets);
+  auto r = prepareMorph(project, baseDir, assets, runtime_.get());
   if (r) {
     runtime_ = *r;
     error_.clear();
