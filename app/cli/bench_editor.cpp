@@ -113,9 +113,14 @@ std::vector<animorph::bench::Row> benchEditor(const animorph::bench::Options& op
   const struct {
     const char* name;
     const char* prefs;
-  } scrubs[] = {{"Auto preview", ""}, {"CPU worker preview", "{\"previewDevice\": \"cpu\"}"}};
+    const char* args;
+  } scrubs[] = {{"Auto preview", "", "--scrub 50:82"},
+                {"CPU worker preview", "{\"previewDevice\": \"cpu\"}", "--scrub 50:82"},
+                // As a hand drags: 20 steps a second whatever the frame rate, so some frames show the
+                // same time again (before 2026-11-22 each such pause started a refine on the GPU path).
+                {"Auto preview, 20 steps/s", "", "--scrub 50:82 --scrub-hz 20"}};
   for (const auto& sc : scrubs) {
-    EditorRun r = runEditor(editor, demo, prefix, opt.quick ? 40 : 150, "--scrub 50:82", sc.prefs);
+    EditorRun r = runEditor(editor, demo, prefix, opt.quick ? 40 : 150, sc.args, sc.prefs);
     if (r.p50 <= 0) {
       rows.push_back({std::string("scrubbing, ") + sc.name + ": failed", 0.0, "", "", r.output.substr(0, 200)});
       continue;

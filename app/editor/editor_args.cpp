@@ -17,6 +17,8 @@ void usage() {
       "  --bench N              play N frames and print frame-time figures, then exit\n"
       "  --scrub A:B            with --bench: step the current frame A..B..A, one frame per\n"
       "                         redraw, as dragging the timeline does, instead of playing\n"
+      "  --scrub-hz N           with --scrub: N steps a second whatever the frame rate, as a\n"
+      "                         hand does (frames between steps show the same time again)\n"
       "  --idle-bench S         leave the editor idle for S seconds after start-up, print the frames\n"
       "                         drawn and the CPU time used, then exit\n"
       "environment: ANIMORPH_GPU=name|index picks the Vulkan device; ANIMORPH_VALIDATION=1 enables\n"
@@ -48,6 +50,13 @@ bool parseEditorArgs(int argc, char** argv, EditorArgs& a) {
       if (std::sscanf(next("--scrub"), "%d:%d", &a.scrubFrom, &a.scrubTo) != 2 || a.scrubFrom < 0 ||
           a.scrubTo <= a.scrubFrom) {
         std::fprintf(stderr, "animorph: --scrub expects A:B with 0 <= A < B, e.g. 48:84\n");
+        return false;
+      }
+    }
+    else if (s == "--scrub-hz") {
+      a.scrubHz = std::atof(next("--scrub-hz"));
+      if (!(a.scrubHz > 0.0)) {
+        std::fprintf(stderr, "animorph: --scrub-hz expects a positive rate, e.g. 20\n");
         return false;
       }
     }

@@ -12,6 +12,7 @@ struct EditorArgs {
   int width = 1600, height = 900;
   int benchFrames = 0;
   int scrubFrom = -1, scrubTo = -1;  // --scrub A:B: the bench steps the current frame A..B..A instead of playing
+  double scrubHz = 0.0;               // --scrub-hz N: N steps a second of wall time (0: one per redraw)
   double idleBenchSec = 0.0;          // --idle-bench S: measure S seconds without input, then exit
 };
 

@@ -197,7 +197,9 @@ int main(int argc, char** argv) {
     }
     if (args.benchFrames > 0 && args.scrubFrom >= 0 && frameCount >= 2) {
       // A..B..A, one step per redraw: the preview sees a new time every frame, as when dragging.
-      const int span = args.scrubTo - args.scrubFrom, k = (frameCount - 2) % (2 * span);
+      static const double scrubStart = ectx.nowSec;
+      const long step = args.scrubHz > 0.0 ? long((ectx.nowSec - scrubStart) * args.scrubHz) : long(frameCount - 2);
+      const int span = args.scrubTo - args.scrubFrom, k = int(step % (2 * span));
       document->setCurrentFrame(args.scrubFrom + (k <= span ? k : 2 * span - k));
     } else if (args.benchFrames > 0 && frameCount == 2 && !ui.state().playback.playing())
       ui.state().playback.toggle(document->project().timeline);
