@@ -9,12 +9,19 @@ set -euo pipefail
 cd "$(dirname "$(readlink -f "$0")")"
 ROOT=$PWD
 
+# Every package whose headers, libraries or programs the build or the tests use: the test
+# "packages: run.sh installs every header, ..." (tests/packages/) fails naming what is missing.
+# libxrandr-dev: GLFW's native-access header (X11 presentation) includes X11/extensions/Xrandr.h.
 BUILD_PACKAGES=(build-essential cmake ninja-build pkg-config
   libimgui-dev libglfw3-dev libglm-dev libvulkan-dev mesa-vulkan-drivers
   glslang-tools libtinygltf-dev nlohmann-json3-dev libstb-dev libtbb-dev
-  libx11-dev libxext-dev)
+  libx11-dev libxext-dev libxrandr-dev)
+# nodejs, npm: the Khronos glTF-Validator (an npm package) checks the glTF files we write.
 TEST_PACKAGES=(catch2 vulkan-validationlayers xvfb xauth xdotool imagemagick
-  assimp-testmodels python3)
+  assimp-testmodels python3 nodejs)
+# Installed only when no program of the same name is on PATH: a Node.js package from outside
+# Debian (NodeSource's) ships its own npm and conflicts with Debian's.
+TEST_PROGRAM_PACKAGES=(npm)
 
 say() { printf '\033[1m[animorph]\033[0m %s\n' "$*" >&2; }
 
@@ -57,6 +64,9 @@ build() {
   local dir=$1; shift
   local generator=()
   command -v ninja >/dev/null 2>&1 && generator=(-G Ninja)
+  # The tests' scripts run with Debian's python3 (installed above), not whichever python3 comes
+  # first on PATH: what a fresh machine has is what the tests use here too.
+  [ -x /usr/bin/python3 ] && set -- -DPython3_EXECUTABLE=/usr/bin/python3 "$@"
   if [ ! -f "$dir/CMakeCache.txt" ]; then
     cmake -S "$ROOT" -B "$dir" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release "$@"
   else
@@ -99,6 +109,9 @@ case "$cmd" in
     ;;
   test)
     ensure_packages "${BUILD_PACKAGES[@]}" "${TEST_PACKAGES[@]}"
+    for p in "${TEST_PROGRAM_PACKAGES[@]}"; do
+      command -v "$p" >/dev/null 2>&1 || ensure_packages "$p"
+    done
     build "$BUILD_DIR" "${BUILD_FLAGS[@]}"
     export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-$(mktemp -d /tmp/animorph-xdg.XXXXXX)}
     chmod 700 "$XDG_RUNTIME_DIR" 2>/dev/null || true
