@@ -11,6 +11,7 @@
 #include "doc/standin_commands.h"
 #include "node_type_menu.h"
 #include "help_windows.h"
+#include "io/gltf_import.h"
 #include "menu_bar.h"
 #include "preferences_window.h"
 #include "preview_controls.h"
@@ -24,6 +25,12 @@ namespace fs = std::filesystem;
 namespace {
 const std::vector<FileFilter> kProjectFilters = {{"Animorph project (*.animorph)", {".animorph"}},
                                                  {"All files", {}}};
+// Open takes a glTF too: it becomes a new project with the character imported.
+const std::vector<FileFilter> kOpenFilters = {
+    {"Project or glTF (*.animorph, *.gltf, *.glb)", {".animorph", ".gltf", ".glb"}},
+    {"Animorph project (*.animorph)", {".animorph"}},
+    {"glTF (*.gltf, *.glb)", {".gltf", ".glb"}},
+    {"All files", {}}};
 const std::vector<FileFilter> kGltfFilters = {{"glTF (*.gltf, *.glb)", {".gltf", ".glb"}}, {"All files", {}}};
 const std::vector<FileFilter> kPngFilters = {{"PNG image (*.png)", {".png"}}};
 
@@ -492,7 +499,7 @@ void EditorUI::perform(PendingKind kind, const std::string& path, EditorContext&
                               ? (st_.prefs.recentFiles.empty() ? doc(ctx).baseDir()
                                                                : fs::path(st_.prefs.recentFiles[0]).parent_path().string())
                               : doc(ctx).baseDir();
-      st_.browser.open(FileBrowser::Mode::Open, "Open Project", kProjectFilters, start);
+      st_.browser.open(FileBrowser::Mode::Open, "Open Project", kOpenFilters, start);
       st_.browserPurpose = BrowserPurpose::OpenProject;
       break;
     }
@@ -502,12 +509,27 @@ void EditorUI::perform(PendingKind kind, const std::string& path, EditorContext&
 }
 
 void EditorUI::openProjectPath(const std::string& path, EditorContext& ctx) {
+  if (isGltfPath(path)) {
+    openGltfAsNewProject(path, ctx);
+    return;
+  }
   if (Document::hasNewerAutosave(path)) {
     st_.recoverPath = path;
     st_.openRecoverPrompt = true;
     return;
   }
   loadProject(path, false, ctx);
+}
+
+void EditorUI::openGltfAsNewProject(const std::string& path, EditorContext& ctx) {
+  const AssetCache::Entry& e = ctx.assets.get(path);
+  if (!e.character) {  // the current document stays, as when a project fails to open
+    showError("Cannot open " + path + ":\n" + e.error);
+    return;
+  }
+  replaceDocument(std::make_unique<Document>(), ctx);
+  importGltf(path, ctx);
+  setStatus("New project with " + fileName(path) + " imported (not saved yet)");
 }
 
 void EditorUI::loadProject(const std::string& path, bool recover, EditorContext& ctx) {

@@ -61,6 +61,9 @@ class EditorUI {
   void perform(PendingKind kind, const std::string& path, EditorContext& ctx);
   void openProjectPath(const std::string& path, EditorContext& ctx);
   void loadProject(const std::string& path, bool recover, EditorContext& ctx);
+  // A glTF given to Open (or on the command line): a new untitled project with the character
+  // imported; when it does not load, an error naming the path and the reason, the document kept.
+  void openGltfAsNewProject(const std::string& path, EditorContext& ctx);
   void replaceDocument(std::unique_ptr<Document> d, EditorContext& ctx);
   // Saves to the document's file; an untitled document opens Save As and
   // continues with `after` once saved. Returns true if it saved now.

@@ -9,7 +9,8 @@ namespace {
 
 void usage() {
   std::printf(
-      "usage: animorph [PROJECT.animorph] [options]\n"
+      "usage: animorph [PROJECT.animorph | CHARACTER.glb] [options]\n"
+      "  a .gltf/.glb file opens as a new untitled project with that character imported\n"
       "  --screenshot FILE.png  render the whole editor window to FILE.png\n"
       "  --frame N              go to frame N first\n"
       "  --quit                 exit after the screenshot\n"

@@ -466,3 +466,30 @@ TEST_CASE("corrupted files never crash the importer", "[io][gltf]") {
   CHECK(loaded + refused == 300);
   CHECK(refused > 0);
 }
+
+TEST_CASE("a .glb that is not a glTF binary is refused naming the file and the magic", "[io][gltf]") {
+  TempDir dir;
+  const std::string zip = dir.file("Walker.GLB");
+  std::ofstream(zip, std::ios::binary) << std::string("PK\x03\x04", 4) << "zip archive, renamed";
+  auto r = importGltf(zip);
+  REQUIRE_FALSE(r);
+  CHECK_THAT(r.error(), Catch::StartsWith("Walker.GLB: not a glTF binary") && Catch::Contains("'PK\\x03\\x04'"));
+  CHECK_THAT(r.error(), !Catch::Contains("JSON"));
+
+  const std::string empty = dir.file("empty.glb");
+  std::ofstream(empty, std::ios::binary).flush();
+  auto e = importGltf(empty);
+  REQUIRE_FALSE(e);
+  CHECK_THAT(e.error(), Catch::Contains("empty.glb: not a glTF binary") && Catch::Contains("empty"));
+
+  // What the editor's Open takes for a glTF: the extension, or the GLB magic under any name.
+  CHECK(isGltfPath(zip));
+  CHECK(isGltfPath(dir.file("hero.gltf")));
+  const std::string disguised = dir.file("character.bin");
+  std::ofstream(disguised, std::ios::binary) << "glTF" << std::string(8, '\0');
+  CHECK(isGltfPath(disguised));
+  const std::string project = dir.file("scene.animorph");
+  std::ofstream(project) << "{}";
+  CHECK_FALSE(isGltfPath(project));
+  CHECK_FALSE(isGltfPath(dir.file("missing.animorph")));
+}

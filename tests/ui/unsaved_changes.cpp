@@ -145,3 +145,38 @@ TEST_CASE("autosave runs from the frame loop at the preference's interval", "[un
   CHECK(fs::exists(path + ".autosave"));
   CHECK(loadProject(path + ".autosave")->timeline.frameEnd == 42);
 }
+
+TEST_CASE("opening a glTF starts a new untitled project with the character imported", "[unsaved][open]") {
+  EditorFixture f;
+  f.loadHeroScene();
+  auto& h = f.h;
+  std::string asset = f.dir.file("walker.gltf");
+  registerCharacter(asset, writeTestCharacter(asset));
+
+  // The scene is clean: Open replaces it at once, as a project would.
+  h.ui->requestOpen(asset);
+  h.frames(2);
+  CHECK(h.doc().path().empty());  // untitled: Save asks where
+  REQUIRE(h.doc().project().actors.size() == 1);
+  CHECK(h.doc().project().actors[0].assetPath == asset);
+  CHECK(h.doc().selection.actorId == h.doc().project().actors[0].id);
+  CHECK(h.doc().dirty());
+  CHECK_FALSE(h.ui->state().status.error);
+  CHECK_THAT(h.ui->state().status.text, Catch::Contains("walker.gltf") && Catch::Contains("New project"));
+  // The import is an ordinary edit of the new project: undo leaves it empty.
+  h.tapKey(GLFW_KEY_Z, true);
+  CHECK(h.doc().project().actors.empty());
+
+  // A glTF that does not load: an error naming it, and the document as it was.
+  h.tapKey(GLFW_KEY_Z, true, true);  // redo: the actor is back
+  Document* before = &h.doc();
+  std::string bad = f.dir.file("broken.glb");
+  std::ofstream(bad) << "PK\x03\x04 not a glTF";
+  h.ui->requestOpen(bad);
+  h.frames(2);
+  CHECK(&h.doc() == before);
+  CHECK(h.doc().project().actors.size() == 1);
+  CHECK(h.ui->state().status.error);
+  CHECK_THAT(h.ui->state().status.text, Catch::Contains(bad));
+  REQUIRE(h.hasWidget("error/ok"));
+}

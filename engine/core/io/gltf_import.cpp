@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cctype>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <set>
@@ -820,13 +822,42 @@ std::vector<std::string> splitLines(const std::string& s) {
   return out;
 }
 
+std::string lowerExtension(const std::string& path) {
+  std::string e = fs::path(path).extension().string();
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
+  return e;
+}
+
+// The first bytes of a file, quoted when printable, else in hex: "'PK\\x03\\x04'".
+std::string describeMagic(const std::string& data) {
+  if (data.empty()) return "nothing (the file is empty)";
+  std::string out = "'";
+  for (size_t i = 0; i < std::min<size_t>(4, data.size()); ++i) {
+    const unsigned char ch = static_cast<unsigned char>(data[i]);
+    if (ch >= 0x20 && ch < 0x7f && ch != '\\' && ch != '\'') {
+      out += char(ch);
+    } else {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02x", ch);
+      out += hex;
+    }
+  }
+  return out + "'";
+}
+
 Result<Character> importImpl(const std::string& path) {
   const std::string file = fs::path(path).filename().string();
   auto bytes = readFile(path);
   if (!bytes) return Error{bytes.error()};
+  const std::string& data = *bytes;
+  const bool binary = data.size() >= 4 && data.compare(0, 4, "glTF") == 0;
   std::error_code ec;
   fs::path dir = fs::weakly_canonical(fs::absolute(fs::path(path), ec).parent_path(), ec);
   if (ec) return Error{file + ": cannot resolve its directory: " + ec.message()};
+
+  if (!binary && lowerExtension(path) == ".glb")
+    return Error{file + ": not a glTF binary: it starts with " + describeMagic(data) +
+                 " where a .glb file starts with the magic 'glTF'"};
 
   std::vector<std::string> schemaWarnings;
   if (auto s = checkGltfSchema(*bytes, file, schemaWarnings); !s) return Error{s.error()};
@@ -839,8 +870,6 @@ Result<Character> importImpl(const std::string& path) {
   loader.SetImageLoader(skipImageDecode, nullptr);
   tinygltf::Model model;
   std::string terr, twarn;
-  const std::string& data = *bytes;
-  const bool binary = data.size() >= 4 && data.compare(0, 4, "glTF") == 0;
   bool ok;
   if (binary)
     ok = loader.LoadBinaryFromMemory(&model, &terr, &twarn, reinterpret_cast<const unsigned char*>(data.data()),
@@ -896,6 +925,19 @@ Result<Character> importGltf(const std::string& path) {
   } catch (...) {
     return Error{fs::path(path).filename().string() + ": cannot be read: unknown failure"};
   }
+}
+
+bool isGltfPath(const std::string& path) {
+  const std::string e = lowerExtension(path);
+  if (e == ".gltf" || e == ".glb") return true;
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return false;
+  char magic[4] = {};
+  FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) return false;
+  const size_t n = std::fread(magic, 1, sizeof magic, f);
+  std::fclose(f);
+  return n == 4 && std::memcmp(magic, "glTF", 4) == 0;
 }
 
 }  // namespace animorph

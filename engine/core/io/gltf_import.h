@@ -16,4 +16,9 @@ namespace animorph {
 // "tentacle.glb: accessor 7: index 9000 out of range (4096 vertices)".
 Result<Character> importGltf(const std::string& path);
 
+// True when path names a glTF file rather than a project: a .gltf or .glb extension (any case),
+// or a file whose first four bytes are the GLB magic "glTF". Reads at most 4 bytes of a regular
+// file; false for a file that cannot be opened.
+bool isGltfPath(const std::string& path);
+
 }  // namespace animorph
