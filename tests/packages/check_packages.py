@@ -252,10 +252,13 @@ def main():
     for prog, why in PROGRAMS.items():
         # The packages that ship a program of that name, and the owner of the one on PATH (through
         # Debian's alternatives: /usr/bin/c++ -> /etc/alternatives/c++ -> g++-12's file).
+        # /usr/bin/PROG is looked at too when PATH finds another first (a /usr/local/bin/convert),
+        # and through its alternatives link (/usr/bin/convert -> ... -> convert-im6.q16).
         pkgs = set(owners.by_basename.get(prog, set()))
         where = run(["sh", "-c", f"command -v {prog}"]).stdout.strip()
-        if where:
-            pkgs |= owners.of(where)
+        for path in (where, f"/usr/bin/{prog}", f"/usr/sbin/{prog}"):
+            if path and os.path.exists(path):
+                pkgs |= owners.of(path)
         if pkgs & allowed:
             continue
         if pkgs:

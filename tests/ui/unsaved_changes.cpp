@@ -174,7 +174,11 @@ TEST_CASE("opening a glTF starts a new untitled project with the character impor
   std::ofstream(bad) << "PK\x03\x04 not a glTF";
   h.ui->requestOpen(bad);
   h.frames(2);
+  REQUIRE(h.hasWidget("prompt/dont_save"));  // the new project has unsaved changes: asked first
+  h.clickWidget("prompt/dont_save");
+  h.frames(2);
   CHECK(&h.doc() == before);
+  CHECK(h.doc().dirty());  // the failed open kept the unsaved work
   CHECK(h.doc().project().actors.size() == 1);
   CHECK(h.ui->state().status.error);
   CHECK_THAT(h.ui->state().status.text, Catch::Contains(bad));
