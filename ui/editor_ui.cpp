@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 
 #include <imgui.h>
@@ -527,7 +528,13 @@ void EditorUI::openGltfAsNewProject(const std::string& path, EditorContext& ctx)
     showError("Cannot open " + path + ":\n" + e.error);
     return;
   }
-  replaceDocument(std::make_unique<Document>(), ctx);
+  // The timeline spans the character's first clip, as importing into an empty scene does elsewhere.
+  auto fresh = std::make_unique<Document>();
+  Project p = fresh->project();
+  if (!e.character->clips.empty() && e.character->clips[0].durationSec > 0.0f && p.timeline.fps > 0.0)
+    p.timeline.frameEnd = std::max(1, int(std::ceil(double(e.character->clips[0].durationSec) * p.timeline.fps)));
+  fresh->reset(std::move(p), {});
+  replaceDocument(std::move(fresh), ctx);
   importGltf(path, ctx);
   setStatus("New project with " + fileName(path) + " imported (not saved yet)");
 }

@@ -161,6 +161,7 @@ TEST_CASE("opening a glTF starts a new untitled project with the character impor
   CHECK(h.doc().project().actors[0].assetPath == asset);
   CHECK(h.doc().selection.actorId == h.doc().project().actors[0].id);
   CHECK(h.doc().dirty());
+  CHECK(h.doc().project().timeline.frameEnd == 24);  // the 1 s clip at 24 fps
   CHECK_FALSE(h.ui->state().status.error);
   CHECK_THAT(h.ui->state().status.text, Catch::Contains("walker.gltf") && Catch::Contains("New project"));
   // The import is an ordinary edit of the new project: undo leaves it empty.
