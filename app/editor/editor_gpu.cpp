@@ -1,5 +1,13 @@
 #include "editor_gpu.h"
 
+#include <imgui.h>
+
+#include <algorithm>
+#include <cstdio>
+
+#include "rgba_image.h"
+#include "vk_check.h"
+
 namespace animorph {
 
 Result<std::unique_ptr<EditorGpu>> createEditorGpu(GLFWwindow* window, const gpu::SwapchainSettings& settings) {
@@ -23,6 +31,58 @@ Result<std::unique_ptr<EditorGpu>> createEditorGpu(GLFWwindow* window, const gpu
   g->standinBindings = std::make_unique<gpu::StandinBindingCache>(*g->ctx);
   g->morphPreview = std::make_unique<gpu::ImplicitPreview>(*g->ctx);
   return g;
+}
+
+Result<std::string> recoverLostDevice(GLFWwindow* window, const gpu::SwapchainSettings& settings, Document& doc,
+                                      double nowSec, std::unique_ptr<EditorGpu>& gpuSide) {
+  const bool autosaved = doc.autosaveIfDue(nowSec, 0.0);
+  std::fprintf(stderr, "animorph: the GPU device was lost; recreating the renderer%s\n",
+               autosaved ? (" (work autosaved to " + doc.autosavePath() + ")").c_str() : "");
+  gpuSide.reset();
+  gpu::clearDeviceLost();
+  auto again = createEditorGpu(window, settings);
+  if (!again) {
+    std::fprintf(stderr, "animorph: cannot recreate the renderer: %s; quitting%s\n", again.error().c_str(),
+                 doc.dirty() ? " (the autosave is offered when the project is opened again)" : "");
+    return Error{again.error()};
+  }
+  gpuSide = std::move(*again);
+  return std::string("The GPU device was lost; the renderer was recreated") + (autosaved ? " (work autosaved)" : "");
+}
+
+PresentedFrame presentFrame(EditorGpu& g, const ViewportRect& viewport, const OrbitCamera& camera,
+                            const gpu::Scene& scene, const std::string& capturePath) {
+  PresentedFrame r;
+  gpu::Frame f;
+  r.status = g.swapchain->beginFrame(f);
+  if (r.status == gpu::FrameStatus::Failed) {
+    std::fprintf(stderr, "animorph: %s\n", g.swapchain->lastError().c_str());
+    return r;
+  }
+  if (r.status != gpu::FrameStatus::Ready) return r;
+  const ImGuiIO& io = ImGui::GetIO();
+  const float sx = io.DisplayFramebufferScale.x, sy = io.DisplayFramebufferScale.y;
+  gpu::ViewportRect rect;
+  rect.x = static_cast<int32_t>(viewport.min.x * sx);
+  rect.y = static_cast<int32_t>(viewport.min.y * sy);
+  rect.width = static_cast<uint32_t>(std::max(0.0f, viewport.size.x * sx));
+  rect.height = static_cast<uint32_t>(std::max(0.0f, viewport.size.y * sy));
+  rect.width = std::min(rect.width, f.extent.width - std::min<uint32_t>(f.extent.width, rect.x));
+  rect.height = std::min(rect.height, f.extent.height - std::min<uint32_t>(f.extent.height, rect.y));
+  if (rect.width > 0 && rect.height > 0) {
+    Status st = g.renderer->record(f.cmd, f.serial, rect, camera, scene);
+    if (!st) std::fprintf(stderr, "animorph: %s\n", st.error().c_str());
+  }
+  Status ui = g.imgui->record(f.cmd, f.slot);
+  if (!ui) std::fprintf(stderr, "animorph: %s\n", ui.error().c_str());
+  Status st = g.swapchain->endFrame();
+  if (!st) std::fprintf(stderr, "animorph: %s\n", st.error().c_str());
+  if (auto img = g.swapchain->takeCapture(); img && !capturePath.empty()) {
+    Status w = gpu::writePng(capturePath, *img);
+    if (!w) std::fprintf(stderr, "animorph: %s\n", w.error().c_str());
+    r.captured = true;
+  }
+  return r;
 }
 
 }  // namespace animorph

@@ -3,8 +3,10 @@
 // previews, made together and, after a lost device, remade together (docs/rendering.md, "A lost
 // device"). The document, the UI state and ImGui's context live outside and survive.
 #include <memory>
+#include <string>
 
 #include "blob_preview_set.h"
+#include "doc/document.h"
 #include "context.h"
 #include "implicit_preview.h"
 #include "imgui_vulkan.h"
@@ -12,6 +14,8 @@
 #include "scene_renderer.h"
 #include "standin_binding_cache.h"
 #include "swapchain.h"
+#include "view/camera.h"
+#include "viewport_input.h"
 
 struct GLFWwindow;
 
@@ -31,5 +35,22 @@ struct EditorGpu {
 
 // Errors: no usable device ("no usable Vulkan device: ..."), or what failed to be made.
 Result<std::unique_ptr<EditorGpu>> createEditorGpu(GLFWwindow* window, const gpu::SwapchainSettings& settings);
+
+// After gpu::deviceLost() (a driver reset, a GPU removed): the device is gone with everything made on
+// it. Saves the work (the autosave), then remakes the whole Vulkan side into gpuSide; the document,
+// the UI and its state stay as they are. Returns the status bar's line; an error (said on stderr
+// too) when no device can be made, gpuSide then null.
+Result<std::string> recoverLostDevice(GLFWwindow* window, const gpu::SwapchainSettings& settings, Document& doc,
+                                      double nowSec, std::unique_ptr<EditorGpu>& gpuSide);
+
+// Records the 3D scene into the viewport's rectangle of the window (window pixels, scaled to the
+// framebuffer) and the UI over it, and presents. A capture requested from the swapchain this frame
+// is written to capturePath as PNG; captured says it was taken.
+struct PresentedFrame {
+  gpu::FrameStatus status = gpu::FrameStatus::Failed;
+  bool captured = false;
+};
+PresentedFrame presentFrame(EditorGpu& g, const ViewportRect& viewport, const OrbitCamera& camera,
+                            const gpu::Scene& scene, const std::string& capturePath);
 
 }  // namespace animorph

@@ -19,4 +19,20 @@ void writeUiMap(const std::string& path, const WidgetRects& rects, const EditorO
   (void)writeFileAtomic(path, j.dump(1));
 }
 
+void writeEditorUiMap(const std::string& path, const EditorUI& ui, EditorContext& ectx, int frameCount,
+                      const FrameMapInfo& info) {
+  const Document& doc = *ectx.document;
+  writeUiMap(path, ui.widgets(), ui.output(), doc, frameCount,
+             {{"preview_busy", info.previewBusy},
+              {"idle", info.idle},
+              {"status", ui.state().status.text},
+              // A test knows input it sent before polled_at has been processed once the editor is
+              // idle (gui_driver.fresh_map).
+              {"polled_at", info.polledAt},
+              {"preview", ectx.stats.previewInfo},
+              {"preview_gpu", info.previewGpu},
+              {"present", info.presentPath},
+              {"standin_segment", selectedStandinSegment(doc, ui.state().standinTool)}});
+}
+
 }  // namespace animorph

@@ -14,4 +14,17 @@ namespace animorph {
 void writeUiMap(const std::string& path, const WidgetRects& rects, const EditorOutput& out, const Document& doc,
                 int frameCount, const nlohmann::json& extra);
 
+// What the frame loop adds to the map after a frame.
+struct FrameMapInfo {
+  bool previewBusy = false;  // a preview is computing
+  bool idle = false;         // the loop waits for input after this frame
+  double polledAt = 0.0;     // CLOCK_MONOTONIC seconds when this frame took its input
+  bool previewGpu = false;   // the preview shown is the GPU's
+  std::string presentPath;   // how frames reach the window
+};
+
+// writeUiMap with the editor's state: the status line, the preview line, the stand-in segment.
+void writeEditorUiMap(const std::string& path, const EditorUI& ui, EditorContext& ectx, int frameCount,
+                      const FrameMapInfo& info);
+
 }  // namespace animorph

@@ -1,0 +1,138 @@
+#include "viewport_frame.h"
+
+#include <cstdio>
+#include <cstdlib>
+
+#include "paint/paint_mesh.h"
+#include "scene/blob_pick.h"
+#include "scene/click_selection.h"
+#include "scene/morph_pick.h"
+#include "scene/morph_preview_source.h"
+#include "scene/pick.h"
+#include "scene/scene_frame.h"
+#include "scene/standin_guides.h"
+#include "scene_from_frame.h"
+#include "standin_overlay.h"
+#include "weight_overlay_scene.h"
+
+namespace animorph {
+
+ViewportFrame::ViewportFrame(PreviewDevice initialDevice) : previewDevice_(initialDevice) {
+  // Collapse and expansion run in the vertex shader (ANIMORPH_CPU_TRANSITIONS=1: on the CPU, for comparison).
+  morphSettings_.gpuTransitions = !std::getenv("ANIMORPH_CPU_TRANSITIONS");
+}
+
+void ViewportFrame::updateMorphRuntime(EditorContext& ectx, const EditorOutput& out) {
+  Document& doc = *ectx.document;
+  // Not while painting: every stroke is a new revision and would bind the vertices again.
+  if (!out.weightPaintMode) ectx.morphRuntime = morphCache_.get(doc.project(), doc.baseDir(), ectx.assets, &doc, doc.revision());
+}
+
+ViewportFrameResult ViewportFrame::build(EditorGpu& g, EditorUI& ui, EditorContext& ectx, bool settle,
+                                         gpu::Scene& scene) {
+  ViewportFrameResult r;
+  const EditorOutput& out = ui.output();
+  Document& doc = *ectx.document;
+  const Timeline& tl = doc.project().timeline;
+  const double timeSec = tl.frameToSec(tl.currentFrame);
+  frame_ = evaluateScene(doc.project(), doc.baseDir(), ectx.assets, timeSec);
+  SceneFrame& frame = frame_;
+  const Preferences& prefs = ui.state().prefs;
+  r.backend = gpu::choosePreviewBackend(prefs.previewDevice, g.ctx->deviceType());
+  if (prefs.previewDevice != previewDevice_) {  // the user switched: try the GPU again
+    previewDevice_ = prefs.previewDevice;
+    g.morphPreview->clearGpuFailure();
+    g.blobPreviews->clearGpuFailures();
+  }
+  updateMorphRuntime(ectx, out);
+  r.morphBackend = r.backend;
+  float morphOpacity = 0.0f;  // below 1: the cross-fade (dithered, complementary to the mesh)
+  std::string morphSourceId;
+  if (out.weightPaintMode) {  // the painted actor as itself, posed, without the morph
+    isolateForPainting(frame, doc.project().morph, out.weightOverlay.actorId);
+    ectx.viewportNote.clear();
+  } else if (auto rt = ectx.morphRuntime) {
+    const bool convolution = rt->source.morph.standin.kind == StandinKind::Convolution &&
+                             rt->target.morph.standin.kind == StandinKind::Convolution;
+    r.morphBackend = gpu::choosePreviewBackend(prefs.previewDevice, g.ctx->deviceType(),
+                                               convolution ? gpu::PreviewWork::ConvolutionMorph : gpu::PreviewWork::Other);
+    if (rt.get() != prewarmedMorph_ && r.morphBackend.gpu) {
+      // Compile the GPU pipelines of the morph stage now, in the background, not in the frame
+      // that first reaches B (on lavapipe ~1 s per kind of shape: the cross-fade's stand-ins
+      // alone and the morph between them).
+      prewarmedMorph_ = rt.get();
+      gpu::ImplicitPreviewSettings ps;
+      ps.interactiveResolution = prefs.previewCoarseResolution;
+      ps.gpu = true;
+      for (double u : {0.0, 0.5, 1.0}) g.morphPreview->prewarm(*morphPreviewSource(rt, timeSec, u), ps);
+    }
+    MorphSceneInfo info = applyMorph(frame, rt, timeSec, morphSettings_, /*implicitStage=*/false);
+    ectx.viewportNote = "morph: " + describeMorphStage(info);
+    morphOpacity = float(info.implicitOpacity);
+    if (morphOpacity > 0.0f) {  // B..C, or the cross-fade's window around B and C
+      gpu::ImplicitPreviewSettings ps;
+      ps.threads = interactivePreviewThreads();
+      ps.interactiveResolution = prefs.previewCoarseResolution;
+      ps.refinedResolution = prefs.previewResolution;
+      ps.gpu = r.morphBackend.gpu;
+      ps.settle = settle;
+      const double u = info.stage == MorphStage::Morph ? -1.0 : info.implicitProgress;
+      g.morphPreview->update(morphPreviewSource(rt, timeSec, u), timeSec, ps);
+      r.morphStageShown = true;
+      morphSourceId = rt->setup.sourceActorId;
+    }
+  } else {
+    ectx.viewportNote = morphCache_.error().empty() ? "" : "morph: " + morphCache_.error();
+  }
+  g.blobPreviews->update(doc.project(), frame,
+                         {prefs.previewCoarseResolution, prefs.previewResolution, interactivePreviewThreads(),
+                          r.backend.gpu, settle});
+  if (out.pick) {
+    const glm::vec2 local = out.pick->windowPos - out.viewport.min;
+    const Ray ray = out.camera.rayThroughPixel(local.x, local.y, out.viewport.size);
+    std::optional<ScenePick> hit = pickScene(frame, ray);
+    for (const BlobDraw& b : frame.blobs)
+      if (auto res = g.blobPreviews->result(b.actorId))
+        hit = nearerPick(hit, pickBlobSurface(b.actorId, b.model, res->mesh, ray));
+    if (ectx.morphRuntime && !out.weightPaintMode) {
+      auto cpu = r.morphStageShown ? g.morphPreview->cpuResult() : nullptr;
+      hit = nearerPick(hit, pickMorphSurface(*ectx.morphRuntime, timeSec, ray, cpu ? &cpu->mesh : nullptr));
+    }
+    // With the skeleton hidden, its markers are not there to click.
+    auto guide = doc.project().view.showSkeleton ? pickBlobGuide(frame, out.camera, out.viewport.size, local)
+                                                 : std::nullopt;
+    doc.selection = selectionAfterClick(doc.selection, guide, hit, out.pick->extend);
+  }
+
+  // A screenshot shows the refined implicit surfaces, not whatever is ready.
+  if (settle && !g.blobPreviews->waitIdle(120.0))
+    std::fprintf(stderr, "animorph: BlobTree preview still computing at the screenshot\n");
+  if (settle && r.morphStageShown && !g.morphPreview->waitIdle(120.0))
+    std::fprintf(stderr, "animorph: morph preview still computing at the screenshot\n");
+  const Actor* selActor = doc.project().findActor(doc.selection.actorId);
+  const int selBlobNode = selActor && selActor->kind == ActorKind::BlobTree ? doc.selection.node : -1;
+  gpu::buildScene(frame, doc.project().view, doc.selection.actorId, *g.meshes, scene, g.blobPreviews.get(), selBlobNode,
+                  g.standinBindings.get());
+  if (r.morphStageShown) {
+    const size_t meshCount = scene.meshes.size(), generatedCount = scene.generatedMeshes.size();
+    g.morphPreview->draw(scene, glm::mat4(1.0f), {0.62f, 0.62f, 0.62f, 1.0f}, doc.selection.actorId == morphSourceId);
+    gpu::setCrossFade(scene, meshCount, generatedCount, morphOpacity);
+  }
+  if (doc.project().view.showStandins || ui.state().viewportMode == ViewportMode::StandinEdit)
+    gpu::addStandinOverlay(projectStandinGuides(doc.project(), doc.baseDir(), ectx.assets, timeSec, doc.selection.actorId),
+                           doc.selection.actorId, selectedStandinSegment(doc, ui.state().standinTool), scene.overlay);
+  if (!out.weightOverlay.actorId.empty()) {
+    overlayWeights_ = out.weightOverlay.weights;
+    gpu::addWeightOverlay(frame, out.weightOverlay.actorId, overlayWeights_, *g.meshes, scene);
+  }
+  // Status bar: the morph stage's preview, else the selected BlobTree actor's (else the first one's).
+  const std::string id = selBlobNode >= 0 || (selActor && selActor->kind == ActorKind::BlobTree)
+                             ? doc.selection.actorId
+                             : (frame.blobs.empty() ? std::string() : frame.blobs.front().actorId);
+  if (r.morphStageShown) ectx.stats.previewInfo = gpu::describePreviewStatus(g.morphPreview->status(), r.morphBackend);
+  else if (!id.empty()) ectx.stats.previewInfo = gpu::describePreviewStatus(g.blobPreviews->status(id), r.backend);
+  else ectx.stats.previewInfo.clear();
+  return r;
+}
+
+}  // namespace animorph

@@ -1,0 +1,50 @@
+#pragma once
+// The viewport's work for one frame, after the UI has drawn: the scene at the current time, the
+// morph's stages and its implicit preview, the BlobTree previews (GPU or CPU as the preferences and
+// the device decide), the selection a click makes, and the gpu::Scene the renderer draws; and the
+// status bar's preview line. State that lives across frames (the morph cache, which morph's GPU
+// pipelines were compiled) is kept in ViewportFrame.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "editor_gpu.h"
+#include "editor_ui.h"
+#include "scene/morph_scene.h"
+#include "scene/scene_frame.h"
+
+namespace animorph {
+
+struct ViewportFrameResult {
+  gpu::PreviewBackend backend;       // BlobTree previews'
+  gpu::PreviewBackend morphBackend;  // the morph stage's (its stand-ins decide Auto on CPU devices)
+  bool morphStageShown = false;      // the implicit preview is drawn this frame (B..C or a cross-fade)
+};
+
+class ViewportFrame {
+ public:
+  explicit ViewportFrame(PreviewDevice initialDevice);
+
+  // The morph runtime of the document as it is now (prepared once per revision; null without a
+  // morph, or while weight painting). Called before the UI draws, so the inspector and the status
+  // bar show this frame's morph, and again after, should the UI have edited the document.
+  void updateMorphRuntime(EditorContext& ectx, const EditorOutput& out);
+
+  // Builds scene for this frame (it points into data kept here until the next call). settle: a screenshot is pending, so the previews compute their
+  // refined surfaces now (waiting up to 120 s) instead of in the background.
+  ViewportFrameResult build(EditorGpu& gpuSide, EditorUI& ui, EditorContext& ectx, bool settle, gpu::Scene& scene);
+
+  // After a lost device: the new device has compiled no morph pipelines yet.
+  void forgetPrewarm() { prewarmedMorph_ = nullptr; }
+
+ private:
+  MorphCache morphCache_;
+  MorphFrameSettings morphSettings_;             // the transitions; the B->C stage is the implicit preview's
+  const MorphRuntime* prewarmedMorph_ = nullptr;  // whose B->C pipelines are compiling or compiled
+  PreviewDevice previewDevice_;                   // the preference last seen (a switch retries the GPU)
+  // The scene is drawn from these, alive until the frame is recorded: the gpu::Scene points into them.
+  SceneFrame frame_;
+  std::vector<float> overlayWeights_;
+};
+
+}  // namespace animorph
