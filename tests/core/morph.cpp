@@ -3,6 +3,8 @@
 #include <filesystem>
 #include <random>
 
+#include <nlohmann/json.hpp>
+
 #include "doc/base64.h"
 #include "doc/project_io.h"
 #include "field/operators.h"

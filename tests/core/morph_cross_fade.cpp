@@ -4,6 +4,8 @@
 // with complementary opacity; the GPU transition draws replace the CPU mesh.
 #include <catch2/catch.hpp>
 
+#include <nlohmann/json.hpp>
+
 #include "doc/project_io.h"
 #include "morph/transition_frame.h"
 #include "scene/morph_scene.h"

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "anim/track_json.h"
 #include "anim/track.h"
 
 using namespace animorph;
@@ -75,7 +76,7 @@ TEST_CASE("quintic Hermite (n = 3) reproduces values, velocities and acceleratio
   }
 }
 
-TEST_CASE("automatic tangents are Catmull-Rom; constant and linear keys", "[track]") {
+TEST_CASE("automatic tangents are Catmull-Rom, constant and linear keys", "[track]") {
   FloatTrack t;
   t.clearKeys();
   t.setKey(0.0, 0.0f);

@@ -13,7 +13,6 @@
 
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
-#include <nlohmann/json.hpp>
 
 #include "util/result.h"
 
@@ -108,18 +107,5 @@ void catmullRomDerivatives(const std::vector<TrackKey<T>>& keys, size_t i, T& d1
 // A cubic Hermite ramp from 0 at t = 0 to 1 at t = 1 with end slopes slope0
 // and slope1 (0, 0: smoothstep; 0, 2: u^2; 2, 0: 1 - (1 - u)^2).
 FloatTrack hermiteRampTrack(float slope0, float slope1);
-
-// JSON: a constant track is written as its bare value (number, [x,y,z], or
-// quaternion [x,y,z,w]); otherwise {"degree": n, "keys": [{"t", "v", "interp",
-// "d1", "d2"}]}. A driver is not serialised: its keys (if any) are written.
-nlohmann::json trackToJson(const FloatTrack& t);
-nlohmann::json trackToJson(const Vec3Track& t);
-nlohmann::json trackToJson(const QuatTrack& t);
-
-// Parse a track; errors name `where` (e.g. "node 4 parameter 'radius'") and the reason,
-// including non-finite numbers and unsorted keys.
-Result<FloatTrack> floatTrackFromJson(const nlohmann::json& j, const std::string& where);
-Result<Vec3Track> vec3TrackFromJson(const nlohmann::json& j, const std::string& where);
-Result<QuatTrack> quatTrackFromJson(const nlohmann::json& j, const std::string& where);
 
 }  // namespace animorph

@@ -1,5 +1,6 @@
 #include "blobtree/blob_tree_json.h"
 
+#include "anim/track_json.h"
 #include "blobtree/validate.h"
 #include "doc/atomic_file.h"
 

@@ -1,5 +1,6 @@
 #include "doc/morph_setup.h"
 
+#include "anim/track_json.h"
 #include "morph/transition.h"
 
 namespace animorph {

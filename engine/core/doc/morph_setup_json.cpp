@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "anim/track_json.h"
 #include "doc/base64.h"
 #include "standin/standin_json.h"
 
