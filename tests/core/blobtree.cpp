@@ -148,7 +148,7 @@ TEST_CASE("scene files: save, load, and errors naming the file", "[blobtree]") {
   CHECK_THAT(loadBlobTreeScene(dir.file("missing.json")).error(), Contains("missing.json"));
 }
 
-TEST_CASE("meta-primitives expand when flattened; animation changes the field", "[blobtree]") {
+TEST_CASE("meta-primitives expand when flattened, animation changes the field", "[blobtree]") {
   BlobNode tail = makeBlobNode(NodeType::SplineOfNodes, 1);
   ControlPoints pts;
   pts.push_back(Vec3Track(glm::vec3(0, 0, 0)));

@@ -90,7 +90,7 @@ TEST_CASE("adding under a primitive or a full operator is refused with a message
   CHECK(d->history().size() == 0);
 }
 
-TEST_CASE("delete removes a subtree, refuses the root and minimum arities; undo restores", "[blobtree][commands]") {
+TEST_CASE("delete removes a subtree, refuses the root and minimum arities, undo restores", "[blobtree][commands]") {
   auto d = blobDocument();
   int root = treeOf(*d).root.id;
   int diff = -1;

@@ -75,7 +75,7 @@ TEST_CASE("transition: at alpha = 1 the vertices lie on the posed stand-in", "[t
   CHECK(worst < 1e-2f);
 }
 
-TEST_CASE("transition: alpha follows the easing; a painted region collapses first", "[transition]") {
+TEST_CASE("transition: alpha follows the easing, a painted region collapses first", "[transition]") {
   const FloatTrack ease = smoothstepTrack();
   CHECK(ease.evaluate(0.25) == Approx(3 * 0.0625 - 2 * 0.015625));
   std::vector<float> a;

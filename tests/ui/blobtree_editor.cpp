@@ -91,7 +91,7 @@ TEST_CASE("a node added from the Create menu lands under the selected node", "[u
   CHECK(blobActor(h)->blobTree.root.children.size() == 3);
 }
 
-TEST_CASE("dragging a node onto another in the outliner reparents it; cycles are refused", "[ui][blobtree]") {
+TEST_CASE("dragging a node onto another in the outliner reparents it, cycles are refused", "[ui][blobtree]") {
   EditorFixture f;
   auto& h = f.h;
   std::string id = newBlob(h);

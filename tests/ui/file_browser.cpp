@@ -93,7 +93,7 @@ TEST_CASE("file browser: saving adds the extension and confirms overwrites", "[f
   CHECK(b.error().find("no such directory") != std::string::npos);
 }
 
-TEST_CASE("Ctrl+O opens the browser on the editor; a typed path and Enter opens the project", "[file_browser]") {
+TEST_CASE("Ctrl+O opens the browser on the editor, a typed path and Enter opens the project", "[file_browser]") {
   EditorFixture f;
   auto& h = f.h;
   Project p;

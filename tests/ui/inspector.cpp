@@ -76,7 +76,7 @@ TEST_CASE("Euler degrees convert to the stored quaternion and back", "[inspector
   CHECK(y.z == Approx(1.0f).margin(1e-5));
 }
 
-TEST_CASE("renaming in the inspector is a command; typing does not trigger shortcuts", "[inspector]") {
+TEST_CASE("renaming in the inspector is a command, typing does not trigger shortcuts", "[inspector]") {
   EditorFixture f;
   auto& h = f.h;
   addPlainActor(h);

@@ -57,7 +57,7 @@ std::shared_ptr<const MorphRuntime> prepare(EditorHarness& h, const Project& p) 
 
 }  // namespace
 
-TEST_CASE("the curve editor shows the morph's tracks over u; an easing key drag is one undo step", "[morph][curves]") {
+TEST_CASE("the curve editor shows the morph's tracks over u, an easing key drag is one undo step", "[morph][curves]") {
   MorphFixture f;
   auto& h = f.h;
   const CurveEditorState& ce = f.openCurveEditor();

@@ -16,7 +16,7 @@ void expand(EditorHarness& h, const std::string& key) {
 }
 }  // namespace
 
-TEST_CASE("outliner lists actors and their node hierarchy; clicks select", "[outliner]") {
+TEST_CASE("outliner lists actors and their node hierarchy, clicks select", "[outliner]") {
   EditorFixture f;
   f.loadHeroScene();
   auto& h = f.h;

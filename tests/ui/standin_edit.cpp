@@ -123,7 +123,7 @@ TEST_CASE("stand-in edit: the translate arrows move one end in the joint's space
   CHECK(h.doc().history().size() == 1);
 }
 
-TEST_CASE("stand-in edit: Del deletes the selected segment with its tracks; undo brings both back", "[standin]") {
+TEST_CASE("stand-in edit: Del deletes the selected segment with its tracks, undo brings both back", "[standin]") {
   EditorFixture f;
   addStandinMorph(f);
   auto& h = f.h;
