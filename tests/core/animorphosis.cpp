@@ -1,0 +1,220 @@
+#include <catch2/catch.hpp>
+
+#include <random>
+
+#include "animorph/correspondence_json.h"
+#include "animorph/evaluate_generic.h"
+#include "animorph/generic_tree.h"
+#include "animorph/validate_correspondence.h"
+#include "blobtree/compile.h"
+#include "util/animorph_fixtures.h"
+#include "util/blob_builders.h"
+
+using namespace animorph;
+using namespace animorph::test;
+using Catch::Matchers::Contains;
+
+namespace {
+
+// Largest |f1 - f2| / max(|f1|, T) over n random points in [-2, 2]^3 and random times in [0, 2].
+double largestRelativeDifference(const BlobTree& t1, const BlobTree& t2, int n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> x(-2.0f, 2.0f);
+  std::uniform_real_distribution<double> time(0.0, 2.0);
+  FieldEvaluator ev;
+  double worst = 0.0;
+  int perTime = 200;
+  for (int done = 0; done < n; done += perTime) {
+    double t = time(rng);
+    FieldProgram p1 = compileFieldProgram(t1, t), p2 = compileFieldProgram(t2, t);
+    for (int k = 0; k < perTime; ++k) {
+      glm::vec3 p(x(rng), x(rng), x(rng));
+      double f1 = ev.evaluatePoint(p1, p), f2 = ev.evaluatePoint(p2, p);
+      worst = std::max(worst, std::abs(f1 - f2) / std::max(std::abs(f1), double(p1.threshold)));
+    }
+  }
+  return worst;
+}
+
+GenericTree walkerToFlyer() {
+  auto c = buildGenericTree(walkerTree(), flyerTree(), walkerToFlyerGraph());
+  INFO(c.error());
+  REQUIRE(c.ok());
+  return *c;
+}
+
+}  // namespace
+
+TEST_CASE("animorphosis: correspondence graph JSON round trip and bounded errors", "[animorph]") {
+  CorrespondenceGraph g = walkerToFlyerGraph();
+  g.links[3].artist = false;
+  g.links[3].confidence = 0.25f;
+  auto back = correspondenceFromJson(correspondenceToJson(g), "graph.json");
+  REQUIRE(back.ok());
+  CHECK(*back == g);
+
+  nlohmann::json bad = correspondenceToJson(g);
+  bad["links"][2]["confidence"] = 1.5;
+  auto r = correspondenceFromJson(bad, "graph.json");
+  REQUIRE_FALSE(r.ok());
+  CHECK_THAT(r.error(), Contains("graph.json") && Contains("link 2") && Contains("confidence"));
+
+  bad = correspondenceToJson(g);
+  bad["links"][1]["s"] = nlohmann::json{{"keys", {{{"t", 0.0}, {"v", 0.0}}, {{"t", 1.0}, {"v", 0.5}}}}};
+  r = correspondenceFromJson(bad, "graph.json");
+  REQUIRE_FALSE(r.ok());
+  CHECK_THAT(r.error(), Contains("link 1") && Contains("s(1) = 1"));
+
+  bad = correspondenceToJson(g);
+  bad["links"][0].erase("b");
+  r = correspondenceFromJson(bad, "graph.json");
+  REQUIRE_FALSE(r.ok());
+  CHECK_THAT(r.error(), Contains("link 0") && Contains("\"b\""));
+}
+
+TEST_CASE("animorphosis: links crossing the hierarchy are refused naming both nodes", "[animorph]") {
+  BlobTree a = walkerTree(), b = flyerTree();
+  REQUIRE(validateCorrespondence(a, b, walkerToFlyerGraph()).ok());
+
+  SECTION("a link below a link leaves the linked sub-tree") {
+    CorrespondenceGraph g;
+    g.links.push_back({9, 112, {}, 1.0f, true});   // tail -> tail
+    g.links.push_back({10, 103, {}, 1.0f, true});  // a tail bead -> the belly, outside the tail
+    Status s = validateCorrespondence(a, b, g);
+    REQUIRE_FALSE(s.ok());
+    CHECK_THAT(s.error(), Contains("(id 10)") && Contains("'belly' (id 103)") && Contains("'tail' (id 9)") &&
+                              Contains("must stay inside the linked sub-trees"));
+  }
+  SECTION("crossing links") {
+    CorrespondenceGraph g;
+    g.links.push_back({2, 109, {}, 1.0f, true});   // body -> legs frame
+    g.links.push_back({6, 110, {}, 1.0f, true});   // a thigh (not in the body) -> a shin inside the legs frame
+    Status s = validateCorrespondence(a, b, g);
+    REQUIRE_FALSE(s.ok());
+    CHECK_THAT(s.error(), Contains("'thighL' (id 6)") && Contains("'shinL' (id 110)") && Contains("cross"));
+  }
+  SECTION("a node linked to a node and its descendant") {
+    CorrespondenceGraph g;
+    g.links.push_back({2, 102, {}, 1.0f, true});
+    g.links.push_back({2, 103, {}, 1.0f, true});
+    Status s = validateCorrespondence(a, b, g);
+    REQUIRE_FALSE(s.ok());
+    CHECK_THAT(s.error(), Contains("'body' (id 2)") && Contains("'belly' (id 103)") && Contains("separate sub-trees"));
+  }
+  SECTION("a root linked to an inner node") {
+    CorrespondenceGraph g;
+    g.links.push_back({1, 102, {}, 1.0f, true});
+    Status s = validateCorrespondence(a, b, g);
+    REQUIRE_FALSE(s.ok());
+    CHECK_THAT(s.error(), Contains("'walker' (id 1)") && Contains("'body' (id 102)") && Contains("root"));
+  }
+  SECTION("unknown ids and bad confidences") {
+    CorrespondenceGraph g;
+    g.links.push_back({2, 999, {}, 1.0f, true});
+    CHECK_THAT(validateCorrespondence(a, b, g).error(), Contains("999") && Contains("target"));
+    g.links[0] = {2, 102, {}, -0.5f, true};
+    CHECK_THAT(validateCorrespondence(a, b, g).error(), Contains("'body' (id 2)") && Contains("confidence"));
+  }
+  SECTION("the generic tree refuses the same graph") {
+    CorrespondenceGraph g;
+    g.links.push_back({9, 112, {}, 1.0f, true});
+    g.links.push_back({10, 103, {}, 1.0f, true});
+    auto c = buildGenericTree(a, b, g);
+    REQUIRE_FALSE(c.ok());
+    CHECK_THAT(c.error(), Contains("(id 10)") && Contains("(id 103)"));
+  }
+}
+
+TEST_CASE("animorphosis: splitting to a bijection leaves both fields unchanged", "[animorph]") {
+  BlobTree a = walkerTree(), b = flyerTree();
+  GenericTree c = walkerToFlyer();
+  CHECK(c.splitCopies == 3);   // the body in two, the chest in two, the legs frame in two
+  // The head, bead 115 and wingR have none; the chest (a point) and the membrane (a triangle) are of
+  // kinds that do not meet, so each gets one: the chest shrinks where it is, the membrane grows.
+  CHECK(c.nullPartners == 5);
+  CHECK(c.sCurves.size() == 1);
+  BlobTree a2 = genericSide(c, MorphSide::A), b2 = genericSide(c, MorphSide::B);
+  CHECK(a2.root.subtreeSize() == b2.root.subtreeSize());
+  CHECK(a2.root.subtreeSize() > a.root.subtreeSize());
+  double ea = largestRelativeDifference(a, a2, 10000, 7);
+  double eb = largestRelativeDifference(b, b2, 10000, 8);
+  INFO("A' vs A: " << ea << ", B' vs B: " << eb);
+  CHECK(ea <= 1e-6);
+  CHECK(eb <= 1e-6);
+}
+
+TEST_CASE("animorphosis: s = 0 gives C(t) = A(t) and s = 1 gives C(t) = B(t), both animations playing", "[animorph]") {
+  BlobTree a = walkerTree(), b = flyerTree();
+  GenericTree c = walkerToFlyer();
+  AnimorphosisTiming timing;
+  timing.startSec = 2.0;
+  timing.endSec = 4.0;
+  timing.source = {0.0, 1.0, 1.0};   // the walk cycle loops every second
+  timing.target = {1.5, 2.0, 0.5};   // the flight starts at 1.5 s, twice as fast, looping every 0.5 s
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> x(-2.0f, 2.0f);
+  FieldEvaluator ev;
+  double worstA = 0.0, worstB = 0.0;
+  for (int k = 0; k < 40; ++k) {
+    bool before = k % 2 == 0;
+    double t = before ? 2.0 * k / 40.0 : 4.0 + k / 20.0;
+    FieldProgram live = compileGeneric(c, timing, t);
+    FieldProgram ref = before ? compileFieldProgram(a, timing.source.localTime(t))
+                              : compileFieldProgram(b, timing.target.localTime(t));
+    REQUIRE(live.threshold == ref.threshold);
+    for (int i = 0; i < 250; ++i) {
+      glm::vec3 p(x(rng), x(rng), x(rng));
+      double fl = ev.evaluatePoint(live, p), fr = ev.evaluatePoint(ref, p);
+      double e = std::abs(fl - fr) / std::max(std::abs(fr), double(ref.threshold));
+      (before ? worstA : worstB) = std::max(before ? worstA : worstB, e);
+    }
+  }
+  INFO("C vs A before t0: " << worstA << ", C vs B after t1: " << worstB);
+  CHECK(worstA <= 1e-6);
+  CHECK(worstB <= 1e-6);
+
+  // In between, C differs from both, and the s override makes the wing grow faster than the rest.
+  FieldProgram mid = compileGeneric(c, timing, 3.0);
+  FieldProgram a3 = compileFieldProgram(a, timing.source.localTime(3.0));
+  FieldProgram b3 = compileFieldProgram(b, timing.target.localTime(3.0));
+  double dA = 0.0, dB = 0.0;
+  for (int i = 0; i < 500; ++i) {
+    glm::vec3 p(x(rng), x(rng), x(rng));
+    dA = std::max(dA, double(std::abs(ev.evaluatePoint(mid, p) - ev.evaluatePoint(a3, p))));
+    dB = std::max(dB, double(std::abs(ev.evaluatePoint(mid, p) - ev.evaluatePoint(b3, p))));
+  }
+  CHECK(dA > 0.05);
+  CHECK(dB > 0.05);
+  const GenericNode* wing = nullptr;
+  for (const auto& ch : c.root.children)
+    if (ch.sourceB == 105) wing = &ch;
+  REQUIRE(wing != nullptr);
+  CHECK(wing->sCurve == 0);
+  CHECK(nodeS(c, *wing, timing, 2.5) > nodeS(c, c.root, timing, 2.5) + 0.1f);
+}
+
+TEST_CASE("animorphosis: a blend bridged to a union is a hyper-blend in between", "[animorph]") {
+  BlobTree a = treeOf(operatorNode(NodeType::Blend, 1, {pointNode(2, {-0.2f, 0, 0}, 0.6f), pointNode(3, {0.2f, 0, 0}, 0.6f)}));
+  BlobTree b = treeOf(operatorNode(NodeType::Union, 1, {pointNode(2, {-0.2f, 0, 0}, 0.6f), pointNode(3, {0.2f, 0, 0}, 0.6f)}));
+  CorrespondenceGraph g;
+  g.links.push_back({2, 2, {}, 1.0f, true});
+  g.links.push_back({3, 3, {}, 1.0f, true});
+  auto c = buildGenericTree(a, b, g);
+  REQUIRE(c.ok());
+  AnimorphosisTiming timing;
+  FieldEvaluator ev;
+  glm::vec3 mid(0.0f);
+  float fBlend = ev.evaluatePoint(compileFieldProgram(a, 0.0), mid);
+  float fUnion = ev.evaluatePoint(compileFieldProgram(b, 0.0), mid);
+  REQUIRE(fBlend > fUnion + 0.1f);
+  float prev = fBlend + 1e-3f;
+  for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
+    BlobTree snap = instantiateGeneric(*c, timing, t);
+    float f = ev.evaluatePoint(compileFieldProgram(snap, 0.0), mid);
+    if (t > 0.0 && t < 1.0) CHECK(snap.root.type == NodeType::HyperBlend);
+    CHECK(f < prev);  // the blend's bulge between the two points sinks monotonically to the union's
+    CHECK(f >= fUnion - 1e-5f);
+    prev = f;
+  }
+  CHECK(prev == Approx(fUnion).margin(1e-6));
+}
