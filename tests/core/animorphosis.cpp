@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 
+#include <functional>
 #include <random>
 
 #include "animorph/correspondence_json.h"
@@ -217,4 +218,71 @@ TEST_CASE("animorphosis: a blend bridged to a union is a hyper-blend in between"
     prev = f;
   }
   CHECK(prev == Approx(fUnion).margin(1e-6));
+}
+
+TEST_CASE("animorphosis: random splits of random creatures leave both fields unchanged", "[animorph]") {
+  int built = 0, splits = 0;
+  for (unsigned seed = 1; seed <= 12; ++seed) {
+    std::mt19937 rng(seed);
+    BlobTree a = randomCreature(rng, 60);
+    std::unordered_map<int, int> idMap;
+    BlobTree b = perturbedCopy(a, {0.5f, 0.0f, 0.0f}, 1.2f, rng, idMap, 0.05f);
+    CorrespondenceGraph g;
+    std::vector<int> ids;
+    std::function<void(const BlobNode&)> collect = [&](const BlobNode& n) {
+      ids.push_back(n.id);
+      for (const auto& c : n.children) collect(c);
+    };
+    collect(a.root);
+    for (int id : ids)
+      if (id != a.root.id && rng() % 4 != 0) g.links.push_back({id, idMap.at(id), {}, 1.0f, true});
+    // Extra links from a node to the partner of one of its siblings: splits on both sides.
+    std::function<void(const BlobNode&)> extra = [&](const BlobNode& n) {
+      for (size_t i = 0; i + 1 < n.children.size(); ++i)
+        if (rng() % 3 == 0) {
+          CorrespondenceGraph tried = g;
+          tried.links.push_back({n.children[i].id, idMap.at(n.children[i + 1].id), {}, 1.0f, true});
+          if (validateCorrespondence(a, b, tried).ok()) g = tried;
+        }
+      for (const auto& c : n.children) extra(c);
+    };
+    extra(a.root);
+    REQUIRE(validateCorrespondence(a, b, g).ok());
+    auto c = buildGenericTree(a, b, g);
+    if (!c.ok()) {
+      UNSCOPED_INFO("seed " << seed << ": " << c.error());
+      // The only refusals allowed here are splits that would change a field.
+      CHECK_THAT(c.error(), Contains("split") || Contains("distribute"));
+      CHECK_THAT(c.error(), Contains("(id "));
+      continue;
+    }
+    ++built;
+    splits += c->splitCopies;
+    double ea = largestRelativeDifference(a, genericSide(*c, MorphSide::A), 2000, seed);
+    double eb = largestRelativeDifference(b, genericSide(*c, MorphSide::B), 2000, seed + 100);
+    INFO("seed " << seed << ": " << c->splitCopies << " split copies, " << c->nullPartners << " null partners, A' "
+                 << ea << ", B' " << eb);
+    CHECK(ea <= 1e-6);
+    CHECK(eb <= 1e-6);
+    // And C(t) is A before the animorphosis, B after it.
+    AnimorphosisTiming timing;
+    timing.startSec = 0.5;
+    timing.endSec = 1.5;
+    FieldEvaluator ev;
+    std::uniform_real_distribution<float> x(-2.0f, 2.0f);
+    for (double t : {0.25, 1.75}) {
+      FieldProgram live = compileGeneric(*c, timing, t);
+      FieldProgram ref = compileFieldProgram(t < 1.0 ? a : b, t);
+      double worst = 0.0;
+      for (int i = 0; i < 300; ++i) {
+        glm::vec3 p(x(rng), x(rng), x(rng));
+        double fr = ev.evaluatePoint(ref, p);
+        worst = std::max(worst, std::abs(ev.evaluatePoint(live, p) - fr) / std::max(std::abs(fr), double(ref.threshold)));
+      }
+      CHECK(worst <= 1e-6);
+    }
+  }
+  INFO(built << " of 12 graphs built, " << splits << " split copies");
+  CHECK(built == 12);
+  CHECK(splits >= 10);
 }

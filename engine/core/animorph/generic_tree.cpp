@@ -184,10 +184,20 @@ struct Builder {
       return r;
     }
     Combine own = combineOf(n.type);
-    if (own == Combine::Other || own != parent)
+    if (own == Combine::Other || own != parent) {
+      // Its children cannot be shared out; whole copies still keep the field: under a union or an
+      // intersection as they are, under a sum each at 1/k of the intensity. In copy j, the parts
+      // linked to other partners are unlinked and shrink.
+      if (parent == Combine::Max || parent == Combine::Min) return n;
+      if (parent == Combine::Sum && scalable(n)) {
+        r = n;
+        scaleIntensity(r, share);
+        return r;
+      }
       throw BuildError{describe(n, side) + " would be split into " + count + " copies, one per partner in the " +
-                       sideName(other(side)) + ", but its operator does not distribute over its parent's; "
-                       "link the node itself to one partner, or link its parent"};
+                       sideName(other(side)) + ", but its operator does not distribute over its parent's and "
+                       "its sub-tree cannot be scaled; link the node itself to one partner, or link its parent"};
+    }
     for (const BlobNode& c : n.children) {
       const auto& cd = dests(c, ends, memo);
       if (cd.empty()) {
