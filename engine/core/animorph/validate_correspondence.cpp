@@ -1,7 +1,10 @@
 #include "animorph/validate_correspondence.h"
 
 #include <cmath>
+#include <set>
 #include <string>
+#include <unordered_map>
+#include <vector>
 
 #include "animorph/tree_index.h"
 
@@ -22,21 +25,49 @@ struct Checker {
   const TreeIndex& ia;
   const TreeIndex& ib;
   const CorrespondenceGraph& g;
+  std::unordered_map<int, std::vector<int>> byA, byB;  // link indices by node
+
+  Checker(const TreeIndex& a, const TreeIndex& b, const CorrespondenceGraph& graph) : ia(a), ib(b), g(graph) {
+    for (size_t i = 0; i < g.links.size(); ++i) {
+      byA[g.links[i].nodeA].push_back(int(i));
+      byB[g.links[i].nodeB].push_back(int(i));
+    }
+  }
 
   std::string linkName(const CorrespondenceLink& l) const {
     return "source " + nameOfNode(ia.node(l.nodeA)) + " -> target " + nameOfNode(ib.node(l.nodeB));
   }
 
-  // Some partner of source node `a` other than link `skip` contains target node `b` strictly.
+  // Some partner of source node `a` contains target node `b` strictly.
   bool otherPartnerOfAContains(int a, int b) const {
-    for (const auto& l : g.links)
-      if (l.nodeA == a && ib.strictlyBelow(b, l.nodeB)) return true;
+    for (int i : byA.at(a))
+      if (ib.strictlyBelow(b, g.links[size_t(i)].nodeB)) return true;
     return false;
   }
   bool otherPartnerOfBContains(int b, int a) const {
-    for (const auto& l : g.links)
-      if (l.nodeB == b && ia.strictlyBelow(a, l.nodeA)) return true;
+    for (int i : byB.at(b))
+      if (ia.strictlyBelow(a, g.links[size_t(i)].nodeA)) return true;
     return false;
+  }
+
+  // Link i against every link whose node in A or in B is i's node or one of its ancestors: every
+  // pair of links is met this way unless its nodes are apart on both sides, which is always allowed.
+  Status link(int i) const {
+    const CorrespondenceLink& l = g.links[size_t(i)];
+    for (int side = 0; side < 2; ++side) {
+      const TreeIndex& ix = side == 0 ? ia : ib;
+      const auto& by = side == 0 ? byA : byB;
+      for (int x = side == 0 ? l.nodeA : l.nodeB; x != -1; x = ix.parent(x)) {
+        auto it = by.find(x);
+        if (it == by.end()) continue;
+        for (int j : it->second) {
+          if (j == i) continue;
+          Status s = j < i ? pair(g.links[size_t(j)], l) : pair(l, g.links[size_t(j)]);
+          if (!s) return s;
+        }
+      }
+    }
+    return Status::success();
   }
 
   Status refuse(const CorrespondenceLink& bad, const CorrespondenceLink& other, const std::string& why) const {
@@ -47,11 +78,11 @@ struct Checker {
   Status pair(const CorrespondenceLink& l1, const CorrespondenceLink& l2) const {
     Relation ra = relation(ia, l1.nodeA, l2.nodeA);
     Relation rb = relation(ib, l1.nodeB, l2.nodeB);
-    const std::string a1 = nameOfNode(ia.node(l1.nodeA)), a2 = nameOfNode(ia.node(l2.nodeA));
-    const std::string b1 = nameOfNode(ib.node(l1.nodeB)), b2 = nameOfNode(ib.node(l2.nodeB));
     if (ra == rb && ra != Relation::Same) return Status::success();  // nested alike, or apart on both sides
     if (ra == Relation::Same && rb == Relation::Apart) return Status::success();  // a split of a1
     if (rb == Relation::Same && ra == Relation::Apart) return Status::success();  // a split of b1
+    const std::string a1 = nameOfNode(ia.node(l1.nodeA)), a2 = nameOfNode(ia.node(l2.nodeA));
+    const std::string b1 = nameOfNode(ib.node(l1.nodeB)), b2 = nameOfNode(ib.node(l2.nodeB));
     if (ra == Relation::Same)
       return refuse(l2, l1, "source " + a1 + " would link to " + b1 + " and to its " +
                                 (rb == Relation::Above ? "descendant " : "ancestor ") + b2 +
@@ -89,6 +120,7 @@ struct Checker {
 
 Status validateCorrespondence(const BlobTree& a, const BlobTree& b, const CorrespondenceGraph& graph) {
   TreeIndex ia(a), ib(b);
+  std::set<std::pair<int, int>> seen;
   for (size_t i = 0; i < graph.links.size(); ++i) {
     const CorrespondenceLink& l = graph.links[i];
     std::string where = "link " + std::to_string(i);
@@ -103,17 +135,14 @@ Status validateCorrespondence(const BlobTree& a, const BlobTree& b, const Corres
       Status s = checkSCurve(*l.sOverride, where + ": s override");
       if (!s) return s;
     }
-    if (graph.find(l.nodeA, l.nodeB) != int(i)) return Error{where + ": the link is given twice"};
+    if (!seen.insert({l.nodeA, l.nodeB}).second) return Error{where + ": the link is given twice"};
     bool rootA = l.nodeA == ia.rootId(), rootB = l.nodeB == ib.rootId();
     if (rootA != rootB)
       return Error{where + " is refused: a root corresponds to the other root only (the roots are always linked)"};
   }
-  Checker c{ia, ib, graph};
+  Checker c(ia, ib, graph);
   for (size_t i = 0; i < graph.links.size(); ++i)
-    for (size_t j = 0; j < i; ++j) {
-      Status s = c.pair(graph.links[j], graph.links[i]);
-      if (!s) return s;
-    }
+    if (Status s = c.link(int(i)); !s) return s;
   return Status::success();
 }
 
