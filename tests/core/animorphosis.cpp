@@ -286,3 +286,60 @@ TEST_CASE("animorphosis: random splits of random creatures leave both fields unc
   CHECK(built == 12);
   CHECK(splits >= 10);
 }
+
+TEST_CASE("animorphosis: linked point, sphere, segment, cylinder and cone take the simplest common skeleton",
+          "[animorph]") {
+  auto prim = [](NodeType t, int id, glm::vec3 at) {
+    BlobNode n = makeBlobNode(t, id);
+    n.floatParam("radius") = FloatTrack(0.5f);
+    if (paramIndex(t, "center") >= 0) n.vec3Param("center") = Vec3Track(at);
+    if (paramIndex(t, "a") >= 0) {
+      n.vec3Param("a") = Vec3Track(at);
+      n.vec3Param("b") = Vec3Track(at + glm::vec3(0.0f, 0.6f, 0.1f));
+    }
+    if (paramIndex(t, "skeletonRadius") >= 0) n.floatParam("skeletonRadius") = FloatTrack(0.15f);
+    if (t == NodeType::Cone) {
+      n.floatParam("radiusA") = FloatTrack(0.2f);
+      n.floatParam("radiusB") = FloatTrack(0.05f);
+    }
+    return n;
+  };
+  BlobTree a = treeOf(operatorNode(NodeType::Blend, 1, {prim(NodeType::Point, 2, {-1.2f, 0, 0}), prim(NodeType::Sphere, 3, {-0.4f, 0, 0}),
+                                                        prim(NodeType::Segment, 4, {0.4f, 0, 0}), prim(NodeType::Cylinder, 5, {1.2f, 0, 0})}));
+  a.root.children[0].vec3Param("center").setKey(1.0, {-1.2f, 0.3f, 0});
+  BlobTree b = treeOf(operatorNode(NodeType::Blend, 1, {prim(NodeType::Segment, 2, {-1.1f, 0, 0.2f}), prim(NodeType::Point, 3, {-0.4f, 0.1f, 0}),
+                                                        prim(NodeType::Cone, 4, {0.5f, 0, 0}), prim(NodeType::Cone, 5, {1.2f, -0.1f, 0})}));
+  CorrespondenceGraph g;
+  for (int id = 2; id <= 5; ++id) g.links.push_back({id, id, {}, 1.0f, true});
+  auto c = buildGenericTree(a, b, g);
+  INFO(c.error());
+  REQUIRE(c.ok());
+  CHECK(c->nullPartners == 0);
+  REQUIRE(c->root.children.size() == 4);
+  const NodeType expected[4] = {NodeType::Segment, NodeType::Sphere, NodeType::Cone, NodeType::Cone};
+  for (size_t i = 0; i < 4; ++i) {
+    CHECK(c->root.children[i].a.type == expected[i]);
+    CHECK(c->root.children[i].b.type == expected[i]);
+  }
+  double ea = largestRelativeDifference(a, genericSide(*c, MorphSide::A), 4000, 31);
+  double eb = largestRelativeDifference(b, genericSide(*c, MorphSide::B), 4000, 32);
+  INFO("A' vs A " << ea << ", B' vs B " << eb);
+  CHECK(ea <= 1e-6);
+  CHECK(eb <= 1e-6);
+  // Halfway, the point has stretched into half of the segment.
+  AnimorphosisTiming timing;
+  BlobTree mid = instantiateGeneric(*c, timing, 0.5);
+  CHECK(mid.root.children[0].type == NodeType::Segment);
+  glm::vec3 ma = mid.root.children[0].vec3Param("a").evaluate(0.0), mb = mid.root.children[0].vec3Param("b").evaluate(0.0);
+  CHECK(glm::distance(ma, mb) == Approx(0.5 * glm::length(glm::vec3(0.0f, 0.6f, 0.1f))).margin(1e-5));
+
+  // A ball and a segment have no common kind: one shrinks while the other grows.
+  BlobTree ball = treeOf(operatorNode(NodeType::Blend, 1, {prim(NodeType::Sphere, 2, {0, 0, 0})}));
+  BlobTree stick = treeOf(operatorNode(NodeType::Blend, 1, {prim(NodeType::Segment, 2, {0, 0, 0})}));
+  CorrespondenceGraph one;
+  one.links.push_back({2, 2, {}, 1.0f, true});
+  auto d = buildGenericTree(ball, stick, one);
+  REQUIRE(d.ok());
+  CHECK(d->nullPartners == 2);
+  CHECK(d->root.children.size() == 2);
+}

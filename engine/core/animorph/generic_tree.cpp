@@ -104,6 +104,54 @@ bool identityOf(const BlobNode& like, BlobNode& out) {
   }
 }
 
+// Point ⊂ sphere, and point ⊂ segment ⊂ cylinder ⊂ cone: the simplest kind that holds both (a point
+// is a ball of radius 0 or a segment of length 0, a segment a cylinder of radius 0, a cylinder a cone
+// of equal radii; a ball is none of the axial kinds: a cylinder of length 0 is a flat disc). False
+// when no kind holds both.
+bool commonSkeleton(NodeType x, NodeType y, NodeType& out) {
+  auto any = [&](NodeType t) { return x == t || y == t; };
+  auto axial = [](NodeType t) {
+    return t == NodeType::Point || t == NodeType::Segment || t == NodeType::Cylinder || t == NodeType::Cone;
+  };
+  if (any(NodeType::Sphere)) {
+    out = NodeType::Sphere;
+    return (x == NodeType::Sphere || x == NodeType::Point) && (y == NodeType::Sphere || y == NodeType::Point);
+  }
+  if (!axial(x) || !axial(y)) return false;
+  out = any(NodeType::Cone)       ? NodeType::Cone
+        : any(NodeType::Cylinder) ? NodeType::Cylinder
+        : any(NodeType::Segment)  ? NodeType::Segment
+                                  : NodeType::Point;
+  return true;
+}
+
+// n rewritten as the same skeleton of the wider kind `to` (commonSkeleton's chains).
+BlobNode generalised(const BlobNode& n, NodeType to) {
+  if (n.type == to) return n;
+  BlobNode g = makeBlobNode(to, n.id, n.name);
+  for (const char* p : {"radius", "intensity", "stiffness"}) g.floatParam(p) = n.floatParam(p);
+  bool pointLike = n.type == NodeType::Point || n.type == NodeType::Sphere;
+  const Vec3Track& a = pointLike ? n.vec3Param("center") : n.vec3Param("a");
+  const Vec3Track& b = pointLike ? n.vec3Param("center") : n.vec3Param("b");
+  FloatTrack r0 = n.type == NodeType::Sphere || n.type == NodeType::Cylinder ? n.floatParam("skeletonRadius")
+                  : n.type == NodeType::Cone                                  ? n.floatParam("radiusA")
+                                                                              : FloatTrack(0.0f);
+  FloatTrack r1 = n.type == NodeType::Cone ? n.floatParam("radiusB") : r0;
+  if (to == NodeType::Sphere) {
+    g.vec3Param("center") = a;
+    g.floatParam("skeletonRadius") = r0;
+    return g;
+  }
+  g.vec3Param("a") = a;
+  g.vec3Param("b") = b;
+  if (to == NodeType::Cylinder) g.floatParam("skeletonRadius") = r0;
+  if (to == NodeType::Cone) {
+    g.floatParam("radiusA") = r0;
+    g.floatParam("radiusB") = r1;
+  }
+  return g;
+}
+
 struct Builder {
   const CorrespondenceGraph& g;
   TreeIndex ia, ib;
@@ -287,6 +335,8 @@ struct Builder {
   // Pairs two nodes known to correspond; links: those strictly inside both.
   std::vector<GenericNode> pairNodes(const BlobNode& A, const BlobNode& B, const std::vector<int>& links,
                                      int sCurve) {
+    if (NodeType common; A.type != B.type && commonSkeleton(A.type, B.type, common))
+      return pairNodes(generalised(A, common), generalised(B, common), links, sCurve);
     if (pairable(A.type, B.type)) {
       GenericNode n;
       n.a = shallow(A);
