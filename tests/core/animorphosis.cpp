@@ -343,3 +343,35 @@ TEST_CASE("animorphosis: linked point, sphere, segment, cylinder and cone take t
   CHECK(d->nullPartners == 2);
   CHECK(d->root.children.size() == 2);
 }
+
+TEST_CASE("animorphosis: a part with no partner grows out of the partner of its nearest linked sibling", "[animorph]") {
+  GenericTree c = walkerToFlyer();
+  // The flyer's right wing has no partner in the walker. Its nearest linked sibling is the flyer's
+  // body, whose partner is the walker's body (belly and half the chest): the wing grows from there.
+  const GenericNode* wing = nullptr;
+  for (const auto& ch : c.root.children)
+    if (ch.sourceB == 107) wing = &ch;
+  REQUIRE(wing != nullptr);
+  CHECK(wing->sourceA == -1);
+  CHECK(wing->a.type == NodeType::Frame);
+  CHECK(wing->a.vec3Param("translation").evaluate(0.0) == glm::vec3(0.0f));  // the identity frame
+  REQUIRE(wing->children.size() == 1);
+  const BlobNode& grown = wing->children[0].a;
+  REQUIRE(grown.type == NodeType::Triangle);
+  CHECK(grown.floatParam("intensity").evaluate(0.0) == 0.0f);
+  glm::vec3 anchor = grown.vec3Param("a").evaluate(0.0);
+  CHECK(grown.vec3Param("b").evaluate(0.0) == anchor);
+  CHECK(grown.vec3Param("c").evaluate(0.0) == anchor);
+  // The belly (0, 0, 0) and the chest (0.4, 0.1, 0) in the walker's body frame, at the origin at t = 0.
+  CHECK(glm::distance(anchor, glm::vec3(0.2f, 0.05f, 0.0f)) < 1e-5f);
+
+  // The walker's head has no partner in the flyer: it shrinks into the flyer's body (its nearest
+  // linked sibling): the mean of its belly (0, 0, 0) and chest (0.45, 0.1, 0), moved by its frame (0, 0.1, 0).
+  const GenericNode* head = nullptr;
+  for (const auto& ch : c.root.children)
+    if (ch.sourceA == 12) head = &ch;
+  REQUIRE(head != nullptr);
+  CHECK(head->b.floatParam("intensity").evaluate(0.0) == 0.0f);
+  glm::vec3 into = head->b.vec3Param("center").evaluate(0.0);
+  CHECK(glm::distance(into, glm::vec3(0.225f, 0.15f, 0.0f)) < 1e-5f);
+}
