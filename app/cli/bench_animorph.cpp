@@ -75,6 +75,24 @@ std::vector<Row> runAnimorphBench(const bench::Options& opt) {
   double flat = bench::medianMs(repeats, [&] { (void)compileGeneric(*c, timing, 0.5); });
   rows.push_back({"instantiate + flatten C(t)", n / (flat * 1e-3), "nodes/s", ">= 1,000,000",
                   std::to_string(flat) + " ms per frame"});
+  BlobTree kept;
+  double t = 0.0;
+  double update = bench::medianMs(repeats, [&] {
+    t += 0.01;
+    updateGenericSnapshot(*c, timing, 0.2 + t, kept);
+  });
+  rows.push_back({"update C(t) in place", n / (update * 1e-3), "nodes/s", "", std::to_string(update) + " ms"});
+  double scrub = bench::medianMs(repeats, [&] {
+    t += 0.01;
+    updateGenericSnapshot(*c, timing, 0.2 + t, kept);
+    (void)compileFieldProgram(kept, 0.0);
+  });
+  rows.push_back({"update C(t) in place + flatten (scrubbing)", n / (scrub * 1e-3), "nodes/s", ">= 1,000,000",
+                  std::to_string(scrub) + " ms per frame"});
+  BlobTree atStart = instantiateGeneric(*c, timing, 0.0);
+  double startFlat = bench::medianMs(repeats, [&] { (void)compileFieldProgram(atStart, 0.0); });
+  rows.push_back({"flatten C(t0) = A (snapshot)", n / (startFlat * 1e-3), "nodes/s", "",
+                  std::to_string(startFlat) + " ms per frame"});
   double base = bench::medianMs(repeats, [&] { (void)compileFieldProgram(a, 0.5); });
   rows.push_back({"flatten A(t) alone (baseline)", double(a.root.subtreeSize()) / (base * 1e-3), "nodes/s", "",
                   std::to_string(base) + " ms per frame"});

@@ -375,3 +375,24 @@ TEST_CASE("animorphosis: a part with no partner grows out of the partner of its 
   glm::vec3 into = head->b.vec3Param("center").evaluate(0.0);
   CHECK(glm::distance(into, glm::vec3(0.225f, 0.15f, 0.0f)) < 1e-5f);
 }
+
+TEST_CASE("animorphosis: a snapshot updated in place while scrubbing equals a fresh one", "[animorph]") {
+  GenericTree c = walkerToFlyer();
+  AnimorphosisTiming timing;
+  timing.startSec = 1.0;
+  timing.endSec = 2.0;
+  timing.target = {0.0, 1.5, 0.5};
+  BlobTree kept;
+  // Forwards and backwards across t0 and t1, so bridged nodes change kind (blend, hyper-blend, union).
+  for (double t : {0.5, 1.0, 1.2, 1.5, 1.99, 2.0, 2.4, 1.7, 1.1, 0.2, 1.6}) {
+    updateGenericSnapshot(c, timing, t, kept);
+    BlobTree fresh = instantiateGeneric(c, timing, t);
+    INFO("t = " << t);
+    CHECK(kept == fresh);
+  }
+  const BlobNode* tail = nullptr;
+  for (const auto& ch : kept.root.children)
+    if (ch.name == "tail") tail = &ch;
+  REQUIRE(tail != nullptr);
+  CHECK(tail->type == NodeType::HyperBlend);  // kept was last updated at t = 1.6, inside the interval
+}

@@ -18,6 +18,11 @@ float nodeS(const GenericTree& c, const GenericNode& n, const AnimorphosisTiming
 // C at timeline time t as a BlobTree of constant tracks (ids 1..n in pre-order).
 BlobTree instantiateGeneric(const GenericTree& c, const AnimorphosisTiming& timing, double timeSec);
 
+// The same, written into `snapshot` (a previous result for the same C, or an
+// empty tree), reusing its memory: scrubbing allocates nothing once every
+// node has been seen at its current kind.
+void updateGenericSnapshot(const GenericTree& c, const AnimorphosisTiming& timing, double timeSec, BlobTree& snapshot);
+
 // compileFieldProgram of that snapshot.
 FieldProgram compileGeneric(const GenericTree& c, const AnimorphosisTiming& timing, double timeSec,
                             const CompileOptions& options = {});

@@ -39,29 +39,58 @@ std::vector<glm::vec3> pointsAt(const ControlPoints& pts, double t, size_t count
 
 }  // namespace
 
-ParamValue constantParam(const ParamValue& p, double t) {
-  if (auto* f = std::get_if<FloatTrack>(&p)) return FloatTrack(f->evaluate(t));
-  if (auto* v = std::get_if<Vec3Track>(&p)) return Vec3Track(v->evaluate(t));
-  if (auto* q = std::get_if<QuatTrack>(&p)) return QuatTrack(q->evaluate(t));
-  ControlPoints out;
-  for (const auto& pt : std::get<ControlPoints>(p)) out.push_back(Vec3Track(pt.evaluate(t)));
-  return out;
+namespace {
+
+template <class T>
+void setOne(ParamValue& slot, const T& v) {
+  if (auto* tr = std::get_if<Track<T>>(&slot); tr && tr->keys().size() == 1 && !tr->driven()) {
+    TrackKey<T>& k = tr->keys()[0];
+    k.timeSec = 0.0;
+    k.value = v;
+    return;
+  }
+  slot = Track<T>(v);
 }
 
-ParamValue blendParam(const ParamValue& a, const ParamValue& b, double tA, double tB, float s) {
+void setPoints(ParamValue& slot, const std::vector<glm::vec3>& pts) {
+  auto* list = std::get_if<ControlPoints>(&slot);
+  if (!list) {
+    slot = ControlPoints{};
+    list = std::get_if<ControlPoints>(&slot);
+  }
+  list->resize(pts.size());
+  for (size_t k = 0; k < pts.size(); ++k) {
+    auto& tr = (*list)[k];
+    if (tr.keys().size() == 1 && !tr.driven()) tr.keys()[0] = TrackKey<glm::vec3>{0.0, pts[k]};
+    else tr = Vec3Track(pts[k]);
+  }
+}
+
+}  // namespace
+
+void writeConstantFloat(ParamValue& slot, float v) { setOne(slot, v); }
+
+void writeConstantParam(ParamValue& slot, const ParamValue& p, double t) {
+  if (auto* f = std::get_if<FloatTrack>(&p)) return setOne(slot, f->evaluate(t));
+  if (auto* v = std::get_if<Vec3Track>(&p)) return setOne(slot, v->evaluate(t));
+  if (auto* q = std::get_if<QuatTrack>(&p)) return setOne(slot, q->evaluate(t));
+  const auto& list = std::get<ControlPoints>(p);
+  setPoints(slot, pointsAt(list, t, list.size()));
+}
+
+void writeBlendedParam(ParamValue& slot, const ParamValue& a, const ParamValue& b, double tA, double tB, float s) {
   if (auto* f = std::get_if<FloatTrack>(&a))
-    return FloatTrack((1.0f - s) * f->evaluate(tA) + s * std::get<FloatTrack>(b).evaluate(tB));
+    return setOne(slot, (1.0f - s) * f->evaluate(tA) + s * std::get<FloatTrack>(b).evaluate(tB));
   if (auto* v = std::get_if<Vec3Track>(&a))
-    return Vec3Track((1.0f - s) * v->evaluate(tA) + s * std::get<Vec3Track>(b).evaluate(tB));
+    return setOne(slot, (1.0f - s) * v->evaluate(tA) + s * std::get<Vec3Track>(b).evaluate(tB));
   if (auto* q = std::get_if<QuatTrack>(&a))
-    return QuatTrack(glm::normalize(glm::slerp(q->evaluate(tA), std::get<QuatTrack>(b).evaluate(tB), s)));
+    return setOne(slot, glm::normalize(glm::slerp(q->evaluate(tA), std::get<QuatTrack>(b).evaluate(tB), s)));
   const auto& pa = std::get<ControlPoints>(a);
   const auto& pb = std::get<ControlPoints>(b);
   size_t n = std::max(pa.size(), pb.size());
   std::vector<glm::vec3> va = pointsAt(pa, tA, n), vb = pointsAt(pb, tB, n);
-  ControlPoints out;
-  for (size_t k = 0; k < n; ++k) out.push_back(Vec3Track((1.0f - s) * va[k] + s * vb[k]));
-  return out;
+  for (size_t k = 0; k < n; ++k) va[k] = (1.0f - s) * va[k] + s * vb[k];
+  setPoints(slot, va);
 }
 
 }  // namespace animorph

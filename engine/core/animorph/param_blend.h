@@ -23,9 +23,12 @@ struct ResampleWeight {
 };
 std::vector<ResampleWeight> resampleWeights(size_t from, size_t to);
 
-// The parameter's value at t as a one-key track.
-ParamValue constantParam(const ParamValue& p, double timeSec);
-// The blended parameter as a one-key track; a and b hold the same kind.
-ParamValue blendParam(const ParamValue& a, const ParamValue& b, double tA, double tB, float s);
+// Writes the parameter's value at t into `slot` as a one-key track, reusing
+// the slot's memory when it already holds a one-key track of that kind.
+void writeConstantParam(ParamValue& slot, const ParamValue& p, double timeSec);
+// The same for the blended parameter; a and b hold the same kind.
+void writeBlendedParam(ParamValue& slot, const ParamValue& a, const ParamValue& b, double tA, double tB, float s);
+// A one-key float track in `slot` holding v (memory reused as above).
+void writeConstantFloat(ParamValue& slot, float v);
 
 }  // namespace animorph
