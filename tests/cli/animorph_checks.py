@@ -64,6 +64,23 @@ def main():
         if r.returncode != 0 or not os.path.getsize(mesh):
             fail(f"polygonize of the baked tree: {r.returncode} {r.stderr}")
 
+        # polygonize --animorphosis: C(t) of the project; before the interval it is the source.
+        before, during = os.path.join(tmp, "before.obj"), os.path.join(tmp, "during.obj")
+        source_mesh = os.path.join(tmp, "source.obj")
+        for t, out in (("0.25", before), ("1.0", during)):
+            r = run(cli, "polygonize", project, "--animorphosis", "--time", t, "--res", "32", "-o", out)
+            if r.returncode != 0 or "animorphosis" not in r.stdout:
+                fail(f"polygonize --animorphosis at {t}: {r.returncode} {r.stdout} {r.stderr}")
+        r = run(cli, "polygonize", creature, "--time", "0.25", "--res", "32", "-o", source_mesh)
+        if r.returncode != 0:
+            fail(f"polygonize of the source: {r.stderr}")
+        with open(before) as a, open(source_mesh) as b:
+            if [l for l in a if l.startswith("v ")] != [l for l in b if l.startswith("v ")]:
+                fail("before the interval the animorphosis is not the source")
+        r = run(cli, "polygonize", creature, "--animorphosis", "--res", "32", "-o", before)
+        if r.returncode != 2 or "project" not in r.stderr:
+            fail(f"--animorphosis on a scene file: {r.returncode} {r.stderr}")
+
         # Errors name the file and the reason.
         r = run(cli, "correspond", os.path.join(resources, "blob_demo.animorph"))
         if r.returncode == 0 or "blob_demo.animorph" not in r.stderr or "animorphosis" not in r.stderr:
