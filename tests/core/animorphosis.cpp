@@ -192,6 +192,20 @@ TEST_CASE("animorphosis: s = 0 gives C(t) = A(t) and s = 1 gives C(t) = B(t), bo
   REQUIRE(wing != nullptr);
   CHECK(wing->sCurve == 0);
   CHECK(nodeS(c, *wing, timing, 2.5) > nodeS(c, c.root, timing, 2.5) + 0.1f);
+  // The override drives the wing's whole sub-tree ...
+  REQUIRE_FALSE(wing->children.empty());
+  for (const auto& ch : wing->children) CHECK(ch.sCurve == 0);
+  // ... unless a deeper link carries its own.
+  CorrespondenceGraph g = walkerToFlyerGraph();
+  g.links[4].sOverride = hermiteRampTrack(0.0f, 2.0f);  // chest -> left membrane
+  auto deeper = buildGenericTree(a, b, g);
+  REQUIRE(deeper.ok());
+  CHECK(deeper->sCurves.size() == 2);
+  for (const auto& ch : deeper->root.children)
+    if (ch.sourceB == 105) {
+      CHECK(ch.sCurve == 0);
+      for (const auto& gc : ch.children) CHECK(gc.sCurve == 1);
+    }
 }
 
 TEST_CASE("animorphosis: a blend bridged to a union is a hyper-blend in between", "[animorph]") {
