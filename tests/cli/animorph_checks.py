@@ -81,6 +81,20 @@ def main():
         if r.returncode != 2 or "project" not in r.stderr:
             fail(f"--animorphosis on a scene file: {r.returncode} {r.stderr}")
 
+        # bake: the animorphosis frame by frame, the same for any --jobs.
+        outs = []
+        for jobs in ("1", "2"):
+            out = os.path.join(tmp, "frames" + jobs)
+            r = run(cli, "bake", project, "--frames", "10:14", "--res", "24", "-o", out, "--jobs", jobs)
+            if r.returncode != 0 or "baked the animorphosis" not in r.stdout:
+                fail(f"bake --jobs {jobs}: {r.returncode} {r.stdout} {r.stderr}")
+            outs.append(out)
+        for f in range(10, 15):
+            name = f"frame_{f:04d}.ply"
+            with open(os.path.join(outs[0], name), "rb") as a, open(os.path.join(outs[1], name), "rb") as b:
+                if a.read() != b.read():
+                    fail(f"bake {name} differs between --jobs 1 and 2")
+
         # Errors name the file and the reason.
         r = run(cli, "correspond", os.path.join(resources, "blob_demo.animorph"))
         if r.returncode == 0 or "blob_demo.animorph" not in r.stderr or "animorphosis" not in r.stderr:
