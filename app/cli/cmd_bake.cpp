@@ -7,10 +7,14 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <mutex>
 #include <thread>
 
+#include "animorph/evaluate_generic.h"
 #include "cli/cli_command.h"
+#include "doc/animorphosis_project.h"
+#include "poly/polygonizer.h"
 #include "scene/mesh_character.h"
 #include "doc/project_io.h"
 #include "morph/morph_runtime.h"
@@ -58,6 +62,27 @@ class ProgressBar {
   int done_ = 0;
   std::mutex mutex_;
 };
+
+// Runs frame(k) for k = 0..count-1 on up to `jobs` threads under a progress bar; frame returns an
+// error message, or "" on success. Returns the error of the first failing frame, naming it.
+std::string bakeFrames(int first, int count, int jobs, const std::function<std::string(int)>& frame) {
+  std::vector<std::string> errors(static_cast<size_t>(count));
+  std::atomic<int> next{0};
+  ProgressBar bar("baking", count);
+  auto worker = [&] {
+    for (int k = next.fetch_add(1); k < count; k = next.fetch_add(1)) {
+      errors[size_t(k)] = frame(k);
+      bar.step();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int j = 1; j < std::min(jobs, count); ++j) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+  for (int k = 0; k < count; ++k)
+    if (!errors[size_t(k)].empty()) return "frame " + std::to_string(first + k) + ": " + errors[size_t(k)];
+  return {};
+}
 
 #if ANIMORPH_HAS_GPU
 int renderPngs(const std::vector<TriangleMesh>& meshes, int first, const fs::path& dir, const ViewOptions& view) {
@@ -115,6 +140,47 @@ int renderPngs(const std::vector<TriangleMesh>& meshes, int first, const fs::pat
 }
 #endif
 
+// A project whose only transformation is an animorphosis: C(t) polygonised frame by frame (CPU), in
+// the trees' own space; with --png, rendered like the morph's frames.
+int bakeAnimorphosis(const Project& p, const std::string& project, const std::string& output, int first, int last,
+                     int res, int jobs, bool png) {
+  auto c = projectGenericTree(p);
+  if (!c) return cli::fail("bake", project + ": " + c.error());
+  const AnimorphosisTiming timing = animorphosisTiming(p);
+  std::error_code ec;
+  fs::create_directories(output, ec);
+  if (ec) return cli::fail("bake", output + ": cannot create directory: " + ec.message());
+  const auto t0 = std::chrono::steady_clock::now();
+  const int count = last - first + 1;
+  std::vector<TriangleMesh> kept(png ? static_cast<size_t>(count) : 0u);
+  std::atomic<size_t> triangles{0};
+  std::string error = bakeFrames(first, count, jobs, [&](int k) -> std::string {
+    const int f = first + k;
+    PolygonizeSettings ps;
+    ps.resolution = res;
+    ps.threads = jobs > 1 ? 1 : 0;
+    auto r = polygonize(compileGeneric(*c, timing, p.timeline.frameToSec(f)), ps);
+    if (!r) return r.error();
+    triangles += r->mesh.triangleCount();
+    if (Status st = writePly(r->mesh, frameName(output, f, "ply")); !st) return st.error();
+    if (png) kept[size_t(k)] = std::move(r->mesh);
+    return {};
+  });
+  if (!error.empty()) return cli::fail("bake", error);
+  const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("baked the animorphosis %s -> %s, frames %d..%d (%zu nodes, %zu triangles in all) at %d^3 into %s in %.2f s\n",
+              p.animorphosis.sourceActorId.c_str(), p.animorphosis.targetActorId.c_str(), first, last, c->size(),
+              size_t(triangles), res, output.c_str(), sec);
+#if ANIMORPH_HAS_GPU
+  if (png) {
+    int code = renderPngs(kept, first, output, p.view);
+    if (code != 0) return code;
+    std::printf("rendered %d PNG frames into %s\n", count, output.c_str());
+  }
+#endif
+  return 0;
+}
+
 int runBake(const std::vector<std::string>& args) {
   std::string project, output, frames;
   int res = 48, jobs = 1;
@@ -156,6 +222,10 @@ int runBake(const std::vector<std::string>& args) {
 
   auto p = loadProject(project);
   if (!p) return cli::fail("bake", p.error());
+  if (!p->morph.enabled() && p->animorphosis.enabled()) {
+    if (gpu) return cli::fail("bake", "--gpu: an animorphosis is baked on the CPU (run without --gpu)", 2);
+    return bakeAnimorphosis(*p, project, output, first, last, res, jobs, png);
+  }
   const std::string baseDir = fs::absolute(fs::path(project)).parent_path().string();
   AssetCache assets;
   auto rt = prepareMorph(*p, baseDir, assets);
@@ -218,42 +288,32 @@ int runBake(const std::vector<std::string>& args) {
   const auto t0 = std::chrono::steady_clock::now();
   const int count = last - first + 1;
   std::vector<TriangleMesh> kept(png ? static_cast<size_t>(count) : 0u);
-  std::vector<std::string> errors(static_cast<size_t>(count));
   std::vector<int> stageCount(5, 0);
   std::mutex stageMutex;
-  std::atomic<int> next{0};
-  ProgressBar bar("baking", count);
-  auto worker = [&] {
-    for (int k = next.fetch_add(1); k < count; k = next.fetch_add(1)) {
-      const int f = first + k;
-      MorphFrameSettings fs;
-      fs.resolution = res;
-      fs.threads = jobs > 1 ? 1 : 0;
-      const double timeSec = p->timeline.frameToSec(f);
-      double u = 0.0;
-      const bool onGpu = gpu && morphStageAt((*rt)->setup, (*rt)->timeline, timeSec, u) == MorphStage::Morph;
+  std::string error = bakeFrames(first, count, jobs, [&](int k) -> std::string {
+    const int f = first + k;
+    MorphFrameSettings fs;
+    fs.resolution = res;
+    fs.threads = jobs > 1 ? 1 : 0;
+    const double timeSec = p->timeline.frameToSec(f);
+    double u = 0.0;
+    const bool onGpu = gpu && morphStageAt((*rt)->setup, (*rt)->timeline, timeSec, u) == MorphStage::Morph;
 #if ANIMORPH_HAS_GPU
-      auto fr = onGpu ? gpuMorphFrame(timeSec) : evaluateMorphFrame(**rt, timeSec, fs);
+    auto fr = onGpu ? gpuMorphFrame(timeSec) : evaluateMorphFrame(**rt, timeSec, fs);
 #else
-      (void)onGpu;
-      auto fr = evaluateMorphFrame(**rt, timeSec, fs);
+    (void)onGpu;
+    auto fr = evaluateMorphFrame(**rt, timeSec, fs);
 #endif
-      if (!fr) { errors[size_t(k)] = fr.error(); bar.step(); continue; }
-      if (Status st = writePly(fr->mesh, frameName(output, f, "ply")); !st) errors[size_t(k)] = st.error();
-      {
-        std::lock_guard<std::mutex> lock(stageMutex);
-        ++stageCount[size_t(fr->stage)];
-      }
-      if (png) kept[size_t(k)] = std::move(fr->mesh);
-      bar.step();
+    if (!fr) return fr.error();
+    {
+      std::lock_guard<std::mutex> lock(stageMutex);
+      ++stageCount[size_t(fr->stage)];
     }
-  };
-  std::vector<std::thread> pool;
-  for (int j = 1; j < std::min(jobs, count); ++j) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
-  for (int k = 0; k < count; ++k)
-    if (!errors[size_t(k)].empty()) return cli::fail("bake", "frame " + std::to_string(first + k) + ": " + errors[size_t(k)]);
+    Status st = writePly(fr->mesh, frameName(output, f, "ply"));
+    if (png) kept[size_t(k)] = std::move(fr->mesh);
+    return st ? std::string() : st.error();
+  });
+  if (!error.empty()) return cli::fail("bake", error);
   const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("baked frames %d..%d (%d source, %d collapse, %d morph, %d expand, %d target) at %d^3 into %s in %.2f s\n",
               first, last, stageCount[0], stageCount[1], stageCount[2], stageCount[3], stageCount[4], res,
@@ -280,7 +340,9 @@ ANIMORPH_CLI_COMMAND("bake", "bake a project's morph into meshes (and PNG frames
                      "  Writes DIR/frame_NNNN.ply (binary PLY, world space) for every frame A..B:\n"
                      "  the source's skinned mesh before marker A, its collapse onto the stand-in\n"
                      "  A->B, the polygonised implicit morph B->C (N cells along the longest side),\n"
-                     "  the target's expansion C->D and its skinned mesh after D.\n"
+                     "  the target's expansion C->D and its skinned mesh after D. A project whose only\n"
+                     "  transformation is an animorphosis of two BlobTrees bakes its C(t) instead\n"
+                     "  (CPU, in the trees' own space).\n"
                      "  --png      also DIR/frame_NNNN.png, rendered offscreen (Vulkan; set\n"
                      "             ANIMORPH_VALIDATION=1 for validation layers)\n"
                      "  --gpu      the B->C stage on the Vulkan compute polygoniser (offscreen, no\n"

@@ -6,9 +6,11 @@
 #include <iostream>
 #include <thread>
 
+#include "animorph/evaluate_generic.h"
 #include "blobtree/blob_tree_json.h"
 #include "blobtree/compile.h"
 #include "cli/cli_command.h"
+#include "doc/animorphosis_project.h"
 #include "doc/project_io.h"
 #include "scene/scene_frame.h"
 #include "poly/mesh_io.h"
@@ -44,7 +46,7 @@ int polygonizeCommand(const std::vector<std::string>& args) {
   const char* me = "polygonize";
   std::string scene, output, actorId;
   double timeSec = 0.0, res = 128, threads = 0;
-  bool cull = true, gpu = false;
+  bool cull = true, gpu = false, animorphosis = false;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     auto value = [&](double& v) {
@@ -62,6 +64,8 @@ int polygonizeCommand(const std::vector<std::string>& args) {
     } else if (a == "--actor") {
       if (i + 1 >= args.size()) return fail(me, "--actor needs an actor id", 2);
       actorId = args[++i];
+    } else if (a == "--animorphosis") {
+      animorphosis = true;
     } else if (a == "--no-cull") {
       cull = false;
     } else if (a == "--gpu") {
@@ -97,7 +101,16 @@ int polygonizeCommand(const std::vector<std::string>& args) {
   if (isProject)
     for (const auto& a : project->actors)
       if (a.kind == animorph::ActorKind::BlobTree) blobs.push_back(&a);
-  if (isProject && (!actorId.empty() || !blobs.empty())) {
+  if (animorphosis) {
+    // The project's animorphosis C(t): source before its interval, target after it, in the trees' space.
+    if (!isProject) return fail(me, "--animorphosis applies to .animorph projects only", 2);
+    if (!actorId.empty()) return fail(me, "--animorphosis and --actor exclude each other", 2);
+    auto c = animorph::projectGenericTree(*project);
+    if (!c) return fail(me, scene + ": " + c.error());
+    tree = animorph::instantiateGeneric(*c, animorph::animorphosisTiming(*project), timeSec);
+    treeTimeSec = 0.0;
+    what = scene + " animorphosis";
+  } else if (isProject && (!actorId.empty() || !blobs.empty())) {
     const animorph::Actor* actor = nullptr;
     if (!actorId.empty()) {
       actor = project->findActor(actorId);
@@ -173,10 +186,13 @@ int polygonizeCommand(const std::vector<std::string>& args) {
 }  // namespace
 
 ANIMORPH_CLI_COMMAND("polygonize", "polygonise a BlobTree scene at a time into a mesh (CPU, or GPU with --gpu)",
-                     "usage: animorph-cli polygonize SCENE --time T --res N [--actor ID] [--gpu] [--no-cull] [--threads N] -o MESH\n"
+                     "usage: animorph-cli polygonize SCENE --time T --res N [--actor ID | --animorphosis] [--gpu] [--no-cull]\n"
+                     "                              [--threads N] -o MESH\n"
                      "  SCENE   a BlobTree scene JSON, or a .animorph project: its BlobTree actor (--actor ID\n"
                      "          when it has several) at scene time T, in world space (the actor's offset,\n"
                      "          speed, loop and transform applied), or its top-level \"blobtree\" key\n"
+                     "  --animorphosis  the project's animorphosis at scene time T (source before its\n"
+                     "          interval, target after it), in the trees' own space\n"
                      "  --time  seconds (default 0)\n"
                      "  --res   cells along the longest side of the bounds (default 128)\n"
                      "  --no-cull  evaluate every grid corner with every primitive (same mesh, slower)\n"

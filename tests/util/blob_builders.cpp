@@ -30,6 +30,15 @@ BlobNode convSegmentNode(int id, glm::vec3 a, glm::vec3 b, float radius, float s
   return n;
 }
 
+BlobNode triangleNode(int id, glm::vec3 a, glm::vec3 b, glm::vec3 c, float radius) {
+  BlobNode n = makeBlobNode(NodeType::Triangle, id);
+  n.vec3Param("a") = Vec3Track(a);
+  n.vec3Param("b") = Vec3Track(b);
+  n.vec3Param("c") = Vec3Track(c);
+  n.floatParam("radius") = FloatTrack(radius);
+  return n;
+}
+
 BlobNode circleNode(int id, glm::vec3 center, glm::vec3 normal, float circleRadius, float radius) {
   BlobNode n = makeBlobNode(NodeType::Circle, id);
   n.vec3Param("center") = Vec3Track(center);

@@ -9,6 +9,7 @@ namespace animorph::test {
 BlobNode pointNode(int id, glm::vec3 center, float radius, float intensity = 1.0f, float stiffness = 3.0f);
 BlobNode segmentNode(int id, glm::vec3 a, glm::vec3 b, float radius);
 BlobNode convSegmentNode(int id, glm::vec3 a, glm::vec3 b, float radius, float sharpness = 10.0f);
+BlobNode triangleNode(int id, glm::vec3 a, glm::vec3 b, glm::vec3 c, float radius);
 BlobNode circleNode(int id, glm::vec3 center, glm::vec3 normal, float circleRadius, float radius);
 BlobNode operatorNode(NodeType type, int id, std::vector<BlobNode> children);
 BlobTree treeOf(BlobNode root, float threshold = 0.5f);

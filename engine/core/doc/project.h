@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "blobtree/blob_tree.h"
+#include "doc/animorphosis_setup.h"
 #include "doc/morph_setup.h"
 #include "math/transform.h"
 
@@ -60,6 +61,7 @@ struct Project {
   Timeline timeline;
   ViewOptions view;
   MorphSetup morph;  // the source -> target morph; disabled when morph.sourceActorId is empty
+  AnimorphosisSetup animorphosis;  // BlobTree -> BlobTree animorphosis; disabled when its source is empty
   bool operator==(const Project&) const = default;
 
   Actor* findActor(const std::string& id);

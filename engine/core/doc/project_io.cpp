@@ -4,6 +4,8 @@
 #include <nlohmann/json.hpp>
 
 #include "blobtree/blob_tree_json.h"
+#include "doc/animorphosis_project.h"
+#include "doc/animorphosis_setup_json.h"
 #include "doc/atomic_file.h"
 #include "doc/morph_setup_json.h"
 
@@ -121,6 +123,18 @@ std::string projectToJson(const Project& p) {
     std::erase_if(m.actors, [&](const ActorMorph& a) { return !p.findActor(a.actorId); });
     j["morph"] = morphSetupToJson(m);
   }
+  // Likewise the animorphosis, while both of its BlobTree actors exist, with the links an edit of
+  // their trees left valid.
+  if (p.animorphosis.enabled()) {
+    const Actor* source = p.findActor(p.animorphosis.sourceActorId);
+    const Actor* target = p.findActor(p.animorphosis.targetActorId);
+    if (source && target && source != target && source->kind == ActorKind::BlobTree &&
+        target->kind == ActorKind::BlobTree) {
+      AnimorphosisSetup a = p.animorphosis;
+      a.graph = stillValidLinks(p);
+      j["animorphosis"] = animorphosisSetupToJson(a);
+    }
+  }
   return j.dump(2) + "\n";
 }
 
@@ -216,6 +230,12 @@ Result<Project> projectFromJson(const std::string& text, const std::string& sour
     auto morph = morphSetupFromJson(j["morph"], sourceName, ids);
     if (!morph) return Error{morph.error()};
     p.morph = std::move(*morph);
+  }
+  if (j.contains("animorphosis")) {
+    auto a = animorphosisSetupFromJson(j["animorphosis"], sourceName);
+    if (!a) return Error{a.error()};
+    p.animorphosis = std::move(*a);
+    if (Status s = checkAnimorphosis(p); !s) return Error{sourceName + ": " + s.error()};
   }
   return p;
 }

@@ -1,0 +1,72 @@
+#include "animorph/evaluate_generic.h"
+
+#include "animorph/param_blend.h"
+
+namespace animorph {
+
+float nodeS(const GenericTree& c, const GenericNode& n, const AnimorphosisTiming& timing, double timeSec) {
+  const FloatTrack& s = n.sCurve >= 0 ? c.sCurves[size_t(n.sCurve)] : timing.globalS;
+  return evaluateS(s, timing.u(timeSec));
+}
+
+namespace {
+
+struct Writer {
+  const GenericTree& c;
+  const AnimorphosisTiming& timing;
+  double t, tA, tB;
+  int nextId = 1;
+
+  void node(const GenericNode& g, BlobNode& n) {
+    float s = nodeS(c, g, timing, t);
+    bool bridged = g.a.type != g.b.type;
+    const BlobNode& named = s >= 1.0f ? g.b : g.a;
+    NodeType type = s <= 0.0f ? g.a.type : s >= 1.0f ? g.b.type : bridged ? NodeType::HyperBlend : g.a.type;
+    size_t params = nodeTypeInfo(type).params.size();
+    if (n.type != type || n.params.size() != params) {
+      n.type = type;
+      n.params.assign(params, ParamValue{});
+    }
+    if (n.name != named.name) n.name = named.name;
+    if (s <= 0.0f || s >= 1.0f) {
+      const BlobNode& src = s <= 0.0f ? g.a : g.b;
+      double ts = s <= 0.0f ? tA : tB;
+      for (size_t i = 0; i < params; ++i) writeConstantParam(n.params[i], src.params[i], ts);
+    } else if (bridged) {
+      writeConstantFloat(n.params[0], (1.0f - s) * bridgeQ(g.a, tA) + s * bridgeQ(g.b, tB));
+    } else {
+      for (size_t i = 0; i < params; ++i) writeBlendedParam(n.params[i], g.a.params[i], g.b.params[i], tA, tB, s);
+    }
+    n.id = nextId++;
+    if (n.children.size() != g.children.size()) n.children.resize(g.children.size());
+    for (size_t k = 0; k < g.children.size(); ++k) node(g.children[k], n.children[k]);
+  }
+};
+
+}  // namespace
+
+void updateGenericSnapshot(const GenericTree& c, const AnimorphosisTiming& timing, double timeSec, BlobTree& snapshot) {
+  double tA = timing.source.localTime(timeSec), tB = timing.target.localTime(timeSec);
+  float s = evaluateS(timing.globalS, timing.u(timeSec));
+  float threshold = s <= 0.0f   ? c.thresholdA.evaluate(tA)
+                    : s >= 1.0f ? c.thresholdB.evaluate(tB)
+                                : (1.0f - s) * c.thresholdA.evaluate(tA) + s * c.thresholdB.evaluate(tB);
+  if (snapshot.threshold.keys().size() == 1 && !snapshot.threshold.driven()) snapshot.threshold.keys()[0] = {0.0, threshold};
+  else snapshot.threshold = FloatTrack(threshold);
+  Writer w{c, timing, timeSec, tA, tB};
+  w.node(c.root, snapshot.root);
+}
+
+BlobTree instantiateGeneric(const GenericTree& c, const AnimorphosisTiming& timing, double timeSec) {
+  BlobTree tree;
+  tree.root.params.clear();
+  updateGenericSnapshot(c, timing, timeSec, tree);
+  return tree;
+}
+
+FieldProgram compileGeneric(const GenericTree& c, const AnimorphosisTiming& timing, double timeSec,
+                            const CompileOptions& options) {
+  return compileFieldProgram(instantiateGeneric(c, timing, timeSec), 0.0, options);
+}
+
+}  // namespace animorph

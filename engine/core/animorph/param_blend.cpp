@@ -1,0 +1,96 @@
+#include "animorph/param_blend.h"
+
+#include <algorithm>
+
+namespace animorph {
+
+float bridgeQ(const BlobNode& n, double timeSec) {
+  if (n.type == NodeType::HyperBlend) return std::max(1.0f, n.floatParam("q").evaluate(timeSec));
+  return n.type == NodeType::Union ? kUnionQ : 1.0f;
+}
+
+float bridgeQSlope(const BlobNode& n, double timeSec) {
+  return n.type == NodeType::HyperBlend ? n.floatParam("q").derivative(timeSec) : 0.0f;
+}
+
+std::vector<ResampleWeight> resampleWeights(size_t from, size_t to) {
+  std::vector<ResampleWeight> w(to);
+  for (size_t k = 0; k < to; ++k) {
+    if (from <= 1 || to <= 1 || from == to) {
+      w[k] = {std::min(k, from - 1), std::min(k, from - 1), 0.0f};
+      continue;
+    }
+    double x = double(k) * double(from - 1) / double(to - 1);
+    size_t i0 = std::min(size_t(x), from - 2);
+    w[k] = {i0, i0 + 1, float(x - double(i0))};
+  }
+  return w;
+}
+
+namespace {
+
+std::vector<glm::vec3> pointsAt(const ControlPoints& pts, double t, size_t count) {
+  std::vector<glm::vec3> r;
+  r.reserve(count);
+  for (const ResampleWeight& w : resampleWeights(pts.size(), count))
+    r.push_back(pts[w.i0].evaluate(t) * (1.0f - w.w) + pts[w.i1].evaluate(t) * w.w);
+  return r;
+}
+
+}  // namespace
+
+namespace {
+
+template <class T>
+void setOne(ParamValue& slot, const T& v) {
+  if (auto* tr = std::get_if<Track<T>>(&slot); tr && tr->keys().size() == 1 && !tr->driven()) {
+    TrackKey<T>& k = tr->keys()[0];
+    k.timeSec = 0.0;
+    k.value = v;
+    return;
+  }
+  slot = Track<T>(v);
+}
+
+void setPoints(ParamValue& slot, const std::vector<glm::vec3>& pts) {
+  auto* list = std::get_if<ControlPoints>(&slot);
+  if (!list) {
+    slot = ControlPoints{};
+    list = std::get_if<ControlPoints>(&slot);
+  }
+  list->resize(pts.size());
+  for (size_t k = 0; k < pts.size(); ++k) {
+    auto& tr = (*list)[k];
+    if (tr.keys().size() == 1 && !tr.driven()) tr.keys()[0] = TrackKey<glm::vec3>{0.0, pts[k]};
+    else tr = Vec3Track(pts[k]);
+  }
+}
+
+}  // namespace
+
+void writeConstantFloat(ParamValue& slot, float v) { setOne(slot, v); }
+
+void writeConstantParam(ParamValue& slot, const ParamValue& p, double t) {
+  if (auto* f = std::get_if<FloatTrack>(&p)) return setOne(slot, f->evaluate(t));
+  if (auto* v = std::get_if<Vec3Track>(&p)) return setOne(slot, v->evaluate(t));
+  if (auto* q = std::get_if<QuatTrack>(&p)) return setOne(slot, q->evaluate(t));
+  const auto& list = std::get<ControlPoints>(p);
+  setPoints(slot, pointsAt(list, t, list.size()));
+}
+
+void writeBlendedParam(ParamValue& slot, const ParamValue& a, const ParamValue& b, double tA, double tB, float s) {
+  if (auto* f = std::get_if<FloatTrack>(&a))
+    return setOne(slot, (1.0f - s) * f->evaluate(tA) + s * std::get<FloatTrack>(b).evaluate(tB));
+  if (auto* v = std::get_if<Vec3Track>(&a))
+    return setOne(slot, (1.0f - s) * v->evaluate(tA) + s * std::get<Vec3Track>(b).evaluate(tB));
+  if (auto* q = std::get_if<QuatTrack>(&a))
+    return setOne(slot, glm::normalize(glm::slerp(q->evaluate(tA), std::get<QuatTrack>(b).evaluate(tB), s)));
+  const auto& pa = std::get<ControlPoints>(a);
+  const auto& pb = std::get<ControlPoints>(b);
+  size_t n = std::max(pa.size(), pb.size());
+  std::vector<glm::vec3> va = pointsAt(pa, tA, n), vb = pointsAt(pb, tB, n);
+  for (size_t k = 0; k < n; ++k) va[k] = (1.0f - s) * va[k] + s * vb[k];
+  setPoints(slot, va);
+}
+
+}  // namespace animorph

@@ -1,0 +1,117 @@
+#include "doc/animorphosis_commands.h"
+
+#include "animorph/tree_index.h"
+#include "doc/animorphosis_project.h"
+
+namespace animorph {
+
+namespace {
+
+AnimorphosisSetup* setupOf(Project& p) { return &p.animorphosis; }
+
+// Checks `after` in a copy of the project; the command, or the reason.
+Result<std::unique_ptr<Command>> checked(const Project& p, AnimorphosisSetup after, std::string label,
+                                         std::string mergeKey = {}) {
+  Project trial = p;
+  trial.animorphosis = after;
+  if (Status s = checkAnimorphosis(trial); !s) return Error{s.error()};
+  return setAnimorphosisCommand(p, std::move(after), std::move(label), std::move(mergeKey));
+}
+
+std::string linkLabel(const Project& p, int nodeA, int nodeB) {
+  auto name = [&](const std::string& actor, int id) {
+    const Actor* a = p.findActor(actor);
+    const BlobNode* n = a ? a->blobTree.find(id) : nullptr;
+    return n ? nameOfNode(*n) : "node " + std::to_string(id);
+  };
+  return name(p.animorphosis.sourceActorId, nodeA) + " -> " + name(p.animorphosis.targetActorId, nodeB);
+}
+
+}  // namespace
+
+std::unique_ptr<Command> setAnimorphosisCommand(const Project& p, AnimorphosisSetup after, std::string label,
+                                                std::string mergeKey) {
+  return std::make_unique<SetValueCommand<AnimorphosisSetup>>(std::move(label), setupOf, p.animorphosis,
+                                                              std::move(after), std::move(mergeKey));
+}
+
+Result<std::unique_ptr<Command>> createAnimorphosisCommand(const Project& p, const std::string& sourceActorId,
+                                                           const std::string& targetActorId, double startSec,
+                                                           double endSec, bool autoMap) {
+  AnimorphosisSetup a;
+  a.sourceActorId = sourceActorId;
+  a.targetActorId = targetActorId;
+  a.startSec = startSec;
+  a.endSec = endSec;
+  Project trial = p;
+  trial.animorphosis = a;
+  if (Status s = checkAnimorphosis(trial); !s) return Error{s.error()};
+  if (autoMap) {
+    AutoCorrespondSettings st;
+    AnimorphosisTiming t = animorphosisTiming(trial);
+    st.timeSecA = t.source.localTime(startSec);
+    st.timeSecB = t.target.localTime(startSec);
+    auto g = autoCorrespond(p.findActor(sourceActorId)->blobTree, p.findActor(targetActorId)->blobTree, {}, st);
+    if (!g) return Error{"animorphosis: " + g.error()};
+    a.graph = std::move(*g);
+  }
+  return checked(p, std::move(a), "Create animorphosis " + sourceActorId + " -> " + targetActorId);
+}
+
+Result<std::unique_ptr<Command>> addCorrespondenceLinkCommand(const Project& p, int nodeA, int nodeB) {
+  AnimorphosisSetup a = p.animorphosis;
+  int i = a.graph.find(nodeA, nodeB);
+  if (i >= 0) {
+    if (a.graph.links[size_t(i)].artist) return Error{"animorphosis: link " + linkLabel(p, nodeA, nodeB) + " exists"};
+    a.graph.links[size_t(i)].artist = true;
+    a.graph.links[size_t(i)].confidence = 1.0f;
+  } else {
+    a.graph.links.push_back({nodeA, nodeB, {}, 1.0f, true});
+  }
+  return checked(p, std::move(a), "Link " + linkLabel(p, nodeA, nodeB));
+}
+
+Result<std::unique_ptr<Command>> removeCorrespondenceLinkCommand(const Project& p, int nodeA, int nodeB) {
+  AnimorphosisSetup a = p.animorphosis;
+  int i = a.graph.find(nodeA, nodeB);
+  if (i < 0) return Error{"animorphosis: there is no link " + linkLabel(p, nodeA, nodeB)};
+  a.graph.links.erase(a.graph.links.begin() + i);
+  return checked(p, std::move(a), "Cut link " + linkLabel(p, nodeA, nodeB));
+}
+
+Result<std::unique_ptr<Command>> setLinkSOverrideCommand(const Project& p, int nodeA, int nodeB,
+                                                         std::optional<FloatTrack> s, std::string mergeKey) {
+  AnimorphosisSetup a = p.animorphosis;
+  int i = a.graph.find(nodeA, nodeB);
+  if (i < 0) return Error{"animorphosis: there is no link " + linkLabel(p, nodeA, nodeB)};
+  a.graph.links[size_t(i)].sOverride = std::move(s);
+  return checked(p, std::move(a), "s(t) of link " + linkLabel(p, nodeA, nodeB), std::move(mergeKey));
+}
+
+Result<std::unique_ptr<Command>> setGlobalSCommand(const Project& p, FloatTrack s, std::string mergeKey) {
+  AnimorphosisSetup a = p.animorphosis;
+  a.globalS = std::move(s);
+  return checked(p, std::move(a), "Animorphosis s(t)", std::move(mergeKey));
+}
+
+Result<std::unique_ptr<Command>> setAnimorphosisIntervalCommand(const Project& p, double startSec, double endSec,
+                                                                std::string mergeKey) {
+  AnimorphosisSetup a = p.animorphosis;
+  a.startSec = startSec;
+  a.endSec = endSec;
+  return checked(p, std::move(a), "Animorphosis interval", std::move(mergeKey));
+}
+
+Result<std::unique_ptr<Command>> autoMapCommand(const Project& p, const AutoCorrespondSettings& settings,
+                                                AutoCorrespondReport* report) {
+  if (Status s = checkAnimorphosis(p); !s) return Error{s.error()};
+  const AnimorphosisSetup& m = p.animorphosis;
+  auto g = autoCorrespond(p.findActor(m.sourceActorId)->blobTree, p.findActor(m.targetActorId)->blobTree, m.graph,
+                          settings, report);
+  if (!g) return Error{"animorphosis: " + g.error()};
+  AnimorphosisSetup a = m;
+  a.graph = std::move(*g);
+  return checked(p, std::move(a), "Auto-map correspondence");
+}
+
+}  // namespace animorph

@@ -1,0 +1,167 @@
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+
+#include "animorph/bake_keys.h"
+#include "animorph/evaluate_generic.h"
+#include "doc/animorphosis_commands.h"
+#include "doc/animorphosis_project.h"
+#include "doc/blobtree_commands.h"
+#include "doc/document.h"
+#include "doc/project_io.h"
+#include "blobtree/validate.h"
+#include "util/animorph_fixtures.h"
+#include "util/temp_dir.h"
+
+using namespace animorph;
+using namespace animorph::test;
+using Catch::Matchers::Contains;
+
+namespace {
+
+// A document with the walker and the flyer as BlobTree actors "walker" and "flyer".
+std::unique_ptr<Document> creaturesDocument() {
+  Project p;
+  Actor w = makeBlobTreeActor(p, "walker");
+  w.blobTree = walkerTree();
+  p.actors.push_back(w);
+  Actor f = makeBlobTreeActor(p, "flyer");
+  f.blobTree = flyerTree();
+  f.timeOffsetSec = 0.5;
+  p.actors.push_back(f);
+  auto d = std::make_unique<Document>();
+  d->reset(p, "");
+  return d;
+}
+
+void exec(Document& d, Result<std::unique_ptr<Command>> c) {
+  INFO(c.error());
+  REQUIRE(c.ok());
+  d.execute(std::move(*c));
+}
+
+}  // namespace
+
+TEST_CASE("animorphosis: created, edited and undone through document commands", "[animorph]") {
+  auto doc = creaturesDocument();
+  REQUIRE(doc->project().findActor("walker"));
+  REQUIRE(doc->project().findActor("flyer"));
+
+  auto refused = createAnimorphosisCommand(doc->project(), "walker", "nobody", 1.0, 3.0, true);
+  REQUIRE_FALSE(refused.ok());
+  CHECK_THAT(refused.error(), Contains("'nobody'"));
+  CHECK_FALSE(createAnimorphosisCommand(doc->project(), "walker", "flyer", 3.0, 1.0, true).ok());
+
+  exec(*doc, createAnimorphosisCommand(doc->project(), "walker", "flyer", 1.0, 3.0, true));
+  const AnimorphosisSetup& a = doc->project().animorphosis;
+  CHECK(a.enabled());
+  size_t autoLinks = a.graph.links.size();
+  CHECK(autoLinks >= 5);
+  CHECK(std::none_of(a.graph.links.begin(), a.graph.links.end(), [](const auto& l) { return l.artist; }));
+
+  // An artist link, then a crossing one, refused naming both nodes.
+  exec(*doc, addCorrespondenceLinkCommand(doc->project(), 12, 105));  // head -> left wing
+  CHECK(doc->project().animorphosis.graph.find(12, 105) >= 0);
+  auto crossing = addCorrespondenceLinkCommand(doc->project(), 6, 103);  // a thigh -> the belly, inside the body
+  REQUIRE_FALSE(crossing.ok());
+  CHECK_THAT(crossing.error(), Contains("'thighL' (id 6)") && Contains("'belly' (id 103)"));
+
+  auto headLink = [&]() -> const CorrespondenceLink& {
+    const auto& gr = doc->project().animorphosis.graph;
+    return gr.links[size_t(gr.find(12, 105))];
+  };
+  exec(*doc, setLinkSOverrideCommand(doc->project(), 12, 105, hermiteRampTrack(0.0f, 2.0f)));
+  CHECK(headLink().sOverride.has_value());
+  CHECK_FALSE(setGlobalSCommand(doc->project(), FloatTrack(0.5f)).ok());  // not an s curve
+  exec(*doc, setAnimorphosisIntervalCommand(doc->project(), 0.5, 2.5));
+
+  // Auto-map again keeps the artist link.
+  AutoCorrespondReport report;
+  exec(*doc, autoMapCommand(doc->project(), {}, &report));
+  CHECK(report.artistKept == 1);
+  const auto& g = doc->project().animorphosis.graph;
+  REQUIRE(g.find(12, 105) >= 0);
+  CHECK(g.links[size_t(g.find(12, 105))].artist);
+  CHECK(g.links[size_t(g.find(12, 105))].sOverride.has_value());
+
+  // Undo walks back through every step.
+  REQUIRE(doc->undo());  // auto-map
+  REQUIRE(doc->undo());  // interval
+  CHECK(doc->project().animorphosis.startSec == 1.0);
+  REQUIRE(doc->undo());  // s override
+  CHECK_FALSE(headLink().sOverride.has_value());
+  REQUIRE(doc->undo());  // artist link
+  CHECK(doc->project().animorphosis.graph.find(12, 105) < 0);
+  CHECK(doc->project().animorphosis.graph.links.size() == autoLinks);
+  REQUIRE(doc->undo());  // creation
+  CHECK_FALSE(doc->project().animorphosis.enabled());
+  REQUIRE(doc->redo());
+  CHECK(doc->project().animorphosis.graph.links.size() == autoLinks);
+}
+
+TEST_CASE("animorphosis: saved in the project file and read back; bad sections are refused by name", "[animorph]") {
+  auto doc = creaturesDocument();
+  exec(*doc, createAnimorphosisCommand(doc->project(), "walker", "flyer", 1.0, 3.0, true));
+  exec(*doc, addCorrespondenceLinkCommand(doc->project(), 12, 105));
+  exec(*doc, setLinkSOverrideCommand(doc->project(), 12, 105, hermiteRampTrack(2.0f, 0.0f)));
+  TempDir dir;
+  std::string path = dir.file("morph.animorph");
+  REQUIRE(saveProject(doc->project(), path).ok());
+  auto back = loadProject(path);
+  INFO(back.error());
+  REQUIRE(back.ok());
+  CHECK(back->animorphosis == doc->project().animorphosis);
+
+  // The project's generic tree, at the actors' clip times: C is A before t0 and B after t1.
+  auto c = projectGenericTree(*back);
+  INFO(c.error());
+  REQUIRE(c.ok());
+  AnimorphosisTiming t = animorphosisTiming(*back);
+  CHECK(t.target.offsetSec == 0.5);
+  BlobTree before = instantiateGeneric(*c, t, 0.5);
+  CHECK(before.root.subtreeSize() == c->size());
+
+  // A node deleted from a tree drops its links on save instead of making the file unreadable.
+  exec(*doc, deleteBlobNodeCommand(doc->project(), "walker", 12));
+  REQUIRE(saveProject(doc->project(), path).ok());
+  auto pruned = loadProject(path);
+  INFO(pruned.error());
+  REQUIRE(pruned.ok());
+  const auto& drawn = doc->project().animorphosis.graph.links;
+  size_t untouched = size_t(std::count_if(drawn.begin(), drawn.end(), [](const auto& l) { return l.nodeA != 12; }));
+  CHECK(untouched < drawn.size());
+  CHECK(pruned->animorphosis.graph.links.size() == untouched);
+
+  std::string text = projectToJson(*back);
+  auto broken = [&](const std::string& from, const std::string& to) {
+    std::string t2 = text;
+    size_t at = t2.find(from);
+    REQUIRE(at != std::string::npos);
+    t2.replace(at, from.size(), to);
+    auto r = projectFromJson(t2, "morph.animorph");
+    REQUIRE_FALSE(r.ok());
+    return r.error();
+  };
+  CHECK_THAT(broken("\"end\": 3.0", "\"end\": 0.5"), Contains("morph.animorph") && Contains("animorphosis.end"));
+  CHECK_THAT(broken("\"target\": \"flyer\"", "\"target\": \"ghost\""), Contains("'ghost'"));
+  CHECK_THAT(broken("\"b\": 105", "\"b\": 4242"), Contains("morph.animorph") && Contains("4242"));
+}
+
+TEST_CASE("animorphosis: the project's animorphosis bakes to a key-frame BlobTree actor", "[animorph]") {
+  auto doc = creaturesDocument();
+  exec(*doc, createAnimorphosisCommand(doc->project(), "walker", "flyer", 1.0, 3.0, true));
+  auto c = projectGenericTree(doc->project());
+  REQUIRE(c.ok());
+  BakedAnimorphosis baked = bakeKeyframes(*c, animorphosisTiming(doc->project()));
+  REQUIRE(validateBlobTree(baked.tree).ok());
+  CHECK(baked.report.parameters > 50);
+  CHECK(baked.report.keys > baked.report.parameters);
+  Project p = doc->project();
+  Actor morph = makeBlobTreeActor(p, "walker to flyer");
+  morph.blobTree = baked.tree;
+  p.actors.push_back(morph);
+  auto back = projectFromJson(projectToJson(p), "baked.animorph");
+  INFO(back.error());
+  REQUIRE(back.ok());
+  CHECK(back->findActor(morph.id)->blobTree == baked.tree);
+}
