@@ -4,6 +4,8 @@
 #include <cstring>
 #include <nlohmann/json.hpp>
 
+#include "util/json_text.h"
+
 namespace animorph {
 namespace {
 
@@ -23,34 +25,28 @@ const char* kindOf(const json& j) {
   }
 }
 
-enum class Kind { Index, Number, String, Object, Array, NumberArray, IndexArray, ObjectArray };
+// Index: an index into a glTF array or an enum (tinygltf keeps them in an int).
+// Size: a byte offset, length, stride or element count (a glTF file and its
+// buffers are below 4 GiB, so nothing larger can be backed by data).
+enum class Kind { Index, Size, Number, String, Object, Array, NumberArray, IndexArray, ObjectArray };
 
-bool matches(const json& j, Kind k) {
+constexpr long long kMaxIndex = 2147483647LL;
+constexpr long long kMaxSize = 4294967295LL;
+
+// The kind each element of an array kind must have.
+Kind elementKind(Kind k) {
   switch (k) {
-    case Kind::Index: return j.is_number_unsigned() || (j.is_number_integer() && j.get<long long>() >= 0);
-    case Kind::Number: return j.is_number();
-    case Kind::String: return j.is_string();
-    case Kind::Object: return j.is_object();
-    case Kind::Array: return j.is_array();
-    case Kind::NumberArray:
-      if (!j.is_array()) return false;
-      for (const auto& e : j) if (!e.is_number()) return false;
-      return true;
-    case Kind::IndexArray:
-      if (!j.is_array()) return false;
-      for (const auto& e : j) if (!matches(e, Kind::Index)) return false;
-      return true;
-    case Kind::ObjectArray:
-      if (!j.is_array()) return false;
-      for (const auto& e : j) if (!e.is_object()) return false;
-      return true;
+    case Kind::NumberArray: return Kind::Number;
+    case Kind::IndexArray: return Kind::Index;
+    case Kind::ObjectArray: return Kind::Object;
+    default: return k;
   }
-  return false;
 }
 
 const char* expected(Kind k) {
   switch (k) {
     case Kind::Index: return "a non-negative integer index";
+    case Kind::Size: return "a non-negative integer";
     case Kind::Number: return "a number";
     case Kind::String: return "a string";
     case Kind::Object: return "an object";
@@ -62,6 +58,34 @@ const char* expected(Kind k) {
   return "";
 }
 
+// Empty when j has kind k; otherwise "PATH: expected ..., found ..." naming
+// the offending element of an array ("nodes[2].children[1]: ...").
+std::string mismatch(const json& j, Kind k, const std::string& path) {
+  switch (k) {
+    case Kind::Index:
+    case Kind::Size: {
+      if (!j.is_number_integer()) return path + ": expected " + expected(k) + ", found " + kindOf(j);
+      if (!j.is_number_unsigned() && j.get<long long>() < 0)
+        return path + ": expected " + expected(k) + ", found " + std::to_string(j.get<long long>());
+      std::string why;
+      if (!jsonInteger(j, 0, k == Kind::Index ? kMaxIndex : kMaxSize, why)) return path + ": " + why;
+      return {};
+    }
+    case Kind::Number: return j.is_number() ? "" : path + ": expected a number, found " + kindOf(j);
+    case Kind::String: return j.is_string() ? "" : path + ": expected a string, found " + kindOf(j);
+    case Kind::Object: return j.is_object() ? "" : path + ": expected an object, found " + kindOf(j);
+    case Kind::Array: return j.is_array() ? "" : path + ": expected an array, found " + kindOf(j);
+    case Kind::NumberArray:
+    case Kind::IndexArray:
+    case Kind::ObjectArray:
+      if (!j.is_array()) return path + ": expected " + expected(k) + ", found " + kindOf(j);
+      for (size_t i = 0; i < j.size(); ++i)
+        if (std::string m = mismatch(j[i], elementKind(k), path + "[" + std::to_string(i) + "]"); !m.empty()) return m;
+      return {};
+  }
+  return {};
+}
+
 class Checker {
  public:
   Checker(std::string file, std::vector<std::string>& warnings) : file_(std::move(file)), warnings_(warnings) {}
@@ -69,9 +93,8 @@ class Checker {
   // Checks j[key] (if present) has kind k; severe problems become the error.
   void prop(const json& j, const char* key, const std::string& where, Kind k, bool severe) {
     if (!j.is_object() || !j.contains(key)) return;
-    const json& v = j[key];
-    if (matches(v, k)) return;
-    std::string msg = where + (where.empty() ? "" : ".") + key + ": expected " + expected(k) + ", found " + kindOf(v);
+    const std::string msg = mismatch(j[key], k, where + (where.empty() ? "" : ".") + key);
+    if (msg.empty()) return;
     if (severe) {
       if (error_.empty()) error_ = file_ + ": " + msg;
     } else {
@@ -99,7 +122,7 @@ void checkTextureInfo(Checker& c, const json& mat, const char* key, const std::s
   c.prop(t, "extensions", w, Kind::Object, false);
   if (t.contains("extensions") && t["extensions"].is_object())
     for (const auto& [name, ext] : t["extensions"].items())
-      if (!ext.is_object()) c.prop(t["extensions"], name.c_str(), w + ".extensions", Kind::Object, false);
+      c.prop(t["extensions"], name.c_str(), w + ".extensions", Kind::Object, false);
 }
 
 void checkModel(Checker& c, const json& root) {
@@ -136,18 +159,32 @@ void checkModel(Checker& c, const json& root) {
       c.prop(prim, "material", pw, Kind::Index, false);
       if (prim.contains("attributes") && prim["attributes"].is_object())
         for (const auto& [name, acc] : prim["attributes"].items())
-          if (!matches(acc, Kind::Index)) c.prop(prim["attributes"], name.c_str(), pw + ".attributes", Kind::Index, true);
+          c.prop(prim["attributes"], name.c_str(), pw + ".attributes", Kind::Index, true);
     }
   });
   each("accessors", [&](const json& a, const std::string& w) {
-    for (const char* k : {"bufferView", "byteOffset", "componentType", "count"}) c.prop(a, k, w, Kind::Index, true);
+    for (const char* k : {"bufferView", "componentType"}) c.prop(a, k, w, Kind::Index, true);
+    for (const char* k : {"byteOffset", "count"}) c.prop(a, k, w, Kind::Size, true);
     c.prop(a, "type", w, Kind::String, true);
+    c.prop(a, "sparse", w, Kind::Object, true);
+    if (!a.contains("sparse") || !a["sparse"].is_object()) return;
+    const json& sp = a["sparse"];
+    const std::string sw = w + ".sparse";
+    c.prop(sp, "count", sw, Kind::Size, true);
+    for (const char* part : {"indices", "values"}) {
+      c.prop(sp, part, sw, Kind::Object, true);
+      if (!sp.contains(part) || !sp[part].is_object()) continue;
+      const std::string pw = sw + "." + part;
+      for (const char* k : {"bufferView", "componentType"}) c.prop(sp[part], k, pw, Kind::Index, true);
+      c.prop(sp[part], "byteOffset", pw, Kind::Size, true);
+    }
   });
   each("bufferViews", [&](const json& b, const std::string& w) {
-    for (const char* k : {"buffer", "byteOffset", "byteLength", "byteStride"}) c.prop(b, k, w, Kind::Index, true);
+    c.prop(b, "buffer", w, Kind::Index, true);
+    for (const char* k : {"byteOffset", "byteLength", "byteStride"}) c.prop(b, k, w, Kind::Size, true);
   });
   each("buffers", [&](const json& b, const std::string& w) {
-    c.prop(b, "byteLength", w, Kind::Index, true);
+    c.prop(b, "byteLength", w, Kind::Size, true);
     c.prop(b, "uri", w, Kind::String, true);
   });
   each("skins", [&](const json& s, const std::string& w) {
@@ -157,6 +194,19 @@ void checkModel(Checker& c, const json& root) {
   each("animations", [&](const json& a, const std::string& w) {
     c.prop(a, "channels", w, Kind::ObjectArray, true);
     c.prop(a, "samplers", w, Kind::ObjectArray, true);
+    if (c.failed()) return;
+    if (a.contains("channels"))
+      for (size_t k = 0; k < a["channels"].size(); ++k) {
+        const json& ch = a["channels"][k];
+        const std::string cw = w + ".channels[" + std::to_string(k) + "]";
+        c.prop(ch, "sampler", cw, Kind::Index, true);
+        c.prop(ch, "target", cw, Kind::Object, true);
+        if (ch.contains("target") && ch["target"].is_object()) c.prop(ch["target"], "node", cw + ".target", Kind::Index, true);
+      }
+    if (a.contains("samplers"))
+      for (size_t k = 0; k < a["samplers"].size(); ++k)
+        for (const char* key : {"input", "output"})
+          c.prop(a["samplers"][k], key, w + ".samplers[" + std::to_string(k) + "]", Kind::Index, true);
   });
   each("materials", [&](const json& m, const std::string& w) {
     c.prop(m, "pbrMetallicRoughness", w, Kind::Object, false);
@@ -189,8 +239,9 @@ Status checkGltfSchema(const std::string& bytes, const std::string& fileName, st
   } else {
     text = bytes;
   }
-  json root = json::parse(text, nullptr, false);
-  if (root.is_discarded()) return Error{fileName + ": not valid JSON"};
+  auto parsed = parseJsonText(text, fileName);
+  if (!parsed) return Error{parsed.error()};
+  const json& root = *parsed;
   if (!root.is_object()) return Error{fileName + ": top level: expected an object, found " + kindOf(root)};
   Checker c(fileName, warnings);
   checkModel(c, root);
