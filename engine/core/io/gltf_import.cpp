@@ -11,6 +11,8 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <map>
+#include <memory>
 #include <set>
 #include <sstream>
 
@@ -32,6 +34,7 @@ struct FsGuard {
   std::string rejectedUri;
   std::string rejectReason;
   std::string missingUri;
+  std::string unreadable;  // readFile's error for the first external file that could not be read
 };
 
 bool isInside(const fs::path& p, const fs::path& dir) {
@@ -76,7 +79,16 @@ bool guardedReadWholeFile(std::vector<unsigned char>* out, std::string* err, con
     if (err) *err = "not readable";
     return false;
   }
-  return tinygltf::ReadWholeFile(out, err, path, nullptr);
+  // Regular files under the size cap only, read without blocking.
+  auto bytes = readFile(path);
+  if (!bytes) {
+    auto* g = static_cast<FsGuard*>(user);
+    if (g->unreadable.empty()) g->unreadable = bytes.error();
+    if (err) *err = bytes.error();
+    return false;
+  }
+  out->assign(bytes->begin(), bytes->end());
+  return true;
 }
 
 bool refuseWrite(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
@@ -93,10 +105,25 @@ bool skipImageDecode(tinygltf::Image*, const int, std::string*, std::string*, in
 // ---------------------------------------------------------------------------
 // Import context and error helpers.
 
+template <class T>
+using DecodedCache = std::map<int, std::shared_ptr<const std::vector<T>>>;
+
 struct Ctx {
-  std::string file;  // file name for messages
+  const std::string& file;  // the path as given, for messages
   const tinygltf::Model& m;
   ImportReport& report;
+  size_t budget = 0;            // bytes all decoded accessors together may take
+  mutable size_t spent = 0;      // bytes decoded (or copied from the cache) so far
+  std::vector<int> uses{};       // how many times each accessor is referenced
+  // Accessors referenced more than once, decoded once (as floats or integers).
+  mutable DecodedCache<float> floats{};
+  mutable DecodedCache<uint32_t> uints{};
+
+  template <class T>
+  DecodedCache<T>& cache() const {
+    if constexpr (std::is_same_v<T, float>) return floats;
+    else return uints;
+  }
 };
 
 Error err(const Ctx& c, const std::string& element, const std::string& reason) {
@@ -268,14 +295,27 @@ Result<size_t> readAccessor(const Ctx& c, int index, const AccessorSpec& spec, s
   const size_t count = a.count;
   // Bounds are checked before anything is allocated, so a huge count in a
   // small file cannot exhaust memory; accessors without a bufferView (all
-  // zeros, possibly sparse) are capped instead.
+  // zeros, possibly sparse) are held to the decoding budget, as is all else.
   Span span;
   if (a.bufferView >= 0) {
     auto checked = viewRange(c, name, a.bufferView, a.byteOffset, count, elemSize, true);
     if (!checked) return Error{checked.error()};
     span = *checked;
-  } else if (count > (size_t(1) << 26)) {
-    return err(c, name, "count " + std::to_string(count) + " is too large for an accessor without a bufferView");
+  }
+  // count <= 2^32 (schema check) and comps <= 16, so this cannot overflow.
+  const size_t bytes = a.count * static_cast<size_t>(comps) * sizeof(T);
+  if (bytes > c.budget - c.spent)
+    return err(c, name, std::to_string(a.count) + " elements" + (a.bufferView < 0 ? " without a bufferView" : "") +
+                            " would decode to " + std::to_string(bytes) + " bytes, more than the " +
+                            std::to_string(c.budget - c.spent) + " left of this file's decoding budget (" +
+                            std::to_string(kGltfDecodeFactor) + " x the input's " +
+                            std::to_string((c.budget - kGltfDecodeAllowance) / kGltfDecodeFactor) + " bytes + " +
+                            std::to_string(kGltfDecodeAllowance >> 20) + " MiB)");
+  c.spent += bytes;
+  auto& cache = c.cache<T>();
+  if (auto hit = cache.find(index); hit != cache.end()) {
+    out = *hit->second;
+    return a.count;
   }
   out.assign(count * comps, T(0));
   if (span.data) {
@@ -310,6 +350,7 @@ Result<size_t> readAccessor(const Ctx& c, int index, const AccessorSpec& spec, s
             static_cast<T>(readComponent(val->data + i * elemSize + k * cs, a.componentType, a.normalized));
     }
   }
+  if (c.uses[index] > 1) cache.emplace(index, std::make_shared<const std::vector<T>>(out));
   return count;
 }
 
@@ -803,6 +844,28 @@ void listUnsupportedFeatures(const Ctx& c) {
   }
 }
 
+// References to each accessor (from primitives, skins and animation
+// channels); an accessor referenced more than once is decoded once.
+std::vector<int> countAccessorUses(const tinygltf::Model& m) {
+  std::vector<int> uses(m.accessors.size(), 0);
+  auto use = [&](int i) {
+    if (i >= 0 && i < static_cast<int>(uses.size())) ++uses[i];
+  };
+  for (const auto& mesh : m.meshes)
+    for (const auto& prim : mesh.primitives) {
+      use(prim.indices);
+      for (const auto& [name, acc] : prim.attributes) use(acc);
+    }
+  for (const auto& skin : m.skins) use(skin.inverseBindMatrices);
+  for (const auto& anim : m.animations)
+    for (const auto& ch : anim.channels)
+      if (ch.sampler >= 0 && ch.sampler < static_cast<int>(anim.samplers.size())) {
+        use(anim.samplers[ch.sampler].input);
+        use(anim.samplers[ch.sampler].output);
+      }
+  return uses;
+}
+
 void dedupe(std::vector<std::string>& v) {
   std::set<std::string> seen;
   std::vector<std::string> out;
@@ -821,7 +884,7 @@ std::vector<std::string> splitLines(const std::string& s) {
 }
 
 Result<Character> importImpl(const std::string& path) {
-  const std::string file = fs::path(path).filename().string();
+  const std::string& file = path;  // messages name the path as given
   auto bytes = readFile(path);
   if (!bytes) return Error{bytes.error()};
   std::error_code ec;
@@ -852,6 +915,7 @@ Result<Character> importImpl(const std::string& path) {
     return Error{file + ": uri '" + guard.rejectedUri + "': " + guard.rejectReason};
   if (!ok) {
     if (!guard.missingUri.empty()) return Error{file + ": uri '" + guard.missingUri + "': file not found"};
+    if (!guard.unreadable.empty()) return Error{file + ": " + guard.unreadable};
     auto lines = splitLines(terr);
     std::string reason = lines.empty() ? "not a valid glTF file" : lines.front();
     for (size_t i = 1; i < lines.size() && i < 3; ++i) reason += "; " + lines[i];
@@ -860,7 +924,11 @@ Result<Character> importImpl(const std::string& path) {
 
   Character ch;
   ch.sourcePath = path;
+  size_t inputBytes = data.size();
+  for (const auto& b : model.buffers) inputBytes += b.data.size();
   Ctx c{file, model, ch.report};
+  c.budget = kGltfDecodeFactor * inputBytes + kGltfDecodeAllowance;
+  c.uses = countAccessorUses(model);
   ch.report.warnings = std::move(schemaWarnings);
   for (auto& w : splitLines(twarn)) ch.report.warnings.push_back(w);
   if (!guard.missingUri.empty()) ch.report.warnings.push_back("uri '" + guard.missingUri + "': file not found");
@@ -892,9 +960,9 @@ Result<Character> importGltf(const std::string& path) {
     if (r) r->report.importMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return r;
   } catch (const std::exception& e) {
-    return Error{fs::path(path).filename().string() + ": cannot be read: " + e.what()};
+    return Error{path + ": cannot be read: " + e.what()};
   } catch (...) {
-    return Error{fs::path(path).filename().string() + ": cannot be read: unknown failure"};
+    return Error{path + ": cannot be read: unknown failure"};
   }
 }
 
