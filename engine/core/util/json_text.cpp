@@ -24,14 +24,17 @@ std::string pointerSegment(const Level& l) {
   return s;
 }
 
-// JSON pointer of the innermost level, shortened in the middle when long.
+// JSON pointer of the innermost value, shortened in the middle when long.
+// An object just opened has no key yet: the pointer ends at the object.
 std::string pointerOf(const std::vector<Level>& levels) {
   constexpr size_t kHead = 8, kTail = 3;
+  size_t n = levels.size();
+  if (n > 0 && !levels.back().array && levels.back().key.empty()) --n;
   std::string out;
-  for (size_t i = 0; i < levels.size(); ++i) {
-    if (levels.size() > kHead + kTail && i == kHead) {
+  for (size_t i = 0; i < n; ++i) {
+    if (n > kHead + kTail && i == kHead) {
       out += "/...";
-      i = levels.size() - kTail - 1;
+      i = n - kTail - 1;
       continue;
     }
     out += "/" + pointerSegment(levels[i]);
