@@ -417,3 +417,61 @@ TEST_CASE("deleting an actor the morph uses removes the morph in the same undoab
   CHECK(p == before);
   CHECK(deleteActorCommand(p, "nobody") == nullptr);
 }
+
+// ---------------------------------------------------------------------------
+// Parser errors name the element
+
+TEST_CASE("malformed glTF structure is named by element, not by tinygltf's raw text", "[reliability][gltf]") {
+  TempDir tmp;
+  const nlohmann::json base = {
+      {"asset", {{"version", "2.0"}}},
+      {"buffers", {{{"byteLength", 36}}}},
+      {"bufferViews", {{{"buffer", 0}, {"byteLength", 36}}}},
+      {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}}}},
+      {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}}}}}}},
+      {"nodes", {{{"mesh", 0}}}}};
+  auto u32 = [](uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+  // A GLB of `json` with a BIN chunk of binBytes (none when negative); `length` overrides the header's total.
+  auto glb = [&](const std::string& name, const nlohmann::json& j, int binBytes, long length = -1) {
+    std::string text = j.dump();
+    while (text.size() % 4) text += ' ';
+    std::string body = u32(static_cast<uint32_t>(text.size())) + "JSON" + text;
+    if (binBytes >= 0) body += u32(static_cast<uint32_t>(binBytes)) + std::string("BIN\0", 4) + std::string(binBytes, '\0');
+    const auto total = static_cast<uint32_t>(length >= 0 ? length : static_cast<long>(12 + body.size()));
+    writeText(tmp.file(name), "glTF" + u32(2) + u32(total) + body);
+    return outcome(importGltf(tmp.file(name)));
+  };
+  auto gltf = [&](const std::string& name, const nlohmann::json& j) {
+    writeText(tmp.file(name), j.dump());
+    return outcome(importGltf(tmp.file(name)));
+  };
+  REQUIRE(glb("ok.glb", base, 36) == "ok");
+  const std::string length = glb("length.glb", base, 36, 10);
+  CHECK_THAT(length, Catch::StartsWith(tmp.file("length.glb") + ": GLB JSON chunk: length "));
+  CHECK_THAT(length, Catch::EndsWith(" exceeds the declared length (10 bytes)"));
+  CHECK(glb("short.glb", base, 8) ==
+        tmp.file("short.glb") + ": buffers[0].byteLength: 36 is more than the GLB's BIN chunk (8 bytes)");
+  CHECK(glb("nobin.glb", base, -1) ==
+        tmp.file("nobin.glb") + ": buffers[0]: no uri, and only buffer 0 of a GLB can use its BIN chunk (this GLB has none)");
+  CHECK(gltf("nouri.gltf", base) ==
+        tmp.file("nouri.gltf") + ": buffers[0].uri: missing (a .gltf buffer needs a file name or a data: URI)");
+  nlohmann::json j = base;
+  j["buffers"][0]["uri"] = "data:application/octet-stream;base64,AAAA";
+  CHECK(gltf("data.gltf", j) == tmp.file("data.gltf") + ": buffers[0].uri: the data: URI holds 3 bytes but byteLength is 36");
+  j["buffers"][0]["uri"] = "data:application/octet-stream;base64," + std::string(48, 'A');
+  REQUIRE(gltf("fine.gltf", j) == "ok");
+  nlohmann::json k = j;
+  k["accessors"][0].erase("type");
+  CHECK(gltf("notype.gltf", k) == tmp.file("notype.gltf") + ": accessors[0].type: missing (required)");
+  k = j;
+  k["accessors"][0]["type"] = "VEC5";
+  CHECK(gltf("vec5.gltf", k) == tmp.file("vec5.gltf") + ": accessors[0].type: 'VEC5' is not SCALAR, VEC2, VEC3, VEC4, MAT2, MAT3 or MAT4");
+  k = j;
+  k["accessors"][0]["componentType"] = 5130;
+  CHECK(gltf("double.gltf", k) == tmp.file("double.gltf") + ": accessors[0].componentType: 5130 is not a glTF component type (5120..5126)");
+  k = j;
+  k["animations"] = {{{"channels", {{{"sampler", 0}, {"target", {{"path", "translation"}}}}}},
+                      {"samplers", {{{"input", 0}}}}}};
+  CHECK(gltf("anim.gltf", k) == tmp.file("anim.gltf") +
+                                   ": animations[0].channels[0].target.node: missing (channels that animate no node are not supported)");
+}
