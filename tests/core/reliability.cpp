@@ -475,3 +475,34 @@ TEST_CASE("malformed glTF structure is named by element, not by tinygltf's raw t
   CHECK(gltf("anim.gltf", k) == tmp.file("anim.gltf") +
                                    ": animations[0].channels[0].target.node: missing (channels that animate no node are not supported)");
 }
+
+TEST_CASE("accepted but wrong glTF content gives warnings", "[reliability][gltf]") {
+  TempDir tmp;
+  MiniGltf g;
+  int pos = g.addFloats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+  g.addMesh(pos, -1);
+  // A sheared node matrix, a node scaled to zero along x (its rotation is then undefined).
+  g.json()["nodes"] = {{{"mesh", 0}, {"matrix", {1, 0, 0, 0, 0.5, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}}},
+                       {{"matrix", {0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}}}};
+  int times = g.addFloats({-0.5f, 0.5f, 0.5f}, "SCALAR");
+  int values = g.addFloats({0, 0, 0, 1, 0, 0, 2, 0, 0}, "VEC3");
+  g.json()["animations"] = {{{"channels", {{{"sampler", 0}, {"target", {{"node", 1}, {"path", "translation"}}}}}},
+                             {"samplers", {{{"input", times}, {"output", values}}}}}};
+  // A skin whose second inverse bind matrix is singular.
+  int ibm = g.addFloats({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1,  //
+                         0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1},
+                        "MAT4");
+  g.json()["skins"] = {{{"joints", {0, 1}}, {"inverseBindMatrices", ibm}}};
+  auto c = importGltf(g.write(tmp.path().string(), "odd.gltf"));
+  REQUIRE(c.ok());
+  const auto& w = c->report.warnings;
+  auto has = [&](const std::string& s) { return std::find(w.begin(), w.end(), s) != w.end(); };
+  INFO(nlohmann::json(w).dump(1));
+  CHECK(has("node 0: matrix is not translation x rotation x scale (it has shear or a projection); the nearest such "
+            "transform is used"));
+  CHECK(std::none_of(w.begin(), w.end(), [](const std::string& s) { return s.rfind("node 1:", 0) == 0; }));
+  CHECK(c->nodes[1].rest.rotation == glm::quat(1, 0, 0, 0));
+  CHECK(has("accessor " + std::to_string(times) + ": key times start below zero (-0.500000 s)"));
+  CHECK(has("accessor " + std::to_string(times) + ": key time 0.500000 s repeats at key 2"));
+  CHECK(has("skin 0: inverse bind matrix 1 (joint node 1) is not invertible; vertices bound to this joint collapse"));
+}

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <glm/gtc/matrix_access.hpp>
 #include <map>
 #include <memory>
 #include <set>
@@ -597,7 +598,22 @@ Result<Transform> readNodeTransform(const Ctx& c, int i) {
   if (n.matrix.size() == 16) {
     glm::mat4 m;
     for (int k = 0; k < 16; ++k) m[k / 4][k % 4] = static_cast<float>(n.matrix[k]);
-    return decompose(m);
+    Transform d = decompose(m);
+    // A zero axis leaves the rotation undefined (NaN): that axis is hidden anyway.
+    if (!std::isfinite(d.rotation.w) || !std::isfinite(d.rotation.x) || !std::isfinite(d.rotation.y) ||
+        !std::isfinite(d.rotation.z))
+      d.rotation = glm::quat(1.0f, 0.0f, 0.0f, 0.0f);
+    const glm::mat4 back = d.matrix();
+    float largest = 1.0f, worst = 0.0f;
+    for (int k = 0; k < 16; ++k) {
+      largest = std::max(largest, std::abs(m[k / 4][k % 4]));
+      worst = std::max(worst, std::abs(back[k / 4][k % 4] - m[k / 4][k % 4]));
+    }
+    if (worst > 1e-3f * largest)
+      c.report.warnings.push_back(nodeLabel(c.m, i) +
+                                  ": matrix is not translation x rotation x scale (it has shear or a projection); "
+                                  "the nearest such transform is used");
+    return d;
   }
   if (!n.matrix.empty()) return err(c, nodeLabel(c.m, i), "matrix has " + std::to_string(n.matrix.size()) + " values");
   if (n.translation.size() == 3) t.translation = {n.translation[0], n.translation[1], n.translation[2]};
@@ -709,8 +725,17 @@ Status readSkins(const Ctx& c, Character& ch) {
         return err(c, accessorName(gs.inverseBindMatrices),
                    std::to_string(*k) + " inverse bind matrices for " + std::to_string(skin.joints.size()) + " joints");
       if (auto st = checkFinite(c, gs.inverseBindMatrices, mats, 16, "matrix"); !st) return st;
-      for (size_t j = 0; j < skin.joints.size(); ++j)
-        std::memcpy(&skin.inverseBindMatrices[j][0][0], &mats[j * 16], 16 * sizeof(float));
+      for (size_t j = 0; j < skin.joints.size(); ++j) {
+        glm::mat4& ibm = skin.inverseBindMatrices[j];
+        std::memcpy(&ibm[0][0], &mats[j * 16], 16 * sizeof(float));
+        const std::string which = label + ": inverse bind matrix " + std::to_string(j) + " (joint node " +
+                                  std::to_string(skin.joints[j]) + ")";
+        const glm::vec4 lastRow = glm::row(ibm, 3) - glm::vec4(0, 0, 0, 1);
+        if (std::max({std::abs(lastRow.x), std::abs(lastRow.y), std::abs(lastRow.z), std::abs(lastRow.w)}) > 1e-5f)
+          c.report.warnings.push_back(which + " is not affine (its last row is not 0 0 0 1)");
+        else if (std::abs(glm::determinant(glm::mat3(ibm))) < 1e-12f)
+          c.report.warnings.push_back(which + " is not invertible; vertices bound to this joint collapse");
+      }
     }
     ch.skins.push_back(std::move(skin));
   }
@@ -764,6 +789,16 @@ Status readAnimations(const Ctx& c, Character& ch) {
         if (i > 0 && out.timesSec[i] < out.timesSec[i - 1])
           return err(c, accessorName(gs.input), "key times decrease at key " + std::to_string(i));
       }
+      // Accepted, but not what glTF allows: said once per accessor.
+      if (out.timesSec.front() < 0.0f)
+        c.report.warnings.push_back(accessorName(gs.input) + ": key times start below zero (" +
+                                    std::to_string(out.timesSec.front()) + " s)");
+      for (size_t i = 1; i < out.timesSec.size(); ++i)
+        if (out.timesSec[i] == out.timesSec[i - 1]) {
+          c.report.warnings.push_back(accessorName(gs.input) + ": key time " + std::to_string(out.timesSec[i]) +
+                                      " s repeats at key " + std::to_string(i));
+          break;
+        }
       const bool rotation = out.path == ChannelPath::Rotation;
       std::vector<float> vals;
       auto nv = readAccessor(c, gs.output,
