@@ -19,6 +19,7 @@
 #include <thread>
 
 #include "blobtree/blob_tree_json.h"
+#include "blobtree/tree_edit.h"
 #include "doc/actor_removal.h"
 #include "doc/asset_cache.h"
 #include "doc/atomic_file.h"
@@ -131,6 +132,39 @@ TEST_CASE("a BlobTree deeper than the node limit names the first node too deep",
   CHECK_THAT(err, Catch::Contains("nested 65 nodes deep, more than the 64 allowed"));
   CHECK_THAT(outcome(projectFromJson(projectWithTree(100), "p.animorph")),
              Catch::Contains("p.animorph: actor 'blob': node 64"));
+}
+
+TEST_CASE("the editor cannot build a BlobTree deeper than a file may be", "[reliability][blobtree]") {
+  auto tree = parseBlobTreeScene(sceneText(kMaxBlobTreeDepth - 1), "s.json");  // frames 0..62, point 63 at level 64
+  REQUIRE(tree.ok());
+  int next = 1000;
+  // A chain frame -> frame -> frame -> frame -> point (5 nodes high).
+  auto chain = [&] {
+    BlobNode top = makeDefaultNode(NodeType::Frame, next);
+    BlobNode* at = &top;
+    for (int i = 0; i < 3; ++i) {
+      at->children.push_back(makeDefaultNode(NodeType::Frame, next));
+      at = &at->children.back();
+    }
+    at->children.push_back(makeDefaultNode(NodeType::Point, next));
+    return top;
+  };
+  // Under frame 62 (level 63) a single node fits; a frame with a child does not.
+  CHECK(addNode(*tree, 62, makeDefaultNode(NodeType::Point, next)).ok());
+  Status deeper = addNode(*tree, 62, chain());
+  REQUIRE_FALSE(deeper.ok());
+  CHECK_THAT(deeper.error(), Catch::Contains("the tree would be 68 nodes deep, more than the 64 allowed"));
+  // Moving a subtree where it would end too deep is refused too, and changes nothing.
+  BlobNode c = chain();
+  const int chainId = c.id;
+  REQUIRE(addNode(*tree, 0, std::move(c)).ok());
+  const std::string before = blobTreeSceneToString(*tree);
+  Status moved = reparentNode(*tree, chainId, 60);
+  REQUIRE_FALSE(moved.ok());
+  CHECK_THAT(moved.error(), Catch::Contains("cannot move"));
+  CHECK(blobTreeSceneToString(*tree) == before);
+  // Whatever the editor accepted loads again.
+  CHECK(outcome(parseBlobTreeScene(before, "again.json")) == "ok");
 }
 
 TEST_CASE("a glTF whose extras nest 15,000 arrays is refused before tinygltf parses it", "[reliability][gltf]") {
