@@ -256,6 +256,11 @@ TEST_CASE("glTF indices beyond 32 bits are errors, not wrapped indices", "[relia
   CHECK(outcome(importGltf(build("child.gltf", [](nlohmann::json& j) {
           j["nodes"][0]["children"] = {0, 4294967296ULL};
         }))) == tmp.file("child.gltf") + ": nodes[0].children[1]: 4294967296 is out of range (0..2147483647)");
+  CHECK(outcome(importGltf(build("sparse.gltf", [](nlohmann::json& j) {
+          j["accessors"][0]["sparse"] = {{"count", 4294967295ULL},
+                                         {"indices", {{"bufferView", 1}, {"componentType", 5123}}},
+                                         {"values", {{"bufferView", 0}}}};
+        }))) == tmp.file("sparse.gltf") + ": accessors[0].sparse.count: 4294967295 is out of range (0..2147483647)");
   // An array of the wrong elements names the element instead of contradicting itself.
   CHECK(outcome(importGltf(build("mats.gltf", [](nlohmann::json& j) { j["skins"] = {nlohmann::json::object(), 3}; }))) ==
         tmp.file("mats.gltf") + ": skins[1]: expected an object, found integer");

@@ -288,13 +288,13 @@ void checkModel(Checker& c, const json& root) {
     if (!a.contains("sparse") || !a["sparse"].is_object()) return;
     const json& sp = a["sparse"];
     const std::string sw = w + ".sparse";
-    c.prop(sp, "count", sw, Kind::Size, true);
+    // tinygltf keeps a sparse accessor's count and offsets in an int.
+    c.prop(sp, "count", sw, Kind::Index, true);
     for (const char* part : {"indices", "values"}) {
       c.prop(sp, part, sw, Kind::Object, true);
       if (!sp.contains(part) || !sp[part].is_object()) continue;
       const std::string pw = sw + "." + part;
-      for (const char* k : {"bufferView", "componentType"}) c.prop(sp[part], k, pw, Kind::Index, true);
-      c.prop(sp[part], "byteOffset", pw, Kind::Size, true);
+      for (const char* k : {"bufferView", "componentType", "byteOffset"}) c.prop(sp[part], k, pw, Kind::Index, true);
     }
   });
   each("bufferViews", [&](const json& b, const std::string& w) {
