@@ -17,23 +17,6 @@ std::unique_ptr<Command> addActorCommand(Actor actor) {
       });
 }
 
-std::unique_ptr<Command> deleteActorCommand(const Project& p, const std::string& actorId) {
-  auto it = std::find_if(p.actors.begin(), p.actors.end(), [&](const Actor& a) { return a.id == actorId; });
-  if (it == p.actors.end()) return nullptr;
-  Actor saved = *it;
-  size_t index = static_cast<size_t>(it - p.actors.begin());
-  return std::make_unique<LambdaCommand>(
-      "Delete " + saved.name,
-      [actorId](Project& proj) {
-        auto& v = proj.actors;
-        v.erase(std::remove_if(v.begin(), v.end(), [&](const Actor& a) { return a.id == actorId; }), v.end());
-      },
-      [saved, index](Project& proj) {
-        auto& v = proj.actors;
-        v.insert(v.begin() + static_cast<long>(std::min(index, v.size())), saved);
-      });
-}
-
 std::unique_ptr<Command> renameActorCommand(const Project& p, const std::string& actorId, const std::string& name) {
   const Actor* a = p.findActor(actorId);
   if (!a || name.empty() || a->name == name) return nullptr;

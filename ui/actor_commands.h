@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 
+#include "doc/actor_removal.h"  // deleteActorCommand
 #include "doc/command.h"
 
 namespace animorph {
@@ -11,10 +12,6 @@ namespace animorph {
 // Adds actor at the end of the list (its id must be unique: use
 // Project::uniqueActorId). Undo removes it again.
 std::unique_ptr<Command> addActorCommand(Actor actor);
-
-// Removes the actor with actorId; undo puts it back at the same index.
-// Returns null when no such actor exists.
-std::unique_ptr<Command> deleteActorCommand(const Project& p, const std::string& actorId);
 
 // Renames an actor (its display name; the id stays). Null when no such actor
 // exists or the name is unchanged or empty.

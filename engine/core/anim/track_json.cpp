@@ -3,6 +3,8 @@
 #include <cmath>
 #include <string>
 
+#include "util/json_text.h"
+
 namespace animorph {
 
 namespace {
@@ -101,7 +103,8 @@ Result<Track<T>> fromJsonImpl(const json& j, const std::string& where) {
   Track<T> track;
   track.clearKeys();
   if (j.contains("degree")) {
-    if (!j["degree"].is_number_integer() || (j["degree"].get<int>() != 2 && j["degree"].get<int>() != 3))
+    std::string why;
+    if (!jsonInteger(j["degree"], 2, 3, why))
       return Error{where + ": \"degree\" must be 2 (cubic) or 3 (quintic)"};
     track.setDegree(j["degree"].get<int>());
   }

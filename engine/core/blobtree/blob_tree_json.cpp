@@ -1,8 +1,11 @@
 #include "blobtree/blob_tree_json.h"
 
+#include <limits>
+
 #include "anim/track_json.h"
 #include "blobtree/validate.h"
 #include "doc/atomic_file.h"
+#include "util/json_text.h"
 
 namespace animorph {
 
@@ -38,12 +41,15 @@ json nodeToJson(const BlobNode& n) {
   return j;
 }
 
-// `path` locates nodes whose id is not known yet ("root.children[2]").
-Result<BlobNode> nodeFromJson(const json& j, const std::string& path) {
+// `path` locates nodes whose id is not known yet ("root.children[2]");
+// `depth` is the node's level (the root is 1).
+Result<BlobNode> nodeFromJson(const json& j, const std::string& path, int depth) {
   if (!j.is_object()) return Error{path + ": a node must be a JSON object"};
-  if (!j.contains("id") || !j["id"].is_number_integer())
-    return Error{path + ": node without an integer \"id\""};
-  int id = j["id"].get<int>();
+  if (!j.contains("id")) return Error{path + ": node without an integer \"id\""};
+  std::string why;
+  auto readId = jsonInteger(j["id"], std::numeric_limits<int>::min(), std::numeric_limits<int>::max(), why);
+  if (!readId) return Error{path + ": \"id\": " + why};
+  const int id = static_cast<int>(*readId);
   std::string who = "node " + std::to_string(id);
   if (!j.contains("type") || !j["type"].is_string()) return Error{who + ": missing \"type\""};
   std::string typeName = j["type"].get<std::string>();
@@ -56,7 +62,11 @@ Result<BlobNode> nodeFromJson(const json& j, const std::string& path) {
   }
   BlobNode n = makeBlobNode(info->type, id, name);
   who = describeNode(n);
-  json params = j.contains("params") ? j["params"] : json::object();
+  if (depth > kMaxBlobTreeDepth)
+    return Error{who + ": nested " + std::to_string(depth) + " nodes deep, more than the " +
+                 std::to_string(kMaxBlobTreeDepth) + " allowed"};
+  static const json kNoParams = json::object();
+  const json& params = j.contains("params") ? j["params"] : kNoParams;
   if (!params.is_object()) return Error{who + ": \"params\" must be an object"};
   for (auto it = params.begin(); it != params.end(); ++it)
     if (paramIndex(info->type, it.key()) < 0) return Error{who + ": unknown parameter '" + it.key() + "'"};
@@ -104,7 +114,7 @@ Result<BlobNode> nodeFromJson(const json& j, const std::string& path) {
     const json& c = j["children"];
     if (!c.is_array()) return Error{who + ": \"children\" must be an array"};
     for (size_t k = 0; k < c.size(); ++k) {
-      auto ch = nodeFromJson(c[k], who + " child " + std::to_string(k));
+      auto ch = nodeFromJson(c[k], who + " child " + std::to_string(k), depth + 1);
       if (!ch) return Error{ch.error()};
       n.children.push_back(std::move(*ch));
     }
@@ -133,9 +143,12 @@ Result<BlobTree> blobTreeFromJson(const json& j, const std::string& source) {
   if (j.contains("format")) {
     if (j["format"] != "animorph-blobtree")
       return Error{source + ": \"format\" is " + j["format"].dump() + ", expected \"animorph-blobtree\""};
-    if (!j.contains("version") || !j["version"].is_number_integer())
-      return Error{source + ": \"version\" missing or not an integer"};
-    int v = j["version"].get<int>();
+    if (!j.contains("version")) return Error{source + ": \"version\" missing or not an integer"};
+    std::string why;
+    auto readVersion =
+        jsonInteger(j["version"], std::numeric_limits<long long>::min(), std::numeric_limits<long long>::max(), why);
+    if (!readVersion) return Error{source + ": \"version\": " + why};
+    const long long v = *readVersion;
     if (v > kBlobTreeFormatVersion)
       return Error{source + ": version " + std::to_string(v) + " is newer than this Animorph reads (" +
                    std::to_string(kBlobTreeFormatVersion) + "); update Animorph"};
@@ -148,7 +161,7 @@ Result<BlobTree> blobTreeFromJson(const json& j, const std::string& source) {
     tree.threshold = std::move(*t);
   }
   if (!j.contains("root")) return Error{source + ": missing \"root\" node"};
-  auto root = nodeFromJson(j["root"], "root");
+  auto root = nodeFromJson(j["root"], "root", 1);
   if (!root) return Error{source + ": " + root.error()};
   tree.root = std::move(*root);
   if (Status s = validateBlobTree(tree); !s) return Error{source + ": " + s.error()};
@@ -156,17 +169,9 @@ Result<BlobTree> blobTreeFromJson(const json& j, const std::string& source) {
 }
 
 Result<BlobTree> parseBlobTreeScene(const std::string& text, const std::string& source) {
-  json j = json::parse(text, nullptr, false);
-  if (j.is_discarded()) {
-    // Re-parse with exceptions only to get the position of the syntax error.
-    try {
-      json again = json::parse(text);
-      (void)again;
-    } catch (const json::parse_error& e) {
-      return Error{source + ": not valid JSON (" + e.what() + ")"};
-    }
-    return Error{source + ": not valid JSON"};
-  }
+  auto parsed = parseJsonText(text, source);
+  if (!parsed) return Error{parsed.error()};
+  const json& j = *parsed;
   if (j.is_object() && j.contains("format") && j["format"] == "animorph") {
     if (!j.contains("blobtree")) return Error{source + ": project has no \"blobtree\" key"};
     return blobTreeFromJson(j["blobtree"], source + ": blobtree");

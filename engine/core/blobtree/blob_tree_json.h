@@ -14,6 +14,9 @@
 namespace animorph {
 
 inline constexpr int kBlobTreeFormatVersion = 1;
+// Deepest chain of nodes a BlobTree read from JSON may have (the root is
+// level 1); deeper trees are refused, naming the first node too deep.
+inline constexpr int kMaxBlobTreeDepth = 64;
 
 // {"threshold", "root"}: the embeddable form.
 nlohmann::json blobTreeToJson(const BlobTree& tree);

@@ -5,6 +5,7 @@
 #include <map>
 #include <set>
 
+#include "blobtree/blob_tree_json.h"
 #include "blobtree/validate.h"
 
 namespace animorph {
@@ -130,6 +131,34 @@ bool isInSubtree(const BlobNode& ancestor, int id) {
   return false;
 }
 
+namespace {
+
+// Level of node id below n (n itself is at `level`); 0 when absent.
+int levelOf(const BlobNode& n, int id, int level) {
+  if (n.id == id) return level;
+  for (const auto& c : n.children)
+    if (int l = levelOf(c, id, level + 1)) return l;
+  return 0;
+}
+
+// Nodes on the longest path from n down to a leaf (a leaf is 1).
+int heightOf(const BlobNode& n) {
+  int h = 0;
+  for (const auto& c : n.children) h = std::max(h, heightOf(c));
+  return h + 1;
+}
+
+// A tree saved by the editor must load again: no deeper than the JSON reader allows.
+Status checkDepth(const BlobTree& tree, const BlobNode& node, const BlobNode& parent, const char* verb) {
+  const int depth = levelOf(tree.root, parent.id, 1) + heightOf(node);
+  if (depth <= kMaxBlobTreeDepth) return Status::success();
+  return Error{std::string("cannot ") + verb + " " + describeNode(node) + " under " + describeNode(parent) +
+               ": the tree would be " + std::to_string(depth) + " nodes deep, more than the " +
+               std::to_string(kMaxBlobTreeDepth) + " allowed"};
+}
+
+}  // namespace
+
 BlobNode makeDefaultNode(NodeType type, int& nextId) {
   const NodeTypeInfo& info = nodeTypeInfo(type);
   BlobNode n = makeBlobNode(type, nextId++, info.name);
@@ -208,6 +237,7 @@ Status addNode(BlobTree& tree, int parentId, BlobNode node, int index) {
   collectIds(node, adding);
   for (int id : adding)
     if (have.count(id)) return Error{"node id " + std::to_string(id) + " is already in use"};
+  if (Status s = checkDepth(tree, node, *parent, "add"); !s) return s;
   if (index < 0 || index > int(parent->children.size())) index = int(parent->children.size());
   parent->children.insert(parent->children.begin() + index, std::move(node));
   return Status::success();
@@ -264,6 +294,7 @@ Status reparentNode(BlobTree& tree, int id, int newParentId, int index) {
   if (mx >= 0 && int(target->children.size()) >= mx)
     return Error{"cannot move " + describeNode(node) + ": " + describeNode(*target) + " takes at most " +
                  std::to_string(mx) + " child" + (mx == 1 ? "" : "ren")};
+  if (Status s = checkDepth(tree, node, *target, "move"); !s) return s;
   int mn = minChildren(*oldParent);
   if (int(oldParent->children.size()) - 1 < mn)
     return Error{"cannot move " + describeNode(node) + ": " + describeNode(*oldParent) + " needs at least " +

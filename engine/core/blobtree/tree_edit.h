@@ -53,8 +53,8 @@ BlobNode makeDefaultNode(NodeType type, int& nextId);
 BlobTree makeStarterTree();
 
 // Adds node (ids must be unused in tree) as a child of parentId at index (-1:
-// last). Refuses an unknown parent, a parent that takes no more children, or
-// an id clash.
+// last). Refuses an unknown parent, a parent that takes no more children, an
+// id clash, or a tree deeper than kMaxBlobTreeDepth (it could not be loaded).
 Status addNode(BlobTree& tree, int parentId, BlobNode node, int index = -1);
 // Deletes a node and its subtree. Refuses the root and a parent that would
 // fall below its minimum number of children.
@@ -63,7 +63,8 @@ Status deleteNode(BlobTree& tree, int id);
 Result<int> duplicateNode(BlobTree& tree, int id);
 // Moves node id under newParentId at index (-1: last). Refuses the root, a
 // move into the node's own subtree (a cycle), a new parent that takes no more
-// children and an old parent that would fall below its minimum.
+// children, an old parent that would fall below its minimum and a tree deeper
+// than kMaxBlobTreeDepth.
 Status reparentNode(BlobTree& tree, int id, int newParentId, int index = -1);
 // Renames a node (names may repeat; ids identify nodes).
 Status renameNode(BlobTree& tree, int id, const std::string& name);

@@ -122,7 +122,10 @@ bool Document::hasNewerAutosave(const std::string& path) {
   fs::path a = path + ".autosave";
   if (!fs::exists(a, ec)) return false;
   if (!fs::exists(path, ec)) return true;
-  return fs::last_write_time(a, ec) > fs::last_write_time(path, ec);
+  // File times tick coarsely (a few ms): an autosave written just after a
+  // save can carry the same time. Saving removes the autosave, so one that
+  // is not older than the project was written after it.
+  return fs::last_write_time(a, ec) >= fs::last_write_time(path, ec);
 }
 
 Result<std::unique_ptr<Document>> Document::recoverAutosave(const std::string& path) {

@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "anim/track_json.h"
 #include "doc/base64.h"
+#include "doc/project_io.h"
 #include "standin/standin_json.h"
+#include "util/json_text.h"
 
 namespace animorph {
 
@@ -50,6 +53,10 @@ json morphSetupToJson(const MorphSetup& m) {
 
 namespace {
 
+// Fields whose own range check follows are read as any int (never wrapped).
+constexpr int kIntMin = std::numeric_limits<int>::min();
+constexpr int kIntMax = std::numeric_limits<int>::max();
+
 struct Parser {
   std::string src;
   std::string error;
@@ -65,10 +72,12 @@ struct Parser {
     }
     return j[key].get<double>();
   }
-  int integer(const json& j, const char* key, const std::string& where, int def) {
+  int integer(const json& j, const char* key, const std::string& where, int def, int lo, int hi) {
     if (!j.contains(key)) return def;
-    if (!j[key].is_number_integer()) { fail(where + "." + key, "expected an integer"); return def; }
-    return j[key].get<int>();
+    std::string why;
+    auto v = jsonInteger(j[key], lo, hi, why);
+    if (!v) { fail(where + "." + key, why); return def; }
+    return static_cast<int>(*v);
   }
   std::string string(const json& j, const char* key, const std::string& where) {
     if (!j.contains(key)) { fail(where + "." + key, "missing"); return {}; }
@@ -106,10 +115,10 @@ Result<MorphSetup> morphSetupFromJson(const json& j, const std::string& sourceNa
     const json& mk = j["markers"];
     if (!mk.is_object()) r.fail(w + ".markers", "expected an object {A, B, C, D}");
     else {
-      m.markers.a = r.integer(mk, "A", w + ".markers", m.markers.a);
-      m.markers.b = r.integer(mk, "B", w + ".markers", m.markers.b);
-      m.markers.c = r.integer(mk, "C", w + ".markers", m.markers.c);
-      m.markers.d = r.integer(mk, "D", w + ".markers", m.markers.d);
+      m.markers.a = r.integer(mk, "A", w + ".markers", m.markers.a, -kMaxFrame, kMaxFrame);
+      m.markers.b = r.integer(mk, "B", w + ".markers", m.markers.b, -kMaxFrame, kMaxFrame);
+      m.markers.c = r.integer(mk, "C", w + ".markers", m.markers.c, -kMaxFrame, kMaxFrame);
+      m.markers.d = r.integer(mk, "D", w + ".markers", m.markers.d, -kMaxFrame, kMaxFrame);
       if (r.ok() && m.markers.b < m.markers.a) r.fail(w + ".markers.B", "is before A");
       if (r.ok() && m.markers.c < m.markers.b) r.fail(w + ".markers.C", "is before B");
       if (r.ok() && m.markers.d < m.markers.c) r.fail(w + ".markers.D", "is before C");
@@ -165,7 +174,7 @@ Result<MorphSetup> morphSetupFromJson(const json& j, const std::string& sourceNa
         else r.fail(wp + ".pose", "expected \"rest\" or \"clip\"");
       }
       mp.clipTimeSec = r.number(p, "clip_time", wp, mp.clipTimeSec);
-      mp.maxIterations = r.integer(p, "max_iterations", wp, mp.maxIterations);
+      mp.maxIterations = r.integer(p, "max_iterations", wp, mp.maxIterations, kIntMin, kIntMax);
       mp.tolerance = float(r.number(p, "tolerance", wp, mp.tolerance));
       mp.maxStepRadii = float(r.number(p, "max_step_radii", wp, mp.maxStepRadii));
       mp.reprojectFrom = float(r.number(p, "reproject_from", wp, mp.reprojectFrom));
@@ -184,7 +193,7 @@ Result<MorphSetup> morphSetupFromJson(const json& j, const std::string& sourceNa
         if (c["enabled"].is_boolean()) m.crossFade.enabled = c["enabled"].get<bool>();
         else r.fail(wc + ".enabled", "expected true or false");
       }
-      m.crossFade.widthFrames = r.integer(c, "width_frames", wc, m.crossFade.widthFrames);
+      m.crossFade.widthFrames = r.integer(c, "width_frames", wc, m.crossFade.widthFrames, kIntMin, kIntMax);
       if (r.ok() && !(m.crossFade.widthFrames >= 1 && m.crossFade.widthFrames <= 1000))
         r.fail(wc + ".width_frames", "must be in 1..1000");
     }
@@ -223,7 +232,7 @@ Result<MorphSetup> morphSetupFromJson(const json& j, const std::string& sourceNa
           const std::string wt = wa + ".segment_tracks[" + std::to_string(k) + "]";
           if (!ts[k].is_object()) { r.fail(wt, "expected an object"); break; }
           SegmentTracks st;
-          st.segment = r.integer(ts[k], "segment", wt, -1);
+          st.segment = r.integer(ts[k], "segment", wt, -1, kIntMin, kIntMax);
           if (r.ok() && !(st.segment >= 0 && st.segment < static_cast<int>(am.standin.segments.size())))
             r.fail(wt + ".segment", "no segment " + std::to_string(st.segment) + " in the stand-in (" +
                                         std::to_string(am.standin.segments.size()) + " segments)");

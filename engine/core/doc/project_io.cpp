@@ -1,6 +1,8 @@
 #include "doc/project_io.h"
 
 #include <cmath>
+#include <limits>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
 #include "blobtree/blob_tree_json.h"
@@ -8,6 +10,7 @@
 #include "doc/animorphosis_setup_json.h"
 #include "doc/atomic_file.h"
 #include "doc/morph_setup_json.h"
+#include "util/json_text.h"
 
 namespace animorph {
 namespace {
@@ -34,10 +37,12 @@ class Reader {
     if (!std::isfinite(d)) { fail(where + "." + key, "not a finite number"); return def; }
     return d;
   }
-  int integer(const json& j, const char* key, const std::string& where, int def) {
+  int integer(const json& j, const char* key, const std::string& where, int def, int lo, int hi) {
     if (!j.contains(key)) return def;
-    if (!j[key].is_number_integer()) { fail(where + "." + key, "expected an integer"); return def; }
-    return j[key].get<int>();
+    std::string why;
+    auto v = jsonInteger(j[key], lo, hi, why);
+    if (!v) { fail(where + "." + key, why); return def; }
+    return static_cast<int>(*v);
   }
   bool boolean(const json& j, const char* key, const std::string& where, bool def) {
     if (!j.contains(key)) return def;
@@ -139,14 +144,18 @@ std::string projectToJson(const Project& p) {
 }
 
 Result<Project> projectFromJson(const std::string& text, const std::string& sourceName) {
-  json j = json::parse(text, nullptr, false);
-  if (j.is_discarded()) return Error{sourceName + ": not valid JSON"};
+  auto parsed = parseJsonText(text, sourceName);
+  if (!parsed) return Error{parsed.error()};
+  const json& j = *parsed;
   if (!j.is_object()) return Error{sourceName + ": expected a JSON object at the top level"};
   if (!j.contains("format") || j["format"] != "animorph")
     return Error{sourceName + ": not an Animorph project (missing \"format\": \"animorph\")"};
-  if (!j.contains("version") || !j["version"].is_number_integer())
-    return Error{sourceName + ": version: missing or not an integer"};
-  int version = j["version"].get<int>();
+  if (!j.contains("version")) return Error{sourceName + ": version: missing"};
+  std::string why;
+  auto readVersion = jsonInteger(j["version"], std::numeric_limits<long long>::min(),
+                                 std::numeric_limits<long long>::max(), why);
+  if (!readVersion) return Error{sourceName + ": version: " + why};
+  const long long version = *readVersion;
   if (version > kProjectFormatVersion)
     return Error{sourceName + ": version " + std::to_string(version) +
                  " is newer than this Animorph understands (" + std::to_string(kProjectFormatVersion) +
@@ -161,12 +170,16 @@ Result<Project> projectFromJson(const std::string& text, const std::string& sour
     if (!t.is_object()) return Error{sourceName + ": timeline: expected an object"};
     Timeline& tl = p.timeline;
     tl.fps = r.number(t, "fps", "timeline", tl.fps);
-    tl.frameStart = r.integer(t, "frame_start", "timeline", tl.frameStart);
-    tl.frameEnd = r.integer(t, "frame_end", "timeline", tl.frameEnd);
-    tl.currentFrame = r.integer(t, "current_frame", "timeline", tl.currentFrame);
+    tl.frameStart = r.integer(t, "frame_start", "timeline", tl.frameStart, -kMaxFrame, kMaxFrame);
+    tl.frameEnd = r.integer(t, "frame_end", "timeline", tl.frameEnd, -kMaxFrame, kMaxFrame);
+    tl.currentFrame = r.integer(t, "current_frame", "timeline", tl.currentFrame, -kMaxFrame, kMaxFrame);
     tl.playbackSpeed = r.number(t, "playback_speed", "timeline", tl.playbackSpeed);
     tl.loop = r.boolean(t, "loop", "timeline", tl.loop);
-    if (!r.failed() && !(tl.fps > 0.0 && tl.fps <= 1000.0)) r.fail("timeline.fps", "must be in (0, 1000]");
+    if (!r.failed() && !(tl.fps >= kMinFps && tl.fps <= kMaxFps)) {
+      std::ostringstream range;
+      range << "must be in [" << kMinFps << ", " << kMaxFps << "] frames per second";
+      r.fail("timeline.fps", range.str());
+    }
     if (!r.failed() && tl.frameEnd < tl.frameStart) r.fail("timeline.frame_end", "is before frame_start");
     if (!r.failed() && !(tl.playbackSpeed > 0.0)) r.fail("timeline.playback_speed", "must be positive");
   }
@@ -203,7 +216,7 @@ Result<Project> projectFromJson(const std::string& text, const std::string& sour
         }
       }
       act.assetPath = r.string(a, "asset", where, "", act.kind == ActorKind::Gltf);
-      act.clip = r.integer(a, "clip", where, 0);
+      act.clip = r.integer(a, "clip", where, 0, 0, kMaxClipIndex);
       act.timeOffsetSec = r.number(a, "time_offset", where, 0.0);
       act.speed = r.number(a, "speed", where, 1.0);
       act.loop = r.boolean(a, "loop", where, true);
@@ -215,7 +228,6 @@ Result<Project> projectFromJson(const std::string& text, const std::string& sour
       if (r.failed()) break;
       if (act.id.empty()) r.fail(where + ".id", "must not be empty");
       else if (p.findActor(act.id)) r.fail(where + ".id", "duplicate id '" + act.id + "'");
-      else if (act.clip < 0) r.fail(where + ".clip", "must not be negative");
       else if (glm::length(q) < 1e-6f) r.fail(where + ".rotation", "zero quaternion");
       else {
         act.transform.rotation = glm::normalize(act.transform.rotation);

@@ -7,6 +7,15 @@
 
 namespace animorph {
 
+// Ranges a project file is held to when read: frame numbers (timeline,
+// morph markers) stay within +-kMaxFrame so that differences and sums of
+// them cannot overflow an int; clip indices below kMaxClipIndex; frame
+// rates in [kMinFps, kMaxFps].
+inline constexpr int kMaxFrame = 10'000'000;
+inline constexpr int kMaxClipIndex = 65'535;
+inline constexpr double kMinFps = 0.1;
+inline constexpr double kMaxFps = 1000.0;
+
 // Serialises p as pretty-printed JSON.
 std::string projectToJson(const Project& p);
 

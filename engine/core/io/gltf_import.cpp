@@ -13,6 +13,9 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <glm/gtc/matrix_access.hpp>
+#include <map>
+#include <memory>
 #include <set>
 #include <sstream>
 
@@ -34,6 +37,7 @@ struct FsGuard {
   std::string rejectedUri;
   std::string rejectReason;
   std::string missingUri;
+  std::string unreadable;  // readFile's error for the first external file that could not be read
 };
 
 bool isInside(const fs::path& p, const fs::path& dir) {
@@ -78,7 +82,16 @@ bool guardedReadWholeFile(std::vector<unsigned char>* out, std::string* err, con
     if (err) *err = "not readable";
     return false;
   }
-  return tinygltf::ReadWholeFile(out, err, path, nullptr);
+  // Regular files under the size cap only, read without blocking.
+  auto bytes = readFile(path);
+  if (!bytes) {
+    auto* g = static_cast<FsGuard*>(user);
+    if (g->unreadable.empty()) g->unreadable = bytes.error();
+    if (err) *err = bytes.error();
+    return false;
+  }
+  out->assign(bytes->begin(), bytes->end());
+  return true;
 }
 
 bool refuseWrite(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
@@ -95,10 +108,25 @@ bool skipImageDecode(tinygltf::Image*, const int, std::string*, std::string*, in
 // ---------------------------------------------------------------------------
 // Import context and error helpers.
 
+template <class T>
+using DecodedCache = std::map<int, std::shared_ptr<const std::vector<T>>>;
+
 struct Ctx {
-  std::string file;  // file name for messages
+  const std::string& file;  // the path as given, for messages
   const tinygltf::Model& m;
   ImportReport& report;
+  size_t budget = 0;            // bytes all decoded accessors together may take
+  mutable size_t spent = 0;      // bytes decoded (or copied from the cache) so far
+  std::vector<int> uses{};       // how many times each accessor is referenced
+  // Accessors referenced more than once, decoded once (as floats or integers).
+  mutable DecodedCache<float> floats{};
+  mutable DecodedCache<uint32_t> uints{};
+
+  template <class T>
+  DecodedCache<T>& cache() const {
+    if constexpr (std::is_same_v<T, float>) return floats;
+    else return uints;
+  }
 };
 
 Error err(const Ctx& c, const std::string& element, const std::string& reason) {
@@ -270,14 +298,27 @@ Result<size_t> readAccessor(const Ctx& c, int index, const AccessorSpec& spec, s
   const size_t count = a.count;
   // Bounds are checked before anything is allocated, so a huge count in a
   // small file cannot exhaust memory; accessors without a bufferView (all
-  // zeros, possibly sparse) are capped instead.
+  // zeros, possibly sparse) are held to the decoding budget, as is all else.
   Span span;
   if (a.bufferView >= 0) {
     auto checked = viewRange(c, name, a.bufferView, a.byteOffset, count, elemSize, true);
     if (!checked) return Error{checked.error()};
     span = *checked;
-  } else if (count > (size_t(1) << 26)) {
-    return err(c, name, "count " + std::to_string(count) + " is too large for an accessor without a bufferView");
+  }
+  // count <= 2^32 (schema check) and comps <= 16, so this cannot overflow.
+  const size_t bytes = a.count * static_cast<size_t>(comps) * sizeof(T);
+  if (bytes > c.budget - c.spent)
+    return err(c, name, std::to_string(a.count) + " elements" + (a.bufferView < 0 ? " without a bufferView" : "") +
+                            " would decode to " + std::to_string(bytes) + " bytes, more than the " +
+                            std::to_string(c.budget - c.spent) + " left of this file's decoding budget (" +
+                            std::to_string(kGltfDecodeFactor) + " x the input's " +
+                            std::to_string((c.budget - kGltfDecodeAllowance) / kGltfDecodeFactor) + " bytes + " +
+                            std::to_string(kGltfDecodeAllowance >> 20) + " MiB)");
+  c.spent += bytes;
+  auto& cache = c.cache<T>();
+  if (auto hit = cache.find(index); hit != cache.end()) {
+    out = *hit->second;
+    return a.count;
   }
   out.assign(count * comps, T(0));
   if (span.data) {
@@ -312,6 +353,7 @@ Result<size_t> readAccessor(const Ctx& c, int index, const AccessorSpec& spec, s
             static_cast<T>(readComponent(val->data + i * elemSize + k * cs, a.componentType, a.normalized));
     }
   }
+  if (c.uses[index] > 1) cache.emplace(index, std::make_shared<const std::vector<T>>(out));
   return count;
 }
 
@@ -558,7 +600,22 @@ Result<Transform> readNodeTransform(const Ctx& c, int i) {
   if (n.matrix.size() == 16) {
     glm::mat4 m;
     for (int k = 0; k < 16; ++k) m[k / 4][k % 4] = static_cast<float>(n.matrix[k]);
-    return decompose(m);
+    Transform d = decompose(m);
+    // A zero axis leaves the rotation undefined (NaN): that axis is hidden anyway.
+    if (!std::isfinite(d.rotation.w) || !std::isfinite(d.rotation.x) || !std::isfinite(d.rotation.y) ||
+        !std::isfinite(d.rotation.z))
+      d.rotation = glm::quat(1.0f, 0.0f, 0.0f, 0.0f);
+    const glm::mat4 back = d.matrix();
+    float largest = 1.0f, worst = 0.0f;
+    for (int k = 0; k < 16; ++k) {
+      largest = std::max(largest, std::abs(m[k / 4][k % 4]));
+      worst = std::max(worst, std::abs(back[k / 4][k % 4] - m[k / 4][k % 4]));
+    }
+    if (worst > 1e-3f * largest)
+      c.report.warnings.push_back(nodeLabel(c.m, i) +
+                                  ": matrix is not translation x rotation x scale (it has shear or a projection); "
+                                  "the nearest such transform is used");
+    return d;
   }
   if (!n.matrix.empty()) return err(c, nodeLabel(c.m, i), "matrix has " + std::to_string(n.matrix.size()) + " values");
   if (n.translation.size() == 3) t.translation = {n.translation[0], n.translation[1], n.translation[2]};
@@ -670,8 +727,17 @@ Status readSkins(const Ctx& c, Character& ch) {
         return err(c, accessorName(gs.inverseBindMatrices),
                    std::to_string(*k) + " inverse bind matrices for " + std::to_string(skin.joints.size()) + " joints");
       if (auto st = checkFinite(c, gs.inverseBindMatrices, mats, 16, "matrix"); !st) return st;
-      for (size_t j = 0; j < skin.joints.size(); ++j)
-        std::memcpy(&skin.inverseBindMatrices[j][0][0], &mats[j * 16], 16 * sizeof(float));
+      for (size_t j = 0; j < skin.joints.size(); ++j) {
+        glm::mat4& ibm = skin.inverseBindMatrices[j];
+        std::memcpy(&ibm[0][0], &mats[j * 16], 16 * sizeof(float));
+        const std::string which = label + ": inverse bind matrix " + std::to_string(j) + " (joint node " +
+                                  std::to_string(skin.joints[j]) + ")";
+        const glm::vec4 lastRow = glm::row(ibm, 3) - glm::vec4(0, 0, 0, 1);
+        if (std::max({std::abs(lastRow.x), std::abs(lastRow.y), std::abs(lastRow.z), std::abs(lastRow.w)}) > 1e-5f)
+          c.report.warnings.push_back(which + " is not affine (its last row is not 0 0 0 1)");
+        else if (std::abs(glm::determinant(glm::mat3(ibm))) < 1e-12f)
+          c.report.warnings.push_back(which + " is not invertible; vertices bound to this joint collapse");
+      }
     }
     ch.skins.push_back(std::move(skin));
   }
@@ -725,6 +791,16 @@ Status readAnimations(const Ctx& c, Character& ch) {
         if (i > 0 && out.timesSec[i] < out.timesSec[i - 1])
           return err(c, accessorName(gs.input), "key times decrease at key " + std::to_string(i));
       }
+      // Accepted, but not what glTF allows: said once per accessor.
+      if (out.timesSec.front() < 0.0f)
+        c.report.warnings.push_back(accessorName(gs.input) + ": key times start below zero (" +
+                                    std::to_string(out.timesSec.front()) + " s)");
+      for (size_t i = 1; i < out.timesSec.size(); ++i)
+        if (out.timesSec[i] == out.timesSec[i - 1]) {
+          c.report.warnings.push_back(accessorName(gs.input) + ": key time " + std::to_string(out.timesSec[i]) +
+                                      " s repeats at key " + std::to_string(i));
+          break;
+        }
       const bool rotation = out.path == ChannelPath::Rotation;
       std::vector<float> vals;
       auto nv = readAccessor(c, gs.output,
@@ -805,6 +881,28 @@ void listUnsupportedFeatures(const Ctx& c) {
   }
 }
 
+// References to each accessor (from primitives, skins and animation
+// channels); an accessor referenced more than once is decoded once.
+std::vector<int> countAccessorUses(const tinygltf::Model& m) {
+  std::vector<int> uses(m.accessors.size(), 0);
+  auto use = [&](int i) {
+    if (i >= 0 && i < static_cast<int>(uses.size())) ++uses[i];
+  };
+  for (const auto& mesh : m.meshes)
+    for (const auto& prim : mesh.primitives) {
+      use(prim.indices);
+      for (const auto& [name, acc] : prim.attributes) use(acc);
+    }
+  for (const auto& skin : m.skins) use(skin.inverseBindMatrices);
+  for (const auto& anim : m.animations)
+    for (const auto& ch : anim.channels)
+      if (ch.sampler >= 0 && ch.sampler < static_cast<int>(anim.samplers.size())) {
+        use(anim.samplers[ch.sampler].input);
+        use(anim.samplers[ch.sampler].output);
+      }
+  return uses;
+}
+
 void dedupe(std::vector<std::string>& v) {
   std::set<std::string> seen;
   std::vector<std::string> out;
@@ -846,7 +944,7 @@ std::string describeMagic(const std::string& data) {
 }
 
 Result<Character> importImpl(const std::string& path) {
-  const std::string file = fs::path(path).filename().string();
+  const std::string& file = path;  // messages name the path as given
   auto bytes = readFile(path);
   if (!bytes) return Error{bytes.error()};
   const std::string& data = *bytes;
@@ -881,6 +979,7 @@ Result<Character> importImpl(const std::string& path) {
     return Error{file + ": uri '" + guard.rejectedUri + "': " + guard.rejectReason};
   if (!ok) {
     if (!guard.missingUri.empty()) return Error{file + ": uri '" + guard.missingUri + "': file not found"};
+    if (!guard.unreadable.empty()) return Error{file + ": " + guard.unreadable};
     auto lines = splitLines(terr);
     std::string reason = lines.empty() ? "not a valid glTF file" : lines.front();
     for (size_t i = 1; i < lines.size() && i < 3; ++i) reason += "; " + lines[i];
@@ -889,7 +988,11 @@ Result<Character> importImpl(const std::string& path) {
 
   Character ch;
   ch.sourcePath = path;
+  size_t inputBytes = data.size();
+  for (const auto& b : model.buffers) inputBytes += b.data.size();
   Ctx c{file, model, ch.report};
+  c.budget = kGltfDecodeFactor * inputBytes + kGltfDecodeAllowance;
+  c.uses = countAccessorUses(model);
   ch.report.warnings = std::move(schemaWarnings);
   for (auto& w : splitLines(twarn)) ch.report.warnings.push_back(w);
   if (!guard.missingUri.empty()) ch.report.warnings.push_back("uri '" + guard.missingUri + "': file not found");
@@ -921,9 +1024,9 @@ Result<Character> importGltf(const std::string& path) {
     if (r) r->report.importMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return r;
   } catch (const std::exception& e) {
-    return Error{fs::path(path).filename().string() + ": cannot be read: " + e.what()};
+    return Error{path + ": cannot be read: " + e.what()};
   } catch (...) {
-    return Error{fs::path(path).filename().string() + ": cannot be read: unknown failure"};
+    return Error{path + ": cannot be read: unknown failure"};
   }
 }
 

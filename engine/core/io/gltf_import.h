@@ -1,5 +1,6 @@
 #pragma once
 // glTF 2.0 import (.gltf and .glb) into a Character.
+#include <cstddef>
 #include <string>
 
 #include "rig/character.h"
@@ -12,8 +13,17 @@ namespace animorph {
 // STEP, LINEAR, CUBICSPLINE). Weight sums are normalised and counted in the
 // report; unsupported features are listed by name in the report. External
 // URIs are resolved only inside the file's own directory.
-// Errors name the file, the element and the reason, e.g.
-// "tentacle.glb: accessor 7: index 9000 out of range (4096 vertices)".
+// Errors name the file as given, the element and the reason, e.g.
+// "assets/tentacle.glb: accessor 7: index 9000 out of range (4096 vertices)".
+//
+// Decoding budget: all accessors together are decoded into at most
+// kGltfDecodeFactor times the input's size (the file plus the buffers it
+// loads) plus kGltfDecodeAllowance bytes; the budget is charged before an
+// accessor's array is allocated, so an accessor without a bufferView that
+// declares a huge count in a tiny file is refused at once. An accessor used
+// by several primitives, skins or animation channels is decoded once.
+inline constexpr size_t kGltfDecodeFactor = 8;
+inline constexpr size_t kGltfDecodeAllowance = size_t(16) << 20;
 Result<Character> importGltf(const std::string& path);
 
 // True when path names a glTF file rather than a project: a .gltf or .glb extension (any case),

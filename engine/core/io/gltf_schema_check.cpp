@@ -1,8 +1,12 @@
 #include "io/gltf_schema_check.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <iterator>
 #include <nlohmann/json.hpp>
+
+#include "util/json_text.h"
 
 namespace animorph {
 namespace {
@@ -23,34 +27,28 @@ const char* kindOf(const json& j) {
   }
 }
 
-enum class Kind { Index, Number, String, Object, Array, NumberArray, IndexArray, ObjectArray };
+// Index: an index into a glTF array or an enum (tinygltf keeps them in an int).
+// Size: a byte offset, length, stride or element count (a glTF file and its
+// buffers are below 4 GiB, so nothing larger can be backed by data).
+enum class Kind { Index, Size, Number, String, Object, Array, NumberArray, IndexArray, ObjectArray };
 
-bool matches(const json& j, Kind k) {
+constexpr long long kMaxIndex = 2147483647LL;
+constexpr long long kMaxSize = 4294967295LL;
+
+// The kind each element of an array kind must have.
+Kind elementKind(Kind k) {
   switch (k) {
-    case Kind::Index: return j.is_number_unsigned() || (j.is_number_integer() && j.get<long long>() >= 0);
-    case Kind::Number: return j.is_number();
-    case Kind::String: return j.is_string();
-    case Kind::Object: return j.is_object();
-    case Kind::Array: return j.is_array();
-    case Kind::NumberArray:
-      if (!j.is_array()) return false;
-      for (const auto& e : j) if (!e.is_number()) return false;
-      return true;
-    case Kind::IndexArray:
-      if (!j.is_array()) return false;
-      for (const auto& e : j) if (!matches(e, Kind::Index)) return false;
-      return true;
-    case Kind::ObjectArray:
-      if (!j.is_array()) return false;
-      for (const auto& e : j) if (!e.is_object()) return false;
-      return true;
+    case Kind::NumberArray: return Kind::Number;
+    case Kind::IndexArray: return Kind::Index;
+    case Kind::ObjectArray: return Kind::Object;
+    default: return k;
   }
-  return false;
 }
 
 const char* expected(Kind k) {
   switch (k) {
     case Kind::Index: return "a non-negative integer index";
+    case Kind::Size: return "a non-negative integer";
     case Kind::Number: return "a number";
     case Kind::String: return "a string";
     case Kind::Object: return "an object";
@@ -62,6 +60,34 @@ const char* expected(Kind k) {
   return "";
 }
 
+// Empty when j has kind k; otherwise "PATH: expected ..., found ..." naming
+// the offending element of an array ("nodes[2].children[1]: ...").
+std::string mismatch(const json& j, Kind k, const std::string& path) {
+  switch (k) {
+    case Kind::Index:
+    case Kind::Size: {
+      if (!j.is_number_integer()) return path + ": expected " + expected(k) + ", found " + kindOf(j);
+      if (!j.is_number_unsigned() && j.get<long long>() < 0)
+        return path + ": expected " + expected(k) + ", found " + std::to_string(j.get<long long>());
+      std::string why;
+      if (!jsonInteger(j, 0, k == Kind::Index ? kMaxIndex : kMaxSize, why)) return path + ": " + why;
+      return {};
+    }
+    case Kind::Number: return j.is_number() ? "" : path + ": expected a number, found " + kindOf(j);
+    case Kind::String: return j.is_string() ? "" : path + ": expected a string, found " + kindOf(j);
+    case Kind::Object: return j.is_object() ? "" : path + ": expected an object, found " + kindOf(j);
+    case Kind::Array: return j.is_array() ? "" : path + ": expected an array, found " + kindOf(j);
+    case Kind::NumberArray:
+    case Kind::IndexArray:
+    case Kind::ObjectArray:
+      if (!j.is_array()) return path + ": expected " + expected(k) + ", found " + kindOf(j);
+      for (size_t i = 0; i < j.size(); ++i)
+        if (std::string m = mismatch(j[i], elementKind(k), path + "[" + std::to_string(i) + "]"); !m.empty()) return m;
+      return {};
+  }
+  return {};
+}
+
 class Checker {
  public:
   Checker(std::string file, std::vector<std::string>& warnings) : file_(std::move(file)), warnings_(warnings) {}
@@ -69,14 +95,21 @@ class Checker {
   // Checks j[key] (if present) has kind k; severe problems become the error.
   void prop(const json& j, const char* key, const std::string& where, Kind k, bool severe) {
     if (!j.is_object() || !j.contains(key)) return;
-    const json& v = j[key];
-    if (matches(v, k)) return;
-    std::string msg = where + (where.empty() ? "" : ".") + key + ": expected " + expected(k) + ", found " + kindOf(v);
+    const std::string msg = mismatch(j[key], k, where + (where.empty() ? "" : ".") + key);
+    if (msg.empty()) return;
     if (severe) {
-      if (error_.empty()) error_ = file_ + ": " + msg;
+      fail(msg);
     } else {
       warnings_.push_back(msg + "; ignored");
     }
+  }
+  // j[key] must be present (tinygltf refuses the file otherwise, with a
+  // message that does not say where).
+  void need(const json& j, const char* key, const std::string& where) {
+    if (j.is_object() && !j.contains(key)) fail(where + (where.empty() ? "" : ".") + key + ": missing (required)");
+  }
+  void fail(const std::string& msg) {
+    if (error_.empty()) error_ = file_ + ": " + msg;
   }
   bool failed() const { return !error_.empty(); }
   const std::string& error() const { return error_; }
@@ -99,7 +132,115 @@ void checkTextureInfo(Checker& c, const json& mat, const char* key, const std::s
   c.prop(t, "extensions", w, Kind::Object, false);
   if (t.contains("extensions") && t["extensions"].is_object())
     for (const auto& [name, ext] : t["extensions"].items())
-      if (!ext.is_object()) c.prop(t["extensions"], name.c_str(), w + ".extensions", Kind::Object, false);
+      c.prop(t["extensions"], name.c_str(), w + ".extensions", Kind::Object, false);
+}
+
+// What the binary chunk of a GLB holds (for buffers without a uri).
+struct GlbInfo {
+  bool binary = false;
+  bool hasBin = false;
+  size_t binSize = 0;
+};
+
+// The data: URI prefixes tinygltf decodes; any other "data:" URI would be
+// taken for a file name.
+const char* const kDataUriPrefixes[] = {
+    "data:application/octet-stream;base64,", "data:application/gltf-buffer;base64,", "data:image/jpeg;base64,",
+    "data:image/png;base64,", "data:image/bmp;base64,", "data:image/gif;base64,", "data:text/plain;base64,"};
+
+bool isBase64Char(char ch) {
+  return (ch >= 'A' && ch <= 'Z') || (ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') || ch == '+' || ch == '/';
+}
+
+// A buffer's source: its uri, or the GLB's BIN chunk, holding byteLength bytes.
+void checkBuffer(Checker& c, const json& b, const std::string& w, const GlbInfo& glb, size_t index) {
+  c.need(b, "byteLength", w);
+  if (c.failed() || !b["byteLength"].is_number_unsigned()) return;
+  const auto byteLength = b["byteLength"].get<unsigned long long>();
+  if (!b.contains("uri")) {
+    if (!glb.binary) c.fail(w + ".uri: missing (a .gltf buffer needs a file name or a data: URI)");
+    else if (index != 0 || !glb.hasBin) c.fail(w + ": no uri, and only buffer 0 of a GLB can use its BIN chunk" + (glb.hasBin ? "" : " (this GLB has none)"));
+    else if (byteLength > glb.binSize)
+      c.fail(w + ".byteLength: " + std::to_string(byteLength) + " is more than the GLB's BIN chunk (" +
+             std::to_string(glb.binSize) + " bytes)");
+    return;
+  }
+  if (!b["uri"].is_string()) return;
+  const std::string& uri = b["uri"].get_ref<const std::string&>();
+  if (uri.rfind("data:", 0) != 0) return;
+  const char* prefix = nullptr;
+  for (const char* p : kDataUriPrefixes)
+    if (uri.rfind(p, 0) == 0) prefix = p;
+  if (!prefix) {
+    c.fail(w + ".uri: a data: URI must be base64 with a known type (data:application/octet-stream;base64,...)");
+    return;
+  }
+  // Decoded as tinygltf does: up to the first '=' or invalid character.
+  size_t start = std::strlen(prefix), n = 0;
+  while (start + n < uri.size() && isBase64Char(uri[start + n])) ++n;
+  if (start + n < uri.size() && uri[start + n] != '=') {
+    c.fail(w + ".uri: data: URI has a character that is not base64 at offset " + std::to_string(start + n));
+    return;
+  }
+  const size_t decoded = n / 4 * 3 + (n % 4 ? n % 4 - 1 : 0);
+  if (decoded != byteLength)
+    c.fail(w + ".uri: the data: URI holds " + std::to_string(decoded) + " bytes but byteLength is " +
+           std::to_string(byteLength));
+}
+
+// Properties tinygltf requires (it refuses the file without them) and enums
+// it checks, reported with the element.
+void checkRequired(Checker& c, const json& root, const GlbInfo& glb) {
+  c.need(root, "asset", "");
+  if (root.contains("asset") && root["asset"].is_object()) c.need(root["asset"], "version", "asset");
+  auto each = [&](const char* key, auto&& fn) {
+    if (!root.contains(key)) return;
+    for (size_t i = 0; i < root[key].size() && !c.failed(); ++i)
+      fn(root[key][i], std::string(key) + "[" + std::to_string(i) + "]", i);
+  };
+  each("buffers", [&](const json& b, const std::string& w, size_t i) { checkBuffer(c, b, w, glb, i); });
+  each("bufferViews", [&](const json& v, const std::string& w, size_t) {
+    for (const char* k : {"buffer", "byteLength"}) c.need(v, k, w);
+  });
+  each("accessors", [&](const json& a, const std::string& w, size_t) {
+    for (const char* k : {"componentType", "count", "type"}) c.need(a, k, w);
+    if (c.failed()) return;
+    static const char* kTypes[] = {"SCALAR", "VEC2", "VEC3", "VEC4", "MAT2", "MAT3", "MAT4"};
+    const std::string& type = a["type"].get_ref<const std::string&>();
+    if (std::none_of(std::begin(kTypes), std::end(kTypes), [&](const char* t) { return type == t; }))
+      c.fail(w + ".type: '" + type + "' is not SCALAR, VEC2, VEC3, VEC4, MAT2, MAT3 or MAT4");
+    const auto ct = a["componentType"].get<long long>();
+    if (ct < 5120 || ct > 5126)
+      c.fail(w + ".componentType: " + std::to_string(ct) + " is not a glTF component type (5120..5126)");
+    if (!a.contains("sparse")) return;
+    const json& sp = a["sparse"];
+    for (const char* k : {"count", "indices", "values"}) c.need(sp, k, w + ".sparse");
+    if (c.failed()) return;
+    for (const char* k : {"bufferView", "componentType"}) c.need(sp["indices"], k, w + ".sparse.indices");
+    c.need(sp["values"], "bufferView", w + ".sparse.values");
+  });
+  each("meshes", [&](const json& m, const std::string& w, size_t) {
+    c.need(m, "primitives", w);
+    if (c.failed()) return;
+    for (size_t p = 0; p < m["primitives"].size(); ++p)
+      c.need(m["primitives"][p], "attributes", w + ".primitives[" + std::to_string(p) + "]");
+  });
+  each("skins", [&](const json& s, const std::string& w, size_t) { c.need(s, "joints", w); });
+  each("animations", [&](const json& a, const std::string& w, size_t) {
+    for (const char* k : {"channels", "samplers"}) c.need(a, k, w);
+    if (c.failed()) return;
+    for (size_t k = 0; k < a["channels"].size() && !c.failed(); ++k) {
+      const json& ch = a["channels"][k];
+      const std::string cw = w + ".channels[" + std::to_string(k) + "]";
+      for (const char* key : {"sampler", "target"}) c.need(ch, key, cw);
+      if (c.failed()) return;
+      c.need(ch["target"], "path", cw + ".target");
+      if (!ch["target"].contains("node"))
+        c.fail(cw + ".target.node: missing (channels that animate no node are not supported)");
+    }
+    for (size_t k = 0; k < a["samplers"].size(); ++k)
+      for (const char* key : {"input", "output"}) c.need(a["samplers"][k], key, w + ".samplers[" + std::to_string(k) + "]");
+  });
 }
 
 void checkModel(Checker& c, const json& root) {
@@ -136,18 +277,32 @@ void checkModel(Checker& c, const json& root) {
       c.prop(prim, "material", pw, Kind::Index, false);
       if (prim.contains("attributes") && prim["attributes"].is_object())
         for (const auto& [name, acc] : prim["attributes"].items())
-          if (!matches(acc, Kind::Index)) c.prop(prim["attributes"], name.c_str(), pw + ".attributes", Kind::Index, true);
+          c.prop(prim["attributes"], name.c_str(), pw + ".attributes", Kind::Index, true);
     }
   });
   each("accessors", [&](const json& a, const std::string& w) {
-    for (const char* k : {"bufferView", "byteOffset", "componentType", "count"}) c.prop(a, k, w, Kind::Index, true);
+    for (const char* k : {"bufferView", "componentType"}) c.prop(a, k, w, Kind::Index, true);
+    for (const char* k : {"byteOffset", "count"}) c.prop(a, k, w, Kind::Size, true);
     c.prop(a, "type", w, Kind::String, true);
+    c.prop(a, "sparse", w, Kind::Object, true);
+    if (!a.contains("sparse") || !a["sparse"].is_object()) return;
+    const json& sp = a["sparse"];
+    const std::string sw = w + ".sparse";
+    // tinygltf keeps a sparse accessor's count and offsets in an int.
+    c.prop(sp, "count", sw, Kind::Index, true);
+    for (const char* part : {"indices", "values"}) {
+      c.prop(sp, part, sw, Kind::Object, true);
+      if (!sp.contains(part) || !sp[part].is_object()) continue;
+      const std::string pw = sw + "." + part;
+      for (const char* k : {"bufferView", "componentType", "byteOffset"}) c.prop(sp[part], k, pw, Kind::Index, true);
+    }
   });
   each("bufferViews", [&](const json& b, const std::string& w) {
-    for (const char* k : {"buffer", "byteOffset", "byteLength", "byteStride"}) c.prop(b, k, w, Kind::Index, true);
+    c.prop(b, "buffer", w, Kind::Index, true);
+    for (const char* k : {"byteOffset", "byteLength", "byteStride"}) c.prop(b, k, w, Kind::Size, true);
   });
   each("buffers", [&](const json& b, const std::string& w) {
-    c.prop(b, "byteLength", w, Kind::Index, true);
+    c.prop(b, "byteLength", w, Kind::Size, true);
     c.prop(b, "uri", w, Kind::String, true);
   });
   each("skins", [&](const json& s, const std::string& w) {
@@ -157,6 +312,19 @@ void checkModel(Checker& c, const json& root) {
   each("animations", [&](const json& a, const std::string& w) {
     c.prop(a, "channels", w, Kind::ObjectArray, true);
     c.prop(a, "samplers", w, Kind::ObjectArray, true);
+    if (c.failed()) return;
+    if (a.contains("channels"))
+      for (size_t k = 0; k < a["channels"].size(); ++k) {
+        const json& ch = a["channels"][k];
+        const std::string cw = w + ".channels[" + std::to_string(k) + "]";
+        c.prop(ch, "sampler", cw, Kind::Index, true);
+        c.prop(ch, "target", cw, Kind::Object, true);
+        if (ch.contains("target") && ch["target"].is_object()) c.prop(ch["target"], "node", cw + ".target", Kind::Index, true);
+      }
+    if (a.contains("samplers"))
+      for (size_t k = 0; k < a["samplers"].size(); ++k)
+        for (const char* key : {"input", "output"})
+          c.prop(a["samplers"][k], key, w + ".samplers[" + std::to_string(k) + "]", Kind::Index, true);
   });
   each("materials", [&](const json& m, const std::string& w) {
     c.prop(m, "pbrMetallicRoughness", w, Kind::Object, false);
@@ -177,23 +345,65 @@ void checkModel(Checker& c, const json& root) {
 
 }  // namespace
 
+namespace {
+
+uint32_t readU32(const std::string& bytes, size_t at) {
+  uint32_t v = 0;
+  std::memcpy(&v, bytes.data() + at, 4);
+  return v;
+}
+
+// The GLB layout (the checks tinygltf makes, as element-named errors): the
+// JSON chunk's text and what the BIN chunk holds.
+Status splitGlb(const std::string& bytes, const std::string& fileName, std::string& text, GlbInfo& glb) {
+  auto fail = [&](const std::string& msg) { return Error{fileName + ": " + msg}; };
+  const size_t size = bytes.size();
+  if (size < 20) return fail("GLB header: file is truncated (" + std::to_string(size) + " bytes, the header needs 20)");
+  const uint64_t length = readU32(bytes, 8), jsonLength = readU32(bytes, 12);
+  if (length > size)
+    return fail("GLB header: declared length " + std::to_string(length) + " exceeds the file (" + std::to_string(size) +
+                " bytes)");
+  if (bytes.compare(16, 4, "JSON") != 0) return fail("GLB header: first chunk is not JSON");
+  if (jsonLength < 1) return fail("GLB JSON chunk: empty");
+  const uint64_t jsonEnd = 20 + jsonLength;
+  if (jsonEnd > length)
+    return fail("GLB JSON chunk: length " + std::to_string(jsonLength) + " exceeds the declared length (" +
+                std::to_string(length) + " bytes)");
+  glb.binary = true;
+  if (jsonEnd < length) {
+    if (jsonEnd + 12 > length) return fail("GLB BIN chunk: truncated (its header and data need 12 bytes or more)");
+    const uint64_t binLength = readU32(bytes, jsonEnd);
+    if (binLength < 4 || binLength % 4 != 0)
+      return fail("GLB BIN chunk: length " + std::to_string(binLength) + " is not a positive multiple of 4");
+    if (jsonEnd + 8 + binLength > length)
+      return fail("GLB BIN chunk: length " + std::to_string(binLength) + " exceeds the declared length (" +
+                  std::to_string(length) + " bytes)");
+    if (bytes.compare(jsonEnd + 4, 4, std::string("BIN\0", 4)) != 0)
+      return fail("GLB second chunk: type is not BIN");
+    glb.hasBin = true;
+    glb.binSize = binLength;
+  }
+  text.assign(bytes, 20, jsonLength);
+  return {};
+}
+
+}  // namespace
+
 Status checkGltfSchema(const std::string& bytes, const std::string& fileName, std::vector<std::string>& warnings) {
   std::string text;
+  GlbInfo glb;
   if (bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0) {
-    uint32_t chunkLength = 0;
-    if (bytes.size() < 20) return Error{fileName + ": GLB header: file is truncated"};
-    std::memcpy(&chunkLength, bytes.data() + 12, 4);
-    if (bytes.compare(16, 4, "JSON") != 0) return Error{fileName + ": GLB header: first chunk is not JSON"};
-    if (chunkLength > bytes.size() - 20) return Error{fileName + ": GLB JSON chunk: length exceeds the file"};
-    text.assign(bytes, 20, chunkLength);
+    if (Status s = splitGlb(bytes, fileName, text, glb); !s) return s;
   } else {
     text = bytes;
   }
-  json root = json::parse(text, nullptr, false);
-  if (root.is_discarded()) return Error{fileName + ": not valid JSON"};
+  auto parsed = parseJsonText(text, fileName);
+  if (!parsed) return Error{parsed.error()};
+  const json& root = *parsed;
   if (!root.is_object()) return Error{fileName + ": top level: expected an object, found " + kindOf(root)};
   Checker c(fileName, warnings);
   checkModel(c, root);
+  if (!c.failed()) checkRequired(c, root, glb);
   if (c.failed()) return Error{c.error()};
   return {};
 }

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "doc/atomic_file.h"
+#include "util/json_text.h"
 
 namespace animorph {
 
@@ -82,12 +83,14 @@ std::string standinFileText(const Standin& s, const std::string& characterPath, 
 Result<Standin> loadStandinFile(const std::string& path) {
   auto text = readFile(path);
   if (!text) return Error{text.error()};
-  json j = json::parse(*text, nullptr, false);
-  if (j.is_discarded() || !j.is_object()) return Error{path + ": not valid JSON"};
+  auto parsed = parseJsonText(*text, path);
+  if (!parsed) return Error{parsed.error()};
+  const json& j = *parsed;
+  if (!j.is_object()) return Error{path + ": expected a JSON object at the top level"};
   if (!j.contains("format") || j["format"] != "animorph-standin")
     return Error{path + ": not a stand-in file (missing \"format\": \"animorph-standin\")"};
-  if (!j.contains("version") || !j["version"].is_number_integer() || j["version"].get<int>() != 1)
-    return Error{path + ": version: expected 1"};
+  std::string why;
+  if (!j.contains("version") || !jsonInteger(j["version"], 1, 1, why)) return Error{path + ": version: expected 1"};
   if (!j.contains("standin")) return Error{path + ": standin: missing"};
   return standinFromJson(j["standin"], path + ": standin");
 }

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "doc/atomic_file.h"
+#include "util/json_text.h"
 
 namespace animorph {
 namespace fs = std::filesystem;
@@ -49,8 +50,9 @@ std::string preferencesToJson(const Preferences& p) {
 }
 
 Result<Preferences> preferencesFromJson(const std::string& text, const std::string& sourceName) {
-  json j = json::parse(text, nullptr, /*allow_exceptions=*/false);
-  if (j.is_discarded()) return Error{sourceName + ": not valid JSON"};
+  auto parsed = parseJsonText(text, sourceName);
+  if (!parsed) return Error{parsed.error()};
+  const json& j = *parsed;
   if (!j.is_object()) return Error{sourceName + ": expected a JSON object"};
   Preferences p;
   std::string err;
