@@ -1,8 +1,10 @@
-// animorph-cli bake PROJECT --frames A:B --res N -o DIR [--png] [--jobs J]:
-// the morph's output meshes (and optionally rendered PNG frames), frame by frame.
+// animorph-cli bake PROJECT --frames A:B --res N -o DIR [--format ...] [--gltf FILE.glb] [--png] [--jobs J]:
+// the morph's output meshes as a PLY/OBJ sequence and/or one animated glTF
+// (and optionally rendered PNG frames), frame by frame.
 #include <unistd.h>
 
 #include <atomic>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -14,6 +16,7 @@
 #include "scene/mesh_character.h"
 #include "doc/project_io.h"
 #include "morph/morph_runtime.h"
+#include "io/gltf_sequence_export.h"
 #include "poly/mesh_io.h"
 #if ANIMORPH_HAS_GPU
 #include "context.h"
@@ -30,10 +33,19 @@ namespace {
 using namespace animorph;
 namespace fs = std::filesystem;
 
-std::string frameName(const fs::path& dir, int frame, const char* ext) {
+// DIR/NAME_####.EXT: the frame number padded to 4 digits, as Houdini's $F4 and
+// Blender's mesh-sequence readers expect.
+std::string frameName(const fs::path& dir, const std::string& name, int frame, const char* ext) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "frame_%04d.%s", frame, ext);
-  return (dir / buf).string();
+  std::snprintf(buf, sizeof buf, "_%04d.%s", frame, ext);
+  return (dir / (name + buf)).string();
+}
+
+// A file-name prefix from a project name: characters outside [A-Za-z0-9._-] become '_'.
+std::string filePrefix(const std::string& name) {
+  std::string out;
+  for (char c : name) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '_') ? c : '_';
+  return out.empty() ? std::string("frame") : out;
 }
 
 // One progress line on a terminal, redrawn in place; nothing when stdout is not a tty.
@@ -60,7 +72,8 @@ class ProgressBar {
 };
 
 #if ANIMORPH_HAS_GPU
-int renderPngs(const std::vector<TriangleMesh>& meshes, int first, const fs::path& dir, const ViewOptions& view) {
+int renderPngs(const std::vector<TriangleMesh>& meshes, int first, const fs::path& dir, const std::string& name,
+               const ViewOptions& view) {
   gpu::ContextSettings cs;
   auto ctxR = gpu::Context::create(cs);
   if (!ctxR) return cli::fail("bake", "--png: no usable Vulkan device: " + ctxR.error());
@@ -101,7 +114,7 @@ int renderPngs(const std::vector<TriangleMesh>& meshes, int first, const fs::pat
           scene.options.background);
       if (!st) return cli::fail("bake", st.error());
       if (!recorded) return cli::fail("bake", recorded.error());
-      if (Status w = gpu::writePng(frameName(dir, first + int(i), "png"), (*target)->image()); !w)
+      if (Status w = gpu::writePng(frameName(dir, name, first + int(i), "png"), (*target)->image()); !w)
         return cli::fail("bake", w.error());
       cache.endFrame();
       bar.step();
@@ -116,19 +129,25 @@ int renderPngs(const std::vector<TriangleMesh>& meshes, int first, const fs::pat
 #endif
 
 int runBake(const std::vector<std::string>& args) {
-  std::string project, output, frames;
+  std::string project, output, frames, name, gltf, format = "ply";
   int res = 48, jobs = 1;
   bool png = false, gpu = false;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     auto value = [&]() -> const std::string* { return i + 1 < args.size() ? &args[++i] : nullptr; };
-    if (a == "-o" || a == "--output" || a == "--frames" || a == "--res" || a == "--jobs") {
+    if (a == "-o" || a == "--output" || a == "--frames" || a == "--res" || a == "--jobs" || a == "--name" ||
+        a == "--format" || a == "--gltf") {
       const std::string* v = value();
       if (!v) return cli::fail("bake", a + " needs a value", 2);
       if (a == "--frames") frames = *v;
       else if (a == "--res") res = std::atoi(v->c_str());
       else if (a == "--jobs") jobs = std::atoi(v->c_str());
+      else if (a == "--name") name = *v;
+      else if (a == "--format") format = *v;
+      else if (a == "--gltf") gltf = *v;
       else output = *v;
+    } else if (a == "--obj") {
+      format = "obj";
     } else if (a == "--png") {
       png = true;
     } else if (a == "--gpu") {
@@ -141,8 +160,22 @@ int runBake(const std::vector<std::string>& args) {
       return cli::fail("bake", "only one PROJECT is accepted", 2);
     }
   }
-  if (project.empty() || output.empty() || frames.empty())
-    return cli::fail("bake", "usage: bake PROJECT --frames A:B --res N -o DIR (see --help)", 2);
+  bool writePlys = false, writeObjs = false;
+  if (format != "none") {
+    for (size_t at = 0; at <= format.size();) {
+      const size_t comma = std::min(format.find(',', at), format.size());
+      const std::string f = format.substr(at, comma - at);
+      if (f == "ply") writePlys = true;
+      else if (f == "obj") writeObjs = true;
+      else return cli::fail("bake", "--format: expected ply, obj, ply,obj or none, got '" + format + "'", 2);
+      at = comma + 1;
+    }
+  }
+  const bool needDir = writePlys || writeObjs || png;
+  if (project.empty() || frames.empty() || (needDir && output.empty()) || (!needDir && gltf.empty()))
+    return cli::fail("bake", "usage: bake PROJECT --frames A:B --res N -o DIR [--format ply|obj|none] [--gltf FILE.glb] (see --help)", 2);
+  if (!name.empty() && filePrefix(name) != name)
+    return cli::fail("bake", "--name: use letters, digits, '.', '-' and '_' only, got '" + name + "'", 2);
   int first = 0, last = 0;
   char tail = 0;
   if (std::sscanf(frames.c_str(), "%d:%d%c", &first, &last, &tail) != 2 || first < 0 || last < first)
@@ -161,9 +194,12 @@ int runBake(const std::vector<std::string>& args) {
   auto rt = prepareMorph(*p, baseDir, assets);
   if (!rt) return cli::fail("bake", project + ": " + rt.error());
   for (const auto& n : (*rt)->notes) std::printf("note: %s\n", n.c_str());
+  const std::string prefix = name.empty() ? filePrefix(p->name) : name;
   std::error_code ec;
-  fs::create_directories(output, ec);
+  if (needDir) fs::create_directories(output, ec);
   if (ec) return cli::fail("bake", output + ": cannot create directory: " + ec.message());
+  if (!gltf.empty() && fs::path(gltf).has_parent_path()) fs::create_directories(fs::path(gltf).parent_path(), ec);
+  if (ec) return cli::fail("bake", gltf + ": cannot create its directory: " + ec.message());
 
 #if ANIMORPH_HAS_GPU
   // --gpu: the B->C stage on the Vulkan compute polygoniser (one device, its
@@ -222,6 +258,18 @@ int runBake(const std::vector<std::string>& args) {
   std::vector<int> stageCount(5, 0);
   std::mutex stageMutex;
   std::atomic<int> next{0};
+  std::unique_ptr<GltfSequenceWriter> sequence;
+  if (!gltf.empty()) {
+    GltfSequenceOptions so;
+    so.name = prefix;
+    so.fps = p->timeline.fps;
+    so.firstFrame = first;
+    sequence = std::make_unique<GltfSequenceWriter>(so);
+  }
+  std::mutex sequenceMutex;
+  std::vector<TriangleMesh> ready(sequence ? static_cast<size_t>(count) : 0u);
+  std::vector<char> done(static_cast<size_t>(count), 0);
+  int sequenceNext = 0;
   ProgressBar bar("baking", count);
   auto worker = [&] {
     for (int k = next.fetch_add(1); k < count; k = next.fetch_add(1)) {
@@ -239,10 +287,25 @@ int runBake(const std::vector<std::string>& args) {
       auto fr = evaluateMorphFrame(**rt, timeSec, fs);
 #endif
       if (!fr) { errors[size_t(k)] = fr.error(); bar.step(); continue; }
-      if (Status st = writePly(fr->mesh, frameName(output, f, "ply")); !st) errors[size_t(k)] = st.error();
+      Status st;
+      if (writePlys) st = writePly(fr->mesh, frameName(output, prefix, f, "ply"));
+      if (st && writeObjs) st = writeObj(fr->mesh, frameName(output, prefix, f, "obj"));
+      if (!st) errors[size_t(k)] = st.error();
       {
         std::lock_guard<std::mutex> lock(stageMutex);
         ++stageCount[size_t(fr->stage)];
+      }
+      if (sequence) {
+        // Frames reach the glTF writer in order; a finished frame waits here
+        // until the frames before it have been added.
+        std::lock_guard<std::mutex> lock(sequenceMutex);
+        ready[size_t(k)] = png ? fr->mesh : std::move(fr->mesh);
+        done[size_t(k)] = true;
+        for (; sequenceNext < count && done[size_t(sequenceNext)]; ++sequenceNext) {
+          if (Status add = sequence->addFrame(ready[size_t(sequenceNext)]); !add && errors[size_t(sequenceNext)].empty())
+            errors[size_t(sequenceNext)] = add.error();
+          ready[size_t(sequenceNext)] = TriangleMesh{};
+        }
       }
       if (png) kept[size_t(k)] = std::move(fr->mesh);
       bar.step();
@@ -255,9 +318,19 @@ int runBake(const std::vector<std::string>& args) {
   for (int k = 0; k < count; ++k)
     if (!errors[size_t(k)].empty()) return cli::fail("bake", "frame " + std::to_string(first + k) + ": " + errors[size_t(k)]);
   const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::string into = needDir ? output : std::string();
+  if (!gltf.empty()) into += (into.empty() ? "" : " and ") + gltf;
   std::printf("baked frames %d..%d (%d source, %d collapse, %d morph, %d expand, %d target) at %d^3 into %s in %.2f s\n",
               first, last, stageCount[0], stageCount[1], stageCount[2], stageCount[3], stageCount[4], res,
-              output.c_str(), sec);
+              into.c_str(), sec);
+  if (sequence) {
+    const auto g0 = std::chrono::steady_clock::now();
+    const int meshes = sequence->meshCount();
+    if (Status st = writeGltfSequence(*sequence, gltf); !st) return cli::fail("bake", st.error());
+    std::printf("wrote %s: %d frames, %d distinct meshes, %.1f MB at %g fps in %.2f s\n", gltf.c_str(), count, meshes,
+                double(fs::file_size(gltf, ec)) / 1e6, p->timeline.fps,
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - g0).count());
+  }
 #if ANIMORPH_HAS_GPU
   if (gpuCtx && gpuCtx->validationEnabled() && gpuCtx->validationErrorCount() > 0) {
     std::fprintf(stderr, "animorph-cli bake: %u Vulkan validation error(s) in the GPU polygoniser\n",
@@ -265,7 +338,7 @@ int runBake(const std::vector<std::string>& args) {
     return 3;
   }
   if (png) {
-    int code = renderPngs(kept, first, output, p->view);
+    int code = renderPngs(kept, first, output, prefix, p->view);
     if (code != 0) return code;
     std::printf("rendered %d PNG frames into %s\n", count, output.c_str());
   }
@@ -275,18 +348,31 @@ int runBake(const std::vector<std::string>& args) {
 
 }  // namespace
 
-ANIMORPH_CLI_COMMAND("bake", "bake a project's morph into meshes (and PNG frames) frame by frame",
-                     "usage: animorph-cli bake PROJECT.animorph --frames A:B --res N -o DIR [--png] [--gpu] [--jobs J]\n"
-                     "  Writes DIR/frame_NNNN.ply (binary PLY, world space) for every frame A..B:\n"
-                     "  the source's skinned mesh before marker A, its collapse onto the stand-in\n"
-                     "  A->B, the polygonised implicit morph B->C (N cells along the longest side),\n"
-                     "  the target's expansion C->D and its skinned mesh after D.\n"
-                     "  --png      also DIR/frame_NNNN.png, rendered offscreen (Vulkan; set\n"
-                     "             ANIMORPH_VALIDATION=1 for validation layers)\n"
-                     "  --gpu      the B->C stage on the Vulkan compute polygoniser (offscreen, no\n"
-                     "             display needed); exits 1 with a message when no device is usable\n"
-                     "             or the device fails (no silent fallback to the CPU)\n"
-                     "  --jobs J   frames baked in parallel (the output is the same for any J)\n"
+ANIMORPH_CLI_COMMAND("bake", "bake a project's morph into mesh sequences, an animated glTF (and PNG frames)",
+                     "usage: animorph-cli bake PROJECT.animorph --frames A:B --res N -o DIR [--format ply|obj|ply,obj|none]\n"
+                     "                         [--obj] [--name NAME] [--gltf FILE.glb] [--png] [--gpu] [--jobs J]\n"
+                     "  Bakes every frame A..B: the source's skinned mesh before marker A, its\n"
+                     "  collapse onto the stand-in A->B, the polygonised implicit morph B->C (N cells\n"
+                     "  along the longest side), the target's expansion C->D and its skinned mesh\n"
+                     "  after D; world space, unit normals.\n"
+                     "  --format F   the mesh sequence written into DIR, one file per frame named\n"
+                     "               NAME_####.ply / NAME_####.obj (frame number padded to 4 digits):\n"
+                     "               ply (binary PLY, the default), obj (Wavefront OBJ with vn normals,\n"
+                     "               f a//a b//b c//c faces, v x y z r g b when the frame has vertex\n"
+                     "               colours), ply,obj (both) or none (no sequence; -o not needed then)\n"
+                     "  --obj        short for --format obj\n"
+                     "  --name NAME  the file-name prefix (default: the project's name)\n"
+                     "  --gltf FILE  also one animated glTF binary of the whole range: a mesh per\n"
+                     "               frame (identical frames share one), each frame's node shown only\n"
+                     "               on its frame by STEP scale keys 0 -> 1 -> 0 at frame/fps seconds\n"
+                     "               (fps of the project's timeline), plus KHR_node_visibility keys\n"
+                     "               (optional extension). Written atomically.\n"
+                     "  --png        also DIR/NAME_####.png, rendered offscreen (Vulkan; set\n"
+                     "               ANIMORPH_VALIDATION=1 for validation layers)\n"
+                     "  --gpu        the B->C stage on the Vulkan compute polygoniser (offscreen, no\n"
+                     "               display needed); exits 1 with a message when no device is usable\n"
+                     "               or the device fails (no silent fallback to the CPU)\n"
+                     "  --jobs J     frames baked in parallel (the output is the same for any J)\n"
                      "  A progress bar is drawn when stdout is a terminal.\n"
                      "  Exit status: 0 on success, 1 when the project cannot be read or a frame fails,\n"
                      "  2 on bad arguments, 3 on Vulkan validation errors.\n",
