@@ -14,7 +14,7 @@ BUILD_PACKAGES=(build-essential cmake ninja-build pkg-config
   glslang-tools libtinygltf-dev nlohmann-json3-dev libstb-dev libtbb-dev
   libx11-dev libxext-dev)
 TEST_PACKAGES=(catch2 vulkan-validationlayers xvfb xauth xdotool imagemagick
-  assimp-testmodels python3)
+  assimp-testmodels python3 blender python3-numpy)
 
 say() { printf '\033[1m[animorph]\033[0m %s\n' "$*" >&2; }
 
