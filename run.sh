@@ -16,9 +16,10 @@ BUILD_PACKAGES=(build-essential cmake ninja-build pkg-config
   libimgui-dev libglfw3-dev libglm-dev libvulkan-dev mesa-vulkan-drivers
   glslang-tools libtinygltf-dev nlohmann-json3-dev libstb-dev libtbb-dev
   libx11-dev libxext-dev libxrandr-dev)
-# nodejs, npm: the Khronos glTF-Validator (an npm package) checks the glTF files we write.
+# nodejs, npm: the Khronos glTF-Validator (an npm package) checks the glTF files we write;
+# blender (with python3-numpy, which its glTF importer needs) imports them in the export test.
 TEST_PACKAGES=(catch2 vulkan-validationlayers xvfb xauth xdotool imagemagick
-  assimp-testmodels python3 nodejs)
+  assimp-testmodels python3 nodejs blender python3-numpy)
 # Installed only when no program of the same name is on PATH: a Node.js package from outside
 # Debian (NodeSource's) ships its own npm and conflicts with Debian's.
 TEST_PROGRAM_PACKAGES=(npm)

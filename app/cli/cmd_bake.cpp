@@ -1,8 +1,10 @@
-// animorph-cli bake PROJECT --frames A:B --res N -o DIR [--png] [--jobs J]:
-// the morph's output meshes (and optionally rendered PNG frames), frame by frame.
+// animorph-cli bake PROJECT --frames A:B --res N -o DIR [--format ...] [--gltf FILE.glb] [--png] [--jobs J]:
+// the morph's output meshes as a PLY/OBJ sequence and/or one animated glTF
+// (and optionally rendered PNG frames), frame by frame.
 #include <unistd.h>
 
 #include <atomic>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -18,6 +20,7 @@
 #include "scene/mesh_character.h"
 #include "doc/project_io.h"
 #include "morph/morph_runtime.h"
+#include "io/gltf_sequence_export.h"
 #include "poly/mesh_io.h"
 #if ANIMORPH_HAS_GPU
 #include "context.h"
@@ -34,10 +37,19 @@ namespace {
 using namespace animorph;
 namespace fs = std::filesystem;
 
-std::string frameName(const fs::path& dir, int frame, const char* ext) {
+// DIR/NAME_####.EXT: the frame number padded to 4 digits, as Houdini's $F4 and
+// Blender's mesh-sequence readers expect.
+std::string frameName(const fs::path& dir, const std::string& name, int frame, const char* ext) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "frame_%04d.%s", frame, ext);
-  return (dir / buf).string();
+  std::snprintf(buf, sizeof buf, "_%04d.%s", frame, ext);
+  return (dir / (name + buf)).string();
+}
+
+// A file-name prefix from a project name: characters outside [A-Za-z0-9._-] become '_'.
+std::string filePrefix(const std::string& name) {
+  std::string out;
+  for (char c : name) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '_') ? c : '_';
+  return out.empty() ? std::string("frame") : out;
 }
 
 // One progress line on a terminal, redrawn in place; nothing when stdout is not a tty.
@@ -84,8 +96,89 @@ std::string bakeFrames(int first, int count, int jobs, const std::function<std::
   return {};
 }
 
+// Where baked frames go, from any worker thread: the per-frame files (DIR/NAME_####.ply, .obj),
+// the animated glTF (fed in frame order: a finished frame waits here until the frames before it
+// have been added), and the meshes kept for --png.
+class FrameSink {
+ public:
+  struct Options {
+    fs::path dir;
+    std::string prefix;
+    bool plys = true, objs = false, png = false;
+    std::string gltf;  // empty: none
+    double fps = 24.0;
+    int first = 0, count = 0;
+  };
+  explicit FrameSink(Options o) : o_(std::move(o)), kept(o_.png ? size_t(o_.count) : 0u) {
+    if (o_.gltf.empty()) return;
+    GltfSequenceOptions so;
+    so.name = o_.prefix;
+    so.fps = o_.fps;
+    so.firstFrame = o_.first;
+    sequence_ = std::make_unique<GltfSequenceWriter>(so);
+    ready_.resize(size_t(o_.count));
+    done_.assign(size_t(o_.count), 0);
+  }
+
+  // Frame first + k is baked: writes its files; "" or the error.
+  std::string add(int k, TriangleMesh mesh) {
+    const int f = o_.first + k;
+    Status st;
+    if (o_.plys) st = writePly(mesh, frameName(o_.dir, o_.prefix, f, "ply"));
+    if (st && o_.objs) st = writeObj(mesh, frameName(o_.dir, o_.prefix, f, "obj"));
+    if (!st) return st.error();
+    if (sequence_) {
+      std::lock_guard<std::mutex> lock(sequenceMutex_);
+      ready_[size_t(k)] = o_.png ? mesh : std::move(mesh);
+      done_[size_t(k)] = 1;
+      for (; next_ < o_.count && done_[size_t(next_)]; ++next_) {
+        if (Status added = sequence_->addFrame(ready_[size_t(next_)]); !added && sequenceError_.empty())
+          sequenceError_ = "frame " + std::to_string(o_.first + next_) + ": " + added.error();
+        ready_[size_t(next_)] = TriangleMesh{};
+      }
+    }
+    if (o_.png) kept[size_t(k)] = std::move(mesh);
+    return {};
+  }
+
+  // After every frame: writes the glTF (atomically) and says so; "" or the error.
+  std::string finish() {
+    if (!sequence_) return {};
+    if (!sequenceError_.empty()) return sequenceError_;
+    const auto g0 = std::chrono::steady_clock::now();
+    const int meshes = sequence_->meshCount();
+    if (Status st = writeGltfSequence(*sequence_, o_.gltf); !st) return st.error();
+    std::error_code ec;
+    std::printf("wrote %s: %d frames, %d distinct meshes, %.1f MB at %g fps in %.2f s\n", o_.gltf.c_str(), o_.count,
+                meshes, double(fs::file_size(o_.gltf, ec)) / 1e6, o_.fps,
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - g0).count());
+    return {};
+  }
+
+  const std::string& prefix() const { return o_.prefix; }
+  // Where the frames went, for the summary line.
+  std::string into() const {
+    std::string s = o_.plys || o_.objs || o_.png ? o_.dir.string() : std::string();
+    if (!o_.gltf.empty()) s += (s.empty() ? "" : " and ") + o_.gltf;
+    return s;
+  }
+
+ private:
+  Options o_;
+  std::unique_ptr<GltfSequenceWriter> sequence_;
+  std::mutex sequenceMutex_;
+  std::vector<TriangleMesh> ready_;
+  std::vector<char> done_;
+  int next_ = 0;
+  std::string sequenceError_;
+
+ public:
+  std::vector<TriangleMesh> kept;  // with png: every frame's mesh, for renderPngs
+};
+
 #if ANIMORPH_HAS_GPU
-int renderPngs(const std::vector<TriangleMesh>& meshes, int first, const fs::path& dir, const ViewOptions& view) {
+int renderPngs(const std::vector<TriangleMesh>& meshes, int first, const fs::path& dir, const std::string& name,
+               const ViewOptions& view) {
   gpu::ContextSettings cs;
   auto ctxR = gpu::Context::create(cs);
   if (!ctxR) return cli::fail("bake", "--png: no usable Vulkan device: " + ctxR.error());
@@ -126,7 +219,7 @@ int renderPngs(const std::vector<TriangleMesh>& meshes, int first, const fs::pat
           scene.options.background);
       if (!st) return cli::fail("bake", st.error());
       if (!recorded) return cli::fail("bake", recorded.error());
-      if (Status w = gpu::writePng(frameName(dir, first + int(i), "png"), (*target)->image()); !w)
+      if (Status w = gpu::writePng(frameName(dir, name, first + int(i), "png"), (*target)->image()); !w)
         return cli::fail("bake", w.error());
       cache.endFrame();
       bar.step();
@@ -142,59 +235,62 @@ int renderPngs(const std::vector<TriangleMesh>& meshes, int first, const fs::pat
 
 // A project whose only transformation is an animorphosis: C(t) polygonised frame by frame (CPU), in
 // the trees' own space; with --png, rendered like the morph's frames.
-int bakeAnimorphosis(const Project& p, const std::string& project, const std::string& output, int first, int last,
-                     int res, int jobs, bool png) {
+int bakeAnimorphosis(const Project& p, const std::string& project, FrameSink& sink, int first, int last, int res,
+                     int jobs, bool png, const std::string& output) {
   auto c = projectGenericTree(p);
   if (!c) return cli::fail("bake", project + ": " + c.error());
   const AnimorphosisTiming timing = animorphosisTiming(p);
-  std::error_code ec;
-  fs::create_directories(output, ec);
-  if (ec) return cli::fail("bake", output + ": cannot create directory: " + ec.message());
   const auto t0 = std::chrono::steady_clock::now();
   const int count = last - first + 1;
-  std::vector<TriangleMesh> kept(png ? static_cast<size_t>(count) : 0u);
   std::atomic<size_t> triangles{0};
   std::string error = bakeFrames(first, count, jobs, [&](int k) -> std::string {
-    const int f = first + k;
     PolygonizeSettings ps;
     ps.resolution = res;
     ps.threads = jobs > 1 ? 1 : 0;
-    auto r = polygonize(compileGeneric(*c, timing, p.timeline.frameToSec(f)), ps);
+    auto r = polygonize(compileGeneric(*c, timing, p.timeline.frameToSec(first + k)), ps);
     if (!r) return r.error();
     triangles += r->mesh.triangleCount();
-    if (Status st = writePly(r->mesh, frameName(output, f, "ply")); !st) return st.error();
-    if (png) kept[size_t(k)] = std::move(r->mesh);
-    return {};
+    return sink.add(k, std::move(r->mesh));
   });
   if (!error.empty()) return cli::fail("bake", error);
   const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("baked the animorphosis %s -> %s, frames %d..%d (%zu nodes, %zu triangles in all) at %d^3 into %s in %.2f s\n",
               p.animorphosis.sourceActorId.c_str(), p.animorphosis.targetActorId.c_str(), first, last, c->size(),
-              size_t(triangles), res, output.c_str(), sec);
+              size_t(triangles), res, sink.into().c_str(), sec);
+  if (std::string e = sink.finish(); !e.empty()) return cli::fail("bake", e);
 #if ANIMORPH_HAS_GPU
   if (png) {
-    int code = renderPngs(kept, first, output, p.view);
+    int code = renderPngs(sink.kept, first, output, sink.prefix(), p.view);
     if (code != 0) return code;
     std::printf("rendered %d PNG frames into %s\n", count, output.c_str());
   }
+#else
+  (void)png;
+  (void)output;
 #endif
   return 0;
 }
 
 int runBake(const std::vector<std::string>& args) {
-  std::string project, output, frames;
+  std::string project, output, frames, name, gltf, format = "ply";
   int res = 48, jobs = 1;
   bool png = false, gpu = false;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     auto value = [&]() -> const std::string* { return i + 1 < args.size() ? &args[++i] : nullptr; };
-    if (a == "-o" || a == "--output" || a == "--frames" || a == "--res" || a == "--jobs") {
+    if (a == "-o" || a == "--output" || a == "--frames" || a == "--res" || a == "--jobs" || a == "--name" ||
+        a == "--format" || a == "--gltf") {
       const std::string* v = value();
       if (!v) return cli::fail("bake", a + " needs a value", 2);
       if (a == "--frames") frames = *v;
       else if (a == "--res") res = std::atoi(v->c_str());
       else if (a == "--jobs") jobs = std::atoi(v->c_str());
+      else if (a == "--name") name = *v;
+      else if (a == "--format") format = *v;
+      else if (a == "--gltf") gltf = *v;
       else output = *v;
+    } else if (a == "--obj") {
+      format = "obj";
     } else if (a == "--png") {
       png = true;
     } else if (a == "--gpu") {
@@ -207,8 +303,22 @@ int runBake(const std::vector<std::string>& args) {
       return cli::fail("bake", "only one PROJECT is accepted", 2);
     }
   }
-  if (project.empty() || output.empty() || frames.empty())
-    return cli::fail("bake", "usage: bake PROJECT --frames A:B --res N -o DIR (see --help)", 2);
+  bool writePlys = false, writeObjs = false;
+  if (format != "none") {
+    for (size_t at = 0; at <= format.size();) {
+      const size_t comma = std::min(format.find(',', at), format.size());
+      const std::string f = format.substr(at, comma - at);
+      if (f == "ply") writePlys = true;
+      else if (f == "obj") writeObjs = true;
+      else return cli::fail("bake", "--format: expected ply, obj, ply,obj or none, got '" + format + "'", 2);
+      at = comma + 1;
+    }
+  }
+  const bool needDir = writePlys || writeObjs || png;
+  if (project.empty() || frames.empty() || (needDir && output.empty()) || (!needDir && gltf.empty()))
+    return cli::fail("bake", "usage: bake PROJECT --frames A:B --res N -o DIR [--format ply|obj|none] [--gltf FILE.glb] (see --help)", 2);
+  if (!name.empty() && filePrefix(name) != name)
+    return cli::fail("bake", "--name: use letters, digits, '.', '-' and '_' only, got '" + name + "'", 2);
   int first = 0, last = 0;
   char tail = 0;
   if (std::sscanf(frames.c_str(), "%d:%d%c", &first, &last, &tail) != 2 || first < 0 || last < first)
@@ -222,18 +332,23 @@ int runBake(const std::vector<std::string>& args) {
 
   auto p = loadProject(project);
   if (!p) return cli::fail("bake", p.error());
+  const std::string prefix = name.empty() ? filePrefix(p->name) : name;
+  std::error_code ec;
+  if (needDir) fs::create_directories(output, ec);
+  if (ec) return cli::fail("bake", output + ": cannot create directory: " + ec.message());
+  if (!gltf.empty() && fs::path(gltf).has_parent_path()) fs::create_directories(fs::path(gltf).parent_path(), ec);
+  if (ec) return cli::fail("bake", gltf + ": cannot create its directory: " + ec.message());
+  const int count = last - first + 1;
+  FrameSink sink({output, prefix, writePlys, writeObjs, png, gltf, p->timeline.fps, first, count});
   if (!p->morph.enabled() && p->animorphosis.enabled()) {
     if (gpu) return cli::fail("bake", "--gpu: an animorphosis is baked on the CPU (run without --gpu)", 2);
-    return bakeAnimorphosis(*p, project, output, first, last, res, jobs, png);
+    return bakeAnimorphosis(*p, project, sink, first, last, res, jobs, png, output);
   }
   const std::string baseDir = fs::absolute(fs::path(project)).parent_path().string();
   AssetCache assets;
   auto rt = prepareMorph(*p, baseDir, assets);
   if (!rt) return cli::fail("bake", project + ": " + rt.error());
   for (const auto& n : (*rt)->notes) std::printf("note: %s\n", n.c_str());
-  std::error_code ec;
-  fs::create_directories(output, ec);
-  if (ec) return cli::fail("bake", output + ": cannot create directory: " + ec.message());
 
 #if ANIMORPH_HAS_GPU
   // --gpu: the B->C stage on the Vulkan compute polygoniser (one device, its
@@ -286,8 +401,6 @@ int runBake(const std::vector<std::string>& args) {
 #endif
 
   const auto t0 = std::chrono::steady_clock::now();
-  const int count = last - first + 1;
-  std::vector<TriangleMesh> kept(png ? static_cast<size_t>(count) : 0u);
   std::vector<int> stageCount(5, 0);
   std::mutex stageMutex;
   std::string error = bakeFrames(first, count, jobs, [&](int k) -> std::string {
@@ -309,15 +422,14 @@ int runBake(const std::vector<std::string>& args) {
       std::lock_guard<std::mutex> lock(stageMutex);
       ++stageCount[size_t(fr->stage)];
     }
-    Status st = writePly(fr->mesh, frameName(output, f, "ply"));
-    if (png) kept[size_t(k)] = std::move(fr->mesh);
-    return st ? std::string() : st.error();
+    return sink.add(k, std::move(fr->mesh));
   });
   if (!error.empty()) return cli::fail("bake", error);
   const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("baked frames %d..%d (%d source, %d collapse, %d morph, %d expand, %d target) at %d^3 into %s in %.2f s\n",
               first, last, stageCount[0], stageCount[1], stageCount[2], stageCount[3], stageCount[4], res,
-              output.c_str(), sec);
+              sink.into().c_str(), sec);
+  if (std::string e = sink.finish(); !e.empty()) return cli::fail("bake", e);
 #if ANIMORPH_HAS_GPU
   if (gpuCtx && gpuCtx->validationEnabled() && gpuCtx->validationErrorCount() > 0) {
     std::fprintf(stderr, "animorph-cli bake: %u Vulkan validation error(s) in the GPU polygoniser\n",
@@ -325,7 +437,7 @@ int runBake(const std::vector<std::string>& args) {
     return 3;
   }
   if (png) {
-    int code = renderPngs(kept, first, output, p->view);
+    int code = renderPngs(sink.kept, first, output, prefix, p->view);
     if (code != 0) return code;
     std::printf("rendered %d PNG frames into %s\n", count, output.c_str());
   }
@@ -335,20 +447,32 @@ int runBake(const std::vector<std::string>& args) {
 
 }  // namespace
 
-ANIMORPH_CLI_COMMAND("bake", "bake a project's morph into meshes (and PNG frames) frame by frame",
-                     "usage: animorph-cli bake PROJECT.animorph --frames A:B --res N -o DIR [--png] [--gpu] [--jobs J]\n"
-                     "  Writes DIR/frame_NNNN.ply (binary PLY, world space) for every frame A..B:\n"
-                     "  the source's skinned mesh before marker A, its collapse onto the stand-in\n"
-                     "  A->B, the polygonised implicit morph B->C (N cells along the longest side),\n"
-                     "  the target's expansion C->D and its skinned mesh after D. A project whose only\n"
-                     "  transformation is an animorphosis of two BlobTrees bakes its C(t) instead\n"
-                     "  (CPU, in the trees' own space).\n"
-                     "  --png      also DIR/frame_NNNN.png, rendered offscreen (Vulkan; set\n"
-                     "             ANIMORPH_VALIDATION=1 for validation layers)\n"
-                     "  --gpu      the B->C stage on the Vulkan compute polygoniser (offscreen, no\n"
-                     "             display needed); exits 1 with a message when no device is usable\n"
-                     "             or the device fails (no silent fallback to the CPU)\n"
-                     "  --jobs J   frames baked in parallel (the output is the same for any J)\n"
+ANIMORPH_CLI_COMMAND("bake", "bake a project's morph into mesh sequences, an animated glTF (and PNG frames)",
+                     "usage: animorph-cli bake PROJECT.animorph --frames A:B --res N -o DIR [--format ply|obj|ply,obj|none]\n"
+                     "                         [--obj] [--name NAME] [--gltf FILE.glb] [--png] [--gpu] [--jobs J]\n"
+                     "  Bakes every frame A..B: the source's skinned mesh before marker A, its\n"
+                     "  collapse onto the stand-in A->B, the polygonised implicit morph B->C (N cells\n"
+                     "  along the longest side), the target's expansion C->D and its skinned mesh\n"
+                     "  after D; world space, unit normals. A project whose only transformation is an\n"
+                     "  animorphosis of two BlobTrees bakes its C(t) instead (CPU, in the trees' own space).\n"
+                     "  --format F   the mesh sequence written into DIR, one file per frame named\n"
+                     "               NAME_####.ply / NAME_####.obj (frame number padded to 4 digits):\n"
+                     "               ply (binary PLY, the default), obj (Wavefront OBJ with vn normals,\n"
+                     "               f a//a b//b c//c faces, v x y z r g b when the frame has vertex\n"
+                     "               colours), ply,obj (both) or none (no sequence; -o not needed then)\n"
+                     "  --obj        short for --format obj\n"
+                     "  --name NAME  the file-name prefix (default: the project's name)\n"
+                     "  --gltf FILE  also one animated glTF binary of the whole range: a mesh per\n"
+                     "               frame (identical frames share one), each frame's node shown only\n"
+                     "               on its frame by STEP scale keys 0 -> 1 -> 0 at frame/fps seconds\n"
+                     "               (fps of the project's timeline), plus KHR_node_visibility keys\n"
+                     "               (optional extension). Written atomically.\n"
+                     "  --png        also DIR/NAME_####.png, rendered offscreen (Vulkan; set\n"
+                     "               ANIMORPH_VALIDATION=1 for validation layers)\n"
+                     "  --gpu        the B->C stage on the Vulkan compute polygoniser (offscreen, no\n"
+                     "               display needed); exits 1 with a message when no device is usable\n"
+                     "               or the device fails (no silent fallback to the CPU)\n"
+                     "  --jobs J     frames baked in parallel (the output is the same for any J)\n"
                      "  A progress bar is drawn when stdout is a terminal.\n"
                      "  Exit status: 0 on success, 1 when the project cannot be read or a frame fails,\n"
                      "  2 on bad arguments, 3 on Vulkan validation errors.\n",

@@ -90,7 +90,11 @@ def main():
                 fail(f"bake --jobs {jobs}: {r.returncode} {r.stdout} {r.stderr}")
             outs.append(out)
         for f in range(10, 15):
-            name = f"frame_{f:04d}.ply"
+            # NAME_####.ply, NAME the project's name (bake --name changes it)
+            names = [n for n in os.listdir(outs[0]) if n.endswith(f"_{f:04d}.ply")]
+            if len(names) != 1:
+                fail(f"bake wrote {names} for frame {f}, expected one NAME_{f:04d}.ply")
+            name = names[0]
             with open(os.path.join(outs[0], name), "rb") as a, open(os.path.join(outs[1], name), "rb") as b:
                 if a.read() != b.read():
                     fail(f"bake {name} differs between --jobs 1 and 2")

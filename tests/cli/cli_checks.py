@@ -9,7 +9,7 @@ usage: cli_checks.py MODE CLI [ARGS...]
   new-info CLI ASSETS_DIR                   new creature -> gear, then info --json: markers, timeline;
                                             new with a much larger source says it aligned the target
   fit CLI                                   fit the demo creature: report printed, stand-in file loads
-  bake CLI                                  bake a few frames per stage: file names, binary PLY headers,
+  bake CLI                                  bake a few frames per stage: file names (demo_####.ply), binary PLY headers,
                                             same bytes for --jobs 1 and --jobs 2
   gpu CLI RESOURCES_DIR                     bake --gpu: morph frames as the CPU's (triangle counts within
                                             0.5 %), other stages byte-identical; with no Vulkan device
@@ -218,7 +218,7 @@ def mode_bake(cli):
                     fail(f"bake {a}:{b} --jobs {jobs}: {r.returncode} {r.stderr}")
                 if "\r" in r.stdout:
                     fail("bake drew a progress bar although stdout is not a terminal")
-                names += [f"frame_{f:04d}.ply" for f in (a, b)]
+                names += [f"demo_{f:04d}.ply" for f in (a, b)]  # NAME_####.ply, NAME: the project's name
             if sorted(os.listdir(out)) != sorted(names):
                 fail(f"bake wrote {sorted(os.listdir(out))}, expected {sorted(names)}")
             for n in names:
@@ -248,7 +248,7 @@ def mode_gpu(cli, resources):
                     fail(f"bake --gpu does not say the morph ran on the GPU: {r.stdout}")
             frames[label] = out
         for f in (22, 23, 48, 49, 60, 61):
-            n = f"frame_{f:04d}.ply"
+            n = f"demo_{f:04d}.ply"
             cv, cf = read_ply_header(os.path.join(frames["cpu"], n))
             gv, gf = read_ply_header(os.path.join(frames["gpu"], n))
             if f < 48:

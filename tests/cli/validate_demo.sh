@@ -6,14 +6,7 @@
 # usage: validate_demo.sh CLI TOOLS_DIR RESOURCES_DIR
 set -uo pipefail
 cli=$1 tools=$2 resources=$3
-command -v node >/dev/null 2>&1 || { echo "node not installed: skipped"; exit 77; }
-if [ ! -f "$tools/node_modules/gltf-validator/package.json" ]; then
-  command -v npm >/dev/null 2>&1 || { echo "npm not installed: skipped"; exit 77; }
-  if ! (cd "$tools" && timeout 180 npm install --no-audit --no-fund --loglevel=error >/dev/null 2>&1); then
-    echo "npm install gltf-validator failed (offline?): skipped"
-    exit 77
-  fi
-fi
+"$tools/install_validator.sh" "$tools" || exit $?
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 "$cli" make-demo "$tmp" >/dev/null || { echo "make-demo failed"; exit 1; }

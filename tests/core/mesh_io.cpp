@@ -122,3 +122,40 @@ TEST_CASE("an empty mesh writes a valid empty GLB scene", "[mesh_io]") {
   CHECK(j["asset"]["version"] == "2.0");
   CHECK_FALSE(j.contains("buffers"));
 }
+
+TEST_CASE("vertex colours: OBJ v x y z r g b, PLY uchar red/green/blue/alpha, GLB COLOR_0", "[mesh_io]") {
+  TempDir dir;
+  TriangleMesh m = sphereMesh();
+  m.colors.resize(m.positions.size());
+  for (size_t i = 0; i < m.colors.size(); ++i) m.colors[i] = {float(i % 2), 0.5f, 1.0f, 1.0f};
+  REQUIRE(writeMesh(m, dir.file("c.obj")).ok());
+  REQUIRE(writeMesh(m, dir.file("c.ply")).ok());
+
+  std::ifstream obj(dir.file("c.obj"));
+  std::string line;
+  size_t vertices = 0;
+  while (std::getline(obj, line)) {
+    if (line.rfind("v ", 0) != 0) continue;
+    std::istringstream ls(line.substr(2));
+    float x, y, z, r, g, b;
+    REQUIRE(bool(ls >> x >> y >> z >> r >> g >> b));
+    CHECK(r == float(vertices % 2));
+    CHECK(g == 0.5f);
+    ++vertices;
+  }
+  CHECK(vertices == m.positions.size());
+
+  auto ply = readFile(dir.file("c.ply"));
+  REQUIRE(ply.ok());
+  size_t end = ply->find("end_header\n");
+  REQUIRE(end != std::string::npos);
+  CHECK(ply->substr(0, end).find("property uchar red\nproperty uchar green\nproperty uchar blue\nproperty uchar alpha\n") !=
+        std::string::npos);
+  CHECK(ply->size() - (end + 11) == m.positions.size() * 28 + m.triangleCount() * 13);
+  // The second vertex (odd: red 1) starts after the first's 28 bytes; its colour follows 6 floats.
+  CHECK(uint8_t((*ply)[end + 11 + 28 + 24]) == 255);
+  CHECK(uint8_t((*ply)[end + 11 + 28 + 25]) == 128);
+
+  auto j = nlohmann::json::parse(glbBytes(m).substr(20, readAt<uint32_t>(glbBytes(m), 12)));
+  CHECK(j["meshes"][0]["primitives"][0]["attributes"].contains("COLOR_0"));
+}

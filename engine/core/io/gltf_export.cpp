@@ -1,111 +1,13 @@
 #include "io/gltf_export.h"
 
-#include <algorithm>
-#include <cstring>
-#include <limits>
-#include <nlohmann/json.hpp>
-
 #include "doc/atomic_file.h"
+#include "io/glb_writer.h"
 
 namespace animorph {
 namespace {
 
 using json = nlohmann::json;
-
-constexpr int kUnsignedShort = 5123;
-constexpr int kUnsignedInt = 5125;
-constexpr int kFloat = 5126;
-constexpr int kArrayBuffer = 34962;
-constexpr int kElementArrayBuffer = 34963;
-
-class GlbWriter {
- public:
-  // Appends raw bytes as a new bufferView (4-byte aligned); returns its index.
-  int view(const void* data, size_t bytes, int target) {
-    while (bin_.size() % 4) bin_.push_back(0);
-    json v = {{"buffer", 0}, {"byteOffset", bin_.size()}, {"byteLength", bytes}};
-    if (target) v["target"] = target;
-    const auto* p = static_cast<const unsigned char*>(data);
-    bin_.insert(bin_.end(), p, p + bytes);
-    views_.push_back(v);
-    return static_cast<int>(views_.size()) - 1;
-  }
-  // Float accessor of count elements with comps components (type "VEC3", ...).
-  int floats(const float* data, size_t count, int comps, const char* type, int target, bool minMax) {
-    int v = view(data, count * comps * sizeof(float), target);
-    json a = {{"bufferView", v}, {"componentType", kFloat}, {"count", count}, {"type", type}};
-    if (minMax && count > 0) {
-      json mn = json::array(), mx = json::array();
-      for (int k = 0; k < comps; ++k) {
-        float lo = std::numeric_limits<float>::max(), hi = -lo;
-        for (size_t i = 0; i < count; ++i) {
-          lo = std::min(lo, data[i * comps + k]);
-          hi = std::max(hi, data[i * comps + k]);
-        }
-        mn.push_back(lo);
-        mx.push_back(hi);
-      }
-      a["min"] = mn;
-      a["max"] = mx;
-    }
-    accessors_.push_back(a);
-    return static_cast<int>(accessors_.size()) - 1;
-  }
-  int indices(const std::vector<uint32_t>& idx, size_t vertexCount) {
-    int v;
-    int ct;
-    if (vertexCount <= 65535) {
-      std::vector<uint16_t> small(idx.begin(), idx.end());
-      v = view(small.data(), small.size() * 2, kElementArrayBuffer);
-      ct = kUnsignedShort;
-    } else {
-      v = view(idx.data(), idx.size() * 4, kElementArrayBuffer);
-      ct = kUnsignedInt;
-    }
-    accessors_.push_back({{"bufferView", v}, {"componentType", ct}, {"count", idx.size()}, {"type", "SCALAR"}});
-    return static_cast<int>(accessors_.size()) - 1;
-  }
-  int joints(const std::vector<glm::uvec4>& j) {
-    std::vector<uint16_t> data(j.size() * 4);
-    for (size_t i = 0; i < j.size(); ++i)
-      for (int k = 0; k < 4; ++k) data[i * 4 + k] = static_cast<uint16_t>(j[i][k]);
-    int v = view(data.data(), data.size() * 2, kArrayBuffer);
-    accessors_.push_back({{"bufferView", v}, {"componentType", kUnsignedShort}, {"count", j.size()}, {"type", "VEC4"}});
-    return static_cast<int>(accessors_.size()) - 1;
-  }
-
-  std::string finish(json root) {
-    if (!bin_.empty()) {
-      root["buffers"] = json::array({{{"byteLength", bin_.size()}}});
-      root["bufferViews"] = views_;
-      root["accessors"] = accessors_;
-    }
-    std::string text = root.dump();
-    while (text.size() % 4) text.push_back(' ');
-    while (bin_.size() % 4) bin_.push_back(0);
-    const uint32_t total = static_cast<uint32_t>(12 + 8 + text.size() + (bin_.empty() ? 0 : 8 + bin_.size()));
-    std::string out;
-    out.reserve(total);
-    auto u32 = [&](uint32_t x) { out.append(reinterpret_cast<const char*>(&x), 4); };
-    out.append("glTF", 4);
-    u32(2);
-    u32(total);
-    u32(static_cast<uint32_t>(text.size()));
-    out.append("JSON", 4);
-    out += text;
-    if (!bin_.empty()) {
-      u32(static_cast<uint32_t>(bin_.size()));
-      out.append("BIN\0", 4);
-      out.append(reinterpret_cast<const char*>(bin_.data()), bin_.size());
-    }
-    return out;
-  }
-
- private:
-  std::vector<unsigned char> bin_;
-  json views_ = json::array();
-  json accessors_ = json::array();
-};
+using namespace gltf;
 
 const char* interpolationName(Interpolation i) {
   switch (i) {
@@ -172,12 +74,7 @@ Result<std::string> exportGlbBytes(const Character& c) {
       if (i >= nv) return Error{label + ": index " + std::to_string(i) + " out of range (" + std::to_string(nv) + " vertices)"};
     json attrs;
     attrs["POSITION"] = w.floats(&m.positions.data()->x, nv, 3, "VEC3", kArrayBuffer, true);
-    std::vector<glm::vec3> unit(m.normals);
-    for (auto& n : unit) {
-      float len = glm::length(n);
-      n = len > 1e-20f ? n / len : glm::vec3(0, 1, 0);
-    }
-    attrs["NORMAL"] = w.floats(&unit.data()->x, nv, 3, "VEC3", kArrayBuffer, false);
+    attrs["NORMAL"] = w.normals(m.normals);
     if (!m.colors.empty()) {
       if (m.colors.size() != nv) return Error{label + ": " + std::to_string(m.colors.size()) + " colours for " + std::to_string(nv) + " vertices"};
       attrs["COLOR_0"] = w.floats(&m.colors.data()->x, nv, 4, "VEC4", kArrayBuffer, false);

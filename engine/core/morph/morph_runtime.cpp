@@ -92,15 +92,23 @@ std::vector<glm::mat4> actorGlobals(const MorphActorRuntime& a, double timeSec) 
   return poseGlobals(c, a.clip, t);
 }
 
-// The actor's meshes (concatenated over meshNodes()) with the given vertices.
+// The actor's meshes (concatenated over meshNodes()) with the given vertices;
+// their vertex colours when every one of them has colours.
 TriangleMesh assemble(const Character& c, std::vector<glm::vec3>&& pos, std::vector<glm::vec3>&& nrm) {
   TriangleMesh m;
   size_t first = 0;
+  bool colors = true;
   for (int node : c.meshNodes()) {
     const Mesh& mesh = c.meshes[size_t(c.nodes[size_t(node)].mesh)];
     for (uint32_t i : mesh.indices) m.indices.push_back(uint32_t(first + i));
     first += mesh.vertexCount();
+    colors = colors && mesh.colors.size() == mesh.vertexCount();
   }
+  if (colors && first > 0)
+    for (int node : c.meshNodes()) {
+      const Mesh& mesh = c.meshes[size_t(c.nodes[size_t(node)].mesh)];
+      m.colors.insert(m.colors.end(), mesh.colors.begin(), mesh.colors.end());
+    }
   m.positions = std::move(pos);
   m.normals = std::move(nrm);
   return m;

@@ -1,6 +1,9 @@
 #pragma once
 // Writing meshes: Wavefront OBJ, binary PLY and glTF binary (GLB, a minimal
 // writer: one mesh, POSITION + NORMAL + indices). Writes are atomic.
+// Vertex colours, when the mesh has them: OBJ "v x y z r g b" (the values as
+// stored), PLY uchar red/green/blue/alpha (clamped to [0, 1], times 255),
+// GLB COLOR_0 (RGBA float).
 #include <string>
 
 #include "poly/mesh.h"
