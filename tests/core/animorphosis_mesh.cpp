@@ -23,7 +23,7 @@ Topology topologyOf(const FieldProgram& program, int resolution) {
 
 }  // namespace
 
-TEST_CASE("animorphosis: every frame of the walker -> flyer is watertight and consistently oriented; the ends have "
+TEST_CASE("animorphosis: every frame of the walker -> flyer is watertight and consistently oriented, the ends have "
           "the topology of A and B",
           "[animorph]") {
   auto c = buildGenericTree(walkerTree(), flyerTree(), walkerToFlyerGraph());

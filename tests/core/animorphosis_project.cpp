@@ -99,7 +99,7 @@ TEST_CASE("animorphosis: created, edited and undone through document commands", 
   CHECK(doc->project().animorphosis.graph.links.size() == autoLinks);
 }
 
-TEST_CASE("animorphosis: saved in the project file and read back; bad sections are refused by name", "[animorph]") {
+TEST_CASE("animorphosis: saved in the project file and read back, bad sections are refused by name", "[animorph]") {
   auto doc = creaturesDocument();
   exec(*doc, createAnimorphosisCommand(doc->project(), "walker", "flyer", 1.0, 3.0, true));
   exec(*doc, addCorrespondenceLinkCommand(doc->project(), 12, 105));

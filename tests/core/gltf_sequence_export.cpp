@@ -85,6 +85,7 @@ TEST_CASE("glTF sequence: one node per frame, repeats share a mesh, STEP scale k
   TempDir dir;
   REQUIRE(writeFileAtomic(dir.file("seq.glb"), *bytes).ok());
   auto c = importGltf(dir.file("seq.glb"));
+  INFO((c.ok() ? std::string() : c.error()));
   REQUIRE(c.ok());
   REQUIRE(c->nodes.size() == 7);
   REQUIRE(c->meshes.size() == 3);
@@ -103,7 +104,7 @@ TEST_CASE("glTF sequence: one node per frame, repeats share a mesh, STEP scale k
   CHECK(sampleLocalTransforms(*c, &c->clips[0], 100.0f)[5].scale == glm::vec3(0.0f));
 }
 
-TEST_CASE("glTF sequence: normals are written unit length; a frame differing only in normals is not a repeat",
+TEST_CASE("glTF sequence: normals are written unit length, a frame differing only in normals is not a repeat",
           "[io][gltf_sequence]") {
   GltfSequenceWriter w(GltfSequenceOptions{});
   TriangleMesh a = tetra(0), b = tetra(0);
@@ -123,7 +124,7 @@ TEST_CASE("glTF sequence: normals are written unit length; a frame differing onl
   for (const auto& n : c->meshes[0].normals) CHECK(glm::length(n) == Approx(1.0f));
 }
 
-TEST_CASE("glTF sequence: bad frames are refused naming the frame; no file is left on failure", "[io][gltf_sequence]") {
+TEST_CASE("glTF sequence: bad frames are refused naming the frame, no file is left on failure", "[io][gltf_sequence]") {
   GltfSequenceOptions o;
   o.firstFrame = 7;
   GltfSequenceWriter w(o);

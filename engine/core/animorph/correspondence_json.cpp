@@ -1,5 +1,7 @@
 #include "animorph/correspondence_json.h"
 
+#include "anim/track_json.h"
+
 #include <cmath>
 
 namespace animorph {

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "animorph/correspondence_json.h"
+#include "anim/track_json.h"
 
 namespace animorph {
 

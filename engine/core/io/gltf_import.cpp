@@ -958,7 +958,9 @@ Result<Character> importImpl(const std::string& path) {
                  " where a .glb file starts with the magic 'glTF'"};
 
   std::vector<std::string> schemaWarnings;
-  if (auto s = checkGltfSchema(*bytes, file, schemaWarnings); !s) return Error{s.error()};
+  std::string withoutPointerChannels;  // the file less the channels tinygltf cannot read, when it has any
+  if (auto s = checkGltfSchema(*bytes, file, schemaWarnings, &withoutPointerChannels); !s) return Error{s.error()};
+  const std::string& loaded = withoutPointerChannels.empty() ? data : withoutPointerChannels;
 
   FsGuard guard;
   guard.baseDir = dir.string();
@@ -970,10 +972,10 @@ Result<Character> importImpl(const std::string& path) {
   std::string terr, twarn;
   bool ok;
   if (binary)
-    ok = loader.LoadBinaryFromMemory(&model, &terr, &twarn, reinterpret_cast<const unsigned char*>(data.data()),
-                                     static_cast<unsigned int>(data.size()), guard.baseDir);
+    ok = loader.LoadBinaryFromMemory(&model, &terr, &twarn, reinterpret_cast<const unsigned char*>(loaded.data()),
+                                     static_cast<unsigned int>(loaded.size()), guard.baseDir);
   else
-    ok = loader.LoadASCIIFromString(&model, &terr, &twarn, data.data(), static_cast<unsigned int>(data.size()),
+    ok = loader.LoadASCIIFromString(&model, &terr, &twarn, loaded.data(), static_cast<unsigned int>(loaded.size()),
                                     guard.baseDir);
   if (!guard.rejectedUri.empty())
     return Error{file + ": uri '" + guard.rejectedUri + "': " + guard.rejectReason};

@@ -235,8 +235,6 @@ void checkRequired(Checker& c, const json& root, const GlbInfo& glb) {
       for (const char* key : {"sampler", "target"}) c.need(ch, key, cw);
       if (c.failed()) return;
       c.need(ch["target"], "path", cw + ".target");
-      if (!ch["target"].contains("node"))
-        c.fail(cw + ".target.node: missing (channels that animate no node are not supported)");
     }
     for (size_t k = 0; k < a["samplers"].size(); ++k)
       for (const char* key : {"input", "output"}) c.need(a["samplers"][k], key, w + ".samplers[" + std::to_string(k) + "]");
@@ -387,9 +385,58 @@ Status splitGlb(const std::string& bytes, const std::string& fileName, std::stri
   return {};
 }
 
+// Removes the animation channels whose target names no node (and animations left with none);
+// true when it removed any, with a warning per animation.
+bool dropNodelessChannels(json& root, std::vector<std::string>& warnings) {
+  if (!root.contains("animations") || !root["animations"].is_array()) return false;
+  bool any = false;
+  json& anims = root["animations"];
+  for (size_t a = anims.size(); a-- > 0;) {
+    json& chans = anims[a]["channels"];
+    size_t dropped = 0;
+    std::string pointer;
+    for (size_t k = chans.size(); k-- > 0;) {
+      const json& t = chans[k]["target"];
+      if (t.contains("node")) continue;
+      if (t.contains("extensions") && t["extensions"].is_object() && t["extensions"].contains("KHR_animation_pointer"))
+        pointer = "KHR_animation_pointer";
+      chans.erase(k);
+      ++dropped;
+    }
+    if (dropped == 0) continue;
+    any = true;
+    const std::string w = "animations[" + std::to_string(a) + "]";
+    warnings.push_back(w + ": " + std::to_string(dropped) + " channel(s) animate no node" +
+                       (pointer.empty() ? "" : " (" + pointer + ")") + " and are ignored" +
+                       (chans.empty() ? "; the animation is left out" : ""));
+    if (chans.empty()) anims.erase(a);
+  }
+  if (anims.empty()) root.erase("animations");
+  return any;
+}
+
+// The same container with other JSON: .gltf text, or a GLB whose JSON chunk is replaced (padded
+// with spaces to 4 bytes) and whose BIN chunk follows unchanged.
+std::string withJson(const std::string& bytes, bool binary, const json& root) {
+  std::string text = root.dump();
+  if (!binary) return text;
+  while (text.size() % 4 != 0) text += ' ';
+  const uint32_t oldJsonLength = readU32(bytes, 12);
+  const std::string rest = bytes.substr(20 + size_t(oldJsonLength), size_t(readU32(bytes, 8)) - 20 - oldJsonLength);
+  const uint32_t jsonLength = uint32_t(text.size()), total = uint32_t(20 + text.size() + rest.size()), version = 2;
+  std::string out(20, '\0');
+  std::memcpy(out.data(), "glTF", 4);
+  std::memcpy(out.data() + 4, &version, 4);
+  std::memcpy(out.data() + 8, &total, 4);
+  std::memcpy(out.data() + 12, &jsonLength, 4);
+  std::memcpy(out.data() + 16, "JSON", 4);
+  return out + text + rest;
+}
+
 }  // namespace
 
-Status checkGltfSchema(const std::string& bytes, const std::string& fileName, std::vector<std::string>& warnings) {
+Status checkGltfSchema(const std::string& bytes, const std::string& fileName, std::vector<std::string>& warnings,
+                       std::string* withoutPointerChannels) {
   std::string text;
   GlbInfo glb;
   if (bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0) {
@@ -405,6 +452,10 @@ Status checkGltfSchema(const std::string& bytes, const std::string& fileName, st
   checkModel(c, root);
   if (!c.failed()) checkRequired(c, root, glb);
   if (c.failed()) return Error{c.error()};
+  if (withoutPointerChannels) {
+    json copy = root;
+    if (dropNodelessChannels(copy, warnings)) *withoutPointerChannels = withJson(bytes, glb.binary, copy);
+  }
   return {};
 }
 
