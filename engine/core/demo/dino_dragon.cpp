@@ -147,7 +147,7 @@ struct Builder {
     for (float r : spec.radii) meanRadius += r / float(spec.radii.size());
     float minRadius = *std::min_element(spec.radii.begin(), spec.radii.end());
     // Copies close enough for the thinnest end to stay one smooth tube.
-    int copies = std::clamp(int(std::lround(length / (0.5f * minRadius))) + 1, 3, 48);
+    int copies = std::clamp(int(std::lround(length / (0.8f * minRadius))) + 1, 3, 48);
     float spacing = length / float(copies - 1) / meanRadius;  // in units of the radius
     float intensity = bundleIntensity(*spec.layers, spacing);
     int fibre = 0;
@@ -320,9 +320,9 @@ BlobNode buildWing(Builder& b, const BodyStyle& s, const std::string& side) {
   hand.quatParam("rotation") =
       rotationLoop(s.loopSec, {1, 0, 0}, [=](double t) { return -m * 0.35f * float(std::sin(w * t - 0.9)); });
   hand.children.push_back(b.part("wingfinger_" + side + "0", {{0, 0, 0}, z({0.1f, 0, 0.6f}), z({0.15f, -0.02f, 1.2f})},
-                                  {0.05f, 0.04f, 0.025f}, &kBoneLayers));
+                                  {0.05f, 0.04f, 0.03f}, &kBoneLayers));
   hand.children.push_back(b.part("wingfinger_" + side + "1", {{0, 0, 0}, z({-0.15f, -0.02f, 0.45f}), z({-0.14f, -0.04f, 0.88f})},
-                                  {0.04f, 0.03f, 0.02f}, &kBoneLayers));
+                                  {0.04f, 0.032f, 0.026f}, &kBoneLayers));
   hand.children.push_back(membrane(b, "membrane_out_" + side, {0, 0, 0}, z({0.15f, -0.02f, 1.2f}), z({-0.7f, -0.05f, -0.05f}),
                                    z({0.02f, -0.04f, 1.12f}), 0.06f, kWingCells));
   wing.children.push_back(std::move(hand));
@@ -441,7 +441,7 @@ BlobTree buildCreature(const BodyStyle& s) {
     for (int side = -1; side <= 1; side += 2)
       head.children.push_back(b.part(std::string("horn_") + (side < 0 ? "r" : "l"),
                                       {{-0.02f, 0.12f, 0.07f * side}, {-0.16f, 0.2f, 0.1f * side}, {-0.3f, 0.24f, 0.12f * side}},
-                                      {0.05f, 0.035f, 0.015f}, &kBoneLayers));
+                                      {0.05f, 0.038f, 0.025f}, &kBoneLayers));
   head.children.push_back(std::move(jaw));
   neck.children.push_back(std::move(head));
   chest.children.push_back(std::move(neck));
