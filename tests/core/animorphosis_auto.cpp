@@ -58,10 +58,7 @@ TEST_CASE("animorphosis: auto-map recovers a moved, rescaled, shuffled, jittered
     auto g = autoCorrespond(a, b, {}, {}, &report);
     REQUIRE(g.ok());
     REQUIRE(validateCorrespondence(a, b, *g).ok());
-    int right = 0;
-    for (const auto& l : g->links)
-      if (idMap.at(l.nodeA) == l.nodeB) ++right;
-    double recovered = double(right) / double(a.root.subtreeSize() - 1);  // every node but the root
+    double recovered = recoveredLinks(a, *g, idMap);
     INFO("seed " << seed << ": " << a.root.subtreeSize() << " nodes, " << g->links.size() << " links, recovered "
                  << recovered * 100.0 << "%, mean confidence " << report.meanConfidence);
     CHECK(recovered >= 0.95);
@@ -119,10 +116,7 @@ TEST_CASE("animorphosis: auto-map recovers the demo creature from a perturbed co
   BlobTree b = perturbedCopy(a, {-2.0f, 0.3f, 1.0f}, 0.6f, rng, idMap, 0.01f);
   auto g = autoCorrespond(a, b, {}, {}, nullptr);
   REQUIRE(g.ok());
-  int right = 0;
-  for (const auto& l : g->links)
-    if (idMap.at(l.nodeA) == l.nodeB) ++right;
-  double recovered = double(right) / double(a.root.subtreeSize() - 1);
+  double recovered = recoveredLinks(a, *g, idMap);
   INFO(a.root.subtreeSize() << " nodes, recovered " << recovered * 100.0 << "%");
   CHECK(recovered >= 0.95);
   auto c = buildGenericTree(a, b, *g);

@@ -160,6 +160,13 @@ BlobTree perturbedCopy(const BlobTree& tree, glm::vec3 offset, float scale, std:
   return copy;
 }
 
+double recoveredLinks(const BlobTree& a, const CorrespondenceGraph& g, const std::unordered_map<int, int>& idMap) {
+  int right = 0;
+  for (const auto& l : g.links)
+    if (idMap.at(l.nodeA) == l.nodeB) ++right;
+  return double(right) / double(a.root.subtreeSize() - 1);
+}
+
 namespace {
 
 BlobNode randomPart(std::mt19937& rng, int depth, int& id, int& budget, glm::vec3 centre, float spread) {

@@ -26,6 +26,10 @@ CorrespondenceGraph walkerToFlyerGraph();
 BlobTree perturbedCopy(const BlobTree& tree, glm::vec3 offset, float scale, std::mt19937& rng,
                        std::unordered_map<int, int>& idMap, float jitter = 0.0f);
 
+// Fraction of the nodes of `a` but its root that `g` links to their copies
+// (idMap as perturbedCopy made it).
+double recoveredLinks(const BlobTree& a, const CorrespondenceGraph& g, const std::unordered_map<int, int>& idMap);
+
 // A random tree of blends, unions and frames over skeletal primitives, with
 // distinct, spread-out primitive positions; about `nodes` nodes.
 BlobTree randomCreature(std::mt19937& rng, int nodes);
