@@ -2,7 +2,7 @@
 // One graphics pipeline over the embedded shaders, with the state every
 // renderer here shares: dynamic viewport and scissor, one sample, one colour
 // attachment, counter-clockwise front faces. Used by the scene renderer and the
-// UI renderer (ui/imgui_vulkan.cpp).
+// UI renderer (engine/gpu/imgui_vulkan.cpp).
 #include <vector>
 
 #include <vulkan/vulkan.h>
