@@ -23,6 +23,7 @@
 #include "imgui_vulkan.h"
 #include "mesh_cache.h"
 #include "redraw_policy.h"
+#include "scene/animorphosis_scene.h"
 #include "scene/morph_preview_source.h"
 #include "scene/morph_pick.h"
 #include "scene/morph_scene.h"
@@ -114,6 +115,7 @@ int main(int argc, char** argv) {
   const std::string uiMapPath = uiMapEnv ? uiMapEnv : "";
   gpu::Scene scene;
   MorphCache morphCache;
+  AnimorphosisCache animorphosisCache;  // the generic tree C of the project's animorphosis
   MorphFrameSettings morphSettings;  // the transitions; the B->C stage is morphPreview's
   const MorphRuntime* prewarmedMorph = nullptr;  // whose B->C pipelines are compiling or compiled
   std::vector<float> overlayWeights;  // the weight overlay's data, alive until the frame is recorded
@@ -268,6 +270,11 @@ int main(int argc, char** argv) {
       }
     } else {
       ectx.viewportNote = morphCache.error().empty() ? "" : "morph: " + morphCache.error();
+    }
+    if (!out.weightPaintMode) {
+      const std::string note =
+          describeAnimorphosis(applyAnimorphosis(frame, doc.project(), animorphosisCache, &doc, doc.revision()));
+      if (!note.empty()) ectx.viewportNote += (ectx.viewportNote.empty() ? "" : "  |  ") + note;
     }
     blobPreviews->update(doc.project(), frame,
                          {prefs.previewCoarseResolution, prefs.previewResolution, interactivePreviewThreads(), backend.gpu,
