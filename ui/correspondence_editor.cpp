@@ -183,8 +183,8 @@ void drawToolbar(Document& doc, const BlobTree& a, const BlobTree& b, Correspond
   ImGui::SameLine();
   int artist = 0;
   for (const CorrespondenceLink& l : m.graph.links) artist += l.artist ? 1 : 0;
-  ImGui::TextDisabled("%zu links (%d artist)  |  %s -> %s", m.graph.links.size(), artist, m.sourceActorId.c_str(),
-                      m.targetActorId.c_str());
+  ImGui::TextDisabled("%zu link%s (%d artist)  |  %s -> %s", m.graph.links.size(), m.graph.links.size() == 1 ? "" : "s",
+                      artist, m.sourceActorId.c_str(), m.targetActorId.c_str());
   if (sel < 0) {
     ImGui::TextDisabled("Drag from a node onto a node of the other tree to link; click a wire to select it.");
     return;
@@ -277,7 +277,8 @@ void drawCorrespondenceEditor(const LayoutRect& area, Document& doc, Corresponde
       noteWidget(std::string(side == 0 ? "corr/a/" : "corr/b/") + std::to_string(n.id));
       const bool hovered = ImGui::IsItemHovered();
       rowHovered |= hovered;
-      const float indentX = r.min.x + 4.0f + r.depth * kIndent;
+      // The target's sockets are on the left of its rows: its text starts after them.
+      const float indentX = r.min.x + (side == 0 ? 4.0f : 12.0f) + r.depth * kIndent;
       if (ImGui::IsItemClicked(0)) {
         if (!n.children.empty() && mouse.x >= indentX && mouse.x < indentX + kArrowW) {
           if (!toggled.erase(n.id)) toggled.insert(n.id);
