@@ -42,13 +42,7 @@ class AnimorphosisCurveSource final : public CurveSource {
 
   CurveAxis axis() const override {
     const Project& p = doc_.project();
-    CurveAxis ax;
-    ax.xPerTime = 1.0;
-    ax.label = "u: progress of the animorphosis";
-    ax.snapStep = 0.01;
-    ax.snapLabel = "Snap to 0.01";
-    ax.rangeStart = 0.0;
-    ax.rangeEnd = 1.0;
+    CurveAxis ax = progressAxis("u: progress of the animorphosis");
     const double t = p.timeline.frameToSec(p.timeline.currentFrame);
     ax.playheads.push_back({animorphosisTiming(p).u(t), "u", false});
     return ax;

@@ -41,6 +41,9 @@ struct CurveAxis {
   std::vector<CurvePlayhead> playheads;
 };
 
+// An axis over a normalised progress u in [0, 1] (shaded), keys snapped to 0.01.
+CurveAxis progressAxis(std::string label);
+
 using KeyEditFn = std::function<Status(const TrackSet&)>;
 
 class CurveSource {
