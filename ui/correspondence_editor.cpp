@@ -354,6 +354,8 @@ void drawCorrespondenceEditor(const LayoutRect& area, Document& doc, Corresponde
     const CorrespondenceLink& l = setup.graph.links[i];
     if (!ra.rowOf.count(l.nodeA) || !rb.rowOf.count(l.nodeB)) continue;
     Wire w{int(i), socketA(l.nodeA), socketB(l.nodeB)};
+    // Both ends above or both below the visible rows: nothing of it shows.
+    if ((w.p0.y < clipTop && w.p3.y < clipTop) || (w.p0.y > clipBottom && w.p3.y > clipBottom)) continue;
     wires.push_back(w);
     const bool isSel = st.selected && st.selected->nodeA == l.nodeA && st.selected->nodeB == l.nodeB;
     const ImU32 col = isSel ? kSelectedColor : l.artist ? kArtistColor : confidenceColor(l.confidence);

@@ -253,3 +253,28 @@ TEST_CASE("the viewport's scene shows the source, then C(t), then the target", "
   REQUIRE(after.blobs.size() == 1);
   CHECK(after.blobs[0].actorId == "flyer");
 }
+
+TEST_CASE("correspondence editor: a Ctrl+right-drag across wires cuts them in one undo step", "[animorphosis_ui]") {
+  EditorFixture f({1600.0f, 1200.0f});
+  loadCreatures(f);
+  createThroughModal(f.h, /*autoMap=*/false);
+  dragLink(f.h, 2, 102);
+  dragLink(f.h, 9, 112);
+  dragLink(f.h, 12, 104);  // refused (the head is outside the body, the chest inside the flyer's body): no wire
+  REQUIRE(graph(f.h).links.size() == 2);
+  const size_t steps = f.h.doc().history().index();
+  const glm::vec2 body = f.h.widgetCenter("corr/link/2-102");
+  const glm::vec2 tail = f.h.widgetCenter("corr/link/9-112");
+  // A vertical stroke through both wires' middles.
+  const glm::vec2 from(body.x, std::min(body.y, tail.y) - 20.0f), to(body.x, std::max(body.y, tail.y) + 20.0f);
+  f.h.setModifiers(true);
+  f.h.drag(from, to, 1, 10);
+  f.h.setModifiers(false);
+  f.h.frames(1);
+  CHECK(graph(f.h).links.empty());
+  CHECK(f.h.doc().history().index() == steps + 1);
+  CHECK_FALSE(f.h.ui->state().status.error);
+  f.h.tapKey(GLFW_KEY_Z, true);
+  f.h.frames(1);
+  CHECK(graph(f.h).links.size() == 2);
+}
