@@ -12,6 +12,7 @@
 //    the artist's. A node with k links shows "x k"; the top of an unlinked
 //    sub-tree says "shrinks" (source) or "grows" (target). A selected link can
 //    get its own s(u), which the curve editor then shows beside the global one.
+//    The node under the mouse has its skeleton highlighted in the viewport.
 //  * The interval on the timeline ruler: a band with two draggable markers.
 // Every edit is an undoable command; a refused one puts the validator's
 // message in the status bar.
@@ -46,6 +47,7 @@ struct CorrespondenceEditorState {
   bool placeNext = true;  // position the window over the viewport next time it opens
   bool focused = false;   // the window had keyboard focus this frame (Del is its own then)
   std::optional<CorrespondenceLinkRef> selected;
+  Selection hovered;  // the node whose row is under the mouse (the viewport highlights its skeleton); none: empty
   // Rows whose open state differs from the default (the top three levels open).
   std::set<int> toggledA, toggledB;
   std::string treesKey;   // "source->target" the toggles belong to

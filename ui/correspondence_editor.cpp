@@ -212,7 +212,8 @@ void drawToolbar(Document& doc, const BlobTree& a, const BlobTree& b, Correspond
 
 void drawCorrespondenceEditor(const LayoutRect& area, Document& doc, CorrespondenceEditorState& st,
                               StatusMessage& status) {
-  const float h = std::clamp(area.size.y * 0.6f, 240.0f, 560.0f);
+  st.hovered = {};
+  const float h = std::clamp(area.size.y * 0.45f, 220.0f, 440.0f);  // the centre of the viewport stays in view
   if (!beginToolWindow("Correspondence Editor", ImVec2(area.min.x + 8.0f, area.min.y + 28.0f),
                        ImVec2(std::max(320.0f, area.size.x - 16.0f), h), "corr/window",
                        {st.visible, st.placeNext, st.focused}))
@@ -277,6 +278,9 @@ void drawCorrespondenceEditor(const LayoutRect& area, Document& doc, Corresponde
       noteWidget(std::string(side == 0 ? "corr/a/" : "corr/b/") + std::to_string(n.id));
       const bool hovered = ImGui::IsItemHovered();
       rowHovered |= hovered;
+      const bool dropTarget = st.dragSide >= 0 && st.dragSide != side && mouse.x >= r.min.x && mouse.x < r.max.x &&
+                              mouse.y >= r.min.y && mouse.y < r.max.y;
+      if (hovered || dropTarget) st.hovered = Selection{side == 0 ? src->id : dst->id, n.id};
       // The target's sockets are on the left of its rows: its text starts after them.
       const float indentX = r.min.x + (side == 0 ? 4.0f : 12.0f) + r.depth * kIndent;
       if (ImGui::IsItemClicked(0)) {
@@ -290,8 +294,6 @@ void drawCorrespondenceEditor(const LayoutRect& area, Document& doc, Corresponde
         st.dragSide = side;
         st.dragNode = n.id;
       }
-      const bool dropTarget = st.dragSide >= 0 && st.dragSide != side && mouse.x >= r.min.x && mouse.x < r.max.x &&
-                              mouse.y >= r.min.y && mouse.y < r.max.y;
       const bool selectedEnd =
           st.selected && (side == 0 ? st.selected->nodeA : st.selected->nodeB) == n.id;
       if (hovered || dropTarget || selectedEnd)

@@ -187,6 +187,7 @@ void EditorUI::draw(EditorContext& ctx) {
   out_.camera = st_.camera;
   out_.weightPaintMode = st_.paint.active;
   out_.weightOverlay = weightOverlayRequest(doc(ctx), st_.paint);
+  out_.highlightBlobNode = st_.correspondence.visible ? st_.correspondence.hovered : Selection{};
   const LayoutRect& vp = st_.layout.viewport;
   out_.viewport = {vp.min, vp.size};
   setActiveWidgetRects(nullptr);

@@ -312,6 +312,12 @@ int main(int argc, char** argv) {
     int selBlobNode = selActor && selActor->kind == ActorKind::BlobTree ? doc.selection.node : -1;
     gpu::buildScene(frame, doc.project().view, doc.selection.actorId, meshes, scene, blobPreviews, selBlobNode,
                     standinBindings);
+    if (const Actor* ha = doc.project().findActor(out.highlightBlobNode.actorId);
+        ha && ha->kind == ActorKind::BlobTree) {  // a node hovered in the correspondence editor
+      if (const BlobNode* hn = ha->blobTree.find(out.highlightBlobNode.node))
+        gpu::addBlobHighlight(
+            subtreeGuides(blobGuides(ha->blobTree, blobActorTimeSec(*ha, timeSec), ha->transform.matrix()), *hn), scene);
+    }
     if (morphStageShown) {
       const size_t meshCount = scene.meshes.size(), generatedCount = scene.generatedMeshes.size();
       morphPreview->draw(scene, glm::mat4(1.0f), {0.62f, 0.62f, 0.62f, 1.0f}, doc.selection.actorId == morphSourceId);

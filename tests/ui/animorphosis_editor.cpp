@@ -278,3 +278,15 @@ TEST_CASE("correspondence editor: a Ctrl+right-drag across wires cuts them in on
   f.h.frames(1);
   CHECK(graph(f.h).links.size() == 2);
 }
+
+TEST_CASE("hovering a node in the correspondence editor asks the viewport to highlight it", "[animorphosis_ui]") {
+  EditorFixture f({1600.0f, 1200.0f});
+  loadCreatures(f);
+  createThroughModal(f.h, /*autoMap=*/false);
+  f.h.moveTo(f.h.widgetCenter(row(1, 105)));
+  f.h.frames(1);
+  CHECK(f.h.ui->output().highlightBlobNode == Selection{"flyer", 105});
+  f.h.moveTo(f.h.widgetCenter("corr/automap"));
+  f.h.frames(1);
+  CHECK(f.h.ui->output().highlightBlobNode.actorId.empty());
+}
