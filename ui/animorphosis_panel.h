@@ -8,7 +8,8 @@
 //    rows (automatic ones coloured by confidence, artist ones thick and blue,
 //    the selected one white). Drag from a node of one tree onto a node of the
 //    other: link; click a wire: select it; Del, right-click > Cut, or a
-//    Ctrl+right-drag across wires: cut; Auto-map: propose links again keeping
+//    Ctrl+right-drag across wires: cut; F: scroll the selected link into view;
+//    the wheel scrolls; Auto-map: propose links again keeping
 //    the artist's. A node with k links shows "x k"; the top of an unlinked
 //    sub-tree says "shrinks" (source) or "grows" (target). A selected link can
 //    get its own s(u), which the curve editor then shows beside the global one.

@@ -339,6 +339,12 @@ void drawCorrespondenceEditor(const LayoutRect& area, Document& doc, Corresponde
   drawRows(rb, 1, xB0, xB1);
   ImGui::SetCursorScreenPos(origin);
   ImGui::Dummy(ImVec2(width, headerH + float(rowCount) * rowH + 4.0f));
+  // F scrolls the selected link's rows (their middle) into the middle of the view.
+  if (st.focused && st.selected && !io.WantTextInput && ImGui::IsKeyPressed('F', false)) {
+    const float ya = headerH + float(ra.rowOf.count(st.selected->nodeA) ? ra.rowOf.at(st.selected->nodeA) : 0) * rowH;
+    const float yb = headerH + float(rb.rowOf.count(st.selected->nodeB) ? rb.rowOf.at(st.selected->nodeB) : 0) * rowH;
+    ImGui::SetScrollY(std::max(0.0f, 0.5f * (ya + yb) - 0.5f * ImGui::GetWindowHeight()));
+  }
 
   auto socketA = [&](int id) {
     const Row& r = ra.rows[size_t(ra.rowOf.at(id))];

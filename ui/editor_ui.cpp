@@ -162,14 +162,13 @@ void EditorUI::draw(EditorContext& ctx) {
   drawSplitters();
 
   // Keyboard shortcuts: not while typing, not while a menu or dialog is open.
-  // Del and F belong to the curve editor while it has the focus, Del to the
-  // correspondence editor while it has.
+  // Del and F belong to the curve editor or the correspondence editor while it has the focus.
   if (!ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel)) {
     std::vector<Action> keys = pollShortcuts(io);
     for (Action a : keys)
       if ((!st_.curveEditor.focused || (a != Action::DeleteSelection && a != Action::FrameSelection)) &&
           !(st_.paint.active && a == Action::FrameSelection) &&  // F sets the brush radius while painting
-          !(st_.correspondence.focused && a == Action::DeleteSelection))
+          !(st_.correspondence.focused && (a == Action::DeleteSelection || a == Action::FrameSelection)))
         actions.push_back(a);
   }
   if (menu.addNodeType) addNodeToSelection(*menu.addNodeType, ctx);
