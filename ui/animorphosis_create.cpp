@@ -78,7 +78,8 @@ void drawCreateAnimorphosisPopup(Document& doc, CreateAnimorphosisState& st, Cor
   ImGuiIO& io = ImGui::GetIO();
   ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.4f), ImGuiCond_Appearing,
                           ImVec2(0.5f, 0.5f));
-  st.isOpen = ImGui::BeginPopupModal(kPopup, nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings);
+  st.isOpen =
+      ImGui::BeginPopupModal(kPopup, nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings);
   if (!st.isOpen) return;
   const Project& p = doc.project();
   std::vector<const Actor*> blobs = blobActors(p);

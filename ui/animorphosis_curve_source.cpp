@@ -14,12 +14,19 @@ namespace {
 constexpr int kGlobalSNode = 0, kLinkSNode = 1;  // ParamAddress::node of the two kinds of s tracks
 constexpr int kLinkColor = 3;
 
-TrackPtr findSTrack(AnimorphosisSetup& m, const ParamAddress& a) {
+// The s track at a in m (AnimorphosisSetup or const AnimorphosisSetup), or null.
+template <class Setup>
+auto findSTrack(Setup& m, const ParamAddress& a) -> decltype(&m.globalS) {
   if (a.node == kGlobalSNode && a.param == 0) return &m.globalS;
   if (a.node == kLinkSNode && a.param >= 0 && a.param < int(m.graph.links.size()) &&
       m.graph.links[size_t(a.param)].sOverride)
     return &*m.graph.links[size_t(a.param)].sOverride;
-  return {};
+  return nullptr;
+}
+
+ConstTrackPtr constSTrack(const AnimorphosisSetup& m, const ParamAddress& a) {
+  const FloatTrack* t = findSTrack(m, a);
+  return t ? ConstTrackPtr(t) : ConstTrackPtr{};
 }
 
 class AnimorphosisCurveSource final : public CurveSource {
@@ -36,7 +43,8 @@ class AnimorphosisCurveSource final : public CurveSource {
     std::vector<CurveChannel> out;
     out.push_back({{kGlobalSNode, 0, -1}, 0, "Global s(u)", false, -1});
     const int i = linkIndex();
-    if (i >= 0 && setup().graph.links[size_t(i)].sOverride) out.push_back({{kLinkSNode, i, -1}, 0, "s(u) of " + linkName(), false, kLinkColor});
+    if (i >= 0 && setup().graph.links[size_t(i)].sOverride)
+      out.push_back({{kLinkSNode, i, -1}, 0, "s(u) of " + linkName(), false, kLinkColor});
     return out;
   }
 
@@ -48,12 +56,10 @@ class AnimorphosisCurveSource final : public CurveSource {
     return ax;
   }
 
-  ConstTrackPtr track(const ParamAddress& a) const override {
-    return asConst(findSTrack(const_cast<AnimorphosisSetup&>(setup()), a));
-  }
+  ConstTrackPtr track(const ParamAddress& a) const override { return constSTrack(setup(), a); }
   ConstTrackPtr track(const std::any& snapshot, const ParamAddress& a) const override {
     const AnimorphosisSetup* m = std::any_cast<AnimorphosisSetup>(&snapshot);
-    return m ? asConst(findSTrack(const_cast<AnimorphosisSetup&>(*m), a)) : ConstTrackPtr{};
+    return m ? constSTrack(*m, a) : ConstTrackPtr{};
   }
   std::any snapshot() const override { return setup(); }
 
@@ -63,7 +69,10 @@ class AnimorphosisCurveSource final : public CurveSource {
     if (!start) return Error{"animorphosis: nothing to edit"};
     AnimorphosisSetup copy = *start;
     TrackSet set;
-    set.find = [&copy](const ParamAddress& a) { return findSTrack(copy, a); };
+    set.find = [&copy](const ParamAddress& a) {
+      FloatTrack* t = findSTrack(copy, a);
+      return t ? TrackPtr(t) : TrackPtr{};
+    };
     set.name = [this](const ParamAddress& a) {
       return a.node == kGlobalSNode ? std::string("animorphosis global s") : "animorphosis s of " + linkName();
     };

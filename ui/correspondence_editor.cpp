@@ -200,7 +200,8 @@ void drawToolbar(Document& doc, const BlobTree& a, const BlobTree& b, Correspond
     if (ImGui::SmallButton("Own s(u)"))
       runCommand(doc, setLinkSOverrideCommand(doc.project(), l.nodeA, l.nodeB, m.globalS), status);
     noteWidget("corr/own_s");
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Give this link its own s(u) (starting as the global one), edited in the curve editor.");
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Give this link its own s(u) (starting as the global one), edited in the curve editor.");
   } else {
     if (ImGui::SmallButton("Inherit s(u)"))
       runCommand(doc, setLinkSOverrideCommand(doc.project(), l.nodeA, l.nodeB, std::nullopt), status);
@@ -298,13 +299,15 @@ void drawCorrespondenceEditor(const LayoutRect& area, Document& doc, Corresponde
           st.selected && (side == 0 ? st.selected->nodeA : st.selected->nodeB) == n.id;
       if (hovered || dropTarget || selectedEnd)
         dl->AddRectFilled(ImVec2(r.min.x, r.min.y), ImVec2(r.max.x, r.max.y),
-                          dropTarget ? IM_COL32(90, 170, 255, 90) : IM_COL32(255, 255, 255, selectedEnd ? 40 : 22), 3.0f);
+                          dropTarget ? IM_COL32(90, 170, 255, 90) : IM_COL32(255, 255, 255, selectedEnd ? 40 : 22),
+                          3.0f);
       if (!n.children.empty()) {
         const float cy = r.min.y + rowH * 0.5f, cx = indentX + 5.0f;
+        const ImU32 arrow = IM_COL32(180, 180, 190, 255);
         if (r.open)
-          dl->AddTriangleFilled(ImVec2(cx - 4, cy - 2), ImVec2(cx + 4, cy - 2), ImVec2(cx, cy + 3), IM_COL32(180, 180, 190, 255));
+          dl->AddTriangleFilled(ImVec2(cx - 4, cy - 2), ImVec2(cx + 4, cy - 2), ImVec2(cx, cy + 3), arrow);
         else
-          dl->AddTriangleFilled(ImVec2(cx - 2, cy - 4), ImVec2(cx + 3, cy), ImVec2(cx - 2, cy + 4), IM_COL32(180, 180, 190, 255));
+          dl->AddTriangleFilled(ImVec2(cx - 2, cy - 4), ImVec2(cx + 3, cy), ImVec2(cx - 2, cy + 4), arrow);
       }
       // Link state: "x k" for a node split k ways; the top of an unlinked sub-tree grows or shrinks.
       const int direct = int((side == 0 ? setup.graph.linksOfA(n.id) : setup.graph.linksOfB(n.id)).size());
@@ -483,7 +486,8 @@ void drawCorrespondenceEditor(const LayoutRect& area, Document& doc, Corresponde
   ImGui::EndChild();
 
   // Del cuts the selected wire while the editor has the focus.
-  if (st.focused && st.selected && !io.WantTextInput && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Delete), false)) {
+  if (st.focused && st.selected && !io.WantTextInput &&
+      ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Delete), false)) {
     runCommand(doc, removeCorrespondenceLinkCommand(doc.project(), st.selected->nodeA, st.selected->nodeB), status);
     st.selected.reset();
   }

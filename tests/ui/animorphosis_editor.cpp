@@ -9,6 +9,8 @@
 #include "doc/animorphosis_project.h"
 #include "doc/blobtree_commands.h"
 #include "scene/animorphosis_scene.h"
+#include "anim/key_edit.h"
+#include "curve_source.h"
 #include "support/editor_fixture.h"
 #include "util/animorph_fixtures.h"
 
@@ -289,4 +291,42 @@ TEST_CASE("hovering a node in the correspondence editor asks the viewport to hig
   f.h.moveTo(f.h.widgetCenter("corr/automap"));
   f.h.frames(1);
   CHECK(f.h.ui->output().highlightBlobNode.actorId.empty());
+}
+
+TEST_CASE("the animorphosis curve source edits the global s and a link's own s, and refuses a broken s curve",
+          "[animorphosis_ui]") {
+  EditorFixture f({1600.0f, 1200.0f});
+  loadCreatures(f);
+  createThroughModal(f.h, /*autoMap=*/false);
+  dragLink(f.h, 2, 102);
+  f.h.clickWidget("corr/own_s");
+  f.h.frames(1);
+  auto src = makeAnimorphosisCurveSource(f.h.doc(), 2, 102);
+  REQUIRE(src);
+  const std::vector<CurveChannel> channels = src->channels();
+  REQUIRE(channels.size() == 2);  // the global s and the link's own
+  const ParamAddress link = channels[1].addr;
+  const size_t keys = f.h.doc().project().animorphosis.graph.links[0].sOverride->keys().size();
+  // A key at u = 0.3 on the link's curve, raised to 0.8: wings that grow fast.
+  auto cmd = src->edit("Key s", [&](const TrackSet& set) -> Status {
+    auto k = insertKey(set, link, 0.3);
+    if (!k) return Error{k.error()};
+    auto moved = setKeyTimeValue(set, {{link, *k}, 0}, 0.3, 0.8f);
+    return moved ? Status::success() : Status(Error{moved.error()});
+  });
+  REQUIRE(cmd);
+  f.h.doc().execute(std::move(*cmd));
+  const FloatTrack& s = *f.h.doc().project().animorphosis.graph.links[0].sOverride;
+  CHECK(s.keys().size() == keys + 1);
+  CHECK(s.evaluate(0.3) == Approx(0.8f));
+  CHECK(f.h.doc().project().animorphosis.globalS == defaultSCurve());
+  // Moving the global s's last key off (1, 1) is refused, naming the curve.
+  const FloatTrack& g = f.h.doc().project().animorphosis.globalS;
+  const int last = int(g.keys().size()) - 1;
+  auto broken = src->edit("Move key", [&](const TrackSet& set) -> Status {
+    auto moved = setKeyTimeValue(set, {{channels[0].addr, last}, 0}, 1.0, 0.5f);
+    return moved ? Status::success() : Status(Error{moved.error()});
+  });
+  REQUIRE_FALSE(broken);
+  CHECK(broken.error().find("global s") != std::string::npos);
 }
