@@ -9,8 +9,8 @@
 //    the selected one white). Drag from a node of one tree onto a node of the
 //    other: link; click a wire: select it; Del, right-click > Cut, or a
 //    Ctrl+right-drag across wires: cut; F: scroll the selected link into view;
-//    the wheel scrolls; Auto-map: propose links again keeping
-//    the artist's. A node with k links shows "x k"; the top of an unlinked
+//    the wheel scrolls; Auto-map: propose links again keeping the artist's.
+//    A node with k links shows "x k"; the top of an unlinked
 //    sub-tree says "shrinks" (source) or "grows" (target). A selected link can
 //    get its own s(u), which the curve editor then shows beside the global one.
 //    The node under the mouse has its skeleton highlighted in the viewport.
@@ -20,6 +20,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
