@@ -7,6 +7,7 @@
 #include <imgui.h>
 
 #include "curve_source.h"
+#include "tool_window.h"
 #include "widget_rects.h"
 
 namespace animorph {
@@ -109,29 +110,14 @@ glm::dvec2 pixelToCurve(const CurveEditorState& st, glm::vec2 px) {
 }
 
 void drawCurveEditorPanel(const LayoutRect& area, Document& doc, CurveEditorState& st, StatusMessage& status) {
-  st.focused = false;
-  if (!st.visible) return;
-  if (st.placeNext) {
-    float h = std::clamp(area.size.y * 0.5f, 200.0f, 360.0f);
-    ImGui::SetNextWindowPos(ImVec2(area.min.x, area.min.y + area.size.y - h));
-    ImGui::SetNextWindowSize(ImVec2(area.size.x, h));
-    st.placeNext = false;
-  }
-  bool open = true;
-  if (!ImGui::Begin("Curve Editor", &open, ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings)) {
-    ImGui::End();
-    st.visible = open;
+  const float h = std::clamp(area.size.y * 0.5f, 200.0f, 360.0f);
+  if (!beginToolWindow("Curve Editor", ImVec2(area.min.x, area.min.y + area.size.y - h), ImVec2(area.size.x, h),
+                       "curve/window", {st.visible, st.placeNext, st.focused}))
     return;
-  }
-  st.visible = open;
-  if (!open) st.placeNext = true;
-  st.focused = ImGui::IsWindowFocused(ImGuiFocusedFlags_RootAndChildWindows);
-  {
-    ImVec2 p = ImGui::GetWindowPos(), s = ImGui::GetWindowSize();
-    if (WidgetRects* r = activeWidgetRects()) r->set("curve/window", {{p.x, p.y}, {p.x + s.x, p.y + s.y}});
-  }
 
-  std::unique_ptr<CurveSource> source = curveSourceForSelection(doc);
+  std::unique_ptr<CurveSource> source =
+      st.animorphosis ? makeAnimorphosisCurveSource(doc, st.animorphosisLinkA, st.animorphosisLinkB) : nullptr;
+  if (!source) source = curveSourceForSelection(doc);
   if (!source) {
     ImGui::TextDisabled("Select a node of a BlobTree actor, or the morph (nothing selected), to see its curves.");
     ImGui::End();

@@ -3,7 +3,8 @@
 // (curve_source.h) as curves: the selected BlobTree node's animated
 // parameters over the tree's time (in frames), or, with the morph (or its
 // source / target actor) selected, the morph's easing, blend, noise amplitude
-// and keyed segment tracks over a normalised progress u (0..1). Left: the
+// and keyed segment tracks over a normalised progress u (0..1); while the
+// correspondence editor is open, the animorphosis' s(u) curves. Left: the
 // channels with visibility boxes (x red, y green, z blue; rotations as Euler
 // degrees). Right: the graph, with the current frame (or its u) as playhead.
 //   click a key: select it (Shift: add / remove); drag on empty space: box
@@ -56,6 +57,11 @@ struct CurveEditorState {
   bool dragChanged = false;
 
   bool focused = false;  // the window had keyboard focus this frame (Del / F are its own then)
+  // Set each frame by the correspondence editor while it is open and no
+  // BlobTree node is selected: show the animorphosis' s curves instead of the
+  // selection's (the global s, and the link a -> b's own s when it has one).
+  bool animorphosis = false;
+  int animorphosisLinkA = -1, animorphosisLinkB = -1;
   // Graph rectangle of the last frame (window pixels).
   glm::vec2 graphMin{0.0f}, graphMax{0.0f};
 };

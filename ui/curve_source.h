@@ -1,8 +1,8 @@
 #pragma once
 // What the curve editor shows and edits: a set of tracks of the project (a
 // BlobTree node's parameters, the morph's easing / blend / noise / segment
-// tracks) behind one interface, so the panel draws and edits any of them the
-// same way. A source is a light view built each frame from the document and
+// tracks, the animorphosis' s curves) behind one interface, so the panel
+// draws and edits any of them the same way. A source is a light view built each frame from the document and
 // the selection; the tracks stay in the Project and change only through the
 // commands edit() returns.
 #include <any>
@@ -41,6 +41,9 @@ struct CurveAxis {
   std::vector<CurvePlayhead> playheads;
 };
 
+// An axis over a normalised progress u in [0, 1] (shaded), keys snapped to 0.01.
+CurveAxis progressAxis(std::string label);
+
 using KeyEditFn = std::function<Status(const TrackSet&)>;
 
 class CurveSource {
@@ -73,5 +76,8 @@ std::unique_ptr<CurveSource> curveSourceForSelection(const Document& doc);
 // there is nothing to show.
 std::unique_ptr<CurveSource> makeBlobCurveSource(const Document& doc, const std::string& actorId, int node);
 std::unique_ptr<CurveSource> makeMorphCurveSource(const Document& doc);
+// The animorphosis' global s(u), and the s(u) of the link nodeA -> nodeB when
+// it has its own (animorphosis_curve_source.cpp); null without an animorphosis.
+std::unique_ptr<CurveSource> makeAnimorphosisCurveSource(const Document& doc, int nodeA = -1, int nodeB = -1);
 
 }  // namespace animorph

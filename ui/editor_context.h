@@ -44,6 +44,7 @@ struct EditorOutput {
   bool documentReplaced = false;             // ctx.document is a different document now
   bool weightPaintMode = false;              // Weight Paint mode: show weightOverlay.actorId alone, unmorphed
   WeightOverlayRequest weightOverlay;        // draw this actor in heat colours of these weights
+  Selection highlightBlobNode;               // highlight this BlobTree node's skeleton (empty actorId: none)
 };
 
 }  // namespace animorph

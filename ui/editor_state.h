@@ -4,6 +4,7 @@
 #include <string>
 
 #include "anim/playback.h"
+#include "animorphosis_panel.h"
 #include "curve_editor_panel.h"
 #include "gizmo.h"
 #include "drag_merge.h"
@@ -47,6 +48,8 @@ struct EditorState {
   InspectorState inspector;
   TimelineState timeline;
   CurveEditorState curveEditor;
+  CorrespondenceEditorState correspondence;
+  CreateAnimorphosisState createAnimorphosis;
   GizmoState gizmo;
   ViewportMode viewportMode = ViewportMode::Object;
   StandinToolState standinTool;  // the selected stand-in segment and its handles

@@ -144,7 +144,7 @@ void EditorUI::draw(EditorContext& ctx) {
 
   // Menu bar, then the panels laid out below it.
   MenuResult menu = drawMenuBar(doc(ctx), st_.prefs.recentFiles, st_.menuBarHeight, st_.curveEditor.visible, st_.paint,
-                                st_.viewportMode);
+                                st_.viewportMode, st_.correspondence.visible);
   actions.insert(actions.end(), menu.actions.begin(), menu.actions.end());
   float statusHeight = ImGui::GetFrameHeight();
   LayoutSizes sizes{st_.prefs.outlinerWidth, st_.prefs.inspectorWidth, st_.prefs.timelineHeight};
@@ -158,17 +158,25 @@ void EditorUI::draw(EditorContext& ctx) {
   drawTimelinePanel(st_.layout.timeline, doc(ctx), st_.playback, keyFrames(ctx), st_.timeline, st_.drag, actions);
   drawStatusBar(st_.layout.statusBar, doc(ctx), ctx.stats, st_.status);
   drawViewport(ctx);
+  drawCorrespondenceEditor(st_.layout.viewport, doc(ctx), st_.correspondence, st_.status);
+  // While the correspondence editor is open the curve editor shows the s curves,
+  // unless a BlobTree node is selected (and no link is).
+  st_.curveEditor.animorphosis = st_.correspondence.visible &&
+                                 (st_.correspondence.selected || doc(ctx).selection.node < 0);
+  st_.curveEditor.animorphosisLinkA = st_.correspondence.selected ? st_.correspondence.selected->nodeA : -1;
+  st_.curveEditor.animorphosisLinkB = st_.correspondence.selected ? st_.correspondence.selected->nodeB : -1;
   drawCurveEditorPanel(st_.layout.viewport, doc(ctx), st_.curveEditor, st_.status);
   drawWeightPaintPanel(st_.layout.viewport, doc(ctx), ctx.assets, st_.paint, st_.status);
   drawSplitters();
 
   // Keyboard shortcuts: not while typing, not while a menu or dialog is open.
-  // Del and F belong to the curve editor while it has the focus.
+  // Del and F belong to the curve editor or the correspondence editor while it has the focus.
   if (!ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel)) {
     std::vector<Action> keys = pollShortcuts(io);
     for (Action a : keys)
       if ((!st_.curveEditor.focused || (a != Action::DeleteSelection && a != Action::FrameSelection)) &&
-          !(st_.paint.active && a == Action::FrameSelection))  // F sets the brush radius while painting
+          !(st_.paint.active && a == Action::FrameSelection) &&  // F sets the brush radius while painting
+          !(st_.correspondence.focused && (a == Action::DeleteSelection || a == Action::FrameSelection)))
         actions.push_back(a);
   }
   if (menu.addNodeType) addNodeToSelection(*menu.addNodeType, ctx);
@@ -177,6 +185,7 @@ void EditorUI::draw(EditorContext& ctx) {
   for (Action a : actions) dispatch(a, ctx);
 
   drawPrompts(ctx);
+  drawCreateAnimorphosisPopup(doc(ctx), st_.createAnimorphosis, st_.correspondence, st_.status);
   if (drawPreferencesWindow(st_.showPreferences, st_.prefs, st_.prefsPath)) savePreferences();
   drawShortcutsWindow(st_.showShortcuts);
   drawAboutWindow(st_.showAbout);
@@ -185,6 +194,7 @@ void EditorUI::draw(EditorContext& ctx) {
   out_.camera = st_.camera;
   out_.weightPaintMode = st_.paint.active;
   out_.weightOverlay = weightOverlayRequest(doc(ctx), st_.paint);
+  out_.highlightBlobNode = st_.correspondence.visible ? st_.correspondence.hovered : Selection{};
   const LayoutRect& vp = st_.layout.viewport;
   out_.viewport = {vp.min, vp.size};
   setActiveWidgetRects(nullptr);
@@ -393,6 +403,8 @@ void EditorUI::dispatch(Action a, EditorContext& ctx) {
       break;
     }
     case Action::ToggleCurveEditor: st_.curveEditor.visible = !st_.curveEditor.visible; break;
+    case Action::ToggleCorrespondenceEditor: st_.correspondence.visible = !st_.correspondence.visible; break;
+    case Action::CreateAnimorphosis: openCreateAnimorphosis(d, st_.createAnimorphosis); break;
     case Action::ToggleGrid:
       d.execute(setViewOption(d.project(), &ViewOptions::showGrid, !d.project().view.showGrid, "Toggle grid"));
       break;
@@ -564,6 +576,9 @@ void EditorUI::replaceDocument(std::unique_ptr<Document> d, EditorContext& ctx) 
   st_.timeline = {};
   st_.curveEditor.selection.clear();
   st_.curveEditor.sourceId.clear();
+  st_.correspondence.selected.reset();
+  st_.correspondence.treesKey.clear();
+  st_.correspondence.dragSide = -1;
   st_.gizmo = {};
   st_.standinTool = {};
   st_.paint.stroke.reset();

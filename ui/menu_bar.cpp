@@ -21,7 +21,8 @@ bool beginMenu(const char* label, bool enabled = true) {
 }  // namespace
 
 MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& recentFiles, float& heightPx,
-                       bool curveEditorShown, const WeightPaintState& paint, ViewportMode mode) {
+                       bool curveEditorShown, const WeightPaintState& paint, ViewportMode mode,
+                       bool correspondenceShown) {
   MenuResult r;
   heightPx = 0.0f;
   if (!ImGui::BeginMainMenuBar()) return r;
@@ -81,6 +82,7 @@ MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& rece
   bool createOpen = beginMenu("Create");
   if (createOpen) {
     item("New BlobTree Actor", Action::NewBlobActor);
+    item("Animorphosis...", Action::CreateAnimorphosis);
     ImGui::Separator();
     const Actor* sel = doc.project().findActor(doc.selection.actorId);
     const bool blob = sel && sel->kind == ActorKind::BlobTree;
@@ -101,6 +103,7 @@ MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& rece
     item("Frame Selection", Action::FrameSelection);
     ImGui::Separator();
     item("Curve Editor", Action::ToggleCurveEditor, true, curveEditorShown);
+    item("Correspondence Editor", Action::ToggleCorrespondenceEditor, true, correspondenceShown);
     item("Weight Paint Mode", Action::ToggleWeightPaint, doc.project().morph.enabled(), paint.active);
     item("Stand-in Edit Mode", Action::ToggleStandinEdit, true, mode == ViewportMode::StandinEdit);
     item("Weight Overlay", Action::ToggleWeightOverlay, true, paint.overlayAlways);

@@ -21,9 +21,10 @@ struct MenuResult {
 };
 
 // Draws the bar; returns its height in pixels through heightPx. curveEditorShown
-// checks View > Curve Editor, mode the viewport mode entries.
+// checks View > Curve Editor, mode the viewport mode entries, correspondenceShown
+// View > Correspondence Editor.
 MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& recentFiles, float& heightPx,
                        bool curveEditorShown = false, const WeightPaintState& paint = {},
-                       ViewportMode mode = ViewportMode::Object);
+                       ViewportMode mode = ViewportMode::Object, bool correspondenceShown = false);
 
 }  // namespace animorph

@@ -45,13 +45,7 @@ class MorphCurveSource final : public CurveSource {
   CurveAxis axis() const override {
     const MorphSetup& m = doc_.project().morph;
     const double frame = doc_.project().timeline.currentFrame;
-    CurveAxis ax;
-    ax.xPerTime = 1.0;
-    ax.label = "u: progress (easing over A->B / C->D, the rest over B->C)";
-    ax.snapStep = 0.01;
-    ax.snapLabel = "Snap to 0.01";
-    ax.rangeStart = 0.0;
-    ax.rangeEnd = 1.0;
+    CurveAxis ax = progressAxis("u: progress (easing over A->B / C->D, the rest over B->C)");
     ax.playheads.push_back({morphProgressAt(m, frame), "morph u", false});
     const double tu = transitionProgressAt(m, frame);
     if (tu >= 0.0) ax.playheads.push_back({tu, frame < m.markers.b ? "collapse u" : "expand u", true});
@@ -78,6 +72,17 @@ class MorphCurveSource final : public CurveSource {
 };
 
 }  // namespace
+
+CurveAxis progressAxis(std::string label) {
+  CurveAxis ax;
+  ax.xPerTime = 1.0;
+  ax.label = std::move(label);
+  ax.snapStep = 0.01;
+  ax.snapLabel = "Snap to 0.01";
+  ax.rangeStart = 0.0;
+  ax.rangeEnd = 1.0;
+  return ax;
+}
 
 std::unique_ptr<CurveSource> makeMorphCurveSource(const Document& doc) {
   if (!doc.project().morph.enabled()) return nullptr;

@@ -9,6 +9,7 @@
 #include "blob_inspector.h"
 #include "doc/morph_tracks.h"
 #include "morph_sections.h"
+#include "ruler_marker.h"
 #include "widget_rects.h"
 
 namespace animorph {
@@ -200,25 +201,14 @@ void drawMorphCurveSettings(Document& doc, DragMerge& drag, StatusMessage& statu
   ImGui::PopItemWidth();
 }
 
-namespace {
-// Handle of a marker on the ruler: a small flag above the stage bands.
-constexpr float kHandleW = 12.0f, kHandleTop = 22.0f, kHandleBottom = 8.0f;
-float markerX(int frame, float x0, float x1, double viewStart, double viewEnd) {
-  return static_cast<float>(x0 + (frame - viewStart) * (x1 - x0) / (viewEnd - viewStart));
-}
-}  // namespace
-
 int morphMarkerAt(const Document& doc, glm::vec2 pos, float x0, float x1, float /*y0*/, float y1, double viewStart,
                   double viewEnd) {
   const MorphSetup& m = doc.project().morph;
   if (!m.enabled() || viewEnd <= viewStart) return -1;
-  if (pos.y < y1 - kHandleTop - 2.0f || pos.y > y1 - kHandleBottom + 2.0f) return -1;
   const int marks[4] = {m.markers.a, m.markers.b, m.markers.c, m.markers.d};
   // Later markers first: when handles overlap, the one drawn on top wins.
-  for (int i = 3; i >= 0; --i) {
-    float x = markerX(marks[i], x0, x1, viewStart, viewEnd);
-    if (pos.x >= x - 2.0f && pos.x <= x + kHandleW + 2.0f) return i;
-  }
+  for (int i = 3; i >= 0; --i)
+    if (rulerMarkerHit(pos, rulerX(marks[i], x0, x1, viewStart, viewEnd), y1)) return i;
   return -1;
 }
 
@@ -240,7 +230,7 @@ void drawMorphMarkers(const Document& doc, float x0, float x1, float y0, float y
   const MorphSetup& m = doc.project().morph;
   if (!m.enabled() || viewEnd <= viewStart) return;
   ImDrawList* dl = ImGui::GetWindowDrawList();
-  auto xOf = [&](int f) { return static_cast<float>(x0 + (f - viewStart) * (x1 - x0) / (viewEnd - viewStart)); };
+  auto xOf = [&](int f) { return rulerX(f, x0, x1, viewStart, viewEnd); };
   // The stages as coloured bands along the bottom of the ruler.
   const int marks[4] = {m.markers.a, m.markers.b, m.markers.c, m.markers.d};
   const ImU32 bands[3] = {IM_COL32(200, 120, 60, 110), IM_COL32(150, 90, 200, 110), IM_COL32(60, 150, 200, 110)};
@@ -248,16 +238,9 @@ void drawMorphMarkers(const Document& doc, float x0, float x1, float y0, float y
     dl->AddRectFilled(ImVec2(std::max(x0, xOf(marks[i])), y1 - 6.0f), ImVec2(std::min(x1, xOf(marks[i + 1])), y1),
                       bands[i]);
   const char* names[4] = {"A", "B", "C", "D"};
-  for (int i = 0; i < 4; ++i) {
-    float x = xOf(marks[i]);
-    if (x < x0 - 1.0f || x > x1 + 1.0f) continue;
-    dl->AddLine(ImVec2(x, y0), ImVec2(x, y1), IM_COL32(240, 170, 70, 200), 1.0f);
-    dl->AddRectFilled(ImVec2(x + 1.0f, y1 - kHandleTop), ImVec2(x + 1.0f + kHandleW, y1 - kHandleBottom),
-                      IM_COL32(240, 170, 70, 230), 2.0f);
-    dl->AddText(ImVec2(x + 3.0f, y1 - kHandleTop), IM_COL32(20, 20, 20, 255), names[i]);
-    noteWidgetRect(std::string("timeline/marker/") + names[i], {x + 1.0f, y1 - kHandleTop},
-                   {x + 1.0f + kHandleW, y1 - kHandleBottom});
-  }
+  for (int i = 0; i < 4; ++i)
+    drawRulerMarker(xOf(marks[i]), x0, x1, y0, y1, names[i], IM_COL32(240, 170, 70, 230),
+                    std::string("timeline/marker/") + names[i]);
 }
 
 }  // namespace animorph

@@ -18,7 +18,8 @@ const std::vector<Shortcut>& shortcutTable() {
       {Action::Redo, GLFW_KEY_Z, true, true, false, "Redo"},
       {Action::Redo, GLFW_KEY_Y, true, false, false, "Redo"},
       {Action::DeleteSelection, GLFW_KEY_DELETE, false, false, false,
-       "Delete the selected actor or BlobTree node (keys, in the curve editor)"},
+       "Delete the selected actor or BlobTree node (keys, in the curve editor; the link, in the correspondence "
+       "editor)"},
       {Action::DuplicateSelection, GLFW_KEY_D, true, false, false, "Duplicate the selected BlobTree node"},
       {Action::ToggleCurveEditor, GLFW_KEY_G, true, false, false, "Show / hide the curve editor"},
       {Action::PlayPause, GLFW_KEY_SPACE, false, false, false, "Play / pause"},

@@ -17,6 +17,7 @@ enum class Action {
   PlayPause, StepBack, StepForward, GoToStart, GoToEnd,
   Preferences, About, ShowShortcuts,
   ToggleWeightPaint, ToggleWeightOverlay, ImportWeights,
+  CreateAnimorphosis, ToggleCorrespondenceEditor,
 };
 
 struct Shortcut {

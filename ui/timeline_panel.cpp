@@ -1,5 +1,6 @@
 #include "timeline_panel.h"
 
+#include "animorphosis_panel.h"
 #include "morph_panel.h"
 
 #include <algorithm>
@@ -71,16 +72,24 @@ void drawRuler(Document& doc, Playback& playback, const std::vector<int>& keyFra
   if (hovered && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Middle)) st.fitToRange = true;
 
   // Scrub: click or drag anywhere on the ruler.
-  // A press on a morph marker's handle drags that marker instead of scrubbing;
+  // A press on a morph or animorphosis marker's handle drags that marker instead of scrubbing;
   // the whole drag is one undo step.
   drag.begin(doc);
-  if (ImGui::IsItemActivated() && ImGui::IsMouseDown(ImGuiMouseButton_Left))
-    st.draggingMarker = morphMarkerAt(doc, glm::vec2(io.MousePos.x, io.MousePos.y), p0.x, p0.x + size.x, p0.y,
-                                      p0.y + size.y, st.viewStartFrame, st.viewEndFrame);
+  if (ImGui::IsItemActivated() && ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+    const glm::vec2 mouse(io.MousePos.x, io.MousePos.y);
+    st.draggingMarker = morphMarkerAt(doc, mouse, p0.x, p0.x + size.x, p0.y, p0.y + size.y, st.viewStartFrame,
+                                      st.viewEndFrame);
+    if (st.draggingMarker < 0) {
+      int m = animorphosisMarkerAt(doc, mouse, p0.x, p0.x + size.x, p0.y + size.y, st.viewStartFrame, st.viewEndFrame);
+      if (m >= 0) st.draggingMarker = kAnimorphosisMarker0 + m;
+    }
+  }
   if (st.draggingMarker >= 0) {
-    if (active && ImGui::IsMouseDown(ImGuiMouseButton_Left))
-      moveMorphMarker(doc, st.draggingMarker, static_cast<int>(std::lround(frameAt(io.MousePos.x))));
-    else
+    const int f = static_cast<int>(std::lround(frameAt(io.MousePos.x)));
+    if (active && ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+      if (st.draggingMarker >= kAnimorphosisMarker0) moveAnimorphosisMarker(doc, st.draggingMarker - kAnimorphosisMarker0, f);
+      else moveMorphMarker(doc, st.draggingMarker, f);
+    } else
       st.draggingMarker = -1;
   }
   drag.end(doc);
@@ -124,6 +133,7 @@ void drawRuler(Document& doc, Playback& playback, const std::vector<int>& keyFra
                       IM_COL32(240, 200, 60, 255));
   }
   drawMorphMarkers(doc, p0.x, p1.x, p0.y, p1.y, st.viewStartFrame, st.viewEndFrame);
+  drawAnimorphosisInterval(doc, p0.x, p1.x, p0.y, p1.y, st.viewStartFrame, st.viewEndFrame);
   // Current frame.
   float cx = xOf(tl.currentFrame);
   dl->AddLine(ImVec2(cx, p0.y), ImVec2(cx, p1.y), IM_COL32(90, 160, 255, 255), 2.0f);

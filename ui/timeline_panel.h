@@ -14,12 +14,16 @@
 
 namespace animorph {
 
+constexpr int kAnimorphosisMarker0 = 4;
+
 struct TimelineState {
   double viewStartFrame = 0.0;  // visible frame span of the ruler
   double viewEndFrame = 100.0;
   bool fitToRange = true;  // follow the range until the user zooms or pans
   bool scrubbing = false;
-  int draggingMarker = -1;  // morph marker (0..3 = A..D) being dragged on the ruler, or -1
+  // Marker being dragged on the ruler: the morph's 0..3 = A..D, the animorphosis
+  // interval's kAnimorphosisMarker0 + 0 (start) or + 1 (end); -1: none.
+  int draggingMarker = -1;
 };
 
 // Frame spacing of the numbered ticks for a zoom level: the smallest of

@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "paint/paint_mesh.h"
+#include "scene/animorphosis_scene.h"
 #include "scene/blob_pick.h"
 #include "scene/click_selection.h"
 #include "scene/morph_pick.h"
@@ -84,6 +85,11 @@ ViewportFrameResult ViewportFrame::build(EditorGpu& g, EditorUI& ui, EditorConte
   } else {
     ectx.viewportNote = morphCache_.error().empty() ? "" : "morph: " + morphCache_.error();
   }
+  if (!out.weightPaintMode) {
+    const std::string note =
+        describeAnimorphosis(applyAnimorphosis(frame, doc.project(), animorphosisCache_, &doc, doc.revision()));
+    if (!note.empty()) ectx.viewportNote += (ectx.viewportNote.empty() ? "" : "  |  ") + note;
+  }
   g.blobPreviews->update(doc.project(), frame,
                          {prefs.previewCoarseResolution, prefs.previewResolution, interactivePreviewThreads(),
                           r.backend.gpu, settle});
@@ -113,6 +119,12 @@ ViewportFrameResult ViewportFrame::build(EditorGpu& g, EditorUI& ui, EditorConte
   const int selBlobNode = selActor && selActor->kind == ActorKind::BlobTree ? doc.selection.node : -1;
   gpu::buildScene(frame, doc.project().view, doc.selection.actorId, *g.meshes, scene, g.blobPreviews.get(), selBlobNode,
                   g.standinBindings.get());
+  if (const Actor* ha = doc.project().findActor(out.highlightBlobNode.actorId);
+      ha && ha->kind == ActorKind::BlobTree) {  // a node hovered in the correspondence editor
+    if (const BlobNode* hn = ha->blobTree.find(out.highlightBlobNode.node))
+      gpu::addBlobHighlight(
+          subtreeGuides(blobGuides(ha->blobTree, blobActorTimeSec(*ha, timeSec), ha->transform.matrix()), *hn), scene);
+  }
   if (r.morphStageShown) {
     const size_t meshCount = scene.meshes.size(), generatedCount = scene.generatedMeshes.size();
     g.morphPreview->draw(scene, glm::mat4(1.0f), {0.62f, 0.62f, 0.62f, 1.0f}, doc.selection.actorId == morphSourceId);

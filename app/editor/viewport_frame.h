@@ -10,6 +10,7 @@
 
 #include "editor_gpu.h"
 #include "editor_ui.h"
+#include "scene/animorphosis_scene.h"
 #include "scene/morph_scene.h"
 #include "scene/scene_frame.h"
 
@@ -39,6 +40,7 @@ class ViewportFrame {
 
  private:
   MorphCache morphCache_;
+  AnimorphosisCache animorphosisCache_;  // the generic tree C of the project's animorphosis
   MorphFrameSettings morphSettings_;             // the transitions; the B->C stage is the implicit preview's
   const MorphRuntime* prewarmedMorph_ = nullptr;  // whose B->C pipelines are compiling or compiled
   PreviewDevice previewDevice_;                   // the preference last seen (a switch retries the GPU)

@@ -27,8 +27,9 @@ class BlobPreviewSet {
   BlobPreviewSet(const BlobPreviewSet&) = delete;
   BlobPreviewSet& operator=(const BlobPreviewSet&) = delete;
 
-  // Once per frame: submits every BlobTree actor of frame (its tree from
-  // project, at its tree time), forgets actors gone from the project.
+  // Once per frame: submits every BlobTree draw of frame (the draw's own tree
+  // when it has one, else the actor's tree from project, at its tree time),
+  // forgets actors gone from the project.
   void update(const Project& project, const SceneFrame& frame, const BlobPreviewSettings& settings);
   // Appends the actor's newest mesh to scene (nothing before its first result).
   void draw(const std::string& actorId, Scene& scene, const glm::mat4& model, const glm::vec4& color,

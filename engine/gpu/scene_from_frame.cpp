@@ -109,4 +109,16 @@ void setCrossFade(Scene& scene, size_t firstMesh, size_t firstGenerated, float o
   }
 }
 
+void addBlobHighlight(const BlobGuides& guides, Scene& out) {
+  Bounds b;
+  for (const auto& m : guides.markers) b.add(m.position);
+  for (const auto& l : guides.lines) b.add(l.a), b.add(l.b);
+  const float radius = std::max(0.01f, 0.03f * (b.empty() ? 0.0f : b.diagonal()));
+  const uint32_t color = packRgba({1.0f, 0.35f, 0.85f, 1.0f});
+  for (const auto& l : guides.lines) out.overlay.line(l.a, l.b, color);
+  for (const auto& m : guides.markers) out.overlay.octahedron(m.position, radius, color);
+  for (const auto& a : guides.axes)
+    for (int k = 0; k < 3; ++k) out.overlay.line(a.origin, a.tips[k], color);
+}
+
 }  // namespace animorph::gpu

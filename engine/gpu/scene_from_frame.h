@@ -25,6 +25,11 @@ namespace animorph::gpu {
 // when it is below 1.
 void setCrossFade(Scene& scene, size_t firstMesh, size_t firstGenerated, float opacity);
 
+// Draws guides (e.g. the sub-tree of a node hovered in the correspondence
+// editor, scene/blob_guides.h subtreeGuides) in the highlight colour over
+// everything else in the overlay, whether the skeleton is shown or not.
+void addBlobHighlight(const BlobGuides& guides, Scene& out);
+
 void buildScene(const SceneFrame& frame, const ViewOptions& view, const std::string& selectedActorId,
                 MeshCache& meshes, Scene& out, const BlobPreviewSet* blobs = nullptr, int selectedBlobNode = -1,
                 StandinBindingCache* bindings = nullptr);

@@ -193,6 +193,17 @@ class Editor:
             self.proc.wait()
 
 
+def find_node(node, nid):
+    """The node of id nid in a saved BlobTree (JSON) under node, or None."""
+    if node["id"] == nid:
+        return node
+    for c in node.get("children", []):
+        r = find_node(c, nid)
+        if r:
+            return r
+    return None
+
+
 def region_stats(png, x, y, w, h):
     """Mean and standard deviation (0..1) of the grey levels of a region."""
     out = subprocess.run(["convert", png, "-crop", f"{int(w)}x{int(h)}+{int(x)}+{int(y)}", "+repage",

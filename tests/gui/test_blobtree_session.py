@@ -106,16 +106,7 @@ try:
     actor = next(a for a in saved["actors"] if a["id"] == "blob")
     g.check(actor.get("kind") == "blobtree", "the saved actor is a BlobTree")
 
-    def find(node, nid):
-        if node["id"] == nid:
-            return node
-        for c in node.get("children", []):
-            r = find(c, nid)
-            if r:
-                return r
-        return None
-
-    pnode = find(actor["blobtree"]["root"], point)
+    pnode = g.find_node(actor["blobtree"]["root"], point)
     g.check(pnode is not None and pnode["type"] == "point", "the saved tree holds the point")
     center = pnode["params"]["center"]
     g.check(isinstance(center, dict) and len(center["keys"]) == 2, "the point's centre has two keys")

@@ -135,3 +135,21 @@ TEST_CASE("key ticks are the selected actor's clip keys mapped through offset an
   h.doc().selection = {"hero", 2};
   CHECK(selectionKeyFrames(h.doc(), h.assets) == std::vector<int>{12, 24});
 }
+
+TEST_CASE("a morph marker's flag on the ruler drags that marker, one undo step", "[timeline]") {
+  EditorFixture f;
+  f.loadHeroMorphScene();
+  REQUIRE(f.h.hasWidget("timeline/marker/B"));
+  const glm::vec2 a = f.h.widgetCenter("timeline/marker/A"), c = f.h.widgetCenter("timeline/marker/C");
+  const float pxPerFrame = (c.x - a.x) / 20.0f;
+  // The flag starts just right of the marker's line: press at its left edge (the marker goes to the mouse's frame).
+  const WidgetRect flag = *f.h.ui->widgets().find("timeline/marker/B");
+  const glm::vec2 b(flag.min.x + 1.0f, flag.center().y);
+  const size_t steps = f.h.doc().history().index();
+  f.h.drag(b, b + glm::vec2(5.0f * pxPerFrame, 0.0f), 0, 5);
+  f.h.frames(1);
+  CHECK(f.h.doc().project().morph.markers.b == 25);
+  CHECK(f.h.doc().project().morph.markers.a == 10);
+  CHECK(f.h.doc().history().index() == steps + 1);
+  CHECK(f.h.doc().project().timeline.currentFrame == 0);  // the playhead stays
+}

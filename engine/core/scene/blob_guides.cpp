@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_set>
 
 #include "blobtree/meta_primitives.h"
 #include "field/spline_curve.h"
@@ -212,6 +213,26 @@ BlobGuides blobGuides(const BlobTree& tree, double timeSec, const glm::mat4& act
   GuideBuilder b{g, timeSec, axisLengthM};
   b.node(tree.root, s);
   return g;
+}
+
+BlobGuides subtreeGuides(const BlobGuides& guides, const BlobNode& top) {
+  std::unordered_set<int> ids;
+  std::vector<const BlobNode*> stack{&top};
+  while (!stack.empty()) {
+    const BlobNode* n = stack.back();
+    stack.pop_back();
+    ids.insert(n->id);
+    for (const BlobNode& c : n->children) stack.push_back(&c);
+  }
+  BlobGuides out;
+  out.actorId = guides.actorId;
+  for (const auto& l : guides.lines)
+    if (ids.count(l.node)) out.lines.push_back(l);
+  for (const auto& m : guides.markers)
+    if (ids.count(m.node)) out.markers.push_back(m);
+  for (const auto& a : guides.axes)
+    if (ids.count(a.node)) out.axes.push_back(a);
+  return out;
 }
 
 }  // namespace animorph

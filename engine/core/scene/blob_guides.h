@@ -55,4 +55,7 @@ struct BlobGuides {
 // 64 are not drawn.
 BlobGuides blobGuides(const BlobTree& tree, double timeSec, const glm::mat4& actor, float axisLengthM = 0.12f);
 
+// The lines, markers and axes of guides that belong to top or a node below it.
+BlobGuides subtreeGuides(const BlobGuides& guides, const BlobNode& top);
+
 }  // namespace animorph

@@ -57,6 +57,9 @@ struct BlobDraw {
   std::string actorId;
   glm::mat4 model{1.0f};    // the actor's transform
   double treeTimeSec = 0.0; // blobActorTimeSec of the scene time
+  // Drawn instead of the actor's tree when set: the animorphosis' C(t), a tree
+  // of constant tracks (scene/animorphosis_scene.h); a new pointer when it changes.
+  std::shared_ptr<const BlobTree> tree;
 };
 
 struct SceneFrame {

@@ -1,0 +1,58 @@
+#pragma once
+// Showing a project's animorphosis in an evaluated scene: before its interval
+// the source actor alone, after it the target alone, in between the generic
+// tree C(t) in their place, as one BlobTree draw whose tree is the snapshot of
+// C at t (so the BlobTree preview polygonises it like any other tree).
+#include <memory>
+#include <string>
+
+#include "animorph/generic_tree.h"
+#include "doc/project.h"
+#include "scene/scene_frame.h"
+
+namespace animorph {
+
+enum class AnimorphosisStage { None, Source, Morph, Target };
+
+struct AnimorphosisSceneInfo {
+  AnimorphosisStage stage = AnimorphosisStage::None;
+  double u = 0.0;      // (t - t0) / (t1 - t0), not clamped
+  double s = 0.0;      // the global s(u)
+  std::string error;   // C could not be built (the actors are shown as they are)
+};
+
+// Keeps the generic tree C of one document state (built again only when the
+// project changes: its revision or the document itself) and the last
+// snapshot of C(t).
+class AnimorphosisCache {
+ public:
+  // C for project at revision, or null (no animorphosis, or building it
+  // failed: error() says why).
+  std::shared_ptr<const GenericTree> get(const Project& project, const void* owner, uint64_t revision);
+  // C(timeSec) of the tree get() returned last, as a BlobTree of constant
+  // tracks; the same pointer while neither C nor the time change.
+  std::shared_ptr<const BlobTree> snapshot(const Project& project, double timeSec);
+  const std::string& error() const { return error_; }
+
+ private:
+  std::shared_ptr<const GenericTree> tree_;
+  const void* owner_ = nullptr;
+  uint64_t revision_ = 0;
+  std::string error_;
+  std::shared_ptr<BlobTree> snapshot_;
+  double snapshotTimeSec_ = 0.0;
+};
+
+// Replaces the source and target BlobTree draws (and their skeleton guides)
+// of frame by what the animorphosis shows at frame.timeSec: the source before
+// the interval, the target after it, C(t) within it, drawn under the source
+// actor's id with the actors' transforms interpolated by the global s (T and S
+// linearly, R by slerp). Hidden actors stay hidden; with neither visible
+// nothing is added.
+AnimorphosisSceneInfo applyAnimorphosis(SceneFrame& frame, const Project& project, AnimorphosisCache& cache,
+                                        const void* owner, uint64_t revision);
+
+// "animorphosis u=0.42", "animorphosis: source", "animorphosis: target", or the error.
+std::string describeAnimorphosis(const AnimorphosisSceneInfo& info);
+
+}  // namespace animorph

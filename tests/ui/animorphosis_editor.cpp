@@ -1,0 +1,332 @@
+// The editor side of the animorphosis: Create > Animorphosis..., the
+// correspondence editor (link by drag, refused links, cut, auto-map, undo),
+// the interval markers on the timeline and the s curves in the curve editor.
+#include <catch2/catch.hpp>
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include "doc/animorphosis_project.h"
+#include "doc/blobtree_commands.h"
+#include "scene/animorphosis_scene.h"
+#include "anim/key_edit.h"
+#include "curve_source.h"
+#include "support/editor_fixture.h"
+#include "util/animorph_fixtures.h"
+
+using namespace animorph;
+using namespace animorph::test;
+
+namespace {
+
+// A document with the walker and the flyer as BlobTree actors "walker" and "flyer", no animorphosis.
+void loadCreatures(EditorFixture& f, bool both = true) {
+  Project p;
+  p.timeline.frameStart = 0;
+  p.timeline.frameEnd = 96;
+  Actor a = makeBlobTreeActor(p, "walker");
+  a.id = "walker";
+  a.blobTree = walkerTree();
+  p.actors.push_back(a);
+  if (both) {
+    Actor b = makeBlobTreeActor(p, "flyer");
+    b.id = "flyer";
+    b.blobTree = flyerTree();
+    p.actors.push_back(b);
+  }
+  f.h.document->reset(p, f.dir.file("creatures.animorph"));
+  f.h.frames(2);
+}
+
+void openCreateModal(EditorHarness& h) {
+  h.clickWidget("menu/Create");
+  h.clickWidget("menu/Animorphosis...");
+  h.frames(2);
+}
+
+// Through the modal: walker -> flyer over frames 24..72, automatic correspondence on or off.
+void createThroughModal(EditorHarness& h, bool autoMap) {
+  openCreateModal(h);
+  REQUIRE(h.hasWidget("animorphosis/create/create"));
+  if (!autoMap) h.clickWidget("animorphosis/create/auto");
+  h.clickWidget("animorphosis/create/create");
+  h.frames(2);
+  REQUIRE(h.doc().project().animorphosis.enabled());
+}
+
+const CorrespondenceGraph& graph(EditorHarness& h) { return h.doc().project().animorphosis.graph; }
+
+std::string row(int side, int id) { return std::string(side == 0 ? "corr/a/" : "corr/b/") + std::to_string(id); }
+
+void dragLink(EditorHarness& h, int nodeA, int nodeB) {
+  h.drag(h.widgetCenter(row(0, nodeA)), h.widgetCenter(row(1, nodeB)), 0, 8);
+  h.frames(1);
+}
+
+}  // namespace
+
+TEST_CASE("Create > Animorphosis with one BlobTree actor says why", "[animorphosis_ui]") {
+  EditorFixture f({1600.0f, 1200.0f});
+  loadCreatures(f, /*both=*/false);
+  openCreateModal(f.h);
+  CHECK(f.h.hasWidget("animorphosis/create/why"));
+  CHECK_FALSE(f.h.hasWidget("animorphosis/create/create"));
+  f.h.clickWidget("animorphosis/create/cancel");
+  f.h.frames(2);
+  CHECK_FALSE(f.h.doc().project().animorphosis.enabled());
+  CHECK_FALSE(f.h.doc().history().canUndo());
+}
+
+TEST_CASE("Create > Animorphosis is one undoable step with automatic links, and opens the correspondence editor",
+          "[animorphosis_ui]") {
+  EditorFixture f({1600.0f, 1200.0f});
+  loadCreatures(f);
+  createThroughModal(f.h, /*autoMap=*/true);
+  const AnimorphosisSetup& m = f.h.doc().project().animorphosis;
+  CHECK(m.sourceActorId == "walker");
+  CHECK(m.targetActorId == "flyer");
+  CHECK(m.startSec == Approx(24.0 / f.h.doc().project().timeline.fps));
+  CHECK(m.endSec == Approx(72.0 / f.h.doc().project().timeline.fps));
+  REQUIRE_FALSE(m.graph.links.empty());
+  for (const CorrespondenceLink& l : m.graph.links) CHECK_FALSE(l.artist);
+  CHECK(f.h.ui->state().correspondence.visible);
+  CHECK(f.h.hasWidget("corr/window"));
+  CHECK(f.h.hasWidget(row(0, 2)));
+  CHECK(f.h.hasWidget(row(1, 102)));
+  // One wire per link, each findable by its nodes.
+  for (const CorrespondenceLink& l : m.graph.links)
+    CHECK(f.h.hasWidget("corr/link/" + std::to_string(l.nodeA) + "-" + std::to_string(l.nodeB)));
+  f.h.tapKey(GLFW_KEY_Z, true);
+  f.h.frames(2);
+  CHECK_FALSE(f.h.doc().project().animorphosis.enabled());
+}
+
+TEST_CASE("correspondence editor: drag links, a refused link reports both nodes, Del cuts, Ctrl+Z restores",
+          "[animorphosis_ui]") {
+  EditorFixture f({1600.0f, 1200.0f});
+  loadCreatures(f);
+  createThroughModal(f.h, /*autoMap=*/false);
+  REQUIRE(graph(f.h).links.empty());
+  const size_t steps = f.h.doc().history().index();
+
+  dragLink(f.h, 2, 102);  // walker body -> flyer body
+  REQUIRE(graph(f.h).links.size() == 1);
+  CHECK(graph(f.h).find(2, 102) == 0);
+  CHECK(graph(f.h).links[0].artist);
+  CHECK(f.h.doc().history().index() == steps + 1);
+  CHECK_FALSE(f.h.ui->state().status.error);
+
+  // belly lies inside body, whose partner is the flyer's body; membraneL does not.
+  dragLink(f.h, 3, 106);
+  CHECK(graph(f.h).links.size() == 1);
+  CHECK(f.h.ui->state().status.error);
+  CHECK(f.h.ui->state().status.text.find("belly") != std::string::npos);
+  CHECK(f.h.ui->state().status.text.find("membraneL") != std::string::npos);
+  CHECK(f.h.doc().history().index() == steps + 1);
+
+  // Dragging from the target side links too.
+  f.h.drag(f.h.widgetCenter(row(1, 103)), f.h.widgetCenter(row(0, 3)), 0, 8);
+  f.h.frames(1);
+  CHECK(graph(f.h).find(3, 103) >= 0);
+
+  // Select the body wire, Del cuts it (the actors stay).
+  f.h.clickWidget("corr/link/2-102");
+  REQUIRE(f.h.ui->state().correspondence.selected);
+  CHECK(f.h.ui->state().correspondence.selected->nodeA == 2);
+  f.h.tapKey(GLFW_KEY_DELETE);
+  f.h.frames(1);
+  CHECK(graph(f.h).find(2, 102) < 0);
+  CHECK(f.h.doc().project().actors.size() == 2);
+  f.h.tapKey(GLFW_KEY_Z, true);
+  f.h.frames(2);
+  CHECK(graph(f.h).find(2, 102) >= 0);
+}
+
+TEST_CASE("correspondence editor: right-click > Cut, Auto-map keeps the artist's links", "[animorphosis_ui]") {
+  EditorFixture f({1600.0f, 1200.0f});
+  loadCreatures(f);
+  createThroughModal(f.h, /*autoMap=*/false);
+  dragLink(f.h, 2, 102);
+  dragLink(f.h, 9, 109);  // the walker's tail becomes the flyer's legs: not what auto-map would say
+  REQUIRE(graph(f.h).links.size() == 2);
+
+  f.h.clickWidget("corr/automap");
+  f.h.frames(1);
+  const CorrespondenceGraph g = graph(f.h);
+  CHECK(g.links.size() > 2);
+  REQUIRE(g.find(2, 102) >= 0);
+  REQUIRE(g.find(9, 109) >= 0);
+  CHECK(g.links[size_t(g.find(2, 102))].artist);
+  CHECK(g.links[size_t(g.find(9, 109))].artist);
+  int automatic = 0;
+  for (const CorrespondenceLink& l : g.links) automatic += l.artist ? 0 : 1;
+  CHECK(automatic == int(g.links.size()) - 2);
+
+  f.h.click(f.h.widgetCenter("corr/link/9-109"), 1);
+  f.h.frames(1);
+  REQUIRE(f.h.hasWidget("corr/menu/cut"));
+  f.h.clickWidget("corr/menu/cut");
+  f.h.frames(1);
+  CHECK(graph(f.h).find(9, 109) < 0);
+  CHECK(graph(f.h).links.size() == g.links.size() - 1);
+
+  f.h.tapKey(GLFW_KEY_Z, true);  // the cut
+  f.h.tapKey(GLFW_KEY_Z, true);  // the auto-map
+  f.h.frames(2);
+  CHECK(graph(f.h).links.size() == 2);
+}
+
+TEST_CASE("the curve editor shows the global s, and a selected link's own s", "[animorphosis_ui]") {
+  EditorFixture f({1600.0f, 1200.0f});
+  loadCreatures(f);
+  createThroughModal(f.h, /*autoMap=*/false);
+  f.h.ui->state().curveEditor.visible = true;
+  f.h.frames(2);
+  CHECK(f.h.ui->state().curveEditor.sourceId == "animorphosis/-1--1");
+  dragLink(f.h, 2, 102);
+  f.h.frames(1);
+  CHECK(f.h.ui->state().curveEditor.sourceId == "animorphosis/2-102");
+  f.h.clickWidget("corr/own_s");
+  f.h.frames(1);
+  const auto& l = graph(f.h).links[size_t(graph(f.h).find(2, 102))];
+  REQUIRE(l.sOverride);
+  CHECK(*l.sOverride == f.h.doc().project().animorphosis.globalS);
+}
+
+TEST_CASE("the animorphosis interval is a band with two draggable markers on the timeline", "[animorphosis_ui]") {
+  EditorFixture f({1600.0f, 1200.0f});
+  loadCreatures(f);
+  createThroughModal(f.h, /*autoMap=*/false);
+  const double fps = f.h.doc().project().timeline.fps;
+  REQUIRE(f.h.hasWidget("timeline/animorphosis/start"));
+  REQUIRE(f.h.hasWidget("timeline/animorphosis/end"));
+  const glm::vec2 start = f.h.widgetCenter("timeline/animorphosis/start");
+  const glm::vec2 end = f.h.widgetCenter("timeline/animorphosis/end");
+  const float pxPerFrame = (end.x - start.x) / 48.0f;
+  const size_t steps = f.h.doc().history().index();
+  f.h.drag(end, end + glm::vec2(12.0f * pxPerFrame, 0.0f), 0, 6);
+  f.h.frames(1);
+  CHECK(f.h.doc().project().animorphosis.endSec * fps == Approx(84.0).margin(1.0));
+  CHECK(f.h.doc().project().animorphosis.startSec * fps == Approx(24.0));
+  CHECK(f.h.doc().history().index() == steps + 1);  // the whole drag is one step
+  f.h.tapKey(GLFW_KEY_Z, true);
+  f.h.frames(1);
+  CHECK(f.h.doc().project().animorphosis.endSec * fps == Approx(72.0));
+}
+
+TEST_CASE("the viewport's scene shows the source, then C(t), then the target", "[animorphosis_ui]") {
+  EditorFixture f({1600.0f, 1200.0f});
+  loadCreatures(f);
+  createThroughModal(f.h, /*autoMap=*/true);
+  const Project& p = f.h.doc().project();
+  const double fps = p.timeline.fps;
+  AnimorphosisCache cache;
+  auto sceneAt = [&](double frame, AnimorphosisSceneInfo& info) {
+    SceneFrame s = evaluateScene(p, f.h.doc().baseDir(), f.h.assets, frame / fps);
+    REQUIRE(s.blobs.size() == 2);
+    info = applyAnimorphosis(s, p, cache, &f.h.doc(), f.h.doc().revision());
+    return s;
+  };
+  AnimorphosisSceneInfo info;
+  SceneFrame before = sceneAt(12, info);
+  CHECK(info.stage == AnimorphosisStage::Source);
+  REQUIRE(before.blobs.size() == 1);
+  CHECK(before.blobs[0].actorId == "walker");
+  CHECK_FALSE(before.blobs[0].tree);
+  CHECK(describeAnimorphosis(info) == "animorphosis: source");
+
+  SceneFrame mid = sceneAt(48, info);
+  CHECK(info.stage == AnimorphosisStage::Morph);
+  CHECK(info.u == Approx(0.5));
+  REQUIRE(mid.blobs.size() == 1);
+  CHECK(mid.blobs[0].actorId == "walker");
+  REQUIRE(mid.blobs[0].tree);
+  CHECK(mid.blobs[0].tree->root.subtreeSize() == projectGenericTree(p)->size());
+  CHECK(mid.blobGuides.empty());
+  CHECK(describeAnimorphosis(info).rfind("animorphosis u=0.50", 0) == 0);
+  // The same time gives the same snapshot (the preview is not asked again); another time a new one.
+  SceneFrame again = sceneAt(48, info);
+  CHECK(again.blobs[0].tree == mid.blobs[0].tree);
+  SceneFrame later = sceneAt(60, info);
+  CHECK(later.blobs[0].tree != mid.blobs[0].tree);
+
+  SceneFrame after = sceneAt(90, info);
+  CHECK(info.stage == AnimorphosisStage::Target);
+  REQUIRE(after.blobs.size() == 1);
+  CHECK(after.blobs[0].actorId == "flyer");
+}
+
+TEST_CASE("correspondence editor: a Ctrl+right-drag across wires cuts them in one undo step", "[animorphosis_ui]") {
+  EditorFixture f({1600.0f, 1200.0f});
+  loadCreatures(f);
+  createThroughModal(f.h, /*autoMap=*/false);
+  dragLink(f.h, 2, 102);
+  dragLink(f.h, 9, 112);
+  dragLink(f.h, 12, 104);  // refused (the head is outside the body, the chest inside the flyer's body): no wire
+  REQUIRE(graph(f.h).links.size() == 2);
+  const size_t steps = f.h.doc().history().index();
+  const glm::vec2 body = f.h.widgetCenter("corr/link/2-102");
+  const glm::vec2 tail = f.h.widgetCenter("corr/link/9-112");
+  // A vertical stroke through both wires' middles.
+  const glm::vec2 from(body.x, std::min(body.y, tail.y) - 20.0f), to(body.x, std::max(body.y, tail.y) + 20.0f);
+  f.h.setModifiers(true);
+  f.h.drag(from, to, 1, 10);
+  f.h.setModifiers(false);
+  f.h.frames(1);
+  CHECK(graph(f.h).links.empty());
+  CHECK(f.h.doc().history().index() == steps + 1);
+  CHECK_FALSE(f.h.ui->state().status.error);
+  f.h.tapKey(GLFW_KEY_Z, true);
+  f.h.frames(1);
+  CHECK(graph(f.h).links.size() == 2);
+}
+
+TEST_CASE("hovering a node in the correspondence editor asks the viewport to highlight it", "[animorphosis_ui]") {
+  EditorFixture f({1600.0f, 1200.0f});
+  loadCreatures(f);
+  createThroughModal(f.h, /*autoMap=*/false);
+  f.h.moveTo(f.h.widgetCenter(row(1, 105)));
+  f.h.frames(1);
+  CHECK(f.h.ui->output().highlightBlobNode == Selection{"flyer", 105});
+  f.h.moveTo(f.h.widgetCenter("corr/automap"));
+  f.h.frames(1);
+  CHECK(f.h.ui->output().highlightBlobNode.actorId.empty());
+}
+
+TEST_CASE("the animorphosis curve source edits the global s and a link's own s, and refuses a broken s curve",
+          "[animorphosis_ui]") {
+  EditorFixture f({1600.0f, 1200.0f});
+  loadCreatures(f);
+  createThroughModal(f.h, /*autoMap=*/false);
+  dragLink(f.h, 2, 102);
+  f.h.clickWidget("corr/own_s");
+  f.h.frames(1);
+  auto src = makeAnimorphosisCurveSource(f.h.doc(), 2, 102);
+  REQUIRE(src);
+  const std::vector<CurveChannel> channels = src->channels();
+  REQUIRE(channels.size() == 2);  // the global s and the link's own
+  const ParamAddress link = channels[1].addr;
+  const size_t keys = f.h.doc().project().animorphosis.graph.links[0].sOverride->keys().size();
+  // A key at u = 0.3 on the link's curve, raised to 0.8: wings that grow fast.
+  auto cmd = src->edit("Key s", [&](const TrackSet& set) -> Status {
+    auto k = insertKey(set, link, 0.3);
+    if (!k) return Error{k.error()};
+    auto moved = setKeyTimeValue(set, {{link, *k}, 0}, 0.3, 0.8f);
+    return moved ? Status::success() : Status(Error{moved.error()});
+  });
+  REQUIRE(cmd);
+  f.h.doc().execute(std::move(*cmd));
+  const FloatTrack& s = *f.h.doc().project().animorphosis.graph.links[0].sOverride;
+  CHECK(s.keys().size() == keys + 1);
+  CHECK(s.evaluate(0.3) == Approx(0.8f));
+  CHECK(f.h.doc().project().animorphosis.globalS == defaultSCurve());
+  // Moving the global s's last key off (1, 1) is refused, naming the curve.
+  const FloatTrack& g = f.h.doc().project().animorphosis.globalS;
+  const int last = int(g.keys().size()) - 1;
+  auto broken = src->edit("Move key", [&](const TrackSet& set) -> Status {
+    auto moved = setKeyTimeValue(set, {{channels[0].addr, last}, 0}, 1.0, 0.5f);
+    return moved ? Status::success() : Status(Error{moved.error()});
+  });
+  REQUIRE_FALSE(broken);
+  CHECK(broken.error().find("global s") != std::string::npos);
+}
