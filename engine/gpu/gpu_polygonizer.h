@@ -1,5 +1,5 @@
 #pragma once
-// GPU polygoniser (DESIGN.md §6, docs/gpu-polygonizer.md): marching cubes of a
+// GPU polygoniser (docs/design.md §6, docs/gpu-polygonizer.md): marching cubes of a
 // FieldProgram, or of the morph of two, in Vulkan compute, agreeing with the
 // CPU polygoniser (poly/polygonizer.h) on the same grid. Per frame: the
 // programs are uploaded as small buffers inside the command buffer; a coarse
@@ -31,7 +31,7 @@ namespace animorph::gpu {
 
 enum class MorphMethod : uint8_t {
   Interpolation,   // m = (1 - w) f1 + w f2
-  SpaceTimeBlend,  // DESIGN.md §5 and include_shared/morph_field.h
+  SpaceTimeBlend,  // docs/design.md §5 and include_shared/morph_field.h
 };
 
 // What to polygonise: one program, or the morph of two ("evaluate two programs
@@ -93,7 +93,7 @@ struct GpuPolygonizeSettings {
   bool singleWorkgroupScan = true;
   // Solid-noise displacement of the vertices along their normals by amplitude (m) *
   // solidNoise(frequency (1/m) * p), after polygonising: the CPU's displaceBySolidNoise
-  // (DESIGN.md §5, the morph's noise track). 0: none (no pass).
+  // (docs/design.md §5, the morph's noise track). 0: none (no pass).
   float noiseAmplitude = 0.0f;
   float noiseFrequency = 1.0f;
   // Workgroups a row of the fine passes' dispatch (0: AM_POLY_MAX_DISPATCH_X, the least every

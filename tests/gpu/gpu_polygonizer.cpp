@@ -456,7 +456,7 @@ TEST_CASE("GPU polygoniser grows its buffers from tiny capacities and redoes the
 }
 
 TEST_CASE("GPU polygoniser displaces its mesh by solid noise as the CPU does", "[gpu][gpupoly]") {
-  // The morph's noise track (DESIGN.md §5): every vertex moves along its normal by
+  // The morph's noise track (docs/design.md §5): every vertex moves along its normal by
   // amplitude * solidNoise(frequency * p). On the GPU a pass after the normals; on the CPU
   // displaceBySolidNoise on the polygonised mesh. Same mesh, and a real displacement.
   Rig r = makeRig();

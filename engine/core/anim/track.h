@@ -1,5 +1,5 @@
 #pragma once
-// Evolution functions: key-framed animatable parameters (DESIGN.md §2, §3).
+// Evolution functions: key-framed animatable parameters (docs/design.md §2, §3).
 // A Track<T> maps time (seconds) to a value of T = float, glm::vec3 or glm::quat.
 // Keys carry a value and, for Hermite-Ferguson interpolation of degree n, the
 // first n-1 derivatives (n = 2: cubic with velocity, n = 3: quintic with

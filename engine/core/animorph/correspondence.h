@@ -1,5 +1,5 @@
 #pragma once
-// The correspondence graph G(A -> B) of an animorphosis (DESIGN.md §5,
+// The correspondence graph G(A -> B) of an animorphosis (docs/design.md §5,
 // docs/animorphosis.md): links between node ids of a source BlobTree A and a
 // target BlobTree B, at any level. A link may carry its own s(u) curve that
 // drives its whole sub-tree unless a deeper link carries another one. Plain

@@ -1,5 +1,5 @@
 #pragma once
-// The animated BlobTree (DESIGN.md §3): nodes with stable integer ids and
+// The animated BlobTree (docs/design.md §3): nodes with stable integer ids and
 // names, children, and every parameter a Track. Plain data: evaluating it at
 // a time is done by compileFieldProgram (blobtree/compile.h).
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// The BlobTree node types and their parameters (DESIGN.md §3; docs/blobtree.md).
+// The BlobTree node types and their parameters (docs/design.md §3; docs/blobtree.md).
 // One table describes every type: JSON name, children allowed, and each
 // parameter's name, kind, default and constraint. Parsing, validation,
 // serialisation and the editor's property panels all read it.

@@ -1,5 +1,5 @@
 #pragma once
-// Undoable edits of a BlobTree actor's tree (DESIGN.md §5 of the editor: every
+// Undoable edits of a BlobTree actor's tree (docs/design.md §5 of the editor: every
 // edit is a Command). Each builder applies the edit (blobtree/tree_edit.h) to a
 // copy of the actor's tree and returns a command that swaps the whole tree in
 // and out; trees are small (a creature is a few kilobytes), and a snapshot

@@ -1,5 +1,5 @@
 #pragma once
-// The morph of a project (DESIGN.md §5): which actor morphs into which, the
+// The morph of a project (docs/design.md §5): which actor morphs into which, the
 // four timeline markers, the implicit method and its parameters, the easing
 // and blend tracks, and per actor its stand-in, weight map and keyed
 // stand-in edits. Plain data, saved as the project's "morph" section.

@@ -1,6 +1,6 @@
 #pragma once
 // Convolution segment with the Cauchy kernel h(r) = 1 / (1 + S^2 r^2)^2
-// (McCormack & Sherstyuk 1998; DESIGN.md §3): the integral of h over a segment,
+// (McCormack & Sherstyuk 1998; docs/design.md §3): the integral of h over a segment,
 // in closed form, with its analytic gradient, the radius -> weight rule, and
 // the radius beyond which the weighted contribution stays under eps * T.
 #include <cmath>

@@ -1,5 +1,5 @@
 #pragma once
-// FieldProgram: a BlobTree instantiated at one time and flattened (DESIGN.md §3).
+// FieldProgram: a BlobTree instantiated at one time and flattened (docs/design.md §3).
 // A postfix list of operations over structure-of-arrays primitive data,
 // evaluated on batches of points by FieldEvaluator: no per-point, per-node
 // virtual calls. Primitives of one class under one operator form one op that

@@ -1,5 +1,5 @@
 #pragma once
-// Scalar forms of the field operators with gradients (DESIGN.md §3). They act
+// Scalar forms of the field operators with gradients (docs/design.md §3). They act
 // on signed values s = p - T (>= 0 inside) for the R-functions and bounded
 // blending; the BlobTree operators blend / hyper-blend / union / intersection
 // / difference act on potentials p. Used by the reference evaluator, the

@@ -1,5 +1,5 @@
 #pragma once
-// Skeletal potential g(d) = I (1 - (d/R)^2)^k for d < R, else 0 (DESIGN.md §3):
+// Skeletal potential g(d) = I (1 - (d/R)^2)^k for d < R, else 0 (docs/design.md §3):
 // radius of influence R, intensity I, stiffness k (k = 3 is Wyvill's cubic).
 #include <cmath>
 

@@ -1,5 +1,5 @@
 #pragma once
-// Skeletons of the skeletal primitives (DESIGN.md §3) and the exact closest
+// Skeletons of the skeletal primitives (docs/design.md §3) and the exact closest
 // point on each. Solid skeletons (ball, cylinder, cone, disc) return x itself
 // when x is inside them (distance 0). The gradient of a distance-based
 // potential is then g'(d) (x - closest) / d, with no special cases.

@@ -1,5 +1,5 @@
 #pragma once
-// The implicit morph between two posed stand-ins (DESIGN.md §5, paper 1 eq. 3
+// The implicit morph between two posed stand-ins (docs/design.md §5, paper 1 eq. 3
 // and 4), flattened into one FieldProgram that the polygonisers evaluate.
 //  * interpolation: m = (1 - w) f1 + w f2. Both stand-ins share T, so this is
 //    the sum of both stand-ins' primitives with weights scaled by 1 - w and w.

@@ -1,5 +1,5 @@
 #pragma once
-// Evaluating a project's morph at any time (DESIGN.md §5): before A the source
+// Evaluating a project's morph at any time (docs/design.md §5): before A the source
 // plays (skinned mesh); A->B its collapse onto its stand-in; B->C the implicit
 // morph, polygonised; C->D the target's expansion; after D the target plays.
 // prepareMorph does the costly part once (loading, binding vertices to the

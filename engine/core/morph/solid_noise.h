@@ -1,6 +1,6 @@
 #pragma once
 // Solid (3D gradient) noise for post-deforming the transitional shape
-// (DESIGN.md §5): Perlin's improved noise with a fixed permutation, so baked
+// (docs/design.md §5): Perlin's improved noise with a fixed permutation, so baked
 // frames are reproducible.
 #include <cstdint>
 

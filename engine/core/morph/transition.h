@@ -1,5 +1,5 @@
 #pragma once
-// Collapse onto / expansion from the stand-in (DESIGN.md §4, paper 1 §3.2):
+// Collapse onto / expansion from the stand-in (docs/design.md §4, paper 1 §3.2):
 //   p'_i(t) = sum_j w_ij M_j(t) lerp(p_i, p_i + dp_i, alpha_i(t))
 //   n'_i(t) = normalize(M_i(t)^-T nlerp(n_i, n~_i, alpha_i(t)))
 // with dp_i and n~_i from projecting the vertex onto the stand-in once, in the

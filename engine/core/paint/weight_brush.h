@@ -1,5 +1,5 @@
 #pragma once
-// Weight-map painting (DESIGN.md §4: the map m_i shifts each vertex's start
+// Weight-map painting (docs/design.md §4: the map m_i shifts each vertex's start
 // within a transition). A brush is a circle on the screen, its radius in
 // pixels; a dab changes the weights of the vertices of a PaintMesh that
 // project inside it and that the camera sees (front-facing, not behind

@@ -1,5 +1,5 @@
 #pragma once
-// CPU polygoniser (DESIGN.md §6): marching cubes over a FieldProgram on a
+// CPU polygoniser (docs/design.md §6): marching cubes over a FieldProgram on a
 // regular grid, vertices shared by edge id (watertight, consistently oriented,
 // manifold), normals from the field gradient, coarse-to-fine block culling
 // (per-block primitive lists and interval bounds), parallel with TBB.

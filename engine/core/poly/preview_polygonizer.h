@@ -1,5 +1,5 @@
 #pragma once
-// Interactive preview of an animated BlobTree (DESIGN.md §6: "the editor
+// Interactive preview of an animated BlobTree (docs/design.md §6: "the editor
 // refines progressively while scrubbing stops"). A worker thread polygonises
 // the latest request only: a new request cancels the run in progress (the
 // polygoniser's cancel flag) and replaces any request still waiting. Each

@@ -1,5 +1,5 @@
 #pragma once
-// Automatic stand-in fitting (DESIGN.md §4): one segment per bone (joint ->
+// Automatic stand-in fitting (docs/design.md §4): one segment per bone (joint ->
 // child joint), a short segment for leaf joints, bones that dominate no vertex
 // omitted; each radius is a robust percentile of the distances of the
 // vertices the bone dominates. Runs on the rest pose or a frame of a clip.

@@ -1,5 +1,5 @@
 #pragma once
-// Projection of points onto a stand-in's surface f = 0 (DESIGN.md §4, paper 1
+// Projection of points onto a stand-in's surface f = 0 (docs/design.md §4, paper 1
 // §3.2): Newton steps along grad f with a step limit; where the gradient
 // vanishes (beyond every primitive's reach) or Newton stalls, the point jumps
 // to the surface of the closest segment's capsule and Newton continues from there.

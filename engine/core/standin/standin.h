@@ -1,6 +1,6 @@
 #pragma once
 // A stand-in: the implicit surface a skinned character collapses onto before
-// the morph (DESIGN.md §4). One primitive per bone, bound to a node of the
+// the morph (docs/design.md §4). One primitive per bone, bound to a node of the
 // character's rig so the stand-in animates with the skeleton: each segment's
 // ends are stored in its node's space and posed by that node's global matrix.
 #include <cstdint>

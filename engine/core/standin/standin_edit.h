@@ -1,5 +1,5 @@
 #pragma once
-// Geometry of hand edits of a stand-in's segments (DESIGN.md §4: the artist
+// Geometry of hand edits of a stand-in's segments (docs/design.md §4: the artist
 // adds, removes, moves, re-radii and rebinds segments): rebinding a segment to
 // another node without moving it, and refitting one segment.
 #include <vector>

@@ -1,4 +1,4 @@
-// The implicit morph of two signed fields f1, f2 (>= 0 inside), DESIGN.md §5,
+// The implicit morph of two signed fields f1, f2 (>= 0 inside), docs/design.md §5,
 // written once in the common subset of C++ and GLSL: the GPU polygoniser's
 // shaders include it, C++ callers (CPU references, tests, the morph engine)
 // call the same functions (namespace animorph::morphfield), so both sides
