@@ -42,6 +42,7 @@ struct EditorState {
   bool showPreferences = false;
   bool showShortcuts = false;
   bool showAbout = false;
+  std::vector<std::string> demoProjects;  // Help > Demos (EditorUI::setDemoDir)
 
   // Panels.
   OutlinerState outliner;

@@ -62,6 +62,14 @@ void EditorUI::requestDrop(std::vector<std::string> paths) {
   dropped_.insert(dropped_.end(), std::make_move_iterator(paths.begin()), std::make_move_iterator(paths.end()));
 }
 
+void EditorUI::setDemoDir(const std::string& dir) {
+  st_.demoProjects.clear();
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+    if (it->path().extension() == ".animorph" && it->is_regular_file(ec)) st_.demoProjects.push_back(it->path().string());
+  std::sort(st_.demoProjects.begin(), st_.demoProjects.end());
+}
+
 void EditorUI::handleDrop(const std::vector<std::string>& paths, EditorContext& ctx) {
   auto ext = [](const std::string& p) {
     std::string e = fs::path(p).extension().string();
@@ -144,7 +152,7 @@ void EditorUI::draw(EditorContext& ctx) {
 
   // Menu bar, then the panels laid out below it.
   MenuResult menu = drawMenuBar(doc(ctx), st_.prefs.recentFiles, st_.menuBarHeight, st_.curveEditor.visible, st_.paint,
-                                st_.viewportMode, st_.correspondence.visible);
+                                st_.viewportMode, st_.correspondence.visible, st_.demoProjects);
   actions.insert(actions.end(), menu.actions.begin(), menu.actions.end());
   float statusHeight = ImGui::GetFrameHeight();
   LayoutSizes sizes{st_.prefs.outlinerWidth, st_.prefs.inspectorWidth, st_.prefs.timelineHeight};
@@ -181,7 +189,7 @@ void EditorUI::draw(EditorContext& ctx) {
   }
   if (menu.addNodeType) addNodeToSelection(*menu.addNodeType, ctx);
 
-  if (!menu.openRecentPath.empty()) guardUnsaved(PendingKind::OpenPath, menu.openRecentPath, ctx);
+  if (!menu.openPath.empty()) guardUnsaved(PendingKind::OpenPath, menu.openPath, ctx);
   for (Action a : actions) dispatch(a, ctx);
 
   drawPrompts(ctx);

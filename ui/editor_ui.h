@@ -39,6 +39,8 @@ class EditorUI {
   // Files dropped on the window: a project (.animorph) opens (asking about unsaved changes
   // first); glTF files (.gltf, .glb) are imported as actors, each an undoable step.
   void requestDrop(std::vector<std::string> paths);
+  // The folder whose .animorph projects Help > Demos lists (sorted by name); none when it has none.
+  void setDemoDir(const std::string& dir);
 
   EditorState& state() { return st_; }
   const EditorState& state() const { return st_; }

@@ -22,7 +22,7 @@ bool beginMenu(const char* label, bool enabled = true) {
 
 MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& recentFiles, float& heightPx,
                        bool curveEditorShown, const WeightPaintState& paint, ViewportMode mode,
-                       bool correspondenceShown) {
+                       bool correspondenceShown, const std::vector<std::string>& demos) {
   MenuResult r;
   heightPx = 0.0f;
   if (!ImGui::BeginMainMenuBar()) return r;
@@ -49,7 +49,7 @@ MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& rece
       for (size_t i = 0; i < recentFiles.size(); ++i) {
         const std::string& path = recentFiles[i];
         std::string label = std::to_string(i + 1) + "  " + std::filesystem::path(path).filename().string();
-        if (ImGui::MenuItem(label.c_str())) r.openRecentPath = path;
+        if (ImGui::MenuItem(label.c_str())) r.openPath = path;
         noteWidget("menu/Recent/" + std::to_string(i));
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", path.c_str());
       }
@@ -116,6 +116,16 @@ MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& rece
   if (helpOpen) {
     item("Shortcuts", Action::ShowShortcuts);
     item("About Animorph", Action::About);
+    ImGui::Separator();
+    if (beginMenu("Demos", !demos.empty())) {
+      for (const std::string& path : demos) {
+        const std::string name = std::filesystem::path(path).stem().string();
+        if (ImGui::MenuItem(name.c_str())) r.openPath = path;
+        noteWidget("menu/Demos/" + name);
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", path.c_str());
+      }
+      ImGui::EndMenu();
+    }
     ImGui::EndMenu();
   }
   ImGui::EndMainMenuBar();

@@ -16,15 +16,17 @@ namespace animorph {
 
 struct MenuResult {
   std::vector<Action> actions;
-  std::string openRecentPath;  // File > Recent > path chosen, or empty
+  std::string openPath;  // File > Recent or Help > Demos: the project chosen, or empty
   std::optional<NodeType> addNodeType;  // Create > Add Node > type chosen
 };
 
 // Draws the bar; returns its height in pixels through heightPx. curveEditorShown
 // checks View > Curve Editor, mode the viewport mode entries, correspondenceShown
-// View > Correspondence Editor.
+// View > Correspondence Editor; demos lists the demo projects Help > Demos opens (disabled when
+// there are none).
 MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& recentFiles, float& heightPx,
                        bool curveEditorShown = false, const WeightPaintState& paint = {},
-                       ViewportMode mode = ViewportMode::Object, bool correspondenceShown = false);
+                       ViewportMode mode = ViewportMode::Object, bool correspondenceShown = false,
+                       const std::vector<std::string>& demos = {});
 
 }  // namespace animorph

@@ -41,6 +41,8 @@ int main(int argc, char** argv) {
   std::unique_ptr<EditorGpu> gpuSide = std::move(*gpuR);
 
   EditorUI ui;
+  const char* demoDir = std::getenv("ANIMORPH_DEMO_DIR");  // Help > Demos: the repository's by default
+  ui.setDemoDir(demoDir ? demoDir : ANIMORPH_SOURCE_DIR "/resources/demo");
   AssetCache assets;
   std::unique_ptr<Document> document = std::make_unique<Document>();
   if (!args.project.empty()) ui.requestOpen(args.project);

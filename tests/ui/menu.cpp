@@ -1,8 +1,12 @@
 #include <catch2/catch.hpp>
 
+#include <filesystem>
+#include <fstream>
+
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include "doc/document.h"
 #include "support/editor_fixture.h"
 
 using namespace animorph;
@@ -43,4 +47,34 @@ TEST_CASE("Help windows open from the menu and list the shortcut table", "[menu]
   h.clickWidget("menu/View");
   h.clickWidget("menu/Preferences...");
   CHECK(h.ui->state().showPreferences);
+}
+
+TEST_CASE("Help > Demos lists the demo projects and opens the one chosen", "[menu]") {
+  EditorFixture f;
+  auto& h = f.h;
+  h.frames(1);
+  h.clickWidget("menu/Help");
+  REQUIRE(h.hasWidget("menu/Demos"));  // there, disabled, with no demo folder
+  h.clickWidget("menu/Help");          // closes the menu
+
+  for (const char* name : {"walker.animorph", "blobs.animorph"}) {
+    Document d;
+    Project p;
+    p.name = name;
+    d.reset(p, f.dir.file(std::string("demos/") + name));
+    std::filesystem::create_directories(f.dir.file("demos"));
+    REQUIRE(d.save());
+  }
+  std::ofstream(f.dir.file("demos/notes.txt")) << "not a project";
+  h.ui->setDemoDir(f.dir.file("demos"));
+  REQUIRE(h.ui->state().demoProjects.size() == 2);
+  CHECK(h.ui->state().demoProjects[0] == f.dir.file("demos/blobs.animorph"));  // sorted
+
+  h.clickWidget("menu/Help");
+  h.clickWidget("menu/Demos");
+  REQUIRE(h.hasWidget("menu/Demos/walker"));
+  h.clickWidget("menu/Demos/walker");
+  h.frames(2);
+  CHECK(h.doc().path() == f.dir.file("demos/walker.animorph"));
+  CHECK(h.doc().project().name == "walker.animorph");
 }
