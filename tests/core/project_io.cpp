@@ -142,3 +142,38 @@ TEST_CASE("save as re-bases relative asset paths, autosave and recovery", "[io][
   CHECK_FALSE(std::filesystem::exists(d.autosavePath()));
   CHECK_FALSE(Document::hasNewerAutosave(d.path()));
 }
+
+TEST_CASE("autosave: a few seconds after the first unsaved edit, then at most once an interval", "[io][project]") {
+  TempDir dir;
+  REQUIRE(saveProject(sample(), dir.file("p.animorph")).ok());
+  auto doc = Document::open(dir.file("p.animorph"));
+  REQUIRE(doc.ok());
+  Document& d = **doc;
+  CHECK_FALSE(d.autosaveIfDue(0.0));  // clean: nothing to write however long it waits
+  CHECK_FALSE(d.autosaveIfDue(100.0));
+
+  // An edit after a long idle time is not held back by the interval: 5 s after it is seen.
+  d.execute(setActorField(d.project(), "walker", &Actor::speed, 2.0, "speed"));
+  CHECK_FALSE(d.autosaveIfDue(100.5));
+  CHECK_FALSE(d.autosaveIfDue(105.4));
+  CHECK(d.autosaveIfDue(105.6));
+  CHECK_FALSE(std::filesystem::exists(dir.file("p.animorph") + ".tmp"));
+  auto rec = Document::recoverAutosave(d.path());
+  REQUIRE(rec.ok());
+  CHECK((*rec)->project().actors[0].speed == 2.0);
+
+  // Editing on: at most once an interval after that.
+  d.execute(setActorField(d.project(), "walker", &Actor::speed, 3.0, "speed"));
+  CHECK_FALSE(d.autosaveIfDue(111.0));
+  CHECK_FALSE(d.autosaveIfDue(165.5));
+  CHECK(d.autosaveIfDue(165.7));
+  CHECK_FALSE(d.autosaveIfDue(200.0));  // nothing new since
+
+  // After a save the next edit gets its first autosave soon again; interval 0 writes at once.
+  REQUIRE(d.save().ok());
+  d.execute(setActorField(d.project(), "walker", &Actor::speed, 4.0, "speed"));
+  CHECK_FALSE(d.autosaveIfDue(201.0));
+  CHECK(d.autosaveIfDue(206.1));
+  d.execute(setActorField(d.project(), "walker", &Actor::speed, 5.0, "speed"));
+  CHECK(d.autosaveIfDue(206.2, 0.0));
+}

@@ -1,6 +1,7 @@
 #include "doc/document.h"
 
 #include <cstdlib>
+#include <algorithm>
 #include <filesystem>
 
 #include "doc/atomic_file.h"
@@ -27,6 +28,7 @@ void Document::reset(Project p, std::string path) {
   selection = {};
   ++revision_;
   autosavedRevision_ = revision_;
+  lastAutosaveSec_ = changesSeenSec_ = -1.0;
 }
 
 void Document::execute(std::unique_ptr<Command> cmd) {
@@ -86,6 +88,7 @@ Status Document::saveAs(const std::string& path) {
   history_.markClean();
   recovered_ = false;
   autosavedRevision_ = revision_;
+  lastAutosaveSec_ = changesSeenSec_ = -1.0;  // the next edit gets its first autosave soon again
   std::error_code ec;
   fs::remove(oldAutosave, ec);
   fs::remove(autosavePath(), ec);
@@ -100,10 +103,14 @@ std::string Document::autosavePath() const {
 }
 
 bool Document::autosaveIfDue(double nowSec, double intervalSec) {
-  if (lastAutosaveSec_ < 0.0) lastAutosaveSec_ = nowSec;
-  if (nowSec - lastAutosaveSec_ < intervalSec) return false;
+  if (revision_ == autosavedRevision_ || !dirty()) {
+    changesSeenSec_ = -1.0;
+    return false;
+  }
+  if (changesSeenSec_ < 0.0) changesSeenSec_ = nowSec;
+  if (nowSec - changesSeenSec_ < std::min(intervalSec, kFirstAutosaveDelaySec)) return false;
+  if (lastAutosaveSec_ >= 0.0 && nowSec - lastAutosaveSec_ < intervalSec) return false;
   lastAutosaveSec_ = nowSec;
-  if (revision_ == autosavedRevision_ || !dirty()) return false;
   std::string target = autosavePath();
   std::error_code ec;
   fs::create_directories(fs::path(target).parent_path(), ec);

@@ -58,8 +58,11 @@ class Document {
   // Autosave file beside the project (or in ~/.local/share/animorph for
   // untitled projects).
   std::string autosavePath() const;
-  // Writes the autosave if there are changes since the last save/autosave
-  // and intervalSec has passed since the last autosave. Returns true if it wrote.
+  // Writes the autosave when there are changes since the last save or autosave, once they have
+  // waited kFirstAutosaveDelaySec (counted from the first call that sees them: an edit made just
+  // before a crash is not lost to a long interval) and at most once every intervalSec after that.
+  // intervalSec 0: now. Returns true if it wrote.
+  static constexpr double kFirstAutosaveDelaySec = 5.0;
   bool autosaveIfDue(double nowSec, double intervalSec = 60.0);
   // An autosave newer than path exists (offer to recover it).
   static bool hasNewerAutosave(const std::string& path);
@@ -76,7 +79,8 @@ class Document {
   std::string path_;
   uint64_t revision_ = 1;
   uint64_t autosavedRevision_ = 1;
-  double lastAutosaveSec_ = -1.0;
+  double lastAutosaveSec_ = -1.0;     // when the autosave was last written (-1: not since the last save)
+  double changesSeenSec_ = -1.0;      // when autosaveIfDue first saw the unsaved changes (-1: none)
   bool recovered_ = false;
 };
 
