@@ -277,7 +277,11 @@ TEST_CASE("GPU polygoniser matches the CPU on a convolution chain, culled and de
     GpuPolygonizeStats st;
     TriangleMesh generic = gpuMesh(*r.poly, GpuField::single(p), s, &st);
     CHECK(st.features == AM_FEAT_ALL);
-    CHECK(triangleSet(generic) == triangleSet(culled));
+    // The same surface up to rounding, not bit for bit: a GPU compiler contracts multiply-adds
+    // differently in the two programs (lavapipe gives identical triangles, an NVIDIA H100 does not).
+    requireAgrees(generic, culled, cell);
+    CHECK(analyzeMesh(generic).components == analyzeMesh(culled).components);
+    CHECK(std::abs(meshVolume(generic) - meshVolume(culled)) <= 1e-4 * std::abs(meshVolume(culled)));
     s.specialise = true;
   }
   {
