@@ -180,6 +180,8 @@ int polygonizeCommand(const std::vector<std::string>& args) {
   std::printf("  grid %d x %d x %d (cell %.4g m), %zu primitives, blocks %zu evaluated / %zu culled of %zu -> %s\n",
               st.gridX, st.gridY, st.gridZ, st.cellSize, program.primitiveCount(), st.blocksEvaluated, st.blocksCulled,
               st.blocksTotal, output.c_str());
+  std::printf("  %zu field evaluations, %.1f primitives reaching each on average\n", st.pointsEvaluated,
+              st.pointsEvaluated ? double(st.primitiveEvaluations) / double(st.pointsEvaluated) : 0.0);
   return 0;
 }
 

@@ -182,19 +182,31 @@ inline void accumulate(float* f, float* gx, float* gy, float* gz, int j, float v
   }
 }
 
+// Squared distance between the segment (a, b) and the box [lo, hi], or less: a lower bound from
+// the box of the segment (exact when the segment is a point or axis-aligned).
+inline float segmentBoxGap2(const glm::vec3& a, const glm::vec3& b, const glm::vec3& lo, const glm::vec3& hi) {
+  glm::vec3 gap = glm::max(glm::vec3(0.0f), glm::max(lo - glm::max(a, b), glm::min(a, b) - hi));
+  return glm::dot(gap, gap);
+}
+
 template <bool kMax>
 void skeletalLoop(const FieldProgram& prog, const uint32_t* idx, int count, const float* x, const float* y,
-                  const float* z, int n, float* f, float* gx, float* gy, float* gz) {
+                  const float* z, int n, const glm::vec3& boxLo, const glm::vec3& boxHi, float* f, float* gx,
+                  float* gy, float* gz) {
+  // A primitive that reaches none of the points adds nothing (sum: + 0; max: the values start at
+  // 0 and a point it does not reach would get 0), so whole primitives are skipped against the
+  // points' box: polygonisers pass compact runs of points, and most of a block's primitives reach
+  // only part of it.
   for (int k = 0; k < count; ++k) {
+    const SkeletalReach& bound = prog.skeletalReach[idx[k]];
+    const glm::vec3 ca = bound.a, cb = bound.b;
+    const float reach = bound.reach;
+    if (segmentBoxGap2(ca, cb, boxLo, boxHi) >= reach * reach) continue;
     const SkeletalPrimitive& p = prog.skeletal[idx[k]];
     Skeleton s = p.skeleton;
     if (s.kind == SkeletonKind::Curve) s.curve = prog.curvePoints.data() + p.curveFirst;
     const float R = p.radius, I = p.intensity, K = p.stiffness;
-    // Cheap rejection: the bound's capsule, in this primitive's own space.
-    glm::vec3 ca, cb;
-    float cr;
-    skeletonEnclosingCapsule(s, ca, cb, cr);
-    const float reach = cr + R;
+    // Cheap rejection per point: the bound's capsule, in this primitive's own space.
     for (int j = 0; j < n; ++j) {
       glm::vec3 q(x[j], y[j], z[j]);
       glm::vec3 ab = cb - ca;
@@ -265,9 +277,10 @@ void convolutionIntervalKernel(const ConvolutionData& c, const uint32_t* idx, in
 }
 
 void skeletalKernel(const FieldProgram& prog, const uint32_t* idx, int count, bool combineMax, const float* x,
-                    const float* y, const float* z, int n, float* f, float* gx, float* gy, float* gz) {
-  if (combineMax) skeletalLoop<true>(prog, idx, count, x, y, z, n, f, gx, gy, gz);
-  else skeletalLoop<false>(prog, idx, count, x, y, z, n, f, gx, gy, gz);
+                    const float* y, const float* z, int n, const glm::vec3& boxLo, const glm::vec3& boxHi, float* f,
+                    float* gx, float* gy, float* gz) {
+  if (combineMax) skeletalLoop<true>(prog, idx, count, x, y, z, n, boxLo, boxHi, f, gx, gy, gz);
+  else skeletalLoop<false>(prog, idx, count, x, y, z, n, boxLo, boxHi, f, gx, gy, gz);
 }
 
 void capsuleKernel(const std::vector<CapsulePrimitive>& caps, float threshold, const uint32_t* idx, int count,

@@ -215,6 +215,7 @@ bool FieldProgram::addSkeletal(const SkeletalPrimitive& p, bool combineWithPrevi
   skeletonEnclosingCapsule(s, a, b, r);
   uint32_t local = uint32_t(skeletal.size());
   skeletal.push_back(p);
+  skeletalReach.push_back({a, b, r + std::max(p.radius, 0.0f)});
   return pushPrims(PrimClass::Skeletal, local, combineWithPrevious, combineMax,
                    worldBound(a, b, r + std::max(p.radius, 0.0f)));
 }
@@ -293,6 +294,8 @@ void FieldProgram::finish() {
   std::vector<uint32_t> begins;
   std::vector<uint32_t> mapBegins;
   std::vector<Bounds> boxes;
+  std::vector<Bounds> reach;  // supports under each open map
+  mapReach_.assign(maps.size(), Bounds{});
   int depth = 0;
   maxStack_ = 0;
   maxMapDepth_ = 0;
@@ -307,6 +310,7 @@ void FieldProgram::finish() {
         vals.push_back(0.0f);
         begins.push_back(i);
         boxes.push_back(b);
+        if (!reach.empty()) reach.back().add(b);
         op.subtreeBegin = i;
         break;
       }
@@ -318,6 +322,7 @@ void FieldProgram::finish() {
         break;
       case OpCode::BeginMap:
         mapBegins.push_back(i);
+        reach.emplace_back();
         op.subtreeBegin = i;
         ++depth;
         maxMapDepth_ = std::max(maxMapDepth_, depth);
@@ -325,6 +330,9 @@ void FieldProgram::finish() {
       case OpCode::EndMap: {
         op.subtreeBegin = mapBegins.back();
         mapBegins.pop_back();
+        mapReach_[op.first] = reach.back();
+        reach.pop_back();
+        if (!reach.empty()) reach.back().add(mapReach_[op.first]);
         --depth;
         begins.back() = op.subtreeBegin;
         op.emptyValue = vals.back();
@@ -681,11 +689,47 @@ void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, con
   cx[0] = x;
   cy[0] = y;
   cz[0] = z;
+  // Box of the points at each map level (skeletal primitives are skipped against it).
+  levelBoxes_.resize(size_t(P.maxMapDepth() + 1) * 2);
+  glm::vec3* boxes = levelBoxes_.data();
+  auto pointsBox = [&](const float* bx, const float* by, const float* bz, glm::vec3& lo, glm::vec3& hi) {
+    lo = glm::vec3(INFINITY);
+    hi = glm::vec3(-INFINITY);
+    for (int i = 0; i < n; ++i) {
+      lo = glm::min(lo, glm::vec3(bx[i], by[i], bz[i]));
+      hi = glm::max(hi, glm::vec3(bx[i], by[i], bz[i]));
+    }
+  };
+  pointsBox(x, y, z, boxes[0], boxes[1]);
   auto F = [&](int s) { return stack_.data() + size_t(s) * 4 * kChunk; };
   auto GX = [&](int s) { return F(s) + kChunk; };
   auto GY = [&](int s) { return F(s) + 2 * kChunk; };
   auto GZ = [&](int s) { return F(s) + 3 * kChunk; };
-  for (const FieldOp& op : A.ops) {
+  auto pushConstant = [&](float value) {
+    std::fill(F(sp), F(sp) + n, value);
+    if (grad) {
+      std::fill(GX(sp), GX(sp) + n, 0.0f);
+      std::fill(GY(sp), GY(sp) + n, 0.0f);
+      std::fill(GZ(sp), GZ(sp) + n, 0.0f);
+    }
+    ++sp;
+  };
+  const glm::vec3 worldLo = boxes[0], worldHi = boxes[1];
+  for (size_t opIndex = 0; opIndex < A.ops.size(); ++opIndex) {
+    const FieldOp& op = A.ops[opIndex];
+    if (op.code == OpCode::BeginMap) {
+      // A map whose primitives reach none of the points: its subtree has its empty value there.
+      const Bounds& r = P.mapReach(op.first);
+      if (r.empty() || glm::any(glm::greaterThan(r.min, worldHi)) || glm::any(glm::lessThan(r.max, worldLo))) {
+        int open = 1;
+        while (open > 0) {
+          const OpCode c = A.ops[++opIndex].code;
+          open += c == OpCode::BeginMap ? 1 : c == OpCode::EndMap ? -1 : 0;
+        }
+        pushConstant(A.ops[opIndex].emptyValue);
+        continue;
+      }
+    }
     switch (op.code) {
       case OpCode::Prims: {
         float* f = F(sp);
@@ -704,7 +748,8 @@ void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, con
             convolutionKernel(P.convolution, idx, int(op.count), cx[level], cy[level], cz[level], n, f, gx, gy, gz);
             break;
           case PrimClass::Skeletal:
-            skeletalKernel(P, idx, int(op.count), op.combineMax, cx[level], cy[level], cz[level], n, f, gx, gy, gz);
+            skeletalKernel(P, idx, int(op.count), op.combineMax, cx[level], cy[level], cz[level], n,
+                           boxes[2 * level], boxes[2 * level + 1], f, gx, gy, gz);
             break;
           case PrimClass::Capsule:
             capsuleKernel(P.capsules, T, idx, int(op.count), op.combineMax, cx[level], cy[level], cz[level], n, f,
@@ -714,16 +759,7 @@ void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, con
         ++sp;
         break;
       }
-      case OpCode::Const: {
-        std::fill(F(sp), F(sp) + n, op.emptyValue);
-        if (grad) {
-          std::fill(GX(sp), GX(sp) + n, 0.0f);
-          std::fill(GY(sp), GY(sp) + n, 0.0f);
-          std::fill(GZ(sp), GZ(sp) + n, 0.0f);
-        }
-        ++sp;
-        break;
-      }
+      case OpCode::Const: pushConstant(op.emptyValue); break;
       case OpCode::BeginMap: {
         const SpaceMap& m = P.maps[op.first];
         float* out = coords_.data() + size_t(level + 1) * 3 * kChunk;
@@ -754,6 +790,22 @@ void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, con
         cx[level] = ox;
         cy[level] = oy;
         cz[level] = oz;
+        if (m.kind == SpaceMapKind::Affine) {
+          // The image of the parent box's corners bounds the image of its points.
+          const glm::vec3 lo = boxes[2 * level - 2], hi = boxes[2 * level - 1];
+          glm::vec3 nlo(INFINITY), nhi(-INFINITY);
+          for (int c = 0; c < 8; ++c) {
+            glm::vec3 q((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
+            glm::vec3 r = m.linear * (q - m.origin);
+            nlo = glm::min(nlo, r);
+            nhi = glm::max(nhi, r);
+          }
+          const glm::vec3 pad = 1e-5f * (nhi - nlo) + 1e-6f * glm::max(glm::abs(nlo), glm::abs(nhi));  // rounding
+          boxes[2 * level] = nlo - pad;
+          boxes[2 * level + 1] = nhi + pad;
+        } else {
+          pointsBox(ox, oy, oz, boxes[2 * level], boxes[2 * level + 1]);
+        }
         break;
       }
       case OpCode::EndMap: {

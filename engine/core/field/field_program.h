@@ -60,6 +60,12 @@ struct SkeletalPrimitive {
   float radius = 1.0f, intensity = 1.0f, stiffness = 3.0f;
 };
 
+// Where a skeletal primitive can contribute: within `reach` of segment (a, b), in its own space.
+struct SkeletalReach {
+  glm::vec3 a{0.0f}, b{0.0f};
+  float reach = 0.0f;
+};
+
 // Convolution segments, structure of arrays: start b, unit direction a,
 // length, weight w (from the radius rule), sharpness S, squared cut radius.
 struct ConvolutionData {
@@ -100,6 +106,9 @@ class FieldProgram {
   std::vector<float> params;
   std::vector<SpaceMap> maps;
   std::vector<SkeletalPrimitive> skeletal;
+  // Per skeletal primitive, in its own space: the capsule segment enclosing its skeleton and the
+  // reach (capsule radius + primitive radius) beyond which it contributes nothing.
+  std::vector<SkeletalReach> skeletalReach;
   std::vector<glm::vec3> curvePoints;
   ConvolutionData convolution;
   std::vector<CapsulePrimitive> capsules;
@@ -132,6 +141,9 @@ class FieldProgram {
   // Unique per finish() call (copies share it): lets evaluators cache per program.
   uint64_t identity() const { return identity_; }
   int maxMapDepth() const { return maxMapDepth_; }
+  // World box of the supports of every primitive under maps[i] (empty: none): beyond it the
+  // map's subtree has its empty value, so an evaluator may skip the subtree there.
+  const Bounds& mapReach(uint32_t i) const { return mapReach_[i]; }
 
   // All primitives.
   void specialiseAll(ActiveProgram& out) const;
@@ -160,6 +172,7 @@ class FieldProgram {
   bool unbounded_ = false;
   int maxStack_ = 0;
   int maxMapDepth_ = 0;
+  std::vector<Bounds> mapReach_;
   uint64_t identity_ = 0;
 };
 
@@ -178,6 +191,7 @@ class FieldEvaluator {
   std::vector<float> stack_;
   std::vector<float> coords_;
   std::vector<const float*> levels_;
+  std::vector<glm::vec3> levelBoxes_;  // per map level: the box of the chunk's points (lo, hi)
   ActiveProgram all_;
   uint64_t allFor_ = 0;
 };
@@ -188,8 +202,10 @@ void convolutionKernel(const ConvolutionData& c, const uint32_t* idx, int count,
 // Per-primitive intervals of the weighted, cut convolution fields over the ball (centre, radius).
 void convolutionIntervalKernel(const ConvolutionData& c, const uint32_t* idx, int count, const glm::vec3& centre,
                                float radius, float* lo, float* hi);
+// [boxLo, boxHi] holds the n points: primitives that cannot reach it are skipped whole.
 void skeletalKernel(const FieldProgram& prog, const uint32_t* idx, int count, bool combineMax, const float* x,
-                    const float* y, const float* z, int n, float* f, float* gx, float* gy, float* gz);
+                    const float* y, const float* z, int n, const glm::vec3& boxLo, const glm::vec3& boxHi, float* f,
+                    float* gx, float* gy, float* gz);
 void capsuleKernel(const std::vector<CapsulePrimitive>& caps, float threshold, const uint32_t* idx, int count,
                    bool combineMax, const float* x, const float* y, const float* z, int n, float* f, float* gx,
                    float* gy, float* gz);

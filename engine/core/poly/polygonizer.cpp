@@ -234,34 +234,40 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
     sc.y.resize(size_t(np));
     sc.z.resize(size_t(np));
     sc.v.assign(size_t(np), 0.0f);
-    sc.slot.assign(size_t(np), allLive ? 0 : -1);
-    if (!allLive) {
-      // Corners of live sub-blocks (each spans its cells plus the +1 layer).
-      for (int q = 0; q < 8; ++q) {
-        if (!subLive[q]) continue;
-        int lo[3], hi[3];
-        for (int a = 0; a < 3; ++a) {
-          lo[a] = ((q >> a) & 1) * (kBlock / 2);
-          hi[a] = std::min(lo[a] + kBlock / 2, cnt[a]);
-        }
-        for (int k = lo[2]; k <= hi[2]; ++k)
-          for (int j = lo[1]; j <= hi[1]; ++j)
-            for (int i = lo[0]; i <= hi[0]; ++i) sc.slot[size_t((k * cy + j) * cx + i)] = 0;
-      }
-    }
+    sc.slot.assign(size_t(np), -1);
+    // Corners of live sub-blocks (each spans its cells plus the +1 layer), numbered sub-block by
+    // sub-block and evaluated one sub-block at a time: a compact run of points lets the evaluator
+    // skip the primitives that reach the block but not that part of it.
     int ne = 0;
-    for (int k = 0, p = 0; k < cz; ++k)
-      for (int j = 0; j < cy; ++j)
-        for (int i = 0; i < cx; ++i, ++p) {
-          if (sc.slot[size_t(p)] < 0) continue;
-          glm::vec3 q = cornerPos(c0[0] + i, c0[1] + j, c0[2] + k);
-          sc.x[size_t(ne)] = q.x;
-          sc.y[size_t(ne)] = q.y;
-          sc.z[size_t(ne)] = q.z;
-          sc.slot[size_t(p)] = ne++;
-        }
+    int runStart[9];
+    for (int q = 0; q < 8; ++q) {
+      runStart[q] = ne;
+      if (!subLive[q]) continue;
+      int lo[3], hi[3];
+      for (int a = 0; a < 3; ++a) {
+        lo[a] = ((q >> a) & 1) * (kBlock / 2);
+        hi[a] = std::min(lo[a] + kBlock / 2, cnt[a]);
+      }
+      for (int k = lo[2]; k <= hi[2]; ++k)
+        for (int j = lo[1]; j <= hi[1]; ++j)
+          for (int i = lo[0]; i <= hi[0]; ++i) {
+            int& slot = sc.slot[size_t((k * cy + j) * cx + i)];
+            if (slot >= 0) continue;
+            glm::vec3 p = cornerPos(c0[0] + i, c0[1] + j, c0[2] + k);
+            sc.x[size_t(ne)] = p.x;
+            sc.y[size_t(ne)] = p.y;
+            sc.z[size_t(ne)] = p.z;
+            slot = ne++;
+          }
+    }
+    runStart[8] = ne;
     sc.e.resize(size_t(ne));
-    sc.evaluator.evaluate(program, *prog, sc.x.data(), sc.y.data(), sc.z.data(), ne, sc.e.data());
+    for (int q = 0; q < 8; ++q) {
+      const int first = runStart[q], count = runStart[q + 1] - runStart[q];
+      if (count > 0)
+        sc.evaluator.evaluate(program, *prog, sc.x.data() + first, sc.y.data() + first, sc.z.data() + first, count,
+                              sc.e.data() + first);
+    }
     points.fetch_add(size_t(ne), std::memory_order_relaxed);
     pairs.fetch_add(size_t(ne) * prog->primitiveCount, std::memory_order_relaxed);
     for (int p = 0; p < np; ++p)
