@@ -66,3 +66,29 @@ TEST_CASE("particles: converting refuses bad input", "[particles][convert]") {
   empty.finish();
   CHECK_FALSE(convertToParticles(empty, ConvertToParticlesSettings{}));
 }
+
+TEST_CASE("particles: per-sub-block primitive lists give the same mesh as dense evaluation", "[particles][convert]") {
+  ConvertToParticlesSettings s;
+  s.count = 1500;
+  auto conv = convertToParticles(compileFieldProgram(makeStatue(), 0.0), s);
+  REQUIRE(conv);
+  FieldProgram program = compileFieldProgram(conv->tree, 0.0);
+  PolygonizeSettings ps;
+  ps.resolution = 48;
+  auto culled = polygonize(program, ps);
+  ps.subBlockLists = false;
+  auto perBlock = polygonize(program, ps);
+  ps.culling = false;
+  auto dense = polygonize(program, ps);
+  REQUIRE(culled);
+  REQUIRE(dense);
+  CHECK(culled->mesh.triangleCount() > 1000);
+  CHECK(culled->mesh.positions == dense->mesh.positions);
+  CHECK(culled->mesh.indices == dense->mesh.indices);
+  CHECK(culled->stats.orphanVertices == 0);
+  REQUIRE(perBlock);
+  CHECK(perBlock->mesh == culled->mesh);  // normals too
+  CHECK(culled->stats.primitiveEvaluations * 2 < perBlock->stats.primitiveEvaluations);
+  // Surface-bound: far fewer (point, primitive) pairs than points x primitives.
+  CHECK(culled->stats.primitiveEvaluations * 20 < dense->stats.primitiveEvaluations);
+}
