@@ -11,6 +11,7 @@
 
 #include "blobtree/blob_tree_json.h"
 #include "cli/cli_command.h"
+#include "cli/demo_files.h"
 #include "demo/animorphosis_demo.h"
 #include "demo/dino_dragon.h"
 #include "doc/animorphosis_project.h"
@@ -20,34 +21,7 @@ namespace {
 
 using namespace animorph;
 using nlohmann::json;
-
-// Every number of j that holds a float written in the shortest decimal form
-// that reads back as the same float (JSON numbers are doubles), so the files
-// hold "0.28" rather than "0.2800000011920929" and load unchanged.
-void shortenFloats(json& j) {
-  if (j.is_number_float()) {
-    double d = j.get<double>();
-    float f = float(d);
-    if (double(f) != d) return;  // a double (a key time), kept as it is
-    char text[32];
-    for (int digits = 1; digits <= 9; ++digits) {
-      std::snprintf(text, sizeof text, "%.*g", digits, double(f));
-      if (std::strtof(text, nullptr) == f) break;
-    }
-    j = std::strtod(text, nullptr);
-  } else if (j.is_structured()) {
-    for (auto& v : j) shortenFloats(v);
-  }
-}
-
-Status writeCompact(json j, const std::filesystem::path& path) {
-  shortenFloats(j);
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out << j.dump() << "\n";
-  out.close();
-  if (!out) return Error{path.string() + ": cannot write"};
-  return {};
-}
+using cli::writeCompact;
 
 int makeAnimorphosisDemo(const std::vector<std::string>& args) {
   const char* cmd = "make-animorphosis-demo";
@@ -61,11 +35,8 @@ int makeAnimorphosisDemo(const std::vector<std::string>& args) {
     else
       dirs.push_back(a);
   }
-  if (dirs.size() != 1) return cli::fail(cmd, "expected one argument: the output directory", 2);
-  std::filesystem::path dir(dirs[0]);
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) return cli::fail(cmd, dir.string() + ": cannot create directory: " + ec.message());
+  std::filesystem::path dir;
+  if (!cli::outputDirectory(cmd, dirs, dir)) return dirs.size() != 1 ? 2 : 1;
   auto project = makeAnimorphosisDemoProject();
   if (!project) return cli::fail(cmd, "internal: " + project.error(), 3);
   const char* files[2] = {"dinosaur.json", "dragon.json"};

@@ -51,7 +51,16 @@ struct Scratch {
   std::vector<uint32_t> reaching;
   std::vector<float> x, y, z, v, e, gx, gy, gz;
   std::vector<int32_t> slot;
+  // Per 4^3 sub-block programs, for blocks reached by many primitives (particles).
+  ActiveProgram subActive[8];
+  std::vector<uint32_t> subReaching;
+  std::vector<uint8_t> vertexSub;   // sub-block of each owned vertex
+  std::vector<uint32_t> gather;     // vertices of one sub-block
 };
+
+// A block reached by more primitives than this evaluates each 4^3 sub-block with
+// only the primitives reaching it (the same values: the others add exact zeros).
+constexpr size_t kSubSpecialise = 48;
 
 enum class SuperState : uint8_t { Culled, Partial };
 
@@ -217,6 +226,25 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
         allLive &= subLive[q];
       }
     }
+    const bool perSub = s.culling && s.subBlockLists && prog->primitiveCount > kSubSpecialise;
+    int subLo[8][3], subHi[8][3];  // corner ranges (inclusive) of each sub-block, block-local
+    for (int q = 0; q < 8; ++q)
+      for (int a = 0; a < 3; ++a) {
+        subLo[q][a] = ((q >> a) & 1) * (kBlock / 2);
+        subHi[q][a] = std::min(subLo[q][a] + kBlock / 2, cnt[a]);
+      }
+    if (perSub) {
+      for (int q = 0; q < 8; ++q) {
+        if (!subLive[q]) continue;
+        int s0[3], sn[3];
+        for (int a = 0; a < 3; ++a) {
+          s0[a] = c0[a] + subLo[q][a];
+          sn[a] = subHi[q][a] - subLo[q][a];
+        }
+        program.primitivesReaching(regionBox(s0, sn), sc.subReaching, &sc.reaching);
+        program.specialise(sc.subReaching, sc.subActive[q]);
+      }
+    }
     evaluated.fetch_add(1, std::memory_order_relaxed);
     // Corner values of the block's cells (its own corners plus the +1 layer);
     // only the corners of live sub-blocks are evaluated.
@@ -234,44 +262,64 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
     sc.y.resize(size_t(np));
     sc.z.resize(size_t(np));
     sc.v.assign(size_t(np), 0.0f);
-    sc.slot.assign(size_t(np), -1);
-    // Corners of live sub-blocks (each spans its cells plus the +1 layer), numbered sub-block by
-    // sub-block and evaluated one sub-block at a time: a compact run of points lets the evaluator
-    // skip the primitives that reach the block but not that part of it.
-    int ne = 0;
-    int runStart[9];
-    for (int q = 0; q < 8; ++q) {
-      runStart[q] = ne;
-      if (!subLive[q]) continue;
-      int lo[3], hi[3];
-      for (int a = 0; a < 3; ++a) {
-        lo[a] = ((q >> a) & 1) * (kBlock / 2);
-        hi[a] = std::min(lo[a] + kBlock / 2, cnt[a]);
+    if (perSub) {
+      // Each live sub-block's corners with its own program (shared faces twice, same values).
+      for (int q = 0; q < 8; ++q) {
+        if (!subLive[q]) continue;
+        int ne = 0;
+        for (int k = subLo[q][2]; k <= subHi[q][2]; ++k)
+          for (int j = subLo[q][1]; j <= subHi[q][1]; ++j)
+            for (int i = subLo[q][0]; i <= subHi[q][0]; ++i) {
+              glm::vec3 c = cornerPos(c0[0] + i, c0[1] + j, c0[2] + k);
+              sc.x[size_t(ne)] = c.x;
+              sc.y[size_t(ne)] = c.y;
+              sc.z[size_t(ne)] = c.z;
+              ++ne;
+            }
+        sc.e.resize(size_t(ne));
+        sc.evaluator.evaluate(program, sc.subActive[q], sc.x.data(), sc.y.data(), sc.z.data(), ne, sc.e.data());
+        points.fetch_add(size_t(ne), std::memory_order_relaxed);
+        pairs.fetch_add(size_t(ne) * sc.subActive[q].primitiveCount, std::memory_order_relaxed);
+        ne = 0;
+        for (int k = subLo[q][2]; k <= subHi[q][2]; ++k)
+          for (int j = subLo[q][1]; j <= subHi[q][1]; ++j)
+            for (int i = subLo[q][0]; i <= subHi[q][0]; ++i) sc.v[size_t((k * cy + j) * cx + i)] = sc.e[size_t(ne++)];
       }
-      for (int k = lo[2]; k <= hi[2]; ++k)
-        for (int j = lo[1]; j <= hi[1]; ++j)
-          for (int i = lo[0]; i <= hi[0]; ++i) {
-            int& slot = sc.slot[size_t((k * cy + j) * cx + i)];
-            if (slot >= 0) continue;
-            glm::vec3 p = cornerPos(c0[0] + i, c0[1] + j, c0[2] + k);
-            sc.x[size_t(ne)] = p.x;
-            sc.y[size_t(ne)] = p.y;
-            sc.z[size_t(ne)] = p.z;
-            slot = ne++;
-          }
+    } else {
+      // Corners of live sub-blocks (each spans its cells plus the +1 layer), numbered sub-block
+      // by sub-block and evaluated one sub-block at a time: a compact run of points lets the
+      // evaluator skip the map subtrees and primitives that reach the block but not that part.
+      sc.slot.assign(size_t(np), -1);
+      int ne = 0;
+      int runStart[9];
+      for (int q = 0; q < 8; ++q) {
+        runStart[q] = ne;
+        if (!subLive[q]) continue;
+        for (int k = subLo[q][2]; k <= subHi[q][2]; ++k)
+          for (int j = subLo[q][1]; j <= subHi[q][1]; ++j)
+            for (int i = subLo[q][0]; i <= subHi[q][0]; ++i) {
+              int& slot = sc.slot[size_t((k * cy + j) * cx + i)];
+              if (slot >= 0) continue;
+              glm::vec3 c = cornerPos(c0[0] + i, c0[1] + j, c0[2] + k);
+              sc.x[size_t(ne)] = c.x;
+              sc.y[size_t(ne)] = c.y;
+              sc.z[size_t(ne)] = c.z;
+              slot = ne++;
+            }
+      }
+      runStart[8] = ne;
+      sc.e.resize(size_t(ne));
+      for (int q = 0; q < 8; ++q) {
+        const int first = runStart[q], count = runStart[q + 1] - runStart[q];
+        if (count > 0)
+          sc.evaluator.evaluate(program, *prog, sc.x.data() + first, sc.y.data() + first, sc.z.data() + first,
+                                count, sc.e.data() + first);
+      }
+      points.fetch_add(size_t(ne), std::memory_order_relaxed);
+      pairs.fetch_add(size_t(ne) * prog->primitiveCount, std::memory_order_relaxed);
+      for (int p = 0; p < np; ++p)
+        if (sc.slot[size_t(p)] >= 0) sc.v[size_t(p)] = sc.e[size_t(sc.slot[size_t(p)])];
     }
-    runStart[8] = ne;
-    sc.e.resize(size_t(ne));
-    for (int q = 0; q < 8; ++q) {
-      const int first = runStart[q], count = runStart[q + 1] - runStart[q];
-      if (count > 0)
-        sc.evaluator.evaluate(program, *prog, sc.x.data() + first, sc.y.data() + first, sc.z.data() + first, count,
-                              sc.e.data() + first);
-    }
-    points.fetch_add(size_t(ne), std::memory_order_relaxed);
-    pairs.fetch_add(size_t(ne) * prog->primitiveCount, std::memory_order_relaxed);
-    for (int p = 0; p < np; ++p)
-      if (sc.slot[size_t(p)] >= 0) sc.v[size_t(p)] = sc.e[size_t(sc.slot[size_t(p)])];
     // The grid boundary counts as outside, so a surface cut by it is closed.
     for (int k = 0, p = 0; k < cz; ++k)
       for (int j = 0; j < cy; ++j)
@@ -283,6 +331,7 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
     out[bi] = std::make_unique<BlockOutput>();
     BlockOutput& o = *out[bi];
     auto val = [&](int i, int j, int k) { return sc.v[size_t((k * cy + j) * cx + i)]; };
+    int cellSub = 0;  // sub-block of the cell being triangulated
     auto edgeVertex = [&](int li, int lj, int lk, int axis) -> uint64_t {
       int lj2 = lj + (axis == 1), li2 = li + (axis == 0), lk2 = lk + (axis == 2);
       float f0 = val(li, lj, lk), f1 = val(li2, lj2, lk2);
@@ -297,6 +346,7 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
         if (slot < 0) {
           slot = int32_t(o.positions.size());
           o.positions.push_back(pos);
+          sc.vertexSub.push_back(uint8_t(cellSub));
           // Fallback normal: along the edge, from the inside corner to the outside one.
           glm::vec3 dir = glm::normalize(p1 - p0);
           o.normals.push_back(f0 >= 0.0f ? dir : -dir);
@@ -306,9 +356,11 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
       o.externals.push_back({c0[0] + li, c0[1] + lj, c0[2] + lk, axis, pos});
       return kExternal | uint64_t(o.externals.size() - 1);
     };
+    sc.vertexSub.clear();
     for (int k = 0; k < cnt[2]; ++k)
       for (int j = 0; j < cnt[1]; ++j)
         for (int i = 0; i < cnt[0]; ++i) {
+          cellSub = subOf(i, j, k);
           int mask = 0;
           for (int c = 0; c < 8; ++c)
             if (val(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1)) >= 0.0f) mask |= 1 << c;
@@ -336,11 +388,35 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
         sc.y[q] = o.positions[q].y;
         sc.z[q] = o.positions[q].z;
       }
-      sc.evaluator.evaluate(program, *prog, sc.x.data(), sc.y.data(), sc.z.data(), int(nv), sc.v.data(),
-                            sc.gx.data(), sc.gy.data(), sc.gz.data());
-      for (size_t q = 0; q < nv; ++q) o.normals[q] = outwardNormal(sc.gx[q], sc.gy[q], sc.gz[q], o.normals[q]);
+      if (perSub) {
+        // Each sub-block's vertices with its program (a vertex lies on an edge of its cell).
+        for (int sq = 0; sq < 8; ++sq) {
+          sc.gather.clear();
+          for (size_t q = 0; q < nv; ++q)
+            if (sc.vertexSub[q] == sq) sc.gather.push_back(uint32_t(q));
+          if (sc.gather.empty()) continue;
+          size_t m = sc.gather.size();
+          for (size_t q = 0; q < m; ++q) {
+            const glm::vec3& pq = o.positions[sc.gather[q]];
+            sc.x[q] = pq.x;
+            sc.y[q] = pq.y;
+            sc.z[q] = pq.z;
+          }
+          sc.evaluator.evaluate(program, sc.subActive[sq], sc.x.data(), sc.y.data(), sc.z.data(), int(m),
+                                sc.v.data(), sc.gx.data(), sc.gy.data(), sc.gz.data());
+          for (size_t q = 0; q < m; ++q) {
+            glm::vec3& nq = o.normals[sc.gather[q]];
+            nq = outwardNormal(sc.gx[q], sc.gy[q], sc.gz[q], nq);
+          }
+          pairs.fetch_add(m * sc.subActive[sq].primitiveCount, std::memory_order_relaxed);
+        }
+      } else {
+        sc.evaluator.evaluate(program, *prog, sc.x.data(), sc.y.data(), sc.z.data(), int(nv), sc.v.data(),
+                              sc.gx.data(), sc.gy.data(), sc.gz.data());
+        for (size_t q = 0; q < nv; ++q) o.normals[q] = outwardNormal(sc.gx[q], sc.gy[q], sc.gz[q], o.normals[q]);
+        pairs.fetch_add(nv * prog->primitiveCount, std::memory_order_relaxed);
+      }
       points.fetch_add(nv, std::memory_order_relaxed);
-      pairs.fetch_add(nv * prog->primitiveCount, std::memory_order_relaxed);
     }
   };
 

@@ -26,6 +26,10 @@ struct PolygonizeSettings {
   // Skip blocks no primitive reaches or whose field interval has one sign. Off:
   // every grid corner is evaluated with every primitive (same mesh, slower).
   bool culling = true;
+  // With culling: a block reached by many primitives (e.g. tens of thousands of small
+  // particles) evaluates each 4^3-cell sub-block with only the primitives reaching it.
+  // Same mesh; off only to measure the difference.
+  bool subBlockLists = true;
   // Worker threads; 0 = all hardware threads.
   int threads = 0;
   // Called with the fraction done (0..1), from worker threads, one call at a time.

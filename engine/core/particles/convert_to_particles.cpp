@@ -1,0 +1,206 @@
+#include "particles/convert_to_particles.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "field/potential.h"
+
+namespace animorph {
+
+namespace {
+
+struct Grid {
+  glm::vec3 origin{0.0f};  // position of point (0, 0, 0)
+  float spacing = 1.0f;
+  glm::ivec3 dims{0};
+  size_t size() const { return size_t(dims.x) * size_t(dims.y) * size_t(dims.z); }
+  glm::vec3 point(int x, int y, int z) const { return origin + spacing * glm::vec3(x, y, z); }
+  size_t index(int x, int y, int z) const { return size_t(x) + size_t(dims.x) * (size_t(y) + size_t(dims.y) * size_t(z)); }
+};
+
+// Points spaced `spacing` over box, centred in it (at least one per axis).
+Grid gridOver(const Bounds& box, float spacing) {
+  Grid g;
+  g.spacing = spacing;
+  glm::vec3 size = box.size();
+  for (int a = 0; a < 3; ++a) g.dims[a] = std::max(1, int(std::ceil(size[a] / spacing)));
+  g.origin = box.center() - 0.5f * spacing * glm::vec3(g.dims - 1);
+  return g;
+}
+
+// inside[x + dims.x (y + dims.y z)] = f(point) >= 0, one z slice per task.
+std::vector<uint8_t> insideOnGrid(const FieldProgram& shape, const Grid& g) {
+  std::vector<uint8_t> inside(g.size(), 0);
+  tbb::parallel_for(0, g.dims.z, [&](int z) {
+    thread_local FieldEvaluator evaluator;
+    Bounds slice;
+    slice.add(g.point(0, 0, z));
+    slice.add(g.point(g.dims.x - 1, g.dims.y - 1, z));
+    std::vector<uint32_t> reaching;
+    shape.primitivesReaching(slice, reaching);
+    ActiveProgram active;
+    shape.specialise(reaching, active);
+    size_t n = size_t(g.dims.x) * size_t(g.dims.y);
+    std::vector<float> x(n), y(n), zz(n), f(n);
+    for (int j = 0; j < g.dims.y; ++j)
+      for (int i = 0; i < g.dims.x; ++i) {
+        glm::vec3 p = g.point(i, j, z);
+        size_t k = size_t(i) + size_t(g.dims.x) * size_t(j);
+        x[k] = p.x;
+        y[k] = p.y;
+        zz[k] = p.z;
+      }
+    evaluator.evaluate(shape, active, x.data(), y.data(), zz.data(), int(n), f.data());
+    for (size_t k = 0; k < n; ++k) inside[size_t(z) * n + k] = f[k] >= 0.0f;
+  });
+  return inside;
+}
+
+size_t countSet(const std::vector<uint8_t>& v) { return size_t(std::count(v.begin(), v.end(), uint8_t(1))); }
+
+bool cancelled(const ConvertToParticlesSettings& s) { return s.cancel && s.cancel->load(); }
+
+}  // namespace
+
+Result<ConvertToParticlesResult> convertToParticles(const FieldProgram& shape, const ConvertToParticlesSettings& s) {
+  if (s.count < 1 || s.count > 1'000'000) return Error{"convert to particles: count " + std::to_string(s.count) +
+                                                      " is not in 1..1000000"};
+  if (!(s.radiusFactor >= 0.6f && s.radiusFactor <= 4.0f))
+    return Error{"convert to particles: radius factor must be in [0.6, 4]"};
+  if (!(s.threshold > 0.0f) || !(s.stiffness > 0.0f))
+    return Error{"convert to particles: threshold and stiffness must be > 0"};
+  if (shape.unbounded()) return Error{"convert to particles: the shape is unbounded"};
+  Bounds box = shape.tightBounds();
+  if (box.empty() || !(glm::length(box.size()) > 0.0f)) return Error{"convert to particles: the shape is empty"};
+  int cells = std::max(1000, s.calibrationCells);
+  tbb::task_arena arena(s.threads > 0 ? s.threads : tbb::task_arena::automatic);
+  ConvertToParticlesResult out;
+  ConvertToParticlesReport& rep = out.report;
+  auto progress = [&](float f) {
+    if (s.progress) s.progress(f);
+  };
+
+  Status status;
+  arena.execute([&] {
+    glm::vec3 size = box.size();
+    double boxVolume = double(std::max(size.x, 1e-6f)) * std::max(size.y, 1e-6f) * std::max(size.z, 1e-6f);
+    // 1. The shape's volume on a coarse grid, then the lattice spacing for about `count` points.
+    Grid coarse = gridOver(box, float(std::cbrt(boxVolume / (cells / 4))));
+    double volume = double(countSet(insideOnGrid(shape, coarse))) * std::pow(double(coarse.spacing), 3);
+    if (volume <= 0.0) {
+      status = Error{"convert to particles: nothing inside the shape at a " + std::to_string(coarse.dims.x) + "x" +
+                     std::to_string(coarse.dims.y) + "x" + std::to_string(coarse.dims.z) + " grid"};
+      return;
+    }
+    progress(0.1f);
+    float h = float(std::cbrt(volume / s.count));
+    Grid lattice;
+    std::vector<uint8_t> occupied;
+    for (int iter = 0; iter < 4; ++iter) {
+      lattice = gridOver(box, h);
+      occupied = insideOnGrid(shape, lattice);
+      size_t n = countSet(occupied);
+      double ratio = n ? double(n) / s.count : 8.0;
+      if (std::abs(ratio - 1.0) < 0.01 || cancelled(s)) break;
+      h *= float(std::cbrt(ratio));
+    }
+    size_t count = countSet(occupied);
+    if (count == 0) {
+      status = Error{"convert to particles: no lattice point inside the shape"};
+      return;
+    }
+    progress(0.3f);
+    if (cancelled(s)) return;
+    // 2. Calibration: potential of unit-intensity points on a fine grid around the shape.
+    float R = s.radiusFactor * h;
+    Bounds grown = box;
+    grown.add(box.min - glm::vec3(R));
+    grown.add(box.max + glm::vec3(R));
+    glm::vec3 gs = grown.size();
+    Grid fine = gridOver(grown, std::min(h * 0.5f, float(std::cbrt(double(gs.x) * gs.y * gs.z / cells))));
+    std::vector<uint8_t> shapeInside = insideOnGrid(shape, fine);
+    size_t target = countSet(shapeInside);
+    if (target == 0) {
+      status = Error{"convert to particles: nothing inside the shape on the calibration grid"};
+      return;
+    }
+    progress(0.5f);
+    if (cancelled(s)) return;
+    std::vector<float> potential(fine.size(), 0.0f);
+    float r2 = R * R;
+    tbb::parallel_for(0, fine.dims.z, [&](int z) {
+      for (int y = 0; y < fine.dims.y; ++y)
+        for (int x = 0; x < fine.dims.x; ++x) {
+          glm::vec3 p = fine.point(x, y, z);
+          glm::vec3 lo = (p - glm::vec3(R) - lattice.origin) / h, hi = (p + glm::vec3(R) - lattice.origin) / h;
+          glm::ivec3 a = glm::max(glm::ivec3(glm::ceil(lo)), glm::ivec3(0));
+          glm::ivec3 b = glm::min(glm::ivec3(glm::floor(hi)), lattice.dims - 1);
+          float sum = 0.0f;
+          for (int k = a.z; k <= b.z; ++k)
+            for (int j = a.y; j <= b.y; ++j)
+              for (int i = a.x; i <= b.x; ++i) {
+                if (!occupied[lattice.index(i, j, k)])
+                  continue;
+                glm::vec3 d = p - lattice.point(i, j, k);
+                float d2 = glm::dot(d, d);
+                if (d2 >= r2) continue;
+                float t = 1.0f - d2 / r2;
+                sum += powStiffness(t, s.stiffness);
+              }
+          potential[fine.index(x, y, z)] = sum;
+        }
+    });
+    progress(0.9f);
+    // 3. The intensity at which as many fine cells are inside the particles as inside the shape.
+    std::vector<float> sorted = potential;
+    std::nth_element(sorted.begin(), sorted.begin() + long(target - 1), sorted.end(), std::greater<float>());
+    float sAt = sorted[target - 1];
+    if (!(sAt > 0.0f)) {
+      status = Error{"convert to particles: the shape is too thin for " + std::to_string(s.count) + " particles"};
+      return;
+    }
+    float intensity = s.threshold / sAt;
+    size_t particleCells = 0;
+    for (float v : potential) particleCells += intensity * v >= s.threshold ? 1 : 0;
+    double cell3 = std::pow(double(fine.spacing), 3);
+
+    BlobTree& tree = out.tree;
+    tree.threshold = FloatTrack(s.threshold);
+    tree.root = makeBlobNode(NodeType::Blend, 1, "particles");
+    tree.root.children.reserve(count);
+    int id = 2;
+    for (int k = 0; k < lattice.dims.z; ++k)
+      for (int j = 0; j < lattice.dims.y; ++j)
+        for (int i = 0; i < lattice.dims.x; ++i) {
+          if (!occupied[lattice.index(i, j, k)])
+            continue;
+          BlobNode p = makeBlobNode(NodeType::Point, id, "p" + std::to_string(id - 2));
+          ++id;
+          p.vec3Param("center") = Vec3Track(lattice.point(i, j, k));
+          p.floatParam("radius") = FloatTrack(R);
+          p.floatParam("intensity") = FloatTrack(intensity);
+          p.floatParam("stiffness") = FloatTrack(s.stiffness);
+          tree.root.children.push_back(std::move(p));
+        }
+    rep.particles = count;
+    rep.spacing = h;
+    rep.radius = R;
+    rep.intensity = intensity;
+    rep.shapeVolume = double(target) * cell3;
+    rep.particleVolume = double(particleCells) * cell3;
+    progress(1.0f);
+  });
+  if (!status) return Error{status.error()};
+  if (cancelled(s)) {
+    out.tree = BlobTree{};
+    out.report = ConvertToParticlesReport{};
+    out.report.cancelled = true;
+  }
+  return out;
+}
+
+}  // namespace animorph

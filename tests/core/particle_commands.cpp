@@ -1,0 +1,55 @@
+#include <catch2/catch.hpp>
+
+#include "demo/statue.h"
+#include "doc/blobtree_commands.h"
+#include "doc/document.h"
+#include "doc/particle_commands.h"
+
+using namespace animorph;
+
+TEST_CASE("particles: Convert and Simulate are one undo step each", "[particles][commands]") {
+  Document d;
+  Project p;
+  Actor a = makeBlobTreeActor(p, "statue");
+  a.blobTree = makeStatue();
+  p.actors.push_back(a);
+  d.reset(p, "");
+  const BlobTree original = a.blobTree;
+  auto tree = [&] { return d.project().findActor("statue")->blobTree; };
+
+  ConvertToParticlesSettings cs;
+  cs.count = 500;
+  ConvertToParticlesReport crep;
+  auto convert = convertToParticlesCommand(d.project(), "statue", 0.0, cs, &crep);
+  REQUIRE(convert);
+  d.execute(std::move(*convert));
+  CHECK(tree().root.children.size() == crep.particles);
+  const BlobTree particles = tree();
+
+  ParticleSettings s;
+  s.durationSec = 1.0;
+  s.forces.explosion.centre = glm::vec3(0.0f, 1.0f, 0.0f);
+  auto sim = simulateParticlesCommand(d.project(), "statue", s, {});
+  REQUIRE(sim);
+  d.execute(std::move(*sim));
+  const BlobTree simulated = tree();
+  CHECK_FALSE(simulated == particles);
+  CHECK(simulated.root.children[0].vec3Param("center").keys().size() > 1);
+
+  REQUIRE(d.undo());
+  CHECK(tree() == particles);
+  REQUIRE(d.undo());
+  CHECK(tree() == original);
+  REQUIRE(d.redo());
+  REQUIRE(d.redo());
+  CHECK(tree() == simulated);
+
+  auto bad = simulateParticlesCommand(d.project(), "nobody", s, {});
+  REQUIRE_FALSE(bad);
+  CHECK(bad.error().find("nobody") != std::string::npos);
+  std::atomic<bool> cancel{true};
+  s.cancel = &cancel;
+  auto cancelled = simulateParticlesCommand(d.project(), "statue", s, {});
+  REQUIRE_FALSE(cancelled);
+  CHECK(cancelled.error().find("cancelled") != std::string::npos);
+}

@@ -1,0 +1,94 @@
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "blobtree/compile.h"
+#include "demo/statue.h"
+#include "particles/convert_to_particles.h"
+#include "poly/mesh_checks.h"
+#include "poly/polygonizer.h"
+
+using namespace animorph;
+
+namespace {
+
+double polygonisedVolume(const FieldProgram& program, const Bounds& box, int res) {
+  PolygonizeSettings ps;
+  ps.resolution = res;
+  ps.bounds = box;
+  auto r = polygonize(program, ps);
+  REQUIRE(r);
+  REQUIRE(analyzeMesh(r->mesh).watertight());
+  return meshVolume(r->mesh);
+}
+
+void checkVolume(int count, int res) {
+  BlobTree statue = makeStatue();
+  FieldProgram shape = compileFieldProgram(statue, 0.0);
+  ConvertToParticlesSettings s;
+  s.count = count;
+  auto conv = convertToParticles(shape, s);
+  REQUIRE(conv);
+  const auto& rep = conv->report;
+  CHECK(std::abs(double(rep.particles) - count) <= 0.05 * count);
+  CHECK(conv->tree.root.children.size() == rep.particles);
+  // A particle alone still shows (its peak is above the threshold).
+  CHECK(rep.intensity > 1.0f);
+  FieldProgram particles = compileFieldProgram(conv->tree, 0.0);
+  Bounds box = shape.tightBounds();
+  box.add(particles.tightBounds());
+  box.min -= glm::vec3(0.05f);
+  box.max += glm::vec3(0.05f);
+  double v0 = polygonisedVolume(shape, box, res);
+  double v1 = polygonisedVolume(particles, box, res);
+  INFO(count << " particles: statue " << v0 << " m^3, particles " << v1 << " m^3");
+  CHECK(std::abs(v1 - v0) <= 0.02 * v0);
+}
+
+}  // namespace
+
+TEST_CASE("particles: a shape converted to particles keeps its volume within 2 %", "[particles][convert]") {
+  checkVolume(4000, 96);
+}
+
+TEST_CASE("particles: 40,000 particles keep the volume within 2 % at 128^3", "[particles][convert]") {
+  checkVolume(40000, 128);
+}
+
+TEST_CASE("particles: converting refuses bad input", "[particles][convert]") {
+  FieldProgram shape = compileFieldProgram(makeStatue(), 0.0);
+  ConvertToParticlesSettings s;
+  s.count = 0;
+  auto r = convertToParticles(shape, s);
+  REQUIRE_FALSE(r);
+  CHECK(r.error().find("count") != std::string::npos);
+  FieldProgram empty;
+  empty.finish();
+  CHECK_FALSE(convertToParticles(empty, ConvertToParticlesSettings{}));
+}
+
+TEST_CASE("particles: per-sub-block primitive lists give the same mesh as dense evaluation", "[particles][convert]") {
+  ConvertToParticlesSettings s;
+  s.count = 1500;
+  auto conv = convertToParticles(compileFieldProgram(makeStatue(), 0.0), s);
+  REQUIRE(conv);
+  FieldProgram program = compileFieldProgram(conv->tree, 0.0);
+  PolygonizeSettings ps;
+  ps.resolution = 48;
+  auto culled = polygonize(program, ps);
+  ps.subBlockLists = false;
+  auto perBlock = polygonize(program, ps);
+  ps.culling = false;
+  auto dense = polygonize(program, ps);
+  REQUIRE(culled);
+  REQUIRE(dense);
+  CHECK(culled->mesh.triangleCount() > 1000);
+  CHECK(culled->mesh.positions == dense->mesh.positions);
+  CHECK(culled->mesh.indices == dense->mesh.indices);
+  CHECK(culled->stats.orphanVertices == 0);
+  REQUIRE(perBlock);
+  CHECK(perBlock->mesh == culled->mesh);  // normals too
+  CHECK(culled->stats.primitiveEvaluations * 2 < perBlock->stats.primitiveEvaluations);
+  // Surface-bound: far fewer (point, primitive) pairs than points x primitives.
+  CHECK(culled->stats.primitiveEvaluations * 20 < dense->stats.primitiveEvaluations);
+}
