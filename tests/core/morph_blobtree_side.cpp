@@ -212,7 +212,8 @@ TEST_CASE("Create > Morph's setup: any two actors, a stand-in fitted for a glTF 
   doc.execute(swapMorphSidesCommand(doc.project()));
   CHECK(doc.project().morph.sourceActorId == "blobc");
   CHECK(doc.project().morph.targetActorId == "gear");
-  CHECK(doc.project().morph.markers == MorphMarkers{10, 10, 30, 50});  // the collapse of 0 frames, the expansion of 10
+  // Mirrored in [A, D]: no collapse (the BlobTree had no expansion), the gear expands over 10 frames.
+  CHECK(doc.project().morph.markers == MorphMarkers{10, 10, 30, 40});
   REQUIRE(doc.undo());
   CHECK(doc.project().morph.sourceActorId == "gear");
   REQUIRE(doc.undo());
