@@ -6,6 +6,7 @@
 #include <imgui.h>
 
 #include "animorphosis_panel.h"
+#include "create_modal.h"
 #include "doc/animorphosis_commands.h"
 #include "widget_rects.h"
 
@@ -71,15 +72,7 @@ void openCreateAnimorphosis(const Document& doc, CreateAnimorphosisState& st) {
 
 void drawCreateAnimorphosisPopup(Document& doc, CreateAnimorphosisState& st, CorrespondenceEditorState& editor,
                                  StatusMessage& status) {
-  if (st.openNext) {
-    ImGui::OpenPopup(kPopup);
-    st.openNext = false;
-  }
-  ImGuiIO& io = ImGui::GetIO();
-  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.4f), ImGuiCond_Appearing,
-                          ImVec2(0.5f, 0.5f));
-  st.isOpen =
-      ImGui::BeginPopupModal(kPopup, nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings);
+  st.isOpen = beginCreateModal(kPopup, st.openNext);
   if (!st.isOpen) return;
   const Project& p = doc.project();
   std::vector<const Actor*> blobs = blobActors(p);
@@ -113,13 +106,9 @@ void drawCreateAnimorphosisPopup(Document& doc, CreateAnimorphosisState& st, Cor
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("Propose links by node kind, position, size and place in the hierarchy;\n"
                         "off: every part of the source shrinks and every part of the target grows.");
-    if (!st.error.empty()) {
-      ImGui::PushTextWrapPos(460.0f);
-      ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", st.error.c_str());
-      ImGui::PopTextWrapPos();
-    }
-    ImGui::Separator();
-    if (ImGui::Button("Create", ImVec2(110.0f, 0.0f))) {
+    const ModalChoice choice = createModalButtons(st.error, "animorphosis/create");
+    if (choice == ModalChoice::Cancel) close = true;
+    if (choice == ModalChoice::Create) {
       const Timeline& tl = p.timeline;
       auto cmd = createAnimorphosisCommand(p, st.sourceActorId, st.targetActorId, tl.frameToSec(st.startFrame),
                                            tl.frameToSec(st.endFrame), st.autoMap);
@@ -136,17 +125,8 @@ void drawCreateAnimorphosisPopup(Document& doc, CreateAnimorphosisState& st, Cor
         close = true;
       }
     }
-    noteWidget("animorphosis/create/create");
-    ImGui::SameLine();
-    if (ImGui::Button("Cancel", ImVec2(110.0f, 0.0f)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)))
-      close = true;
-    noteWidget("animorphosis/create/cancel");
   }
-  if (close) {
-    ImGui::CloseCurrentPopup();
-    st.isOpen = false;
-  }
-  ImGui::EndPopup();
+  endCreateModal(close, st.isOpen);
 }
 
 }  // namespace animorph

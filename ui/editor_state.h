@@ -11,6 +11,7 @@
 #include "file_browser.h"
 #include "inspector_panel.h"
 #include "layout.h"
+#include "morph_create.h"
 #include "view/camera.h"
 #include "outliner_panel.h"
 #include "standin_tool.h"
@@ -51,6 +52,7 @@ struct EditorState {
   CurveEditorState curveEditor;
   CorrespondenceEditorState correspondence;
   CreateAnimorphosisState createAnimorphosis;
+  CreateMorphState createMorph;
   GizmoState gizmo;
   ViewportMode viewportMode = ViewportMode::Object;
   StandinToolState standinTool;  // the selected stand-in segment and its handles

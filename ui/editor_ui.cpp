@@ -194,6 +194,7 @@ void EditorUI::draw(EditorContext& ctx) {
 
   drawPrompts(ctx);
   drawCreateAnimorphosisPopup(doc(ctx), st_.createAnimorphosis, st_.correspondence, st_.status);
+  drawCreateMorphPopup(doc(ctx), ctx.assets, st_.createMorph, st_.status);
   if (drawPreferencesWindow(st_.showPreferences, st_.prefs, st_.prefsPath)) savePreferences();
   drawShortcutsWindow(st_.showShortcuts);
   drawAboutWindow(st_.showAbout);
@@ -413,6 +414,7 @@ void EditorUI::dispatch(Action a, EditorContext& ctx) {
     case Action::ToggleCurveEditor: st_.curveEditor.visible = !st_.curveEditor.visible; break;
     case Action::ToggleCorrespondenceEditor: st_.correspondence.visible = !st_.correspondence.visible; break;
     case Action::CreateAnimorphosis: openCreateAnimorphosis(d, st_.createAnimorphosis); break;
+    case Action::CreateMorph: openCreateMorph(d, st_.createMorph); break;
     case Action::ToggleGrid:
       d.execute(setViewOption(d.project(), &ViewOptions::showGrid, !d.project().view.showGrid, "Toggle grid"));
       break;

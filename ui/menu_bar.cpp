@@ -82,6 +82,7 @@ MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& rece
   bool createOpen = beginMenu("Create");
   if (createOpen) {
     item("New BlobTree Actor", Action::NewBlobActor);
+    item("Morph...", Action::CreateMorph);
     item("Animorphosis...", Action::CreateAnimorphosis);
     ImGui::Separator();
     const Actor* sel = doc.project().findActor(doc.selection.actorId);

@@ -8,6 +8,7 @@
 #include "actor_timing.h"
 #include "blob_inspector.h"
 #include "doc/morph_tracks.h"
+#include "morph_create.h"
 #include "morph_sections.h"
 #include "ruler_marker.h"
 #include "widget_rects.h"
@@ -32,6 +33,7 @@ void drawMorphSettings(Document& doc, AssetCache& assets, MorphPanelState& st, D
   ImGui::TextUnformatted("Morph");
   ImGui::Separator();
   ImGui::Text("%s  ->  %s", m.sourceActorId.c_str(), m.targetActorId.c_str());
+  drawMorphSides(doc, assets, status);
   ImGui::PushItemWidth(-90.0f);
 
   // Markers A..D in frames, kept in order: A <= B <= C <= D.

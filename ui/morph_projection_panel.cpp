@@ -20,6 +20,11 @@ std::unique_ptr<Command> setProjection(const Project& p, const MorphProjection& 
 }
 
 void reportActor(const char* role, const MorphActorRuntime& a) {
+  if (a.isTree()) {
+    ImGui::Text("%s '%s': a BlobTree, its own stand-in (nothing projected)", role, a.actor.id.c_str());
+    noteWidget(std::string("morph/report/") + role);
+    return;
+  }
   const ProjectionStats& s = a.binding.stats;
   ImGui::Text("%s '%s': %zu vertices", role, a.actor.id.c_str(), s.points);
   ImGui::Text("  converged %zu, fallbacks %zu, failures %zu", s.converged, s.fallbacks, s.failures);

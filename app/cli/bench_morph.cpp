@@ -3,17 +3,12 @@
 // creature -> gear morph, and the seams at markers B and C.
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
-#include <cstdlib>
 
 #include "cli/bench.h"
+#include "cli/bench_demo_morph.h"
 #include "cli/bench_gpu_transition.h"
-#include "demo/creature.h"
 #include "demo/dense.h"
-#include "demo/gear.h"
-#include "io/gltf_export.h"
 #include "morph/morph_runtime.h"
-#include "morph/new_morph_project.h"
 #include "rig/pose.h"
 #include "rig/skinning.h"
 #include "standin/fit_standin.h"
@@ -84,22 +79,15 @@ std::vector<Row> benchMorph(const bench::Options& opt) {
   for (Row& r : bench::gpuTransitionRows(opt, dense, fit->standin, binding)) rows.push_back(std::move(r));
 
   // ---- bake the demo morph
-  std::string tmpl = (std::filesystem::temp_directory_path() / "animorph-bench-XXXXXX").string();
-  if (!::mkdtemp(tmpl.data())) return rows;
-  const std::string dir = tmpl;
-  const Character creature = makeCreatureCharacter(), gear = makeGearCharacter();
-  exportGlb(creature, dir + "/creature.glb");
-  exportGlb(gear, dir + "/gear.glb");
-  NewMorphSettings ns;
-  ns.alignScaleRatio = 4.0;
-  auto made = makeMorphProject(creature, "creature.glb", gear, "gear.glb", ns);
+  const bench::DemoMorphDir demo;
   AssetCache assets;
-  if (made) {
-    auto rt = prepareMorph(made->project, dir, assets);
+  if (demo.project) {
+    const Project& project = *demo.project;
+    auto rt = prepareMorph(project, demo.dir, assets);
     if (rt) {
       const int frames = opt.quick ? 20 : 100;
       const int res = 64;
-      const MorphMarkers& mk = made->project.morph.markers;
+      const MorphMarkers& mk = project.morph.markers;
       // 100 frames spread over A..D (the stages that cost), ~2/3 implicit.
       t0 = std::chrono::steady_clock::now();
       size_t implicitFrames = 0;
@@ -107,7 +95,7 @@ std::vector<Row> benchMorph(const bench::Options& opt) {
         const double f = mk.a + double(mk.d - mk.a) * k / std::max(1, frames - 1);
         MorphFrameSettings mfs;
         mfs.resolution = res;
-        auto fr = evaluateMorphFrame(**rt, f / made->project.timeline.fps, mfs);
+        auto fr = evaluateMorphFrame(**rt, f / project.timeline.fps, mfs);
         if (fr && fr->stage == MorphStage::Morph) ++implicitFrames;
       }
       const double bakeMs = sinceMs(t0);
@@ -124,8 +112,6 @@ std::vector<Row> benchMorph(const bench::Options& opt) {
       }
     }
   }
-  std::error_code ec;
-  std::filesystem::remove_all(dir, ec);
   return rows;
 }
 

@@ -19,6 +19,7 @@
 #include "poly/polygonizer.h"
 #include "scene/mesh_character.h"
 #include "doc/project_io.h"
+#include "morph/morph_continuity.h"
 #include "morph/morph_runtime.h"
 #include "io/gltf_sequence_export.h"
 #include "poly/mesh_io.h"
@@ -402,6 +403,7 @@ int runBake(const std::vector<std::string>& args) {
 
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<int> stageCount(5, 0);
+  std::vector<FrameMeasure> measures(static_cast<size_t>(count));  // per frame, for the continuity report
   std::mutex stageMutex;
   std::string error = bakeFrames(first, count, jobs, [&](int k) -> std::string {
     const int f = first + k;
@@ -422,6 +424,7 @@ int runBake(const std::vector<std::string>& args) {
       std::lock_guard<std::mutex> lock(stageMutex);
       ++stageCount[size_t(fr->stage)];
     }
+    measures[size_t(k)] = measureFrame(f, fr->mesh, nullptr);
     return sink.add(k, std::move(fr->mesh));
   });
   if (!error.empty()) return cli::fail("bake", error);
@@ -429,6 +432,10 @@ int runBake(const std::vector<std::string>& args) {
   std::printf("baked frames %d..%d (%d source, %d collapse, %d morph, %d expand, %d target) at %d^3 into %s in %.2f s\n",
               first, last, stageCount[0], stageCount[1], stageCount[2], stageCount[3], stageCount[4], res,
               sink.into().c_str(), sec);
+  const std::vector<ContinuityDefect> defects = continuityDefects(measures);
+  std::printf("continuity: %zu frame%s empty or changing volume by more than %.0f%% from the frame before\n",
+              defects.size(), defects.size() == 1 ? "" : "s", 100.0 * kMaxFrameVolumeChange);
+  for (const ContinuityDefect& d : defects) std::printf("  frame %d: %s\n", d.frame, d.reason.c_str());
   if (std::string e = sink.finish(); !e.empty()) return cli::fail("bake", e);
 #if ANIMORPH_HAS_GPU
   if (gpuCtx && gpuCtx->validationEnabled() && gpuCtx->validationErrorCount() > 0) {
@@ -473,7 +480,9 @@ ANIMORPH_CLI_COMMAND("bake", "bake a project's morph into mesh sequences, an ani
                      "               display needed); exits 1 with a message when no device is usable\n"
                      "               or the device fails (no silent fallback to the CPU)\n"
                      "  --jobs J     frames baked in parallel (the output is the same for any J)\n"
-                     "  A progress bar is drawn when stdout is a terminal.\n"
+                     "  A progress bar is drawn when stdout is a terminal. Then a continuity report:\n"
+                     "  frames that are empty or whose enclosed volume changes by more than 20% from\n"
+                     "  the frame before (what shows as a pop); they do not change the exit status.\n"
                      "  Exit status: 0 on success, 1 when the project cannot be read or a frame fails,\n"
                      "  2 on bad arguments, 3 on Vulkan validation errors.\n",
                      runBake);

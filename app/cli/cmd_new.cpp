@@ -1,8 +1,13 @@
-// animorph-cli new SOURCE.glb TARGET.glb -o PROJECT.animorph: a complete morph project.
+// animorph-cli new SOURCE TARGET -o PROJECT.animorph: a complete morph project; each
+// side a glTF character, a BlobTree scene or an actor of another project.
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
+#include "blobtree/blob_tree_json.h"
 #include "cli/cli_command.h"
+#include "doc/morph_create.h"
 #include "doc/project_io.h"
 #include "io/gltf_import.h"
 #include "morph/new_morph_project.h"
@@ -19,6 +24,96 @@ std::string relativeTo(const std::string& path, const fs::path& projectDir) {
   fs::path rel = fs::relative(abs, projectDir, ec);
   if (ec || rel.empty()) return abs.lexically_normal().string();
   return rel.generic_string();
+}
+
+bool isGltf(const std::string& path) {
+  const std::string ext = fs::path(path).extension().string();
+  return ext == ".glb" || ext == ".gltf";
+}
+
+// One side given on the command line: GLB/glTF, a BlobTree scene (.json) or
+// PROJECT.animorph:ACTOR. The actor (glTF paths relative to projectDir) and,
+// for a project's glTF actor, the stand-in that project has for it.
+struct Side {
+  Actor actor;
+  std::optional<ActorMorph> morph;
+};
+
+Result<Side> readSide(const std::string& arg, const fs::path& projectDir) {
+  Side out;
+  const size_t colon = arg.rfind(':');
+  const size_t dot = arg.rfind(".animorph:");
+  if (dot != std::string::npos && colon == dot + 9) {
+    const std::string file = arg.substr(0, colon), id = arg.substr(colon + 1);
+    auto proj = loadProject(file);
+    if (!proj) return Error{proj.error()};
+    const Actor* a = proj->findActor(id);
+    if (!a) return Error{file + ": no actor with id '" + id + "'"};
+    out.actor = *a;
+    if (a->kind == ActorKind::Gltf) {
+      const fs::path asset(a->assetPath);
+      const fs::path abs = asset.is_absolute() ? asset : fs::absolute(fs::path(file)).parent_path() / asset;
+      out.actor.assetPath = relativeTo(abs.lexically_normal().string(), projectDir);
+      if (const ActorMorph* am = proj->morph.findActor(id)) out.morph = *am;
+    }
+    return out;
+  }
+  out.actor.id = fs::path(arg).stem().string();
+  if (out.actor.id.empty()) out.actor.id = "actor";
+  out.actor.name = out.actor.id;
+  if (isGltf(arg)) {
+    out.actor.assetPath = relativeTo(arg, projectDir);
+    return out;
+  }
+  auto tree = loadBlobTreeScene(arg);
+  if (!tree) return Error{tree.error()};
+  out.actor.kind = ActorKind::BlobTree;
+  out.actor.blobTree = std::move(*tree);
+  return out;
+}
+
+// A side that is not a glTF file: both actors as given, stand-ins fitted for
+// the glTF ones that bring none, a BlobTree side without a transition.
+int newAnySides(const std::vector<std::string>& inputs, const std::string& output, const NewMorphSettings& s) {
+  std::error_code ec;
+  const fs::path dir = fs::absolute(fs::path(output), ec).parent_path();
+  Project p;
+  for (const std::string& in : inputs) {
+    auto side = readSide(in, dir);
+    if (!side) return cli::fail("new", side.error());
+    side->actor.id = p.uniqueActorId(side->actor.id);
+    if (side->morph) {
+      side->morph->actorId = side->actor.id;
+      p.morph.actors.push_back(*side->morph);
+    }
+    p.actors.push_back(side->actor);
+  }
+  p.name = p.actors[0].id + "_to_" + p.actors[1].id;
+  p.timeline.fps = s.fps;
+  p.timeline.frameStart = 0;
+  p.timeline.frameEnd = int(std::lround(s.endSec * s.fps));
+  MorphChoice c;
+  c.sourceActorId = p.actors[0].id;
+  c.targetActorId = p.actors[1].id;
+  c.method = s.method;
+  c.markers = {int(std::lround(s.aSec * s.fps)), int(std::lround(s.bSec * s.fps)), int(std::lround(s.cSec * s.fps)),
+               int(std::lround(s.dSec * s.fps))};
+  AssetCache assets;
+  std::vector<std::string> notes;
+  auto m = proposeMorph(p, dir.string(), assets, c, &notes);
+  if (!m) return cli::fail("new", m.error());
+  p.morph = std::move(*m);
+  for (const auto& n : notes) std::printf("%s\n", n.c_str());
+  for (const Actor& a : p.actors)
+    if (a.kind == ActorKind::BlobTree)
+      std::printf("%s: a BlobTree: its own tree is the stand-in (no %s)\n", a.id.c_str(),
+                  a.id == c.sourceActorId ? "collapse: A = B" : "expansion: C = D");
+  if (auto st = saveProject(p, output); !st) return cli::fail("new", st.error());
+  const MorphMarkers& k = p.morph.markers;
+  std::printf("wrote %s: %s -> %s, markers A %d, B %d, C %d, D %d, frames %d..%d at %g fps, %s\n", output.c_str(),
+              c.sourceActorId.c_str(), c.targetActorId.c_str(), k.a, k.b, k.c, k.d, p.timeline.frameStart,
+              p.timeline.frameEnd, p.timeline.fps, morphMethodName(p.morph.method));
+  return 0;
 }
 
 int runNew(const std::vector<std::string>& args) {
@@ -43,7 +138,8 @@ int runNew(const std::vector<std::string>& args) {
     }
   }
   if (inputs.size() != 2 || output.empty())
-    return cli::fail("new", "usage: new SOURCE.glb TARGET.glb -o PROJECT.animorph (see --help)", 2);
+    return cli::fail("new", "usage: new SOURCE TARGET -o PROJECT.animorph (see --help)", 2);
+  if (!isGltf(inputs[0]) || !isGltf(inputs[1])) return newAnySides(inputs, output, s);
   auto src = importGltf(inputs[0]);
   if (!src) return cli::fail("new", src.error());
   auto dst = importGltf(inputs[1]);
@@ -64,8 +160,11 @@ int runNew(const std::vector<std::string>& args) {
 
 }  // namespace
 
-ANIMORPH_CLI_COMMAND("new", "a morph project from two glTF characters (automatic stand-ins, default timeline)",
-                     "usage: animorph-cli new SOURCE.glb TARGET.glb -o PROJECT.animorph [--method M]\n"
+ANIMORPH_CLI_COMMAND("new", "a morph project from two characters or BlobTrees (automatic stand-ins, default timeline)",
+                     "usage: animorph-cli new SOURCE TARGET -o PROJECT.animorph [--method M]\n"
+                     "  SOURCE, TARGET: a glTF character (.glb, .gltf), a BlobTree scene (.json) or\n"
+                     "  PROJECT.animorph:ACTOR (an actor of another project, with its stand-in).\n"
+                     "  A BlobTree side is its own stand-in: no collapse (A = B) or expansion (C = D).\n"
                      "  Writes a complete project: both characters as actors (asset paths relative to\n"
                      "  the project), a stand-in fitted to each, the markers A = 1 s, B = 2 s,\n"
                      "  C = 3.5 s, D = 4.5 s and a timeline of 6 s at 24 fps. When the characters\n"

@@ -30,6 +30,7 @@ void writeEditorUiMap(const std::string& path, const EditorUI& ui, EditorContext
               // idle (gui_driver.fresh_map).
               {"polled_at", info.polledAt},
               {"preview", ectx.stats.previewInfo},
+              {"viewport_note", ectx.viewportNote},  // "morph: morph 50%", a morph's error
               {"preview_gpu", info.previewGpu},
               {"present", info.presentPath},
               {"standin_segment", selectedStandinSegment(doc, ui.state().standinTool)}});

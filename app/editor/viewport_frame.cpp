@@ -53,7 +53,8 @@ ViewportFrameResult ViewportFrame::build(EditorGpu& g, EditorUI& ui, EditorConte
     isolateForPainting(frame, doc.project().morph, out.weightOverlay.actorId);
     ectx.viewportNote.clear();
   } else if (auto rt = ectx.morphRuntime) {
-    const bool convolution = rt->source.morph.standin.kind == StandinKind::Convolution &&
+    const bool convolution = !rt->source.isTree() && !rt->target.isTree() &&
+                             rt->source.morph.standin.kind == StandinKind::Convolution &&
                              rt->target.morph.standin.kind == StandinKind::Convolution;
     r.morphBackend = gpu::choosePreviewBackend(prefs.previewDevice, g.ctx->deviceType(),
                                                convolution ? gpu::PreviewWork::ConvolutionMorph : gpu::PreviewWork::Other);

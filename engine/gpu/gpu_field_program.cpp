@@ -13,7 +13,7 @@ static_assert(uint32_t(OpCode::Prims) == AM_OP_PRIMS && uint32_t(OpCode::Const) 
               uint32_t(OpCode::Difference) == AM_OP_DIFFERENCE && uint32_t(OpCode::RUnion) == AM_OP_RUNION &&
               uint32_t(OpCode::RIntersection) == AM_OP_RINTERSECTION &&
               uint32_t(OpCode::BoundedBlend) == AM_OP_BOUNDEDBLEND && uint32_t(OpCode::BeginMap) == AM_OP_BEGINMAP &&
-              uint32_t(OpCode::EndMap) == AM_OP_ENDMAP,
+              uint32_t(OpCode::EndMap) == AM_OP_ENDMAP && uint32_t(OpCode::Remap) == AM_OP_REMAP,
               "op codes of poly_constants.h must match animorph::OpCode");
 static_assert(uint32_t(PrimClass::Skeletal) == AM_PRIM_SKELETAL &&
               uint32_t(PrimClass::Convolution) == AM_PRIM_CONVOLUTION &&

@@ -18,12 +18,12 @@ layout(constant_id = 1) const uint kAmKinds = AM_FEAT_ALL;
 #define AM_HAS_COMBINE(m) ((kAmFeatures & AM_FEAT_COMBINE_BIT(m)) != 0u)
 #define AM_HAS_SKEL(k) ((kAmKinds & AM_KIND_SKEL_BIT(k)) != 0u)
 #define AM_HAS_MAP(k) ((kAmKinds & AM_KIND_MAP_BIT(k)) != 0u)
-// Any n-ary operator (Sum .. BoundedBlend); maps; whether programs need the operand stack at all
+// Any n-ary operator (Sum .. BoundedBlend, Remap); maps; whether programs need the operand stack at all
 // (a program of one Prims op and nothing else does not).
 #define AM_FEAT_OPERATORS                                                                                          \
   (AM_FEAT_OP_BIT(AM_OP_SUM) | AM_FEAT_OP_BIT(AM_OP_MAX) | AM_FEAT_OP_BIT(AM_OP_MIN) | AM_FEAT_OP_BIT(AM_OP_HYPERBLEND) | \
    AM_FEAT_OP_BIT(AM_OP_DIFFERENCE) | AM_FEAT_OP_BIT(AM_OP_RUNION) | AM_FEAT_OP_BIT(AM_OP_RINTERSECTION) |               \
-   AM_FEAT_OP_BIT(AM_OP_BOUNDEDBLEND))
+   AM_FEAT_OP_BIT(AM_OP_BOUNDEDBLEND) | AM_FEAT_OP_BIT(AM_OP_REMAP))
 #define AM_HAS_OPERATORS ((kAmFeatures & AM_FEAT_OPERATORS) != 0u)
 #define AM_STACKLESS                                                                                                     \
   ((kAmFeatures & (AM_FEAT_OPERATORS | AM_FEAT_OP_BIT(AM_OP_BEGINMAP) | AM_FEAT_OP_BIT(AM_OP_ENDMAP) |                   \

@@ -5,6 +5,25 @@
 // interpreter. Needs poly_common.glsl.
 #include "morph_field.h"
 
+// ------------------------------------------------------------ remap (operators.h: remapPotential)
+
+// scale * p, or with K > 1 scale * K T p+ / ((K - 1) T + p+), linear below 0 with the slope at 0.
+float amRemap(float p, float scale, float K, float T) {
+  if (!(K > 1.0)) return scale * p;
+  if (!(p > 0.0)) return scale * K * min(p, 0.0) / (K - 1.0);
+  return scale * K * T * p / ((K - 1.0) * T + p);
+}
+// Its derivative dh/dp.
+float amRemapSlope(float p, float scale, float K, float T) {
+  if (!(K > 1.0)) return scale;
+  if (!(p > 0.0)) return scale * K / (K - 1.0);
+  float den = (K - 1.0) * T + p;
+  return scale * K * (K - 1.0) * T * T / (den * den);
+}
+vec4 amRemap4(vec4 p, float scale, float K, float T) {
+  return vec4(amRemap(p.x, scale, K, T), amRemap(p.y, scale, K, T), amRemap(p.z, scale, K, T), amRemap(p.w, scale, K, T));
+}
+
 // ------------------------------------------------------------ kernels
 
 // atan2(y, x) for y > 0 (field_kernels.cpp: Cephes atanf polynomial), four at a time.
@@ -530,6 +549,10 @@ vec2 programInterval(uint opBegin, uint opCount, float T, vec3 centre, float rad
         vec2 b = st[base + 1];
         float a0 = paramAt(prm);
         r = vec2(T + amRUnion(r.x - T, b.x - T) + min(0.0, a0), T + amRUnion(r.y - T, b.y - T) + max(0.0, a0));
+      } else if (AM_HAS_OP(AM_OP_REMAP) && code == AM_OP_REMAP) {
+        float sc = paramAt(prm), k = paramAt(prm + 1u);
+        vec2 m = vec2(amRemap(r.x, sc, k, T), amRemap(r.y, sc, k, T));
+        r = vec2(min(m.x, m.y), max(m.x, m.y));
       }
       if (isnan(r.x)) r.x = -kInf;
       if (isnan(r.y)) r.y = kInf;

@@ -212,6 +212,11 @@ Grad4 programGrad(uint opBegin, uint opCount, float T, uint maskBase, vec4 px, v
                                   paramAt(prm + 3u), d1, d2, d3);
         Grad4 ab = combineGrad(r, d1, b, d2, T + v);
         r = Grad4(ab.f, ab.x + d3 * c.x, ab.y + d3 * c.y, ab.z + d3 * c.z);
+      } else if (AM_HAS_OP(AM_OP_REMAP) && code == AM_OP_REMAP) {
+        float sc = paramAt(prm), k = paramAt(prm + 1u);
+        vec4 d = vec4(amRemapSlope(r.f.x, sc, k, T), amRemapSlope(r.f.y, sc, k, T), amRemapSlope(r.f.z, sc, k, T),
+                      amRemapSlope(r.f.w, sc, k, T));
+        r = Grad4(amRemap4(r.f, sc, k, T), d * r.x, d * r.y, d * r.z);
       }
       st[base] = r;
       sp = base + 1;

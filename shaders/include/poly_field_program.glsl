@@ -161,6 +161,8 @@ void AM_PROGRAM(uint opBegin, uint opCount, float T, uint maskBase, AM_POINTS w,
           vec4 s1 = r - T, s2 = st[V * (base + 1) + h] - T, s3 = st[V * (base + 2) + h] - T;
           r = T + rUnion4(s1, s2) +
               boundedDisplacement4(s1, s2, s3, paramAt(prm), paramAt(prm + 1u), paramAt(prm + 2u), paramAt(prm + 3u));
+        } else if (AM_HAS_OP(AM_OP_REMAP) && code == AM_OP_REMAP) {
+          r = amRemap4(r, paramAt(prm), paramAt(prm + 1u), T);
         }
         st[V * base + h] = r;
       }

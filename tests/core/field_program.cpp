@@ -245,3 +245,58 @@ TEST_CASE("points evaluated alone give the values and gradients of one batch spr
   }
   CHECK(skippable > 20);  // the random trees do have maps that points can miss
 }
+
+TEST_CASE("the Remap op scales and bounds a potential, keeps its surface, with exact gradients and intervals",
+          "[field_program]") {
+  const float T = 0.8f, K = 4.0f, s = 0.6f;
+  auto build = [&](float scale, float bound) {
+    FieldProgram p;
+    p.threshold = T;
+    p.addConvolution(glm::vec3(-0.3f, 0, 0), glm::vec3(0.3f, 0.05f, 0), 0.12f, 15.0f, 1e-3f, false);
+    const float prm[2] = {scale, bound};
+    p.addOperator(OpCode::Remap, 1, prm, 2);
+    p.finish();
+    return p;
+  };
+  FieldProgram plain;
+  plain.threshold = T;
+  plain.addConvolution(glm::vec3(-0.3f, 0, 0), glm::vec3(0.3f, 0.05f, 0), 0.12f, 15.0f, 1e-3f, false);
+  plain.finish();
+  const FieldProgram bounded = build(1.0f, K), scaledBounded = build(s, K), scaled = build(s, 0.0f);
+  FieldEvaluator ev;
+  std::mt19937 rng(7);
+  float peak = 0.0f;
+  for (int i = 0; i < 200; ++i) {
+    const glm::vec3 q = randomIn(rng, 0.4f);
+    const float p = ev.evaluatePoint(plain, q) + T;
+    peak = std::max(peak, p);
+    const float h = K * T * p / ((K - 1.0f) * T + p);
+    CHECK(ev.evaluatePoint(bounded, q) + T == Approx(h).epsilon(1e-5).margin(1e-6));
+    CHECK(ev.evaluatePoint(scaledBounded, q) + T == Approx(s * h).epsilon(1e-5).margin(1e-6));
+    CHECK(ev.evaluatePoint(scaled, q) + T == Approx(s * p).epsilon(1e-5).margin(1e-6));
+    CHECK(h <= K * T);
+    // The surface p = T stays where it was: same sign inside and outside.
+    CHECK((ev.evaluatePoint(bounded, q) >= 0.0f) == (p >= T));
+    // Gradients against central differences.
+    glm::vec3 g;
+    ev.evaluatePoint(scaledBounded, q, &g);
+    const float e = 1e-3f;
+    for (int k = 0; k < 3; ++k) {
+      glm::vec3 a = q, b = q;
+      a[k] -= e;
+      b[k] += e;
+      const float fd = (ev.evaluatePoint(scaledBounded, b) - ev.evaluatePoint(scaledBounded, a)) / (2.0f * e);
+      CHECK(g[k] == Approx(fd).margin(2e-3f * std::max(1.0f, glm::length(g))));
+    }
+    // The interval over a ball around q holds the values in it.
+    ActiveProgram all;
+    scaledBounded.specialiseAll(all);
+    const Interval iv = scaledBounded.interval(all, q, 0.02f);
+    for (int j = 0; j < 8; ++j) {
+      const float v = ev.evaluatePoint(scaledBounded, q + 0.02f * glm::normalize(randomIn(rng, 1.0f)));
+      CHECK(v >= iv.lo - 1e-5f);
+      CHECK(v <= iv.hi + 1e-5f);
+    }
+  }
+  CHECK(peak > 2.0f * T);  // the points reached the part where bounding matters
+}

@@ -354,7 +354,17 @@ TEST_CASE("GPU polygoniser covers every op, primitive, skeleton and map of the C
     withConst.addCapsule({glm::vec3(-0.3f, 0, 0), glm::vec3(0.3f, 0.1f, 0), 0.15f}, false, false);
     withConst.addOperator(OpCode::Sum, 2);
     withConst.finish();
-    for (const FieldProgram& p : {compileFieldProgram(tree, 0.0), withConst}) {
+    // A bounded, scaled operand and a plainly scaled one (the morph's Remap ops).
+    FieldProgram remapped;
+    remapped.threshold = 0.5f;
+    remapped.addCapsule({glm::vec3(-0.3f, 0, 0), glm::vec3(0.3f, 0.1f, 0), 0.2f}, false, false);
+    const float bounded[2] = {0.7f, 3.0f}, scaled[2] = {0.6f, 0.0f};
+    remapped.addOperator(OpCode::Remap, 1, bounded, 2);
+    remapped.addConvolution(glm::vec3(0.0f, -0.3f, 0.0f), glm::vec3(0.1f, 0.3f, 0.1f), 0.15f, 12.0f, 1e-3f, false);
+    remapped.addOperator(OpCode::Remap, 1, scaled, 2);
+    remapped.addOperator(OpCode::Sum, 2);
+    remapped.finish();
+    for (const FieldProgram& p : {compileFieldProgram(tree, 0.0), withConst, remapped}) {
       coverage.add(p);
       GpuPolygonizeSettings s;
       s.resolution = 40;
@@ -370,7 +380,7 @@ TEST_CASE("GPU polygoniser covers every op, primitive, skeleton and map of the C
   }
   for (OpCode op : {OpCode::Prims, OpCode::Const, OpCode::Sum, OpCode::Max, OpCode::Min, OpCode::HyperBlend,
                     OpCode::Difference, OpCode::RUnion, OpCode::RIntersection, OpCode::BoundedBlend,
-                    OpCode::BeginMap, OpCode::EndMap}) {
+                    OpCode::BeginMap, OpCode::EndMap, OpCode::Remap}) {
     INFO("op " << int(op));
     CHECK(coverage.ops.count(int(op)) == 1);
   }

@@ -167,6 +167,14 @@ class Editor:
         xdo("type", "--delay", 20, text)
         self.fresh_map()
 
+    def set_frame(self, frame):
+        """Types frame into the timeline's frame field and checks the editor is there."""
+        self.click_widget("timeline/frame")
+        self.key("ctrl+a")
+        self.type_text(str(frame))
+        self.key("Return")
+        check(self.fresh_map()["current_frame"] == frame, f"the current frame is {frame}")
+
     # --- output ----------------------------------------------------------
     def screenshot(self, path):
         self.fresh_map()

@@ -64,19 +64,11 @@ def toggle_correspondence_editor(ed):
     ed.click_widget("menu/Correspondence Editor")
 
 
-def set_frame(ed, frame):
-    ed.click_widget("timeline/frame")
-    ed.key("ctrl+a")
-    ed.type_text(str(frame))
-    ed.key("Return")
-    g.check(ed.fresh_map()["current_frame"] == frame, f"the current frame is {frame}")
-
-
 ed = g.Editor(editor_bin, project, workdir=work).start()
 try:
     m = ed.fresh_map()
     vx, vy, vw, vh = m["viewport"]
-    set_frame(ed, 24)  # u = 0.5: both half-way
+    ed.set_frame(24)  # u = 0.5: both half-way
     settle_preview(ed)
     unlinked = ed.screenshot(os.path.join(work, "unlinked.png"))
 

@@ -271,10 +271,14 @@ struct Compiler {
 FieldProgram compileFieldProgram(const BlobTree& tree, double timeSec, const CompileOptions& options) {
   FieldProgram prog;
   prog.threshold = std::max(1e-6f, tree.threshold.evaluate(timeSec));
-  Compiler c{prog, timeSec, options, {}};
-  c.node(tree.root);
+  appendBlobTree(prog, tree, timeSec, options);
   prog.finish();
   return prog;
+}
+
+void appendBlobTree(FieldProgram& prog, const BlobTree& tree, double timeSec, const CompileOptions& options) {
+  Compiler c{prog, timeSec, options, {}};
+  c.node(tree.root);
 }
 
 }  // namespace animorph

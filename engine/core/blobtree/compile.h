@@ -17,4 +17,9 @@ struct CompileOptions {
 // of range between keys are clamped (radii to >= 0, q to >= 1, scales to non-zero).
 FieldProgram compileFieldProgram(const BlobTree& tree, double timeSec, const CompileOptions& options = {});
 
+// The same tree appended to prog as one operand (prog not finished yet), under
+// whatever maps prog has open: how a morph puts a BlobTree beside a stand-in.
+// Its operators use prog.threshold, so that must be the tree's T at timeSec.
+void appendBlobTree(FieldProgram& prog, const BlobTree& tree, double timeSec, const CompileOptions& options = {});
+
 }  // namespace animorph

@@ -60,11 +60,17 @@ struct MorphCrossFade {
   bool operator==(const MorphCrossFade&) const = default;
 };
 
+// Measured on the demo (docs/morph.md, "Continuity"): bench morph-continuity.
+inline constexpr float kDefaultInterpolationBound = 4.0f;
+
 struct MorphSetup {
   std::string sourceActorId;  // empty: the project has no morph
   std::string targetActorId;
   MorphMarkers markers;
   MorphMethod method = MorphMethod::Interpolation;
+  // Interpolation: each side's potential bounded at this many T before the
+  // blend (morph/morph_field.h: buildMorphProgram); <= 1: unbounded.
+  float interpolationBound = kDefaultInterpolationBound;
   SpaceTimeParams spaceTime;
   FloatTrack easing;          // alpha over a transition's progress u in [0, 1]; default smoothstep
   FloatTrack blend;           // w over the morph's progress u in [0, 1]; default linear 0 -> 1

@@ -20,6 +20,7 @@ json morphSetupToJson(const MorphSetup& m) {
   j["target"] = m.targetActorId;
   j["markers"] = {{"A", m.markers.a}, {"B", m.markers.b}, {"C", m.markers.c}, {"D", m.markers.d}};
   j["method"] = morphMethodName(m.method);
+  if (m.interpolationBound != kDefaultInterpolationBound) j["interpolation_bound"] = m.interpolationBound;
   const SpaceTimeParams& st = m.spaceTime;
   j["space_time"] = {{"time_scale", st.timeScale}, {"a0", st.a0}, {"a1", st.a1}, {"a2", st.a2}, {"a3", st.a3}};
   j["easing"] = trackToJson(m.easing);
@@ -129,6 +130,11 @@ Result<MorphSetup> morphSetupFromJson(const json& j, const std::string& sourceNa
     if (me == "interpolation") m.method = MorphMethod::Interpolation;
     else if (me == "space_time") m.method = MorphMethod::SpaceTime;
     else r.fail(w + ".method", "expected \"interpolation\" or \"space_time\"");
+  }
+  if (r.ok() && j.contains("interpolation_bound")) {  // absent: the default bound
+    m.interpolationBound = float(r.number(j, "interpolation_bound", w, m.interpolationBound));
+    if (r.ok() && !(m.interpolationBound >= 0.0f && m.interpolationBound <= 1e6f))
+      r.fail(w + ".interpolation_bound", "expected 0 (unbounded) or a bound above 1, in units of T");
   }
   if (r.ok() && j.contains("space_time")) {
     const json& s = j["space_time"];

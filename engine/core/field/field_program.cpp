@@ -83,6 +83,10 @@ float applyScalar(OpCode code, const float* v, uint32_t n, const float* prm, flo
       BoundedBlendParams bp{prm[0], prm[1], prm[2], prm[3]};
       return T + boundedBlend(v[0] - T, v[1] - T, v[2] - T, bp, d);
     }
+    case OpCode::Remap: {
+      float d;
+      return remapPotential(v[0], prm[0], prm[1], T, d);
+    }
     default: return 0.0f;
   }
 }
@@ -637,6 +641,13 @@ Interval FieldProgram::interval(const ActiveProgram& prog, const glm::vec3& cent
                  T + rUnion(st[base].hi - T, st[base + 1].hi - T, d1, d2) + std::max(0.0f, a0)};
             break;
           }
+          case OpCode::Remap: {  // monotone in p; a negative scale swaps the ends
+            float d;
+            const float a = remapPotential(st[base].lo, prm[0], prm[1], T, d);
+            const float b = remapPotential(st[base].hi, prm[0], prm[1], T, d);
+            r = {std::min(a, b), std::max(a, b)};
+            break;
+          }
           default: r = {-INFINITY, INFINITY};
         }
         if (std::isnan(r.lo)) r.lo = -INFINITY;
@@ -954,6 +965,17 @@ void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, con
             }
             break;
           }
+          case OpCode::Remap:
+            for (int i = 0; i < n; ++i) {
+              float d;
+              f0[i] = remapPotential(f0[i], prm[0], prm[1], T, d);
+              if (grad) {
+                gx0[i] *= d;
+                gy0[i] *= d;
+                gz0[i] *= d;
+              }
+            }
+            break;
           default: break;
         }
         sp = base + 1;

@@ -35,6 +35,9 @@ enum class OpCode : uint8_t {
   BoundedBlend,   // pop 3 (f1, f2, bounding f3): params[param..param+3] = a0..a3
   BeginMap,       // enter maps[first]: points move to the child's space
   EndMap,         // leave maps[first]: the top gradient returns by the chain rule
+  // pop 1: remapPotential (field/operators.h) with params[param] = scale, params[param + 1] = K
+  // (<= 1: a plain scale). 15: the GPU's feature bit of an op code must not meet the class bits.
+  Remap = 15,
 };
 
 // finish() splits Sum, Max, Min and HyperBlend ops of more operands into a chain of ops of at

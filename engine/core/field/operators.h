@@ -10,6 +10,26 @@
 
 namespace animorph {
 
+// Remap of a potential p (one operand): scale * p, or with a saturation level
+// K > 1 (in units of T) scale * K T p+ / ((K - 1) T + p+) with p+ = max(p, 0):
+// monotone, h(0) = 0, h(T) = T (the surface p = T is kept at scale 1) and
+// bounded by K T, so that a remnant (1 - w) h(p1) >= T of a field fading out
+// of a morph shrinks to nothing at w = 1 - 1/K instead of lingering near its
+// skeleton until w = 1 (morph/morph_field.h). d receives dh/dp.
+inline float remapPotential(float p, float scale, float K, float T, float& d) {
+  if (!(K > 1.0f)) {
+    d = scale;
+    return scale * p;
+  }
+  if (!(p > 0.0f)) {
+    d = scale * K / (K - 1.0f);
+    return scale * K * T * std::min(p, 0.0f) / ((K - 1.0f) * T);
+  }
+  const float den = (K - 1.0f) * T + p;
+  d = scale * K * (K - 1.0f) * T * T / (den * den);
+  return scale * K * T * p / den;
+}
+
 // R-function union s1 + s2 + sqrt(s1^2 + s2^2); d1, d2 receive the partial derivatives.
 inline float rUnion(float s1, float s2, float& d1, float& d2) {
   float r = std::sqrt(s1 * s1 + s2 * s2);

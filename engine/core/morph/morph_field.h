@@ -8,10 +8,16 @@
 //    (Pasko's bounded blending with a0..a3, R-function ^ and v).
 // At w <= 0 the program is f1's alone, at w >= 1 f2's alone, for both methods,
 // so the morph starts and ends exactly on the stand-ins.
+// Either side may be a BlobTree actor's own tree instead of a stand-in (its
+// potential enters the interpolation through a Remap op scaling it by 1 - w
+// or w); its threshold must be the stand-ins' T = 1.
 #include <cstdint>
+#include <memory>
 #include <vector>
 
+#include "blobtree/blob_tree.h"
 #include "field/field_program.h"
+#include "math/transform.h"
 #include "standin/standin.h"
 
 namespace animorph {
@@ -30,16 +36,33 @@ struct SpaceTimeParams {
   bool operator==(const SpaceTimeParams&) const = default;
 };
 
-// One posed stand-in taking part in the morph.
+// One side of the morph at one time: a posed stand-in, or (tree set) a
+// BlobTree at treeTimeSec placed by transform.
 struct MorphOperand {
   StandinKind kind = StandinKind::Convolution;
   float sharpness = 20.0f;
   std::vector<PosedSegment> segments;  // world space
+  std::shared_ptr<const BlobTree> tree;
+  double treeTimeSec = 0.0;
+  Transform transform;  // tree space -> world
 };
 
+// Appends the operand to p as one operand with its potential multiplied by
+// scale (stand-ins: their weights; trees: a Remap op when scale != 1).
+void appendMorphOperand(FieldProgram& p, const MorphOperand& op, float scale);
+
+// World box of the region where the operand can be inside (empty: nowhere).
+Bounds morphOperandBounds(const MorphOperand& op);
+
 // The morph field at blend value w in [0, 1] (w(t) of the morph's track).
+// interpolationBound K > 1 (interpolation only): each side's potential p is
+// first bounded to K T p / ((K - 1) T + p) (Remap op, field/operators.h),
+// which keeps its surface p = T and caps it at K T, so the source's remnant
+// (1 - w) h(p1) >= T shrinks to nothing by w = 1 - 1/K and the target grows
+// from w = 1/K, instead of a thin remnant of the source living near its
+// skeleton until the last frame before C. <= 1: the plain (unbounded) sum.
 FieldProgram buildMorphProgram(const MorphOperand& source, const MorphOperand& target, MorphMethod method, float w,
-                               const SpaceTimeParams& spaceTime);
+                               const SpaceTimeParams& spaceTime, float interpolationBound = 0.0f);
 
 const char* morphMethodName(MorphMethod m);  // "interpolation", "space_time"
 

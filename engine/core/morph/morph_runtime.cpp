@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "blobtree/validate.h"
 #include "morph/mesh_distance.h"
 #include "morph/solid_noise.h"
 #include "rig/pose.h"
@@ -36,6 +37,16 @@ Result<MorphActorRuntime> prepareActor(const Project& project, const std::string
   const Actor* a = project.findActor(id);
   if (!a) return Error{std::string("morph.") + role + ": no actor with id '" + id + "'"};
   out.actor = *a;
+  if (a->kind == ActorKind::BlobTree) {
+    const std::string where = std::string("morph.") + role + ": actor '" + id + "' (BlobTree)";
+    if (Status v = validateBlobTree(a->blobTree); !v) return Error{where + ": " + v.error()};
+    const FloatTrack& th = a->blobTree.threshold;
+    if (!th.isConstant() || std::abs(th.evaluate(0.0) - kStandinThreshold) > 1e-6f)
+      return Error{where + ": threshold " + (th.isConstant() ? std::to_string(th.evaluate(0.0)) : "animated") +
+                   ": a morph needs T = " + std::to_string(kStandinThreshold) + " (the stand-ins' threshold)"};
+    out.tree = std::make_shared<const BlobTree>(a->blobTree);
+    return out;
+  }
   const fs::path p(a->assetPath);
   const std::string abs = (p.is_absolute() ? p : fs::path(baseDir) / p).lexically_normal().string();
   const AssetCache::Entry& e = assets.get(abs);
@@ -155,6 +166,9 @@ Result<std::shared_ptr<const MorphRuntime>> prepareMorph(const Project& project,
   if (!dst) return Error{dst.error()};
   rt->source = std::move(*src);
   rt->target = std::move(*dst);
+  MorphMarkers& k = rt->setup.markers;
+  if (rt->source.isTree()) k.a = k.b;
+  if (rt->target.isTree()) k.d = k.c;
   return std::shared_ptr<const MorphRuntime>(std::move(rt));
 }
 
@@ -172,6 +186,13 @@ MorphStage morphStageAt(const MorphSetup& s, const Timeline& tl, double timeSec,
 }
 
 MorphOperand posedOperand(const MorphActorRuntime& a, double timeSec, double u) {
+  if (a.isTree()) {
+    MorphOperand op;
+    op.tree = a.tree;
+    op.treeTimeSec = blobActorTimeSec(a.actor, timeSec);
+    op.transform = a.actor.transform;
+    return op;
+  }
   Standin s = a.morph.standin;
   std::vector<float> scale(s.segments.size(), 1.0f);
   if (u >= 0.0) {
@@ -201,14 +222,14 @@ MorphImplicitField morphImplicitField(const MorphRuntime& rt, double timeSec, in
   out.blend = std::clamp(m.blend.evaluate(out.progress), 0.0f, 1.0f);
   const MorphOperand src = posedOperand(rt.source, timeSec, out.progress);
   const MorphOperand dst = posedOperand(rt.target, timeSec, out.progress);
-  out.program = buildMorphProgram(src, dst, m.method, out.blend, m.spaceTime);
+  out.program = buildMorphProgram(src, dst, m.method, out.blend, m.spaceTime, m.interpolationBound);
   out.noiseAmplitude = m.noiseAmplitude.evaluate(out.progress);
   if (out.program.unbounded()) {
     // Space-time blending: the bound solid makes the field positive far
     // away in principle; the grid covers both stand-ins with a margin.
     Bounds box;
-    if (out.blend < 1.0f) box.add(posedStandinBounds(src.segments, 0.0f));
-    if (out.blend > 0.0f) box.add(posedStandinBounds(dst.segments, 0.0f));
+    if (out.blend < 1.0f) box.add(morphOperandBounds(src));
+    if (out.blend > 0.0f) box.add(morphOperandBounds(dst));
     const float cell =
         box.empty() ? 0.0f : std::max(box.size().x, std::max(box.size().y, box.size().z)) / float(std::max(2, resolution));
     box.min -= glm::vec3(2.0f * cell);
@@ -226,6 +247,14 @@ Result<MorphFrame> evaluateMorphFrame(const MorphRuntime& rt, double timeSec, co
     case MorphStage::Source:
     case MorphStage::Target: {
       const MorphActorRuntime& a = fr.stage == MorphStage::Source ? rt.source : rt.target;
+      if (a.isTree()) {  // the tree itself: the implicit morph at its end
+        auto r = evaluateMorphImplicit(rt, timeSec, fr.stage == MorphStage::Source ? 0.0 : 1.0, settings);
+        if (!r) return r;
+        r->stage = fr.stage;
+        r->progress = 0.0;
+        r->actorId = a.actor.id;
+        return r;
+      }
       fr.actorId = a.actor.id;
       std::vector<float> zero(a.vertexCount, 0.0f);
       fr.transition = transitionMesh(a, timeSec, zero, false, 1.0f, settings.threads, fr.mesh);
@@ -281,6 +310,7 @@ Result<SeamGap> measureSeamGap(const MorphRuntime& rt, bool atB, int resolution)
   const MorphSetup& m = rt.setup;
   const double timeSec = rt.timeline.frameToSec(atB ? m.markers.b : m.markers.c);
   const MorphActorRuntime& a = atB ? rt.source : rt.target;
+  if (a.isTree()) return SeamGap{};  // no transition: the morph starts (ends) on the tree itself
   std::vector<float> one(a.vertexCount, 1.0f);
   TriangleMesh transition;
   transitionMesh(a, timeSec, one, m.projection.reprojectFrom < 1.0f, m.projection.reprojectFrom, 0, transition);

@@ -24,8 +24,13 @@ namespace animorph {
 enum class MorphStage { Source, Collapse, Morph, Expand, Target };
 const char* morphStageName(MorphStage s);  // "source", "collapse", "morph", "expand", "target"
 
+// One side of the morph: a skinned (or rigid) glTF character bound to its
+// stand-in, or a BlobTree actor (tree set; no character, binding or
+// transitions: its own tree plays the stand-in's role).
 struct MorphActorRuntime {
   Actor actor;
+  std::shared_ptr<const BlobTree> tree;  // a BlobTree actor's tree (character null)
+  bool isTree() const { return tree != nullptr; }
   std::shared_ptr<const Character> character;
   const AnimationClip* clip = nullptr;  // null: no animation (static rest pose)
   ActorMorph morph;                     // stand-in, weight map, segment tracks
@@ -35,6 +40,8 @@ struct MorphActorRuntime {
 };
 
 struct MorphRuntime {
+  // The project's setup, with A moved onto B when the source is a BlobTree and
+  // D onto C when the target is one (no collapse / expansion on that side).
   MorphSetup setup;
   Timeline timeline;
   MorphActorRuntime source, target;

@@ -68,6 +68,8 @@ MorphSceneInfo apply(SceneFrame& frame, const MorphRuntime& rt, const std::share
                                                                  : keep;
   auto drop = [&](const std::string& id, const std::string& kept) { return (id == src || id == dst) && id != kept; };
   std::erase_if(frame.meshes, [&](const MeshDraw& d) { return drop(d.actorId, keep); });
+  std::erase_if(frame.blobs, [&](const BlobDraw& d) { return drop(d.actorId, keep); });
+  std::erase_if(frame.blobGuides, [&](const BlobGuides& g) { return drop(g.actorId, bonesOf); });
   std::erase_if(frame.bones, [&](const BoneDraw& b) { return drop(b.actorId, bonesOf); });
   if (!keep.empty()) return info;
 
@@ -77,7 +79,9 @@ MorphSceneInfo apply(SceneFrame& frame, const MorphRuntime& rt, const std::share
   const double f = timeSec * rt.timeline.fps;
   const bool nearB = std::abs(f - m.markers.b) <= std::abs(f - m.markers.c);
   double implicitOpacity = info.stage == MorphStage::Morph ? 1.0 : 0.0;
-  if (m.crossFade.enabled) {
+  // A BlobTree side has no transition: nothing to fade with near its marker.
+  const bool treeNear = nearB ? rt.source.isTree() : rt.target.isTree();
+  if (m.crossFade.enabled && !treeNear) {
     const double w = std::max(1, m.crossFade.widthFrames);
     if (nearB && std::abs(f - m.markers.b) < w) implicitOpacity = std::clamp((f - (m.markers.b - w)) / (2.0 * w), 0.0, 1.0);
     if (!nearB && std::abs(f - m.markers.c) < w) implicitOpacity = std::clamp((m.markers.c + w - f) / (2.0 * w), 0.0, 1.0);

@@ -73,6 +73,7 @@
 #define AM_OP_BOUNDEDBLEND 9
 #define AM_OP_BEGINMAP 10
 #define AM_OP_ENDMAP 11
+#define AM_OP_REMAP 15  // bit 15 of the features: free between the class and combine bits
 
 // Primitive classes (animorph::PrimClass).
 #define AM_PRIM_SKELETAL 0
@@ -102,7 +103,7 @@
 // under a lane mask), so an interpreter that tests every op code pays for
 // every op's code at every op; specialised, it pays for its own only.
 // Features (constant_id 0): op codes, primitive classes, how programs combine.
-#define AM_FEAT_OP_BIT(c) (1u << (c))                 // bits 0..11: AM_OP_*
+#define AM_FEAT_OP_BIT(c) (1u << (c))                 // bits 0..11 and 15: AM_OP_*
 #define AM_FEAT_CLASS_BIT(k) (1u << (12 + (k)))       // bits 12..14: AM_PRIM_*
 #define AM_FEAT_COMBINE_BIT(m) (1u << (16 + (m)))     // bits 16..18: AM_COMBINE_*
 // Kinds (constant_id 1): skeleton kinds and space-map kinds.
