@@ -157,7 +157,9 @@ void drawStandinInspector(Document& doc, const Character& c, const std::string& 
   ImGui::EndDisabled();
   ImGui::SameLine();
   if (ImGui::Button("Refit all")) {
-    auto fitted = fitStandin(c, fitSettingsFor(standin));
+    FitSettings fs = fitSettingsFor(standin);
+    fs.measure = true;  // the report says whether the fit is poor (about 0.1 s at 50k vertices)
+    auto fitted = fitStandin(c, fs);
     if (!fitted) status = {"Refit stand-in: " + fitted.error(), true};
     else if (run(doc, replaceStandinCommand(doc.project(), actorId, fitted->standin, "Refit stand-in"), status)) {
       st.segment = -1;
