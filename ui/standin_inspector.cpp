@@ -92,6 +92,17 @@ void drawStandinInspector(Document& doc, const Character& c, const std::string& 
   int sel = selectedStandinSegment(doc, st);
   if (st.actorId != actorId) sel = -1;
 
+  // Radii are shown in scene units (the joint's and the actor's scales applied,
+  // as the viewport draws them); segment ends stay in the joint's space.
+  const Actor* poseActor = doc.project().findActor(actorId);
+  const std::vector<glm::mat4> globals =
+      poseActor ? actorPoseGlobals(*poseActor, c, documentTimeSec(doc)) : std::vector<glm::mat4>{};
+  auto sceneScale = [&](int node) {
+    if (!poseActor || node < 0 || node >= int(globals.size())) return 1.0f;
+    const float k = radiusScale(poseActor->transform.matrix() * globals[size_t(node)]);
+    return k > 0.0f ? k : 1.0f;
+  };
+
   // The list: index, joint, radius.
   const float rows = float(std::min<size_t>(standin.segments.size(), 8));
   if (ImGui::BeginChild("##standin_segments", ImVec2(0.0f, ImGui::GetTextLineHeightWithSpacing() * (rows + 0.5f)),
@@ -99,7 +110,8 @@ void drawStandinInspector(Document& doc, const Character& c, const std::string& 
     for (int i = 0; i < int(standin.segments.size()); ++i) {
       const StandinSegment& s = standin.segments[size_t(i)];
       char label[160];
-      std::snprintf(label, sizeof label, "%2d  %-18s r %.3f m##seg%d", i, nodeName(c, s.node).c_str(), s.radius, i);
+      std::snprintf(label, sizeof label, "%2d  %-18s r %.4g m##seg%d", i, nodeName(c, s.node).c_str(),
+                    double(s.radius * sceneScale(s.node)), i);
       if (ImGui::Selectable(label, i == sel)) {
         st.actorId = actorId;
         st.segment = i;
@@ -145,10 +157,15 @@ void drawStandinInspector(Document& doc, const Character& c, const std::string& 
   ImGui::EndDisabled();
   ImGui::SameLine();
   if (ImGui::Button("Refit all")) {
-    auto fitted = fitStandin(c, fitSettingsFor(standin));
+    FitSettings fs = fitSettingsFor(standin);
+    fs.measure = true;  // the report says whether the fit is poor (about 0.1 s at 50k vertices)
+    auto fitted = fitStandin(c, fs);
     if (!fitted) status = {"Refit stand-in: " + fitted.error(), true};
-    else if (run(doc, replaceStandinCommand(doc.project(), actorId, fitted->standin, "Refit stand-in"), status))
+    else if (run(doc, replaceStandinCommand(doc.project(), actorId, fitted->standin, "Refit stand-in"), status)) {
       st.segment = -1;
+      // A poor fit is said loudly: the status bar names the bones.
+      if (fitted->report.poor) status = {"Refit stand-in: POOR FIT: " + fitted->report.problems.front(), true};
+    }
   }
   noteWidget("inspector/standin/refit_all");
 
@@ -176,13 +193,17 @@ void drawStandinInspector(Document& doc, const Character& c, const std::string& 
   }
   noteWidget("inspector/standin/joint");
 
-  float radius = seg.radius;
-  bool changed = ImGui::DragFloat("Radius (m)", &radius, 0.001f, 1e-4f, 100.0f, "%.4f");
+  const float scale = sceneScale(seg.node);
+  float radius = seg.radius * scale;
+  bool changed = ImGui::DragFloat("Radius", &radius, 0.001f * scale, 1e-4f * scale, 100.0f * scale, "%.4g m (scene)");
   noteWidget("inspector/standin/radius");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("In scene units (glTF metres, every node and actor scale applied); x%.4g of the joint's own units",
+                      double(scale));
   drag.begin(doc);
   if (changed && radius > 0.0f) {
     StandinSegment next = seg;
-    next.radius = radius;
+    next.radius = radius / scale;
     run(doc, setStandinSegmentCommand(doc.project(), actorId, sel, next, "Stand-in radius", "standin/radius/" + key),
         status);
   }
@@ -201,7 +222,9 @@ void drawStandinInspector(Document& doc, const Character& c, const std::string& 
     }
     drag.end(doc);
   }
-  ImGui::TextDisabled("Ends are in the joint's space (metres).");
+  ImGui::PushTextWrapPos(0.0f);
+  ImGui::TextDisabled("Ends in the joint's space; radius in scene units (x%.4g of the joint's).", double(scale));
+  ImGui::PopTextWrapPos();
   ImGui::PopItemWidth();
 }
 

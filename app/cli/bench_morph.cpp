@@ -11,6 +11,7 @@
 #include "morph/morph_runtime.h"
 #include "rig/pose.h"
 #include "rig/skinning.h"
+#include "demo/rigged_figure.h"
 #include "standin/fit_standin.h"
 
 namespace {
@@ -44,6 +45,30 @@ std::vector<Row> benchMorph(const bench::Options& opt) {
   std::snprintf(note, sizeof note, "%zu vertices, %zu segments; fit %.0f ms + projection %.0f ms; %zu fallbacks, %zu failures",
                 verts, fit->standin.segments.size(), fitMs, projMs, binding.stats.fallbacks, binding.stats.failures);
   rows.push_back({"fit + projection (dense character)", fitMs + projMs, "ms", "<= 1000 ms at 50k vertices", note});
+
+  // ---- fit with its quality report (error per segment, far share, polygonised
+  // components) against the previous fitter measuring the error only; and the
+  // rigged figure 60 units tall (helper bones, node scales, face and finger bones).
+  FitSettings before;
+  before.bridgeHelpers = false;
+  before.mergeSmallBones = false;
+  before.quality.topologyResolution = 0;
+  const double beforeMs = bench::medianMs(3, [&] { (void)fitStandin(dense, before); });
+  FitResult full;
+  const double fullMs = bench::medianMs(3, [&] { full = *fitStandin(dense, FitSettings{}); });
+  std::snprintf(note, sizeof note, "%zu vertices; baseline (previous fitter, error only) %.0f ms; %d stand-in piece(s)",
+                verts, beforeMs, full.report.standinComponents);
+  rows.push_back({"fit + quality report (dense character)", fullMs, "ms", "<= 1000 ms at 50k vertices", note});
+  RiggedFigureOptions fo;
+  fo.height = 60.0f;
+  const Character figure = makeRiggedFigure(fo);
+  FitResult fig;
+  const double figBeforeMs = bench::medianMs(3, [&] { (void)fitStandin(figure, before); });
+  const double figMs = bench::medianMs(3, [&] { fig = *fitStandin(figure, FitSettings{}); });
+  std::snprintf(note, sizeof note, "%zu vertices, %zu joints; baseline %.0f ms; %zu segments, %d piece(s), mean %.2f %%",
+                figure.totalVertices(), figure.totalJoints(), figBeforeMs, fig.report.segments,
+                fig.report.standinComponents, 100.0 * fig.report.meanError);
+  rows.push_back({"fit + quality report (rigged figure, 60 units)", figMs, "ms", "<= 1000 ms", note});
 
   // ---- CPU transition per frame
   const AnimationClip* clip = dense.clips.empty() ? nullptr : &dense.clips[0];

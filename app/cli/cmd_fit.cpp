@@ -16,6 +16,14 @@ namespace {
 using namespace animorph;
 using json = nlohmann::json;
 
+json segmentsJson(const FitReport& r) {
+  json a = json::array();
+  for (const auto& e : r.perSegment)
+    a.push_back({{"bone", e.bone}, {"radius", e.radius}, {"vertices", e.vertices}, {"mean_distance", e.meanDistance},
+                 {"max_distance", e.maxDistance}, {"far_share", e.farShare}});
+  return a;
+}
+
 json reportJson(const FitReport& r) {
   return {{"segments", r.segments},
           {"bones_omitted", r.bonesOmitted},
@@ -27,7 +35,20 @@ json reportJson(const FitReport& r) {
                           {"fallbacks", r.projection.fallbacks},
                           {"failures", r.projection.failures}}},
           {"milliseconds", r.milliseconds},
-          {"notes", r.notes}};
+          {"notes", r.notes},
+          {"mean_distance", r.meanDistance},
+          {"max_distance", r.maxDistance},
+          {"far_share", r.farShare},
+          {"far_fraction", r.farFraction},
+          {"standin_components", r.standinComponents},
+          {"mesh_components", r.meshComponents},
+          {"largest_gap", r.largestGap},
+          {"bones_merged", r.bonesMerged},
+          {"helper_bridges", r.helperBridges},
+          {"poor", r.poor},
+          {"problems", r.problems},
+          {"poor_bones", r.poorBones},
+          {"segments_fit", segmentsJson(r)}};
 }
 
 int runFit(const std::vector<std::string>& args) {
@@ -61,6 +82,9 @@ int runFit(const std::vector<std::string>& args) {
     } else if (a == "--time") {
       if (!value(v)) return cli::fail("fit", "--time needs a value", 2);
       fs.clipTimeSec = std::strtof(v.c_str(), nullptr);
+    } else if (a == "--previous") {
+      fs.bridgeHelpers = false;
+      fs.mergeSmallBones = false;
     } else if (a == "--json") {
       asJson = true;
     } else if (!a.empty() && a[0] == '-') {
@@ -89,8 +113,14 @@ int runFit(const std::vector<std::string>& args) {
   }
   std::printf("%s: %s stand-in of %zu segments (%zu bones dominate no vertex)\n", input.c_str(),
               standinKindName(fit->standin.kind), r.segments, r.bonesOmitted);
-  std::printf("  fit error: mean %.3f%%, max %.3f%% of the %.3g m bounding-box diagonal\n", 100.0 * r.meanError,
-              100.0 * r.maxError, r.diagonal);
+  std::printf("  fit error: %s\n", fitSummary(r).c_str());
+  std::printf("  %zu helper-bone bridges, %zu small bones merged into their parent's segment\n", r.helperBridges,
+              r.bonesMerged);
+  std::printf("  per segment (scene units): bone, radius, vertices, mean, max, %% far\n");
+  for (const auto& e : r.perSegment)
+    std::printf("    %-24s r %-9.4g %6zu  %-9.4g %-9.4g %5.1f %%\n", e.bone.c_str(), double(e.radius), e.vertices,
+                e.meanDistance, e.maxDistance, 100.0 * e.farShare);
+  for (const auto& p : r.problems) std::printf("  POOR FIT: %s\n", p.c_str());
   std::printf("  projection: %zu vertices, %zu fallbacks, %zu failures; %.0f ms\n", r.projection.points,
               r.projection.fallbacks, r.projection.failures, r.milliseconds);
   for (const auto& n : r.notes) std::printf("  note: %s\n", n.c_str());
@@ -102,14 +132,20 @@ int runFit(const std::vector<std::string>& args) {
 
 ANIMORPH_CLI_COMMAND("fit", "fit a stand-in to a glTF character and print the fit error",
                      "usage: animorph-cli fit CHARACTER.glb -o STANDIN.json [--kind K] [--percentile P]\n"
-                     "                        [--clip N --time T] [--json]\n"
-                     "  Fits one segment per bone (joint -> child joint; leaf joints get a short one;\n"
-                     "  bones that dominate no vertex are left out), each radius the P-th percentile\n"
-                     "  (default 0.65) of the distances of the vertices the bone dominates.\n"
+                     "                        [--clip N --time T] [--previous] [--json]\n"
+                     "  Fits one segment per bone in world units (every node transform applied): joint ->\n"
+                     "  child joint, through helper bones without vertices to the next joint with some;\n"
+                     "  small bones inside their parent's body (face, finger tips) are merged into its\n"
+                     "  segment; leaf joints get a short one. Each radius is the P-th percentile\n"
+                     "  (default 0.65) of the distances of the vertices the segment fits.\n"
                      "  --kind convolution (default) | capsule_union | capsule_blend\n"
                      "  --clip N --time T  fit the pose at T seconds of clip N (default: rest pose)\n"
-                     "  Prints the fit error (mean and max vertex distance to the stand-in surface,\n"
-                     "  relative to the bounding-box diagonal) and writes the stand-in as JSON.\n"
+                     "  --previous  the fitter without helper-bone bridging and small-bone merging (for\n"
+                     "            comparison): segments run to child joints even when these have no vertices\n"
+                     "  Prints the fit in scene units and % of the bounding-box diagonal (mean and max\n"
+                     "  vertex distance to the stand-in surface, share of vertices farther than 5 %,\n"
+                     "  connected pieces of the polygonised stand-in against the mesh's), per segment,\n"
+                     "  and POOR FIT lines naming the bones when it is poor; writes the stand-in as JSON.\n"
                      "  Exit status: 0 on success, 1 when the character cannot be read or fitted, 2 on\n"
                      "  bad arguments.\n",
                      runFit);

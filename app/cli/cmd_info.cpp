@@ -10,6 +10,7 @@
 #include "cli/cli_command.h"
 #include "doc/project_io.h"
 #include "io/gltf_import.h"
+#include "standin/character_pose.h"
 
 namespace {
 
@@ -24,8 +25,7 @@ void countNodes(const animorph::BlobNode& n, std::map<std::string, int>& byCateg
 }
 
 json characterJson(const std::string& path, const animorph::Character& c) {
-  animorph::Bounds b;
-  for (const auto& m : c.meshes) b.add(m.bounds());
+  const animorph::Bounds b = animorph::poseBounds(c);
   json j;
   j["file"] = path;
   j["format"] = "gltf";
@@ -53,11 +53,11 @@ void printCharacter(const std::string& path, const animorph::Character& c) {
   std::printf("%s: glTF character\n", path.c_str());
   std::printf("  %zu meshes, %zu vertices, %zu triangles\n", c.meshes.size(), c.totalVertices(), c.totalTriangles());
   std::printf("  %zu nodes, %zu skins, %zu joints\n", c.nodes.size(), c.skins.size(), c.totalJoints());
-  animorph::Bounds b;
-  for (const auto& m : c.meshes) b.add(m.bounds());
+  const animorph::Bounds b = animorph::poseBounds(c);
   if (!b.empty())
-    std::printf("  bounds (%.3g, %.3g, %.3g) .. (%.3g, %.3g, %.3g) m\n", b.min.x, b.min.y, b.min.z, b.max.x, b.max.y,
-                b.max.z);
+    std::printf("  bounds (%.4g, %.4g, %.4g) .. (%.4g, %.4g, %.4g), height %.4g (scene units, m in glTF; rest pose with "
+                "every node transform)\n",
+                b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z, b.max.y - b.min.y);
   std::printf("  %zu animations\n", c.clips.size());
   for (const auto& clip : c.clips)
     std::printf("    %-24s %7.3f s  %zu channels\n", clip.name.c_str(), clip.durationSec, clip.channels.size());
@@ -172,7 +172,8 @@ int runInfo(const std::vector<std::string>& args) {
 ANIMORPH_CLI_COMMAND("info", "summary of a glTF character or an .animorph project",
                      "usage: animorph-cli info FILE [--json]\n"
                      "  FILE.gltf / FILE.glb: meshes, vertices, triangles, skins, joints, animation clips\n"
-                     "  with their durations, and the import report (warnings, unsupported features,\n"
+                     "  with their durations, the bounds of the skinned rest pose in scene units (every\n"
+                     "  node transform applied), and the import report (warnings, unsupported features,\n"
                      "  normalised weights).\n"
                      "  FILE.animorph: project name, frame rate, frame range, and each actor's asset\n"
                      "  with whether it loads; the morph's source, target, method and markers A..D\n"

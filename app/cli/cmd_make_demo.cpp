@@ -6,6 +6,7 @@
 #include "cli/cli_command.h"
 #include "demo/creature.h"
 #include "demo/gear.h"
+#include "demo/rigged_figure.h"
 #include "doc/project_io.h"
 #include "io/gltf_export.h"
 #include "morph/new_morph_project.h"
@@ -31,16 +32,29 @@ int runMakeDemo(const std::vector<std::string>& args) {
                 character->totalJoints());
   }
 
+  // A figure built like production rig exports, 60 units tall (helper bones,
+  // node scales, face and finger bones): for trying stand-in fits on real rigs.
+  {
+    animorph::RiggedFigureOptions fo;
+    fo.height = 60.0f;
+    const animorph::Character figure = animorph::makeRiggedFigure(fo);
+    const std::string path = (dir / "rigged_figure.glb").string();
+    if (auto s = animorph::exportGlb(figure, path); !s) return animorph::cli::fail("make-demo", s.error());
+    std::printf("wrote %s (%zu triangles, %zu joints)\n", path.c_str(), figure.totalTriangles(), figure.totalJoints());
+  }
+
   // The creature morphs into the gear: stand-ins fitted automatically, the
   // default markers (A 1 s, B 2 s, C 3.5 s, D 4.5 s, end 6 s at 24 fps). The gear
   // already stands where the creature does; keep its own size (no alignment).
   animorph::NewMorphSettings settings;
   settings.alignScaleRatio = 4.0;
+  settings.acceptPoorFit = true;  // the demo is always written; a poor fit is printed as a warning
   auto made = animorph::makeMorphProject(creature, "creature.glb", gear, "gear.glb", settings);
   if (!made) return animorph::cli::fail("make-demo", made.error());
   animorph::Project p = std::move(made->project);
   p.name = "demo";
   for (const auto& m : made->messages) std::printf("%s\n", m.c_str());
+  for (const auto& w : made->warnings) std::fprintf(stderr, "make-demo: WARNING: %s\n", w.c_str());
   const std::string projectPath = (dir / "demo.animorph").string();
   if (auto s = animorph::saveProject(p, projectPath); !s) return animorph::cli::fail("make-demo", s.error());
   std::printf("wrote %s (frames %d..%d at %g fps)\n", projectPath.c_str(), p.timeline.frameStart, p.timeline.frameEnd,
@@ -56,5 +70,8 @@ ANIMORPH_CLI_COMMAND("make-demo", "write the procedural demo characters and proj
                      "  DIR/gear.glb (a skinned gear with an axle hole and four windows, turning) and\n"
                      "  DIR/demo.animorph (the creature walks, collapses onto its stand-in from 1 s to\n"
                      "  2 s, morphs into the gear's stand-in until 3.5 s, and the turning gear expands\n"
-                     "  from it until 4.5 s; 6 s at 24 fps). DIR is created if needed; files are replaced.\n",
+                     "  from it until 4.5 s; 6 s at 24 fps), and DIR/rigged_figure.glb (a humanoid built\n"
+                     "  like production rig exports: 60 units tall, an armature node scaled 0.01 and\n"
+                     "  turned 90 degrees, a scaled chest node, helper-bone chains, face and finger\n"
+                     "  bones). DIR is created if needed; files are replaced.\n",
                      runMakeDemo);

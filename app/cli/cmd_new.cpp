@@ -131,6 +131,10 @@ int runNew(const std::vector<std::string>& args) {
       if (v == "interpolation") s.method = MorphMethod::Interpolation;
       else if (v == "space_time") s.method = MorphMethod::SpaceTime;
       else return cli::fail("new", "--method: expected interpolation or space_time", 2);
+    } else if (a == "--allow-rescale") {
+      s.allowLargeRescale = true;
+    } else if (a == "--accept-poor-fit") {
+      s.acceptPoorFit = true;
     } else if (!a.empty() && a[0] == '-') {
       return cli::fail("new", "unknown option " + a, 2);
     } else {
@@ -147,8 +151,10 @@ int runNew(const std::vector<std::string>& args) {
   std::error_code ec;
   const fs::path dir = fs::absolute(fs::path(output), ec).parent_path();
   auto made = makeMorphProject(*src, relativeTo(inputs[0], dir), *dst, relativeTo(inputs[1], dir), s);
-  if (!made) return cli::fail("new", made.error());
+  if (!made)
+    return cli::fail("new", made.error() + " (--allow-rescale accepts a large rescale, --accept-poor-fit a poor fit)");
   for (const auto& m : made->messages) std::printf("%s\n", m.c_str());
+  for (const auto& w : made->warnings) std::fprintf(stderr, "new: WARNING: %s\n", w.c_str());
   if (auto st = saveProject(made->project, output); !st) return cli::fail("new", st.error());
   const MorphSetup& m = made->project.morph;
   const Timeline& tl = made->project.timeline;
@@ -162,6 +168,7 @@ int runNew(const std::vector<std::string>& args) {
 
 ANIMORPH_CLI_COMMAND("new", "a morph project from two characters or BlobTrees (automatic stand-ins, default timeline)",
                      "usage: animorph-cli new SOURCE TARGET -o PROJECT.animorph [--method M]\n"
+                     "                        [--allow-rescale] [--accept-poor-fit]\n"
                      "  SOURCE, TARGET: a glTF character (.glb, .gltf), a BlobTree scene (.json) or\n"
                      "  PROJECT.animorph:ACTOR (an actor of another project, with its stand-in).\n"
                      "  A BlobTree side is its own stand-in: no collapse (A = B) or expansion (C = D).\n"
@@ -169,7 +176,12 @@ ANIMORPH_CLI_COMMAND("new", "a morph project from two characters or BlobTrees (a
                      "  the project), a stand-in fitted to each, the markers A = 1 s, B = 2 s,\n"
                      "  C = 3.5 s, D = 4.5 s and a timeline of 6 s at 24 fps. When the characters\n"
                      "  differ a lot in size or position, the target is scaled and moved onto the\n"
-                     "  source's bounding box (and this is printed).\n"
+                     "  source's bounding box and the scale factor applied is printed; a factor over\n"
+                     "  10x (files in different units?) is refused unless --allow-rescale is given.\n"
+                     "  Each stand-in's fit is printed in scene units and % of the diagonal; a poor fit\n"
+                     "  (stand-in in more pieces than the mesh, over 10 % of the vertices farther than\n"
+                     "  5 % of the diagonal, or a mean over 4 %) is refused, naming the bones, unless\n"
+                     "  --accept-poor-fit is given (then it is a warning).\n"
                      "  --method interpolation (default) | space_time\n"
                      "  Exit status: 0 on success, 1 when an input cannot be read or fitted, 2 on bad\n"
                      "  arguments.\n",

@@ -269,12 +269,37 @@ def mode_gpu(cli, resources):
                 fail("polygonize --gpu without a device wrote a mesh")
 
 
+def mode_real_rig(cli):
+    """make-demo's rigged figure (60 units tall, armature scale 0.01, helper bones): info's bounds
+    in scene units, new's refusal of a >10x rescale and of a poor fit, fit's report."""
+    with tempfile.TemporaryDirectory() as tmp:
+        demo = make_demo_dir(cli, tmp)
+        fig = os.path.join(demo, "rigged_figure.glb")
+        b = info_json(cli, fig)["bounds"]
+        height = b["max"][1] - b["min"][1]
+        if not 55.0 < height < 62.0:
+            fail(f"info bounds ignore the node transforms: height {height} ({b})")
+        proj = os.path.join(tmp, "f.animorph")
+        r = run(cli, "new", os.path.join(demo, "creature.glb"), fig, "-o", proj)
+        if r.returncode != 1 or "rigged_figure.glb" not in r.stderr or "scale" not in r.stderr or os.path.exists(proj):
+            fail(f"new did not refuse a rescale over 10x: {r.returncode} {r.stderr}")
+        r = run(cli, "new", os.path.join(demo, "creature.glb"), fig, "-o", proj, "--allow-rescale")
+        if r.returncode != 0 or "scale factor" not in r.stdout or "WARNING" not in r.stderr:
+            fail(f"new --allow-rescale: {r.returncode} {r.stdout} {r.stderr}")
+        r = run(cli, "fit", fig, "--previous", "-o", os.path.join(tmp, "prev.json"))
+        if r.returncode != 0 or "POOR FIT" not in r.stdout or "pieces" not in r.stdout:
+            fail(f"fit --previous on the helper-bone rig is not reported poor: {r.stdout}")
+        r = run(cli, "fit", fig, "-o", os.path.join(tmp, "new.json"))
+        if r.returncode != 0 or "POOR FIT" in r.stdout or "1 piece(s), mesh in 1" not in r.stdout:
+            fail(f"fit on the helper-bone rig: {r.stdout}")
+
+
 def main():
     if len(sys.argv) < 3:
         fail(__doc__)
     mode, cli, args = sys.argv[1], sys.argv[2], sys.argv[3:]
     {"info-json": mode_info_json, "info-bad": mode_info_bad, "make-demo": mode_make_demo, "new-info": mode_new_info,
-     "fit": mode_fit, "bake": mode_bake, "gpu": mode_gpu}[mode](cli, *args)
+     "fit": mode_fit, "bake": mode_bake, "gpu": mode_gpu, "real-rig": mode_real_rig}[mode](cli, *args)
     print("ok")
 
 

@@ -12,12 +12,6 @@ namespace animorph {
 
 namespace {
 
-Bounds restBounds(const Character& c) {
-  Bounds b;
-  for (const auto& p : poseCharacter(c, nullptr, 0.0f, glm::mat4(1.0f)).positions) b.add(p);
-  return b;
-}
-
 std::string idFromPath(const std::string& path, const std::string& fallback) {
   std::string stem = std::filesystem::path(path).stem().string();
   std::string id;
@@ -48,7 +42,7 @@ Result<NewMorphProject> makeMorphProject(const Character& source, const std::str
   a.assetPath = sourceAsset;
   b.assetPath = targetAsset;
 
-  const Bounds sb = restBounds(source), tb = restBounds(target);
+  const Bounds sb = poseBounds(source), tb = poseBounds(target);
   if (!sb.empty() && !tb.empty()) {
     const double ds = sb.diagonal(), dt = std::max(1e-9f, tb.diagonal());
     const double ratio = ds / dt;
@@ -56,11 +50,22 @@ Result<NewMorphProject> makeMorphProject(const Character& source, const std::str
     if (ratio > s.alignScaleRatio || ratio < 1.0 / s.alignScaleRatio || offset > s.alignOffsetFraction * ds) {
       // Same diagonal, same centre in x and z, same floor (min y).
       const float k = float(ratio);
+      if (std::max(ratio, 1.0 / ratio) > s.maxRescaleWithoutConsent) {
+        const std::string what = fmt("aligning the target to the source needs a scale of %.4gx (the source's diagonal "
+                                     "is %.4g, the target's %.4g scene units)",
+                                     ratio, ds, dt);
+        if (!s.allowLargeRescale)
+          return Error{targetAsset + ": " + what + fmt(": more than %gx, probably different units; allow it "
+                                                       "explicitly or export both in the same units",
+                                                       s.maxRescaleWithoutConsent)};
+        out.warnings.push_back(targetAsset + ": " + what + " (allowed)");
+      }
+      out.scaleApplied = ratio;
       b.transform.scale = glm::vec3(k);
       const glm::vec3 tc = tb.center() * k, sc = sb.center();
       b.transform.translation = glm::vec3(sc.x - tc.x, sb.min.y - tb.min.y * k, sc.z - tc.z);
       out.aligned = true;
-      out.messages.push_back(fmt("aligned the target to the source: scale %.4g, translation (%.3g, %.3g, %.3g)", k,
+      out.messages.push_back(fmt("aligned the target to the source: scale factor %.4gx applied, translation (%.3g, %.3g, %.3g)", k,
                                  b.transform.translation.x, b.transform.translation.y, b.transform.translation.z));
     }
   }
@@ -81,13 +86,20 @@ Result<NewMorphProject> makeMorphProject(const Character& source, const std::str
     auto fit = fitStandin(*character, s.fit);
     if (!fit) return Error{actor->assetPath + ": " + fit.error()};
     *report = fit->report;
+    if (fit->report.poor) {
+      std::string why;
+      for (const auto& p : fit->report.problems) why += (why.empty() ? "" : "; ") + p;
+      if (!s.acceptPoorFit)
+        return Error{actor->assetPath + ": the automatic stand-in fits poorly: " + why +
+                     " (fit: " + fitSummary(fit->report) + ")"};
+      out.warnings.push_back(actor->id + ": POOR stand-in fit (accepted): " + why);
+    }
     ActorMorph am;
     am.actorId = actor->id;
     am.standin = fit->standin;
     m.actors.push_back(std::move(am));
-    out.messages.push_back(actor->id + ": stand-in of " + std::to_string(fit->report.segments) + " segments, fit error " +
-                           fmt("mean %.2f%%, max %.2f%% of the diagonal", 100.0 * fit->report.meanError,
-                               100.0 * fit->report.maxError));
+    out.messages.push_back(actor->id + ": stand-in of " + std::to_string(fit->report.segments) + " segments, fit " +
+                           fitSummary(fit->report));
   }
   return out;
 }

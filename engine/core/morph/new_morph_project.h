@@ -23,18 +23,29 @@ struct NewMorphSettings {
   // are further apart than this fraction of the source's diagonal.
   double alignScaleRatio = 1.5;
   double alignOffsetFraction = 0.5;
+  // Aligning by a scale beyond this factor (either way) is refused unless
+  // allowLargeRescale: the files are probably in different units.
+  double maxRescaleWithoutConsent = 10.0;
+  bool allowLargeRescale = false;
+  // A poor stand-in fit (standin/fit_quality.h) is refused unless acceptPoorFit,
+  // then it is a warning naming the bones.
+  bool acceptPoorFit = false;
 };
 
 struct NewMorphProject {
   Project project;
   bool aligned = false;
+  double scaleApplied = 1.0;  // uniform scale given to the target
+  std::vector<std::string> warnings;  // poor fits (accepted), large rescales (allowed): say them loudly
   FitReport sourceFit, targetFit;
   std::vector<std::string> messages;  // one line each, for the user (alignment, fit notes)
 };
 
 // sourceAsset / targetAsset are stored as the actors' asset paths (relative to
-// the project file). Actor ids come from the file names. Errors: a stand-in
-// could not be fitted (named by file).
+// the project file). Actor ids come from the file names. Errors (named by
+// file): a stand-in could not be fitted, or fits poorly (naming the bones)
+// and acceptPoorFit is off; alignment needs a scale beyond
+// maxRescaleWithoutConsent and allowLargeRescale is off.
 Result<NewMorphProject> makeMorphProject(const Character& source, const std::string& sourceAsset,
                                          const Character& target, const std::string& targetAsset,
                                          const NewMorphSettings& settings = {});

@@ -7,14 +7,11 @@
 #include "morph/morph_runtime.h"
 #include "rig/pose.h"
 #include "scene/scene_frame.h"
+#include "standin/standin.h"
 
 namespace animorph {
 
 namespace {
-
-float meanAxisScale(const glm::mat4& m) {
-  return (glm::length(glm::vec3(m[0])) + glm::length(glm::vec3(m[1])) + glm::length(glm::vec3(m[2]))) / 3.0f;
-}
 
 // Two unit vectors perpendicular to axis and to each other.
 void perpendiculars(const glm::vec3& axis, glm::vec3& u, glm::vec3& v) {
@@ -47,7 +44,7 @@ StandinGuides standinGuides(const Actor& actor, const Character& c, const Standi
     o.index = int(i);
     o.node = seg.node;
     o.nodeToWorld = seg.node >= 0 && seg.node < int(globals.size()) ? root * globals[size_t(seg.node)] : root;
-    o.nodeScale = meanAxisScale(o.nodeToWorld);
+    o.nodeScale = radiusScale(o.nodeToWorld);
     o.a = glm::vec3(o.nodeToWorld * glm::vec4(seg.a, 1.0f));
     o.b = glm::vec3(o.nodeToWorld * glm::vec4(seg.b, 1.0f));
     o.radius = seg.radius * o.nodeScale;

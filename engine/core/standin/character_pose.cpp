@@ -66,6 +66,12 @@ CharacterPose poseCharacter(const Character& c, const AnimationClip* clip, float
   return out;
 }
 
+Bounds poseBounds(const Character& c, const AnimationClip* clip, float clipTimeSec) {
+  Bounds b;
+  for (const auto& p : poseCharacter(c, clip, clipTimeSec, glm::mat4(1.0f)).positions) b.add(p);
+  return b;
+}
+
 std::vector<char> rigNodes(const Character& c) {
   std::vector<char> out(c.nodes.size(), 0);
   for (const Skin& s : c.skins)

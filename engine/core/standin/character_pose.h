@@ -27,6 +27,10 @@ glm::mat4 vertexSkinMatrix(const Mesh& mesh, size_t v, const std::vector<glm::ma
 // Poses every mesh of c at clipTimeSec of clip (null: rest pose), in root space.
 CharacterPose poseCharacter(const Character& c, const AnimationClip* clip, float clipTimeSec, const glm::mat4& root);
 
+// Bounds of the posed vertices (clip null: the rest pose) in world units, with
+// every node transform and the skinning applied: what the viewport shows.
+Bounds poseBounds(const Character& c, const AnimationClip* clip = nullptr, float clipTimeSec = 0.0f);
+
 // Nodes that can carry stand-in segments: every skin joint, and the node of every unskinned mesh.
 std::vector<char> rigNodes(const Character& c);
 

@@ -113,23 +113,8 @@ const AnimationClip* pickClip(const Character& c, int clip) {
 }  // namespace
 
 FitReport measureStandinFit(const Character& c, const Standin& s, const FitSettings& settings) {
-  const auto t0 = std::chrono::steady_clock::now();
-  FitReport r;
-  r.segments = s.segments.size();
   const CharacterPose pose = poseCharacter(c, pickClip(c, settings.clip), settings.clipTimeSec, glm::mat4(1.0f));
-  Bounds box;
-  for (const auto& p : pose.positions) box.add(p);
-  r.diagonal = box.diagonal();
-  const auto segs = poseStandin(s, pose.globals, glm::mat4(1.0f));
-  const FieldProgram prog = standinProgram(s.kind, s.sharpness, segs);
-  std::vector<glm::vec3> out(pose.positions.size());
-  r.projection = projectOntoField(prog, segs, pose.positions.data(), pose.positions.size(), out.data(), nullptr,
-                                  settings.projection);
-  const double diag = std::max(1e-12, r.diagonal);
-  r.meanError = r.projection.meanDistance / diag;
-  r.maxError = r.projection.maxDistance / diag;
-  r.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  return r;
+  return measureFitQuality(c, s, pose, settings.projection, settings.quality);
 }
 
 Result<FitResult> fitStandin(const Character& c, const FitSettings& settings) {
@@ -154,26 +139,152 @@ Result<FitResult> fitStandin(const Character& c, const FitSettings& settings) {
     while (p >= 0 && !rig[size_t(p)]) p = c.nodes[size_t(p)].parent;
     return p;
   };
-
   FitResult result;
+
+  // Joints that carry segments: rig joints with vertices of their own.
+  std::vector<char> active(c.nodes.size(), 0);
+  for (size_t j = 0; j < c.nodes.size(); ++j) {
+    active[j] = rig[j] && !dominated[j].empty();
+    if (rig[j] && dominated[j].empty()) ++result.report.bonesOmitted;
+  }
+  // Where a bone's segments go: its child joints, or (bridging) its nearest
+  // active descendants through joints without vertices. `ends` are inactive
+  // rig children with no active descendant (end bones): a leaf direction only.
+  auto targetsOf = [&](int j, std::vector<int>& to, std::vector<int>& ends) {
+    to.clear();
+    ends.clear();
+    std::vector<int> stack(c.nodes[size_t(j)].children.rbegin(), c.nodes[size_t(j)].children.rend());
+    while (!stack.empty()) {
+      const int n = stack.back();
+      stack.pop_back();
+      if (!settings.bridgeHelpers) {
+        if (rig[size_t(n)]) to.push_back(n);
+        continue;
+      }
+      if (active[size_t(n)]) {
+        to.push_back(n);
+        continue;
+      }
+      for (auto it = c.nodes[size_t(n)].children.rbegin(); it != c.nodes[size_t(n)].children.rend(); ++it)
+        stack.push_back(*it);
+      if (rig[size_t(n)] && c.nodes[size_t(n)].parent == j) ends.push_back(n);
+    }
+    // End bones only count where no active joint lies below them.
+    auto hasActiveBelow = [&](int n) {
+      std::vector<int> st{n};
+      while (!st.empty()) {
+        const int k = st.back();
+        st.pop_back();
+        if (active[size_t(k)]) return true;
+        for (int ch : c.nodes[size_t(k)].children) st.push_back(ch);
+      }
+      return false;
+    };
+    ends.erase(std::remove_if(ends.begin(), ends.end(), hasActiveBelow), ends.end());
+  };
+
+  // Small bones whose joint lies inside the tube of the bone that owns them
+  // give their vertices to it (no blob of their own, no fan of segments).
+  std::vector<int> owner(c.nodes.size(), -1);
+  std::vector<size_t> subtreeVerts(c.nodes.size(), 0);
+  for (size_t j = c.nodes.size(); j-- > 0;) {
+    // Children have larger indices in most files, but do not rely on it.
+    std::vector<int> st{int(j)};
+    size_t sum = 0;
+    while (!st.empty()) {
+      const int k = st.back();
+      st.pop_back();
+      sum += dominated[size_t(k)].size();
+      for (int ch : c.nodes[size_t(k)].children) st.push_back(ch);
+    }
+    subtreeVerts[j] = sum;
+  }
+  // A joint is inside its owner's body when it lies within the median distance
+  // of the owner's vertices from the owner's joint, or within the box of those
+  // vertices shrunk by 2 % (a brow bone under the forehead).
+  std::vector<float> roughRadius(c.nodes.size(), 0.0f);
+  std::vector<Bounds> body(c.nodes.size());
+  std::vector<int> to, ends;
+  for (size_t j = 0; j < c.nodes.size(); ++j) {
+    if (!active[j]) continue;
+    const glm::vec3 P = jointPos(int(j));
+    std::vector<float> d;
+    for (const auto& p : dominated[j]) {
+      d.push_back(glm::length(p - P));
+      body[j].add(p);
+    }
+    roughRadius[j] = percentile(d, 0.5f);
+    const glm::vec3 inset = 0.02f * body[j].size();
+    body[j].min += inset;
+    body[j].max -= inset;
+  }
+  auto inside = [&](int j, int o) {
+    const glm::vec3 q = jointPos(j);
+    return glm::length(q - jointPos(o)) < roughRadius[size_t(o)] ||
+           (glm::all(glm::greaterThanEqual(q, body[size_t(o)].min)) && glm::all(glm::lessThanEqual(q, body[size_t(o)].max)));
+  };
+  std::vector<int> order;  // parents before children
+  for (int r : c.roots) order.push_back(r);
+  for (size_t q = 0; q < order.size(); ++q)
+    for (int ch : c.nodes[size_t(order[q])].children) order.push_back(ch);
+  for (int j : order) {
+    if (!active[size_t(j)]) continue;
+    owner[size_t(j)] = j;
+    if (!settings.mergeSmallBones) continue;
+    int a = rigParent(j);
+    while (a >= 0 && !active[size_t(a)]) a = rigParent(a);
+    if (a < 0) continue;
+    const int o = owner[size_t(a)];
+    if (inside(j, o) && subtreeVerts[size_t(j)] * 4 < dominated[size_t(o)].size()) {
+      owner[size_t(j)] = o;
+      ++result.report.bonesMerged;
+    }
+  }
+  std::vector<std::vector<glm::vec3>> fitted(c.nodes.size());
+  for (size_t j = 0; j < c.nodes.size(); ++j)
+    if (active[j] && owner[j] >= 0) {
+      auto& dst = fitted[size_t(owner[j])];
+      dst.insert(dst.end(), dominated[j].begin(), dominated[j].end());
+    }
+  // Merged joints act like helper bones for the segments' ends.
+  for (size_t j = 0; j < c.nodes.size(); ++j)
+    if (active[j] && owner[j] != int(j)) active[j] = 0;
+
   std::vector<Candidate> cands;
   for (size_t j = 0; j < c.nodes.size(); ++j) {
-    if (!rig[j]) continue;
-    const auto& pts = dominated[j];
-    if (pts.empty()) {
-      ++result.report.bonesOmitted;
-      continue;
-    }
+    if (!active[j]) continue;
+    const auto& pts = fitted[j];
     const glm::vec3 P = jointPos(int(j));
+    targetsOf(int(j), to, ends);
     std::vector<Candidate> mine;
-    for (int ch : c.nodes[j].children) {
-      if (!rig[size_t(ch)]) continue;
+    for (int ch : to) {
       const glm::vec3 Q = jointPos(ch);
       if (glm::length(Q - P) > minLen) mine.emplace_back(int(j), P, Q);
+      if (settings.bridgeHelpers && c.nodes[size_t(ch)].parent != int(j)) ++result.report.helperBridges;
+    }
+    // No joint with vertices below: towards the end bone along which the
+    // vertices reach farthest, as far as they reach.
+    if (mine.empty()) {
+      float best = minLen;
+      glm::vec3 bestDir(0.0f);
+      for (int e : ends) {
+        const glm::vec3 Q = jointPos(e);
+        if (glm::length(Q - P) <= minLen) continue;
+        const glm::vec3 dir = glm::normalize(Q - P);
+        std::vector<float> u;
+        for (const auto& p : pts) u.push_back(glm::dot(p - P, dir));
+        const float far = percentile(u, 0.9f);
+        if (far > best) { best = far; bestDir = dir; }
+      }
+      if (glm::length(bestDir) > 0.0f) {
+        Candidate cd{int(j), P, P + bestDir * best};
+        cd.shrinkB = true;
+        mine.push_back(cd);
+      }
     }
     if (mine.empty()) {
       // Leaf (or every child at the joint itself): along the parent bone's
-      // direction, else along the dominated vertices' principal axis.
+      // direction, else along the vertices' principal axis.
       const int par = rigParent(int(j));
       glm::vec3 dir(0.0f);
       if (par >= 0 && glm::length(P - jointPos(par)) > minLen) dir = glm::normalize(P - jointPos(par));
@@ -201,7 +312,7 @@ Result<FitResult> fitStandin(const Character& c, const FitSettings& settings) {
         result.report.notes.push_back("node '" + c.nodes[j].name + "': no child bone; segment along its vertices' principal axis");
       }
     }
-    // Each dominated vertex belongs to its closest segment of this bone.
+    // Each vertex belongs to its closest segment of this bone.
     for (const auto& p : pts) {
       size_t best = 0;
       float bd = INFINITY;
@@ -249,18 +360,17 @@ Result<FitResult> fitStandin(const Character& c, const FitSettings& settings) {
     seg.a = glm::vec3(inv * glm::vec4(cd.a, 1.0f));
     seg.b = glm::vec3(inv * glm::vec4(cd.b, 1.0f));
     // Radii are stored in the node's space too (poseStandin scales them back).
-    const glm::mat3 l(pose.globals[size_t(cd.node)]);
-    const float sc = (glm::length(l[0]) + glm::length(l[1]) + glm::length(l[2])) / 3.0f;
-    seg.radius = cd.radius / std::max(1e-12f, sc);
+    seg.radius = cd.radius / std::max(1e-12f, radiusScale(pose.globals[size_t(cd.node)]));
     s.segments.push_back(seg);
   }
   result.report.segments = s.segments.size();
   if (settings.measure) {
-    FitReport m = measureStandinFit(c, s, settings);
-    result.report.diagonal = m.diagonal;
-    result.report.meanError = m.meanError;
-    result.report.maxError = m.maxError;
-    result.report.projection = m.projection;
+    FitReport m = measureFitQuality(c, s, pose, settings.projection, settings.quality);
+    m.bonesOmitted = result.report.bonesOmitted;
+    m.bonesMerged = result.report.bonesMerged;
+    m.helperBridges = result.report.helperBridges;
+    m.notes = std::move(result.report.notes);
+    result.report = std::move(m);
   } else {
     result.report.diagonal = diag;
   }

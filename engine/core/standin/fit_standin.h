@@ -1,12 +1,19 @@
 #pragma once
-// Automatic stand-in fitting (docs/design.md §4): one segment per bone (joint ->
-// child joint), a short segment for leaf joints, bones that dominate no vertex
-// omitted; each radius is a robust percentile of the distances of the
-// vertices the bone dominates. Runs on the rest pose or a frame of a clip.
+// Automatic stand-in fitting (docs/design.md §4), in world units with every
+// node transform applied: one segment per bone (joint -> child joint), a short
+// segment for leaf joints; joints that dominate no vertex (helper bones) are
+// bridged -- a bone's segment runs to its nearest descendant joints that have
+// vertices -- so the stand-in stays in one piece; a bone whose segment would
+// be shorter than its radius (face and finger-tip bones, very short bones)
+// gives its vertices to its parent's segment instead of adding a blob. Each
+// radius is a robust percentile of the distances of the vertices the segment
+// fits. Runs on the rest pose or a frame of a clip; the report
+// (standin/fit_quality.h) says when the result is poor and which bones.
 #include <string>
 #include <vector>
 
 #include "rig/character.h"
+#include "standin/fit_quality.h"
 #include "standin/project_onto_standin.h"
 #include "standin/standin.h"
 #include "util/result.h"
@@ -21,23 +28,19 @@ struct FitSettings {
   // Kernel sharpness as a multiple of 1 / (median radius): larger keeps bones
   // apart (tighter fit), smaller blends them into one blob.
   float sharpnessTimesRadius = 2.5f;
+  // Bridge joints without vertices (helper bones): a bone's segment runs to its
+  // nearest descendants with vertices. Off: to its child joints, as before.
+  bool bridgeHelpers = true;
+  // Fit small bones whose joint lies inside their parent's tube (face, finger
+  // tips, very short bones) into the parent's segment instead of a blob of their own.
+  bool mergeSmallBones = true;
   // Pose fitted: clip index (-1: rest pose) and time in that clip (seconds).
   int clip = -1;
   float clipTimeSec = 0.0f;
   // Measure the fit error by projecting every vertex (costs about one projection).
   bool measure = true;
   ProjectionSettings projection;
-};
-
-struct FitReport {
-  size_t segments = 0;
-  size_t bonesOmitted = 0;      // rig nodes that dominate no vertex
-  double diagonal = 0.0;        // bounding-box diagonal of the fitted pose (m)
-  double meanError = 0.0;       // mean vertex distance to the stand-in surface / diagonal
-  double maxError = 0.0;        // max distance / diagonal
-  ProjectionStats projection;   // of the measurement
-  double milliseconds = 0.0;    // fitting and measuring
-  std::vector<std::string> notes;
+  FitQualitySettings quality;
 };
 
 struct FitResult {
@@ -48,7 +51,8 @@ struct FitResult {
 // Fits a stand-in to c. Errors: no vertices, or a clip index out of range.
 Result<FitResult> fitStandin(const Character& c, const FitSettings& settings = {});
 
-// The fit error of an existing stand-in at the pose of settings (clip, time).
+// The fit error of an existing stand-in at the pose of settings (clip, time),
+// with the quality checks of settings.quality.
 FitReport measureStandinFit(const Character& c, const Standin& s, const FitSettings& settings);
 
 }  // namespace animorph

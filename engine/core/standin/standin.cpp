@@ -34,6 +34,10 @@ const char* standinKindName(StandinKind k) {
   return "convolution";
 }
 
+float radiusScale(const glm::mat4& m) {
+  return (glm::length(glm::vec3(m[0])) + glm::length(glm::vec3(m[1])) + glm::length(glm::vec3(m[2]))) / 3.0f;
+}
+
 std::vector<PosedSegment> poseStandin(const Standin& s, const std::vector<glm::mat4>& globals, const glm::mat4& root) {
   std::vector<PosedSegment> out(s.segments.size());
   for (size_t i = 0; i < s.segments.size(); ++i) {
@@ -43,8 +47,7 @@ std::vector<PosedSegment> poseStandin(const Standin& s, const std::vector<glm::m
     out[i].a = glm::vec3(m * glm::vec4(seg.a, 1.0f));
     out[i].b = glm::vec3(m * glm::vec4(seg.b, 1.0f));
     // Radii follow the node's scale (mean of the axes' scales).
-    const float sc = (glm::length(glm::vec3(m[0])) + glm::length(glm::vec3(m[1])) + glm::length(glm::vec3(m[2]))) / 3.0f;
-    out[i].radius = seg.radius * sc;
+    out[i].radius = seg.radius * radiusScale(m);
   }
   return out;
 }

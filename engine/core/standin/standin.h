@@ -46,6 +46,9 @@ struct PosedSegment {
   float weightScale = 1.0f;  // multiplies the primitive's weight / intensity (morph, collapse)
 };
 
+// The scale a segment's radius takes under matrix m: the mean of its axes' lengths.
+float radiusScale(const glm::mat4& m);
+
 // Segment ends in space `root * globals[node]` (globals from rig/pose.h). Segments
 // whose node is out of range keep their stored ends under root.
 std::vector<PosedSegment> poseStandin(const Standin& s, const std::vector<glm::mat4>& globals, const glm::mat4& root);

@@ -11,10 +11,6 @@ glm::mat4 nodeMatrix(const std::vector<glm::mat4>& globals, int node) {
   return node >= 0 && node < int(globals.size()) ? globals[size_t(node)] : glm::mat4(1.0f);
 }
 
-float meanAxisScale(const glm::mat4& m) {
-  return (glm::length(glm::vec3(m[0])) + glm::length(glm::vec3(m[1])) + glm::length(glm::vec3(m[2]))) / 3.0f;
-}
-
 }  // namespace
 
 StandinSegment rebindSegment(const StandinSegment& seg, int newNode, const std::vector<glm::mat4>& globals) {
@@ -24,8 +20,8 @@ StandinSegment rebindSegment(const StandinSegment& seg, int newNode, const std::
   out.node = newNode;
   out.a = glm::vec3(carry * glm::vec4(seg.a, 1.0f));
   out.b = glm::vec3(carry * glm::vec4(seg.b, 1.0f));
-  const float sTo = meanAxisScale(to);
-  out.radius = sTo > 0.0f ? seg.radius * meanAxisScale(from) / sTo : seg.radius;
+  const float sTo = radiusScale(to);
+  out.radius = sTo > 0.0f ? seg.radius * radiusScale(from) / sTo : seg.radius;
   return out;
 }
 
