@@ -7,6 +7,7 @@
 
 #include "animorphosis_panel.h"
 #include "doc/animorphosis_commands.h"
+#include "modal.h"
 #include "widget_rects.h"
 
 namespace animorph {
@@ -71,15 +72,7 @@ void openCreateAnimorphosis(const Document& doc, CreateAnimorphosisState& st) {
 
 void drawCreateAnimorphosisPopup(Document& doc, CreateAnimorphosisState& st, CorrespondenceEditorState& editor,
                                  StatusMessage& status) {
-  if (st.openNext) {
-    ImGui::OpenPopup(kPopup);
-    st.openNext = false;
-  }
-  ImGuiIO& io = ImGui::GetIO();
-  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.4f), ImGuiCond_Appearing,
-                          ImVec2(0.5f, 0.5f));
-  st.isOpen =
-      ImGui::BeginPopupModal(kPopup, nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings);
+  st.isOpen = beginCentredModal(kPopup, st.openNext);
   if (!st.isOpen) return;
   const Project& p = doc.project();
   std::vector<const Actor*> blobs = blobActors(p);

@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "animorph/evaluate_generic.h"
+#include "bake/frame_files.h"
 #include "cli/cli_command.h"
 #include "doc/animorphosis_project.h"
 #include "poly/polygonizer.h"
@@ -36,21 +37,6 @@ namespace {
 
 using namespace animorph;
 namespace fs = std::filesystem;
-
-// DIR/NAME_####.EXT: the frame number padded to 4 digits, as Houdini's $F4 and
-// Blender's mesh-sequence readers expect.
-std::string frameName(const fs::path& dir, const std::string& name, int frame, const char* ext) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "_%04d.%s", frame, ext);
-  return (dir / (name + buf)).string();
-}
-
-// A file-name prefix from a project name: characters outside [A-Za-z0-9._-] become '_'.
-std::string filePrefix(const std::string& name) {
-  std::string out;
-  for (char c : name) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '_') ? c : '_';
-  return out.empty() ? std::string("frame") : out;
-}
 
 // One progress line on a terminal, redrawn in place; nothing when stdout is not a tty.
 class ProgressBar {
@@ -124,8 +110,8 @@ class FrameSink {
   std::string add(int k, TriangleMesh mesh) {
     const int f = o_.first + k;
     Status st;
-    if (o_.plys) st = writePly(mesh, frameName(o_.dir, o_.prefix, f, "ply"));
-    if (st && o_.objs) st = writeObj(mesh, frameName(o_.dir, o_.prefix, f, "obj"));
+    if (o_.plys) st = writePly(mesh, frameFileName(o_.dir.string(), o_.prefix, f, "ply"));
+    if (st && o_.objs) st = writeObj(mesh, frameFileName(o_.dir.string(), o_.prefix, f, "obj"));
     if (!st) return st.error();
     if (sequence_) {
       std::lock_guard<std::mutex> lock(sequenceMutex_);
@@ -219,7 +205,7 @@ int renderPngs(const std::vector<TriangleMesh>& meshes, int first, const fs::pat
           scene.options.background);
       if (!st) return cli::fail("bake", st.error());
       if (!recorded) return cli::fail("bake", recorded.error());
-      if (Status w = gpu::writePng(frameName(dir, name, first + int(i), "png"), (*target)->image()); !w)
+      if (Status w = gpu::writePng(frameFileName(dir.string(), name, first + int(i), "png"), (*target)->image()); !w)
         return cli::fail("bake", w.error());
       cache.endFrame();
       bar.step();
@@ -317,7 +303,7 @@ int runBake(const std::vector<std::string>& args) {
   const bool needDir = writePlys || writeObjs || png;
   if (project.empty() || frames.empty() || (needDir && output.empty()) || (!needDir && gltf.empty()))
     return cli::fail("bake", "usage: bake PROJECT --frames A:B --res N -o DIR [--format ply|obj|none] [--gltf FILE.glb] (see --help)", 2);
-  if (!name.empty() && filePrefix(name) != name)
+  if (!name.empty() && framePrefix(name) != name)
     return cli::fail("bake", "--name: use letters, digits, '.', '-' and '_' only, got '" + name + "'", 2);
   int first = 0, last = 0;
   char tail = 0;
@@ -332,7 +318,7 @@ int runBake(const std::vector<std::string>& args) {
 
   auto p = loadProject(project);
   if (!p) return cli::fail("bake", p.error());
-  const std::string prefix = name.empty() ? filePrefix(p->name) : name;
+  const std::string prefix = name.empty() ? framePrefix(p->name) : name;
   std::error_code ec;
   if (needDir) fs::create_directories(output, ec);
   if (ec) return cli::fail("bake", output + ": cannot create directory: " + ec.message());

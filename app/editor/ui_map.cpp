@@ -32,7 +32,9 @@ void writeEditorUiMap(const std::string& path, const EditorUI& ui, EditorContext
               {"preview", ectx.stats.previewInfo},
               {"preview_gpu", info.previewGpu},
               {"present", info.presentPath},
-              {"standin_segment", selectedStandinSegment(doc, ui.state().standinTool)}});
+              {"standin_segment", selectedStandinSegment(doc, ui.state().standinTool)},
+              {"job", ui.runningJob() ? ui.runningJob()->label() : std::string()},
+              {"job_fraction", ui.runningJob() ? ui.runningJob()->progress().fraction() : 0.0}});
 }
 
 }  // namespace animorph
