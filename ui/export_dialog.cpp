@@ -76,16 +76,21 @@ ExportDialogChoice drawExportDialog(const Document& doc, ExportDialogState& st) 
   }
   noteWidget("export/use_timeline");
   ImGui::BeginDisabled(s.useTimeline);
-  ImGui::SetNextItemWidth(100.0f);
-  ImGui::InputInt("First frame", &s.first, 1, 10);
+  // Plain fields (no step buttons): the widget map's rectangle is the field itself.
+  auto intField = [](const char* label, const char* id, int& v) {
+    ImGui::AlignTextToFramePadding();
+    ImGui::TextUnformatted(label);
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(80.0f);
+    ImGui::InputInt(id, &v, 0, 0);
+  };
+  intField("First frame", "##first", s.first);
   noteWidget("export/first");
   ImGui::SameLine();
-  ImGui::SetNextItemWidth(100.0f);
-  ImGui::InputInt("Last frame", &s.last, 1, 10);
+  intField("Last frame", "##last", s.last);
   noteWidget("export/last");
   ImGui::EndDisabled();
-  ImGui::SetNextItemWidth(100.0f);
-  ImGui::InputInt("Resolution", &s.resolution, 8, 32);
+  intField("Resolution", "##resolution", s.resolution);
   s.resolution = std::clamp(s.resolution, 2, 1024);
   noteWidget("export/resolution");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Polygonisation cells along the longest side of the morph's bounds");

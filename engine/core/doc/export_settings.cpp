@@ -23,8 +23,8 @@ bool exportFormatFromName(const std::string& name, ExportFormat& out) {
 const char* exportFormatLabel(ExportFormat f) {
   switch (f) {
     case ExportFormat::GltfAnimated: return "glTF animated (.glb)";
-    case ExportFormat::PlySequence: return "PLY sequence (NAME_####.ply)";
-    case ExportFormat::ObjSequence: return "OBJ sequence (NAME_####.obj)";
+    case ExportFormat::PlySequence: return "PLY sequence (.ply per frame)";
+    case ExportFormat::ObjSequence: return "OBJ sequence (.obj per frame)";
   }
   return "";
 }
