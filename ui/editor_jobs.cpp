@@ -89,7 +89,10 @@ void EditorUI::drawJob(EditorContext& /*ctx*/) {
   }
 }
 
-void EditorUI::loadProject(const std::string& path, bool recover, EditorContext& /*ctx*/) {
+void EditorUI::loadProject(const std::string& path, bool recover, EditorContext& ctx) {
+  // The document stays editable while the other one loads; edits made meanwhile are not thrown away.
+  const Document* before = &doc(ctx);
+  const uint64_t revision = before->revision();
   struct Loaded {
     std::unique_ptr<Document> doc;
     std::map<std::string, AssetCache::Entry> assets;
@@ -103,9 +106,14 @@ void EditorUI::loadProject(const std::string& path, bool recover, EditorContext&
         loaded->doc = std::move(*opened);
         return loadActorAssets(*loaded->doc, pr, loaded->assets);
       },
-      [this, path, recover, loaded](EditorContext& ctx, const Status& st) {
+      [this, path, recover, loaded, before, revision](EditorContext& ctx, const Status& st) {
         if (!st) {
           showError("Cannot open " + path + ":\n" + st.error());
+          return;
+        }
+        if (ctx.document.get() == before && before->revision() != revision && before->dirty()) {
+          showError("Did not open " + path + ": the open project was edited while it loaded.\n"
+                    "Save or undo those edits, then open it again.");
           return;
         }
         for (auto& [assetPath, entry] : loaded->assets) ctx.assets.insert(assetPath, std::move(entry));
