@@ -12,10 +12,11 @@ ROOT=$PWD
 # Every package whose headers, libraries or programs the build or the tests use: the test
 # "packages: run.sh installs every header, ..." (tests/packages/) fails naming what is missing.
 # libxrandr-dev: GLFW's native-access header (X11 presentation) includes X11/extensions/Xrandr.h.
+# ffmpeg: animorph-cli bake --mp4 encodes the playblast with it (and the test reads it with ffprobe).
 BUILD_PACKAGES=(build-essential cmake ninja-build pkg-config
   libimgui-dev libglfw3-dev libglm-dev libvulkan-dev mesa-vulkan-drivers
   glslang-tools libtinygltf-dev nlohmann-json3-dev libstb-dev libtbb-dev
-  libx11-dev libxext-dev libxrandr-dev)
+  libx11-dev libxext-dev libxrandr-dev ffmpeg)
 # nodejs, npm: the Khronos glTF-Validator (an npm package) checks the glTF files we write;
 # blender (with python3-numpy, which its glTF importer needs) imports them in the export test.
 TEST_PACKAGES=(catch2 vulkan-validationlayers xvfb xauth xdotool imagemagick

@@ -72,7 +72,7 @@ void openCreateAnimorphosis(const Document& doc, CreateAnimorphosisState& st) {
 
 void drawCreateAnimorphosisPopup(Document& doc, CreateAnimorphosisState& st, CorrespondenceEditorState& editor,
                                  StatusMessage& status) {
-  st.isOpen = beginCreateModal(kPopup, st.openNext);
+  st.isOpen = beginCentredModal(kPopup, st.openNext);
   if (!st.isOpen) return;
   const Project& p = doc.project();
   std::vector<const Actor*> blobs = blobActors(p);

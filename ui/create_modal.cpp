@@ -6,7 +6,7 @@
 
 namespace animorph {
 
-bool beginCreateModal(const char* id, bool& openNext) {
+bool beginCentredModal(const char* id, bool& openNext) {
   if (openNext) {
     ImGui::OpenPopup(id);
     openNext = false;

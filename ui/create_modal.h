@@ -1,5 +1,5 @@
 #pragma once
-// The frame shared by the Create > ... dialogs (Morph, Animorphosis): a modal
+// The frame shared by the Create > ... dialogs (Morph, Animorphosis) and File > Export...: a modal
 // centred over the window, the last refusal in red, Create / Cancel buttons
 // (Esc cancels), each noted in the widget map under a key prefix.
 #include <string>
@@ -7,7 +7,7 @@
 namespace animorph {
 
 // Opens the popup id when openNext (and clears it), then begins it; false when it is not open.
-bool beginCreateModal(const char* id, bool& openNext);
+bool beginCentredModal(const char* id, bool& openNext);
 
 enum class ModalChoice { None, Create, Cancel };
 

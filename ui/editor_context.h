@@ -42,6 +42,7 @@ struct EditorOutput {
   std::optional<std::string> screenshotPath; // File > Save Screenshot chose this PNG path
   bool quit = false;                         // the user confirmed quitting
   bool documentReplaced = false;             // ctx.document is a different document now
+  bool jobRunning = false;                   // a background job runs: keep drawing (its progress moves)
   bool weightPaintMode = false;              // Weight Paint mode: show weightOverlay.actorId alone, unmorphed
   WeightOverlayRequest weightOverlay;        // draw this actor in heat colours of these weights
   Selection highlightBlobNode;               // highlight this BlobTree node's skeleton (empty actorId: none)

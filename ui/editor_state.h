@@ -8,6 +8,7 @@
 #include "curve_editor_panel.h"
 #include "gizmo.h"
 #include "drag_merge.h"
+#include "export_dialog.h"
 #include "file_browser.h"
 #include "inspector_panel.h"
 #include "layout.h"
@@ -28,7 +29,7 @@ namespace animorph {
 enum class PendingKind { None, New, Open, OpenPath, Quit };
 
 // What a running file dialog is for.
-enum class BrowserPurpose { None, OpenProject, SaveProjectAs, ImportGltf, Screenshot };
+enum class BrowserPurpose { None, OpenProject, SaveProjectAs, ImportGltf, Screenshot, ExportOutput };
 
 struct EditorState {
   Preferences prefs;  // layout sizes, camera scheme, recent files, autosave interval
@@ -61,6 +62,7 @@ struct EditorState {
 
   // Dialogs.
   FileBrowser browser;
+  ExportDialogState exportDialog;  // File > Export...
   BrowserPurpose browserPurpose = BrowserPurpose::None;
   PendingKind pending = PendingKind::None;
   std::string pendingPath;            // for PendingKind::OpenPath

@@ -34,6 +34,9 @@ const std::vector<FileFilter> kOpenFilters = {
     {"All files", {}}};
 const std::vector<FileFilter> kGltfFilters = {{"glTF (*.gltf, *.glb)", {".gltf", ".glb"}}, {"All files", {}}};
 const std::vector<FileFilter> kPngFilters = {{"PNG image (*.png)", {".png"}}};
+const std::vector<FileFilter> kGlbFilters = {{"glTF binary (*.glb)", {".glb"}}};
+// A sequence goes into a folder: the name typed is the folder's (made when missing).
+const std::vector<FileFilter> kFolderFilters = {{"Folder (type its name)", {}}};
 
 constexpr float kGapColor[3] = {0.11f, 0.11f, 0.12f};  // between panels
 constexpr ImGuiWindowFlags kOverlayFlags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
@@ -123,6 +126,7 @@ void EditorUI::draw(EditorContext& ctx) {
   out_.screenshotPath.reset();
   out_.documentReplaced = false;
   ImGuiIO& io = ImGui::GetIO();
+  pollJob(ctx);  // a finished job's result first: this frame shows it
 
   // Housekeeping: autosave, asset reload, playback.
   {
@@ -193,6 +197,22 @@ void EditorUI::draw(EditorContext& ctx) {
   for (Action a : actions) dispatch(a, ctx);
 
   drawPrompts(ctx);
+  switch (drawExportDialog(doc(ctx), st_.exportDialog)) {
+    case ExportDialogChoice::Browse: {
+      const bool gltf = st_.exportDialog.edit.format == ExportFormat::GltfAnimated;
+      const fs::path out(st_.exportDialog.edit.output);
+      st_.browser.open(FileBrowser::Mode::Save, gltf ? "Export to" : "Export into the folder",
+                       gltf ? kGlbFilters : kFolderFilters,
+                       out.has_parent_path() ? out.parent_path().string() : doc(ctx).baseDir(),
+                       out.filename().string());
+      st_.browserPurpose = BrowserPurpose::ExportOutput;
+      break;
+    }
+    case ExportDialogChoice::Export: startExport(ctx); break;
+    case ExportDialogChoice::Cancel:
+    case ExportDialogChoice::None: break;
+  }
+  drawJob(ctx);
   drawCreateAnimorphosisPopup(doc(ctx), st_.createAnimorphosis, st_.correspondence, st_.status);
   drawCreateMorphPopup(doc(ctx), ctx.assets, st_.createMorph, st_.status);
   if (drawPreferencesWindow(st_.showPreferences, st_.prefs, st_.prefsPath)) savePreferences();
@@ -202,6 +222,7 @@ void EditorUI::draw(EditorContext& ctx) {
   st_.drag.endFrame(doc(ctx));
   out_.camera = st_.camera;
   out_.weightPaintMode = st_.paint.active;
+  out_.jobRunning = job_ != nullptr;
   out_.weightOverlay = weightOverlayRequest(doc(ctx), st_.paint);
   out_.highlightBlobNode = st_.correspondence.visible ? st_.correspondence.hovered : Selection{};
   const LayoutRect& vp = st_.layout.viewport;
@@ -330,6 +351,7 @@ void EditorUI::dispatch(Action a, EditorContext& ctx) {
       st_.browser.open(FileBrowser::Mode::Open, "Import glTF", kGltfFilters, d.baseDir());
       st_.browserPurpose = BrowserPurpose::ImportGltf;
       break;
+    case Action::Export: openExportDialog(d, st_.exportDialog); break;
     case Action::SaveScreenshot:
       st_.browser.open(FileBrowser::Mode::Save, "Save Screenshot", kPngFilters, d.baseDir(),
                        fs::path(d.displayName()).stem().string() + ".png");
@@ -544,36 +566,6 @@ void EditorUI::openProjectPath(const std::string& path, EditorContext& ctx) {
   loadProject(path, false, ctx);
 }
 
-void EditorUI::openGltfAsNewProject(const std::string& path, EditorContext& ctx) {
-  const AssetCache::Entry& e = ctx.assets.get(path);
-  if (!e.character) {  // the current document stays, as when a project fails to open
-    showError("Cannot open " + path + ":\n" + e.error);
-    return;
-  }
-  // The timeline spans the character's first clip, as importing into an empty scene does elsewhere.
-  auto fresh = std::make_unique<Document>();
-  Project p = fresh->project();
-  if (!e.character->clips.empty() && e.character->clips[0].durationSec > 0.0f && p.timeline.fps > 0.0)
-    p.timeline.frameEnd = std::max(1, int(std::ceil(double(e.character->clips[0].durationSec) * p.timeline.fps)));
-  fresh->reset(std::move(p), {});
-  replaceDocument(std::move(fresh), ctx);
-  importGltf(path, ctx);
-  setStatus("New project with " + fileName(path) + " imported (not saved yet)");
-}
-
-void EditorUI::loadProject(const std::string& path, bool recover, EditorContext& ctx) {
-  auto opened = recover ? Document::recoverAutosave(path) : Document::open(path);
-  if (!opened) {
-    showError("Cannot open " + path + ":\n" + opened.error());
-    return;
-  }
-  std::string abs = (*opened)->path();
-  replaceDocument(std::move(*opened), ctx);
-  addRecentFile(st_.prefs, abs);
-  savePreferences();
-  setStatus(recover ? "Recovered the autosave of " + fileName(abs) + " (not saved yet)" : "Opened " + abs);
-}
-
 void EditorUI::replaceDocument(std::unique_ptr<Document> d, EditorContext& ctx) {
   if (ctx.document) ctx.document->endDrag();
   ctx.document = std::move(d);
@@ -648,6 +640,10 @@ void EditorUI::handleBrowserResult(const std::string& path, EditorContext& ctx) 
       break;
     }
     case BrowserPurpose::ImportGltf: importGltf(path, ctx); break;
+    case BrowserPurpose::ExportOutput:  // back to the dialog with the path chosen
+      st_.exportDialog.edit.output = path;
+      st_.exportDialog.openNext = true;
+      break;
     case BrowserPurpose::Screenshot:
       out_.screenshotPath = path;
       setStatus("Screenshot: " + path);
@@ -655,26 +651,12 @@ void EditorUI::handleBrowserResult(const std::string& path, EditorContext& ctx) 
   }
 }
 
-void EditorUI::importGltf(const std::string& path, EditorContext& ctx) {
-  Document& d = doc(ctx);
-  std::string projectDir = d.path().empty() ? std::string() : d.baseDir();
-  Actor actor = actorForAsset(d.project(), path, projectDir);
-  std::string id = actor.id;
-  const AssetCache::Entry& e = ctx.assets.get(path);
-  d.execute(addActorCommand(std::move(actor)));
-  d.selection = {id, -1};
-  if (e.character) {
-    setStatus("Imported " + fileName(path));
-    frameSelection(ctx);
-  } else {
-    setStatus("Added " + fileName(path) + ", but it did not load: " + e.error, true);
-  }
-}
-
 void EditorUI::drawPrompts(EditorContext& ctx) {
   if (auto chosen = st_.browser.draw()) handleBrowserResult(*chosen, ctx);
   if (!st_.browser.isOpen() && st_.browserPurpose != BrowserPurpose::None) {
-    // Cancelled: a Save As that was to be followed by New/Open/Quit is dropped too.
+    // Cancelled: a Save As that was to be followed by New/Open/Quit is dropped too; the Export
+    // dialog comes back as it was.
+    if (st_.browserPurpose == BrowserPurpose::ExportOutput) st_.exportDialog.openNext = true;
     st_.browserPurpose = BrowserPurpose::None;
     st_.afterSaveAs = PendingKind::None;
   }

@@ -10,12 +10,15 @@
 // output().viewport with output().camera, then the ImGui draw data on top.
 // On the window's close button call requestQuit() and keep running until
 // output().quit (the user may cancel on the unsaved-changes prompt).
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "blobtree/node_type.h"
 #include "editor_context.h"
 #include "editor_state.h"
+#include "util/background_job.h"
 #include "widget_rects.h"
 
 namespace animorph {
@@ -41,6 +44,14 @@ class EditorUI {
   void requestDrop(std::vector<std::string> paths);
   // The folder whose .animorph projects Help > Demos lists (sorted by name); none when it has none.
   void setDemoDir(const std::string& dir);
+
+  // The long operation running off the UI thread (opening a project, importing a glTF, an
+  // export), or null. Its panel shows progress, the time left and Cancel; Esc cancels it too.
+  // When it finishes, the next draw() applies its result to the Document (one undoable step).
+  const BackgroundJob* runningJob() const { return job_.get(); }
+  // Waits for the running job's work and applies its result now (headless tests drive the UI
+  // frame by frame and want each frame's work done; the editor never blocks on a job).
+  void finishJob(EditorContext& ctx);
 
   EditorState& state() { return st_; }
   const EditorState& state() const { return st_; }
@@ -72,7 +83,16 @@ class EditorUI {
   bool saveOrSaveAs(PendingKind after, EditorContext& ctx);
   void startSaveAs(PendingKind after, EditorContext& ctx);
   void handleBrowserResult(const std::string& path, EditorContext& ctx);
+  // Loads the glTF off the UI thread, then adds it as an actor (one undoable step).
   void importGltf(const std::string& path, EditorContext& ctx);
+  void addImportedActor(const std::string& path, EditorContext& ctx);
+  // Runs work as the editor's background job; done runs on the UI thread with the work's status
+  // (not for a cancelled job: the status bar says so). Refused, with a message, while another runs.
+  using JobDone = std::function<void(EditorContext&, const Status&)>;
+  bool startJob(std::string label, BackgroundJob::Work work, JobDone done);
+  void pollJob(EditorContext& ctx);
+  void drawJob(EditorContext& ctx);
+  void startExport(EditorContext& ctx);
   void handleDrop(const std::vector<std::string>& paths, EditorContext& ctx);
   void frameSelection(EditorContext& ctx);
   void addNodeToSelection(NodeType type, EditorContext& ctx);
@@ -85,6 +105,8 @@ class EditorUI {
 
   EditorState st_;
   EditorOutput out_;
+  std::unique_ptr<BackgroundJob> job_;
+  JobDone jobDone_;
   WidgetRects widgets_;
   std::vector<std::pair<PendingKind, std::string>> external_;  // requestQuit/requestOpen
   std::vector<std::string> dropped_;                           // requestDrop

@@ -43,6 +43,7 @@ MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& rece
     item("Import glTF...", Action::ImportGltf);
     item("Import Weights from Vertex Colour...", Action::ImportWeights, doc.project().morph.enabled());
     item("Save Screenshot...", Action::SaveScreenshot);
+    item("Export...", Action::Export, doc.project().morph.enabled() || doc.project().animorphosis.enabled());
     ImGui::Separator();
     bool recentOpen = beginMenu("Recent", !recentFiles.empty());
     if (recentOpen) {

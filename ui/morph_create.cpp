@@ -68,7 +68,7 @@ void openCreateMorph(const Document& doc, CreateMorphState& st) {
 }
 
 void drawCreateMorphPopup(Document& doc, AssetCache& assets, CreateMorphState& st, StatusMessage& status) {
-  st.isOpen = beginCreateModal(kPopup, st.openNext);
+  st.isOpen = beginCentredModal(kPopup, st.openNext);
   if (!st.isOpen) return;
   const Project& p = doc.project();
   bool close = false;

@@ -9,6 +9,7 @@ double RedrawPolicy::waitAfterFrame(const RedrawState& s) {
     --settle_;
     return 0.0;
   }
+  if (s.jobRunning) return kJobFrameSec;
   if (s.awaitingWork) return kWorkPollSec;
   return s.textInput ? kCaretTickSec : kIdleTickSec;
 }

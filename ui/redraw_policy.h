@@ -20,6 +20,7 @@ struct RedrawState {
   bool animating = false;  // something changes without input: draw the next frame at once
   bool textInput = false;  // a text field has the keyboard
   bool awaitingWork = false;  // a background job will wake the loop when it has something to show
+  bool jobRunning = false;    // an editor job (open, import, export) runs: its progress panel moves
 };
 
 class RedrawPolicy {
@@ -28,6 +29,7 @@ class RedrawPolicy {
   static constexpr double kIdleTickSec = 1.0;
   static constexpr double kCaretTickSec = 0.5;
   static constexpr double kWorkPollSec = 0.25;  // awaiting work: a poll all the same, should a wake be missed
+  static constexpr double kJobFrameSec = 0.1;   // a job's progress panel redrawn ten times a second
 
   // After a frame: how long the loop may wait for events before drawing the
   // next one; 0 draws it at once.

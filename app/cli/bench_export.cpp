@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "cli/bench.h"
+#include "cli/bench_demo_project.h"
 #include "doc/project_io.h"
 #include "io/gltf_sequence_export.h"
 #include "morph/morph_runtime.h"
@@ -24,13 +25,10 @@ double sinceMs(std::chrono::steady_clock::time_point t0) {
 
 std::vector<Row> benchExport(const bench::Options& opt) {
   std::vector<Row> rows;
-  const char* demoEnv = std::getenv("ANIMORPH_DEMO");
-  const fs::path demo = demoEnv ? fs::path(demoEnv) : fs::path(ANIMORPH_SOURCE_DIR) / "resources/demo/demo.animorph";
-  auto project = loadProject(demo.string());
-  if (!project) return {{"skipped", 0, "", "", project.error()}};
-  AssetCache assets;
-  auto rt = prepareMorph(*project, demo.parent_path().string(), assets);
-  if (!rt) return {{"skipped", 0, "", "", rt.error()}};
+  const bench::DemoMorph dm = bench::loadDemoMorph();
+  if (!dm.error.empty()) return {{"skipped", 0, "", "", dm.error}};
+  const Project* project = &dm.project;
+  const auto* rt = &dm.runtime;
   std::string tmpl = (fs::temp_directory_path() / "animorph-bench-export-XXXXXX").string();
   if (!::mkdtemp(tmpl.data())) return {{"skipped", 0, "", "", "cannot create a temporary directory"}};
   const fs::path dir = tmpl;

@@ -14,7 +14,10 @@
 #include <thread>
 
 #include "animorph/evaluate_generic.h"
+#include "bake/frame_files.h"
 #include "cli/cli_command.h"
+#include "cli/playblast.h"
+#include "cli/progress_bar.h"
 #include "doc/animorphosis_project.h"
 #include "poly/polygonizer.h"
 #include "scene/mesh_character.h"
@@ -36,45 +39,9 @@
 namespace {
 
 using namespace animorph;
+using cli::PictureOptions;
+using cli::ProgressBar;
 namespace fs = std::filesystem;
-
-// DIR/NAME_####.EXT: the frame number padded to 4 digits, as Houdini's $F4 and
-// Blender's mesh-sequence readers expect.
-std::string frameName(const fs::path& dir, const std::string& name, int frame, const char* ext) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "_%04d.%s", frame, ext);
-  return (dir / (name + buf)).string();
-}
-
-// A file-name prefix from a project name: characters outside [A-Za-z0-9._-] become '_'.
-std::string filePrefix(const std::string& name) {
-  std::string out;
-  for (char c : name) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '_') ? c : '_';
-  return out.empty() ? std::string("frame") : out;
-}
-
-// One progress line on a terminal, redrawn in place; nothing when stdout is not a tty.
-class ProgressBar {
- public:
-  ProgressBar(const char* what, int total) : what_(what), total_(total), tty_(isatty(fileno(stdout)) != 0) {}
-  void step() {
-    std::lock_guard<std::mutex> lock(mutex_);
-    ++done_;
-    if (!tty_) return;
-    const int width = 30, fill = total_ > 0 ? done_ * width / total_ : width;
-    std::printf("\r%s [%.*s%.*s] %d/%d", what_, fill, "##############################", width - fill,
-                "..............................", done_, total_);
-    if (done_ == total_) std::printf("\n");
-    std::fflush(stdout);
-  }
-
- private:
-  const char* what_;
-  int total_;
-  bool tty_;
-  int done_ = 0;
-  std::mutex mutex_;
-};
 
 // Runs frame(k) for k = 0..count-1 on up to `jobs` threads under a progress bar; frame returns an
 // error message, or "" on success. Returns the error of the first failing frame, naming it.
@@ -106,11 +73,12 @@ class FrameSink {
     fs::path dir;
     std::string prefix;
     bool plys = true, objs = false, png = false;
+    bool keep = false;  // keep every frame's mesh (for --png and --mp4)
     std::string gltf;  // empty: none
     double fps = 24.0;
     int first = 0, count = 0;
   };
-  explicit FrameSink(Options o) : o_(std::move(o)), kept(o_.png ? size_t(o_.count) : 0u) {
+  explicit FrameSink(Options o) : o_(std::move(o)), kept(o_.keep ? size_t(o_.count) : 0u) {
     if (o_.gltf.empty()) return;
     GltfSequenceOptions so;
     so.name = o_.prefix;
@@ -125,12 +93,12 @@ class FrameSink {
   std::string add(int k, TriangleMesh mesh) {
     const int f = o_.first + k;
     Status st;
-    if (o_.plys) st = writePly(mesh, frameName(o_.dir, o_.prefix, f, "ply"));
-    if (st && o_.objs) st = writeObj(mesh, frameName(o_.dir, o_.prefix, f, "obj"));
+    if (o_.plys) st = writePly(mesh, frameFileName(o_.dir.string(), o_.prefix, f, "ply"));
+    if (st && o_.objs) st = writeObj(mesh, frameFileName(o_.dir.string(), o_.prefix, f, "obj"));
     if (!st) return st.error();
     if (sequence_) {
       std::lock_guard<std::mutex> lock(sequenceMutex_);
-      ready_[size_t(k)] = o_.png ? mesh : std::move(mesh);
+      ready_[size_t(k)] = o_.keep ? mesh : std::move(mesh);
       done_[size_t(k)] = 1;
       for (; next_ < o_.count && done_[size_t(next_)]; ++next_) {
         if (Status added = sequence_->addFrame(ready_[size_t(next_)]); !added && sequenceError_.empty())
@@ -138,7 +106,7 @@ class FrameSink {
         ready_[size_t(next_)] = TriangleMesh{};
       }
     }
-    if (o_.png) kept[size_t(k)] = std::move(mesh);
+    if (o_.keep) kept[size_t(k)] = std::move(mesh);
     return {};
   }
 
@@ -174,70 +142,14 @@ class FrameSink {
   std::string sequenceError_;
 
  public:
-  std::vector<TriangleMesh> kept;  // with png: every frame's mesh, for renderPngs
+  std::vector<TriangleMesh> kept;  // with keep: every frame's mesh, for renderPictures
 };
 
-#if ANIMORPH_HAS_GPU
-int renderPngs(const std::vector<TriangleMesh>& meshes, int first, const fs::path& dir, const std::string& name,
-               const ViewOptions& view) {
-  gpu::ContextSettings cs;
-  auto ctxR = gpu::Context::create(cs);
-  if (!ctxR) return cli::fail("bake", "--png: no usable Vulkan device: " + ctxR.error());
-  gpu::Context& ctx = **ctxR;
-  const uint32_t width = 960, height = 540;
-  {
-    auto target = gpu::OffscreenTarget::create(ctx, width, height);
-    if (!target) return cli::fail("bake", target.error());
-    auto renderer = gpu::SceneRenderer::create(ctx, (*target)->renderPass());
-    if (!renderer) return cli::fail("bake", renderer.error());
-    gpu::MeshCache cache(ctx);
-    // One camera for the whole sequence, framing every frame.
-    Bounds all;
-    for (const auto& m : meshes)
-      for (const auto& p : m.positions) all.add(p);
-    OrbitCamera cam;
-    cam.yawRad = glm::radians(35.0f);
-    cam.pitchRad = glm::radians(20.0f);
-    cam.frame(all, float(width) / float(height));
-    ProgressBar bar("rendering", int(meshes.size()));
-    for (size_t i = 0; i < meshes.size(); ++i) {
-      SceneFrame frame;
-      MeshDraw d;
-      d.actorId = "morph";
-      d.character = characterFromMesh(meshes[i], "baked");
-      d.meshNode = 0;
-      d.meshIndex = 0;
-      d.joints = {glm::mat4(1.0f)};
-      frame.meshes.push_back(d);
-      gpu::Scene scene;
-      ViewOptions v = view;
-      v.showSkeleton = false;
-      gpu::buildScene(frame, v, {}, cache, scene);
-      gpu::ViewportRect rect{0, 0, width, height};
-      Status recorded = Status::success();
-      Status st = (*target)->render(
-          [&](VkCommandBuffer cmd) { recorded = (*renderer)->record(cmd, (*target)->serial(), rect, cam, scene); },
-          scene.options.background);
-      if (!st) return cli::fail("bake", st.error());
-      if (!recorded) return cli::fail("bake", recorded.error());
-      if (Status w = gpu::writePng(frameName(dir, name, first + int(i), "png"), (*target)->image()); !w)
-        return cli::fail("bake", w.error());
-      cache.endFrame();
-      bar.step();
-    }
-  }
-  if (ctx.validationEnabled() && ctx.validationErrorCount() > 0) {
-    std::fprintf(stderr, "animorph-cli bake: %u Vulkan validation error(s)\n", ctx.validationErrorCount());
-    return 3;
-  }
-  return 0;
-}
-#endif
 
 // A project whose only transformation is an animorphosis: C(t) polygonised frame by frame (CPU), in
 // the trees' own space; with --png, rendered like the morph's frames.
 int bakeAnimorphosis(const Project& p, const std::string& project, FrameSink& sink, int first, int last, int res,
-                     int jobs, bool png, const std::string& output) {
+                     int jobs, const PictureOptions& pics, const std::string& output) {
   auto c = projectGenericTree(p);
   if (!c) return cli::fail("bake", project + ": " + c.error());
   const AnimorphosisTiming timing = animorphosisTiming(p);
@@ -260,27 +172,23 @@ int bakeAnimorphosis(const Project& p, const std::string& project, FrameSink& si
               size_t(triangles), res, sink.into().c_str(), sec);
   if (std::string e = sink.finish(); !e.empty()) return cli::fail("bake", e);
 #if ANIMORPH_HAS_GPU
-  if (png) {
-    int code = renderPngs(sink.kept, first, output, sink.prefix(), p.view);
-    if (code != 0) return code;
-    std::printf("rendered %d PNG frames into %s\n", count, output.c_str());
-  }
+  if (int code = renderPictures(sink.kept, first, output, sink.prefix(), p.view, pics); code != 0) return code;
 #else
-  (void)png;
+  (void)pics;
   (void)output;
 #endif
   return 0;
 }
 
 int runBake(const std::vector<std::string>& args) {
-  std::string project, output, frames, name, gltf, format = "ply";
+  std::string project, output, frames, name, gltf, mp4, size = "1280x720", format = "ply";
   int res = 48, jobs = 1;
-  bool png = false, gpu = false;
+  bool png = false, gpu = false, burnIn = false;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     auto value = [&]() -> const std::string* { return i + 1 < args.size() ? &args[++i] : nullptr; };
     if (a == "-o" || a == "--output" || a == "--frames" || a == "--res" || a == "--jobs" || a == "--name" ||
-        a == "--format" || a == "--gltf") {
+        a == "--format" || a == "--gltf" || a == "--mp4" || a == "--size") {
       const std::string* v = value();
       if (!v) return cli::fail("bake", a + " needs a value", 2);
       if (a == "--frames") frames = *v;
@@ -289,11 +197,15 @@ int runBake(const std::vector<std::string>& args) {
       else if (a == "--name") name = *v;
       else if (a == "--format") format = *v;
       else if (a == "--gltf") gltf = *v;
+      else if (a == "--mp4") mp4 = *v;
+      else if (a == "--size") size = *v;
       else output = *v;
     } else if (a == "--obj") {
       format = "obj";
     } else if (a == "--png") {
       png = true;
+    } else if (a == "--burn-in") {
+      burnIn = true;
     } else if (a == "--gpu") {
       gpu = true;
     } else if (!a.empty() && a[0] == '-') {
@@ -316,9 +228,14 @@ int runBake(const std::vector<std::string>& args) {
     }
   }
   const bool needDir = writePlys || writeObjs || png;
-  if (project.empty() || frames.empty() || (needDir && output.empty()) || (!needDir && gltf.empty()))
+  int width = 0, height = 0;
+  char sizeTail = 0;
+  if (std::sscanf(size.c_str(), "%dx%d%c", &width, &height, &sizeTail) != 2 || width < 16 || height < 16 ||
+      width > 8192 || height > 8192 || width % 2 || height % 2)
+    return cli::fail("bake", "--size: expected WxH, even numbers 16..8192 (H.264 needs even sizes), got '" + size + "'", 2);
+  if (project.empty() || frames.empty() || (needDir && output.empty()) || (!needDir && gltf.empty() && mp4.empty()))
     return cli::fail("bake", "usage: bake PROJECT --frames A:B --res N -o DIR [--format ply|obj|none] [--gltf FILE.glb] (see --help)", 2);
-  if (!name.empty() && filePrefix(name) != name)
+  if (!name.empty() && framePrefix(name) != name)
     return cli::fail("bake", "--name: use letters, digits, '.', '-' and '_' only, got '" + name + "'", 2);
   int first = 0, last = 0;
   char tail = 0;
@@ -328,22 +245,32 @@ int runBake(const std::vector<std::string>& args) {
   if (jobs < 1 || jobs > 256) return cli::fail("bake", "--jobs: expected 1..256", 2);
 #if !ANIMORPH_HAS_GPU
   if (png) return cli::fail("bake", "--png: this animorph-cli was built without the GPU library", 2);
+  if (!mp4.empty()) return cli::fail("bake", "--mp4: this animorph-cli was built without the GPU library", 2);
   if (gpu) return cli::fail("bake", "--gpu: this animorph-cli was built without the GPU library", 2);
 #endif
 
   auto p = loadProject(project);
   if (!p) return cli::fail("bake", p.error());
-  const std::string prefix = name.empty() ? filePrefix(p->name) : name;
+  const std::string prefix = name.empty() ? framePrefix(p->name) : name;
   std::error_code ec;
   if (needDir) fs::create_directories(output, ec);
   if (ec) return cli::fail("bake", output + ": cannot create directory: " + ec.message());
   if (!gltf.empty() && fs::path(gltf).has_parent_path()) fs::create_directories(fs::path(gltf).parent_path(), ec);
   if (ec) return cli::fail("bake", gltf + ": cannot create its directory: " + ec.message());
   const int count = last - first + 1;
-  FrameSink sink({output, prefix, writePlys, writeObjs, png, gltf, p->timeline.fps, first, count});
+  PictureOptions pics;
+  pics.png = png;
+  pics.mp4 = mp4;
+  pics.burnIn = burnIn;
+  pics.fps = p->timeline.fps;
+  pics.width = uint32_t(width);
+  pics.height = uint32_t(height);
+  if (!mp4.empty() && fs::path(mp4).has_parent_path()) fs::create_directories(fs::path(mp4).parent_path(), ec);
+  if (ec) return cli::fail("bake", mp4 + ": cannot create its directory: " + ec.message());
+  FrameSink sink({output, prefix, writePlys, writeObjs, png, png || !mp4.empty(), gltf, p->timeline.fps, first, count});
   if (!p->morph.enabled() && p->animorphosis.enabled()) {
     if (gpu) return cli::fail("bake", "--gpu: an animorphosis is baked on the CPU (run without --gpu)", 2);
-    return bakeAnimorphosis(*p, project, sink, first, last, res, jobs, png, output);
+    return bakeAnimorphosis(*p, project, sink, first, last, res, jobs, pics, output);
   }
   const std::string baseDir = fs::absolute(fs::path(project)).parent_path().string();
   AssetCache assets;
@@ -443,11 +370,7 @@ int runBake(const std::vector<std::string>& args) {
                  gpuCtx->validationErrorCount());
     return 3;
   }
-  if (png) {
-    int code = renderPngs(sink.kept, first, output, prefix, p->view);
-    if (code != 0) return code;
-    std::printf("rendered %d PNG frames into %s\n", count, output.c_str());
-  }
+  if (int code = renderPictures(sink.kept, first, output, prefix, p->view, pics); code != 0) return code;
 #endif
   return 0;
 }
@@ -456,7 +379,8 @@ int runBake(const std::vector<std::string>& args) {
 
 ANIMORPH_CLI_COMMAND("bake", "bake a project's morph into mesh sequences, an animated glTF (and PNG frames)",
                      "usage: animorph-cli bake PROJECT.animorph --frames A:B --res N -o DIR [--format ply|obj|ply,obj|none]\n"
-                     "                         [--obj] [--name NAME] [--gltf FILE.glb] [--png] [--gpu] [--jobs J]\n"
+                     "                         [--obj] [--name NAME] [--gltf FILE.glb] [--png] [--mp4 FILE.mp4 [--size WxH]\n"
+                     "                         [--burn-in]] [--gpu] [--jobs J]\n"
                      "  Bakes every frame A..B: the source's skinned mesh before marker A, its\n"
                      "  collapse onto the stand-in A->B, the polygonised implicit morph B->C (N cells\n"
                      "  along the longest side), the target's expansion C->D and its skinned mesh\n"
@@ -476,6 +400,10 @@ ANIMORPH_CLI_COMMAND("bake", "bake a project's morph into mesh sequences, an ani
                      "               (optional extension). Written atomically.\n"
                      "  --png        also DIR/NAME_####.png, rendered offscreen (Vulkan; set\n"
                      "               ANIMORPH_VALIDATION=1 for validation layers)\n"
+                     "  --mp4 FILE   also a playblast: every frame rendered offscreen (Vulkan) at --size\n"
+                     "               (default 1280x720, even numbers) and encoded by ffmpeg (H.264, the\n"
+                     "               timeline's fps); written under a temporary name, renamed when done\n"
+                     "  --burn-in    the frame number drawn into the playblast's top-left corner\n"
                      "  --gpu        the B->C stage on the Vulkan compute polygoniser (offscreen, no\n"
                      "               display needed); exits 1 with a message when no device is usable\n"
                      "               or the device fails (no silent fallback to the CPU)\n"

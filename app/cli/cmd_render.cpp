@@ -7,6 +7,10 @@
 #include "doc/document.h"
 #include "mesh_cache.h"
 #include "offscreen_target.h"
+#include "blobtree/compile.h"
+#include "poly/polygonizer.h"
+#include "scene/animorphosis_scene.h"
+#include "scene/mesh_character.h"
 #include "scene/morph_scene.h"
 #include "scene/scene_frame.h"
 #include "scene_from_frame.h"
@@ -63,6 +67,26 @@ int runRender(const std::vector<std::string>& args) {
   } else if (!morphCache.error().empty()) {
     std::fprintf(stderr, "animorph-cli render: warning: morph: %s\n", morphCache.error().c_str());
   }
+  // BlobTree actors (and an animorphosis' C(t) in their place): polygonised on the CPU at --res and
+  // drawn as meshes placed by the actor's transform (the editor's preview does the same on a worker).
+  AnimorphosisCache animorphosisCache;
+  AnimorphosisSceneInfo ai = applyAnimorphosis(frame, doc.project(), animorphosisCache, &doc, doc.revision());
+  if (ai.stage != AnimorphosisStage::None) stage += ", " + describeAnimorphosis(ai);
+  for (const BlobDraw& b : frame.blobs) {
+    const Actor* actor = doc.project().findActor(b.actorId);
+    if (!b.tree && !actor) continue;
+    PolygonizeSettings ps;
+    ps.resolution = morphResolution;
+    auto poly = polygonize(compileFieldProgram(b.tree ? *b.tree : actor->blobTree, b.treeTimeSec), ps);
+    if (!poly) return cli::fail("render", "BlobTree actor '" + b.actorId + "': " + poly.error());
+    MeshDraw d;
+    d.actorId = b.actorId;
+    d.character = characterFromMesh(poly->mesh, b.actorId);
+    d.meshNode = 0;
+    d.meshIndex = 0;
+    d.joints = {b.model};
+    frame.meshes.push_back(std::move(d));
+  }
 
   gpu::ContextSettings cs;
   auto ctxR = gpu::Context::create(cs);
@@ -110,6 +134,7 @@ ANIMORPH_CLI_COMMAND("render", "render a project's viewport offscreen to PNG (no
                      "  Renders the scene at frame N (default: the project's current frame) with the\n"
                      "  project's view options, the camera framing every actor. Uses the Vulkan device\n"
                      "  chosen as in the editor (ANIMORPH_GPU overrides). In a project with a morph,\n"
-                     "  the frame shows the morph's stage; --res is the polygonisation resolution of\n"
+                     "  the frame shows the morph's stage; BlobTree actors (and an animorphosis' C(t))\n"
+                     "  are polygonised on the CPU at --res; --res is the polygonisation resolution of\n"
                      "  the implicit stage (default 64).\n",
                      runRender);

@@ -129,6 +129,7 @@ int main(int argc, char** argv) {
     // that arrived without input would otherwise sit under a stale "refining" until the idle tick).
     rs.animating |= continuousRedraw || ectx.stats.previewInfo != previewInfoDrawn;
     rs.awaitingWork = blobBusy || (vf.morphStageShown && morphBusy);
+    rs.jobRunning = out.jobRunning;
     rs.textInput = ImGui::GetIO().WantTextInput;
     const double waitSec = redraw.waitAfterFrame(rs);
     if (uiMapPath && (frameCount % 3 == 0 || waitSec > 0.0))

@@ -5,7 +5,8 @@ usage: render_check.py CLI DEMO_DIR
 Renders the demo project at two frames and checks the pictures: the right size, the
 characters visible (many pixels differ from the background), the two frames different
 (the walk moves), zero validation errors (ANIMORPH_VALIDATION=1 makes them fail the
-command). A malformed project fails with its name on stderr."""
+command). The BlobTree demo and the animorphosis demo show their BlobTrees (the picture differs
+from the same scene with the actors hidden). A malformed project fails with its name on stderr."""
 import os
 import shutil
 import subprocess
@@ -24,8 +25,8 @@ def fail(msg):
     sys.exit(1)
 
 
-def render(frame, out):
-    r = subprocess.run([cli, "render", os.path.join(demo, "demo.animorph"), "--frame", str(frame), "--size",
+def render(frame, out, project=os.path.join(demo, "demo.animorph")):
+    r = subprocess.run([cli, "render", project, "--frame", str(frame), "--size",
                         "320x180", "-o", out], capture_output=True, text=True, env=env, timeout=120)
     if r.returncode != 0:
         fail(f"render --frame {frame} exited {r.returncode}: {r.stderr}")
@@ -51,6 +52,27 @@ changed = int(float(diff.stderr.split()[0]))
 if changed < 100:
     fail(f"frames 0 and 6 differ in only {changed} pixels: the animation does not play")
 print(f"ok: {float(fg):.0f} foreground pixels, {changed} pixels changed between frames")
+
+# BlobTree actors and an animorphosis' C(t) are drawn: each picture differs from the same project
+# with its actors hidden.
+import json  # noqa: E402
+for name, frame in (("blob_demo.animorph", 12), ("animorphosis.animorph", 96)):
+    with open(os.path.join(demo, name)) as f:
+        p = json.load(f)
+    for a in p["actors"]:
+        a["visible"] = False
+    hidden = os.path.join(work, "hidden_" + name)
+    with open(hidden, "w") as f:
+        json.dump(p, f)
+    shown_png, hidden_png = os.path.join(work, name + ".png"), os.path.join(work, name + ".hidden.png")
+    render(frame, shown_png, os.path.join(demo, name))
+    render(frame, hidden_png, hidden)
+    diff = subprocess.run(["compare", "-metric", "AE", "-fuzz", "3%", shown_png, hidden_png, "null:"],
+                          capture_output=True, text=True)
+    drawn = int(float(diff.stderr.split()[0]))
+    if drawn < 0.03 * 320 * 180:
+        fail(f"{name}: only {drawn} pixels differ from the scene without its actors: the BlobTree is not drawn")
+    print(f"ok: {name} frame {frame}: the BlobTree actors cover {drawn} pixels")
 
 bad = os.path.join(work, "bad.animorph")
 with open(bad, "w") as f:

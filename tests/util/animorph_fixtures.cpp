@@ -4,6 +4,8 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "doc/animorphosis_commands.h"
+#include "doc/blobtree_commands.h"
 #include "util/blob_builders.h"
 
 namespace animorph::test {
@@ -201,6 +203,22 @@ BlobTree randomCreature(std::mt19937& rng, int nodes) {
   --budget;
   while (budget > 0) root.children.push_back(randomPart(rng, 4, id, budget, glm::vec3(0.0f), 2.0f));
   return treeOf(root, 0.5f);
+}
+
+Project walkerToFlyerProject(const std::string& name, int first, int last) {
+  Project p;
+  p.name = name;
+  p.timeline.frameStart = first;
+  p.timeline.frameEnd = last;
+  Actor w = makeBlobTreeActor(p, "walker");
+  w.blobTree = walkerTree();
+  p.actors.push_back(w);
+  Actor f = makeBlobTreeActor(p, "flyer");
+  f.blobTree = flyerTree();
+  p.actors.push_back(f);
+  auto c = createAnimorphosisCommand(p, p.actors[0].id, p.actors[1].id, 1.0, 3.0, true);
+  if (c) (*c)->apply(p);
+  return p;
 }
 
 }  // namespace animorph::test

@@ -11,12 +11,16 @@
 
 #include "animorph/correspondence.h"
 #include "blobtree/blob_tree.h"
+#include "doc/project.h"
 
 namespace animorph::test {
 
 BlobTree walkerTree();
 BlobTree flyerTree();
 CorrespondenceGraph walkerToFlyerGraph();
+// A project named `name` with the walker and the flyer as BlobTree actors and the walker -> flyer
+// animorphosis from 1 s to 3 s (automatic correspondence), timeline frames first..last.
+Project walkerToFlyerProject(const std::string& name, int first = 0, int last = 96);
 
 // A copy of `tree` moved by `offset`, scaled by `scale` about the origin
 // (every skeleton point, top-level frame translation and radius transformed),

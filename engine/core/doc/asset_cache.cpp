@@ -18,7 +18,9 @@ long long modificationTime(const std::string& path) {
       std::chrono::duration_cast<std::chrono::nanoseconds>(t.time_since_epoch()).count());
 }
 
-AssetCache::Entry load(const std::string& path) {
+}  // namespace
+
+AssetCache::Entry AssetCache::load(const std::string& path) {
   AssetCache::Entry e;
   e.mtime = modificationTime(path);
   auto c = importGltf(path);
@@ -26,8 +28,6 @@ AssetCache::Entry load(const std::string& path) {
   else e.error = c.error();
   return e;
 }
-
-}  // namespace
 
 const AssetCache::Entry& AssetCache::get(const std::string& absolutePath) {
   auto it = entries_.find(absolutePath);

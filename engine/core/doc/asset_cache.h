@@ -18,6 +18,13 @@ class AssetCache {
     long long mtime = 0;
   };
 
+  // Loads the entry of absolutePath without the cache: safe on any thread (a background job loads
+  // a project's characters with it; the UI thread then insert()s them).
+  static Entry load(const std::string& absolutePath);
+  // Adds (or replaces) an entry loaded elsewhere.
+  void insert(const std::string& absolutePath, Entry e) { entries_[absolutePath] = std::move(e); }
+  bool contains(const std::string& absolutePath) const { return entries_.count(absolutePath) != 0; }
+
   // The character at absolutePath, loading it if needed. Never throws.
   const Entry& get(const std::string& absolutePath);
   // Forgets everything (next get() reloads).

@@ -179,7 +179,7 @@ int removeStaleTemporaries(const std::string& path) {
   return removed;
 }
 
-Result<std::string> readFile(const std::string& path, size_t maxBytes) {
+Result<std::string> readFile(const std::string& path, size_t maxBytes, JobProgress* progress) {
   // O_NONBLOCK: opening a FIFO for reading must not wait for a writer.
   int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
   if (fd < 0) return sysError(path, "cannot open");
@@ -203,12 +203,22 @@ Result<std::string> readFile(const std::string& path, size_t maxBytes) {
   std::string out;
   out.resize(static_cast<size_t>(st.st_size));
   size_t have = 0;
+  const size_t piece = progress ? size_t(1) << 20 : SIZE_MAX;
+  const double doneBefore = progress ? progress->done() : 0.0;
+  if (progress) progress->addTotal(double(st.st_size));
   for (;;) {
+    if (progress) {
+      progress->setDone(doneBefore + double(std::min(have, size_t(st.st_size))));
+      if (progress->cancelled()) {
+        ::close(fd);
+        return jobCancelled();
+      }
+    }
     if (have == out.size()) {
       if (out.size() > maxBytes) break;
       out.resize(std::min(maxBytes + 1, std::max<size_t>(out.size() * 2, 4096)));
     }
-    ssize_t n = ::read(fd, out.data() + have, out.size() - have);
+    ssize_t n = ::read(fd, out.data() + have, std::min(piece, out.size() - have));
     if (n < 0) {
       if (errno == EINTR) continue;
       Error e = sysError(path, "read failed");

@@ -6,6 +6,7 @@
 #include <string>
 #include <string_view>
 
+#include "util/job_progress.h"
 #include "util/result.h"
 
 namespace animorph {
@@ -30,6 +31,9 @@ inline constexpr size_t kMaxReadFileBytes = size_t(1) << 30;
 // Only regular files of at most maxBytes are read: the file is opened without
 // blocking and checked with fstat, so a directory, a FIFO or a device
 // (/dev/zero) is refused at once instead of hanging or reading forever.
-Result<std::string> readFile(const std::string& path, size_t maxBytes = kMaxReadFileBytes);
+// With progress: read in 1 MiB pieces, each counted as done bytes (of the file's size, added to
+// the total), cancel polled between them (then the error is jobCancelled()).
+Result<std::string> readFile(const std::string& path, size_t maxBytes = kMaxReadFileBytes,
+                             JobProgress* progress = nullptr);
 
 }  // namespace animorph

@@ -12,8 +12,8 @@ namespace fs = std::filesystem;
 
 Document::Document() = default;
 
-Result<std::unique_ptr<Document>> Document::open(const std::string& path) {
-  auto p = loadProject(path);
+Result<std::unique_ptr<Document>> Document::open(const std::string& path, JobProgress* progress) {
+  auto p = loadProject(path, progress);
   if (!p) return Error{p.error()};
   auto doc = std::make_unique<Document>();
   doc->reset(std::move(*p), fs::absolute(path).lexically_normal().string());
@@ -135,8 +135,8 @@ bool Document::hasNewerAutosave(const std::string& path) {
   return fs::last_write_time(a, ec) >= fs::last_write_time(path, ec);
 }
 
-Result<std::unique_ptr<Document>> Document::recoverAutosave(const std::string& path) {
-  auto p = loadProject(path + ".autosave");
+Result<std::unique_ptr<Document>> Document::recoverAutosave(const std::string& path, JobProgress* progress) {
+  auto p = loadProject(path + ".autosave", progress);
   if (!p) return Error{p.error()};
   auto doc = std::make_unique<Document>();
   doc->reset(std::move(*p), fs::absolute(path).lexically_normal().string());

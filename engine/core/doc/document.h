@@ -9,6 +9,7 @@
 #include "doc/command.h"
 #include "doc/project.h"
 #include "doc/undo_stack.h"
+#include "util/job_progress.h"
 #include "util/result.h"
 
 namespace animorph {
@@ -23,8 +24,9 @@ class Document {
  public:
   Document();
 
-  // Opens a project file. The error names the file and the problem.
-  static Result<std::unique_ptr<Document>> open(const std::string& path);
+  // Opens a project file. The error names the file and the problem. progress (optional): as
+  // loadProject reports it; safe to call off the UI thread (it touches nothing shared).
+  static Result<std::unique_ptr<Document>> open(const std::string& path, JobProgress* progress = nullptr);
 
   const Project& project() const { return project_; }
   // Applies and records an edit.
@@ -68,7 +70,7 @@ class Document {
   static bool hasNewerAutosave(const std::string& path);
   // Loads the autosave of path in place of path (the result is dirty and
   // still saves to path).
-  static Result<std::unique_ptr<Document>> recoverAutosave(const std::string& path);
+  static Result<std::unique_ptr<Document>> recoverAutosave(const std::string& path, JobProgress* progress = nullptr);
 
   // Replaces the whole project (File > New); clears history.
   void reset(Project p, std::string path);

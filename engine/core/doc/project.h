@@ -6,6 +6,7 @@
 
 #include "blobtree/blob_tree.h"
 #include "doc/animorphosis_setup.h"
+#include "doc/export_settings.h"
 #include "doc/morph_setup.h"
 #include "math/transform.h"
 
@@ -62,6 +63,7 @@ struct Project {
   ViewOptions view;
   MorphSetup morph;  // the source -> target morph; disabled when morph.sourceActorId is empty
   AnimorphosisSetup animorphosis;  // BlobTree -> BlobTree animorphosis; disabled when its source is empty
+  ExportSettings exportSettings;   // File > Export...: the last settings used
   bool operator==(const Project&) const = default;
 
   Actor* findActor(const std::string& id);

@@ -9,6 +9,7 @@
 #include "doc/animorphosis_project.h"
 #include "doc/animorphosis_setup_json.h"
 #include "doc/atomic_file.h"
+#include "doc/export_settings_json.h"
 #include "doc/morph_setup_json.h"
 #include "util/json_text.h"
 
@@ -95,6 +96,7 @@ std::string projectToJson(const Project& p) {
   j["view"] = {{"grid", p.view.showGrid}, {"skeleton", p.view.showSkeleton},
                {"wireframe", p.view.wireframe}, {"axes", p.view.showAxes},
                {"standins", p.view.showStandins}};
+  if (!(p.exportSettings == ExportSettings{})) j["export"] = exportSettingsToJson(p.exportSettings);
   json actors = json::array();
   for (const Actor& a : p.actors) {
     const glm::quat& q = a.transform.rotation;
@@ -192,6 +194,11 @@ Result<Project> projectFromJson(const std::string& text, const std::string& sour
     p.view.showAxes = r.boolean(v, "axes", "view", p.view.showAxes);
     p.view.showStandins = r.boolean(v, "standins", "view", p.view.showStandins);
   }
+  if (j.contains("export")) {
+    auto e = exportSettingsFromJson(j["export"], sourceName);
+    if (!e) return Error{e.error()};
+    p.exportSettings = std::move(*e);
+  }
   if (j.contains("actors")) {
     const json& actors = j["actors"];
     if (!actors.is_array()) return Error{sourceName + ": actors: expected an array"};
@@ -252,10 +259,18 @@ Result<Project> projectFromJson(const std::string& text, const std::string& sour
   return p;
 }
 
-Result<Project> loadProject(const std::string& path) {
-  auto text = readFile(path);
+Result<Project> loadProject(const std::string& path, JobProgress* progress) {
+  if (progress) progress->setStage("reading");
+  auto text = readFile(path, kMaxReadFileBytes, progress);
   if (!text) return Error{text.error()};
-  return projectFromJson(*text, path);
+  if (!progress) return projectFromJson(*text, path);
+  const double parseSteps = 4.0 * double(text->size());
+  progress->addTotal(parseSteps);
+  if (progress->cancelled()) return jobCancelled();
+  progress->setStage("parsing");
+  auto p = projectFromJson(*text, path);
+  progress->advance(parseSteps);
+  return p;
 }
 
 Status saveProject(const Project& p, const std::string& path) { return writeFileAtomic(path, projectToJson(p)); }

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "doc/project.h"
+#include "util/job_progress.h"
 #include "util/result.h"
 
 namespace animorph {
@@ -23,8 +24,10 @@ std::string projectToJson(const Project& p);
 // actors[1].speed: expected a number"). Newer format versions are refused.
 Result<Project> projectFromJson(const std::string& text, const std::string& sourceName);
 
-// Reads and parses a project file.
-Result<Project> loadProject(const std::string& path);
+// Reads and parses a project file. With progress: the stages "reading" and "parsing", the file's
+// bytes counted once read and four times more once parsed (parsing takes about that much longer);
+// cancel is polled while reading and before parsing.
+Result<Project> loadProject(const std::string& path, JobProgress* progress = nullptr);
 
 // Writes a project file atomically.
 Status saveProject(const Project& p, const std::string& path);

@@ -1,0 +1,22 @@
+#pragma once
+// The committed demo morph project the export and playblast benchmarks bake: resources/demo/demo.animorph (or the
+// project ANIMORPH_DEMO names), loaded and prepared.
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "doc/project.h"
+#include "morph/morph_runtime.h"
+
+namespace animorph::bench {
+
+struct DemoMorph {
+  std::filesystem::path path;
+  Project project;
+  std::shared_ptr<const MorphRuntime> runtime;
+  std::string error;  // non-empty: could not be loaded or prepared
+};
+
+DemoMorph loadDemoMorph();
+
+}  // namespace animorph::bench

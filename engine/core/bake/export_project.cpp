@@ -1,0 +1,131 @@
+#include "bake/export_project.h"
+
+#include <chrono>
+#include <filesystem>
+
+#include "animorph/evaluate_generic.h"
+#include "bake/frame_files.h"
+#include "doc/animorphosis_project.h"
+#include "doc/asset_cache.h"
+#include "io/gltf_sequence_export.h"
+#include "morph/morph_runtime.h"
+#include "poly/mesh_io.h"
+#include "poly/polygonizer.h"
+
+namespace animorph {
+namespace fs = std::filesystem;
+
+void exportFrameRange(const Project& p, const ExportSettings& s, int& first, int& last) {
+  first = s.useTimeline ? p.timeline.frameStart : s.first;
+  last = s.useTimeline ? p.timeline.frameEnd : s.last;
+}
+
+std::string exportOutputPath(const ExportSettings& s, const std::string& baseDir) {
+  if (s.output.empty()) return {};
+  fs::path out(s.output);
+  return (out.is_absolute() ? out : fs::path(baseDir) / out).lexically_normal().string();
+}
+
+Result<ExportReport> exportProject(const Project& p, const std::string& baseDir, const ExportSettings& s,
+                                   JobProgress& progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  int first = 0, last = 0;
+  exportFrameRange(p, s, first, last);
+  if (last < first) return Error{"export: the last frame " + std::to_string(last) + " is before the first " +
+                                 std::to_string(first)};
+  if (first < 0) return Error{"export: frame " + std::to_string(first) + " is negative (frames start at 0)"};
+  if (s.resolution < 2 || s.resolution > 1024)
+    return Error{"export: resolution " + std::to_string(s.resolution) + " is outside 2..1024"};
+  const std::string out = exportOutputPath(s, baseDir);
+  if (out.empty()) return Error{"export: no output path chosen"};
+  const int count = last - first + 1;
+  progress.setTotal(count);
+  progress.setStage("preparing");
+
+  // The frame source: the morph, or else the animorphosis.
+  std::shared_ptr<const MorphRuntime> morph;
+  std::optional<GenericTree> generic;
+  AnimorphosisTiming timing;
+  if (p.morph.enabled()) {
+    AssetCache assets;  // this thread's own: the editor's cache stays on the UI thread
+    auto rt = prepareMorph(p, baseDir, assets);
+    if (!rt) return Error{"export: " + rt.error()};
+    morph = *rt;
+  } else if (p.animorphosis.enabled()) {
+    auto c = projectGenericTree(p);
+    if (!c) return Error{"export: " + c.error()};
+    generic = std::move(*c);
+    timing = animorphosisTiming(p);
+  } else {
+    return Error{"export: the project has no morph or animorphosis to bake (Create > Morph... or Create > "
+                 "Animorphosis... makes one)"};
+  }
+
+  std::error_code ec;
+  const bool gltf = s.format == ExportFormat::GltfAnimated;
+  const fs::path dir = gltf ? fs::path(out).parent_path() : fs::path(out);
+  if (!dir.empty()) fs::create_directories(dir, ec);
+  if (ec) return Error{dir.string() + ": cannot create the folder: " + ec.message()};
+  const std::string prefix = framePrefix(p.name);
+  std::unique_ptr<GltfSequenceWriter> sequence;
+  if (gltf) {
+    GltfSequenceOptions so;
+    so.name = prefix;
+    so.fps = p.timeline.fps;
+    so.firstFrame = first;
+    sequence = std::make_unique<GltfSequenceWriter>(so);
+  }
+  StagedFiles staged;
+  ExportReport report;
+  for (int k = 0; k < count; ++k) {
+    if (progress.cancelled()) return jobCancelled();
+    const int f = first + k;
+    progress.setStage("frame " + std::to_string(f) + " (" + std::to_string(k + 1) + " of " + std::to_string(count) +
+                      ")");
+    const double timeSec = p.timeline.frameToSec(f);
+    TriangleMesh mesh;
+    if (morph) {
+      MorphFrameSettings fs;
+      fs.resolution = s.resolution;
+      fs.cancel = progress.cancelFlag();
+      auto fr = evaluateMorphFrame(*morph, timeSec, fs);
+      if (!fr) return Error{"export: frame " + std::to_string(f) + ": " + fr.error()};
+      if (fr->cancelled || progress.cancelled()) return jobCancelled();
+      mesh = std::move(fr->mesh);
+    } else {
+      PolygonizeSettings ps;
+      ps.resolution = s.resolution;
+      ps.cancel = progress.cancelFlag();
+      auto r = polygonize(compileGeneric(*generic, timing, timeSec), ps);
+      if (!r) return Error{"export: frame " + std::to_string(f) + ": " + r.error()};
+      if (r->cancelled || progress.cancelled()) return jobCancelled();
+      mesh = std::move(r->mesh);
+    }
+    report.triangles += mesh.triangleCount();
+    Status st;
+    if (sequence) {
+      st = sequence->addFrame(mesh);
+    } else {
+      const char* ext = s.format == ExportFormat::ObjSequence ? "obj" : "ply";
+      const std::string final = frameFileName(dir.string(), prefix, f, ext);
+      const std::string tmp = staged.stage(final);
+      st = s.format == ExportFormat::ObjSequence ? writeObj(mesh, tmp) : writePly(mesh, tmp);
+      if (st) report.files.push_back(final);
+    }
+    if (!st) return Error{"export: frame " + std::to_string(f) + ": " + st.error()};
+    progress.setDone(k + 1);
+  }
+  if (progress.cancelled()) return jobCancelled();
+  if (sequence) {
+    progress.setStage("writing " + fs::path(out).filename().string());
+    if (Status st = writeGltfSequence(*sequence, out); !st) return Error{"export: " + st.error()};
+    report.files.push_back(out);
+  } else if (Status st = staged.commit(); !st) {
+    return Error{"export: " + st.error()};
+  }
+  report.frames = count;
+  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return report;
+}
+
+}  // namespace animorph
