@@ -5,6 +5,8 @@
 #   ./run.sh build [--asan]  build only
 #   ./run.sh cli ARGS...     build and run animorph-cli
 #   ./run.sh bench ARGS...   build and run animorph-cli bench
+#   ./run.sh fuzz [SECONDS] [TARGET...]  build the libFuzzer targets (clang, ASan+UBSan, in
+#                            build-fuzz/) and fuzz each for SECONDS (default 60); see tests/fuzz/
 set -euo pipefail
 cd "$(dirname "$(readlink -f "$0")")"
 ROOT=$PWD
@@ -21,6 +23,9 @@ BUILD_PACKAGES=(build-essential cmake ninja-build pkg-config
 # blender (with python3-numpy, which its glTF importer needs) imports them in the export test.
 TEST_PACKAGES=(catch2 vulkan-validationlayers xvfb xauth xdotool imagemagick
   assimp-testmodels python3 nodejs blender python3-numpy)
+# clang and its runtimes (libFuzzer, ASan, UBSan: libclang-rt-dev) build the fuzz targets
+# (tests/fuzz), which ./run.sh test runs too.
+FUZZ_PACKAGES=(clang libclang-rt-dev)
 # Installed only when no program of the same name is on PATH: a Node.js package from outside
 # Debian (NodeSource's) ships its own npm and conflicts with Debian's.
 TEST_PROGRAM_PACKAGES=(npm)
@@ -77,6 +82,11 @@ build() {
   cmake --build "$dir" -j"$(nproc)"
 }
 
+# The fuzz targets: animorph_core and tests/fuzz only, built with clang in their own folder.
+build_fuzz() {
+  CXX=clang++ build "$ROOT/build-fuzz" -DANIMORPH_FUZZ=ON -DANIMORPH_BUILD_TESTS=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo
+}
+
 asan=0
 cmd=${1:-run}
 [ $# -gt 0 ] && shift
@@ -110,11 +120,12 @@ case "$cmd" in
     build "$BUILD_DIR" "${BUILD_FLAGS[@]}"
     ;;
   test)
-    ensure_packages "${BUILD_PACKAGES[@]}" "${TEST_PACKAGES[@]}"
+    ensure_packages "${BUILD_PACKAGES[@]}" "${TEST_PACKAGES[@]}" "${FUZZ_PACKAGES[@]}"
     for p in "${TEST_PROGRAM_PACKAGES[@]}"; do
       command -v "$p" >/dev/null 2>&1 || ensure_packages "$p"
     done
-    build "$BUILD_DIR" "${BUILD_FLAGS[@]}"
+    build_fuzz
+    build "$BUILD_DIR" "${BUILD_FLAGS[@]}" -DANIMORPH_FUZZ_BUILD_DIR="$ROOT/build-fuzz"
     export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-$(mktemp -d /tmp/animorph-xdg.XXXXXX)}
     chmod 700 "$XDG_RUNTIME_DIR" 2>/dev/null || true
     export ANIMORPH_VALIDATION=1
@@ -134,8 +145,17 @@ case "$cmd" in
     build "$BUILD_DIR" "${BUILD_FLAGS[@]}" >/dev/null
     exec "$BUILD_DIR/app/animorph-cli" bench "${args[@]}"
     ;;
+  fuzz)
+    ensure_packages "${BUILD_PACKAGES[@]}" "${FUZZ_PACKAGES[@]}" python3
+    build_fuzz
+    seconds=60
+    if [ ${#args[@]} -gt 0 ] && [[ ${args[0]} =~ ^[0-9]+$ ]]; then seconds=${args[0]}; args=("${args[@]:1}"); fi
+    targets=()
+    for t in "${args[@]}"; do targets+=(--target "$t"); done
+    exec /usr/bin/python3 "$ROOT/tests/fuzz/run_fuzzers.py" --build "$ROOT/build-fuzz" --seconds "$seconds" "${targets[@]}"
+    ;;
   *)
-    say "unknown command '$cmd'. Use: ./run.sh [run|build|test|cli|bench] [--asan]"
+    say "unknown command '$cmd'. Use: ./run.sh [run|build|test|cli|bench|fuzz] [--asan]"
     exit 2
     ;;
 esac

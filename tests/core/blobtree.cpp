@@ -68,50 +68,50 @@ TEST_CASE("the embeddable form sits under a project's blobtree key", "[blobtree]
 
 TEST_CASE("bad scenes give errors that name the file and the node id", "[blobtree]") {
   json seg = {{"id", 7}, {"type", "convSegment"}, {"params", {{"a", {0, 0, 0}}, {"b", {1, 0, 0}}, {"radius", 0.1}}}};
-  REQUIRE(blobTreeFromJson(scene(blendOf({seg})), "x").ok());
+  REQUIRE(blobTreeFromJson(scene(blendOf(json::array({seg}))), "x").ok());
 
   json unknown = seg;
   unknown["type"] = "blub";
-  CHECK_THAT(parseError(scene(blendOf({unknown}))), Contains("creature.json") && Contains("node 7") && Contains("unknown node type 'blub'"));
+  CHECK_THAT(parseError(scene(blendOf(json::array({unknown})))), Contains("creature.json") && Contains("node 7") && Contains("unknown node type 'blub'"));
 
   json missing = seg;
   missing["params"].erase("radius");
-  CHECK_THAT(parseError(scene(blendOf({missing}))), Contains("node 7") && Contains("missing parameter 'radius'"));
+  CHECK_THAT(parseError(scene(blendOf(json::array({missing})))), Contains("node 7") && Contains("missing parameter 'radius'"));
 
   json nan = seg;
   nan["params"]["radius"] = std::nan("");
-  CHECK_THAT(parseError(scene(blendOf({nan}))), Contains("node 7") && Contains("radius") && Contains("NaN"));
+  CHECK_THAT(parseError(scene(blendOf(json::array({nan})))), Contains("node 7") && Contains("radius") && Contains("NaN"));
 
   json nanKey = seg;
   nanKey["params"]["a"] = {{"keys", {{{"t", 0}, {"v", {0, std::nan(""), 0}}}}}};
-  CHECK_THAT(parseError(scene(blendOf({nanKey}))), Contains("node 7") && Contains("'a'"));
+  CHECK_THAT(parseError(scene(blendOf(json::array({nanKey})))), Contains("node 7") && Contains("'a'"));
 
   json negative = seg;
   negative["params"]["radius"] = {{"keys", {{{"t", 0}, {"v", 0.1}}, {{"t", 1}, {"v", -0.2}}}}};
-  CHECK_THAT(parseError(scene(blendOf({negative}))), Contains("node 7") && Contains("negative") && Contains("key 1"));
+  CHECK_THAT(parseError(scene(blendOf(json::array({negative})))), Contains("node 7") && Contains("negative") && Contains("key 1"));
 
   json hyper = {{"id", 9}, {"type", "hyperBlend"}, {"params", {{"q", 0.5}}}, {"children", {seg}}};
   CHECK_THAT(parseError(scene(hyper)), Contains("node 9") && Contains("'q'") && Contains(">= 1"));
 
   json unknownParam = seg;
   unknownParam["params"]["radiu"] = 0.1;
-  CHECK_THAT(parseError(scene(blendOf({unknownParam}))), Contains("node 7") && Contains("unknown parameter 'radiu'"));
+  CHECK_THAT(parseError(scene(blendOf(json::array({unknownParam})))), Contains("node 7") && Contains("unknown parameter 'radiu'"));
 
   json dup = seg;
   dup["id"] = 1;
-  CHECK_THAT(parseError(scene(blendOf({dup}))), Contains("id 1") && Contains("another node"));
+  CHECK_THAT(parseError(scene(blendOf(json::array({dup})))), Contains("id 1") && Contains("another node"));
 
   json bb = {{"id", 4}, {"type", "boundedBlend"}, {"children", {seg}}};
   CHECK_THAT(parseError(scene(bb)), Contains("node 4") && Contains("children"));
 
   json noId = {{"type", "point"}};
-  CHECK_THAT(parseError(scene(blendOf({noId}))), Contains("id"));
+  CHECK_THAT(parseError(scene(blendOf(json::array({noId})))), Contains("id"));
 
-  json newer = scene(blendOf({seg}));
+  json newer = scene(blendOf(json::array({seg})));
   newer["version"] = 99;
   CHECK_THAT(parseError(newer), Contains("version 99"));
 
-  json badThreshold = scene(blendOf({seg}));
+  json badThreshold = scene(blendOf(json::array({seg})));
   badThreshold["threshold"] = -1;
   CHECK_THAT(parseError(badThreshold), Contains("threshold"));
 

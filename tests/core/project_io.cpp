@@ -54,6 +54,19 @@ TEST_CASE("project JSON round trip keeps every field", "[io][project]") {
   CHECK(std::abs(glm::dot(a.transform.rotation, p.actors[0].transform.rotation)) > 0.99999f);
 }
 
+TEST_CASE("a project whose actor rotation is not a unit quaternion reloads unchanged once saved", "[io][project]") {
+  // Found by fuzz_project (tests/fuzz/regressions/project/actor_rotation_not_unit.animorph):
+  // normalising the saved, already unit quaternion again moved it by an ulp.
+  const std::string text = R"({"format": "animorph", "version": 1, "actors": [{"id": "a", "asset": "a.glb",
+                               "rotation": [1.0, 0.0, 0.0, 1.0]}]})";
+  auto first = projectFromJson(text, "r.animorph");
+  REQUIRE(first);
+  CHECK(glm::length(first->actors[0].transform.rotation) == Approx(1.0f));
+  auto again = projectFromJson(projectToJson(*first), "r.animorph");
+  REQUIRE(again);
+  CHECK(*again == *first);
+}
+
 TEST_CASE("a newer project version is refused with a clear message", "[io][project]") {
   auto r = projectFromJson(R"({"format":"animorph","version":99})", "future.animorph");
   REQUIRE_FALSE(r.ok());

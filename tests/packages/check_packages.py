@@ -49,6 +49,14 @@ PROGRAMS = {
     "npm": "glTF-Validator test (installs gltf-validator)",
     "timeout": "glTF-Validator test",
     "blender": "export test (imports the animated glTF headless)",
+    "clang++": "fuzz targets (./run.sh fuzz, ./run.sh test: tests/fuzz)",
+}
+
+# Runtime libraries clang links into the fuzz targets, looked up in clang's runtime folder.
+CLANG_RUNTIMES = {
+    "libclang_rt.fuzzer-x86_64.a": "fuzz targets (-fsanitize=fuzzer)",
+    "libclang_rt.asan-x86_64.a": "fuzz targets (-fsanitize=address)",
+    "libclang_rt.ubsan_standalone-x86_64.a": "fuzz targets (-fsanitize=undefined)",
 }
 
 # Files from Debian packages that the tests open by path.
@@ -282,6 +290,14 @@ def main():
     for path, why in DATA_FILES.items():
         judge("file", path, path, why)
 
+    runtime_dir = run(["sh", "-c", "clang++ --print-runtime-dir 2>/dev/null"]).stdout.strip()
+    for name, why in CLANG_RUNTIMES.items():
+        path = os.path.join(runtime_dir, name)
+        if runtime_dir and os.path.exists(path):
+            judge("file", path, path, why)
+        else:
+            problems.append(f"file {name}: not in clang's runtime folder '{runtime_dir}' ({why})")
+
     py = python_of(build)
     modules = test_imports(source)
     if not py:
@@ -307,8 +323,8 @@ def main():
 
     print(f"check-packages: {len(listed)} packages listed in {os.path.relpath(run_sh, source)}, "
           f"{len(allowed)} with their dependencies and the base system; checked {len(headers)} headers, "
-          f"{len(libs)} libraries of {len(exes)} executables, {len(PROGRAMS)} programs, {len(DATA_FILES)} "
-          f"data paths, {len(modules)} Python modules")
+          f"{len(libs)} libraries of {len(exes)} executables, {len(PROGRAMS)} programs, "
+          f"{len(DATA_FILES) + len(CLANG_RUNTIMES)} data paths, {len(modules)} Python modules")
     for p in problems:
         print("MISSING " + p)
     if problems:

@@ -118,7 +118,10 @@ float keySlope(const ConstTrackPtr& t, int k, int channel) {
 Status deleteKeys(const TrackSet& set, const std::vector<KeyRef>& keys) {
   std::map<ParamAddress, std::set<int>> byTrack;
   for (const KeyRef& k : keys) byTrack[k.param].insert(k.key);
-  for (const auto& [addr, idx] : byTrack) {
+  // Named references, not structured bindings: clang before 16 cannot capture those in a lambda.
+  for (const auto& entry : byTrack) {
+    const ParamAddress& addr = entry.first;
+    const std::set<int>& idx = entry.second;
     auto t = trackOf(set, addr);
     if (!t) return Error{t.error()};
     Status st = visitTrack(*t, [&](auto& track) -> Status {
@@ -145,7 +148,9 @@ Result<std::vector<KeyChannelRef>> moveKeys(const TrackSet& set, const std::vect
   std::map<ParamAddress, std::map<int, std::set<int>>> byTrack;
   for (const auto& c : channels) byTrack[c.key.param][c.key.key].insert(c.channel);
   std::map<KeyRef, KeyRef> remap;
-  for (const auto& [addr, moving] : byTrack) {
+  for (const auto& entry : byTrack) {
+    const ParamAddress& addr = entry.first;
+    const std::map<int, std::set<int>>& moving = entry.second;
     auto t = trackOf(set, addr);
     if (!t) return Error{t.error()};
     Status st = visitTrack(*t, [&](auto& track) -> Status {

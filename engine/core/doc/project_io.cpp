@@ -237,7 +237,9 @@ Result<Project> projectFromJson(const std::string& text, const std::string& sour
       else if (p.findActor(act.id)) r.fail(where + ".id", "duplicate id '" + act.id + "'");
       else if (glm::length(q) < 1e-6f) r.fail(where + ".rotation", "zero quaternion");
       else {
-        act.transform.rotation = glm::normalize(act.transform.rotation);
+        // Only a quaternion that is not already unit is normalised: normalising a saved unit
+        // quaternion again can move it by an ulp, and a project must reload as it was saved.
+        if (std::abs(glm::length(q) - 1.0f) > 1e-5f) act.transform.rotation = glm::normalize(act.transform.rotation);
         p.actors.push_back(std::move(act));
       }
     }

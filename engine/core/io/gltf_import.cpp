@@ -321,7 +321,7 @@ Result<size_t> readAccessor(const Ctx& c, int index, const AccessorSpec& spec, s
     return a.count;
   }
   out.assign(count * comps, T(0));
-  if (span.data) {
+  if (span.data && count > 0) {  // count 0: out.data() may be null, which memcpy must not get
     const unsigned char* base = span.data;
     if (a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT && std::is_same_v<T, float> && span.stride == elemSize) {
       std::memcpy(out.data(), base, count * elemSize);
