@@ -84,7 +84,7 @@ TEST_CASE("background job: runs off the calling thread, reports progress and the
   CHECK(formatTimeLeft(65.0) == "1 min 05 s");
 }
 
-TEST_CASE("export settings: saved in the project and read back; bad fields named", "[export]") {
+TEST_CASE("export settings: saved in the project and read back, bad fields named", "[export]") {
   Project p = animorphosisProject();
   p.exportSettings.format = ExportFormat::ObjSequence;
   p.exportSettings.useTimeline = false;
@@ -113,7 +113,7 @@ TEST_CASE("export settings: saved in the project and read back; bad fields named
   CHECK_THAT(refused.error(), Contains("export.resolution"));
 }
 
-TEST_CASE("export: a PLY sequence of an animorphosis appears whole; a cancelled one leaves no file", "[export]") {
+TEST_CASE("export: a PLY sequence of an animorphosis appears whole, a cancelled one leaves no file", "[export]") {
   TempDir tmp;
   Project p = animorphosisProject();
   ExportSettings s;
@@ -150,7 +150,7 @@ TEST_CASE("export: a PLY sequence of an animorphosis appears whole; a cancelled 
   CHECK(filesIn(tmp.path() / "cancelled").empty());
 }
 
-TEST_CASE("export: the animated glTF of an animorphosis has a node per frame; errors name the reason", "[export]") {
+TEST_CASE("export: the animated glTF of an animorphosis has a node per frame, errors name the reason", "[export]") {
   TempDir tmp;
   Project p = animorphosisProject();
   p.timeline.frameStart = 40;

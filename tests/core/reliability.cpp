@@ -474,7 +474,8 @@ TEST_CASE("project and scene saves killed at random points load as the old or th
   };
   const std::string project = tmp.file("big.animorph");
   const Project projects[2] = {bigProject("old"), bigProject("new")};
-  const auto [tornProjects, projectLeft] = killSavesAtRandom(projects, project, 40, rng, saveProject, loadProject);
+  const auto [tornProjects, projectLeft] = killSavesAtRandom(
+      projects, project, 40, rng, saveProject, [](const std::string& path) { return loadProject(path); });
   CHECK(tornProjects == 0);
 
   // BlobTree scenes: a wide tree (2000 points under one blend), the same rule.

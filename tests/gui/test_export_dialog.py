@@ -38,7 +38,7 @@ try:
     open_export(ed)
     ed.click_widget("export/format")
     ed.click_widget("export/format/ply")
-    set_field(ed, "export/resolution", "96")
+    set_field(ed, "export/resolution", "320")  # seconds of work even on an idle machine: time to cancel
     set_field(ed, "export/output", frames_dir)
     ed.screenshot(os.path.join(work, "dialog.png"))
     ed.click_widget("export/export")
