@@ -21,7 +21,8 @@ double percentile(std::vector<double> v, double p) {
 
 }  // namespace
 
-void EditorAutomation::beforeUi(Document& doc, Playback& playback, double nowSec, int frameCount) {
+void EditorAutomation::beforeUi(Document& doc, Playback& playback, double nowSec, int frameCount, bool jobRunning) {
+  if (jobRunning) return;
   if (args_.frame >= 0 && !frameApplied_ && frameCount >= 2) {
     doc.setCurrentFrame(args_.frame);
     frameApplied_ = true;
@@ -37,8 +38,9 @@ void EditorAutomation::beforeUi(Document& doc, Playback& playback, double nowSec
   }
 }
 
-std::optional<std::string> EditorAutomation::screenshotDue(int frameCount) {
-  if (args_.screenshot.empty() || screenshotAt_ >= 0 || frameApplied_ != (args_.frame >= 0) || frameCount < 6)
+std::optional<std::string> EditorAutomation::screenshotDue(int frameCount, bool jobRunning) {
+  if (args_.screenshot.empty() || screenshotAt_ >= 0 || frameApplied_ != (args_.frame >= 0) || frameCount < 6 ||
+      jobRunning)
     return std::nullopt;
   screenshotAt_ = frameCount;
   return args_.screenshot;

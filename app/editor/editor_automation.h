@@ -18,10 +18,12 @@ class EditorAutomation {
   explicit EditorAutomation(const EditorArgs& args) : args_(args) {}
 
   // Before the UI draws frame frameCount: applies --frame once the project is open, steps --scrub,
-  // or starts --bench's playback.
-  void beforeUi(Document& doc, Playback& playback, double nowSec, int frameCount);
-  // The --screenshot path on the frame it is due (once, after the first frames and --frame).
-  std::optional<std::string> screenshotDue(int frameCount);
+  // or starts --bench's playback. Nothing while jobRunning (the project given on the command line
+  // opens as a background job: --frame, --bench and --screenshot wait for it).
+  void beforeUi(Document& doc, Playback& playback, double nowSec, int frameCount, bool jobRunning);
+  // The --screenshot path on the frame it is due (once, after the first frames and --frame, with no
+  // job running).
+  std::optional<std::string> screenshotDue(int frameCount, bool jobRunning);
   // True when --quit ends the editor once the --screenshot is written.
   bool quitAfterScreenshot() const { return args_.quit && screenshotAt_ >= 0; }
   // True while a switch needs frames drawn one after another rather than on demand.

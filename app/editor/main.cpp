@@ -85,7 +85,7 @@ int main(int argc, char** argv) {
     ectx.stats.frameMs = static_cast<float>(clock.smoothedMs());
     ectx.stats.fps = static_cast<float>(clock.smoothedMs() > 0.0 ? 1000.0 / clock.smoothedMs() : 0.0);
     ectx.stats.deviceName = gpuSide->ctx->deviceName();
-    automation.beforeUi(*document, ui.state().playback, ectx.nowSec, frameCount);
+    automation.beforeUi(*document, ui.state().playback, ectx.nowSec, frameCount, ui.output().jobRunning);
 
     gpuSide->imgui->newFrame();
     const std::string previewInfoDrawn = ectx.stats.previewInfo;  // the status bar below shows this one
@@ -95,7 +95,7 @@ int main(int argc, char** argv) {
     const EditorOutput& out = ui.output();
     if (out.quit) break;
     if (out.screenshotPath) pendingCapture = *out.screenshotPath;
-    if (auto due = automation.screenshotDue(frameCount)) pendingCapture = *due;
+    if (auto due = automation.screenshotDue(frameCount, out.jobRunning)) pendingCapture = *due;
     const ViewportFrameResult vf = viewport.build(*gpuSide, ui, ectx, !pendingCapture.empty(), scene);
     // The first frame settles the previews; the second, whose status bar already shows them, is captured.
     if (!pendingCapture.empty() && captureFrames++ >= 1) gpuSide->swapchain->requestCapture();
