@@ -73,20 +73,36 @@ def act(ed, rng):
 
 
 def quit_editor(ed):
-    """Quits through the UI (Escape closes popups; Don't Save answers the unsaved-changes prompt)."""
-    for _ in range(4):
+    """Quits through the UI (Escape closes popups; Don't Save answers the unsaved-changes prompt):
+    Ctrl+Q, or File > Quit when the shortcut does not get through."""
+    def click_key(key):
+        rect = ed.ui_map().get("widgets", {}).get(key)
+        if rect:
+            ed.click((rect[0] + rect[2]) / 2, (rect[1] + rect[3]) / 2, wait=False)
+        return bool(rect)
+
+    for attempt in range(4):
         for _ in range(3):
             g.xdo("key", "Escape")
-        g.xdo("key", "--clearmodifiers", "ctrl+q")
+        # A modifier the editor still believes held (its key-up lost among the random input) would
+        # turn Ctrl+Q into another shortcut: press and release each once.
+        for k in ("shift", "ctrl", "alt"):
+            g.xdo("key", k)
+        if attempt % 2 == 0:
+            g.xdo("key", "--clearmodifiers", "ctrl+q")
+        elif click_key("menu/File"):
+            time.sleep(0.5)
+            click_key("menu/Quit")
         end = time.time() + 10
         while time.time() < end and ed.proc.poll() is None:
-            rect = ed.ui_map().get("widgets", {}).get("prompt/dont_save")
-            if rect:  # clicked as soon as seen: the editor may be gone before a settled map
-                ed.click((rect[0] + rect[2]) / 2, (rect[1] + rect[3]) / 2, wait=False)
+            click_key("prompt/dont_save")  # clicked as soon as seen: the editor may be gone before a settled map
             time.sleep(0.3)
         if ed.proc.poll() is not None:
             return ed.proc.returncode
-    g.fail("the editor does not quit (Ctrl+Q, Don't Save)")
+        m = ed.ui_map()
+        print(f"soak: still running after quit attempt {attempt + 1}: status {m.get('status')!r}, job "
+              f"{m.get('job')!r}", flush=True)
+    g.fail("the editor does not quit (Ctrl+Q or File > Quit, Don't Save)")
 
 
 g.ensure_display(sys.argv)
