@@ -1,8 +1,5 @@
 #include "cli/bench_demo_morph.h"
 
-#include <cstdlib>
-#include <filesystem>
-
 #include "demo/creature.h"
 #include "demo/gear.h"
 #include "io/gltf_export.h"
@@ -11,9 +8,8 @@
 namespace animorph::bench {
 
 DemoMorphDir::DemoMorphDir() {
-  std::string tmpl = (std::filesystem::temp_directory_path() / "animorph-bench-XXXXXX").string();
-  if (!::mkdtemp(tmpl.data())) return;
-  dir = tmpl;
+  if (!scratch.ok()) return;
+  dir = scratch.path().string();
   const Character creature = makeCreatureCharacter(), gear = makeGearCharacter();
   exportGlb(creature, dir + "/creature.glb");
   exportGlb(gear, dir + "/gear.glb");
@@ -22,12 +18,6 @@ DemoMorphDir::DemoMorphDir() {
   ns.acceptPoorFit = true;  // measured whatever the fit: the bench times the bake, not the fit
   auto made = makeMorphProject(creature, "creature.glb", gear, "gear.glb", ns);
   if (made) project = made->project;
-}
-
-DemoMorphDir::~DemoMorphDir() {
-  if (dir.empty()) return;
-  std::error_code ec;
-  std::filesystem::remove_all(dir, ec);
 }
 
 }  // namespace animorph::bench

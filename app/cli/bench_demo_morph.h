@@ -6,15 +6,16 @@
 #include <optional>
 #include <string>
 
+#include "cli/bench_scratch_dir.h"
 #include "doc/project.h"
 
 namespace animorph::bench {
 
 struct DemoMorphDir {
+  ScratchDir scratch{"animorph-bench"};
   std::string dir;                // empty: the directory could not be made
   std::optional<Project> project; // empty: the project could not be made
   DemoMorphDir();
-  ~DemoMorphDir();
   DemoMorphDir(const DemoMorphDir&) = delete;
   DemoMorphDir& operator=(const DemoMorphDir&) = delete;
 };

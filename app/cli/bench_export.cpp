@@ -8,6 +8,7 @@
 
 #include "cli/bench.h"
 #include "cli/bench_demo_project.h"
+#include "cli/bench_scratch_dir.h"
 #include "doc/project_io.h"
 #include "io/gltf_sequence_export.h"
 #include "morph/morph_runtime.h"
@@ -29,9 +30,9 @@ std::vector<Row> benchExport(const bench::Options& opt) {
   if (!dm.error.empty()) return {{"skipped", 0, "", "", dm.error}};
   const Project* project = &dm.project;
   const auto* rt = &dm.runtime;
-  std::string tmpl = (fs::temp_directory_path() / "animorph-bench-export-XXXXXX").string();
-  if (!::mkdtemp(tmpl.data())) return {{"skipped", 0, "", "", "cannot create a temporary directory"}};
-  const fs::path dir = tmpl;
+  const bench::ScratchDir scratch("animorph-bench-export");
+  if (!scratch.ok()) return {{"skipped", 0, "", "", "cannot create a temporary directory"}};
+  const fs::path& dir = scratch.path();
 
   const int first = project->timeline.frameStart;
   const int last = opt.quick ? first + 24 : project->timeline.frameEnd;
@@ -44,10 +45,7 @@ std::vector<Row> benchExport(const bench::Options& opt) {
     MorphFrameSettings s;
     s.resolution = res;
     auto fr = evaluateMorphFrame(**rt, project->timeline.frameToSec(f), s);
-    if (!fr) {
-      fs::remove_all(dir);
-      return {{"skipped", 0, "", "", "frame " + std::to_string(f) + ": " + fr.error()}};
-    }
+    if (!fr) return {{"skipped", 0, "", "", "frame " + std::to_string(f) + ": " + fr.error()}};
     meshes.push_back(std::move(fr->mesh));
   }
   const double bakeMs = sinceMs(t0);
@@ -78,7 +76,6 @@ std::vector<Row> benchExport(const bench::Options& opt) {
     plyBytes += double(fs::file_size(dir / name, ec));
   }
   const double plyMs = sinceMs(t0);
-  fs::remove_all(dir, ec);
   if (!st) return {{"skipped", 0, "", "", st.error()}};
 
   char note[200];

@@ -7,6 +7,7 @@
 
 #include "cli/bench.h"
 #include "cli/bench_demo_project.h"
+#include "cli/bench_scratch_dir.h"
 #include "cli/playblast.h"
 #include "doc/project_io.h"
 #include "morph/morph_runtime.h"
@@ -33,8 +34,9 @@ std::vector<Row> benchPlayblast(const bench::Options& opt) {
     if (!fr) return {{"skipped", 0, "", "", "frame " + std::to_string(f) + ": " + fr.error()}};
     meshes.push_back(std::move(fr->mesh));
   }
-  std::string tmpl = (fs::temp_directory_path() / "animorph-bench-playblast-XXXXXX").string();
-  if (!::mkdtemp(tmpl.data())) return {{"skipped", 0, "", "", "cannot create a temporary directory"}};
+  const bench::ScratchDir scratch("animorph-bench-playblast");
+  if (!scratch.ok()) return {{"skipped", 0, "", "", "cannot create a temporary directory"}};
+  const std::string tmpl = scratch.path().string();
   cli::PictureOptions o;
   o.mp4 = (fs::path(tmpl) / "demo.mp4").string();
   o.fps = project->timeline.fps;
@@ -45,8 +47,6 @@ std::vector<Row> benchPlayblast(const bench::Options& opt) {
   t0 = std::chrono::steady_clock::now();
   if (code == 0) code = cli::renderPictures(meshes, first, tmpl, "demo", project->view, o);
   const double totalSec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::error_code ec;
-  fs::remove_all(tmpl, ec);
   if (code != 0) return {{"skipped", 0, "", "", "rendering or ffmpeg failed (exit " + std::to_string(code) + ")"}};
   char note[160];
   std::snprintf(note, sizeof note, "%d frames; baseline: rendering alone %.1f frames/s (the rest is ffmpeg's H.264)",
