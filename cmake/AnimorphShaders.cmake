@@ -1,6 +1,6 @@
 # Compiles shaders/*.{vert,frag,comp}.glsl to SPIR-V with glslangValidator and
 # embeds them in a generated C++ source as uint32_t arrays, looked up by name
-# ("mesh.vert") through animorph::gpu::shaderBlob (engine/gpu/shader_blobs.h).
+# ("mesh.vert") through animorph::gpu::shaderBlob (engine/gpu/vulkan/shader_blobs.h).
 # A shader is rebuilt when it or anything it #includes changes (glslang writes
 # a depfile); the include paths are shaders/include and engine/gpu/include_shared.
 function(animorph_embed_shaders target)

@@ -1,7 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // The transition of include/transition.glsl evaluated by compute, with the
-// positions and normals read back (engine/gpu/transition_evaluator.h): what
+// positions and normals read back (engine/gpu/transition/transition_evaluator.h): what
 // the tests compare with the CPU transition, and what the bench times.
 // pc.flags holds the vertex count.
 #include "shared_constants.h"

@@ -1,5 +1,5 @@
 #version 450
-// Dear ImGui's draw lists (engine/gpu/imgui_vulkan.cpp): 2D positions in display
+// Dear ImGui's draw lists (engine/gpu/present/imgui_vulkan.cpp): 2D positions in display
 // pixels mapped to clip space by a scale and an offset.
 layout(location = 0) in vec2 inPos;
 layout(location = 1) in vec2 inUv;

@@ -27,12 +27,12 @@
 #include "io/gltf_sequence_export.h"
 #include "poly/mesh_io.h"
 #if ANIMORPH_HAS_GPU
-#include "context.h"
-#include "gpu_polygonizer.h"
-#include "mesh_cache.h"
-#include "offscreen_target.h"
-#include "scene_from_frame.h"
-#include "scene_renderer.h"
+#include "vulkan/context.h"
+#include "implicit/gpu_polygonizer.h"
+#include "render/mesh_cache.h"
+#include "present/offscreen_target.h"
+#include "render/scene_from_frame.h"
+#include "render/scene_renderer.h"
 #include "view/camera.h"
 #endif
 

@@ -2,7 +2,7 @@
 #include <cstdio>
 #include <iostream>
 
-#include "cli/bench.h"
+#include "cli/bench/bench.h"
 #include "cli/cli_command.h"
 
 namespace animorph::bench {

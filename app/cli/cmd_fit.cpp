@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/cli_command.h"
-#include "doc/atomic_file.h"
+#include "util/atomic_file.h"
 #include "io/gltf_import.h"
 #include "standin/fit_standin.h"
 #include "standin/standin_json.h"

@@ -16,8 +16,8 @@
 #include "poly/mesh_io.h"
 #include "poly/polygonizer.h"
 #if ANIMORPH_HAS_GPU
-#include "context.h"
-#include "gpu_polygonizer.h"
+#include "vulkan/context.h"
+#include "implicit/gpu_polygonizer.h"
 #endif
 
 namespace {

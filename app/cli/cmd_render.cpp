@@ -3,18 +3,18 @@
 #include <cstdlib>
 
 #include "cli/cli_command.h"
-#include "context.h"
+#include "vulkan/context.h"
 #include "doc/document.h"
-#include "mesh_cache.h"
-#include "offscreen_target.h"
+#include "render/mesh_cache.h"
+#include "present/offscreen_target.h"
 #include "blobtree/compile.h"
 #include "poly/polygonizer.h"
 #include "scene/animorphosis_scene.h"
 #include "scene/mesh_character.h"
 #include "scene/morph_scene.h"
 #include "scene/scene_frame.h"
-#include "scene_from_frame.h"
-#include "scene_renderer.h"
+#include "render/scene_from_frame.h"
+#include "render/scene_renderer.h"
 #include "view/camera.h"
 
 namespace {

@@ -10,12 +10,12 @@
 #include "bake/frame_files.h"
 #include "cli/cli_command.h"
 #include "cli/progress_bar.h"
-#include "context.h"
-#include "mesh_cache.h"
-#include "offscreen_target.h"
+#include "vulkan/context.h"
+#include "render/mesh_cache.h"
+#include "present/offscreen_target.h"
 #include "scene/mesh_character.h"
-#include "scene_from_frame.h"
-#include "scene_renderer.h"
+#include "render/scene_from_frame.h"
+#include "render/scene_renderer.h"
 #include "view/camera.h"
 
 namespace animorph::cli {

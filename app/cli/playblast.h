@@ -10,7 +10,7 @@
 #include "doc/project.h"
 #include "poly/mesh.h"
 #if ANIMORPH_HAS_GPU
-#include "rgba_image.h"
+#include "present/rgba_image.h"
 #endif
 
 namespace animorph::cli {

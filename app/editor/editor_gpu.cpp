@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "rgba_image.h"
-#include "vk_check.h"
+#include "present/rgba_image.h"
+#include "vulkan/vk_check.h"
 
 namespace animorph {
 

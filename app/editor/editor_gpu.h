@@ -5,17 +5,17 @@
 #include <memory>
 #include <string>
 
-#include "blob_preview_set.h"
+#include "implicit/blob_preview_set.h"
 #include "doc/document.h"
-#include "context.h"
-#include "implicit_preview.h"
-#include "imgui_vulkan.h"
-#include "mesh_cache.h"
-#include "scene_renderer.h"
-#include "standin_binding_cache.h"
-#include "swapchain.h"
+#include "vulkan/context.h"
+#include "implicit/implicit_preview.h"
+#include "present/imgui_vulkan.h"
+#include "render/mesh_cache.h"
+#include "render/scene_renderer.h"
+#include "render/standin_binding_cache.h"
+#include "present/swapchain.h"
 #include "view/camera.h"
-#include "viewport_input.h"
+#include "viewport/viewport_input.h"
 
 struct GLFWwindow;
 

@@ -5,7 +5,7 @@
 
 #include <cstdio>
 
-#include "editor_ui.h"
+#include "shell/editor_ui.h"
 #include "poly/preview_polygonizer.h"
 #include "window_events.h"
 

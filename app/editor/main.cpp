@@ -14,13 +14,13 @@
 #include "editor_args.h"
 #include "editor_automation.h"
 #include "editor_gpu.h"
-#include "editor_ui.h"
+#include "shell/editor_ui.h"
 #include "editor_window.h"
 #include "frame_clock.h"
-#include "redraw_policy.h"
+#include "shell/redraw_policy.h"
 #include "ui_map.h"
 #include "viewport_frame.h"
-#include "vk_check.h"
+#include "vulkan/vk_check.h"
 #include "window_events.h"
 
 using namespace animorph;
@@ -85,7 +85,8 @@ int main(int argc, char** argv) {
     ectx.stats.frameMs = static_cast<float>(clock.smoothedMs());
     ectx.stats.fps = static_cast<float>(clock.smoothedMs() > 0.0 ? 1000.0 / clock.smoothedMs() : 0.0);
     ectx.stats.deviceName = gpuSide->ctx->deviceName();
-    automation.beforeUi(*document, ui.state().playback, ectx.nowSec, frameCount, ui.output().jobRunning);
+    automation.beforeUi(*document, ui.state().playback, ectx.nowSec, frameCount,
+                        ui.output().jobRunning || viewport.morphPreparing());
 
     gpuSide->imgui->newFrame();
     const std::string previewInfoDrawn = ectx.stats.previewInfo;  // the status bar below shows this one
@@ -95,7 +96,7 @@ int main(int argc, char** argv) {
     const EditorOutput& out = ui.output();
     if (out.quit) break;
     if (out.screenshotPath) pendingCapture = *out.screenshotPath;
-    if (auto due = automation.screenshotDue(frameCount, out.jobRunning)) pendingCapture = *due;
+    if (auto due = automation.screenshotDue(frameCount, out.jobRunning || viewport.morphPreparing())) pendingCapture = *due;
     const ViewportFrameResult vf = viewport.build(*gpuSide, ui, ectx, !pendingCapture.empty(), scene);
     // The first frame settles the previews; the second, whose status bar already shows them, is captured.
     if (!pendingCapture.empty() && captureFrames++ >= 1) gpuSide->swapchain->requestCapture();
@@ -129,7 +130,7 @@ int main(int argc, char** argv) {
     // that arrived without input would otherwise sit under a stale "refining" until the idle tick).
     rs.animating |= continuousRedraw || ectx.stats.previewInfo != previewInfoDrawn;
     rs.awaitingWork = blobBusy || (vf.morphStageShown && morphBusy);
-    rs.jobRunning = out.jobRunning;
+    rs.jobRunning = out.jobRunning || viewport.morphPreparing();  // polled ten times a second
     rs.textInput = ImGui::GetIO().WantTextInput;
     const double waitSec = redraw.waitAfterFrame(rs);
     if (uiMapPath && (frameCount % 3 == 0 || waitSec > 0.0))

@@ -1,6 +1,6 @@
 #include "ui_map.h"
 
-#include "doc/atomic_file.h"
+#include "util/atomic_file.h"
 
 namespace animorph {
 
@@ -33,7 +33,7 @@ void writeEditorUiMap(const std::string& path, const EditorUI& ui, EditorContext
               {"viewport_note", ectx.viewportNote},  // "morph: morph 50%", a morph's error
               {"preview_gpu", info.previewGpu},
               {"present", info.presentPath},
-              {"standin_segment", selectedStandinSegment(doc, ui.state().standinTool)},
+              {"standin_segment", selectedStandinSegment(doc)},
               {"job", ui.runningJob() ? ui.runningJob()->label() : std::string()},
               {"job_fraction", ui.runningJob() ? ui.runningJob()->progress().fraction() : 0.0}});
 }

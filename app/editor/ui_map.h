@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "doc/document.h"
-#include "editor_ui.h"
+#include "shell/editor_ui.h"
 
 namespace animorph {
 

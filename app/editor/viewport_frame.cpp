@@ -12,9 +12,9 @@
 #include "scene/pick.h"
 #include "scene/scene_frame.h"
 #include "scene/standin_guides.h"
-#include "scene_from_frame.h"
-#include "standin_overlay.h"
-#include "weight_overlay_scene.h"
+#include "render/scene_from_frame.h"
+#include "render/standin_overlay.h"
+#include "render/weight_overlay_scene.h"
 
 namespace animorph {
 
@@ -23,10 +23,12 @@ ViewportFrame::ViewportFrame(PreviewDevice initialDevice) : previewDevice_(initi
   morphSettings_.gpuTransitions = !std::getenv("ANIMORPH_CPU_TRANSITIONS");
 }
 
-void ViewportFrame::updateMorphRuntime(EditorContext& ectx, const EditorOutput& out) {
+void ViewportFrame::updateMorphRuntime(EditorContext& ectx, const EditorOutput& out, bool settle) {
   Document& doc = *ectx.document;
   // Not while painting: every stroke is a new revision and would bind the vertices again.
-  if (!out.weightPaintMode) ectx.morphRuntime = morphCache_.get(doc.project(), doc.baseDir(), ectx.assets, &doc, doc.revision());
+  if (out.weightPaintMode) return;
+  ectx.morphRuntime = settle ? morphPreparer_.wait(doc.project(), doc.baseDir(), ectx.assets, &doc, doc.revision())
+                             : morphPreparer_.update(doc.project(), doc.baseDir(), ectx.assets, &doc, doc.revision());
 }
 
 ViewportFrameResult ViewportFrame::build(EditorGpu& g, EditorUI& ui, EditorContext& ectx, bool settle,
@@ -35,7 +37,7 @@ ViewportFrameResult ViewportFrame::build(EditorGpu& g, EditorUI& ui, EditorConte
   const EditorOutput& out = ui.output();
   Document& doc = *ectx.document;
   const Timeline& tl = doc.project().timeline;
-  const double timeSec = tl.frameToSec(tl.currentFrame);
+  const double timeSec = tl.currentTimeSec();
   frame_ = evaluateScene(doc.project(), doc.baseDir(), ectx.assets, timeSec);
   SceneFrame& frame = frame_;
   const Preferences& prefs = ui.state().prefs;
@@ -45,7 +47,7 @@ ViewportFrameResult ViewportFrame::build(EditorGpu& g, EditorUI& ui, EditorConte
     g.morphPreview->clearGpuFailure();
     g.blobPreviews->clearGpuFailures();
   }
-  updateMorphRuntime(ectx, out);
+  updateMorphRuntime(ectx, out, settle);
   r.morphBackend = r.backend;
   float morphOpacity = 0.0f;  // below 1: the cross-fade (dithered, complementary to the mesh)
   std::string morphSourceId;
@@ -84,8 +86,10 @@ ViewportFrameResult ViewportFrame::build(EditorGpu& g, EditorUI& ui, EditorConte
       morphSourceId = rt->setup.sourceActorId;
     }
   } else {
-    ectx.viewportNote = morphCache_.error().empty() ? "" : "morph: " + morphCache_.error();
+    ectx.viewportNote = morphPreparer_.error().empty() ? "" : "morph: " + morphPreparer_.error();
   }
+  if (morphPreparer_.preparing() && !out.weightPaintMode)
+    ectx.viewportNote += std::string(ectx.viewportNote.empty() ? "" : "  |  ") + "preparing the morph...";
   if (!out.weightPaintMode) {
     const std::string note =
         describeAnimorphosis(applyAnimorphosis(frame, doc.project(), animorphosisCache_, &doc, doc.revision()));
@@ -133,7 +137,7 @@ ViewportFrameResult ViewportFrame::build(EditorGpu& g, EditorUI& ui, EditorConte
   }
   if (doc.project().view.showStandins || ui.state().viewportMode == ViewportMode::StandinEdit)
     gpu::addStandinOverlay(projectStandinGuides(doc.project(), doc.baseDir(), ectx.assets, timeSec, doc.selection.actorId),
-                           doc.selection.actorId, selectedStandinSegment(doc, ui.state().standinTool), scene.overlay);
+                           doc.selection.actorId, selectedStandinSegment(doc), scene.overlay);
   if (!out.weightOverlay.actorId.empty()) {
     overlayWeights_ = out.weightOverlay.weights;
     gpu::addWeightOverlay(frame, out.weightOverlay.actorId, overlayWeights_, *g.meshes, scene);

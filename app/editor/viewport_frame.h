@@ -9,8 +9,9 @@
 #include <vector>
 
 #include "editor_gpu.h"
-#include "editor_ui.h"
+#include "shell/editor_ui.h"
 #include "scene/animorphosis_scene.h"
+#include "scene/morph_preparer.h"
 #include "scene/morph_scene.h"
 #include "scene/scene_frame.h"
 
@@ -26,10 +27,14 @@ class ViewportFrame {
  public:
   explicit ViewportFrame(PreviewDevice initialDevice);
 
-  // The morph runtime of the document as it is now (prepared once per revision; null without a
-  // morph, or while weight painting). Called before the UI draws, so the inspector and the status
-  // bar show this frame's morph, and again after, should the UI have edited the document.
-  void updateMorphRuntime(EditorContext& ectx, const EditorOutput& out);
+  // The morph runtime of the document (prepared off the UI thread once per revision, the previous
+  // one shown meanwhile: scene/morph_preparer.h; null without a morph, or while weight painting).
+  // Called before the UI draws, so the inspector and the status bar show this frame's morph, and
+  // again after, should the UI have edited the document. settle: wait for the preparation (a
+  // screenshot is pending).
+  void updateMorphRuntime(EditorContext& ectx, const EditorOutput& out, bool settle = false);
+  // A morph preparation is running (the frame loop keeps drawing; automation waits for it).
+  bool morphPreparing() const { return morphPreparer_.preparing(); }
 
   // Builds scene for this frame (it points into data kept here until the next call). settle: a screenshot is pending, so the previews compute their
   // refined surfaces now (waiting up to 120 s) instead of in the background.
@@ -39,7 +44,7 @@ class ViewportFrame {
   void forgetPrewarm() { prewarmedMorph_ = nullptr; }
 
  private:
-  MorphCache morphCache_;
+  MorphPreparer morphPreparer_;
   AnimorphosisCache animorphosisCache_;  // the generic tree C of the project's animorphosis
   MorphFrameSettings morphSettings_;             // the transitions; the B->C stage is the implicit preview's
   const MorphRuntime* prewarmedMorph_ = nullptr;  // whose B->C pipelines are compiling or compiled

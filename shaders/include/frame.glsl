@@ -1,5 +1,5 @@
 // Per-frame uniforms of the scene renderer (C++ mirror: FrameUniforms in
-// engine/gpu/scene_renderer.cpp; std140).
+// engine/gpu/render/scene_renderer.cpp; std140).
 #include "shared_constants.h"
 
 layout(set = 0, binding = AM_BINDING_FRAME) uniform FrameUniforms {

@@ -1,5 +1,5 @@
 // Push constants of the mesh pipelines (skinned mesh, wireframe, GPU-generated
-// mesh); mirrors struct MeshPush in engine/gpu/scene_renderer.cpp.
+// mesh); mirrors struct MeshPush in engine/gpu/render/scene_renderer.cpp.
 layout(push_constant) uniform MeshPush {
   mat4 model;
   vec4 color;

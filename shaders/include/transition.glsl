@@ -9,7 +9,7 @@
 // transition_constants.h first. At alpha = 0 this is mesh.vert's skinning,
 // operation for operation.
 
-// Per-draw parameters (C++ mirror: TransitionParams in engine/gpu/transition_params.h).
+// Per-draw parameters (C++ mirror: TransitionParams in engine/gpu/transition/transition_params.h).
 layout(set = AM_TRANSITION_SET, binding = AM_TRANSITION_BINDING_PARAMS, std430) readonly buffer TransitionParams {
   vec4 alphaParams;   // x: alpha of every vertex (no weight map), y: progress u, z: shift, w: duration
   vec4 reprojParams;  // x: reprojectFrom, y: tolerance, z: longest Newton step (m), w: threshold T

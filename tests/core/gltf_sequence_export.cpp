@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "doc/atomic_file.h"
+#include "util/atomic_file.h"
 #include "io/gltf_import.h"
 #include "io/gltf_sequence_export.h"
 #include "rig/pose.h"

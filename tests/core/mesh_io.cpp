@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "blobtree/compile.h"
-#include "doc/atomic_file.h"
+#include "util/atomic_file.h"
 #include "poly/mesh_checks.h"
 #include "poly/mesh_io.h"
 #include "poly/polygonizer.h"

@@ -10,6 +10,7 @@
 #include "poly/mesh_checks.h"
 #include "poly/polygonizer.h"
 #include "util/blob_builders.h"
+#include "util/manifold_checks.h"
 #include "util/morph_fixtures.h"
 
 using namespace animorph;
@@ -24,16 +25,6 @@ PolygonizeResult run(const FieldProgram& p, int res, bool cull = true) {
   auto r = polygonize(p, s);
   REQUIRE(r.ok());
   return std::move(*r);
-}
-
-void requireClosedManifold(const TriangleMesh& m) {
-  MeshTopology t = analyzeMesh(m);
-  CHECK(t.boundaryEdges == 0);
-  CHECK(t.nonManifoldEdges == 0);
-  CHECK(t.misorientedEdges == 0);
-  CHECK(t.nonManifoldVertices == 0);
-  CHECK(t.degenerateTriangles == 0);
-  CHECK(t.manifold());
 }
 
 // A creature-like chain of convolution segments.

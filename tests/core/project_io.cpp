@@ -4,7 +4,7 @@
 #include <fstream>
 #include <sys/stat.h>
 
-#include "doc/atomic_file.h"
+#include "util/atomic_file.h"
 #include "doc/document.h"
 #include "doc/project_io.h"
 #include "util/temp_dir.h"

@@ -22,7 +22,7 @@
 #include "blobtree/tree_edit.h"
 #include "doc/actor_removal.h"
 #include "doc/asset_cache.h"
-#include "doc/atomic_file.h"
+#include "util/atomic_file.h"
 #include "doc/project_io.h"
 #include "io/gltf_import.h"
 #include "util/blob_builders.h"

@@ -3,12 +3,12 @@
 
 #include <cstdlib>
 
-#include "buffer.h"
-#include "device_select.h"
+#include "vulkan/buffer.h"
+#include "vulkan/device_select.h"
 #include "gpu_fixture.h"
-#include "gpu_mesh.h"
-#include "line_batch.h"
-#include "swapchain.h"
+#include "render/gpu_mesh.h"
+#include "render/line_batch.h"
+#include "present/swapchain.h"
 
 using namespace animorph;
 using namespace animorph::gpu;

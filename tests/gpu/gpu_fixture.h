@@ -3,9 +3,9 @@
 // validation on, and a small skinned test mesh.
 #include <memory>
 
-#include "context.h"
+#include "vulkan/context.h"
 #include "rig/character.h"
-#include "rgba_image.h"
+#include "present/rgba_image.h"
 
 namespace animorph::test {
 

@@ -17,16 +17,17 @@
 #include "blobtree/compile.h"
 #include "demo/blob_creature.h"
 #include "gpu_fixture.h"
-#include "gpu_polygonizer.h"
+#include "implicit/gpu_polygonizer.h"
 #include "morph/solid_noise.h"
 #include "morph_field.h"
-#include "offscreen_target.h"
+#include "present/offscreen_target.h"
 #include "poly/marching_cubes_table.h"
 #include "poly/mesh_checks.h"
 #include "poly/polygonizer.h"
 #include "poly_constants.h"
-#include "scene_renderer.h"
+#include "render/scene_renderer.h"
 #include "util/blob_builders.h"
+#include "util/manifold_checks.h"
 
 using namespace animorph;
 using namespace animorph::gpu;
@@ -96,15 +97,6 @@ float maxNearestDistance(const std::vector<glm::vec3>& from, const std::vector<g
     worst = std::max(worst, best);
   }
   return worst;
-}
-
-void requireClosedManifold(const TriangleMesh& m) {
-  MeshTopology t = analyzeMesh(m);
-  CHECK(t.boundaryEdges == 0);
-  CHECK(t.nonManifoldEdges == 0);
-  CHECK(t.misorientedEdges == 0);
-  CHECK(t.nonManifoldVertices == 0);
-  CHECK(t.degenerateTriangles == 0);
 }
 
 // The GPU mesh agrees with the reference: triangle counts within 0.5 %, vertex

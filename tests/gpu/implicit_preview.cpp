@@ -9,8 +9,8 @@
 #include <thread>
 
 #include "gpu_fixture.h"
-#include "gpu_polygonizer.h"
-#include "implicit_preview.h"
+#include "implicit/gpu_polygonizer.h"
+#include "implicit/implicit_preview.h"
 #include "blobtree/blob_tree.h"
 #include "morph/mesh_distance.h"
 #include "poly/mesh_checks.h"

@@ -5,9 +5,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "gpu_fixture.h"
-#include "offscreen_target.h"
+#include "present/offscreen_target.h"
 #include "rig/skinning.h"
-#include "scene_renderer.h"
+#include "render/scene_renderer.h"
 
 using namespace animorph;
 using namespace animorph::gpu;

@@ -13,12 +13,12 @@
 #include "io/gltf_import.h"
 #include "morph/new_morph_project.h"
 #include "morph/transition_frame.h"
-#include "offscreen_target.h"
+#include "present/offscreen_target.h"
 #include "rig/pose.h"
 #include "scene/mesh_character.h"
 #include "scene/scene_frame.h"
-#include "scene_renderer.h"
-#include "transition_evaluator.h"
+#include "render/scene_renderer.h"
+#include "transition/transition_evaluator.h"
 #include "util/morph_fixtures.h"
 
 using namespace animorph;

@@ -10,7 +10,7 @@
 #include "doc/blobtree_commands.h"
 #include "scene/animorphosis_scene.h"
 #include "anim/key_edit.h"
-#include "curve_source.h"
+#include "curves/curve_source.h"
 #include "support/editor_fixture.h"
 #include "util/animorph_fixtures.h"
 

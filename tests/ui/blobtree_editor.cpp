@@ -4,8 +4,8 @@
 #include <GLFW/glfw3.h>
 
 #include "blobtree/tree_edit.h"
-#include "curve_editor_panel.h"
-#include "selection_info.h"
+#include "curves/curve_editor_panel.h"
+#include "scene/selection_info.h"
 #include "support/editor_fixture.h"
 
 using namespace animorph;

@@ -7,7 +7,7 @@
 #include <GLFW/glfw3.h>
 
 #include "doc/project_io.h"
-#include "file_browser.h"
+#include "widgets/file_browser.h"
 #include "support/editor_fixture.h"
 
 using namespace animorph;

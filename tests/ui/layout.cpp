@@ -2,9 +2,9 @@
 
 #include <fstream>
 
-#include "layout.h"
+#include "shell/layout.h"
 #include "support/editor_fixture.h"
-#include "util/prefs.h"
+#include "shell/prefs.h"
 
 using namespace animorph;
 using namespace animorph::test;

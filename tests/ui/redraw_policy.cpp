@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "redraw_policy.h"
+#include "shell/redraw_policy.h"
 
 using namespace animorph;
 

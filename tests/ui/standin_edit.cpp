@@ -6,7 +6,7 @@
 #include <GLFW/glfw3.h>
 
 #include "standin/fit_standin.h"
-#include "standin_tool.h"
+#include "viewport/standin_tool.h"
 #include "support/editor_fixture.h"
 
 using namespace animorph;
@@ -69,7 +69,7 @@ TEST_CASE("stand-in edit: click a capsule to select it, drag its radius handle, 
   h.frames(1);
   CHECK(h.doc().selection.actorId == "hero");
   CHECK(h.doc().selection.node == -1);
-  REQUIRE(selectedStandinSegment(h.doc(), h.ui->state().standinTool) == 1);
+  REQUIRE(selectedStandinSegment(h.doc()) == 1);
   CHECK(h.doc().history().size() == 0);  // selecting is not an edit
   REQUIRE(h.hasWidget("standin/radius"));
   REQUIRE(h.hasWidget("inspector/standin/segment/1"));
@@ -104,7 +104,7 @@ TEST_CASE("stand-in edit: the translate arrows move one end in the joint's space
   const StandinGuideSegment g0 = guides[0].segments[0];
   h.click(onScreen(h, 0.5f * (g0.a + g0.b)));
   h.frames(1);
-  REQUIRE(selectedStandinSegment(h.doc(), h.ui->state().standinTool) == 0);
+  REQUIRE(selectedStandinSegment(h.doc()) == 0);
   // Pick end B, then drag the X arrow.
   h.clickWidget("standin/handle_b");
   h.frames(1);
@@ -135,7 +135,7 @@ TEST_CASE("stand-in edit: Del deletes the selected segment with its tracks, undo
   h.frames(1);
   h.clickWidget("inspector/standin/segment/0");  // the inspector's list selects too
   h.frames(1);
-  REQUIRE(selectedStandinSegment(h.doc(), h.ui->state().standinTool) == 0);
+  REQUIRE(selectedStandinSegment(h.doc()) == 0);
   h.tapKey(GLFW_KEY_DELETE);
   const ActorMorph& am = *h.doc().project().morph.findActor("hero");
   REQUIRE(am.standin.segments.size() == 1);
@@ -156,7 +156,7 @@ TEST_CASE("stand-in inspector: duplicate, rebind and refit all are undoable comm
   h.frames(1);
   h.clickWidget("inspector/standin/segment/0");
   h.frames(1);
-  REQUIRE(selectedStandinSegment(h.doc(), h.ui->state().standinTool) == 0);
+  REQUIRE(selectedStandinSegment(h.doc()) == 0);
 
   // Duplicate: the copy goes right after the original and is selected; the keyed track follows its segment.
   h.clickWidget("inspector/standin/duplicate");
@@ -167,7 +167,7 @@ TEST_CASE("stand-in inspector: duplicate, rebind and refit all are undoable comm
     CHECK(am.standin.segments[1] == am.standin.segments[0]);
     REQUIRE(am.segmentTracks.size() == 1);
     CHECK(am.segmentTracks[0].segment == 2);
-    CHECK(selectedStandinSegment(h.doc(), h.ui->state().standinTool) == 1);
+    CHECK(selectedStandinSegment(h.doc()) == 1);
   }
 
   // Rebind the copy (on hip) to spine: it stays where it is at the current frame.

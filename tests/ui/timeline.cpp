@@ -3,9 +3,9 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
-#include "selection_info.h"
+#include "scene/selection_info.h"
 #include "support/editor_fixture.h"
-#include "timeline_panel.h"
+#include "timeline/timeline_panel.h"
 
 using namespace animorph;
 using namespace animorph::test;

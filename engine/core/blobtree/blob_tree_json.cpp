@@ -4,7 +4,7 @@
 
 #include "anim/track_json.h"
 #include "blobtree/validate.h"
-#include "doc/atomic_file.h"
+#include "util/atomic_file.h"
 #include "util/json_text.h"
 
 namespace animorph {

@@ -24,6 +24,8 @@ class AssetCache {
   // Adds (or replaces) an entry loaded elsewhere.
   void insert(const std::string& absolutePath, Entry e) { entries_[absolutePath] = std::move(e); }
   bool contains(const std::string& absolutePath) const { return entries_.count(absolutePath) != 0; }
+  // Every entry, by absolute path (a copy of the cache used off the UI thread is merged back with it).
+  const std::map<std::string, Entry>& entries() const { return entries_; }
 
   // The character at absolutePath, loading it if needed. Never throws.
   const Entry& get(const std::string& absolutePath);

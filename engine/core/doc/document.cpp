@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "doc/atomic_file.h"
+#include "util/atomic_file.h"
 #include "doc/project_io.h"
 
 namespace animorph {

@@ -17,6 +17,7 @@ namespace animorph {
 struct Selection {
   std::string actorId;  // empty: nothing selected
   int node = -1;        // a node of that actor's character, or -1 for the actor itself
+  int segment = -1;     // with node -1: a segment of that morph actor's stand-in, or -1 for none
   bool operator==(const Selection&) const = default;
 };
 

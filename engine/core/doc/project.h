@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "anim/timeline.h"
 #include "blobtree/blob_tree.h"
 #include "doc/animorphosis_setup.h"
 #include "doc/export_settings.h"
@@ -32,19 +33,6 @@ struct Actor {
   bool visible = true;
   Transform transform;
   bool operator==(const Actor&) const = default;
-};
-
-struct Timeline {
-  double fps = 24.0;
-  int frameStart = 0;
-  int frameEnd = 96;
-  int currentFrame = 0;
-  double playbackSpeed = 1.0;
-  bool loop = true;
-  bool operator==(const Timeline&) const = default;
-
-  double frameToSec(double frame) const { return frame / fps; }
-  double secToFrame(double sec) const { return sec * fps; }
 };
 
 struct ViewOptions {

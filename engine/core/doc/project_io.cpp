@@ -8,7 +8,7 @@
 #include "blobtree/blob_tree_json.h"
 #include "doc/animorphosis_project.h"
 #include "doc/animorphosis_setup_json.h"
-#include "doc/atomic_file.h"
+#include "util/atomic_file.h"
 #include "doc/export_settings_json.h"
 #include "doc/morph_setup_json.h"
 #include "util/json_text.h"

@@ -1,6 +1,6 @@
 #include "io/gltf_export.h"
 
-#include "doc/atomic_file.h"
+#include "util/atomic_file.h"
 #include "io/glb_writer.h"
 
 namespace animorph {

@@ -19,7 +19,7 @@
 #include <set>
 #include <sstream>
 
-#include "doc/atomic_file.h"
+#include "util/atomic_file.h"
 #include "io/gltf_schema_check.h"
 #include "rig/mesh_normals.h"
 #include "rig/skin_influences.h"

@@ -6,7 +6,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "doc/atomic_file.h"
+#include "util/atomic_file.h"
 #include "io/glb_writer.h"
 
 namespace animorph {

@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "doc/atomic_file.h"
+#include "util/atomic_file.h"
 #include "io/glb_writer.h"
 
 namespace animorph {

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "doc/atomic_file.h"
+#include "util/atomic_file.h"
 #include "util/json_text.h"
 
 namespace animorph {

@@ -10,7 +10,7 @@
 
 #include "doc/asset_cache.h"
 #include "doc/document.h"
-#include "editor_ui.h"
+#include "shell/editor_ui.h"
 
 namespace animorph::test {
 

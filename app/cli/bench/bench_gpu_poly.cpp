@@ -1,0 +1,279 @@
+// Benchmark of the GPU polygoniser against the CPU one, side by side in one run:
+// the interpolation morph of two stand-ins (seeded chains of 20 convolution
+// segments each, 40 in all, one walk with different joints and radii) at w = 0.5. The CPU polygonises the same field as
+// one program (B's weights scaled by w, A's by 1 - w: the convolution field is
+// linear in its weights), so both sides make the same mesh.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+
+#include <sys/resource.h>
+
+#include "blobtree/compile.h"
+#include "cli/bench/bench.h"
+#include "demo/blob_creature.h"
+#include "poly/polygonizer.h"
+#if ANIMORPH_HAS_GPU
+#include "vulkan/context.h"
+#include "implicit/gpu_polygonizer.h"
+#endif
+
+namespace {
+
+using namespace animorph;
+using animorph::bench::Row;
+
+constexpr unsigned kWalkSeed = 2024u;
+
+// A stand-in: a seeded random walk of n convolution segments inside the unit
+// cube; detailSeed jitters the joints and picks the radii, so two stand-ins of
+// one walk overlap like a character and its morph target.
+BlobNode chain(int n, unsigned walkSeed, unsigned detailSeed, int& id) {
+  std::mt19937 walk(walkSeed), detail(detailSeed);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  BlobNode blend = makeBlobNode(NodeType::Blend, id++, "stand-in");
+  glm::vec3 p(0.0f, 0.0f, -0.3f);
+  glm::vec3 dir(0.0f, 0.0f, 1.0f);
+  std::vector<glm::vec3> joints{p};
+  for (int i = 0; i < n; ++i) {
+    dir = glm::normalize(dir + 0.8f * glm::vec3(u(walk), u(walk), u(walk)));
+    p = glm::clamp(p + 0.09f * dir, glm::vec3(-0.36f), glm::vec3(0.36f));
+    joints.push_back(p);
+  }
+  for (glm::vec3& j : joints) j += 0.03f * glm::vec3(u(detail), u(detail), u(detail));
+  for (int i = 0; i < n; ++i) {
+    BlobNode s = makeBlobNode(NodeType::ConvSegment, id++);
+    s.vec3Param("a") = Vec3Track(joints[size_t(i)]);
+    s.vec3Param("b") = Vec3Track(joints[size_t(i + 1)]);
+    s.floatParam("radius") = FloatTrack(0.05f + 0.02f * u(detail));
+    s.floatParam("sharpness") = FloatTrack(12.0f);
+    blend.children.push_back(s);
+  }
+  return blend;
+}
+
+FieldProgram standIn(unsigned detailSeed) {
+  int id = 1;
+  BlobTree tree;
+  tree.threshold = FloatTrack(1.0f);
+  tree.root = chain(20, kWalkSeed, detailSeed, id);
+  return compileFieldProgram(tree, 0.0);
+}
+
+// One program whose field is (1 - w) fA + w fB for two convolution-only programs of equal threshold.
+FieldProgram interpolatedProgram(unsigned seedA, unsigned seedB, float w) {
+  int id = 1;
+  BlobTree tree;
+  tree.threshold = FloatTrack(1.0f);
+  tree.root = makeBlobNode(NodeType::Blend, id++, "morph");
+  tree.root.children.push_back(chain(20, kWalkSeed, seedA, id));
+  tree.root.children.push_back(chain(20, kWalkSeed, seedB, id));
+  FieldProgram p = compileFieldProgram(tree, 0.0);
+  for (size_t i = 0; i < p.convolution.size(); ++i) p.convolution.weight[i] *= i < 20 ? 1.0f - w : w;
+  return p;
+}
+
+std::string loadAverage() {
+  std::string load = "?";
+  if (FILE* f = std::fopen("/proc/loadavg", "r")) {
+    char buf[64] = {};
+    if (std::fgets(buf, sizeof buf, f)) load = std::string(buf).substr(0, std::string(buf).find(' '));
+    std::fclose(f);
+  }
+  return load;
+}
+
+// CPU time (user + system, all threads of the process) that fn takes, in ms.
+template <class Fn>
+double processCpuMs(Fn&& fn) {
+  auto now = [] {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return 1e3 * double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-3 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+  };
+  double a = now();
+  fn();
+  return now() - a;
+}
+
+Bounds unitCube() {
+  Bounds b;
+  b.add(glm::vec3(-0.5f));
+  b.add(glm::vec3(0.5f));
+  return b;
+}
+
+std::vector<Row> runGpuPoly(const animorph::bench::Options& opt) {
+  std::vector<Row> rows;
+  bool wanted = opt.gpu;
+  for (const auto& f : opt.filters) wanted |= f.find("gpu") != std::string::npos;
+  if (!wanted) {
+    rows.push_back({"skipped", 0, "", "", "run `bench gpu` or pass --gpu"});
+    return rows;
+  }
+#if !ANIMORPH_HAS_GPU
+  rows.push_back({"skipped", 0, "", "", "built without Vulkan"});
+  return rows;
+#else
+  namespace g = animorph::gpu;
+  const unsigned seedA = 1u, seedB = 2u;
+  const float w = 0.5f;
+  FieldProgram a = standIn(seedA), b = standIn(seedB);
+  FieldProgram merged = interpolatedProgram(seedA, seedB, w);
+  auto ctx = g::Context::create(g::ContextSettings{});
+  if (!ctx) {
+    rows.push_back({"skipped", 0, "", "", "no Vulkan device: " + ctx.error()});
+    return rows;
+  }
+  auto poly = g::GpuPolygonizer::create(**ctx);
+  if (!poly) {
+    rows.push_back({"skipped", 0, "", "", poly.error()});
+    return rows;
+  }
+  rows.push_back({"device", 0, "", "", (*ctx)->deviceName() + "; load average " + loadAverage() + " at start"});
+  const g::GpuField field = g::GpuField::interpolation(a, b, w);
+  std::vector<int> sizes = opt.quick ? std::vector<int>{64} : std::vector<int>{64, 128, 256};
+  if (const char* only = std::getenv("ANIMORPH_BENCH_GPU_RES")) {  // e.g. "128": one size while tuning
+    sizes.clear();
+    for (const char* c = only; *c;) {
+      char* end = nullptr;
+      long v = std::strtol(c, &end, 10);
+      if (end == c) break;
+      if (v == 64 || v == 128 || v == 256) sizes.push_back(int(v));
+      c = *end ? end + 1 : end;
+    }
+  }
+  const bool withDense = !std::getenv("ANIMORPH_BENCH_GPU_NO_DENSE");
+  for (size_t si = 0; si < sizes.size(); ++si) {
+    const int res = sizes[si];
+    const char* target = res == 64 ? "<= 5 ms" : res == 128 ? "<= 30 ms" : "<= 200 ms";
+    const int reps = res >= 256 ? 3 : (res >= 128 ? 5 : 9);
+    const std::string tag = "40 segs morph " + std::to_string(res) + "^3";
+    g::GpuPolygonizeSettings gs;
+    gs.resolution = res;
+    gs.bounds = unitCube();
+    g::GpuPolygonizeStats gpuCulled, gpuDense;
+    std::string error;
+    std::vector<std::array<double, 6>> culledPasses;  // per run, for medians per pass
+    auto runGpu = [&](bool cull, g::GpuPolygonizeStats& out) {
+      gs.culling = cull;
+      auto r = (*poly)->polygonize(field, gs);
+      if (r) out = *r;
+      else error = r.error();
+      if (r && cull) culledPasses.push_back({r->passMs[0], r->passMs[1], r->passMs[2], r->passMs[3], r->passMs[4], r->passMs[5]});
+    };
+    // medianMs warms up first (pipelines compile lazily on lavapipe, buffers grow).
+    double msGpu = animorph::bench::medianMs(reps, [&] { runGpu(true, gpuCulled); });
+    // Process CPU time of one culled run (lavapipe's worker threads included): on a
+    // loaded machine the wall time includes waiting for a core, this does not.
+    const double cpuMsGpu = processCpuMs([&] {
+                              for (int k = 0; k < reps; ++k) runGpu(true, gpuCulled);
+                            }) / reps;
+    // Median of each pass over the culled runs (timestamps of one run are noisy on a loaded machine).
+    for (int k = 0; k < 6; ++k) {
+      std::vector<double> v;
+      for (const auto& p : culledPasses) v.push_back(p[size_t(k)]);
+      std::sort(v.begin(), v.end());
+      if (!v.empty()) gpuCulled.passMs[k] = v[v.size() / 2];
+    }
+    double msGpuDense = withDense ? animorph::bench::medianMs(res >= 256 ? 1 : 3, [&] { runGpu(false, gpuDense); }) : 0.0;
+    if (!error.empty()) {
+      rows.push_back({tag + " GPU failed", 0, "", "", error});
+      continue;
+    }
+    PolygonizeSettings cs;
+    cs.resolution = res;
+    cs.bounds = unitCube();
+    cs.threads = 2;
+    PolygonizeResult cpuCulled, cpuDense;
+    double msCpu = animorph::bench::medianMs(reps, [&] {
+      cs.culling = true;
+      if (auto r = polygonize(merged, cs)) cpuCulled = std::move(*r);
+    });
+    const double cpuMsCpu = processCpuMs([&] {
+                              cs.culling = true;
+                              for (int k = 0; k < reps; ++k)
+                                if (auto r = polygonize(merged, cs)) cpuCulled = std::move(*r);
+                            }) / reps;
+    double msCpuDense = !withDense ? 0.0 : animorph::bench::medianMs(res >= 256 ? 1 : 3, [&] {
+      cs.culling = false;
+      if (auto r = polygonize(merged, cs)) cpuDense = std::move(*r);
+    });
+    char note[200];
+    std::snprintf(note, sizeof note, "%u tris, %u/%u blocks evaluated, load %s", gpuCulled.triangles,
+                  gpuCulled.blocksActive, gpuCulled.blocksTotal, loadAverage().c_str());
+    rows.push_back({tag + " GPU culled", msGpu, "ms", target, note});
+    std::snprintf(note, sizeof note, "medians: upload %.2f, coarse %.2f, compact %.2f, field+cells %.2f, scan %.2f, emit %.2f ms",
+                  gpuCulled.passMs[0], gpuCulled.passMs[1], gpuCulled.passMs[2], gpuCulled.passMs[3],
+                  gpuCulled.passMs[4], gpuCulled.passMs[5]);
+    double gpuSum = 0.0;
+    for (double x : gpuCulled.passMs) gpuSum += x;
+    rows.push_back({tag + " GPU culled, GPU time", gpuSum, "ms", "", note});
+    rows.push_back({tag + " GPU culled, CPU time", cpuMsGpu, "ms", "", "mean per run, all threads (lavapipe runs on the CPU): less load-dependent"});
+    if (withDense) {
+    std::snprintf(note, sizeof note, "%u tris; passes %.2f %.2f %.2f %.2f %.2f %.2f ms", gpuDense.triangles,
+                  gpuDense.passMs[0], gpuDense.passMs[1], gpuDense.passMs[2], gpuDense.passMs[3], gpuDense.passMs[4],
+                  gpuDense.passMs[5]);
+    rows.push_back({tag + " GPU dense", msGpuDense, "ms", "", note});
+    rows.push_back({tag + " GPU dense/culled", msGpuDense / msGpu, "ratio", "", ""});
+    }
+    rows.push_back({tag + " GPU triangles/s", gpuCulled.triangles / (msGpu * 1e-3), "tris/s", "", ""});
+    std::snprintf(note, sizeof note, "%zu tris, %zu/%zu blocks evaluated, %zu cells, %zu points, %zu pairs, 2 threads",
+                  cpuCulled.mesh.triangleCount(), cpuCulled.stats.blocksEvaluated, cpuCulled.stats.blocksTotal,
+                  cpuCulled.stats.cellsVisited, cpuCulled.stats.pointsEvaluated, cpuCulled.stats.primitiveEvaluations);
+    rows.push_back({tag + " CPU culled", msCpu, "ms", "", note});
+    rows.push_back({tag + " CPU culled, CPU time", cpuMsCpu, "ms", "", "mean per run, both threads"});
+    if (withDense) {
+      rows.push_back({tag + " CPU dense", msCpuDense, "ms", "", std::to_string(cpuDense.mesh.triangleCount()) + " tris"});
+      rows.push_back({tag + " CPU dense/culled", msCpuDense / msCpu, "ratio", "", ""});
+    }
+    rows.push_back({tag + " CPU triangles/s", cpuCulled.mesh.triangleCount() / (msCpu * 1e-3), "tris/s", "", ""});
+    rows.push_back({tag + " GPU / CPU time", msGpu / msCpu, "ratio", "", "culled, same field and grid"});
+    double triDiff = std::abs(double(gpuCulled.triangles) - double(cpuCulled.mesh.triangleCount())) /
+                     std::max<double>(1.0, double(cpuCulled.mesh.triangleCount()));
+    rows.push_back({tag + " GPU vs CPU triangle difference", 100.0 * triDiff, "%", "<= 0.5 %", ""});
+  }
+  // The demo BlobTree creature (frames, so affine maps: the point path, not line groups), at the
+  // editor's scrubbing resolution: GPU and CPU side by side.
+  {
+    FieldProgram creature = compileFieldProgram(makeBlobCreature(), 0.5);
+    const int res = 96, reps = 5;
+    g::GpuPolygonizeSettings gs;
+    gs.resolution = res;
+    g::GpuPolygonizeStats st;
+    std::string error;
+    double msGpu = animorph::bench::medianMs(reps, [&] {
+      auto r = (*poly)->polygonize(g::GpuField::single(creature), gs);
+      if (r) st = *r;
+      else error = r.error();
+    });
+    PolygonizeSettings cs;
+    cs.resolution = res;
+    cs.threads = 2;
+    PolygonizeResult cpu;
+    double msCpu = animorph::bench::medianMs(reps, [&] {
+      if (auto r = polygonize(creature, cs)) cpu = std::move(*r);
+    });
+    const std::string tag = "blob creature 96^3";
+    if (!error.empty()) {
+      rows.push_back({tag + " GPU failed", 0, "", "", error});
+    } else {
+      char note[200];
+      std::snprintf(note, sizeof note, "%u tris, %u/%u blocks evaluated; cells %.2f, emit %.2f ms", st.triangles,
+                    st.blocksActive, st.blocksTotal, st.passMs[3], st.passMs[5]);
+      rows.push_back({tag + " GPU culled", msGpu, "ms", "", note});
+      rows.push_back({tag + " CPU culled", msCpu, "ms", "", std::to_string(cpu.mesh.triangleCount()) + " tris, 2 threads"});
+      rows.push_back({tag + " GPU / CPU time", msGpu / msCpu, "ratio", "", "the BlobTree preview's backends"});
+    }
+  }
+  return rows;
+#endif
+}
+
+}  // namespace
+
+ANIMORPH_BENCH("gpu", "GPU vs CPU polygonisation of a 40-segment stand-in morph (needs `bench gpu` or --gpu)",
+               runGpuPoly);

@@ -1,0 +1,116 @@
+#include "cli/bench/bench_gpu_transition.h"
+
+#include <cstdio>
+#include <memory>
+
+#if ANIMORPH_HAS_GPU
+#include "vulkan/context.h"
+#include "morph/transition_frame.h"
+#include "present/offscreen_target.h"
+#include "rig/pose.h"
+#include "render/scene_renderer.h"
+#include "transition/transition_evaluator.h"
+#endif
+
+namespace animorph::bench {
+
+#if !ANIMORPH_HAS_GPU
+std::vector<Row> gpuTransitionRows(const Options&, const Character&, const Standin&, const StandinBinding&) {
+  return {{"GPU transition", 0.0, "", "", "skipped: built without Vulkan"}};
+}
+#else
+std::vector<Row> gpuTransitionRows(const Options& opt, const Character& c, const Standin& standin,
+                                   const StandinBinding& binding) {
+  using namespace animorph::gpu;
+  std::vector<Row> rows;
+  if (!opt.gpu) return {{"GPU transition", 0.0, "", "", "skipped: run with --gpu"}};
+  auto ctx = Context::create(ContextSettings{});
+  if (!ctx) return {{"GPU transition", 0.0, "", "", "no Vulkan device: " + ctx.error()}};
+  const uint32_t width = 1280, height = 720;
+  auto target = OffscreenTarget::create(**ctx, width, height);
+  if (!target) return {{"GPU transition", 0.0, "", "", target.error()}};
+  auto renderer = SceneRenderer::create(**ctx, (*target)->renderPass());
+  if (!renderer) return {{"GPU transition", 0.0, "", "", renderer.error()}};
+  auto evaluator = TransitionEvaluator::create(**ctx);
+  if (!evaluator) return {{"GPU transition", 0.0, "", "", evaluator.error()}};
+  const int node = c.meshNodes().front();
+  const Mesh& mesh = c.meshes[size_t(c.nodes[size_t(node)].mesh)];
+  auto gpuMesh = GpuMesh::upload(**ctx, mesh);
+  auto gpuBinding = GpuStandinBinding::upload(**ctx, binding, {});
+  if (!gpuMesh || !gpuBinding) return {{"GPU transition", 0.0, "", "", "upload failed"}};
+
+  // A runtime around the character, so the frame parameters come from the editor's code.
+  MorphRuntime rt;
+  rt.source.character = std::make_shared<Character>(c);
+  rt.source.clip = c.clips.empty() ? nullptr : &rt.source.character->clips[0];
+  rt.source.morph.standin = standin;
+  rt.source.binding = binding;
+  rt.source.vertexCount = mesh.vertexCount();
+
+  OrbitCamera camera;
+  camera.frame(mesh.bounds(), float(width) / float(height));
+  float t = 0.0f;
+  Status failure;
+  std::vector<glm::mat4> joints;
+  TransitionFrame frameParams;
+  auto frame = [&](bool transition, double u) {
+    t += 0.04f;
+    const auto globals = poseGlobals(c, rt.source.clip, t);
+    joints = jointMatrices(c, node, globals);
+    Scene scene;
+    scene.options.grid = false;
+    scene.options.axisIndicator = false;
+    MeshDraw d;
+    d.mesh = gpuMesh->get();
+    d.model = globals[size_t(node)];
+    d.jointMatrices = joints;
+    if (transition) {
+      frameParams = transitionFrame(rt, false, t, u, true);  // part of the frame's cost
+      scene.transitionMeshes.push_back({d, gpuBinding->get(), 0, &frameParams});
+    } else {
+      scene.meshes.push_back(d);
+    }
+    Status s = (*target)->render(
+        [&](VkCommandBuffer cmd) {
+          Status r = (*renderer)->record(cmd, (*target)->serial(), {0, 0, width, height}, camera, scene);
+          if (!r) failure = r;
+        },
+        {0, 0, 0, 1}, false);
+    if (!s) failure = s;
+  };
+  const int repeats = opt.quick ? 5 : 21;
+  frame(false, 0.0);  // pipelines compile lazily: warm both up
+  frame(true, 0.5);
+  frame(true, 0.75);
+  const double skinMs = medianMs(repeats, [&] { frame(false, 0.0); });
+  const double transMs = medianMs(repeats, [&] { frame(true, 0.5); });
+  const double reprojMs = medianMs(opt.quick ? 3 : 9, [&] { frame(true, 0.75); });
+  if (!failure) return {{"GPU transition", 0.0, "", "", failure.error()}};
+  char note[200];
+  std::snprintf(note, sizeof note, "%zu vertices, %ux%u offscreen frame, alpha 0.5; plain skinned draw %.2f ms (%.2fx); %s",
+                mesh.vertexCount(), width, height, skinMs, transMs / skinMs, (*ctx)->deviceName().c_str());
+  rows.push_back({"transition frame (GPU vertex shader)", transMs, "ms", "~ a skinned draw", note});
+  std::snprintf(note, sizeof note, "alpha 0.84: every vertex re-projected in the vertex shader");
+  rows.push_back({"transition frame with re-projection (GPU)", reprojMs, "ms", "", note});
+
+  // The vertex work alone: the compute twin of the shader, submitted and waited for.
+  if ((*evaluator)->setMesh(mesh, **gpuBinding, 0)) {
+    std::vector<glm::vec3> pos, nrm;
+    const auto globals = poseGlobals(c, rt.source.clip, 0.5f);
+    const auto j = jointMatrices(c, node, globals);
+    for (double u : {0.5, 0.75}) {
+      const TransitionFrame f = transitionFrame(rt, false, 0.5, u, true);
+      (void)(*evaluator)->evaluate(j, globals[size_t(node)], f, pos, nrm);  // warm-up
+      const double ms = medianMs(opt.quick ? 3 : 9, [&] { (void)(*evaluator)->evaluate(j, globals[size_t(node)], f, pos, nrm); });
+      std::snprintf(note, sizeof note, "compute twin of the vertex shader, %zu vertices, alpha %s; wall time with "
+                    "submit, wait and read-back (GPU timestamps say %.3f ms)", pos.size(),
+                    u == 0.5 ? "0.5" : "0.84, re-projected", (*evaluator)->lastDispatchMs());
+      rows.push_back({u == 0.5 ? "transition vertices (GPU compute)" : "transition vertices re-projected (GPU compute)",
+                      ms, "ms", "", note});
+    }
+  }
+  return rows;
+}
+#endif
+
+}  // namespace animorph::bench

@@ -1,0 +1,191 @@
+// Benchmark of the editor's implicit preview while scrubbing: the demo morph's
+// B..C stage (creature -> gear) scrubbed frame by frame, forward then back,
+// through the editor's own pipeline (scene evaluation, the morph's stage, the
+// ImplicitPreview at the interactive resolution, the renderer into an
+// offscreen 1280x720 target; no window), once with the CPU worker and once
+// with the GPU polygoniser. Prints frame time p50/p95, fps, the preview's
+// latency (a time's mesh on screen after the frame that asked for it), and how
+// long refining takes once scrubbing stops.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+
+#include "cli/bench/bench.h"
+#include "doc/project_io.h"
+#include "scene/morph_preview_source.h"
+#include "scene/morph_scene.h"
+#include "scene/scene_frame.h"
+#if ANIMORPH_HAS_GPU
+#include "vulkan/context.h"
+#include "implicit/implicit_preview.h"
+#include "render/mesh_cache.h"
+#include "present/offscreen_target.h"
+#include "render/scene_from_frame.h"
+#endif
+
+namespace {
+
+using namespace animorph;
+using animorph::bench::Row;
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, size_t(p * double(v.size())))];
+}
+
+std::vector<Row> runScrub(const animorph::bench::Options& opt) {
+  std::vector<Row> rows;
+#if !ANIMORPH_HAS_GPU
+  rows.push_back({"skipped", 0, "", "", "built without Vulkan"});
+  return rows;
+#else
+  namespace fs = std::filesystem;
+  const char* demoEnv = std::getenv("ANIMORPH_DEMO");
+  const fs::path demo = demoEnv ? fs::path(demoEnv) : fs::path(ANIMORPH_SOURCE_DIR) / "resources/demo/demo.animorph";
+  auto project = loadProject(demo.string());
+  if (!project) {
+    rows.push_back({"skipped", 0, "", "", project.error()});
+    return rows;
+  }
+  const std::string baseDir = demo.parent_path().string();
+  AssetCache assets;
+  auto rt = prepareMorph(*project, baseDir, assets);
+  if (!rt) {
+    rows.push_back({"skipped", 0, "", "", rt.error()});
+    return rows;
+  }
+  auto ctx = gpu::Context::create(gpu::ContextSettings{});
+  if (!ctx) {
+    rows.push_back({"skipped", 0, "", "", "no Vulkan device: " + ctx.error()});
+    return rows;
+  }
+  const uint32_t width = 1280, height = 720;
+  auto target = gpu::OffscreenTarget::create(**ctx, width, height);
+  if (!target) {
+    rows.push_back({"skipped", 0, "", "", target.error()});
+    return rows;
+  }
+  auto renderer = gpu::SceneRenderer::create(**ctx, (*target)->renderPass());
+  if (!renderer) {
+    rows.push_back({"skipped", 0, "", "", renderer.error()});
+    return rows;
+  }
+  const Timeline& tl = project->timeline;
+  const MorphMarkers& mk = project->morph.markers;
+  std::vector<int> frames;
+  const int last = opt.quick ? std::min(mk.c, mk.b + 6) : mk.c;
+  for (int f = mk.b; f <= last; ++f) frames.push_back(f);
+  for (int f = last - 1; f >= mk.b; --f) frames.push_back(f);
+  const int interactive = opt.quick ? 48 : 96, refined = opt.quick ? 64 : 128;
+  rows.push_back({"device", 0, "", "", (*ctx)->deviceName() + "; " + std::to_string(frames.size()) +
+                                           " frames B..C..B of the demo morph, 1280x720 offscreen"});
+  OrbitCamera camera;
+  Bounds view;
+  view.add(glm::vec3(-1.2f, 0.0f, -1.2f));
+  view.add(glm::vec3(1.2f, 2.0f, 1.2f));
+  camera.frame(view, float(width) / float(height));
+
+  // CPU worker; GPU as the editor runs it (frame pacing); GPU polygonising every frame's shape.
+  for (int mode : {0, 1, 2}) {
+    const bool gpuPath = mode > 0;
+    const std::string tag = std::string(gpuPath ? "GPU" : "CPU") + " preview " + std::to_string(interactive) + "^3" +
+                            (mode == 2 ? " every frame" : "");
+    gpu::ImplicitPreview preview(**ctx);
+    gpu::MeshCache meshes(**ctx);
+    gpu::Scene scene;
+    gpu::ImplicitPreviewSettings ps;
+    ps.interactiveResolution = interactive;
+    ps.refinedResolution = refined;
+    ps.gpu = gpuPath;
+    ps.paceGpu = mode != 2;
+    ps.threads = interactivePreviewThreads();  // as the editor
+    std::vector<double> frameMs, latencyMs;
+    std::map<double, Clock::time_point> askedAt;  // time -> when a frame last started asking for it
+    double lastAnswered = -1.0, lastAsked = -1.0;
+    std::string error;
+    auto oneFrame = [&](double timeSec) {
+      SceneFrame frame = evaluateScene(*project, baseDir, assets, timeSec);
+      applyMorph(frame, **rt, timeSec, MorphFrameSettings{}, /*implicitStage=*/false);
+      if (timeSec != lastAsked) askedAt[timeSec] = Clock::now();  // a new time (re)starts its clock
+      lastAsked = timeSec;
+      preview.update(morphPreviewSource(*rt, timeSec), timeSec, ps);
+      gpu::buildScene(frame, project->view, {}, meshes, scene);
+      preview.draw(scene, glm::mat4(1.0f), {0.62f, 0.62f, 0.62f, 1.0f}, false);
+      Status st = (*target)->render(
+          [&](VkCommandBuffer cmd) {
+            Status r = (*renderer)->record(cmd, (*target)->serial(), {0, 0, width, height}, camera, scene);
+            if (!r) error = r.error();
+          },
+          {0.1f, 0.1f, 0.1f, 1.0f}, /*readBack=*/false);
+      if (!st) error = st.error();
+      meshes.endFrame();
+      preview.endFrame();
+      // Latency: from the frame that first asked for a time to the end of the frame that drew
+      // its mesh (CPU: the worker's result, uploaded; GPU: the shape recorded, drawn in the same
+      // frame). Times never drawn (skipped while scrubbing) have no latency: "meshes shown".
+      if (double shown = preview.status().timeSec; shown != lastAnswered && askedAt.count(shown)) {
+        lastAnswered = shown;
+        latencyMs.push_back(msSince(askedAt[shown]));
+      }
+    };
+    // Warm-up: pipelines (the B marker's field is one stand-in, the frames after it a morph:
+    // two pipeline variants), first uploads, buffers grown for both resolutions (each shape
+    // settles at the refined one).
+    for (int w = 1; w >= 0; --w) {
+      oneFrame(tl.frameToSec(frames[size_t(w)]));
+      while (preview.busy()) {
+        preview.waitIdle(60.0);
+        oneFrame(tl.frameToSec(frames[size_t(w)]));
+      }
+    }
+    askedAt.clear();
+    latencyMs.clear();  // the warm-up's frames (pipeline compilation) are not scrubbing
+    for (int f : frames) {
+      const auto t0 = Clock::now();
+      oneFrame(tl.frameToSec(f));
+      frameMs.push_back(msSince(t0));
+    }
+    // Scrubbing stops: frames keep coming until the refined mesh is on screen.
+    const auto stop = Clock::now();
+    const double stopTime = tl.frameToSec(frames.back());
+    int settleFrames = 0;
+    while (preview.busy() && msSince(stop) < 60000.0) {
+      oneFrame(stopTime);
+      ++settleFrames;
+    }
+    const double refineMs = msSince(stop);
+    const gpu::ImplicitPreviewStatus st = preview.status();
+    if (!error.empty()) {
+      rows.push_back({tag + " failed", 0, "", "", error});
+      continue;
+    }
+    std::string how = st.gpu ? "GPU" : "CPU";
+    if (!st.gpuFallback.empty()) how += " (fell back: " + st.gpuFallback + ")";
+    double mean = 0.0;
+    for (double x : frameMs) mean += x;
+    mean /= double(std::max<size_t>(1, frameMs.size()));
+    rows.push_back({tag + " frame time p50", percentile(frameMs, 0.5), "ms", "", how});
+    rows.push_back({tag + " frame time p95", percentile(frameMs, 0.95), "ms", "", ""});
+    rows.push_back({tag + " fps", 1000.0 / mean, "fps", ">= 30", "mean over the scrub"});
+    rows.push_back({tag + " preview latency p50", percentile(latencyMs, 0.5), "ms", "",
+                    std::to_string(latencyMs.size()) + " meshes shown while scrubbing"});
+    rows.push_back({tag + " preview latency p95", percentile(latencyMs, 0.95), "ms", "", ""});
+    char note[128];
+    std::snprintf(note, sizeof note, "%d frames; %d^3, %zu tris", settleFrames, st.resolution, st.triangles);
+    rows.push_back({tag + " refine to " + std::to_string(refined) + "^3 after scrubbing", refineMs, "ms", "", note});
+  }
+  return rows;
+#endif
+}
+
+}  // namespace
+
+ANIMORPH_BENCH("scrub", "editor preview pipeline scrubbing the demo morph B..C, CPU worker vs GPU (offscreen)",
+               runScrub);

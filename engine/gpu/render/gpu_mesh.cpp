@@ -1,0 +1,125 @@
+#include "render/gpu_mesh.h"
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <vector>
+
+#include "rig/mesh_normals.h"
+#include "shared_constants.h"
+
+namespace animorph::gpu {
+
+namespace {
+
+VkDeviceSize alignUp(VkDeviceSize v, VkDeviceSize a) { return (v + a - 1) / a * a; }
+
+std::vector<uint32_t> uniqueEdges(const std::vector<uint32_t>& tris) {
+  std::vector<uint64_t> keys;
+  keys.reserve(tris.size());
+  for (size_t t = 0; t + 2 < tris.size(); t += 3)
+    for (int e = 0; e < 3; ++e) {
+      uint32_t a = tris[t + e], b = tris[t + (e + 1) % 3];
+      if (a > b) std::swap(a, b);
+      keys.push_back((uint64_t(a) << 32) | b);
+    }
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  std::vector<uint32_t> out;
+  out.reserve(keys.size() * 2);
+  for (uint64_t k : keys) {
+    out.push_back(uint32_t(k >> 32));
+    out.push_back(uint32_t(k & 0xffffffffu));
+  }
+  return out;
+}
+
+}  // namespace
+
+Result<std::unique_ptr<GpuMesh>> GpuMesh::upload(Context& ctx, const Mesh& mesh, bool withEdgeList) {
+  const std::string what = "mesh '" + mesh.name + "'";
+  const size_t n = mesh.positions.size();
+  if (n == 0) return Error{what + ": no vertices"};
+  if (n > 0xffffffffu) return Error{what + ": too many vertices"};
+  if (mesh.indices.size() % 3 != 0) return Error{what + ": index count " + std::to_string(mesh.indices.size()) + " is not a multiple of 3"};
+  for (size_t i = 0; i < mesh.indices.size(); ++i)
+    if (mesh.indices[i] >= n)
+      return Error{what + ": index " + std::to_string(i) + " = " + std::to_string(mesh.indices[i]) +
+                   " is out of range (" + std::to_string(n) + " vertices)"};
+  if (!mesh.normals.empty() && mesh.normals.size() != n) return Error{what + ": " + std::to_string(mesh.normals.size()) + " normals for " + std::to_string(n) + " vertices"};
+  if (!mesh.joints0.empty() && (mesh.joints0.size() != n || mesh.weights0.size() != n))
+    return Error{what + ": JOINTS_0/WEIGHTS_0 do not have one entry per vertex"};
+  if (!mesh.joints1.empty() && (mesh.joints1.size() != n || mesh.weights1.size() != n))
+    return Error{what + ": JOINTS_1/WEIGHTS_1 do not have one entry per vertex"};
+
+  std::vector<glm::vec3> computed;
+  const std::vector<glm::vec3>* normals = &mesh.normals;
+  if (mesh.normals.empty()) {
+    computed = computeAreaWeightedNormals(mesh.positions, mesh.indices);
+    normals = &computed;
+  }
+  // Joint indices as u16; an index that does not fit becomes 0xffff, which the
+  // shader ignores like any index beyond the draw's joint count (as the CPU does).
+  auto packJoints = [](const glm::uvec4& j) {
+    std::array<uint16_t, 4> out{};
+    for (int k = 0; k < 4; ++k) out[k] = static_cast<uint16_t>(std::min<uint32_t>(j[k], 0xffffu));
+    return out;
+  };
+  std::vector<std::array<uint16_t, 4>> j0(n), j1(n);
+  std::vector<glm::vec4> w0(n, glm::vec4(1, 0, 0, 0)), w1(n, glm::vec4(0.0f));
+  if (!mesh.joints0.empty()) {
+    for (size_t v = 0; v < n; ++v) j0[v] = packJoints(mesh.joints0[v]);
+    w0 = mesh.weights0;
+  }
+  if (!mesh.joints1.empty()) {
+    for (size_t v = 0; v < n; ++v) j1[v] = packJoints(mesh.joints1[v]);
+    w1 = mesh.weights1;
+  }
+  std::vector<uint32_t> edges;
+  if (withEdgeList || !ctx.supportsWireframeFill()) edges = uniqueEdges(mesh.indices);
+
+  std::unique_ptr<GpuMesh> gm(new GpuMesh(ctx.device()));
+  const void* streams[6] = {mesh.positions.data(), normals->data(), j0.data(), j1.data(), w0.data(), w1.data()};
+  const VkDeviceSize strides[6] = {12, 12, 8, 8, 16, 16};
+  VkDeviceSize size = 0;
+  for (int s = 0; s < 6; ++s) {
+    gm->streamOffsets_[s] = size;
+    size = alignUp(size + strides[s] * n, 16);
+  }
+  gm->indexOffset_ = size;
+  size = alignUp(size + 4 * mesh.indices.size(), 16);
+  gm->edgeOffset_ = size;
+  size += 4 * edges.size();
+  std::vector<uint8_t> blob(size);
+  for (int s = 0; s < 6; ++s) std::memcpy(blob.data() + gm->streamOffsets_[s], streams[s], strides[s] * n);
+  if (!mesh.indices.empty()) std::memcpy(blob.data() + gm->indexOffset_, mesh.indices.data(), 4 * mesh.indices.size());
+  if (!edges.empty()) std::memcpy(blob.data() + gm->edgeOffset_, edges.data(), 4 * edges.size());
+
+  Result<Buffer> buf = createDeviceBuffer(ctx, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
+                                          blob.data(), size);
+  if (!buf) return Error{what + ": " + buf.error()};
+  gm->buffer_ = *buf;
+  gm->vertexCount_ = static_cast<uint32_t>(n);
+  gm->indexCount_ = static_cast<uint32_t>(mesh.indices.size());
+  gm->edgeIndexCount_ = static_cast<uint32_t>(edges.size());
+  gm->bounds_ = mesh.bounds();
+  gm->name_ = mesh.name;
+  return gm;
+}
+
+GpuMesh::~GpuMesh() { destroyBuffer(device_, buffer_); }
+
+void GpuMesh::bindTriangles(VkCommandBuffer cmd) const {
+  VkBuffer bufs[6] = {buffer_.buffer, buffer_.buffer, buffer_.buffer, buffer_.buffer, buffer_.buffer, buffer_.buffer};
+  static_assert(AM_VERTEX_POSITION == 0 && AM_VERTEX_WEIGHTS1 == 5, "streams are bound as bindings 0..5");
+  vkCmdBindVertexBuffers(cmd, 0, 6, bufs, streamOffsets_);
+  vkCmdBindIndexBuffer(cmd, buffer_.buffer, indexOffset_, VK_INDEX_TYPE_UINT32);
+}
+
+void GpuMesh::bindEdges(VkCommandBuffer cmd) const {
+  VkBuffer bufs[6] = {buffer_.buffer, buffer_.buffer, buffer_.buffer, buffer_.buffer, buffer_.buffer, buffer_.buffer};
+  vkCmdBindVertexBuffers(cmd, 0, 6, bufs, streamOffsets_);
+  vkCmdBindIndexBuffer(cmd, buffer_.buffer, edgeOffset_, VK_INDEX_TYPE_UINT32);
+}
+
+}  // namespace animorph::gpu

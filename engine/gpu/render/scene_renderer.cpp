@@ -1,0 +1,628 @@
+#include "render/scene_renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "vulkan/buffer.h"
+#include "vulkan/graphics_pipeline.h"
+#include "vulkan/shader_module.h"
+#include "shared_constants.h"
+#include "transition_constants.h"
+#include "transition/transition_params.h"
+#include "vulkan/vk_check.h"
+
+namespace animorph::gpu {
+
+namespace {
+
+// std140 mirror of FrameUniforms in shaders/include/frame.glsl.
+struct FrameUniforms {
+  glm::mat4 viewProj;
+  glm::mat4 view;
+  glm::vec4 cameraPos;
+  glm::vec4 keyLightDir;
+  glm::vec4 grid;
+  glm::vec4 gridCenter;
+  glm::vec4 selectColor;
+  glm::vec4 viewportPx;
+};
+static_assert(sizeof(FrameUniforms) == 2 * 64 + 6 * 16);
+
+// Push constants of the mesh pipelines (shaders/include/mesh_push.glsl); line.vert reads the first 64 bytes as LinePush.
+struct MeshPush {
+  glm::mat4 model;
+  glm::vec4 color;
+  uint32_t jointOffset;
+  uint32_t jointCount;
+  uint32_t flags;
+  float depthPull;
+  glm::vec4 baseLinear;  // rgb: color.rgb in linear light (the shaders would take it per pixel)
+};
+static_assert(sizeof(MeshPush) == 112);  // within the 128 bytes every device has
+
+// The colour's rgb in linear light, as the viewport shading uses it (gamma 2.2).
+glm::vec4 linearRgb(const glm::vec4& c) {
+  return glm::vec4(glm::pow(glm::clamp(glm::vec3(c), 0.0f, 1.0f), glm::vec3(2.2f)), c.a);
+}
+constexpr VkShaderStageFlags kPushStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+
+// Clip-space depth pulled toward the camera by the wireframe pass (in NDC depth units).
+constexpr float kWireDepthPull = 5e-5f;
+
+enum class VertexInput { None, Mesh, MeshWeights, Line, Generated, Transition };
+
+struct PipelineDesc {
+  const char* vert;
+  const char* frag;
+  VertexInput input;
+  VkPrimitiveTopology topology;
+  VkPolygonMode polygonMode = VK_POLYGON_MODE_FILL;
+  bool depthTest = true;
+  bool depthWrite = true;
+  bool blend = false;
+  VkCullModeFlags cull = VK_CULL_MODE_NONE;
+};
+
+Result<VkPipeline> createPipeline(VkDevice device, VkRenderPass pass, VkPipelineLayout layout, const PipelineDesc& d) {
+  GraphicsPipelineDesc g;
+  g.vert = d.vert;
+  g.frag = d.frag;
+  std::vector<VkVertexInputBindingDescription>& bindings = g.bindings;
+  std::vector<VkVertexInputAttributeDescription>& attributes = g.attributes;
+  if (d.input == VertexInput::Mesh || d.input == VertexInput::MeshWeights || d.input == VertexInput::Transition) {
+    const struct { uint32_t stride; VkFormat format; } streams[6] = {
+        {12, VK_FORMAT_R32G32B32_SFLOAT}, {12, VK_FORMAT_R32G32B32_SFLOAT}, {8, VK_FORMAT_R16G16B16A16_UINT},
+        {8, VK_FORMAT_R16G16B16A16_UINT}, {16, VK_FORMAT_R32G32B32A32_SFLOAT}, {16, VK_FORMAT_R32G32B32A32_SFLOAT}};
+    for (uint32_t s = 0; s < 6; ++s) {
+      bindings.push_back({s, streams[s].stride, VK_VERTEX_INPUT_RATE_VERTEX});
+      attributes.push_back({s, s, streams[s].format, 0});
+    }
+    if (d.input == VertexInput::Transition) {  // the stand-in binding: (dp, m), (n~, 0) interleaved
+      bindings.push_back({AM_VERTEX_STANDIN_OFFSET, uint32_t(GpuStandinBinding::kVertexStride), VK_VERTEX_INPUT_RATE_VERTEX});
+      attributes.push_back({AM_VERTEX_STANDIN_OFFSET, AM_VERTEX_STANDIN_OFFSET, VK_FORMAT_R32G32B32A32_SFLOAT, 0});
+      attributes.push_back({AM_VERTEX_STANDIN_NORMAL, AM_VERTEX_STANDIN_OFFSET, VK_FORMAT_R32G32B32A32_SFLOAT, 16});
+    }
+    if (d.input == VertexInput::MeshWeights) {
+      bindings.push_back({kVertexPaintWeight, 4, VK_VERTEX_INPUT_RATE_VERTEX});
+      attributes.push_back({kVertexPaintWeight, kVertexPaintWeight, VK_FORMAT_R32_SFLOAT, 0});
+    }
+  } else if (d.input == VertexInput::Generated) {
+    for (uint32_t s = 0; s < 2; ++s) {  // AM_VERTEX_POSITION, AM_VERTEX_NORMAL
+      bindings.push_back({s, GeneratedMeshDraw::kVertexStride, VK_VERTEX_INPUT_RATE_VERTEX});
+      attributes.push_back({s, s, VK_FORMAT_R32G32B32_SFLOAT, 0});
+    }
+  } else if (d.input == VertexInput::Line) {
+    bindings.push_back({0, sizeof(LineVertex), VK_VERTEX_INPUT_RATE_VERTEX});
+    attributes.push_back({0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0});
+    attributes.push_back({1, 0, VK_FORMAT_R8G8B8A8_UNORM, 12});
+  }
+  g.topology = d.topology;
+  g.polygonMode = d.polygonMode;
+  g.depthTest = d.depthTest;
+  g.depthWrite = d.depthWrite;
+  g.blend = d.blend ? BlendMode::OverOpaque : BlendMode::None;
+  g.cull = d.cull;
+  return createGraphicsPipeline(device, pass, layout, g);
+}
+
+}  // namespace
+
+// Per-frame data of one frame in flight. Each record() call of a frame appends
+// to the buffers; a buffer that must grow mid-frame is retired (commands recorded
+// earlier in the frame still read it) and freed when the slot is next rewound.
+struct SceneRenderer::Slot {
+  uint64_t serial = UINT64_MAX;  // frame whose data the slot holds
+  Buffer frame;                  // FrameUniforms records at uniformStride_ (dynamic offset)
+  Buffer joints;                 // mat4 per joint of every draw
+  Buffer lines;                  // LineVertex
+  Buffer weights;                // float per vertex of every weight overlay
+  VkDeviceSize frameUsed = 0, jointsUsed = 0, linesUsed = 0, weightsUsed = 0;
+  VkDescriptorSet set = VK_NULL_HANDLE;  // frame + joints
+  bool setBound = false;                 // set is referenced by commands of this frame
+  Buffer transitionParams;               // TransitionParams records at transitionParamStride_ (dynamic offset)
+  VkDeviceSize transitionParamsUsed = 0;
+  VkDescriptorSet transitionSet = VK_NULL_HANDLE;  // set 1 of the transition pipelines
+  bool transitionSetBound = false;
+  std::vector<Buffer> retiredBuffers;
+  std::vector<VkDescriptorSet> retiredSets;
+};
+
+SceneRenderer::SceneRenderer(Context& ctx) : ctx_(ctx) {}
+
+Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(Context& ctx, VkRenderPass renderPass,
+                                                             SceneRendererSettings settings) {
+  std::unique_ptr<SceneRenderer> r(new SceneRenderer(ctx));
+  Status s = r->init(renderPass, settings);
+  if (!s) return Error{"scene renderer: " + s.error()};
+  return r;
+}
+
+Status SceneRenderer::init(VkRenderPass renderPass, SceneRendererSettings settings) {
+  VkDevice dev = ctx_.device();
+  edgeListWireframe_ = settings.forceEdgeListWireframe || !ctx_.supportsWireframeFill();
+
+  VkDescriptorSetLayoutBinding b[2]{};
+  b[0] = {kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 1, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
+  b[1] = {kBindingJoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr};
+  VkDescriptorSetLayoutCreateInfo sli{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  sli.bindingCount = 2;
+  sli.pBindings = b;
+  AM_VK_TRY(vkCreateDescriptorSetLayout(dev, &sli, nullptr, &setLayout_), "vkCreateDescriptorSetLayout");
+  VkPushConstantRange push{kPushStages, 0, sizeof(MeshPush)};
+  VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  pli.setLayoutCount = 1;
+  pli.pSetLayouts = &setLayout_;
+  pli.pushConstantRangeCount = 1;
+  pli.pPushConstantRanges = &push;
+  AM_VK_TRY(vkCreatePipelineLayout(dev, &pli, nullptr, &layout_), "vkCreatePipelineLayout");
+
+  // Set 1 of the transition pipelines: the per-draw TransitionParams.
+  VkDescriptorSetLayoutBinding tb{AM_TRANSITION_BINDING_PARAMS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC, 1,
+                                  VK_SHADER_STAGE_VERTEX_BIT, nullptr};
+  sli.bindingCount = 1;
+  sli.pBindings = &tb;
+  AM_VK_TRY(vkCreateDescriptorSetLayout(dev, &sli, nullptr, &transitionSetLayout_), "vkCreateDescriptorSetLayout");
+  const VkDescriptorSetLayout transitionSets[2] = {setLayout_, transitionSetLayout_};
+  pli.setLayoutCount = 2;
+  pli.pSetLayouts = transitionSets;
+  AM_VK_TRY(vkCreatePipelineLayout(dev, &pli, nullptr, &transitionLayout_), "vkCreatePipelineLayout");
+  const VkDeviceSize storageAlign = std::max<VkDeviceSize>(ctx_.properties().limits.minStorageBufferOffsetAlignment, 16);
+  transitionParamStride_ = (sizeof(TransitionParams) + storageAlign - 1) / storageAlign * storageAlign;
+
+  // Sets are replaced only when a ring buffer grows: a few per slot over a session.
+  constexpr uint32_t kMaxSets = 64;
+  VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, kMaxSets},
+                                   {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kMaxSets},
+                                   {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC, kMaxSets}};
+  VkDescriptorPoolCreateInfo dpi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  dpi.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
+  dpi.maxSets = 2 * kMaxSets;
+  dpi.poolSizeCount = 3;
+  dpi.pPoolSizes = sizes;
+  AM_VK_TRY(vkCreateDescriptorPool(dev, &dpi, nullptr, &descriptorPool_), "vkCreateDescriptorPool");
+  const VkDeviceSize align = std::max<VkDeviceSize>(ctx_.properties().limits.minUniformBufferOffsetAlignment, 16);
+  uniformStride_ = (sizeof(FrameUniforms) + align - 1) / align * align;
+
+  const VkCullModeFlags back = VK_CULL_MODE_BACK_BIT, none = VK_CULL_MODE_NONE;
+  auto meshDesc = [](VkCullModeFlags cull) {
+    PipelineDesc d{"mesh.vert", "mesh.frag", VertexInput::Mesh, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST};
+    d.cull = cull;
+    return d;
+  };
+  auto wireDesc = [&](VkCullModeFlags cull) {
+    PipelineDesc d = meshDesc(cull);
+    if (edgeListWireframe_) {
+      d.topology = VK_PRIMITIVE_TOPOLOGY_LINE_LIST;  // lines are never culled
+      d.cull = none;
+    } else {
+      d.polygonMode = VK_POLYGON_MODE_LINE;
+    }
+    return d;
+  };
+  auto withShaders = [](PipelineDesc d, const char* vert, const char* frag, VertexInput input) {
+    d.vert = vert;
+    d.frag = frag;
+    d.input = input;
+    return d;
+  };
+  struct Want {
+    VkPipeline* out;
+    PipelineDesc desc;
+    VkPipelineLayout layout = VK_NULL_HANDLE;  // null: layout_
+  } wants[] = {
+      {&meshPipeline_[0], meshDesc(back)},
+      {&meshPipeline_[1], meshDesc(none)},
+      {&meshDitherPipeline_[0], withShaders(meshDesc(back), "mesh.vert", "mesh_dither.frag", VertexInput::Mesh)},
+      {&generatedDitherPipeline_, withShaders(meshDesc(back), "generated.vert", "mesh_dither.frag", VertexInput::Generated)},
+      {&meshDitherPipeline_[1], withShaders(meshDesc(none), "mesh.vert", "mesh_dither.frag", VertexInput::Mesh)},
+      {&transitionPipeline_[0], withShaders(meshDesc(back), "transition.vert", "mesh.frag", VertexInput::Transition),
+       transitionLayout_},
+      {&transitionPipeline_[1], withShaders(meshDesc(none), "transition.vert", "mesh.frag", VertexInput::Transition),
+       transitionLayout_},
+      {&transitionDitherPipeline_[0],
+       withShaders(meshDesc(back), "transition.vert", "mesh_dither.frag", VertexInput::Transition), transitionLayout_},
+      {&transitionDitherPipeline_[1],
+       withShaders(meshDesc(none), "transition.vert", "mesh_dither.frag", VertexInput::Transition), transitionLayout_},
+      {&wirePipeline_[0], wireDesc(back)},
+      {&wirePipeline_[1], wireDesc(none)},
+      {&transitionWirePipeline_[0], withShaders(wireDesc(back), "transition.vert", "mesh.frag", VertexInput::Transition),
+       transitionLayout_},
+      {&transitionWirePipeline_[1], withShaders(wireDesc(none), "transition.vert", "mesh.frag", VertexInput::Transition),
+       transitionLayout_},
+      {&generatedPipeline_, {"generated.vert", "mesh.frag", VertexInput::Generated, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST,
+                             VK_POLYGON_MODE_FILL, true, true, false, back}},
+      {&weightPipeline_, {"weight_overlay.vert", "weight_overlay.frag", VertexInput::MeshWeights,
+                          VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, VK_POLYGON_MODE_FILL, true, true, false, none}},
+      {&gridPipeline_, {"grid.vert", "grid.frag", VertexInput::None, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST,
+                        VK_POLYGON_MODE_FILL, true, false, true}},
+      {&linePipeline_, {"line.vert", "line.frag", VertexInput::Line, VK_PRIMITIVE_TOPOLOGY_LINE_LIST,
+                        VK_POLYGON_MODE_FILL, true, true, true}},
+      {&overlayPipeline_, {"line.vert", "line.frag", VertexInput::Line, VK_PRIMITIVE_TOPOLOGY_LINE_LIST,
+                           VK_POLYGON_MODE_FILL, false, false, true}},
+  };
+  for (auto& w : wants) {
+    Result<VkPipeline> p = createPipeline(dev, renderPass, w.layout ? w.layout : layout_, w.desc);
+    if (!p) return Error{p.error()};
+    *w.out = *p;
+  }
+  if (!edgeListWireframe_) {
+    Result<VkPipeline> p = createPipeline(dev, renderPass, layout_,
+                                          withShaders(wireDesc(back), "generated.vert", "mesh.frag", VertexInput::Generated));
+    if (!p) return Error{p.error()};
+    generatedWirePipeline_ = *p;
+  }
+
+  for (uint32_t i = 0; i < kFramesInFlight; ++i) {
+    slots_.push_back(std::make_unique<Slot>());
+    Status s = reserve(*slots_.back(), 0, 0);  // initial capacity: steady frames allocate nothing
+    if (!s) return s;
+  }
+  return Status::success();
+}
+
+SceneRenderer::~SceneRenderer() {
+  VkDevice dev = ctx_.device();
+  vkDeviceWaitIdle(dev);
+  for (auto& s : slots_) {
+    rewind(*s, UINT64_MAX);
+    destroyBuffer(dev, s->frame);
+    destroyBuffer(dev, s->joints);
+    destroyBuffer(dev, s->lines);
+    destroyBuffer(dev, s->weights);
+    destroyBuffer(dev, s->transitionParams);
+  }
+  for (VkPipeline p : {meshPipeline_[0], meshPipeline_[1], wirePipeline_[0], wirePipeline_[1], generatedPipeline_, weightPipeline_, gridPipeline_,
+                       linePipeline_, overlayPipeline_, meshDitherPipeline_[0], meshDitherPipeline_[1], generatedDitherPipeline_,
+                       transitionPipeline_[0], transitionPipeline_[1], transitionDitherPipeline_[0],
+                       transitionWirePipeline_[0], transitionWirePipeline_[1], generatedWirePipeline_,
+                       transitionDitherPipeline_[1]})
+    if (p) vkDestroyPipeline(dev, p, nullptr);
+  if (layout_) vkDestroyPipelineLayout(dev, layout_, nullptr);
+  if (transitionLayout_) vkDestroyPipelineLayout(dev, transitionLayout_, nullptr);
+  if (transitionSetLayout_) vkDestroyDescriptorSetLayout(dev, transitionSetLayout_, nullptr);
+  if (descriptorPool_) vkDestroyDescriptorPool(dev, descriptorPool_, nullptr);  // frees the sets
+  if (setLayout_) vkDestroyDescriptorSetLayout(dev, setLayout_, nullptr);
+}
+
+void SceneRenderer::rewind(Slot& slot, uint64_t frameSerial) {
+  VkDevice dev = ctx_.device();
+  for (Buffer& b : slot.retiredBuffers) destroyBuffer(dev, b);
+  slot.retiredBuffers.clear();
+  if (!slot.retiredSets.empty())
+    vkFreeDescriptorSets(dev, descriptorPool_, static_cast<uint32_t>(slot.retiredSets.size()), slot.retiredSets.data());
+  slot.retiredSets.clear();
+  slot.frameUsed = slot.jointsUsed = slot.linesUsed = slot.weightsUsed = slot.transitionParamsUsed = 0;
+  slot.setBound = false;
+  slot.transitionSetBound = false;
+  slot.serial = frameSerial;
+}
+
+Status SceneRenderer::reserve(Slot& slot, VkDeviceSize jointBytes, VkDeviceSize lineBytes, VkDeviceSize weightBytes) {
+  bool setStale = slot.set == VK_NULL_HANDLE;
+  auto fit = [&](Buffer& b, VkDeviceSize& used, VkDeviceSize need, VkDeviceSize minimum, VkBufferUsageFlags usage,
+                 const char* what) -> Status {
+    if (b.buffer && used + need <= b.size) return Status::success();
+    VkDeviceSize size = std::max({need, b.size * 2, minimum});
+    Result<Buffer> nb = createHostBuffer(ctx_, size, usage);
+    if (!nb) return Error{std::string(what) + " ring buffer: " + nb.error()};
+    if (b.buffer) slot.retiredBuffers.push_back(b);  // may still be read by this frame's commands
+    b = *nb;
+    used = 0;
+    return Status::success();
+  };
+  const VkBuffer oldFrame = slot.frame.buffer, oldJoints = slot.joints.buffer;
+  Status s = fit(slot.frame, slot.frameUsed, uniformStride_, 16 * uniformStride_, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "frame uniform");
+  if (s) s = fit(slot.joints, slot.jointsUsed, jointBytes, 256 * sizeof(glm::mat4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "joint matrix");
+  if (s) s = fit(slot.lines, slot.linesUsed, lineBytes, 4096 * sizeof(LineVertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "line");
+  if (s && weightBytes) s = fit(slot.weights, slot.weightsUsed, weightBytes, 4096 * sizeof(float), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "weight");
+  if (!s) return s;
+  setStale |= slot.frame.buffer != oldFrame || slot.joints.buffer != oldJoints;
+  if (!setStale) return Status::success();
+  // A set already bound by this frame's commands must not change: retire it and use a new one.
+  VkDevice dev = ctx_.device();
+  if (slot.set && slot.setBound) slot.retiredSets.push_back(slot.set);
+  if (!slot.set || slot.setBound) {
+    VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    ai.descriptorPool = descriptorPool_;
+    ai.descriptorSetCount = 1;
+    ai.pSetLayouts = &setLayout_;
+    AM_VK_TRY(vkAllocateDescriptorSets(dev, &ai, &slot.set), "vkAllocateDescriptorSets");
+    slot.setBound = false;
+  }
+  VkDescriptorBufferInfo frameInfo{slot.frame.buffer, 0, sizeof(FrameUniforms)};
+  VkDescriptorBufferInfo jointInfo{slot.joints.buffer, 0, VK_WHOLE_SIZE};
+  VkWriteDescriptorSet w[2]{};
+  w[0] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, slot.set, kBindingFrame, 0, 1,
+          VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, nullptr, &frameInfo, nullptr};
+  w[1] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, slot.set, kBindingJoints, 0, 1,
+          VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nullptr, &jointInfo, nullptr};
+  vkUpdateDescriptorSets(dev, 2, w, 0, nullptr);
+  return Status::success();
+}
+
+Status SceneRenderer::reserveTransitionParams(Slot& slot, VkDeviceSize bytes) {
+  if (slot.transitionParams.buffer && slot.transitionParamsUsed + bytes <= slot.transitionParams.size &&
+      slot.transitionSet)
+    return Status::success();
+  VkDevice dev = ctx_.device();
+  if (!slot.transitionParams.buffer || slot.transitionParamsUsed + bytes > slot.transitionParams.size) {
+    const VkDeviceSize size = std::max({bytes, slot.transitionParams.size * 2, 4 * transitionParamStride_});
+    Result<Buffer> nb = createHostBuffer(ctx_, size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    if (!nb) return Error{"transition parameter ring buffer: " + nb.error()};
+    if (slot.transitionParams.buffer) slot.retiredBuffers.push_back(slot.transitionParams);
+    slot.transitionParams = *nb;
+    slot.transitionParamsUsed = 0;
+    if (slot.transitionSet && slot.transitionSetBound) slot.retiredSets.push_back(slot.transitionSet);
+    if (slot.transitionSet && !slot.transitionSetBound) vkFreeDescriptorSets(dev, descriptorPool_, 1, &slot.transitionSet);
+    slot.transitionSet = VK_NULL_HANDLE;
+  }
+  VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  ai.descriptorPool = descriptorPool_;
+  ai.descriptorSetCount = 1;
+  ai.pSetLayouts = &transitionSetLayout_;
+  AM_VK_TRY(vkAllocateDescriptorSets(dev, &ai, &slot.transitionSet), "vkAllocateDescriptorSets");
+  slot.transitionSetBound = false;
+  VkDescriptorBufferInfo info{slot.transitionParams.buffer, 0, sizeof(TransitionParams)};
+  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, slot.transitionSet, AM_TRANSITION_BINDING_PARAMS,
+                         0, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC, nullptr, &info, nullptr};
+  vkUpdateDescriptorSets(dev, 1, &w, 0, nullptr);
+  return Status::success();
+}
+
+Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const ViewportRect& rect,
+                             const OrbitCamera& camera, const Scene& scene) {
+  if (rect.width == 0 || rect.height == 0) return Status::success();
+  Slot& slot = *slots_[frameSerial % kFramesInFlight];
+  if (slot.serial != frameSerial) rewind(slot, frameSerial);  // the GPU is done with that slot's last frame
+  const SceneOptions& opt = scene.options;
+
+  // Gather per-frame data: joint matrices of every draw, then every line vertex
+  // (depth-tested lines, overlay lines, the axis tripod).
+  jointScratch_.clear();
+  std::vector<uint32_t>& jointOffsets = drawJointOffsets_;
+  jointOffsets.clear();
+  auto addJoints = [&](const MeshDraw& d) {
+    jointOffsets.push_back(static_cast<uint32_t>(jointScratch_.size()));
+    if (d.jointMatrices.empty()) jointScratch_.push_back(glm::mat4(1.0f));
+    else jointScratch_.insert(jointScratch_.end(), d.jointMatrices.begin(), d.jointMatrices.end());
+  };
+  for (const MeshDraw& d : scene.meshes) addJoints(d);
+  weightScratch_.clear();
+  std::vector<VkDeviceSize> weightOffsets;  // per overlay, in bytes from this call's start
+  for (const WeightOverlayDraw& d : scene.weightOverlays) {
+    jointOffsets.push_back(static_cast<uint32_t>(jointScratch_.size()));
+    if (d.jointMatrices.empty()) jointScratch_.push_back(glm::mat4(1.0f));
+    else jointScratch_.insert(jointScratch_.end(), d.jointMatrices.begin(), d.jointMatrices.end());
+    weightOffsets.push_back(weightScratch_.size() * sizeof(float));
+    if (d.mesh && d.weights.size() == d.mesh->vertexCount())
+      weightScratch_.insert(weightScratch_.end(), d.weights.begin(), d.weights.end());
+  }
+  for (const TransitionMeshDraw& t : scene.transitionMeshes) addJoints(t.draw);  // after the overlays'
+  lineScratch_.clear();
+  const auto& depthLines = scene.lines.vertices();
+  const auto& overlayLines = scene.overlay.vertices();
+  lineScratch_.insert(lineScratch_.end(), depthLines.begin(), depthLines.end());
+  lineScratch_.insert(lineScratch_.end(), overlayLines.begin(), overlayLines.end());
+  const uint32_t axisFirst = static_cast<uint32_t>(lineScratch_.size());
+  const glm::vec4 axisColors[3] = {{0.9f, 0.3f, 0.3f, 1}, {0.4f, 0.85f, 0.35f, 1}, {0.35f, 0.55f, 1.0f, 1}};
+  for (int a = 0; a < 3; ++a) {
+    glm::vec3 tip(0.0f);
+    tip[a] = 1.0f;
+    lineScratch_.push_back({glm::vec3(0.0f), packRgba(axisColors[a])});
+    lineScratch_.push_back({tip, packRgba(axisColors[a])});
+  }
+  const VkDeviceSize jointBytes = jointScratch_.size() * sizeof(glm::mat4);
+  const VkDeviceSize lineBytes = lineScratch_.size() * sizeof(LineVertex);
+  const VkDeviceSize weightBytes = weightScratch_.size() * sizeof(float);
+  Status cap = reserve(slot, jointBytes, lineBytes, weightBytes);
+  if (cap && !scene.transitionMeshes.empty())
+    cap = reserveTransitionParams(slot, scene.transitionMeshes.size() * transitionParamStride_);
+  if (!cap) return cap;
+  // This call's places in the slot's buffers.
+  const uint32_t frameOffset = static_cast<uint32_t>(slot.frameUsed);
+  const uint32_t jointBase = static_cast<uint32_t>(slot.jointsUsed / sizeof(glm::mat4));
+  const VkDeviceSize lineOffset = slot.linesUsed;
+  const VkDeviceSize weightBase = slot.weightsUsed;
+  if (weightBytes) std::memcpy(static_cast<uint8_t*>(slot.weights.mapped) + weightBase, weightScratch_.data(), weightBytes);
+  slot.weightsUsed += weightBytes;
+  if (jointBytes) std::memcpy(static_cast<uint8_t*>(slot.joints.mapped) + slot.jointsUsed, jointScratch_.data(), jointBytes);
+  if (lineBytes) std::memcpy(static_cast<uint8_t*>(slot.lines.mapped) + lineOffset, lineScratch_.data(), lineBytes);
+  slot.frameUsed += uniformStride_;
+  slot.jointsUsed += jointBytes;
+  slot.linesUsed += lineBytes;
+
+  const float aspect = float(rect.width) / float(rect.height);
+  const glm::mat4 viewProj = camera.viewProjection(aspect);
+  FrameUniforms fu{};
+  fu.viewProj = viewProj;
+  fu.view = camera.view();
+  fu.cameraPos = glm::vec4(camera.eye(), 1.0f);
+  // Key light from the upper left, slightly behind the viewer (camera-relative like Maya's default light).
+  fu.keyLightDir = glm::vec4(glm::normalize(-0.5f * camera.right() + 0.75f * camera.up() - 0.45f * camera.forward()), 0);
+  const float cell = std::max(opt.gridCellM, 1e-4f);
+  const float fadeEnd = std::max(20.0f * cell, 8.0f * camera.distanceM);
+  fu.grid = glm::vec4(cell, 0.25f * fadeEnd, fadeEnd, fadeEnd);
+  const float snap = 10.0f * cell;
+  // The lines within the fade radius of the camera's foot (at most a camera distance from the target).
+  const float gridHalf = fadeEnd + camera.distanceM + snap;
+  const uint32_t gridLines = static_cast<uint32_t>(std::min(std::ceil(gridHalf / cell), 2000.0f));
+  fu.gridCenter = glm::vec4(std::round(camera.target.x / snap) * snap, 0.0f, std::round(camera.target.z / snap) * snap,
+                            float(gridLines));
+  fu.selectColor = linearRgb(opt.selectColor);
+  fu.viewportPx = glm::vec4(float(rect.width), float(rect.height),
+                            0.5f * float(rect.height) / std::tan(0.5f * camera.fovYRad), 0.0f);
+  std::memcpy(static_cast<uint8_t*>(slot.frame.mapped) + frameOffset, &fu, sizeof(fu));
+
+  VkViewport viewport{float(rect.x), float(rect.y), float(rect.width), float(rect.height), 0.0f, 1.0f};
+  VkRect2D scissor{{rect.x, rect.y}, {rect.width, rect.height}};
+  vkCmdSetViewport(cmd, 0, 1, &viewport);
+  vkCmdSetScissor(cmd, 0, 1, &scissor);
+  VkClearAttachment clears[2]{};
+  clears[0].aspectMask = VK_IMAGE_ASPECT_COLOR_BIT;
+  clears[0].colorAttachment = 0;
+  clears[0].clearValue.color = {{opt.background.r, opt.background.g, opt.background.b, opt.background.a}};
+  clears[1].aspectMask = VK_IMAGE_ASPECT_DEPTH_BIT;
+  clears[1].clearValue.depthStencil = {1.0f, 0};
+  VkClearRect clearRect{scissor, 0, 1};
+  vkCmdClearAttachments(cmd, 2, clears, 1, &clearRect);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &slot.set, 1, &frameOffset);
+  slot.setBound = true;
+
+  auto pushMesh = [&](const MeshDraw& d, size_t i, uint32_t flags, const glm::vec4& color, float pull) {
+    MeshPush p{};
+    p.model = d.model;
+    p.color = color;
+    p.baseLinear = linearRgb(color);
+    p.jointOffset = jointBase + jointOffsets[i];
+    p.jointCount = d.jointMatrices.empty() ? 1u : static_cast<uint32_t>(d.jointMatrices.size());
+    p.flags = flags;
+    p.depthPull = pull;
+    vkCmdPushConstants(cmd, layout_, kPushStages, 0, sizeof(p), &p);
+  };
+
+  VkPipeline bound = VK_NULL_HANDLE;
+  auto bind = [&](VkPipeline p) {
+    if (p != bound) vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
+    bound = p;
+  };
+  // Cross-fading draws (opacity < 1) are dithered: colour alpha carries the opacity.
+  auto fadeFlags = [](const auto& d) {
+    if (!(d.opacity < 1.0f)) return 0u;
+    return AM_DRAW_DITHER | (d.complementDither ? AM_DRAW_DITHER_INVERT : 0u);
+  };
+  auto fadeColor = [](const auto& d) { return d.opacity < 1.0f ? glm::vec4(glm::vec3(d.color), std::max(0.0f, d.opacity)) : d.color; };
+  for (size_t i = 0; i < scene.meshes.size(); ++i) {
+    const MeshDraw& d = scene.meshes[i];
+    if (!d.mesh || d.mesh->indexCount() == 0 || !(d.opacity > 0.0f)) continue;
+    bind(d.opacity < 1.0f ? meshDitherPipeline_[d.doubleSided] : meshPipeline_[d.doubleSided]);
+    pushMesh(d, i, (d.selected ? kDrawSelected : 0u) | fadeFlags(d), fadeColor(d), 0.0f);
+    d.mesh->bindTriangles(cmd);
+    vkCmdDrawIndexed(cmd, d.mesh->indexCount(), 1, 0, 0, 0);
+  }
+  // Transitions: set 0 stays bound (the layouts agree on it); set 1 per draw at its record's offset.
+  transitionParamOffsets_.assign(scene.transitionMeshes.size(), UINT32_MAX);
+  for (size_t k = 0; k < scene.transitionMeshes.size(); ++k) {
+    const TransitionMeshDraw& t = scene.transitionMeshes[k];
+    const MeshDraw& d = t.draw;
+    if (!d.mesh || !t.binding || !t.frame || d.mesh->indexCount() == 0 || !(d.opacity > 0.0f)) continue;
+    if (size_t(t.firstVertex) + d.mesh->vertexCount() > t.binding->vertexCount()) continue;
+    const uint32_t paramOffset = static_cast<uint32_t>(slot.transitionParamsUsed);
+    transitionParamOffsets_[k] = paramOffset;
+    packTransitionParams(*t.frame, *reinterpret_cast<TransitionParams*>(
+                                       static_cast<uint8_t*>(slot.transitionParams.mapped) + paramOffset));
+    slot.transitionParamsUsed += transitionParamStride_;
+    bind(d.opacity < 1.0f ? transitionDitherPipeline_[d.doubleSided] : transitionPipeline_[d.doubleSided]);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, transitionLayout_, 1, 1, &slot.transitionSet, 1,
+                            &paramOffset);
+    slot.transitionSetBound = true;
+    pushMesh(d, scene.meshes.size() + scene.weightOverlays.size() + k, (d.selected ? kDrawSelected : 0u) | fadeFlags(d), fadeColor(d), 0.0f);
+    d.mesh->bindTriangles(cmd);
+    t.binding->bind(cmd, t.firstVertex);
+    vkCmdDrawIndexed(cmd, d.mesh->indexCount(), 1, 0, 0, 0);
+  }
+  auto drawGenerated = [&](const GeneratedMeshDraw& g, VkPipeline pipeline, const glm::vec4& color, uint32_t flags,
+                           float pull) {
+    if (!g.positions || !g.normals || !g.indices || !g.indirect || !(g.opacity > 0.0f)) return;
+    bind(pipeline);
+    MeshPush p{};
+    p.model = g.model;
+    p.color = color;
+    p.baseLinear = linearRgb(p.color);
+    p.jointCount = 1;
+    p.flags = flags | (g.selected ? kDrawSelected : 0u);
+    p.depthPull = pull;
+    vkCmdPushConstants(cmd, layout_, kPushStages, 0, sizeof(p), &p);
+    VkBuffer streams[2] = {g.positions, g.normals};
+    VkDeviceSize offsets[2] = {0, 0};
+    vkCmdBindVertexBuffers(cmd, 0, 2, streams, offsets);
+    vkCmdBindIndexBuffer(cmd, g.indices, 0, VK_INDEX_TYPE_UINT32);
+    vkCmdDrawIndexedIndirect(cmd, g.indirect, g.indirectOffset, 1, sizeof(VkDrawIndexedIndirectCommand));
+  };
+  for (const GeneratedMeshDraw& g : scene.generatedMeshes)
+    drawGenerated(g, g.opacity < 1.0f ? generatedDitherPipeline_ : generatedPipeline_, fadeColor(g), fadeFlags(g), 0.0f);
+  for (size_t k = 0; k < scene.weightOverlays.size(); ++k) {
+    const WeightOverlayDraw& d = scene.weightOverlays[k];
+    if (!d.mesh || d.mesh->indexCount() == 0 || d.weights.size() != d.mesh->vertexCount()) continue;
+    bind(weightPipeline_);
+    MeshPush p{};
+    p.model = d.model;
+    p.color = glm::vec4(1.0f);
+    p.jointOffset = jointBase + jointOffsets[scene.meshes.size() + k];
+    p.jointCount = d.jointMatrices.empty() ? 1u : static_cast<uint32_t>(d.jointMatrices.size());
+    vkCmdPushConstants(cmd, layout_, kPushStages, 0, sizeof(p), &p);
+    d.mesh->bindTriangles(cmd);
+    const VkDeviceSize offset = weightBase + weightOffsets[k];
+    vkCmdBindVertexBuffers(cmd, kVertexPaintWeight, 1, &slot.weights.buffer, &offset);
+    vkCmdDrawIndexed(cmd, d.mesh->indexCount(), 1, 0, 0, 0);
+  }
+  if (opt.wireframe) {
+    auto wireColor = [&](bool selected) { return selected ? glm::mix(opt.wireColor, opt.selectColor, 0.6f) : opt.wireColor; };
+    auto drawEdges = [&](const GpuMesh& mesh) {
+      if (edgeListWireframe_) {
+        if (mesh.edgeIndexCount() == 0) return;  // uploaded without an edge list
+        mesh.bindEdges(cmd);
+        vkCmdDrawIndexed(cmd, mesh.edgeIndexCount(), 1, 0, 0, 0);
+      } else if (mesh.indexCount() > 0) {
+        mesh.bindTriangles(cmd);
+        vkCmdDrawIndexed(cmd, mesh.indexCount(), 1, 0, 0, 0);
+      }
+    };
+    for (size_t i = 0; i < scene.meshes.size(); ++i) {
+      const MeshDraw& d = scene.meshes[i];
+      if (!d.mesh) continue;
+      bind(wirePipeline_[d.doubleSided]);
+      pushMesh(d, i, kDrawWireframe | (d.selected ? kDrawSelected : 0u), wireColor(d.selected), kWireDepthPull);
+      drawEdges(*d.mesh);
+    }
+    // The transitions' edges where their vertex shader puts them (drawn above: their set 1 record is written).
+    for (size_t k = 0; k < scene.transitionMeshes.size(); ++k) {
+      const TransitionMeshDraw& t = scene.transitionMeshes[k];
+      if (transitionParamOffsets_[k] == UINT32_MAX) continue;
+      const MeshDraw& d = t.draw;
+      bind(transitionWirePipeline_[d.doubleSided]);
+      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, transitionLayout_, 1, 1, &slot.transitionSet, 1,
+                              &transitionParamOffsets_[k]);
+      pushMesh(d, scene.meshes.size() + scene.weightOverlays.size() + k, kDrawWireframe | (d.selected ? kDrawSelected : 0u),
+               wireColor(d.selected), kWireDepthPull);
+      t.binding->bind(cmd, t.firstVertex);
+      drawEdges(*d.mesh);
+    }
+    // Generated meshes (the GPU polygoniser's) have no edge list: polygon-mode lines only.
+    if (generatedWirePipeline_)
+      for (const GeneratedMeshDraw& g : scene.generatedMeshes)
+        drawGenerated(g, generatedWirePipeline_, wireColor(g.selected), kDrawWireframe, kWireDepthPull);
+  }
+
+  auto drawLines = [&](VkPipeline pipeline, const glm::mat4& matrix, uint32_t first, uint32_t count) {
+    if (count == 0) return;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+    vkCmdPushConstants(cmd, layout_, kPushStages, 0, sizeof(glm::mat4), &matrix);
+    vkCmdBindVertexBuffers(cmd, 0, 1, &slot.lines.buffer, &lineOffset);
+    vkCmdDraw(cmd, count, 1, first, 0);
+  };
+  drawLines(linePipeline_, viewProj, 0, static_cast<uint32_t>(depthLines.size()));
+  if (opt.grid) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, gridPipeline_);
+    vkCmdDraw(cmd, 6, 2 * (2 * gridLines + 1), 0, 0);  // one quad per line (grid.vert)
+  }
+  drawLines(overlayPipeline_, viewProj, static_cast<uint32_t>(depthLines.size()),
+            static_cast<uint32_t>(overlayLines.size()));
+
+  const uint32_t size = opt.axisIndicatorPx, margin = 6;
+  if (opt.axisIndicator && rect.width >= size + 2 * margin && rect.height >= size + 2 * margin) {
+    VkViewport corner{float(rect.x + margin), float(rect.y + int32_t(rect.height - size - margin)), float(size),
+                      float(size), 0.0f, 1.0f};
+    vkCmdSetViewport(cmd, 0, 1, &corner);
+    // Camera rotation only, orthographic, y flipped for Vulkan.
+    glm::mat4 ortho = glm::orthoRH_ZO(-1.3f, 1.3f, -1.3f, 1.3f, -2.0f, 2.0f);
+    ortho[1][1] = -ortho[1][1];
+    drawLines(overlayPipeline_, ortho * glm::mat4(glm::mat3(fu.view)), axisFirst, 6);
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+  }
+  return Status::success();
+}
+
+}  // namespace animorph::gpu

@@ -1,0 +1,179 @@
+#pragma once
+// Draws the 3D scene of a viewport: skinned meshes (LBS in the vertex shader),
+// optional wireframe overlay, ground grid, line overlays (skeleton) and an axis
+// indicator, into a rectangle of any colour+depth target made by
+// createSceneRenderPass (swapchain or offscreen). Per-frame data lives in
+// host-visible ring buffers, one slot per frame in flight; steady-state frames
+// allocate no Vulkan objects.
+#include <memory>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "vulkan/context.h"
+#include "render/gpu_mesh.h"
+#include "render/gpu_standin_binding.h"
+#include "render/line_batch.h"
+#include "view/camera.h"
+
+namespace animorph {
+struct TransitionFrame;
+}
+
+namespace animorph::gpu {
+
+// Pixel rectangle of the target to draw into (origin top-left); must lie within
+// the render area (an empty rectangle draws nothing).
+struct ViewportRect {
+  int32_t x = 0, y = 0;
+  uint32_t width = 0, height = 0;
+};
+
+struct MeshDraw {
+  const GpuMesh* mesh = nullptr;
+  glm::mat4 model{1.0f};                     // mesh node's world matrix
+  std::span<const glm::mat4> jointMatrices;  // jointMatrices() of the node; empty: one identity
+  glm::vec4 color{0.62f, 0.62f, 0.62f, 1.0f};  // base colour (sRGB)
+  bool selected = false;
+  // glTF material.doubleSided: also draw back faces. Single-sided meshes cull
+  // them (counter-clockwise is front, as in glTF), which also halves the
+  // rasterisation work on CPU renderers.
+  bool doubleSided = false;
+  // Cross-fade (screen-door transparency, mesh_dither.frag): below 1 the mesh
+  // covers this fraction of its pixels in a 4x4 Bayer pattern;
+  // complementDither takes the complementary pattern, so two draws at
+  // opacities o and 1 - o share the pixels without sorting.
+  float opacity = 1.0f;
+  bool complementDither = false;
+};
+
+// A skinned mesh collapsing onto / expanding from its stand-in, deformed in
+// transition.vert (shaders/include/transition.glsl): the mesh and its pose as
+// in MeshDraw, the vertices' stand-in binding (uploaded once per prepared
+// morph) and the frame's parameters (a few KiB per draw, written to a ring
+// buffer): no CPU transition and no mesh upload per frame.
+struct TransitionMeshDraw {
+  MeshDraw draw;
+  const GpuStandinBinding* binding = nullptr;
+  uint32_t firstVertex = 0;                // this mesh's first vertex in the binding
+  const TransitionFrame* frame = nullptr;  // must stay valid until record() returns
+};
+
+// A non-skinned mesh that lives only in device buffers (made by GpuPolygonizer),
+// drawn with vkCmdDrawIndexedIndirect: no CPU read-back. Buffers must stay
+// valid until the frame that draws them completes.
+struct GeneratedMeshDraw {
+  static constexpr uint32_t kVertexStride = 16;  // positions and normals: vec4 per vertex (xyz used)
+  VkBuffer positions = VK_NULL_HANDLE;  // float xyz(w) per vertex, kVertexStride apart
+  VkBuffer normals = VK_NULL_HANDLE;    // float xyz(w) per vertex (unit, outward), kVertexStride apart
+  VkBuffer indices = VK_NULL_HANDLE;    // uint32 triangle list, counter-clockwise from outside
+  VkBuffer indirect = VK_NULL_HANDLE;   // one VkDrawIndexedIndirectCommand at indirectOffset
+  VkDeviceSize indirectOffset = 0;
+  glm::mat4 model{1.0f};
+  glm::vec4 color{0.62f, 0.62f, 0.62f, 1.0f};
+  bool selected = false;
+  float opacity = 1.0f;           // < 1: dithered cross-fade, as MeshDraw::opacity
+  bool complementDither = false;
+};
+
+// A skinned mesh drawn as its weight map in heat colours (0 blue .. 1 red)
+// instead of shaded (weight_overlay shaders). weights has one entry per
+// vertex of mesh (a draw with another count is skipped); it is copied while
+// recording, so it only has to live until record() returns.
+struct WeightOverlayDraw {
+  const GpuMesh* mesh = nullptr;
+  glm::mat4 model{1.0f};
+  std::span<const glm::mat4> jointMatrices;
+  std::span<const float> weights;
+};
+
+struct SceneOptions {
+  glm::vec4 background{0.23f, 0.24f, 0.26f, 1.0f};  // the viewport rectangle is cleared to this
+  bool grid = true;
+  float gridCellM = 1.0f;            // minor line spacing; a major line every 10 cells
+  bool wireframe = false;            // draw mesh edges over the shaded surface (meshes, transitions, generated meshes)
+  glm::vec4 wireColor{0.05f, 0.05f, 0.05f, 1.0f};
+  glm::vec4 selectColor{1.0f, 0.62f, 0.15f, 1.0f};
+  bool axisIndicator = true;         // X/Y/Z tripod in the lower-left corner
+  uint32_t axisIndicatorPx = 72;     // its square size in pixels
+};
+
+struct Scene {
+  std::vector<MeshDraw> meshes;
+  std::vector<GeneratedMeshDraw> generatedMeshes;  // GPU-polygonised previews
+  std::vector<TransitionMeshDraw> transitionMeshes;  // collapse / expansion (vertex-shader transition)
+  std::vector<WeightOverlayDraw> weightOverlays;   // weight painting
+  LineBatch lines;    // depth-tested lines (guides, bounds)
+  LineBatch overlay;  // drawn on top of everything (skeleton overlay)
+  SceneOptions options;
+};
+
+struct SceneRendererSettings {
+  // Draw wireframes from per-mesh edge lists even when fillModeNonSolid exists
+  // (the path devices without it take; meshes need GpuMesh::upload(..., true)).
+  bool forceEdgeListWireframe = false;
+};
+
+class SceneRenderer {
+ public:
+  // Pipelines for renderPass (from createSceneRenderPass with the context's depth
+  // format) and kFramesInFlight ring-buffer slots. Errors: Vulkan failures.
+  static Result<std::unique_ptr<SceneRenderer>> create(Context& ctx, VkRenderPass renderPass,
+                                                        SceneRendererSettings settings = {});
+  ~SceneRenderer();
+  SceneRenderer(const SceneRenderer&) = delete;
+  SceneRenderer& operator=(const SceneRenderer&) = delete;
+
+  // Records scene, seen through camera, into rect of the render pass instance
+  // active on cmd (sets viewport and scissor; the rectangle is cleared first).
+  // frameSerial numbers the frame being recorded (Frame::serial of the
+  // swapchain, OffscreenTarget::serial()); its ring-buffer slot is
+  // frameSerial % kFramesInFlight, and the caller guarantees the GPU is done
+  // with the frame kFramesInFlight before (Swapchain and OffscreenTarget do).
+  // Several calls in one frame (several viewports) append to the slot.
+  // Errors: a ring buffer could not grow.
+  Status record(VkCommandBuffer cmd, uint64_t frameSerial, const ViewportRect& rect, const OrbitCamera& camera,
+                const Scene& scene);
+
+  bool wireframeUsesEdgeLists() const { return edgeListWireframe_; }
+
+ private:
+  struct Slot;
+  explicit SceneRenderer(Context& ctx);
+  Status init(VkRenderPass renderPass, SceneRendererSettings settings);
+  Status reserve(Slot& slot, VkDeviceSize jointBytes, VkDeviceSize lineBytes, VkDeviceSize weightBytes = 0);
+  Status reserveTransitionParams(Slot& slot, VkDeviceSize bytes);
+  void rewind(Slot& slot, uint64_t frameSerial);
+
+  Context& ctx_;
+  bool edgeListWireframe_ = false;
+  VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
+  VkDescriptorPool descriptorPool_ = VK_NULL_HANDLE;
+  VkPipelineLayout layout_ = VK_NULL_HANDLE;
+  VkPipeline meshPipeline_[2]{};  // [doubleSided]
+  VkPipeline wirePipeline_[2]{};  // [doubleSided]
+  VkPipeline generatedPipeline_ = VK_NULL_HANDLE;  // GeneratedMeshDraw: positions + normals, indirect
+  VkPipeline meshDitherPipeline_[2]{};             // [doubleSided], MeshDraw::opacity < 1
+  VkPipeline generatedDitherPipeline_ = VK_NULL_HANDLE;  // GeneratedMeshDraw::opacity < 1
+  VkDescriptorSetLayout transitionSetLayout_ = VK_NULL_HANDLE;  // set 1: TransitionParams (dynamic offset)
+  VkPipelineLayout transitionLayout_ = VK_NULL_HANDLE;
+  VkPipeline transitionPipeline_[2]{};             // [doubleSided]
+  VkPipeline transitionDitherPipeline_[2]{};       // [doubleSided]
+  VkPipeline transitionWirePipeline_[2]{};         // [doubleSided]: the wireframe pass over transitions
+  VkPipeline generatedWirePipeline_ = VK_NULL_HANDLE;  // null on the edge-list path (generated meshes have no edge list)
+  std::vector<uint32_t> transitionParamOffsets_;   // per transition draw of the current record (the wireframe pass rebinds)
+  VkDeviceSize transitionParamStride_ = 0;         // sizeof(TransitionParams), storage-offset aligned
+  VkPipeline weightPipeline_ = VK_NULL_HANDLE;     // WeightOverlayDraw: mesh streams + a weight stream
+  VkPipeline gridPipeline_ = VK_NULL_HANDLE;
+  VkPipeline linePipeline_ = VK_NULL_HANDLE;     // depth-tested
+  VkPipeline overlayPipeline_ = VK_NULL_HANDLE;  // always on top
+  std::vector<std::unique_ptr<Slot>> slots_;
+  VkDeviceSize uniformStride_ = 256;  // sizeof(FrameUniforms) rounded to the device's UBO offset alignment
+  std::vector<glm::mat4> jointScratch_;
+  std::vector<LineVertex> lineScratch_;
+  std::vector<uint32_t> drawJointOffsets_;  // per mesh draw, then per weight overlay
+  std::vector<float> weightScratch_;
+};
+
+}  // namespace animorph::gpu

@@ -1,0 +1,30 @@
+#pragma once
+// Vulkan buffers with their own memory (plain struct + free functions).
+#include <vulkan/vulkan.h>
+
+#include "vulkan/context.h"
+
+namespace animorph::gpu {
+
+struct Buffer {
+  VkBuffer buffer = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  VkDeviceSize size = 0;
+  void* mapped = nullptr;  // persistent mapping of host-visible buffers, else null
+};
+
+// A buffer of size bytes with memory of props; host-visible buffers are mapped
+// persistently. Errors: no memory type with props, allocation failure.
+Result<Buffer> createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, VkMemoryPropertyFlags props);
+
+// A host-visible, host-coherent, mapped buffer (per-frame data, readback).
+Result<Buffer> createHostBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage);
+
+// A device-local buffer filled with size bytes of data through a staging buffer
+// (waits for the copy). usage gets TRANSFER_DST added. Errors: as createBuffer.
+Result<Buffer> createDeviceBuffer(Context& ctx, VkBufferUsageFlags usage, const void* data, VkDeviceSize size);
+
+// Frees buffer (no-op on an empty one) and resets it to empty.
+void destroyBuffer(VkDevice device, Buffer& buffer);
+
+}  // namespace animorph::gpu

@@ -1,0 +1,56 @@
+#include "vulkan/image.h"
+
+#include "vulkan/vk_check.h"
+
+namespace animorph::gpu {
+
+Result<Image> createImage(const Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
+                          VkImageAspectFlags aspect) {
+  Image img;
+  img.format = format;
+  img.extent = extent;
+  VkImageCreateInfo ici{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  ici.imageType = VK_IMAGE_TYPE_2D;
+  ici.format = format;
+  ici.extent = {extent.width, extent.height, 1};
+  ici.mipLevels = 1;
+  ici.arrayLayers = 1;
+  ici.samples = VK_SAMPLE_COUNT_1_BIT;
+  ici.tiling = VK_IMAGE_TILING_OPTIMAL;
+  ici.usage = usage;
+  ici.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  ici.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  const std::string what = "image " + std::to_string(extent.width) + "x" + std::to_string(extent.height);
+  AM_VK_TRY(vkCreateImage(ctx.device(), &ici, nullptr, &img.image), "vkCreateImage (" + what + ")");
+  VkMemoryRequirements req;
+  vkGetImageMemoryRequirements(ctx.device(), img.image, &req);
+  uint32_t type = ctx.findMemoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  if (type == UINT32_MAX) type = ctx.findMemoryType(req.memoryTypeBits, 0);
+  VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  mai.allocationSize = req.size;
+  mai.memoryTypeIndex = type;
+  VkResult r = type == UINT32_MAX ? VK_ERROR_OUT_OF_DEVICE_MEMORY : vkAllocateMemory(ctx.device(), &mai, nullptr, &img.memory);
+  if (r == VK_SUCCESS) r = vkBindImageMemory(ctx.device(), img.image, img.memory, 0);
+  if (r == VK_SUCCESS) {
+    VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    vci.image = img.image;
+    vci.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    vci.format = format;
+    vci.subresourceRange = {aspect, 0, 1, 0, 1};
+    r = vkCreateImageView(ctx.device(), &vci, nullptr, &img.view);
+  }
+  if (r != VK_SUCCESS) {
+    destroyImage(ctx.device(), img);
+    return vkError("allocating " + what, r);
+  }
+  return img;
+}
+
+void destroyImage(VkDevice device, Image& img) {
+  if (img.view) vkDestroyImageView(device, img.view, nullptr);
+  if (img.image) vkDestroyImage(device, img.image, nullptr);
+  if (img.memory) vkFreeMemory(device, img.memory, nullptr);
+  img = Image{};
+}
+
+}  // namespace animorph::gpu

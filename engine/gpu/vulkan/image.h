@@ -1,0 +1,25 @@
+#pragma once
+// 2D images with their own memory and a view (plain struct + free functions).
+#include <vulkan/vulkan.h>
+
+#include "vulkan/context.h"
+
+namespace animorph::gpu {
+
+struct Image {
+  VkImage image = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  VkImageView view = VK_NULL_HANDLE;
+  VkFormat format = VK_FORMAT_UNDEFINED;
+  VkExtent2D extent{0, 0};
+};
+
+// A device-local 2D image (one mip, one layer, optimal tiling) and a view of
+// aspect. Errors: unsupported format/usage, allocation failure.
+Result<Image> createImage(const Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
+                          VkImageAspectFlags aspect);
+
+// Frees image (no-op on an empty one) and resets it to empty.
+void destroyImage(VkDevice device, Image& image);
+
+}  // namespace animorph::gpu

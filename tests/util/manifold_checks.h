@@ -1,0 +1,11 @@
+#pragma once
+// Catch2 checks that a polygonised mesh is a closed 2-manifold: no boundary,
+// non-manifold or misoriented edges, no non-manifold vertices, no degenerate
+// triangles. Shared by the CPU and GPU polygoniser tests.
+#include "poly/mesh.h"
+
+namespace animorph::test {
+
+void requireClosedManifold(const TriangleMesh& m);
+
+}  // namespace animorph::test

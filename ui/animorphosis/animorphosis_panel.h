@@ -1,0 +1,84 @@
+#pragma once
+// The editor side of the project's animorphosis (docs/animorphosis.md):
+//  * Create > Animorphosis...: a modal that picks the source and target among
+//    the project's BlobTree actors, the interval in frames and whether the
+//    correspondence is proposed automatically; one undoable step.
+//  * The correspondence editor (View > Correspondence Editor): the two trees
+//    side by side as collapsible hierarchies, the links as wires between the
+//    rows (automatic ones coloured by confidence, artist ones thick and blue,
+//    the selected one white). Drag from a node of one tree onto a node of the
+//    other: link; click a wire: select it; Del, right-click > Cut, or a
+//    Ctrl+right-drag across wires: cut; F: scroll the selected link into view;
+//    the wheel scrolls; Auto-map: propose links again keeping the artist's.
+//    A node with k links shows "x k"; the top of an unlinked
+//    sub-tree says "shrinks" (source) or "grows" (target). A selected link can
+//    get its own s(u), which the curve editor then shows beside the global one.
+//    The node under the mouse has its skeleton highlighted in the viewport.
+//  * The interval on the timeline ruler: a band with two draggable markers.
+// Every edit is an undoable command; a refused one puts the validator's
+// message in the status bar.
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "doc/document.h"
+#include "shell/layout.h"
+#include "shell/status_bar.h"
+
+namespace animorph {
+
+struct CreateAnimorphosisState {
+  bool openNext = false;  // open the modal on the next draw
+  bool isOpen = false;
+  std::string sourceActorId, targetActorId;
+  int startFrame = 24, endFrame = 72;
+  bool autoMap = true;
+  std::string error;  // the last refusal, shown in the modal
+};
+
+struct CorrespondenceLinkRef {
+  int nodeA = -1, nodeB = -1;
+  bool operator==(const CorrespondenceLinkRef&) const = default;
+};
+
+struct CorrespondenceEditorState {
+  bool visible = false;
+  bool placeNext = true;  // position the window over the viewport next time it opens
+  bool focused = false;   // the window had keyboard focus this frame (Del is its own then)
+  std::optional<CorrespondenceLinkRef> selected;
+  Selection hovered;  // the node whose row is under the mouse (the viewport highlights its skeleton); none: empty
+  // Rows whose open state differs from the default (the top three levels open).
+  std::set<int> toggledA, toggledB;
+  std::string treesKey;   // "source->target" the toggles belong to
+  // A wire being dragged from a row: the side (0: source, 1: target) and node id.
+  int dragSide = -1, dragNode = -1;
+  // A Ctrl+right-drag cutting wires: its trail in window pixels.
+  std::vector<glm::vec2> cutTrail;
+};
+
+// The modal; call every frame. On success it opens the correspondence editor.
+void drawCreateAnimorphosisPopup(Document& doc, CreateAnimorphosisState& st, CorrespondenceEditorState& editor,
+                                 StatusMessage& status);
+// Fills the modal's fields from the project (its BlobTree actors, the current
+// animorphosis or the middle half of the range) and opens it next draw.
+void openCreateAnimorphosis(const Document& doc, CreateAnimorphosisState& st);
+
+// The correspondence editor window when visible. area: the region it opens over.
+void drawCorrespondenceEditor(const LayoutRect& area, Document& doc, CorrespondenceEditorState& st,
+                              StatusMessage& status);
+
+// The interval [t0, t1] on a timeline ruler spanning [x0, x1] pixels for
+// frames [viewStart, viewEnd], from y0 to y1: a band and two markers.
+void drawAnimorphosisInterval(const Document& doc, float x0, float x1, float y0, float y1, double viewStart,
+                              double viewEnd);
+// The interval marker (0: start, 1: end) whose handle is under pos, or -1.
+int animorphosisMarkerAt(const Document& doc, glm::vec2 pos, float x0, float x1, float y1, double viewStart,
+                         double viewEnd);
+// Moves a marker to frame (kept one frame from the other and inside the
+// timeline range); a command merged while a drag is open.
+void moveAnimorphosisMarker(Document& doc, int index, int frame);
+
+}  // namespace animorph

@@ -1,0 +1,130 @@
+#include "export/export_dialog.h"
+
+#include <algorithm>
+#include <filesystem>
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include "bake/export_project.h"
+#include "bake/frame_files.h"
+#include "widgets/create_modal.h"
+#include "widgets/widget_rects.h"
+
+namespace animorph {
+namespace fs = std::filesystem;
+
+namespace {
+constexpr const char* kPopup = "Export##modal";
+
+// The default output of a format beside the project: NAME.glb, or the folder NAME_frames.
+std::string defaultOutput(const Document& doc, ExportFormat f) {
+  const std::string name = framePrefix(doc.project().name);
+  return (fs::path(doc.baseDir()) / (f == ExportFormat::GltfAnimated ? name + ".glb" : name + "_frames")).string();
+}
+}  // namespace
+
+void openExportDialog(const Document& doc, ExportDialogState& st) {
+  st.edit = doc.project().exportSettings;
+  if (st.edit.output.empty()) st.edit.output = defaultOutput(doc, st.edit.format);
+  if (st.edit.useTimeline) {
+    st.edit.first = doc.project().timeline.frameStart;
+    st.edit.last = doc.project().timeline.frameEnd;
+  }
+  st.error.clear();
+  st.openNext = true;
+}
+
+std::string exportSettingsProblem(const Project& p, const ExportSettings& s) {
+  int first = 0, last = 0;
+  exportFrameRange(p, s, first, last);
+  if (s.output.empty()) return "Choose where to write the export (Browse...).";
+  if (first < 0) return "The first frame must be 0 or later.";
+  if (last < first) return "The last frame is before the first.";
+  if (s.resolution < 2 || s.resolution > 1024) return "The resolution must be 2..1024 cells.";
+  if (!p.morph.enabled() && !p.animorphosis.enabled())
+    return "The project has no morph or animorphosis to export (Create > Animorphosis... makes one).";
+  return {};
+}
+
+ExportDialogChoice drawExportDialog(const Document& doc, ExportDialogState& st) {
+  st.isOpen = beginCentredModal(kPopup, st.openNext);
+  if (!st.isOpen) return ExportDialogChoice::None;
+  ExportDialogChoice choice = ExportDialogChoice::None;
+  ExportSettings& s = st.edit;
+  const Project& p = doc.project();
+
+  ImGui::TextUnformatted("Bake the morph frame by frame and write it out.");
+  ImGui::SetNextItemWidth(300.0f);
+  if (ImGui::BeginCombo("Format", exportFormatLabel(s.format))) {
+    for (int i = 0; i < kExportFormatCount; ++i) {
+      const ExportFormat f = ExportFormat(i);
+      if (ImGui::Selectable(exportFormatLabel(f), f == s.format) && f != s.format) {
+        // The default output follows the format (a .glb file or a folder) until the user picks one.
+        const bool wasDefault = s.output == defaultOutput(doc, s.format);
+        s.format = f;
+        if (wasDefault) s.output = defaultOutput(doc, f);
+      }
+      noteWidget(std::string("export/format/") + exportFormatName(f));
+    }
+    ImGui::EndCombo();
+  }
+  noteWidget("export/format");
+  if (ImGui::Checkbox("Timeline range", &s.useTimeline) && s.useTimeline) {
+    s.first = p.timeline.frameStart;
+    s.last = p.timeline.frameEnd;
+  }
+  noteWidget("export/use_timeline");
+  ImGui::BeginDisabled(s.useTimeline);
+  // Plain fields (no step buttons): the widget map's rectangle is the field itself.
+  auto intField = [](const char* label, const char* id, int& v) {
+    ImGui::AlignTextToFramePadding();
+    ImGui::TextUnformatted(label);
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(80.0f);
+    ImGui::InputInt(id, &v, 0, 0);
+  };
+  intField("First frame", "##first", s.first);
+  noteWidget("export/first");
+  ImGui::SameLine();
+  intField("Last frame", "##last", s.last);
+  noteWidget("export/last");
+  ImGui::EndDisabled();
+  intField("Resolution", "##resolution", s.resolution);
+  s.resolution = std::clamp(s.resolution, 2, 1024);
+  noteWidget("export/resolution");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Polygonisation cells along the longest side of the morph's bounds");
+  ImGui::SetNextItemWidth(380.0f);
+  ImGui::InputText(s.format == ExportFormat::GltfAnimated ? "File" : "Folder", &s.output);
+  noteWidget("export/output");
+  ImGui::SameLine();
+  if (ImGui::Button("Browse...")) choice = ExportDialogChoice::Browse;
+  noteWidget("export/browse");
+  if (s.format != ExportFormat::GltfAnimated)
+    ImGui::TextDisabled("Frames are written as %s_####.%s in that folder.", framePrefix(p.name).c_str(),
+                        exportFormatName(s.format));
+  if (!st.error.empty()) {
+    ImGui::PushTextWrapPos(480.0f);
+    ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", st.error.c_str());
+    ImGui::PopTextWrapPos();
+    noteWidget("export/error");
+  }
+  ImGui::Separator();
+  if (ImGui::Button("Export", ImVec2(110.0f, 0.0f))) {
+    st.error = exportSettingsProblem(p, s);
+    if (st.error.empty()) choice = ExportDialogChoice::Export;
+  }
+  noteWidget("export/export");
+  ImGui::SameLine();
+  if (ImGui::Button("Cancel", ImVec2(110.0f, 0.0f)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)))
+    choice = ExportDialogChoice::Cancel;
+  noteWidget("export/cancel");
+  if (choice != ExportDialogChoice::None) {
+    ImGui::CloseCurrentPopup();
+    st.isOpen = false;
+  }
+  ImGui::EndPopup();
+  return choice;
+}
+
+}  // namespace animorph

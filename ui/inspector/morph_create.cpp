@@ -1,0 +1,140 @@
+#include "inspector/morph_create.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "widgets/create_modal.h"
+#include "doc/morph_create.h"
+#include "widgets/widget_rects.h"
+
+namespace animorph {
+
+namespace {
+
+constexpr const char* kPopup = "Create Morph##modal";
+
+std::string actorLabel(const Actor& a) {
+  const std::string name = a.name.empty() || a.name == a.id ? a.id : a.name + " (" + a.id + ")";
+  return name + (a.kind == ActorKind::BlobTree ? "  [BlobTree]" : "  [glTF]");
+}
+
+// A combo over every actor; returns true when the choice changed.
+bool actorCombo(const char* label, const std::string& key, const Project& p, std::string& id) {
+  const Actor* cur = p.findActor(id);
+  bool changed = false;
+  ImGui::SetNextItemWidth(240.0f);
+  if (ImGui::BeginCombo(label, cur ? actorLabel(*cur).c_str() : "(choose)")) {
+    for (size_t i = 0; i < p.actors.size(); ++i) {
+      if (ImGui::Selectable(actorLabel(p.actors[i]).c_str(), p.actors[i].id == id)) {
+        id = p.actors[i].id;
+        changed = true;
+      }
+      noteWidget(key + "/" + std::to_string(i));
+    }
+    ImGui::EndCombo();
+  }
+  noteWidget(key);
+  return changed;
+}
+
+bool isTree(const Project& p, const std::string& id) {
+  const Actor* a = p.findActor(id);
+  return a && a->kind == ActorKind::BlobTree;
+}
+
+}  // namespace
+
+void openCreateMorph(const Document& doc, CreateMorphState& st) {
+  const Project& p = doc.project();
+  const MorphSetup& m = p.morph;
+  if (m.enabled()) {
+    st.sourceActorId = m.sourceActorId;
+    st.targetActorId = m.targetActorId;
+    st.method = int(m.method);
+    const MorphMarkers& k = m.markers;
+    st.markers[0] = k.a, st.markers[1] = k.b, st.markers[2] = k.c, st.markers[3] = k.d;
+  } else {
+    st.sourceActorId = p.actors.size() > 0 ? p.actors[0].id : std::string();
+    st.targetActorId = p.actors.size() > 1 ? p.actors[1].id : std::string();
+    st.method = 0;
+    const Timeline& tl = p.timeline;
+    const int span = std::max(8, tl.frameEnd - tl.frameStart);
+    for (int i = 0; i < 4; ++i) st.markers[i] = tl.frameStart + span * (i + 1) / 6;
+  }
+  st.error.clear();
+  st.openNext = true;
+}
+
+void drawCreateMorphPopup(Document& doc, AssetCache& assets, CreateMorphState& st, StatusMessage& status) {
+  st.isOpen = beginCentredModal(kPopup, st.openNext);
+  if (!st.isOpen) return;
+  const Project& p = doc.project();
+  bool close = false;
+  ImGui::TextUnformatted("Morph one actor into another: a glTF character or a BlobTree on either side.");
+  if (p.morph.enabled())
+    ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.4f, 1.0f), "Replaces the project's morph %s -> %s (undoable).",
+                       p.morph.sourceActorId.c_str(), p.morph.targetActorId.c_str());
+  if (actorCombo("Source", "morph/create/source", p, st.sourceActorId)) st.error.clear();
+  if (actorCombo("Target", "morph/create/target", p, st.targetActorId)) st.error.clear();
+  const char* methods[] = {"Interpolation", "Space-time blending"};
+  ImGui::SetNextItemWidth(240.0f);
+  ImGui::Combo("Method", &st.method, methods, 2);
+  noteWidget("morph/create/method");
+  ImGui::SetNextItemWidth(240.0f);
+  ImGui::InputInt4("Markers A B C D", st.markers);
+  noteWidget("morph/create/markers");
+  const bool treeSource = isTree(p, st.sourceActorId), treeTarget = isTree(p, st.targetActorId);
+  if (treeSource || treeTarget)
+    ImGui::TextDisabled("A BlobTree is its own stand-in: no %s%s%s (%s).", treeSource ? "collapse" : "",
+                        treeSource && treeTarget ? " or " : "", treeTarget ? "expansion" : "",
+                        treeSource && treeTarget ? "A = B, C = D" : treeSource ? "A = B" : "C = D");
+  const ModalChoice choice = createModalButtons(st.error, "morph/create");
+  if (choice == ModalChoice::Cancel) close = true;
+  if (choice == ModalChoice::Create) {
+    MorphChoice c;
+    c.sourceActorId = st.sourceActorId;
+    c.targetActorId = st.targetActorId;
+    c.method = static_cast<MorphMethod>(std::clamp(st.method, 0, 1));
+    c.markers = {st.markers[0], st.markers[1], st.markers[2], st.markers[3]};
+    std::vector<std::string> notes;
+    auto m = proposeMorph(p, doc.baseDir(), assets, c, &notes);
+    if (!m) {
+      st.error = m.error();
+      status = {m.error(), true};
+    } else {
+      const std::string label = "Create morph " + c.sourceActorId + " -> " + c.targetActorId;
+      doc.execute(setMorphCommand(p, std::move(*m), label));
+      doc.selection = {};
+      status = {label + (notes.empty() ? std::string() : " (" + std::to_string(notes.size()) + " stand-in" +
+                                                                   (notes.size() == 1 ? "" : "s") + " fitted)"),
+                false};
+      close = true;
+    }
+  }
+  endCreateModal(close, st.isOpen);
+}
+
+void drawMorphSides(Document& doc, AssetCache& assets, StatusMessage& status) {
+  const Project& p = doc.project();
+  const MorphSetup& m = p.morph;
+  std::string ids[2] = {m.sourceActorId, m.targetActorId};
+  bool changed = false;
+  changed |= actorCombo("Source", "morph/source", p, ids[0]);
+  changed |= actorCombo("Target", "morph/target", p, ids[1]);
+  if (changed) {
+    MorphChoice c;
+    c.sourceActorId = ids[0];
+    c.targetActorId = ids[1];
+    c.method = m.method;
+    c.markers = m.markers;
+    auto next = proposeMorph(p, doc.baseDir(), assets, c);
+    if (next) doc.execute(setMorphCommand(p, std::move(*next), "Set morph " + ids[0] + " -> " + ids[1]));
+    else status = {next.error(), true};
+  }
+  if (ImGui::Button("Swap source and target")) doc.execute(swapMorphSidesCommand(p));
+  noteWidget("morph/swap");
+}
+
+}  // namespace animorph

@@ -1,0 +1,33 @@
+#pragma once
+// Create > Morph...: the modal that sets up the project's morph between any two
+// of its actors (glTF characters or BlobTree actors), the method and the
+// markers, as one undoable step (doc/morph_create.h); and the inspector's
+// source / target pickers and swap.
+#include <string>
+
+#include "doc/asset_cache.h"
+#include "doc/document.h"
+#include "shell/status_bar.h"
+
+namespace animorph {
+
+struct CreateMorphState {
+  bool openNext = false;  // open the modal on the next draw
+  bool isOpen = false;
+  std::string sourceActorId, targetActorId;
+  int method = 0;  // MorphMethod
+  int markers[4] = {24, 48, 84, 108};
+  std::string error;  // the last refusal, shown in the modal
+};
+
+// Fills the modal's fields from the project (its current morph, or the first
+// two actors and markers spread over the range) and opens it next draw.
+void openCreateMorph(const Document& doc, CreateMorphState& st);
+
+// The modal; call every frame.
+void drawCreateMorphPopup(Document& doc, AssetCache& assets, CreateMorphState& st, StatusMessage& status);
+
+// The inspector's Source / Target combos (any actor) and Swap button.
+void drawMorphSides(Document& doc, AssetCache& assets, StatusMessage& status);
+
+}  // namespace animorph

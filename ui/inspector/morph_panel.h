@@ -1,0 +1,44 @@
+#pragma once
+// The morph's settings in the inspector (shown when no actor is selected in a
+// project with a morph): the stage markers A..D, the implicit method and its
+// parameters, the weight-map shift, easing and blend presets, solid noise, the
+// source and target clips' timing, the projection settings and report, and
+// the keyed stand-in segment tracks (user-controlled morphing; see
+// morph_sections.h). Every edit is a command; a drag is one step.
+#include <memory>
+
+#include <glm/glm.hpp>
+
+#include "doc/asset_cache.h"
+#include "doc/document.h"
+#include "widgets/drag_merge.h"
+#include "morph/morph_runtime.h"
+#include "shell/status_bar.h"
+
+namespace animorph {
+
+struct MorphPanelState {
+  int segmentSlot = 0;  // whose stand-in segment is selected: 0 source, 1 target
+  int segment = -1;     // the selected segment, -1: none
+  // The prepared morph the viewport shows (the app sets it; null: none yet).
+  // Its projection statistics and notes are the projection report.
+  std::shared_ptr<const MorphRuntime> runtime;
+};
+
+// Refused edits report to status.
+void drawMorphSettings(Document& doc, AssetCache& assets, MorphPanelState& st, DragMerge& drag,
+                       StatusMessage& status);
+
+// Draws the markers A..D of the project's morph on a timeline ruler spanning
+// [x0, x1] pixels for frames [viewStart, viewEnd], from y0 to y1.
+void drawMorphMarkers(const Document& doc, float x0, float x1, float y0, float y1, double viewStart, double viewEnd);
+
+// The marker (0..3 = A..D) whose handle on such a ruler is under pos, or -1.
+int morphMarkerAt(const Document& doc, glm::vec2 pos, float x0, float x1, float y0, float y1, double viewStart,
+                  double viewEnd);
+
+// Moves marker index (0..3) to frame, kept between its neighbours and in the
+// timeline range; a command merged while a drag is open.
+void moveMorphMarker(Document& doc, int index, int frame);
+
+}  // namespace animorph

@@ -1,0 +1,259 @@
+// EditorUI's long operations, run as background jobs (util/background_job.h): opening a project
+// (and loading its characters), opening or importing a glTF, and File > Export.... The work
+// runs on the job's thread on copies and fills a result that only the UI thread applies, in
+// pollJob(), as one step: a new document, or one undoable command.
+#include <cmath>
+#include <filesystem>
+#include <map>
+
+#include <imgui.h>
+
+#include "bake/export_project.h"
+#include "doc/actor_commands.h"
+#include "doc/standin_commands.h"
+#include "io/gltf_import.h"
+#include "shell/editor_ui.h"
+#include "shell/job_progress_panel.h"
+#include "standin/fit_standin.h"
+
+namespace animorph {
+namespace fs = std::filesystem;
+
+namespace {
+std::string fileName(const std::string& path) { return fs::path(path).filename().string(); }
+
+// Loads the characters of a project's glTF actors (paths resolved against the project's folder),
+// counting each as one step of progress; cancel polled between them.
+Status loadActorAssets(const Document& d, JobProgress& pr, std::map<std::string, AssetCache::Entry>& out) {
+  std::vector<std::string> paths;
+  for (const Actor& a : d.project().actors)
+    if (a.kind == ActorKind::Gltf && !a.assetPath.empty()) paths.push_back(d.resolveAsset(a.assetPath));
+  // Each character is weighed as a quarter of the project file's steps, spread evenly.
+  const double step = paths.empty() ? 0.0 : std::max(1.0, pr.total() * 0.25 / double(paths.size()));
+  pr.addTotal(step * double(paths.size()));
+  for (const std::string& path : paths) {
+    if (pr.cancelled()) return jobCancelled();
+    pr.setStage("loading " + fileName(path));
+    if (!out.count(path)) out.emplace(path, AssetCache::load(path));
+    pr.advance(step);
+  }
+  return Status::success();
+}
+// The work of loading one glTF into entry (its failure is kept in the entry, as the cache does).
+BackgroundJob::Work loadAssetWork(const std::string& path, std::shared_ptr<AssetCache::Entry> entry) {
+  return [path, entry](JobProgress& pr) -> Status {
+    pr.setStage("loading");
+    *entry = AssetCache::load(path);
+    return Status::success();
+  };
+}
+}  // namespace
+
+void EditorUI::startRefitJob(EditorContext& ctx) {
+  const std::string actorId = std::move(st_.standinTool.refitAllRequest);
+  st_.standinTool.refitAllRequest.clear();
+  const Document& d = doc(ctx);
+  const Actor* actor = d.project().findActor(actorId);
+  const ActorMorph* morphActor = d.project().morph.findActor(actorId);
+  if (!actor || !morphActor || actor->assetPath.empty()) return;
+  // The character is shared, immutable: the job reads it while the UI goes on drawing it.
+  std::shared_ptr<const Character> character = ctx.assets.get(d.resolveAsset(actor->assetPath)).character;
+  if (!character) return;
+  FitSettings fs;
+  fs.kind = morphActor->standin.kind;
+  fs.measure = true;  // the report says whether the fit is poor
+  auto fitted = std::make_shared<Result<FitResult>>(Error{"not run"});
+  auto work = [character, fs, fitted](JobProgress& pr) -> Status {
+    pr.setStage("fitting the stand-in");
+    *fitted = fitStandin(*character, fs);
+    return pr.cancelled() ? jobCancelled() : Status::success();
+  };
+  startJob("Refit stand-in", std::move(work), [this, actorId, character, fitted](EditorContext& c, const Status&) {
+    Document& dd = doc(c);
+    const Actor* a = dd.project().findActor(actorId);
+    // The actor may have gone, or its file changed, while the job ran: then the fit is not applied.
+    if (!a || c.assets.get(dd.resolveAsset(a->assetPath)).character != character) {
+      setStatus("Refit stand-in: " + actorId + " changed while fitting; nothing applied", true);
+      return;
+    }
+    if (!*fitted) {
+      setStatus("Refit stand-in: " + fitted->error(), true);
+      return;
+    }
+    auto cmd = replaceStandinCommand(dd.project(), actorId, (*fitted)->standin, "Refit stand-in");
+    if (!cmd) {
+      setStatus("Refit stand-in: " + cmd.error(), true);
+      return;
+    }
+    setStatus((*cmd)->label());
+    dd.execute(std::move(*cmd));
+    if (dd.selection.actorId == actorId) dd.selection.segment = -1;
+    // A poor fit is said loudly: the status bar names the bones.
+    if ((*fitted)->report.poor) setStatus("Refit stand-in: POOR FIT: " + (*fitted)->report.problems.front(), true);
+  });
+}
+
+bool EditorUI::startJob(std::string label, BackgroundJob::Work work, JobDone done) {
+  if (job_) {
+    setStatus("Wait for " + job_->label() + " to finish, or cancel it (Esc), first", true);
+    return false;
+  }
+  job_ = std::make_unique<BackgroundJob>(std::move(label), std::move(work));
+  jobDone_ = std::move(done);
+  return true;
+}
+
+void EditorUI::pollJob(EditorContext& ctx) {
+  if (!job_ || !job_->finished()) return;
+  std::unique_ptr<BackgroundJob> job = std::move(job_);
+  JobDone done = std::move(jobDone_);
+  jobDone_ = nullptr;
+  if (job->wasCancelled()) {
+    setStatus(job->label() + " cancelled");
+    return;
+  }
+  done(ctx, job->status());
+}
+
+void EditorUI::finishJob(EditorContext& ctx) {
+  while (job_) {
+    job_->wait();
+    pollJob(ctx);  // its done may start another (an opened glTF imports its character)
+  }
+}
+
+void EditorUI::drawJob(EditorContext& /*ctx*/) {
+  if (!job_) return;
+  bool cancel = drawJobProgressPanel(st_.layout.viewport, *job_);
+  // Esc cancels the job unless a dialog or menu has it.
+  if (!ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel) &&
+      !ImGui::GetIO().WantTextInput && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false))
+    cancel = true;
+  if (cancel && !job_->progress().cancelled()) {
+    job_->cancel();
+    setStatus("Cancelling " + job_->label() + "...");
+  }
+}
+
+void EditorUI::loadProject(const std::string& path, bool recover, EditorContext& ctx) {
+  // The document stays editable while the other one loads; edits made meanwhile are not thrown away.
+  const Document* before = &doc(ctx);
+  const uint64_t revision = before->revision();
+  struct Loaded {
+    std::unique_ptr<Document> doc;
+    std::map<std::string, AssetCache::Entry> assets;
+  };
+  auto loaded = std::make_shared<Loaded>();
+  startJob(
+      "Open " + fileName(path),
+      [path, recover, loaded](JobProgress& pr) -> Status {
+        auto opened = recover ? Document::recoverAutosave(path, &pr) : Document::open(path, &pr);
+        if (!opened) return Error{opened.error()};
+        loaded->doc = std::move(*opened);
+        return loadActorAssets(*loaded->doc, pr, loaded->assets);
+      },
+      [this, path, recover, loaded, before, revision](EditorContext& ctx, const Status& st) {
+        if (!st) {
+          showError("Cannot open " + path + ":\n" + st.error());
+          return;
+        }
+        if (ctx.document.get() == before && before->revision() != revision && before->dirty()) {
+          showError("Did not open " + path + ": the open project was edited while it loaded.\n"
+                    "Save or undo those edits, then open it again.");
+          return;
+        }
+        for (auto& [assetPath, entry] : loaded->assets) ctx.assets.insert(assetPath, std::move(entry));
+        std::string abs = loaded->doc->path();
+        replaceDocument(std::move(loaded->doc), ctx);
+        addRecentFile(st_.prefs, abs);
+        savePreferences();
+        setStatus(recover ? "Recovered the autosave of " + fileName(abs) + " (not saved yet)" : "Opened " + abs);
+      });
+}
+
+void EditorUI::openGltfAsNewProject(const std::string& path, EditorContext& /*ctx*/) {
+  auto entry = std::make_shared<AssetCache::Entry>();
+  startJob(
+      "Open " + fileName(path),
+      loadAssetWork(path, entry),
+      [this, path, entry](EditorContext& ctx, const Status&) {
+        if (!entry->character) {  // the current document stays, as when a project fails to open
+          showError("Cannot open " + path + ":\n" + entry->error);
+          return;
+        }
+        // The timeline spans the character's first clip, as importing into an empty scene does elsewhere.
+        auto fresh = std::make_unique<Document>();
+        Project p = fresh->project();
+        const Character& c = *entry->character;
+        if (!c.clips.empty() && c.clips[0].durationSec > 0.0f && p.timeline.fps > 0.0)
+          p.timeline.frameEnd = std::max(1, int(std::ceil(double(c.clips[0].durationSec) * p.timeline.fps)));
+        fresh->reset(std::move(p), {});
+        ctx.assets.insert(path, std::move(*entry));
+        replaceDocument(std::move(fresh), ctx);
+        addImportedActor(path, ctx);
+        setStatus("New project with " + fileName(path) + " imported (not saved yet)");
+      });
+}
+
+void EditorUI::importGltf(const std::string& path, EditorContext& ctx) {
+  if (ctx.assets.contains(path)) {  // loaded already (another actor uses it): no job needed
+    addImportedActor(path, ctx);
+    return;
+  }
+  auto entry = std::make_shared<AssetCache::Entry>();
+  startJob(
+      "Import " + fileName(path),
+      loadAssetWork(path, entry),
+      [this, path, entry](EditorContext& ctx, const Status&) {
+        ctx.assets.insert(path, std::move(*entry));
+        addImportedActor(path, ctx);
+      });
+}
+
+void EditorUI::addImportedActor(const std::string& path, EditorContext& ctx) {
+  Document& d = doc(ctx);
+  std::string projectDir = d.path().empty() ? std::string() : d.baseDir();
+  Actor actor = actorForAsset(d.project(), path, projectDir);
+  std::string id = actor.id;
+  const AssetCache::Entry& e = ctx.assets.get(path);
+  d.execute(addActorCommand(std::move(actor)));
+  d.selection = {id, -1};
+  if (e.character) {
+    setStatus("Imported " + fileName(path));
+    frameSelection(ctx);
+  } else {
+    setStatus("Added " + fileName(path) + ", but it did not load: " + e.error, true);
+  }
+}
+
+void EditorUI::startExport(EditorContext& ctx) {
+  Document& d = doc(ctx);
+  const ExportSettings s = st_.exportDialog.edit;
+  // The settings are the project's (saved with it, undoable) from now on.
+  if (!(s == d.project().exportSettings))
+    d.execute(std::make_unique<SetValueCommand<ExportSettings>>(
+        "Export settings", [](Project& p) -> ExportSettings* { return &p.exportSettings; }, d.project().exportSettings,
+        s));
+  const std::string baseDir = d.baseDir();
+  const std::string out = exportOutputPath(s, baseDir);
+  auto report = std::make_shared<ExportReport>();
+  startJob(
+      "Export",
+      [project = d.project(), baseDir, s, report](JobProgress& pr) -> Status {
+        auto r = exportProject(project, baseDir, s, pr);
+        if (!r) return Error{r.error()};
+        *report = std::move(*r);
+        return Status::success();
+      },
+      [this, out, report](EditorContext&, const Status& st) {
+        if (!st) {
+          showError("Export failed:\n" + st.error());
+          return;
+        }
+        char secs[32];
+        std::snprintf(secs, sizeof secs, "%.1f s", report->seconds);
+        setStatus("Exported " + std::to_string(report->frames) + " frames to " + out + " in " + secs);
+      });
+}
+
+}  // namespace animorph

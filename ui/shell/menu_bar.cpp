@@ -1,0 +1,137 @@
+#include "shell/menu_bar.h"
+
+#include <filesystem>
+
+#include <imgui.h>
+
+#include "outliner/node_type_menu.h"
+#include "widgets/widget_rects.h"
+
+namespace animorph {
+namespace {
+// BeginMenu with its header's rect recorded (once a menu is open ImGui's
+// "last item" is the popup, so the rect is taken from the cursor instead).
+bool beginMenu(const char* label, bool enabled = true) {
+  ImVec2 pos = ImGui::GetCursorScreenPos();
+  ImVec2 size(ImGui::CalcTextSize(label, nullptr, true).x, ImGui::GetFrameHeight());
+  bool open = ImGui::BeginMenu(label, enabled);
+  if (WidgetRects* r = activeWidgetRects()) r->set(std::string("menu/") + label, {{pos.x, pos.y}, {pos.x + size.x, pos.y + size.y}});
+  return open;
+}
+}  // namespace
+
+MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& recentFiles, float& heightPx,
+                       bool curveEditorShown, const WeightPaintState& paint, ViewportMode mode,
+                       bool correspondenceShown, const std::vector<std::string>& demos) {
+  MenuResult r;
+  heightPx = 0.0f;
+  if (!ImGui::BeginMainMenuBar()) return r;
+  heightPx = ImGui::GetWindowSize().y;
+  auto item = [&](const char* label, Action a, bool enabled = true, bool selected = false) {
+    std::string hint = shortcutHint(a);
+    if (ImGui::MenuItem(label, hint.empty() ? nullptr : hint.c_str(), selected, enabled)) r.actions.push_back(a);
+    noteWidget(std::string("menu/") + label);
+  };
+
+  bool fileOpen = beginMenu("File");
+  if (fileOpen) {
+    item("New", Action::New);
+    item("Open...", Action::Open);
+    item("Save", Action::Save);
+    item("Save As...", Action::SaveAs);
+    ImGui::Separator();
+    item("Import glTF...", Action::ImportGltf);
+    item("Import Weights from Vertex Colour...", Action::ImportWeights, doc.project().morph.enabled());
+    item("Save Screenshot...", Action::SaveScreenshot);
+    item("Export...", Action::Export, doc.project().morph.enabled() || doc.project().animorphosis.enabled());
+    ImGui::Separator();
+    bool recentOpen = beginMenu("Recent", !recentFiles.empty());
+    if (recentOpen) {
+      for (size_t i = 0; i < recentFiles.size(); ++i) {
+        const std::string& path = recentFiles[i];
+        std::string label = std::to_string(i + 1) + "  " + std::filesystem::path(path).filename().string();
+        if (ImGui::MenuItem(label.c_str())) r.openPath = path;
+        noteWidget("menu/Recent/" + std::to_string(i));
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", path.c_str());
+      }
+      ImGui::EndMenu();
+    }
+    ImGui::Separator();
+    item("Quit", Action::Quit);
+    ImGui::EndMenu();
+  }
+
+  bool editOpen = beginMenu("Edit");
+  if (editOpen) {
+    const UndoStack& h = doc.history();
+    std::string undo = h.canUndo() ? "Undo " + h.undoLabel() : std::string("Undo");
+    std::string redo = h.canRedo() ? "Redo " + h.redoLabel() : std::string("Redo");
+    if (ImGui::MenuItem(undo.c_str(), shortcutHint(Action::Undo).c_str(), false, h.canUndo()))
+      r.actions.push_back(Action::Undo);
+    noteWidget("menu/Undo");
+    if (ImGui::MenuItem(redo.c_str(), shortcutHint(Action::Redo).c_str(), false, h.canRedo()))
+      r.actions.push_back(Action::Redo);
+    noteWidget("menu/Redo");
+    ImGui::Separator();
+    const Actor* sel = doc.project().findActor(doc.selection.actorId);
+    const bool blobNode = sel && sel->kind == ActorKind::BlobTree && doc.selection.node >= 0;
+    item("Delete", Action::DeleteSelection, sel && (doc.selection.node < 0 || blobNode));
+    item("Duplicate", Action::DuplicateSelection, blobNode);
+    ImGui::EndMenu();
+  }
+
+  bool createOpen = beginMenu("Create");
+  if (createOpen) {
+    item("New BlobTree Actor", Action::NewBlobActor);
+    item("Morph...", Action::CreateMorph);
+    item("Animorphosis...", Action::CreateAnimorphosis);
+    ImGui::Separator();
+    const Actor* sel = doc.project().findActor(doc.selection.actorId);
+    const bool blob = sel && sel->kind == ActorKind::BlobTree;
+    ImGui::TextDisabled(blob ? "Add node under the selection" : "Add node (select a BlobTree actor)");
+    if (auto t = nodeTypeMenuItems("menu/Add/", blob)) r.addNodeType = *t;
+    ImGui::EndMenu();
+  }
+
+  bool viewOpen = beginMenu("View");
+  if (viewOpen) {
+    const ViewOptions& v = doc.project().view;
+    item("Grid", Action::ToggleGrid, true, v.showGrid);
+    item("Skeleton", Action::ToggleSkeleton, true, v.showSkeleton);
+    item("Wireframe", Action::ToggleWireframe, true, v.wireframe);
+    item("Axes", Action::ToggleAxes, true, v.showAxes);
+    item("Stand-ins", Action::ToggleStandins, true, v.showStandins);
+    ImGui::Separator();
+    item("Frame Selection", Action::FrameSelection);
+    ImGui::Separator();
+    item("Curve Editor", Action::ToggleCurveEditor, true, curveEditorShown);
+    item("Correspondence Editor", Action::ToggleCorrespondenceEditor, true, correspondenceShown);
+    item("Weight Paint Mode", Action::ToggleWeightPaint, doc.project().morph.enabled(), paint.active);
+    item("Stand-in Edit Mode", Action::ToggleStandinEdit, true, mode == ViewportMode::StandinEdit);
+    item("Weight Overlay", Action::ToggleWeightOverlay, true, paint.overlayAlways);
+    ImGui::Separator();
+    item("Preferences...", Action::Preferences);
+    ImGui::EndMenu();
+  }
+
+  bool helpOpen = beginMenu("Help");
+  if (helpOpen) {
+    item("Shortcuts", Action::ShowShortcuts);
+    item("About Animorph", Action::About);
+    ImGui::Separator();
+    if (beginMenu("Demos", !demos.empty())) {
+      for (const std::string& path : demos) {
+        const std::string name = std::filesystem::path(path).stem().string();
+        if (ImGui::MenuItem(name.c_str())) r.openPath = path;
+        noteWidget("menu/Demos/" + name);
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", path.c_str());
+      }
+      ImGui::EndMenu();
+    }
+    ImGui::EndMenu();
+  }
+  ImGui::EndMainMenuBar();
+  return r;
+}
+
+}  // namespace animorph

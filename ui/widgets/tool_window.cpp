@@ -1,0 +1,29 @@
+#include "widgets/tool_window.h"
+
+#include "widgets/widget_rects.h"
+
+namespace animorph {
+
+bool beginToolWindow(const char* title, ImVec2 pos, ImVec2 size, const std::string& widgetKey, ToolWindowFlags f) {
+  f.focused = false;
+  if (!f.visible) return false;
+  if (f.placeNext) {
+    ImGui::SetNextWindowPos(pos);
+    ImGui::SetNextWindowSize(size);
+    f.placeNext = false;
+  }
+  bool open = true;
+  if (!ImGui::Begin(title, &open, ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings)) {
+    ImGui::End();
+    f.visible = open;
+    return false;
+  }
+  f.visible = open;
+  if (!open) f.placeNext = true;
+  f.focused = ImGui::IsWindowFocused(ImGuiFocusedFlags_RootAndChildWindows);
+  const ImVec2 p = ImGui::GetWindowPos(), s = ImGui::GetWindowSize();
+  noteWidgetRect(widgetKey, {p.x, p.y}, {p.x + s.x, p.y + s.y});
+  return true;
+}
+
+}  // namespace animorph
