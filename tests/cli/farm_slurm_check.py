@@ -6,7 +6,8 @@ usage: farm_slurm_check.py CLI PROJECT
   ports; the MUNGE key and socket, Slurm's state, spool, pid and log files all in that folder, so
   the test runs beside others and beside any Slurm of the machine). Then:
   * `farm slurm` without --submit: the two job scripts (absolute paths, this CLI as executable,
-    one array task per chunk) and the sbatch commands it prints; bad arguments exit 2;
+    one array task per chunk) and the sbatch commands it prints; bad arguments exit 2; `farm
+    assemble` before the chunks exist exits 1 naming the missing chunk;
   * `farm slurm --submit` of PROJECT's frames in 3 chunks with --gltf: waits (bounded) for the
     bake array and the assembly job that depends on it, then compares the assembled glTF with one
     `bake --gltf` of the same frames on this machine: the same frame nodes and, per frame, the
@@ -242,6 +243,12 @@ def check_plan(cli, project, tmp):
                        (assemble, f"--gltf '{os.path.join(tmp, 'plan.glb')}'")):
         if what not in text:
             fail(f"{what!r} is not in the job script:\n{text}")
+    # The assembly before the chunks exist: exit 1 naming the first chunk's file.
+    r = run(cli, "farm", "assemble", project, "--frames", "0:144", "--chunk", str(CHUNK), "--chunks",
+            os.path.join(out, "chunks"), "--gltf", os.path.join(tmp, "plan.glb"))
+    if r.returncode != 1 or os.path.join(out, "chunks", "demo_0000-0048.glb") not in r.stderr or \
+            os.path.exists(os.path.join(tmp, "plan.glb")):
+        fail(f"farm assemble without chunks: exit {r.returncode}: {r.stderr.strip()}")
     for bad in (["--chunk", "0"], ["--frames", "9:3"], ["--format", "stl"], ["--name", "a b"]):
         args = {"--chunk": "5", "--frames": "0:9", **dict(zip(bad[::2], bad[1::2]))}
         r = run(cli, "farm", "slurm", project, "--res", RES, "-o", os.path.join(tmp, "bad"),
