@@ -12,6 +12,10 @@ int runFarm(const std::vector<std::string>& args) {
   FarmOptions o;
   if (std::string e = parseFarmOptions(std::vector<std::string>(args.begin() + 1, args.end()), o); !e.empty())
     return fail("farm", args[0] + ": " + e, 2);
+  if (args[0] == "slurm" && !o.chunksDir.empty())
+    return fail("farm", "slurm: --chunks is an option of farm assemble (slurm puts the chunks into DIR/chunks)", 2);
+  if (args[0] == "assemble" && (o.submit || !o.partition.empty() || !o.output.empty()))
+    return fail("farm", "assemble: -o, --partition and --submit are options of farm slurm", 2);
   return args[0] == "slurm" ? runFarmSlurm(o) : runFarmAssemble(o);
 }
 

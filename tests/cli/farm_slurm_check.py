@@ -44,10 +44,16 @@ TERMINAL_STATES = {"COMPLETED", "FAILED", "CANCELLED", "TIMEOUT", "NODE_FAIL", "
                    "DEADLINE", "PREEMPTED"}
 
 
-def free_port():
-    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
-        s.bind(("", 0))
-        return s.getsockname()[1]
+def free_ports(n):
+    """n distinct TCP ports free on every address now (bound together, then released)."""
+    socks = [socket.socket(socket.AF_INET, socket.SOCK_STREAM) for _ in range(n)]
+    try:
+        for s in socks:
+            s.bind(("", 0))
+        return [s.getsockname()[1] for s in socks]
+    finally:
+        for s in socks:
+            s.close()
 
 
 def find_program(name):
@@ -112,14 +118,15 @@ class Cluster:
         node = " ".join(f"{k}={fields[k]}" for k in ("CPUs", "Boards", "SocketsPerBoard", "CoresPerSocket",
                                                      "ThreadsPerCore", "RealMemory") if k in fields)
         user = getpass.getuser()
+        ctld_port, slurmd_port = free_ports(2)
         with open(self.conf, "w") as fh:
             fh.write(f"""# A private one-node cluster for animorph's farm test.
 ClusterName=animorphtest
 SlurmctldHost=localhost
 SlurmUser={user}
 SlurmdUser={user}
-SlurmctldPort={free_port()}
-SlurmdPort={free_port()}
+SlurmctldPort={ctld_port}
+SlurmdPort={slurmd_port}
 AuthType=auth/munge
 CredType=cred/munge
 AuthInfo=socket={sock}
