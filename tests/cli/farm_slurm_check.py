@@ -13,6 +13,8 @@ usage: farm_slurm_check.py CLI PROJECT
     `bake --gltf` of the same frames on this machine: the same frame nodes and, per frame, the
     same vertex and index counts, positions and indices (normals within 1e-6), and the chunks'
     PLY sequence is complete;
+  * a farm run whose first chunk cannot write its glTF: the assembly job never starts (it stays
+    pending, DependencyNeverSatisfied), no glTF is written, the task's log names the chunk;
   * prints the wall times (farm run against the single bake) and the overhead per chunk.
   Everything it started is stopped at the end, also on failure.
 Exit 77 (skipped) when Slurm or MUNGE is not installed (Debian packages slurm-wlm and munge, which
@@ -306,6 +308,33 @@ def check_farm_run(cli, project, tmp, cluster):
     return farm_glb, farm_sec, task_secs
 
 
+def check_failed_chunk(cli, project, tmp, cluster):
+    """A chunk whose task fails: the assembly never runs (afterok), no glTF is written."""
+    out = os.path.join(tmp, "failing")
+    os.makedirs(os.path.join(out, "chunks", "demo_0000-0002.glb"))  # a folder where task 0 writes its file
+    glb = os.path.join(tmp, "failing.glb")
+    r = subprocess.run([cli, "farm", "slurm", project, "--frames", "0:5", "--chunk", "3", "--res", "8", "-o", out,
+                        "--format", "none", "--gltf", glb, "--submit"], capture_output=True, text=True,
+                       env=cluster.env, timeout=60)
+    assemble_job = re.search(r"submitted assemble job (\d+)", r.stdout)
+    if r.returncode != 0 or not assemble_job:
+        cluster.fail(f"farm slurm --submit: exit {r.returncode}: {r.stdout}{r.stderr}")
+    t0 = time.monotonic()
+    state, reason = "?", ""
+    while time.monotonic() - t0 < 60 and reason != "DependencyNeverSatisfied" and state not in TERMINAL_STATES:
+        time.sleep(0.2)
+        state, reason = cluster.job(assemble_job.group(1))
+    if (state, reason) != ("PENDING", "DependencyNeverSatisfied") or os.path.exists(glb):
+        cluster.fail(f"after a failed chunk the assembly job is {state} ({reason}); glTF written: {os.path.exists(glb)}")
+    cluster.slurm("scancel", assemble_job.group(1))
+    logs = os.path.join(out, "logs")
+    task0 = [n for n in os.listdir(logs) if n.endswith("_0.log")]
+    with open(os.path.join(logs, task0[0])) as fh:
+        if "demo_0000-0002.glb" not in fh.read():
+            fail(f"the failed task's log {task0[0]} does not name the chunk it could not write")
+    print(f"a failed chunk: the assembly job stays pending (DependencyNeverSatisfied) after {time.monotonic() - t0:.1f} s")
+
+
 def compare(farm_glb, single_glb):
     farm, single = frame_meshes(farm_glb), frame_meshes(single_glb)
     if sorted(farm) != sorted(single) or len(single) != FRAMES[1] - FRAMES[0] + 1:
@@ -356,6 +385,7 @@ def main():
         if r.returncode != 0:
             fail(f"bake --gltf: exit {r.returncode}: {r.stderr}")
         compare(farm_glb, single_glb)
+        check_failed_chunk(cli, project, tmp, cluster)
         chunks = len(task_secs)
         print(f"farm run: {farm_sec:.2f} s wall from submit to the assembled glTF ({chunks} chunk tasks + assembly; "
               f"the tasks baked for {', '.join(f'{t[2]:.2f}' for t in task_secs)} s)")
