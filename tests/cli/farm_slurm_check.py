@@ -32,6 +32,7 @@ import sys
 import tempfile
 import time
 
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree for the scripts imported below
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from cli_checks import fail, run  # noqa: E402 (the scripts beside this one)
 from export_checks import accessor_values, read_glb  # noqa: E402
