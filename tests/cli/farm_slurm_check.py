@@ -12,7 +12,8 @@ usage: farm_slurm_check.py CLI PROJECT
     bake array and the assembly job that depends on it, then compares the assembled glTF with one
     `bake --gltf` of the same frames on this machine: the same frame nodes and, per frame, the
     same vertex and index counts, positions and indices (normals within 1e-6), and the chunks'
-    PLY sequence is complete;
+    PLY sequence is complete; `farm assemble --mp4` over the same chunks gives a playblast of every
+    frame (ffprobe);
   * a farm run whose first chunk cannot write its glTF: the assembly job never starts (it stays
     pending, DependencyNeverSatisfied), no glTF is written, the task's log names the chunk;
   * prints the wall times (farm run against the single bake) and the overhead per chunk.
@@ -336,6 +337,22 @@ def check_failed_chunk(cli, project, tmp, cluster):
     print(f"a failed chunk: the assembly job stays pending (DependencyNeverSatisfied) after {time.monotonic() - t0:.1f} s")
 
 
+def check_mp4(cli, project, tmp):
+    """farm assemble --mp4 over the farm run's chunks: one playblast of the whole range (ffprobe)."""
+    mp4 = os.path.join(tmp, "farm.mp4")
+    r = run(cli, "farm", "assemble", project, "--frames", f"{FRAMES[0]}:{FRAMES[1]}", "--chunk", str(CHUNK),
+            "--chunks", os.path.join(tmp, "farm", "chunks"), "--mp4", mp4, "--size", "320x180")
+    if r.returncode == 2 and "without the GPU library" in r.stderr:
+        print("farm assemble --mp4 not checked: this animorph-cli has no GPU library")
+        return
+    if r.returncode != 0:
+        fail(f"farm assemble --mp4: exit {r.returncode}: {r.stderr}")
+    probe = subprocess.run(["ffprobe", "-v", "error", "-count_frames", "-select_streams", "v:0", "-show_entries",
+                            "stream=nb_read_frames,width,height", "-of", "csv=p=0", mp4], capture_output=True, text=True)
+    if probe.stdout.strip() != f"320,180,{FRAMES[1] - FRAMES[0] + 1}":
+        fail(f"farm assemble --mp4: ffprobe says {probe.stdout.strip()!r} {probe.stderr.strip()}")
+
+
 def compare(farm_glb, single_glb):
     farm, single = frame_meshes(farm_glb), frame_meshes(single_glb)
     if sorted(farm) != sorted(single) or len(single) != FRAMES[1] - FRAMES[0] + 1:
@@ -386,6 +403,7 @@ def main():
         if r.returncode != 0:
             fail(f"bake --gltf: exit {r.returncode}: {r.stderr}")
         compare(farm_glb, single_glb)
+        check_mp4(cli, project, tmp)
         check_failed_chunk(cli, project, tmp, cluster)
         chunks = len(task_secs)
         print(f"farm run: {farm_sec:.2f} s wall from submit to the assembled glTF ({chunks} chunk tasks + assembly; "
