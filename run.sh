@@ -21,8 +21,10 @@ BUILD_PACKAGES=(build-essential cmake ninja-build pkg-config
   libx11-dev libxext-dev libxrandr-dev ffmpeg)
 # nodejs, npm: the Khronos glTF-Validator (an npm package) checks the glTF files we write;
 # blender (with python3-numpy, which its glTF importer needs) imports them in the export test.
+# slurm-wlm (slurmctld, slurmd, the client commands) and munge: the farm test starts a one-node
+# Slurm cluster on localhost and bakes the demo on it (animorph-cli farm slurm).
 TEST_PACKAGES=(catch2 vulkan-validationlayers xvfb xauth xdotool imagemagick
-  assimp-testmodels python3 nodejs blender python3-numpy)
+  assimp-testmodels python3 nodejs blender python3-numpy slurm-wlm munge)
 # clang and its runtimes (libFuzzer, ASan, UBSan: libclang-rt-dev) build the fuzz targets
 # (tests/fuzz), which ./run.sh test runs too.
 FUZZ_PACKAGES=(clang libclang-rt-dev)

@@ -50,6 +50,14 @@ PROGRAMS = {
     "timeout": "glTF-Validator test",
     "blender": "export test (imports the animated glTF headless)",
     "clang++": "fuzz targets (./run.sh fuzz, ./run.sh test: tests/fuzz)",
+    "munged": "farm test (tests/cli/farm_slurm_check.py: MUNGE for the test's Slurm cluster)",
+    "slurmctld": "farm test (the test's Slurm controller)",
+    "slurmd": "farm test (the test's Slurm node)",
+    "sbatch": "farm test (animorph-cli farm slurm --submit)",
+    "squeue": "farm test (waits for the jobs)",
+    "sinfo": "farm test (waits for the node)",
+    "scontrol": "farm test (job states)",
+    "scancel": "farm test (cancels what is left at the end)",
 }
 
 # Runtime libraries clang links into the fuzz targets, looked up in clang's runtime folder.
