@@ -463,9 +463,11 @@ void FieldProgram::specialise(const std::vector<uint32_t>& active, ActiveProgram
       for (size_t k = base; k < operands.size(); ++k) zeros += operands[k].zero;
       if (zeros > 0) {
         out.ops.pop_back();  // the Sum, emitted again below if still needed
-        uint32_t w = first;
-        size_t kept = 0;
-        for (size_t k = base; k < operands.size(); ++k) {
+        // Operands before the first zero stay where they are (the first is often a long chain).
+        size_t k = base, kept = 0;
+        for (; !operands[k].zero; ++k) ++kept;
+        uint32_t w = operands[k].start;
+        for (; k < operands.size(); ++k) {
           uint32_t end = k + 1 < operands.size() ? operands[k + 1].start : uint32_t(out.ops.size());
           if (operands[k].zero) continue;
           for (uint32_t j = operands[k].start; j < end; ++j) out.ops[w + (j - operands[k].start)] = out.ops[j];
