@@ -849,12 +849,12 @@ void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, con
       case OpCode::BeginMap: {
         const SpaceMap& m = P.maps[op.first];
         float* out = coords_.data() + size_t(level + 1) * 3 * kChunk;
-        float* ox = out;
-        float* oy = out + kChunk;
-        float* oz = out + 2 * kChunk;
-        const float* ix = cx[level];
-        const float* iy = cy[level];
-        const float* iz = cz[level];
+        float* __restrict ox = out;  // the levels' coordinates never overlap: the loops vectorise
+        float* __restrict oy = out + kChunk;
+        float* __restrict oz = out + 2 * kChunk;
+        const float* __restrict ix = cx[level];
+        const float* __restrict iy = cy[level];
+        const float* __restrict iz = cz[level];
         if (m.kind == SpaceMapKind::Affine) {
           const glm::mat3& L = m.linear;
           const glm::vec3 o = m.origin;
