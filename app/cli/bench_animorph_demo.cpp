@@ -3,6 +3,7 @@
 // of the dragon, a bake of frames at 128^3, and consecutive frames polygonised
 // with and without temporal coherence, each with a baseline measured in the same run.
 #include <cstdio>
+#include <ctime>
 #include <memory>
 #include <string>
 
@@ -22,6 +23,14 @@ std::string ms(double v) {
   char text[32];
   std::snprintf(text, sizeof text, "%.1f ms", v);
   return text;
+}
+
+// Processor time (all threads) of one run of fn, in ms: steadier than wall time on a loaded machine.
+template <class Fn>
+double cpuMs(Fn&& fn) {
+  std::clock_t a = std::clock();
+  fn();
+  return 1e3 * double(std::clock() - a) / CLOCKS_PER_SEC;
 }
 
 // Triangles of one polygonisation at `resolution`, or -1 when it failed.
@@ -79,18 +88,21 @@ std::vector<Row> runDemoBench(const bench::Options& opt) {
   FieldProgram dragonProgram = compileFieldProgram(dragon, 0.5);
   long tris = 0;
   double poly = bench::medianMs(opt.quick ? 1 : 3, [&] { tris = polygonizeOnce(dragonProgram, res); });
+  double polyCpu = cpuMs([&] { (void)polygonizeOnce(dragonProgram, res); });
   rows.push_back({"polygonise the dragon at " + std::to_string(res) + "^3 (CPU)", poly, "ms", "<= 60 ms",
                   std::to_string(tris) + " triangles, " + std::to_string(dragonProgram.primitiveCount()) +
-                      " primitives"});
+                      " primitives; processor time " + ms(polyCpu) + " (all threads)"});
   FieldProgram dinoProgram = compileFieldProgram(dino, 0.5);
   double polyDino = bench::medianMs(opt.quick ? 1 : 3, [&] { tris = polygonizeOnce(dinoProgram, res); });
+  double polyDinoCpu = cpuMs([&] { (void)polygonizeOnce(dinoProgram, res); });
   rows.push_back({"polygonise the dinosaur at " + std::to_string(res) + "^3 (CPU, baseline)", polyDino, "ms", "",
                   std::to_string(tris) + " triangles, " + std::to_string(dinoProgram.primitiveCount()) +
-                      " primitives"});
+                      " primitives; processor time " + ms(polyDinoCpu) + " (all threads)"});
 
   // A bake: frames spread over the interval, each instantiated, flattened and polygonised.
   const int frames = opt.quick ? 2 : 8;
   long bakeTris = 0;
+  std::clock_t bakeClock = std::clock();
   double bake = bench::medianMs(0, [&] {
     bakeTris = 0;
     for (int f = 0; f < frames; ++f) {
@@ -98,9 +110,11 @@ std::vector<Row> runDemoBench(const bench::Options& opt) {
       bakeTris += polygonizeOnce(compileGeneric(*c, timing, tf), res);
     }
   });
+  double bakeCpu = 0.5e3 * double(std::clock() - bakeClock) / CLOCKS_PER_SEC;  // two runs: warm-up and timed
   rows.push_back({"bake " + std::to_string(frames) + " frames of C(t) at " + std::to_string(res) + "^3",
                   bake / frames, "ms/frame", "100 frames <= 30 s",
-                  ms(bake) + " in all, " + std::to_string(bakeTris / frames) + " triangles per frame"});
+                  ms(bake) + " in all, " + std::to_string(bakeTris / frames) + " triangles per frame; processor time " +
+                      ms(bakeCpu / frames) + " per frame (all threads)"});
   double bakeDragon = bench::medianMs(0, [&] {
     for (int f = 0; f < frames; ++f)
       (void)polygonizeOnce(compileFieldProgram(dragon, double(f) / frames), res);
