@@ -15,10 +15,11 @@ struct Writer {
   const GenericTree& c;
   const AnimorphosisTiming& timing;
   double t, tA, tB;
+  std::vector<float> sOfCurve;  // s(u) of each override curve, then of the global one (last)
   int nextId = 1;
 
   void node(const GenericNode& g, BlobNode& n) {
-    float s = nodeS(c, g, timing, t);
+    float s = sOfCurve[g.sCurve >= 0 ? size_t(g.sCurve) : sOfCurve.size() - 1];
     bool bridged = g.a.type != g.b.type;
     const BlobNode& named = s >= 1.0f ? g.b : g.a;
     NodeType type = s <= 0.0f ? g.a.type : s >= 1.0f ? g.b.type : bridged ? NodeType::HyperBlend : g.a.type;
@@ -53,7 +54,11 @@ void updateGenericSnapshot(const GenericTree& c, const AnimorphosisTiming& timin
                                 : (1.0f - s) * c.thresholdA.evaluate(tA) + s * c.thresholdB.evaluate(tB);
   if (snapshot.threshold.keys().size() == 1 && !snapshot.threshold.driven()) snapshot.threshold.keys()[0] = {0.0, threshold};
   else snapshot.threshold = FloatTrack(threshold);
-  Writer w{c, timing, timeSec, tA, tB};
+  Writer w{c, timing, timeSec, tA, tB, {}};
+  // Each s curve evaluated once (as nodeS would for every node it drives).
+  const double u = timing.u(timeSec);
+  for (const FloatTrack& curve : c.sCurves) w.sOfCurve.push_back(evaluateS(curve, u));
+  w.sOfCurve.push_back(s);
   w.node(c.root, snapshot.root);
 }
 

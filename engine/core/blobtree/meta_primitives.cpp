@@ -42,15 +42,26 @@ std::vector<std::array<glm::vec3, 3>> coonsPatchTriangles(const BlobNode& node, 
   int res = std::clamp(int(std::lround(node.floatParam("resolution").evaluate(t))), 1, 64);
   glm::vec3 p00 = evaluateCurve(bottom, 0.0f).position, p10 = evaluateCurve(bottom, 1.0f).position;
   glm::vec3 p01 = evaluateCurve(top, 0.0f).position, p11 = evaluateCurve(top, 1.0f).position;
-  auto surface = [&](float u, float v) {
-    glm::vec3 ruled = (1.0f - v) * evaluateCurve(bottom, u).position + v * evaluateCurve(top, u).position +
-                      (1.0f - u) * evaluateCurve(left, v).position + u * evaluateCurve(right, v).position;
+  // The four boundary curves sampled once at the grid's parameters (not once per grid point).
+  std::vector<glm::vec3> atBottom(size_t(res + 1)), atTop(size_t(res + 1)), atLeft(size_t(res + 1)),
+      atRight(size_t(res + 1));
+  for (int i = 0; i <= res; ++i) {
+    float w = float(i) / res;
+    atBottom[size_t(i)] = evaluateCurve(bottom, w).position;
+    atTop[size_t(i)] = evaluateCurve(top, w).position;
+    atLeft[size_t(i)] = evaluateCurve(left, w).position;
+    atRight[size_t(i)] = evaluateCurve(right, w).position;
+  }
+  auto surface = [&](int i, int j) {
+    float u = float(i) / res, v = float(j) / res;
+    glm::vec3 ruled = (1.0f - v) * atBottom[size_t(i)] + v * atTop[size_t(i)] + (1.0f - u) * atLeft[size_t(j)] +
+                      u * atRight[size_t(j)];
     glm::vec3 bilinear = (1.0f - u) * (1.0f - v) * p00 + u * (1.0f - v) * p10 + (1.0f - u) * v * p01 + u * v * p11;
     return ruled - bilinear;
   };
   std::vector<glm::vec3> grid(size_t((res + 1) * (res + 1)));
   for (int j = 0; j <= res; ++j)
-    for (int i = 0; i <= res; ++i) grid[size_t(j * (res + 1) + i)] = surface(float(i) / res, float(j) / res);
+    for (int i = 0; i <= res; ++i) grid[size_t(j * (res + 1) + i)] = surface(i, j);
   std::vector<std::array<glm::vec3, 3>> tris;
   tris.reserve(size_t(2 * res * res));
   for (int j = 0; j < res; ++j)

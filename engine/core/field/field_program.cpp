@@ -1,6 +1,7 @@
 #include "field/field_program.h"
 
 #include <algorithm>
+#include <functional>
 #include <atomic>
 #include <cassert>
 #include <cmath>
@@ -41,6 +42,12 @@ Bounds infiniteBounds() {
   b.min = glm::vec3(-INFINITY);
   b.max = glm::vec3(INFINITY);
   return b;
+}
+
+// The closed boxes share a point (false when either is empty).
+bool boxesOverlap(const Bounds& a, const Bounds& box) {
+  return !(a.min.x > box.max.x || a.max.x < box.min.x || a.min.y > box.max.y || a.max.y < box.min.y ||
+           a.min.z > box.max.z || a.max.z < box.min.z);
 }
 
 bool isInfinite(const Bounds& b) { return !b.empty() && (std::isinf(b.min.x) || std::isinf(b.max.x)); }
@@ -386,11 +393,15 @@ void FieldProgram::finish() {
     uint32_t b = ops[j].subtreeBegin;
     outermostEnd_[b] = std::max(outermostEnd_[b], j);
   }
+  primsBefore_.assign(ops.size() + 1, 0);
+  for (uint32_t i = 0; i < ops.size(); ++i)
+    primsBefore_[i + 1] = primsBefore_[i] + (ops[i].code == OpCode::Prims ? ops[i].count : 0);
   if (vals.size() != 1) {
     // Empty or malformed program: evaluates to "outside" everywhere.
     ops.clear();
     addConstant(0.0f);
     outermostEnd_.assign(1, 0);
+    primsBefore_.assign(2, 0);
     maxStack_ = 1;
     bounds_ = Bounds{};
     unbounded_ = false;
@@ -418,31 +429,87 @@ void FieldProgram::specialise(const std::vector<uint32_t>& active, ActiveProgram
   out.ops.clear();
   out.indices.clear();
   out.primitiveCount = active.size();
-  // Active primitives per op, as a prefix sum over ops.
-  thread_local std::vector<uint32_t> prefix;
-  prefix.assign(ops.size() + 1, 0);
-  size_t cursor = 0;
-  for (size_t i = 0; i < ops.size(); ++i) {
-    uint32_t c = 0;
-    const FieldOp& op = ops[i];
-    if (op.code == OpCode::Prims) {
-      while (cursor < active.size() && active[cursor] < op.primBegin) ++cursor;
-      size_t start = cursor;
-      while (cursor < active.size() && active[cursor] < op.primBegin + op.count) ++cursor;
-      c = uint32_t(cursor - start);
+  // One forward walk that jumps over every subtree holding no active primitive: its cost is the
+  // ops it emits plus the active primitives, not the size of the whole program. The primitives
+  // of ops i..e are the global ids [primsBefore_[i], primsBefore_[e + 1]).
+  //
+  // Operands that are exactly zero (a constant 0, primitives none of which is active) are dropped
+  // from sums as they are emitted: a + 0 is a, and the other operands keep their order, so the
+  // values are the same and the evaluation runs fewer ops.
+  struct Operand {
+    uint32_t start;  // first op of the operand in out.ops
+    bool zero;       // a single op pushing exactly 0
+  };
+  thread_local std::vector<Operand> operands;
+  thread_local std::vector<uint32_t> mapStarts;
+  operands.clear();
+  mapStarts.clear();
+  auto emitted = [&](const FieldOp& op) {
+    const uint32_t at = uint32_t(out.ops.size()) - 1;
+    switch (op.code) {
+      case OpCode::Const: operands.push_back({at, op.emptyValue == 0.0f}); return;
+      case OpCode::Prims: operands.push_back({at, op.count == 0}); return;
+      case OpCode::BeginMap: mapStarts.push_back(at); return;
+      case OpCode::EndMap:  // the map's subtree is one operand, from its BeginMap
+        operands.back() = {mapStarts.back(), false};
+        mapStarts.pop_back();
+        return;
+      default: break;
     }
-    prefix[i + 1] = prefix[i] + c;
-  }
-  cursor = 0;
+    const size_t n = op.count, base = operands.size() - n;
+    const uint32_t first = operands[base].start;
+    if (op.code == OpCode::Sum) {
+      size_t zeros = 0;
+      for (size_t k = base; k < operands.size(); ++k) zeros += operands[k].zero;
+      if (zeros > 0) {
+        out.ops.pop_back();  // the Sum, emitted again below if still needed
+        // Operands before the first zero stay where they are (the first is often a long chain).
+        size_t k = base, kept = 0;
+        for (; !operands[k].zero; ++k) ++kept;
+        uint32_t w = operands[k].start;
+        for (; k < operands.size(); ++k) {
+          uint32_t end = k + 1 < operands.size() ? operands[k + 1].start : uint32_t(out.ops.size());
+          if (operands[k].zero) continue;
+          for (uint32_t j = operands[k].start; j < end; ++j) out.ops[w + (j - operands[k].start)] = out.ops[j];
+          w += end - operands[k].start;
+          ++kept;
+        }
+        out.ops.resize(w);
+        operands.resize(base);
+        if (kept == 0) {
+          FieldOp c;
+          c.code = OpCode::Const;
+          c.emptyValue = 0.0f;
+          out.ops.push_back(c);
+          operands.push_back({first, true});
+        } else {
+          if (kept > 1) {
+            FieldOp sum = op;
+            sum.count = uint32_t(kept);
+            out.ops.push_back(sum);
+          }
+          operands.push_back({first, false});
+        }
+        return;
+      }
+    }
+    operands.resize(base);
+    operands.push_back({first, false});
+  };
+  size_t cursor = 0;
   for (size_t i = 0; i < ops.size();) {
     uint32_t e = outermostEnd_[i];
     // Only leaves and map openings start subtrees; operators close them.
     bool startsSubtree = ops[i].code == OpCode::Prims || ops[i].code == OpCode::BeginMap;
-    if (startsSubtree && prefix[e + 1] == prefix[i]) {
+    if (startsSubtree) {
+      while (cursor < active.size() && active[cursor] < primsBefore_[i]) ++cursor;
+    }
+    if (startsSubtree && !(cursor < active.size() && active[cursor] < primsBefore_[e + 1])) {
       FieldOp c;
       c.code = OpCode::Const;
       c.emptyValue = ops[e].emptyValue;
       out.ops.push_back(c);
+      emitted(c);
       i = e + 1;
       continue;
     }
@@ -458,6 +525,7 @@ void FieldProgram::specialise(const std::vector<uint32_t>& active, ActiveProgram
       op.count = uint32_t(out.indices.size()) - off;
     }
     out.ops.push_back(op);
+    emitted(op);
     ++i;
   }
 }
@@ -469,9 +537,7 @@ void FieldProgram::primitivesReaching(const Bounds& box, std::vector<uint32_t>& 
   float half = 0.5f * box.diagonal();
   auto test = [&](uint32_t g) {
     const PrimitiveBound& b = primitiveBounds[g];
-    if (b.box.min.x > box.max.x || b.box.max.x < box.min.x || b.box.min.y > box.max.y || b.box.max.y < box.min.y ||
-        b.box.min.z > box.max.z || b.box.max.z < box.min.z)
-      return;
+    if (!boxesOverlap(b.box, box)) return;
     if (distToSegment(c, b.a, b.b) > b.radius + half) return;
     out.push_back(g);
   };
@@ -488,37 +554,46 @@ Bounds FieldProgram::tightBounds(int depth) const {
   if (unbounded_ || bounds_.empty()) return bounds_;
   Bounds out;
   ActiveProgram active;
-  // Depth-first over the octree of bounds().
-  struct Frame {
-    Bounds box;
-    int level;
-  };
-  std::vector<Frame> stack{{bounds_, 0}};
   std::vector<uint32_t> reaching;
-  while (!stack.empty()) {
-    Frame fr = stack.back();
-    stack.pop_back();
+  // Per level: the primitives whose box overlaps that level's current box. A child box lies inside
+  // its parent's (its corners are the parent's or the parent's centre), so its primitives are among
+  // the parent's: each box tests only those, with the same result as testing every primitive.
+  std::vector<std::vector<uint32_t>> overlapping(size_t(std::max(depth, 0) + 1));
+  // Depth-first over the octree of bounds(), children visited from the last to the first.
+  std::function<void(const Bounds&, int)> visit = [&](const Bounds& box, int level) {
     // A box inside the bounds found so far cannot grow them, whatever its leaves: skip it (the
     // result is the same; the preview computes these bounds every frame of a morph).
-    if (!out.empty() && glm::all(glm::greaterThanEqual(fr.box.min, out.min)) &&
-        glm::all(glm::lessThanEqual(fr.box.max, out.max)))
-      continue;
-    primitivesReaching(fr.box, reaching);
+    if (!out.empty() && glm::all(glm::greaterThanEqual(box.min, out.min)) &&
+        glm::all(glm::lessThanEqual(box.max, out.max)))
+      return;
+    std::vector<uint32_t>& mine = overlapping[size_t(std::min(level, depth))];
+    const std::vector<uint32_t>* parent = level > 0 ? &overlapping[size_t(level - 1)] : nullptr;
+    mine.clear();
+    auto keep = [&](uint32_t g) {
+      if (boxesOverlap(primitiveBounds[g].box, box)) mine.push_back(g);
+    };
+    if (parent) {
+      for (uint32_t g : *parent) keep(g);
+    } else {
+      for (uint32_t g = 0; g < primitiveBounds.size(); ++g) keep(g);
+    }
+    primitivesReaching(box, reaching, &mine);
     specialise(reaching, active);
-    Interval iv = interval(active, fr.box.center(), 0.5f * fr.box.diagonal());
-    if (iv.hi < 0.0f) continue;
-    if (fr.level >= depth || iv.lo >= 0.0f) {
-      out.add(fr.box);
-      continue;
+    Interval iv = interval(active, box.center(), 0.5f * box.diagonal());
+    if (iv.hi < 0.0f) return;
+    if (level >= depth || iv.lo >= 0.0f) {
+      out.add(box);
+      return;
     }
-    glm::vec3 c = fr.box.center();
-    for (int k = 0; k < 8; ++k) {
+    glm::vec3 c = box.center();
+    for (int k = 7; k >= 0; --k) {
       Bounds child;
-      child.add(glm::vec3(k & 1 ? c.x : fr.box.min.x, k & 2 ? c.y : fr.box.min.y, k & 4 ? c.z : fr.box.min.z));
-      child.add(glm::vec3(k & 1 ? fr.box.max.x : c.x, k & 2 ? fr.box.max.y : c.y, k & 4 ? fr.box.max.z : c.z));
-      stack.push_back({child, fr.level + 1});
+      child.add(glm::vec3(k & 1 ? c.x : box.min.x, k & 2 ? c.y : box.min.y, k & 4 ? c.z : box.min.z));
+      child.add(glm::vec3(k & 1 ? box.max.x : c.x, k & 2 ? box.max.y : c.y, k & 4 ? box.max.z : c.z));
+      visit(child, level + 1);
     }
-  }
+  };
+  visit(bounds_, 0);
   return out;
 }
 
@@ -774,12 +849,12 @@ void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, con
       case OpCode::BeginMap: {
         const SpaceMap& m = P.maps[op.first];
         float* out = coords_.data() + size_t(level + 1) * 3 * kChunk;
-        float* ox = out;
-        float* oy = out + kChunk;
-        float* oz = out + 2 * kChunk;
-        const float* ix = cx[level];
-        const float* iy = cy[level];
-        const float* iz = cz[level];
+        float* __restrict ox = out;  // the levels' coordinates never overlap: the loops vectorise
+        float* __restrict oy = out + kChunk;
+        float* __restrict oz = out + 2 * kChunk;
+        const float* __restrict ix = cx[level];
+        const float* __restrict iy = cy[level];
+        const float* __restrict iz = cz[level];
         if (m.kind == SpaceMapKind::Affine) {
           const glm::mat3& L = m.linear;
           const glm::vec3 o = m.origin;

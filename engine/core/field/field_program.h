@@ -171,6 +171,7 @@ class FieldProgram {
   std::vector<uint32_t> openMaps_;    // while building
   std::vector<uint32_t> openBegins_;  // while building: op index of each open BeginMap
   std::vector<uint32_t> outermostEnd_;
+  std::vector<uint32_t> primsBefore_;  // primitives in ops[0..i): global id of the first at or after op i
   Bounds bounds_;
   bool unbounded_ = false;
   int maxStack_ = 0;

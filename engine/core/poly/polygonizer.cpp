@@ -71,7 +71,105 @@ glm::vec3 outwardNormal(float gx, float gy, float gz, const glm::vec3& fallback)
   return -g / l;
 }
 
+// Operators, operator parameters, threshold and primitive counts equal: the programs differ at
+// most in primitive data and maps.
+bool sameStructure(const FieldProgram& a, const FieldProgram& b) {
+  if (a.threshold != b.threshold || a.ops.size() != b.ops.size() || a.params != b.params ||
+      a.maps.size() != b.maps.size() || a.primitiveCount() != b.primitiveCount() ||
+      a.skeletal.size() != b.skeletal.size() || a.convolution.size() != b.convolution.size() ||
+      a.capsules.size() != b.capsules.size() || a.curvePoints.size() != b.curvePoints.size())
+    return false;
+  for (size_t i = 0; i < a.ops.size(); ++i) {
+    const FieldOp &x = a.ops[i], &y = b.ops[i];
+    if (x.code != y.code || x.primClass != y.primClass || x.combineMax != y.combineMax || x.first != y.first ||
+        x.count != y.count || x.primBegin != y.primBegin || x.param != y.param || x.emptyValue != y.emptyValue)
+      return false;
+  }
+  return true;
+}
+
+bool sameMap(const SpaceMap& a, const SpaceMap& b) {
+  return a.kind == b.kind && a.linear == b.linear && a.origin == b.origin && a.forwardLinear == b.forwardLinear &&
+         a.length == b.length && a.k0 == b.k0 && a.k1 == b.k1;
+}
+
+bool samePrimitive(const FieldProgram& a, const FieldProgram& b, PrimClass cls, uint32_t i) {
+  switch (cls) {
+    case PrimClass::Skeletal: {
+      const SkeletalPrimitive &p = a.skeletal[i], &q = b.skeletal[i];
+      const Skeleton &s = p.skeleton, &t = q.skeleton;
+      if (s.kind != t.kind || s.p0 != t.p0 || s.p1 != t.p1 || s.p2 != t.p2 || s.r0 != t.r0 || s.r1 != t.r1 ||
+          s.curveCount != t.curveCount || p.curveFirst != q.curveFirst || p.radius != q.radius ||
+          p.intensity != q.intensity || p.stiffness != q.stiffness)
+        return false;
+      const SkeletalReach &r = a.skeletalReach[i], &u = b.skeletalReach[i];
+      if (r.a != u.a || r.b != u.b || r.reach != u.reach) return false;
+      if (s.kind == SkeletonKind::Curve)
+        for (int k = 0; k < s.curveCount; ++k)
+          if (a.curvePoints[p.curveFirst + uint32_t(k)] != b.curvePoints[p.curveFirst + uint32_t(k)]) return false;
+      return true;
+    }
+    case PrimClass::Convolution: {
+      const ConvolutionData &c = a.convolution, &d = b.convolution;
+      return c.bx[i] == d.bx[i] && c.by[i] == d.by[i] && c.bz[i] == d.bz[i] && c.ax[i] == d.ax[i] &&
+             c.ay[i] == d.ay[i] && c.az[i] == d.az[i] && c.length[i] == d.length[i] && c.weight[i] == d.weight[i] &&
+             c.sharpness[i] == d.sharpness[i] && c.cut2[i] == d.cut2[i];
+    }
+    case PrimClass::Capsule: {
+      const CapsulePrimitive &c = a.capsules[i], &d = b.capsules[i];
+      return c.a == d.a && c.b == d.b && c.radius == d.radius;
+    }
+  }
+  return false;
+}
+
+// Per global primitive id of `now` (same structure as `prev`): 1 where its field may differ, its
+// data, its bound or a map above it being not exactly the same.
+std::vector<uint8_t> changedPrimitives(const FieldProgram& now, const FieldProgram& prev) {
+  std::vector<uint8_t> changed(now.primitiveCount(), 1);
+  std::vector<uint8_t> mapChanged(now.maps.size());
+  for (size_t m = 0; m < now.maps.size(); ++m) mapChanged[m] = !sameMap(now.maps[m], prev.maps[m]);
+  std::vector<uint8_t> open;
+  int openChanged = 0;
+  for (const FieldOp& op : now.ops) {
+    if (op.code == OpCode::BeginMap) {
+      open.push_back(mapChanged[op.first]);
+      openChanged += open.back();
+    } else if (op.code == OpCode::EndMap && !open.empty()) {
+      openChanged -= open.back();
+      open.pop_back();
+    } else if (op.code == OpCode::Prims) {
+      for (uint32_t k = 0; k < op.count; ++k) {
+        uint32_t g = op.primBegin + k;
+        const PrimitiveBound &x = now.primitiveBounds[g], &y = prev.primitiveBounds[g];
+        bool sameBound = x.a == y.a && x.b == y.b && x.radius == y.radius && x.box.min == y.box.min &&
+                         x.box.max == y.box.max;
+        changed[g] = openChanged > 0 || !sameBound || !samePrimitive(now, prev, op.primClass, op.first + k);
+      }
+    }
+  }
+  return changed;
+}
+
 }  // namespace
+
+struct PolygonizeHistory::State {
+  glm::vec3 origin{0.0f};
+  float h = 0.0f;
+  int n[3] = {0, 0, 0};
+  bool subBlockLists = true;
+  FieldProgram program;
+  std::vector<std::vector<uint32_t>> superCandidates;
+  std::vector<std::unique_ptr<BlockOutput>> out;  // null: the block was culled
+};
+
+PolygonizeHistory::PolygonizeHistory() = default;
+PolygonizeHistory::~PolygonizeHistory() = default;
+void PolygonizeHistory::clear() { state_.reset(); }
+
+struct PolygonizeHistoryAccess {
+  static std::unique_ptr<PolygonizeHistory::State>& state(PolygonizeHistory& h) { return h.state_; }
+};
 
 Result<PolygonizeResult> polygonize(const FieldProgram& program, const PolygonizeSettings& s) {
   auto t0 = std::chrono::steady_clock::now();
@@ -144,6 +242,20 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
     return false;
   };
 
+  // Temporal coherence: the previous frame, when its grid and program structure match this one.
+  std::unique_ptr<PolygonizeHistory::State> previous;
+  if (s.history) previous = std::move(PolygonizeHistoryAccess::state(*s.history));
+  std::vector<uint8_t> changed;
+  if (previous && s.culling && previous->subBlockLists == s.subBlockLists && previous->origin == g.origin &&
+      previous->h == g.h && previous->n[0] == g.n[0] && previous->n[1] == g.n[1] && previous->n[2] == g.n[2] &&
+      previous->out.size() == nBlocks && previous->superCandidates.size() == nSupers &&
+      sameStructure(program, previous->program))
+    changed = changedPrimitives(program, previous->program);
+  else
+    previous.reset();
+  // Superblocks whose primitives, this frame and the previous one, are all unchanged.
+  std::vector<uint8_t> superReused(nSupers, 0);
+
   ActiveProgram allPrims;
   program.specialiseAll(allPrims);
   std::vector<uint32_t> noCandidates;
@@ -167,6 +279,14 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
         }
         Bounds b = regionBox(c0, cnt);
         program.primitivesReaching(b, superCandidates[si]);
+        if (previous) {
+          auto unchanged = [&](const std::vector<uint32_t>& list) {
+            for (uint32_t p : list)
+              if (changed[p]) return false;
+            return true;
+          };
+          superReused[si] = unchanged(superCandidates[si]) && unchanged(previous->superCandidates[si]);
+        }
         program.specialise(superCandidates[si], sc.active);
         Interval iv = program.interval(sc.active, b.center(), 0.5f * b.diagonal());
         if (oneSigned(iv, touchesBoundary(c0, cnt))) superState[si] = SuperState::Culled;
@@ -177,7 +297,7 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
   // ---- fine level: blocks
   // Outputs only for blocks that are evaluated (most are culled at high resolution).
   std::vector<std::unique_ptr<BlockOutput>> out(nBlocks);
-  std::atomic<size_t> culled{0}, evaluated{0}, cells{0}, points{0}, pairs{0}, done{0};
+  std::atomic<size_t> culled{0}, evaluated{0}, cells{0}, points{0}, pairs{0}, done{0}, reused{0};
   std::mutex progressMutex;
   size_t reported = 0;
   const auto& table = marchingCubesTable();
@@ -199,6 +319,13 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
       size_t si = size_t(b[0] / kSuper) + size_t(g.ns[0]) * (size_t(b[1] / kSuper) + size_t(g.ns[1]) * size_t(b[2] / kSuper));
       if (superState[si] == SuperState::Culled) {
         culled.fetch_add(1, std::memory_order_relaxed);
+        return;
+      }
+      if (superReused[si]) {
+        // Same primitives reaching it, same data: the previous frame's output (null: culled).
+        out[bi] = std::move(previous->out[bi]);
+        (out[bi] ? evaluated : culled).fetch_add(1, std::memory_order_relaxed);
+        reused.fetch_add(1, std::memory_order_relaxed);
         return;
       }
       Bounds bb = regionBox(c0, cnt);
@@ -443,6 +570,7 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
   });
   st.blocksCulled = culled.load();
   st.blocksEvaluated = evaluated.load();
+  st.blocksReused = reused.load();
   for (const auto& o : out) st.blocksWithSurface += o && !o->corners.empty() ? 1 : 0;
   st.cellsVisited = cells.load();
   if (cancelled.load() || (s.cancel && s.cancel->load())) {
@@ -516,6 +644,17 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
     }
   }
   st.orphanVertices = orphans.size();
+  if (s.history && s.culling) {
+    auto next = std::make_unique<PolygonizeHistory::State>();
+    next->origin = g.origin;
+    next->h = g.h;
+    for (int a = 0; a < 3; ++a) next->n[a] = g.n[a];
+    next->subBlockLists = s.subBlockLists;
+    next->program = program;
+    next->superCandidates = std::move(superCandidates);
+    next->out = std::move(out);
+    PolygonizeHistoryAccess::state(*s.history) = std::move(next);
+  }
   st.pointsEvaluated = points.load() + orphans.size();
   st.primitiveEvaluations = pairs.load();
   if (s.progress) s.progress(1.0f);

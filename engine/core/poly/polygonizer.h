@@ -5,6 +5,7 @@
 // (per-block primitive lists and interval bounds), parallel with TBB.
 #include <atomic>
 #include <functional>
+#include <memory>
 #include <optional>
 
 #include "field/field_program.h"
@@ -13,6 +14,27 @@
 #include "util/result.h"
 
 namespace animorph {
+
+// Temporal coherence between successive polygonisations (a bake, the editor scrubbing): with the
+// same grid, culling on and a program of the same structure (same operators, primitive counts and
+// operator parameters), a block whose primitives did not change since the previous call (same
+// data, same bounds, same maps above them; compared value by value, no tolerance) has the same
+// output, which is reused instead of being culled and evaluated again. The mesh is exactly the one
+// a full sweep makes; anything else (another grid, structure or threshold) is a full sweep. One
+// history per sequence of frames, used by one polygonisation at a time.
+class PolygonizeHistory {
+ public:
+  PolygonizeHistory();
+  ~PolygonizeHistory();
+  PolygonizeHistory(const PolygonizeHistory&) = delete;
+  PolygonizeHistory& operator=(const PolygonizeHistory&) = delete;
+  void clear();  // the next call is a full sweep
+  struct State;  // the previous frame: grid, program, superblock primitive lists, block outputs
+
+ private:
+  friend struct PolygonizeHistoryAccess;
+  std::unique_ptr<State> state_;
+};
 
 struct PolygonizeSettings {
   // Cells along the longest side of the grid bounds (cells are cubes). Larger:
@@ -36,6 +58,8 @@ struct PolygonizeSettings {
   std::function<void(float)> progress;
   // When set to true the run stops early and returns cancelled = true, empty mesh.
   const std::atomic<bool>* cancel = nullptr;
+  // Temporal coherence (see PolygonizeHistory): read, then replaced by this call's frame.
+  PolygonizeHistory* history = nullptr;
 };
 
 struct PolygonizeStats {
@@ -49,6 +73,8 @@ struct PolygonizeStats {
   size_t pointsEvaluated = 0;           // field evaluations (grid corners + normals)
   size_t primitiveEvaluations = 0;      // (point, primitive) pairs evaluated
   size_t orphanVertices = 0;            // edge vertices their owner block did not make (should be 0)
+  size_t blocksReused = 0;              // with a history: blocks taken from the previous frame
+                                        // (counted in blocksCulled / blocksEvaluated as before)
   double milliseconds = 0.0;
 };
 
