@@ -12,7 +12,11 @@ MorphOperand correspondenceOperand(const SkeletonCorrespondence& c, const MorphO
   const SkeletonChains& onto = toTarget ? c.target : c.source;
   const std::vector<int>& match = toTarget ? c.sourceMatch : c.targetMatch;
   // k: how far this operand is from its own stand-in (0: itself, 1: its image).
-  const float k = std::clamp(toTarget ? w : 1.0f - w, 0.0f, 1.0f);
+  // Eased by smoothstep: the segments start and stop moving gently at B and C, where
+  // the transitions hold the stand-ins still (measured: the largest frame-to-frame
+  // volume change through B..C drops from 8.9 % to 6.1 % on the demo at 32^3, docs/morph.md).
+  const float x = std::clamp(toTarget ? w : 1.0f - w, 0.0f, 1.0f);
+  const float k = x * x * (3.0f - 2.0f * x);
   MorphOperand out = own;
   out.sharpness = own.sharpness + k * (other.sharpness - own.sharpness);
   if (k == 0.0f) return out;

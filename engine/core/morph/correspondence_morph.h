@@ -1,8 +1,9 @@
 #pragma once
 // The skeleton-correspondence morph (docs/morph.md, "Skeleton correspondence"):
 // at blend w, the source's posed stand-in moves and resizes towards its image
-// on the target (each segment's ends, radius and weight interpolated towards
-// the target segment it maps to, morph/skeleton_correspondence.h), and the
+// on the target (each segment's ends, radius and weight interpolated, by
+// smoothstep(w), towards the target segment it maps to,
+// morph/skeleton_correspondence.h), and the
 // target's grows out of its image on the source the same way. Both operands
 // are posed at the same scene time, so both animations keep playing. The two
 // in-between stand-ins are then combined by interpolation or space-time
