@@ -9,6 +9,9 @@
 #include <cstdio>
 #include <filesystem>
 
+#include <nlohmann/json.hpp>
+
+#include "doc/project_io.h"
 #include "io/gltf_import.h"
 #include "morph/correspondence_morph.h"
 #include "morph/morph_continuity.h"
@@ -185,4 +188,31 @@ TEST_CASE("skeleton correspondence on tentacle.glb -> plate.glb: no empty frame,
   INFO(made.error());
   REQUIRE(made.ok());
   compareWithInterpolation("tentacle -> plate", made->project, dir);
+}
+
+TEST_CASE("skeleton correspondence: method and blend saved and read back, bad blend named", "[morph][correspondence]") {
+  Project p = test::demoMorph().project;
+  p.morph.method = MorphMethod::SkeletonCorrespondence;
+  p.morph.correspondenceBlend = MorphMethod::SpaceTime;
+  const std::string text = projectToJson(p);
+  auto back = projectFromJson(text, "p.animorph");
+  REQUIRE(back.ok());
+  CHECK(back->morph.method == MorphMethod::SkeletonCorrespondence);
+  CHECK(back->morph.correspondenceBlend == MorphMethod::SpaceTime);
+  nlohmann::json j = nlohmann::json::parse(text);
+  j["morph"]["correspondence_blend"] = "skeleton_correspondence";
+  auto bad = projectFromJson(j.dump(), "p.animorph");
+  REQUIRE_FALSE(bad.ok());
+  CHECK(bad.error() == "p.animorph: morph.correspondence_blend: expected \"interpolation\" or \"space_time\"");
+}
+
+TEST_CASE("skeleton correspondence needs a rig on both sides: a BlobTree side is refused by name",
+          "[morph][correspondence]") {
+  const MorphRuntime& rt = *test::demoMorph().runtime;
+  MorphActorRuntime blob;
+  blob.actor.id = "blob";
+  blob.tree = std::make_shared<const BlobTree>();
+  auto c = morphSkeletonCorrespondence(rt.source, blob);
+  REQUIRE_FALSE(c.ok());
+  CHECK(c.error() == "actor 'blob' is a BlobTree (no rig to correspond)");
 }
