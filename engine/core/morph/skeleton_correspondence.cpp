@@ -52,22 +52,17 @@ SkeletonChains skeletonChains(const Character& c, const Standin& s) {
   for (size_t i = 0; i < s.segments.size(); ++i)
     if (s.segments[i].node >= 0 && s.segments[i].node < nodeCount) segsOf[size_t(s.segments[i].node)].push_back(int(i));
   // The tree of nodes with segments: parent = nearest ancestor with segments.
-  std::vector<int> parent(static_cast<size_t>(nodeCount), -1);
   std::vector<std::vector<int>> children(static_cast<size_t>(nodeCount));
   std::vector<int> roots;
   for (int n = 0; n < nodeCount; ++n) {
     if (segsOf[size_t(n)].empty()) continue;
     int p = c.nodes[size_t(n)].parent;
     for (int guard = 0; p >= 0 && segsOf[size_t(p)].empty() && guard < nodeCount; ++guard) p = c.nodes[size_t(p)].parent;
-    if (p >= 0 && !segsOf[size_t(p)].empty()) {
-      parent[size_t(n)] = p;
-      children[size_t(p)].push_back(n);
-    } else {
-      roots.push_back(n);
-    }
+    if (p >= 0 && !segsOf[size_t(p)].empty()) children[size_t(p)].push_back(n);
+    else roots.push_back(n);
   }
-  const std::vector<PosedSegment> rest = poseStandin(s, poseGlobals(c, nullptr, 0.0f), glm::mat4(1.0f));
   const std::vector<glm::mat4> globals = poseGlobals(c, nullptr, 0.0f);
+  const std::vector<PosedSegment> rest = poseStandin(s, globals, glm::mat4(1.0f));
   // Chains: from a root or a child of a branch joint, on while a joint has exactly one child.
   struct Start {
     int node, parentChain;
