@@ -16,6 +16,7 @@
 #include "animorph/evaluate_generic.h"
 #include "bake/frame_files.h"
 #include "cli/cli_command.h"
+#include "cli/morph_method_option.h"
 #include "cli/playblast.h"
 #include "cli/progress_bar.h"
 #include "doc/animorphosis_project.h"
@@ -184,6 +185,7 @@ int runBake(const std::vector<std::string>& args) {
   std::string project, output, frames, name, gltf, mp4, size = "1280x720", format = "ply";
   int res = 48, jobs = 1;
   bool png = false, gpu = false, burnIn = false;
+  cli::MorphMethodOptions methods;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     auto value = [&]() -> const std::string* { return i + 1 < args.size() ? &args[++i] : nullptr; };
@@ -208,6 +210,8 @@ int runBake(const std::vector<std::string>& args) {
       burnIn = true;
     } else if (a == "--gpu") {
       gpu = true;
+    } else if (std::string err; cli::readMorphMethodOption(args, i, methods, err)) {
+      if (!err.empty()) return cli::fail("bake", err, 2);
     } else if (!a.empty() && a[0] == '-') {
       return cli::fail("bake", "unknown option " + a, 2);
     } else if (project.empty()) {
@@ -251,6 +255,7 @@ int runBake(const std::vector<std::string>& args) {
 
   auto p = loadProject(project);
   if (!p) return cli::fail("bake", p.error());
+  cli::applyMorphMethodOptions(methods, p->morph);
   const std::string prefix = name.empty() ? framePrefix(p->name) : name;
   std::error_code ec;
   if (needDir) fs::create_directories(output, ec);
@@ -363,6 +368,20 @@ int runBake(const std::vector<std::string>& args) {
   std::printf("continuity: %zu frame%s empty or changing volume by more than %.0f%% from the frame before\n",
               defects.size(), defects.size() == 1 ? "" : "s", 100.0 * kMaxFrameVolumeChange);
   for (const ContinuityDefect& d : defects) std::printf("  frame %d: %s\n", d.frame, d.reason.c_str());
+  {  // the largest change, over the range and within B..C (the implicit stage, seams left out)
+    const MorphMarkers& mk = (*rt)->setup.markers;
+    double all = 0.0, inside = 0.0;
+    int atAll = first, atInside = -1;
+    for (size_t k = 1; k < measures.size(); ++k) {
+      const double d = relativeVolumeChange(measures[k - 1].volume, measures[k].volume);
+      if (d > all) all = d, atAll = measures[k].frame;
+      if (measures[k - 1].frame >= mk.b && measures[k].frame <= mk.c && d >= inside) inside = d, atInside = measures[k].frame;
+    }
+    std::printf("continuity: %s, largest frame-to-frame volume change %.1f%% at frame %d", morphMethodName((*rt)->setup.method),
+                100.0 * all, atAll);
+    if (atInside >= 0) std::printf(", within B..C %.1f%% at frame %d", 100.0 * inside, atInside);
+    std::printf("\n");
+  }
   if (std::string e = sink.finish(); !e.empty()) return cli::fail("bake", e);
 #if ANIMORPH_HAS_GPU
   if (gpuCtx && gpuCtx->validationEnabled() && gpuCtx->validationErrorCount() > 0) {
@@ -380,7 +399,7 @@ int runBake(const std::vector<std::string>& args) {
 ANIMORPH_CLI_COMMAND("bake", "bake a project's morph into mesh sequences, an animated glTF (and PNG frames)",
                      "usage: animorph-cli bake PROJECT.animorph --frames A:B --res N -o DIR [--format ply|obj|ply,obj|none]\n"
                      "                         [--obj] [--name NAME] [--gltf FILE.glb] [--png] [--mp4 FILE.mp4 [--size WxH]\n"
-                     "                         [--burn-in]] [--gpu] [--jobs J]\n"
+                     "                         [--burn-in]] [--gpu] [--jobs J] [--method M [--correspondence-blend B]]\n"
                      "  Bakes every frame A..B: the source's skinned mesh before marker A, its\n"
                      "  collapse onto the stand-in A->B, the polygonised implicit morph B->C (N cells\n"
                      "  along the longest side), the target's expansion C->D and its skinned mesh\n"
@@ -408,9 +427,13 @@ ANIMORPH_CLI_COMMAND("bake", "bake a project's morph into mesh sequences, an ani
                      "               display needed); exits 1 with a message when no device is usable\n"
                      "               or the device fails (no silent fallback to the CPU)\n"
                      "  --jobs J     frames baked in parallel (the output is the same for any J)\n"
+                     "  --method M   bake with another morph method than the project's: interpolation,\n"
+                     "               space_time or skeleton_correspondence (--correspondence-blend B:\n"
+                     "               interpolation or space_time, how it combines its two stand-ins)\n"
                      "  A progress bar is drawn when stdout is a terminal. Then a continuity report:\n"
                      "  frames that are empty or whose enclosed volume changes by more than 20% from\n"
-                     "  the frame before (what shows as a pop); they do not change the exit status.\n"
+                     "  the frame before (what shows as a pop); they do not change the exit status;\n"
+                     "  and the largest frame-to-frame volume change, over the frames and within B..C.\n"
                      "  Exit status: 0 on success, 1 when the project cannot be read or a frame fails,\n"
                      "  2 on bad arguments, 3 on Vulkan validation errors.\n",
                      runBake);

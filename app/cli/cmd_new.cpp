@@ -7,6 +7,7 @@
 
 #include "blobtree/blob_tree_json.h"
 #include "cli/cli_command.h"
+#include "cli/morph_method_option.h"
 #include "doc/morph_create.h"
 #include "doc/project_io.h"
 #include "io/gltf_import.h"
@@ -74,7 +75,8 @@ Result<Side> readSide(const std::string& arg, const fs::path& projectDir) {
 
 // A side that is not a glTF file: both actors as given, stand-ins fitted for
 // the glTF ones that bring none, a BlobTree side without a transition.
-int newAnySides(const std::vector<std::string>& inputs, const std::string& output, const NewMorphSettings& s) {
+int newAnySides(const std::vector<std::string>& inputs, const std::string& output, const NewMorphSettings& s,
+                const cli::MorphMethodOptions& methods) {
   std::error_code ec;
   const fs::path dir = fs::absolute(fs::path(output), ec).parent_path();
   Project p;
@@ -103,6 +105,7 @@ int newAnySides(const std::vector<std::string>& inputs, const std::string& outpu
   auto m = proposeMorph(p, dir.string(), assets, c, &notes);
   if (!m) return cli::fail("new", m.error());
   p.morph = std::move(*m);
+  cli::applyMorphMethodOptions(methods, p.morph);
   for (const auto& n : notes) std::printf("%s\n", n.c_str());
   for (const Actor& a : p.actors)
     if (a.kind == ActorKind::BlobTree)
@@ -120,17 +123,14 @@ int runNew(const std::vector<std::string>& args) {
   std::vector<std::string> inputs;
   std::string output;
   NewMorphSettings s;
+  cli::MorphMethodOptions methods;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     if (a == "-o" || a == "--output") {
       if (i + 1 >= args.size()) return cli::fail("new", a + " needs a value", 2);
       output = args[++i];
-    } else if (a == "--method") {
-      if (i + 1 >= args.size()) return cli::fail("new", "--method needs a value", 2);
-      const std::string v = args[++i];
-      if (v == "interpolation") s.method = MorphMethod::Interpolation;
-      else if (v == "space_time") s.method = MorphMethod::SpaceTime;
-      else return cli::fail("new", "--method: expected interpolation or space_time", 2);
+    } else if (std::string err; cli::readMorphMethodOption(args, i, methods, err)) {
+      if (!err.empty()) return cli::fail("new", err, 2);
     } else if (a == "--allow-rescale") {
       s.allowLargeRescale = true;
     } else if (a == "--accept-poor-fit") {
@@ -143,7 +143,11 @@ int runNew(const std::vector<std::string>& args) {
   }
   if (inputs.size() != 2 || output.empty())
     return cli::fail("new", "usage: new SOURCE TARGET -o PROJECT.animorph (see --help)", 2);
-  if (!isGltf(inputs[0]) || !isGltf(inputs[1])) return newAnySides(inputs, output, s);
+  // Skeleton correspondence is the default when both sides have rigs (two glTF characters).
+  const bool rigs = isGltf(inputs[0]) && isGltf(inputs[1]);
+  if (!methods.method) methods.method = rigs ? MorphMethod::SkeletonCorrespondence : MorphMethod::Interpolation;
+  s.method = *methods.method;
+  if (!rigs) return newAnySides(inputs, output, s, methods);
   auto src = importGltf(inputs[0]);
   if (!src) return cli::fail("new", src.error());
   auto dst = importGltf(inputs[1]);
@@ -153,6 +157,7 @@ int runNew(const std::vector<std::string>& args) {
   auto made = makeMorphProject(*src, relativeTo(inputs[0], dir), *dst, relativeTo(inputs[1], dir), s);
   if (!made)
     return cli::fail("new", made.error() + " (--allow-rescale accepts a large rescale, --accept-poor-fit a poor fit)");
+  cli::applyMorphMethodOptions(methods, made->project.morph);
   for (const auto& m : made->messages) std::printf("%s\n", m.c_str());
   for (const auto& w : made->warnings) std::fprintf(stderr, "new: WARNING: %s\n", w.c_str());
   if (auto st = saveProject(made->project, output); !st) return cli::fail("new", st.error());
@@ -168,7 +173,7 @@ int runNew(const std::vector<std::string>& args) {
 
 ANIMORPH_CLI_COMMAND("new", "a morph project from two characters or BlobTrees (automatic stand-ins, default timeline)",
                      "usage: animorph-cli new SOURCE TARGET -o PROJECT.animorph [--method M]\n"
-                     "                        [--allow-rescale] [--accept-poor-fit]\n"
+                     "                        [--correspondence-blend B] [--allow-rescale] [--accept-poor-fit]\n"
                      "  SOURCE, TARGET: a glTF character (.glb, .gltf), a BlobTree scene (.json) or\n"
                      "  PROJECT.animorph:ACTOR (an actor of another project, with its stand-in).\n"
                      "  A BlobTree side is its own stand-in: no collapse (A = B) or expansion (C = D).\n"
@@ -182,7 +187,12 @@ ANIMORPH_CLI_COMMAND("new", "a morph project from two characters or BlobTrees (a
                      "  (stand-in in more pieces than the mesh, over 10 % of the vertices farther than\n"
                      "  5 % of the diagonal, or a mean over 4 %) is refused, naming the bones, unless\n"
                      "  --accept-poor-fit is given (then it is a warning).\n"
-                     "  --method interpolation (default) | space_time\n"
+                     "  --method skeleton_correspondence (default with two glTF characters: the\n"
+                     "    source's limbs move and resize into the target's along matched skeleton\n"
+                     "    chains; `correspond` prints the matching) | interpolation (default with a\n"
+                     "    BlobTree side) | space_time\n"
+                     "  --correspondence-blend interpolation (default) | space_time: how skeleton\n"
+                     "    correspondence combines its two in-between stand-ins\n"
                      "  Exit status: 0 on success, 1 when an input cannot be read or fitted, 2 on bad\n"
                      "  arguments.\n",
                      runNew);

@@ -134,7 +134,7 @@ TEST_CASE("morph project: JSON round trip, older files, bad values named", "[mor
   expectError([](auto& k) { k["morph"]["markers"]["C"] = 10; }, "p.animorph: morph.markers.C: is before B");
   expectError([](auto& k) { k["morph"]["target"] = "nobody"; }, "p.animorph: morph.target: no actor with id 'nobody'");
   expectError([](auto& k) { k["morph"]["method"] = "magic"; },
-              "p.animorph: morph.method: expected \"interpolation\" or \"space_time\"");
+              "p.animorph: morph.method: expected \"interpolation\", \"space_time\" or \"skeleton_correspondence\"");
   expectError([](auto& k) { k["morph"]["actors"][0]["weight_map"] = "abc"; },
               "p.animorph: morph.actors[0].weight_map: base64 length 3 is not a multiple of 4");
   expectError([](auto& k) { k["morph"]["actors"][0]["weight_map"] = floatsToBase64({0.5f, 2.0f}); },

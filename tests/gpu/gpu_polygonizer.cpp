@@ -714,3 +714,17 @@ TEST_CASE("GPU polygoniser reports what it cannot do and bad settings", "[gpu][g
   CHECK(GpuPolygonizer::deviceShortfall(small).find("shared memory") == std::string::npos);
   CHECK(r.ctx->validationErrorCount() == 0);
 }
+
+TEST_CASE("GPU polygoniser: a skeleton-correspondence pair is refused with its reason, the core's methods combine",
+          "[gpu][gpupoly]") {
+  // No device needed: unsupported() looks at the field only.
+  BlobTree ta = chainTree(4, 11, 1.3f), tb = chainTree(4, 11, 1.8f);
+  FieldProgram a = compileFieldProgram(ta, 0.0), b = compileFieldProgram(tb, 0.0);
+  CHECK(GpuPolygonizer::unsupported(GpuField::interpolation(a, b, 0.5f)).empty());
+  CHECK(GpuPolygonizer::unsupported(GpuField::spaceTime(a, b, 0.5f)).empty());
+  CHECK(GpuField::spaceTime(a, b, 0.5f).method == animorph::MorphMethod::SpaceTime);
+  GpuField f = GpuField::interpolation(a, b, 0.5f);
+  f.method = animorph::MorphMethod::SkeletonCorrespondence;
+  CHECK_THAT(GpuPolygonizer::unsupported(f), Catch::Contains("morphImplicitField"));
+  CHECK(GpuPolygonizer::unsupported(GpuField::single(a)).empty());
+}

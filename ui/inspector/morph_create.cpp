@@ -58,7 +58,10 @@ void openCreateMorph(const Document& doc, CreateMorphState& st) {
   } else {
     st.sourceActorId = p.actors.size() > 0 ? p.actors[0].id : std::string();
     st.targetActorId = p.actors.size() > 1 ? p.actors[1].id : std::string();
-    st.method = 0;
+    // Skeleton correspondence when both sides have rigs (glTF characters), else interpolation.
+    const bool rigs = !st.sourceActorId.empty() && !st.targetActorId.empty() && !isTree(p, st.sourceActorId) &&
+                      !isTree(p, st.targetActorId);
+    st.method = int(rigs ? MorphMethod::SkeletonCorrespondence : MorphMethod::Interpolation);
     const Timeline& tl = p.timeline;
     const int span = std::max(8, tl.frameEnd - tl.frameStart);
     for (int i = 0; i < 4; ++i) st.markers[i] = tl.frameStart + span * (i + 1) / 6;
@@ -78,9 +81,9 @@ void drawCreateMorphPopup(Document& doc, AssetCache& assets, CreateMorphState& s
                        p.morph.sourceActorId.c_str(), p.morph.targetActorId.c_str());
   if (actorCombo("Source", "morph/create/source", p, st.sourceActorId)) st.error.clear();
   if (actorCombo("Target", "morph/create/target", p, st.targetActorId)) st.error.clear();
-  const char* methods[] = {"Interpolation", "Space-time blending"};
+  const char* methods[] = {"Interpolation", "Space-time blending", "Skeleton correspondence"};
   ImGui::SetNextItemWidth(240.0f);
-  ImGui::Combo("Method", &st.method, methods, 2);
+  ImGui::Combo("Method", &st.method, methods, 3);
   noteWidget("morph/create/method");
   ImGui::SetNextItemWidth(240.0f);
   ImGui::InputInt4("Markers A B C D", st.markers);
@@ -96,7 +99,7 @@ void drawCreateMorphPopup(Document& doc, AssetCache& assets, CreateMorphState& s
     MorphChoice c;
     c.sourceActorId = st.sourceActorId;
     c.targetActorId = st.targetActorId;
-    c.method = static_cast<MorphMethod>(std::clamp(st.method, 0, 1));
+    c.method = static_cast<MorphMethod>(std::clamp(st.method, 0, 2));
     c.markers = {st.markers[0], st.markers[1], st.markers[2], st.markers[3]};
     std::vector<std::string> notes;
     auto m = proposeMorph(p, doc.baseDir(), assets, c, &notes);

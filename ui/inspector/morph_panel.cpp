@@ -53,12 +53,24 @@ void drawMorphSettings(Document& doc, AssetCache& assets, MorphPanelState& st, D
     ImGui::SetTooltip("A: the source starts to collapse; B: implicit morph starts;\nC: the target starts to grow; D: the target plays");
 
   int method = static_cast<int>(m.method);
-  const char* methods[] = {"Interpolation", "Space-time blending"};
-  if (ImGui::Combo("Method", &method, methods, 2))
+  const char* methods[] = {"Interpolation", "Space-time blending", "Skeleton correspondence"};
+  if (ImGui::Combo("Method", &method, methods, 3))
     doc.execute(setMorphField(doc.project(), &MorphSetup::method, static_cast<MorphMethod>(method), "Set morph method"));
   noteWidget("morph/method");
+  if (ImGui::IsItemHovered() && m.method == MorphMethod::SkeletonCorrespondence)
+    ImGui::SetTooltip("The source's limbs move and resize into the target's along matched skeleton chains\n"
+                      "(animorph-cli correspond prints the matching); needs a rig on both sides");
+  if (m.method == MorphMethod::SkeletonCorrespondence) {
+    int blend = m.correspondenceBlend == MorphMethod::SpaceTime ? 1 : 0;
+    if (ImGui::Combo("Combined by", &blend, methods, 2))
+      doc.execute(setMorphField(doc.project(), &MorphSetup::correspondenceBlend,
+                                blend == 1 ? MorphMethod::SpaceTime : MorphMethod::Interpolation,
+                                "Set correspondence blend"));
+    noteWidget("morph/correspondence_blend");
+  }
 
-  if (m.method == MorphMethod::SpaceTime) {
+  if (m.method == MorphMethod::SpaceTime ||
+      (m.method == MorphMethod::SkeletonCorrespondence && m.correspondenceBlend == MorphMethod::SpaceTime)) {
     SpaceTimeParams st = m.spaceTime;
     bool c = false;
     c |= ImGui::DragFloat("Time scale", &st.timeScale, 0.01f, 0.01f, 100.0f);

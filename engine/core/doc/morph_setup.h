@@ -68,6 +68,9 @@ struct MorphSetup {
   std::string targetActorId;
   MorphMarkers markers;
   MorphMethod method = MorphMethod::Interpolation;
+  // SkeletonCorrespondence: how its two in-between stand-ins are combined
+  // (Interpolation or SpaceTime; morph/correspondence_morph.h).
+  MorphMethod correspondenceBlend = MorphMethod::Interpolation;
   // Interpolation: each side's potential bounded at this many T before the
   // blend (morph/morph_field.h: buildMorphProgram); <= 1: unbounded.
   float interpolationBound = kDefaultInterpolationBound;

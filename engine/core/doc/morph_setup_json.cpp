@@ -20,6 +20,8 @@ json morphSetupToJson(const MorphSetup& m) {
   j["target"] = m.targetActorId;
   j["markers"] = {{"A", m.markers.a}, {"B", m.markers.b}, {"C", m.markers.c}, {"D", m.markers.d}};
   j["method"] = morphMethodName(m.method);
+  if (m.correspondenceBlend != MorphMethod::Interpolation)  // written when set: older projects stay byte-identical
+    j["correspondence_blend"] = morphMethodName(m.correspondenceBlend);
   if (m.interpolationBound != kDefaultInterpolationBound) j["interpolation_bound"] = m.interpolationBound;
   const SpaceTimeParams& st = m.spaceTime;
   j["space_time"] = {{"time_scale", st.timeScale}, {"a0", st.a0}, {"a1", st.a1}, {"a2", st.a2}, {"a3", st.a3}};
@@ -127,9 +129,14 @@ Result<MorphSetup> morphSetupFromJson(const json& j, const std::string& sourceNa
   }
   if (r.ok() && j.contains("method")) {
     const json& me = j["method"];
-    if (me == "interpolation") m.method = MorphMethod::Interpolation;
-    else if (me == "space_time") m.method = MorphMethod::SpaceTime;
-    else r.fail(w + ".method", "expected \"interpolation\" or \"space_time\"");
+    if (!me.is_string() || !morphMethodFromName(me.get<std::string>(), m.method))
+      r.fail(w + ".method", "expected \"interpolation\", \"space_time\" or \"skeleton_correspondence\"");
+  }
+  if (r.ok() && j.contains("correspondence_blend")) {  // absent: interpolation
+    const json& cb = j["correspondence_blend"];
+    if (!cb.is_string() || !morphMethodFromName(cb.get<std::string>(), m.correspondenceBlend) ||
+        m.correspondenceBlend == MorphMethod::SkeletonCorrespondence)
+      r.fail(w + ".correspondence_blend", "expected \"interpolation\" or \"space_time\"");
   }
   if (r.ok() && j.contains("interpolation_bound")) {  // absent: the default bound
     m.interpolationBound = float(r.number(j, "interpolation_bound", w, m.interpolationBound));

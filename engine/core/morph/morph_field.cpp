@@ -29,13 +29,30 @@ Bounds morphOperandBounds(const MorphOperand& op) {
   return p.unbounded() ? Bounds{} : p.tightBounds(3);
 }
 
-const char* morphMethodName(MorphMethod m) { return m == MorphMethod::SpaceTime ? "space_time" : "interpolation"; }
+const char* morphMethodName(MorphMethod m) {
+  switch (m) {
+    case MorphMethod::Interpolation: return "interpolation";
+    case MorphMethod::SpaceTime: return "space_time";
+    case MorphMethod::SkeletonCorrespondence: return "skeleton_correspondence";
+  }
+  return "interpolation";
+}
+
+bool morphMethodFromName(const std::string& name, MorphMethod& out) {
+  for (MorphMethod m : {MorphMethod::Interpolation, MorphMethod::SpaceTime, MorphMethod::SkeletonCorrespondence})
+    if (name == morphMethodName(m)) {
+      out = m;
+      return true;
+    }
+  return false;
+}
 
 FieldProgram buildMorphProgram(const MorphOperand& src, const MorphOperand& dst, MorphMethod method, float w,
                                const SpaceTimeParams& st, float bound) {
   FieldProgram p;
   p.threshold = kStandinThreshold;
   const float T = p.threshold;
+  if (method == MorphMethod::SkeletonCorrespondence) method = MorphMethod::Interpolation;
   if (!(w > 0.0f)) {
     appendMorphOperand(p, src, 1.0f);
   } else if (!(w < 1.0f)) {

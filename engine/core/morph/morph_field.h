@@ -13,6 +13,7 @@
 // or w); its threshold must be the stand-ins' T = 1.
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "blobtree/blob_tree.h"
@@ -22,7 +23,12 @@
 
 namespace animorph {
 
-enum class MorphMethod : uint8_t { Interpolation, SpaceTime };
+// The one morph method enum (the GPU polygoniser's GpuField uses it too).
+// SkeletonCorrespondence moves the source's stand-in into the target's along
+// an automatic skeleton correspondence and combines the two in-between
+// stand-ins by interpolation or space-time blending
+// (morph/correspondence_morph.h); buildMorphProgram reads it as Interpolation.
+enum class MorphMethod : uint8_t { Interpolation, SpaceTime, SkeletonCorrespondence };
 
 // Defaults chosen on the demo (creature -> gear, T = 1): both shapes stay
 // visible and bridge in the middle; with a1 = a2 = a3 = 1 the transitional
@@ -64,6 +70,9 @@ Bounds morphOperandBounds(const MorphOperand& op);
 FieldProgram buildMorphProgram(const MorphOperand& source, const MorphOperand& target, MorphMethod method, float w,
                                const SpaceTimeParams& spaceTime, float interpolationBound = 0.0f);
 
-const char* morphMethodName(MorphMethod m);  // "interpolation", "space_time"
+// "interpolation", "space_time", "skeleton_correspondence"
+const char* morphMethodName(MorphMethod m);
+// The method named name (as morphMethodName writes it); false when none is.
+bool morphMethodFromName(const std::string& name, MorphMethod& out);
 
 }  // namespace animorph

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "blobtree/validate.h"
+#include "morph/correspondence_morph.h"
 #include "morph/mesh_distance.h"
 #include "morph/solid_noise.h"
 #include "rig/pose.h"
@@ -166,10 +167,27 @@ Result<std::shared_ptr<const MorphRuntime>> prepareMorph(const Project& project,
   if (!dst) return Error{dst.error()};
   rt->source = std::move(*src);
   rt->target = std::move(*dst);
+  if (m.method == MorphMethod::SkeletonCorrespondence) {
+    auto c = morphSkeletonCorrespondence(rt->source, rt->target);
+    if (c) rt->correspondence = std::make_shared<const SkeletonCorrespondence>(std::move(*c));
+    else rt->notes.push_back("skeleton correspondence: " + c.error() + ": interpolation used instead");
+  }
   MorphMarkers& k = rt->setup.markers;
   if (rt->source.isTree()) k.a = k.b;
   if (rt->target.isTree()) k.d = k.c;
   return std::shared_ptr<const MorphRuntime>(std::move(rt));
+}
+
+Result<SkeletonCorrespondence> morphSkeletonCorrespondence(const MorphActorRuntime& source,
+                                                           const MorphActorRuntime& target) {
+  for (const MorphActorRuntime* a : {&source, &target})
+    if (a->isTree() || !a->character)
+      return Error{"actor '" + a->actor.id + "' is a BlobTree (no rig to correspond)"};
+  SkeletonChains s = skeletonChains(*source.character, source.morph.standin);
+  SkeletonChains t = skeletonChains(*target.character, target.morph.standin);
+  for (const auto& [chains, a] : {std::pair{&s, &source}, std::pair{&t, &target}})
+    if (chains->chains.empty()) return Error{"actor '" + a->actor.id + "': no stand-in segment is on a node of its rig"};
+  return correspondSkeletons(std::move(s), std::move(t));
 }
 
 MorphStage morphStageAt(const MorphSetup& s, const Timeline& tl, double timeSec, double& u) {
@@ -222,7 +240,9 @@ MorphImplicitField morphImplicitField(const MorphRuntime& rt, double timeSec, in
   out.blend = std::clamp(m.blend.evaluate(out.progress), 0.0f, 1.0f);
   const MorphOperand src = posedOperand(rt.source, timeSec, out.progress);
   const MorphOperand dst = posedOperand(rt.target, timeSec, out.progress);
-  out.program = buildMorphProgram(src, dst, m.method, out.blend, m.spaceTime, m.interpolationBound);
+  out.program = rt.correspondence ? buildCorrespondenceMorphProgram(*rt.correspondence, src, dst, m.correspondenceBlend,
+                                                                     out.blend, m.spaceTime, m.interpolationBound)
+                                   : buildMorphProgram(src, dst, m.method, out.blend, m.spaceTime, m.interpolationBound);
   out.noiseAmplitude = m.noiseAmplitude.evaluate(out.progress);
   if (out.program.unbounded()) {
     // Space-time blending: the bound solid makes the field positive far

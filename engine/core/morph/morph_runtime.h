@@ -14,6 +14,7 @@
 
 #include "doc/asset_cache.h"
 #include "doc/project.h"
+#include "morph/skeleton_correspondence.h"
 #include "morph/transition.h"
 #include "poly/mesh.h"
 #include "poly/polygonizer.h"
@@ -45,6 +46,9 @@ struct MorphRuntime {
   MorphSetup setup;
   Timeline timeline;
   MorphActorRuntime source, target;
+  // Method SkeletonCorrespondence with a stand-in on both sides: the chain
+  // matching B->C follows (null: the plain method; notes say why).
+  std::shared_ptr<const SkeletonCorrespondence> correspondence;
   std::vector<std::string> notes;  // what the user should know ("gear.glb: no skin: rigid one-bone actor")
 };
 
@@ -56,6 +60,11 @@ struct MorphRuntime {
 // (the same result as binding again, without the cost).
 Result<std::shared_ptr<const MorphRuntime>> prepareMorph(const Project& project, const std::string& baseDir,
                                                          AssetCache& assets, const MorphRuntime* previous = nullptr);
+
+// The automatic skeleton correspondence between two prepared actors'
+// stand-ins. Errors: a side is a BlobTree actor (no rig), or has no chain.
+Result<SkeletonCorrespondence> morphSkeletonCorrespondence(const MorphActorRuntime& source,
+                                                           const MorphActorRuntime& target);
 
 struct MorphFrameSettings {
   int resolution = 48;     // B->C: polygonisation cells along the longest side of the morph's bounds

@@ -76,7 +76,7 @@ Result<Grid> makeGrid(const GpuField& field, const GpuPolygonizeSettings& s) {
       if (!t.empty()) box.add(t);
     }
     if (box.empty()) return g;  // n stays 1: an empty grid, nothing inside anywhere
-    if (field.b && field.method == MorphMethod::SpaceTimeBlend) {
+    if (field.b && field.method == MorphMethod::SpaceTime) {
       glm::vec3 pad = 0.05f * box.size();
       box.min -= pad;
       box.max += pad;
@@ -651,6 +651,9 @@ Result<std::unique_ptr<GpuPolygonizer>> GpuPolygonizer::create(Context& ctx) {
 
 std::string GpuPolygonizer::unsupported(const GpuField& field) {
   if (!field.a) return "no field program";
+  if (field.b && field.method == MorphMethod::SkeletonCorrespondence)
+    return "skeleton correspondence combines stand-ins that move with w: polygonise its flattened program "
+           "(morphImplicitField) as a single field";
   if (std::string why = gpuUnsupportedReason(*field.a); !why.empty()) return why;
   if (field.b)
     if (std::string why = gpuUnsupportedReason(*field.b); !why.empty()) return "target program: " + why;

@@ -23,16 +23,20 @@
 #include "vulkan/context.h"
 #include "field/field_program.h"
 #include "math/bounds.h"
+#include "morph/morph_field.h"
 #include "poly/mesh.h"
 #include "render/scene_renderer.h"
 #include "util/result.h"
 
 namespace animorph::gpu {
 
-enum class MorphMethod : uint8_t {
-  Interpolation,   // m = (1 - w) f1 + w f2
-  SpaceTimeBlend,  // docs/design.md §5 and include_shared/morph_field.h
-};
+// The morph method is the core's (morph/morph_field.h): Interpolation,
+// m = (1 - w) f1 + w f2, and SpaceTime (docs/design.md §5 and
+// include_shared/morph_field.h) combine two programs here;
+// SkeletonCorrespondence is not a combination of two fixed programs (its
+// stand-ins move with w): it reaches the GPU flattened into one program
+// (morphImplicitField, GpuField::single), and unsupported() says so for a pair.
+using animorph::MorphMethod;
 
 // What to polygonise: one program, or the morph of two ("evaluate two programs
 // and combine"; the formulas are in include_shared/morph_field.h, shared with C++).
@@ -53,7 +57,7 @@ struct GpuField {
   }
   static GpuField spaceTime(const FieldProgram& a, const FieldProgram& b, float t, float timeScale = 1.0f,
                             float a0 = 1.0f, float a1 = 1.0f, float a2 = 1.0f, float a3 = 1.0f) {
-    GpuField f{&a, &b, MorphMethod::SpaceTimeBlend};
+    GpuField f{&a, &b, MorphMethod::SpaceTime};
     f.morphTime = t;
     f.timeScale = timeScale;
     f.a0 = a0;
