@@ -14,6 +14,7 @@
 #include "drag_merge.h"
 #include "layout.h"
 #include "morph_panel.h"
+#include "particles_panel.h"
 #include "standin_tool.h"
 
 namespace animorph {
@@ -29,6 +30,7 @@ struct InspectorState {
   std::string nameActorId;
   BlobInspectorState blob;  // a selected BlobTree node
   MorphPanelState morph;    // the morph's settings (nothing selected)
+  ParticlesPanelState particles;  // a BlobTree actor's Particles section
 };
 
 // Refused edits (BlobTree nodes) report to status.
