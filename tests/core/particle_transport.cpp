@@ -4,7 +4,10 @@
 
 #include <algorithm>
 #include <random>
+#include <tuple>
 
+#include "blobtree/compile.h"
+#include "particles/particle_animorphosis.h"
 #include "particles/particle_transport.h"
 #include "util/blob_builders.h"
 
@@ -86,7 +89,7 @@ TEST_CASE("a translated copy of the particles is reached by the translation", "[
   CHECK(exact >= from.size() * 95 / 100);
 }
 
-TEST_CASE("particle transport refuses sets of different sizes; reformed particles rest at their places",
+TEST_CASE("particle transport refuses sets of different sizes, reformed particles rest at their places",
           "[particles][transport]") {
   CHECK_FALSE(assignParticles(std::vector<glm::vec3>(3), std::vector<glm::vec3>(4)));
   std::vector<BlobNode> pts;
@@ -98,4 +101,51 @@ TEST_CASE("particle transport refuses sets of different sizes; reformed particle
   CHECK(moved->root.children[0].vec3Param("center").evaluate(0.0) == places[2]);
   CHECK(moved->root.children[1].vec3Param("center").evaluate(7.0) == places[0]);
   CHECK_FALSE(reformedParticles(tree, places, {0, 1}));
+}
+
+TEST_CASE("particles of one shape re-form into another: the gathering ends in the second shape",
+          "[particles][transport]") {
+  // A tall capsule converted to particles re-forms into a flat, wide one beside it.
+  const BlobTree tall = treeOf(segmentNode(1, {0.0f, 0.2f, 0.0f}, {0.0f, 1.2f, 0.0f}, 0.35f), 0.5f);
+  const BlobTree wide = treeOf(segmentNode(1, {0.8f, 0.25f, 0.0f}, {2.2f, 0.25f, 0.0f}, 0.35f), 0.5f);
+  ConvertToParticlesSettings cs;
+  cs.count = 400;
+  auto particles = convertToParticles(compileFieldProgram(tall, 0.0), cs);
+  REQUIRE(particles);
+  const size_t n = particles->report.particles;
+  ParticleTransportReport report;
+  const FieldProgram wideField = compileFieldProgram(wide, 0.0);
+  auto reformed = reformIntoShape(particles->tree, 0.0, wideField, cs, {}, &report);
+  REQUIRE(reformed);
+  CHECK(report.cost <= report.greedyCost);
+  // Every particle rests inside the second shape, on a place of its own.
+  TreeParticles at = treeParticles(*reformed, 0.0);
+  REQUIRE(at.set.position.size() == n);
+  FieldEvaluator ev;
+  size_t inside = 0;
+  for (const glm::vec3& p : at.set.position)
+    if (ev.evaluatePoint(wideField, p) >= 0.0f) ++inside;
+  CHECK(inside == n);
+  std::vector<glm::vec3> sorted = at.set.position;
+  std::sort(sorted.begin(), sorted.end(), [](glm::vec3 a, glm::vec3 b) {
+    return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
+  });
+  CHECK(std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end());
+
+  // The animorphosis explodes the tall shape and gathers into the wide one.
+  ParticleAnimorphosisSettings as;
+  as.explosion.durationSec = 1.0;
+  as.explosion.rateHz = 60.0;
+  as.explosion.forces.explosion.centre = {0.0f, 0.7f, 0.0f};
+  as.vortex.forces.explosion.enabled = false;
+  as.vortex.forces.vortex.enabled = true;
+  as.gatheringRest = *reformed;
+  auto anim = makeParticleAnimorphosis(particles->tree, as);
+  REQUIRE(anim);
+  TreeParticles end = treeParticles(anim->gathering, anim->endSec);
+  TreeParticles start = treeParticles(anim->exploding, anim->startSec);
+  float far = 0.0f;
+  for (size_t i = 0; i < n; ++i) far = std::max(far, glm::length(end.set.position[i] - at.set.position[i]));
+  CHECK(far < 0.02f);  // within the bake tolerance (and a little)
+  CHECK(glm::length(start.set.position[0] - treeParticles(particles->tree, 0.0).set.position[0]) < 1e-4f);
 }

@@ -1,5 +1,7 @@
 #include "particles/particle_transport.h"
 
+#include "particles/particle_tree.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -167,6 +169,39 @@ Result<BlobTree> reformedParticles(const BlobTree& particles, const std::vector<
   size_t i = 0;
   forEachPointNode(out.root, [&](BlobNode& n) { n.vec3Param("center") = Vec3Track(places[size_t(target[i++])]); });
   return out;
+}
+
+Result<std::vector<glm::vec3>> particlePlaces(const FieldProgram& shape, size_t n, ConvertToParticlesSettings s) {
+  if (n == 0) return Error{"particle transport: no particles to place"};
+  s.count = int(n);
+  for (int attempt = 0; attempt < 6; ++attempt) {
+    auto conv = convertToParticles(shape, s);
+    if (!conv) return Error{conv.error()};
+    if (conv->report.cancelled) return Error{"particle transport: cancelled"};
+    TreeParticles tp = treeParticles(conv->tree, 0.0);
+    const std::vector<glm::vec3>& all = tp.set.position;
+    if (all.size() >= n) {
+      std::vector<glm::vec3> out(n);
+      for (size_t i = 0; i < n; ++i) out[i] = all[i * all.size() / n];  // evenly thinned
+      return out;
+    }
+    s.count = int(double(s.count) * double(n) / double(std::max<size_t>(1, all.size())) * 1.02) + 1;
+  }
+  return Error{"particle transport: the shape does not hold " + std::to_string(n) + " particles"};
+}
+
+Result<BlobTree> reformIntoShape(const BlobTree& particles, double timeSec, const FieldProgram& shape,
+                                 const ConvertToParticlesSettings& places, const ParticleTransportSettings& transport,
+                                 ParticleTransportReport* report) {
+  TreeParticles tp = treeParticles(particles, timeSec);
+  if (tp.nodeIds.empty()) return Error{"particle transport: the tree has no point primitive"};
+  auto to = particlePlaces(shape, tp.nodeIds.size(), places);
+  if (!to) return Error{to.error()};
+  auto assigned = assignParticles(tp.set.position, *to, transport);
+  if (!assigned) return Error{assigned.error()};
+  if (assigned->report.cancelled) return Error{"particle transport: cancelled"};
+  if (report) *report = assigned->report;
+  return reformedParticles(particles, *to, assigned->target);
 }
 
 }  // namespace animorph

@@ -13,6 +13,8 @@
 #include <glm/glm.hpp>
 
 #include "blobtree/blob_tree.h"
+#include "field/field_program.h"
+#include "particles/convert_to_particles.h"
 #include "util/result.h"
 
 namespace animorph {
@@ -48,5 +50,16 @@ double transportCost(const std::vector<glm::vec3>& from, const std::vector<glm::
 // rest at places[target[i]]: constant centre tracks. Errors: a count that is not the tree's points'.
 Result<BlobTree> reformedParticles(const BlobTree& particles, const std::vector<glm::vec3>& places,
                                    const std::vector<int>& target);
+
+// Exactly n places filling a shape's volume: the points of convertToParticles (settings.count
+// raised until there are at least n), thinned evenly to n. Errors: those of the conversion.
+Result<std::vector<glm::vec3>> particlePlaces(const FieldProgram& shape, size_t n, ConvertToParticlesSettings settings);
+
+// The particles of a tree re-formed into a shape: its points assigned (assignParticles from their
+// positions at timeSec) to particlePlaces of the shape and resting there (reformedParticles).
+Result<BlobTree> reformIntoShape(const BlobTree& particles, double timeSec, const FieldProgram& shape,
+                                 const ConvertToParticlesSettings& places = {},
+                                 const ParticleTransportSettings& transport = {},
+                                 ParticleTransportReport* report = nullptr);
 
 }  // namespace animorph
