@@ -12,6 +12,7 @@
 #include "doc/project_io.h"
 #include "particles/convert_to_particles.h"
 #include "particles/particle_animorphosis.h"
+#include "particles/particle_transport.h"
 
 namespace {
 
@@ -29,7 +30,7 @@ bool parseVec3(const std::string& s, glm::vec3& out) {
 }
 
 int runSimulate(const std::vector<std::string>& args) {
-  std::string path, output, actorId;
+  std::string path, output, actorId, reformInto;
   int convert = 0;
   bool animorphosis = false, vortexOnly = false;
   ParticleSettings s;
@@ -51,10 +52,11 @@ int runSimulate(const std::vector<std::string>& args) {
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     bool takesValue = floats.count(a) || vectors.count(a) || a == "-o" || a == "--actor" || a == "--convert" ||
-                      a == "--seed" || a == "--duration" || a == "--rate" || a == "--start";
+                      a == "--seed" || a == "--duration" || a == "--rate" || a == "--start" || a == "--reform-into";
     if (takesValue && i + 1 >= args.size()) return cli::fail(kCmd, a + " needs a value", 2);
     if (a == "-o") output = args[++i];
     else if (a == "--actor") actorId = args[++i];
+    else if (a == "--reform-into") reformInto = args[++i];
     else if (a == "--convert") convert = std::atoi(args[++i].c_str());
     else if (a == "--seed") s.seed = std::strtoull(args[++i].c_str(), nullptr, 10);
     else if (a == "--duration") s.durationSec = std::atof(args[++i].c_str());
@@ -74,6 +76,7 @@ int runSimulate(const std::vector<std::string>& args) {
     else if (path.empty()) path = a;
     else return cli::fail(kCmd, "expected one project", 2);
   }
+  if (!reformInto.empty() && !animorphosis) return cli::fail(kCmd, "--reform-into needs --animorphosis", 2);
   if (path.empty() || output.empty() || actorId.empty())
     return cli::fail(kCmd, "usage: simulate PROJECT.animorph --actor ID -o OUT.animorph [options]", 2);
   if (vortexOnly) {
@@ -112,6 +115,18 @@ int runSimulate(const std::vector<std::string>& args) {
     as.vortex.forces.gravity = glm::vec3(0.0f);
     as.startSec = bake.startSec;
     as.tolerance = bake.tolerance;
+    if (!reformInto.empty()) {  // B gathers into another actor's shape (in the trees' own spaces)
+      const Actor* shape = p->findActor(reformInto);
+      if (!shape || shape->kind != ActorKind::BlobTree)
+        return cli::fail(kCmd, path + ": --reform-into: no BlobTree actor '" + reformInto + "'");
+      ParticleTransportReport tr;
+      auto rest = reformIntoShape(actor->blobTree, bake.startSec, compileFieldProgram(shape->blobTree, bake.startSec),
+                                  {}, {}, &tr);
+      if (!rest) return cli::fail(kCmd, path + ": actor '" + reformInto + "': " + rest.error());
+      as.gatheringRest = std::move(*rest);
+      std::printf("re-forms into '%s': sum of squared paths %.4g m^2 (greedy start %.4g), %zu exchanges in %d sweeps\n",
+                  reformInto.c_str(), tr.cost, tr.greedyCost, tr.exchanges, tr.sweeps);
+    }
     auto pa = makeParticleAnimorphosis(actor->blobTree, as);
     if (!pa) return cli::fail(kCmd, path + ": actor '" + actorId + "': " + pa.error());
     actor->blobTree = pa->exploding;
@@ -157,6 +172,8 @@ ANIMORPH_CLI_COMMAND("simulate", "simulate particles on a BlobTree actor and bak
                      "  --animorphosis      explosion A(t) and a time-reversed vortex B(t) of the same\n"
                      "                      particles (B a new actor), linked one to one, as the\n"
                      "                      project's animorphosis: the shape explodes and re-forms\n"
+                     "  --reform-into ID2   with --animorphosis: B gathers into actor ID2's shape\n"
+                     "                      (particles assigned to its volume so paths do not cross)\n"
                      "  --seed S --duration SEC (3) --rate HZ (120) --start SEC (0) --tolerance M (0.002)\n"
                      "  explosion: --centre x,y,z (centroid) --energy J (20) --falloff M (1) --no-explosion\n"
                      "  --gravity x,y,z (0,-9.81,0) --drag D (0.2) --noise A (0)\n"

@@ -123,7 +123,8 @@ int main(int argc, char** argv) {
     RedrawState rs;
     rs.input = inputThisFrame;
     rs.animating = ui.state().playback.playing() || gpuSide->blobPreviews->needsFrames() ||
-                   (vf.morphStageShown && gpuSide->morphPreview->needsFrames()) || ImGui::IsAnyMouseDown() ||
+                   (vf.morphStageShown && gpuSide->morphPreview->needsFrames()) || vf.particlesShown ||
+                   ImGui::IsAnyMouseDown() ||
                    frameCount < 10 || automation.needsFrames() || !pendingCapture.empty() ||
                    (shown.status == gpu::FrameStatus::Skipped && fbw > 0 && fbh > 0);
     // The status bar is built before the previews update: one more frame shows what they did (a mesh
@@ -136,7 +137,8 @@ int main(int argc, char** argv) {
     if (uiMapPath && (frameCount % 3 == 0 || waitSec > 0.0))
       writeEditorUiMap(uiMapPath, ui, ectx, frameCount,
                        {rs.awaitingWork, waitSec > 0.0, clock.tickEpochSec(),
-                        vf.morphStageShown ? vf.morphBackend.gpu : vf.backend.gpu, gpuSide->swapchain->presentPath()});
+                        vf.morphStageShown ? vf.morphBackend.gpu : vf.backend.gpu, gpuSide->swapchain->presentPath(),
+                        vf.particlesShown});
     const std::string title = "Animorph - " + document->displayName() + (document->dirty() ? " *" : "");
     if (title != lastTitle) glfwSetWindowTitle(window, (lastTitle = title).c_str());
     if (waitSec > 0.0) {

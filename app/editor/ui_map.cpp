@@ -33,6 +33,7 @@ void writeEditorUiMap(const std::string& path, const EditorUI& ui, EditorContext
               {"viewport_note", ectx.viewportNote},  // "morph: morph 50%", a morph's error
               {"preview_gpu", info.previewGpu},
               {"present", info.presentPath},
+              {"particle_view", info.particlesShown},
               {"standin_segment", selectedStandinSegment(doc)},
               {"job", ui.runningJob() ? ui.runningJob()->label() : std::string()},
               {"job_fraction", ui.runningJob() ? ui.runningJob()->progress().fraction() : 0.0}});

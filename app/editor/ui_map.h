@@ -21,6 +21,7 @@ struct FrameMapInfo {
   double polledAt = 0.0;     // CLOCK_MONOTONIC seconds when this frame took its input
   bool previewGpu = false;   // the preview shown is the GPU's
   std::string presentPath;   // how frames reach the window
+  bool particlesShown = false;  // some BlobTree was drawn as particles (scene/particle_view.h)
 };
 
 // writeUiMap with the editor's state: the status line, the preview line, the stand-in segment.

@@ -12,6 +12,7 @@
 #include "scene/pick.h"
 #include "scene/scene_frame.h"
 #include "scene/standin_guides.h"
+#include "render/particle_overlay.h"
 #include "render/scene_from_frame.h"
 #include "render/standin_overlay.h"
 #include "render/weight_overlay_scene.h"
@@ -95,9 +96,20 @@ ViewportFrameResult ViewportFrame::build(EditorGpu& g, EditorUI& ui, EditorConte
         describeAnimorphosis(applyAnimorphosis(frame, doc.project(), animorphosisCache_, &doc, doc.revision()));
     if (!note.empty()) ectx.viewportNote += (ectx.viewportNote.empty() ? "" : "  |  ") + note;
   }
+  // Particle systems moving (scrubbing, playing) are drawn as particles, not polygonised (not for screenshots).
+  ParticleViewSettings pv;
+  pv.enabled = prefs.particleView && !settle;
+  pv.holding = ui.state().timeline.scrubbing || ui.state().playback.playing();
+  std::vector<ParticleDraw> particles = particleView_.takeMoving(frame, doc.project(), ectx.nowSec, pv);
   g.blobPreviews->update(doc.project(), frame,
                          {prefs.previewCoarseResolution, prefs.previewResolution, interactivePreviewThreads(),
                           r.backend.gpu, settle});
+  for (ParticleDraw& p : particleView_.takeUnready(frame, doc.project(), [&](const std::string& id) {
+         const gpu::ImplicitPreviewStatus st = g.blobPreviews->status(id);
+         return !st.refining && (st.hasMesh || !st.error.empty());
+       }))
+    particles.push_back(std::move(p));
+  r.particlesShown = particleView_.pending();
   if (out.pick) {
     const glm::vec2 local = out.pick->windowPos - out.viewport.min;
     const Ray ray = out.camera.rayThroughPixel(local.x, local.y, out.viewport.size);
@@ -130,6 +142,10 @@ ViewportFrameResult ViewportFrame::build(EditorGpu& g, EditorUI& ui, EditorConte
       gpu::addBlobHighlight(
           subtreeGuides(blobGuides(ha->blobTree, blobActorTimeSec(*ha, timeSec), ha->transform.matrix()), *hn), scene);
   }
+  for (const ParticleDraw& p : particles)
+    gpu::addParticleMarkers(p, gpu::packRgba(p.actorId == doc.selection.actorId ? glm::vec4(1.0f, 0.62f, 0.15f, 1.0f)
+                                                                               : glm::vec4(0.55f, 0.68f, 0.82f, 1.0f)),
+                            scene.lines);
   if (r.morphStageShown) {
     const size_t meshCount = scene.meshes.size(), generatedCount = scene.generatedMeshes.size();
     g.morphPreview->draw(scene, glm::mat4(1.0f), {0.62f, 0.62f, 0.62f, 1.0f}, doc.selection.actorId == morphSourceId);

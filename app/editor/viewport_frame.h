@@ -13,6 +13,7 @@
 #include "scene/animorphosis_scene.h"
 #include "scene/morph_preparer.h"
 #include "scene/morph_scene.h"
+#include "scene/particle_view.h"
 #include "scene/scene_frame.h"
 
 namespace animorph {
@@ -21,6 +22,7 @@ struct ViewportFrameResult {
   gpu::PreviewBackend backend;       // BlobTree previews'
   gpu::PreviewBackend morphBackend;  // the morph stage's (its stand-ins decide Auto on CPU devices)
   bool morphStageShown = false;      // the implicit preview is drawn this frame (B..C or a cross-fade)
+  bool particlesShown = false;       // some BlobTree is drawn as particles (it turns into its surface by itself)
 };
 
 class ViewportFrame {
@@ -51,6 +53,7 @@ class ViewportFrame {
   PreviewDevice previewDevice_;                   // the preference last seen (a switch retries the GPU)
   // The scene is drawn from these, alive until the frame is recorded: the gpu::Scene points into them.
   SceneFrame frame_;
+  ParticleView particleView_;  // particle systems as markers while their time changes
   std::vector<float> overlayWeights_;
 };
 

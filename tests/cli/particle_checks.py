@@ -3,6 +3,7 @@
 
 usage: particle_checks.py CLI RESOURCES_DIR
   make-statue-demo writes resources/demo/statue.animorph byte for byte;
+  simulate --convert --animorphosis --reform-into gathers a ball of particles into another ball;
   simulate --convert --animorphosis turns the blob demo's creature into
   particles, adds the gathering actor and the identity-linked animorphosis;
   simulate again with a seed is repeatable; bad input fails naming the actor
@@ -57,6 +58,32 @@ def main():
             outs.append(open(o2, "rb").read())
         if outs[0] != outs[1]:
             fail("the same seed gave different projects")
+        # Re-forming into another actor's shape: a ball of particles gathers into a second ball 3 m away.
+        def ball(aid, centre, radius):
+            return {"id": aid, "name": aid, "kind": "blobtree", "blobtree": {"threshold": 0.5, "root": {
+                "id": 1, "name": "ball", "type": "point",
+                "params": {"center": centre, "radius": radius, "intensity": 1.0, "stiffness": 2.0}}}}
+        two = os.path.join(tmp, "two.animorph")
+        json.dump({"format": "animorph", "version": 1, "name": "two balls",
+                   "actors": [ball("a", [0, 0.6, 0], 0.5), ball("b", [3, 0.6, 0], 0.7)]}, open(two, "w"))
+        reformed = os.path.join(tmp, "reformed.animorph")
+        r = run(cli, "simulate", two, "--actor", "a", "--convert", "300", "--animorphosis", "--reform-into", "b",
+                "--duration", "1", "-o", reformed)
+        if r.returncode != 0 or "re-forms into 'b'" not in r.stdout:
+            fail(f"simulate --reform-into exited {r.returncode}: {r.stdout} {r.stderr}")
+        p = json.load(open(reformed))
+        gathering = next(a for a in p["actors"] if a["id"] == p["animorphosis"]["target"])
+        ends = []
+        for n in gathering["blobtree"]["root"]["children"]:
+            keys = n["params"]["center"]["keys"]
+            ends.append(max(keys, key=lambda k: k["t"])["v"])
+        # b's visible radius with threshold 0.5, stiffness 2: 0.7 * sqrt(1 - 0.5^(1/2)) = 0.38 m.
+        far = max(((e[0] - 3) ** 2 + (e[1] - 0.6) ** 2 + e[2] ** 2) ** 0.5 for e in ends)
+        if len(ends) < 250 or far > 0.4:
+            fail(f"{len(ends)} particles gather into b, the farthest {far:.3f} m from its centre (expected <= 0.4)")
+        r = run(cli, "simulate", two, "--actor", "a", "--reform-into", "b", "-o", os.path.join(tmp, "bad.animorph"))
+        if r.returncode == 0 or "--animorphosis" not in r.stderr:
+            fail(f"--reform-into without --animorphosis: exit {r.returncode}, {r.stderr!r}")
         bad = os.path.join(tmp, "bad.animorph")
         r = run(cli, "simulate", out, "--actor", "nobody", "-o", bad)
         if r.returncode == 0 or "nobody" not in r.stderr or os.path.exists(bad):

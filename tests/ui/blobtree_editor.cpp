@@ -13,12 +13,6 @@ using namespace animorph::test;
 
 namespace {
 
-const Actor* blobActor(EditorHarness& h) {
-  for (const auto& a : h.doc().project().actors)
-    if (a.kind == ActorKind::BlobTree) return &a;
-  return nullptr;
-}
-
 // A new BlobTree actor through the outliner button; returns its id.
 std::string newBlob(EditorHarness& h) {
   h.clickWidget("outliner/new_blob");

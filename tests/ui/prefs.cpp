@@ -18,6 +18,7 @@ TEST_CASE("preferences round trip through the file", "[prefs]") {
   p.cameraScheme = CameraScheme::Blender;
   p.otherSchemeToo = false;
   p.autosaveIntervalSec = 30.0;
+  p.particleView = false;
   for (int i = 0; i < 10; ++i) addRecentFile(p, "/projects/p" + std::to_string(i) + ".animorph");
   addRecentFile(p, "/projects/p5.animorph");
   REQUIRE(p.recentFiles.size() == kMaxRecentFiles);
@@ -62,6 +63,11 @@ TEST_CASE("missing preferences give defaults, broken ones an error naming the ke
   bad = loadPreferences(path);
   REQUIRE_FALSE(bad.ok());
   CHECK(bad.error().find("prefs.json: autosaveIntervalSec: out of range") != std::string::npos);
+
+  write(R"({"particleView": "yes"})");
+  bad = loadPreferences(path);
+  REQUIRE_FALSE(bad.ok());
+  CHECK(bad.error().find("particleView: expected true or false") != std::string::npos);
 
   // Unknown keys (from a newer version) and partial files are fine.
   write(R"({"future": 1, "camera": {"scheme": "blender"}})");

@@ -14,6 +14,7 @@
 #include "widgets/drag_merge.h"
 #include "shell/layout.h"
 #include "inspector/morph_panel.h"
+#include "inspector/particles_panel.h"
 #include "viewport/standin_tool.h"
 
 namespace animorph {
@@ -29,6 +30,7 @@ struct InspectorState {
   std::string nameActorId;
   BlobInspectorState blob;  // a selected BlobTree node
   MorphPanelState morph;    // the morph's settings (nothing selected)
+  ParticlesPanelState particles;  // a BlobTree actor's Particles section
 };
 
 // Refused edits (BlobTree nodes) report to status.

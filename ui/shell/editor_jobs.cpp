@@ -1,8 +1,10 @@
 // EditorUI's long operations, run as background jobs (util/background_job.h): opening a project
-// (and loading its characters), opening or importing a glTF, and File > Export.... The work
+// (and loading its characters), opening or importing a glTF, File > Export..., and the Particles
+// section's Simulate and Convert to particles. The work
 // runs on the job's thread on copies and fills a result that only the UI thread applies, in
 // pollJob(), as one step: a new document, or one undoable command.
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 
@@ -10,6 +12,7 @@
 
 #include "bake/export_project.h"
 #include "doc/actor_commands.h"
+#include "doc/particle_commands.h"
 #include "doc/standin_commands.h"
 #include "io/gltf_import.h"
 #include "shell/editor_ui.h"
@@ -254,6 +257,78 @@ void EditorUI::startExport(EditorContext& ctx) {
         std::snprintf(secs, sizeof secs, "%.1f s", report->seconds);
         setStatus("Exported " + std::to_string(report->frames) + " frames to " + out + " in " + secs);
       });
+}
+
+void EditorUI::startParticleJob(ParticleRequest request, EditorContext& ctx) {
+  Document& d = doc(ctx);
+  const ParticlesPanelState& ps = st_.inspector.particles;
+  const Actor* actor = d.project().findActor(ps.actorId);
+  if (!actor || actor->kind != ActorKind::BlobTree) return;
+  // The work runs on a snapshot; its command replaces the actor's tree, so it is applied only if
+  // that tree is still the snapshot's when the work is done (else it would undo an edit made meanwhile).
+  auto snapshot = std::make_shared<const Project>(d.project());
+  const std::string actorId = ps.actorId, name = actor->name;
+  const bool simulate = request == ParticleRequest::Simulate;
+  const double timeSec = blobTreeTimeNow(d, *actor);
+  auto cmd = std::make_shared<std::unique_ptr<Command>>();
+  auto note = std::make_shared<std::string>();
+  // The work fills cmd and the status note; the settings' progress and cancel are the job's.
+  auto finish = [cmd, note](JobProgress& pr, Result<std::unique_ptr<Command>> c, std::string text) -> Status {
+    if (pr.cancelled()) return jobCancelled();
+    if (!c) return Error{c.error()};
+    *cmd = std::move(*c);
+    *note = std::move(text);
+    return Status::success();
+  };
+  auto bind = [](auto& s, JobProgress& pr, const char* stage) {
+    pr.setTotal(1.0);
+    pr.setStage(stage);
+    s.progress = [&pr](float f) { pr.setDone(f); };
+    s.cancel = pr.cancelFlag();
+  };
+  BackgroundJob::Work work;
+  if (simulate) {
+    work = [=, settings = ps.settings, bake = ps.bake](JobProgress& pr) -> Status {
+      ParticleSettings s = settings;
+      bind(s, pr, "simulating and baking");
+      ParticleBakeReport r;
+      char buf[160];
+      auto c = simulateParticlesCommand(*snapshot, actorId, s, bake, &r);
+      std::snprintf(buf, sizeof buf, "%zu particles, %d steps, %zu keys, largest error %.2g mm", r.particles, r.steps,
+                    r.keys, double(r.maxError) * 1e3);
+      return finish(pr, std::move(c), buf);
+    };
+  } else {
+    work = [=, count = ps.convertCount](JobProgress& pr) -> Status {
+      ConvertToParticlesSettings s;
+      s.count = count;
+      bind(s, pr, "filling the shape");
+      ConvertToParticlesReport r;
+      char buf[160];
+      auto c = convertToParticlesCommand(*snapshot, actorId, timeSec, s, &r);
+      std::snprintf(buf, sizeof buf, "%zu particles, spacing %.3g m, volume %.4g m^3 (shape %.4g m^3)", r.particles,
+                    double(r.spacing), r.particleVolume, r.shapeVolume);
+      return finish(pr, std::move(c), buf);
+    };
+  }
+  const std::string what = simulate ? "Simulate " + name : "Convert " + name + " to particles";
+  startJob(what, std::move(work), [this, snapshot, actorId, what, simulate, cmd, note](EditorContext& ctx, const Status& st) {
+    if (!st) {
+      showError(what + " failed:\n" + st.error());
+      return;
+    }
+    Document& d = doc(ctx);
+    const Actor* now = d.project().findActor(actorId);
+    const Actor* then = snapshot->findActor(actorId);
+    if (!now || !then || !(now->blobTree == then->blobTree)) {
+      showError(what + ": the actor was edited (or the project replaced) meanwhile; nothing was changed.\n"
+                "Run it again.");
+      return;
+    }
+    d.execute(std::move(*cmd));
+    if (!simulate) st_.inspector.particles.actorId.clear();  // a new tree: its settings are set up again
+    setStatus(what + ": " + *note);
+  });
 }
 
 }  // namespace animorph

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <utility>
 
 #include <imgui.h>
 
@@ -165,8 +166,12 @@ void EditorUI::draw(EditorContext& ctx) {
 
   drawOutlinerPanel(st_.layout.outliner, doc(ctx), ctx.assets, st_.outliner, actions, st_.status);
   st_.inspector.morph.runtime = ctx.morphRuntime;
+  st_.inspector.particles.busy = job_ != nullptr;
   drawInspectorPanel(st_.layout.inspector, doc(ctx), ctx.assets, st_.inspector, st_.drag, st_.status,
                      st_.standinTool);
+  if (ParticleRequest r = std::exchange(st_.inspector.particles.request, ParticleRequest::None);
+      r != ParticleRequest::None)
+    startParticleJob(r, ctx);
   drawTimelinePanel(st_.layout.timeline, doc(ctx), st_.playback, keyFrames(ctx), st_.timeline, st_.drag, actions);
   drawStatusBar(st_.layout.statusBar, doc(ctx), ctx.stats, st_.status);
   drawViewport(ctx);

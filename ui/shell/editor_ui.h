@@ -95,6 +95,8 @@ class EditorUI {
   void startRefitJob(EditorContext& ctx);
   void drawJob(EditorContext& ctx);
   void startExport(EditorContext& ctx);
+  // The Particles section's Simulate or Convert to particles, as a job; one undoable command.
+  void startParticleJob(ParticleRequest request, EditorContext& ctx);
   void handleDrop(const std::vector<std::string>& paths, EditorContext& ctx);
   void frameSelection(EditorContext& ctx);
   void addNodeToSelection(NodeType type, EditorContext& ctx);

@@ -37,6 +37,7 @@ std::string preferencesToJson(const Preferences& p) {
   j["previewResolution"] = p.previewResolution;
   j["previewCoarseResolution"] = p.previewCoarseResolution;
   j["previewDevice"] = previewDeviceName(p.previewDevice);
+  j["particleView"] = p.particleView;
   return j.dump(2) + "\n";
 }
 
@@ -119,6 +120,10 @@ Result<Preferences> preferencesFromJson(const std::string& text, const std::stri
     else if (d == "gpu") p.previewDevice = PreviewDevice::Gpu;
     else if (d == "cpu") p.previewDevice = PreviewDevice::Cpu;
     else fail("previewDevice", "expected \"auto\", \"gpu\" or \"cpu\"");
+  }
+  if (j.contains("particleView")) {
+    if (j["particleView"].is_boolean()) p.particleView = j["particleView"].get<bool>();
+    else fail("particleView", "expected true or false");
   }
   if (!err.empty()) {
     // "prefs.json: .autosaveIntervalSec" reads badly for top-level keys.

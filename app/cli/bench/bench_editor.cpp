@@ -3,99 +3,28 @@
 // stage (fps with Auto's choice of preview device and with the CPU worker), and the CPU an idle editor
 // uses (on-demand redraw against continuous). Runs `animorph --bench` / `--idle-bench`
 // in child processes, under xvfb-run when there is no display.
-#include <sys/resource.h>
-#include <unistd.h>
-
-#include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
 
 #include "cli/bench/bench.h"
+#include "cli/bench/bench_editor_run.h"
 
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string runCapture(const std::string& cmd) {
-  std::string out;
-  FILE* p = ::popen(cmd.c_str(), "r");
-  if (!p) return out;
-  std::array<char, 512> buf{};
-  while (std::fgets(buf.data(), buf.size(), p)) out += buf.data();
-  ::pclose(p);
-  return out;
-}
-
-// One run of `animorph --bench FRAMES ARGS` (FRAMES 0: `animorph ARGS`) on the demo with preferences
-// `prefsJson` (empty: defaults) in a private configuration directory; `env` is prepended.
-struct EditorRun {
-  double first = -1, p50 = -1, p95 = -1, max = -1;
-  double cpuSec = 0;  // CPU time of the child processes (the editor and, under xvfb-run, the X server)
-  size_t frames = 0;
-  double idleSec = -1, idleCpuMsPerSec = -1;  // --idle-bench
-  int idleFrames = 0;
-  std::string device, output;
-};
-
-EditorRun runEditor(const fs::path& editor, const fs::path& demo, const std::string& prefix, int frames,
-                    const std::string& args, const std::string& prefsJson, const std::string& env = "") {
-  EditorRun r;
-  std::error_code ec;
-  const fs::path cfg = fs::temp_directory_path() / ("animorph-bench-editor-" + std::to_string(::getpid()));
-  fs::create_directories(cfg / "animorph", ec);
-  if (!prefsJson.empty())
-    if (FILE* f = std::fopen((cfg / "animorph" / "prefs.json").c_str(), "w")) {
-      std::fputs(prefsJson.c_str(), f);
-      std::fclose(f);
-    }
-  const std::string bench = frames > 0 ? " --bench " + std::to_string(frames) : std::string();
-  const std::string cmd = "XDG_CONFIG_HOME='" + cfg.string() + "' " + env + " " + prefix + "'" + editor.string() +
-                          "' --size 1600x900" + bench + " " + args + " '" + demo.string() + "' 2>&1";
-  auto childCpu = [] {
-    rusage u{};
-    getrusage(RUSAGE_CHILDREN, &u);
-    return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-  };
-  const double cpu0 = childCpu();
-  r.output = runCapture(cmd);
-  r.cpuSec = childCpu() - cpu0;
-  fs::remove_all(cfg, ec);
-  const std::string& out = r.output;
-  if (auto pos = out.find("start to first frame:"); pos != std::string::npos)
-    std::sscanf(out.c_str() + pos, "start to first frame: %lf ms", &r.first);
-  char device[256] = {0};
-  if (auto pos = out.find("frame time over"); pos != std::string::npos)
-    std::sscanf(out.c_str() + pos, "frame time over %zu frames: p50 %lf ms, p95 %lf ms, max %lf ms (device: %255[^)])",
-                &r.frames, &r.p50, &r.p95, &r.max, device);
-  r.device = device;
-  if (auto pos = out.find("idle over"); pos != std::string::npos)
-    std::sscanf(out.c_str() + pos, "idle over %lf s: %d frames, CPU %lf ms per second", &r.idleSec, &r.idleFrames,
-                &r.idleCpuMsPerSec);
-  return r;
-}
+using animorph::bench::EditorRun;
+using animorph::bench::runEditor;
 
 std::vector<animorph::bench::Row> benchEditor(const animorph::bench::Options& opt) {
   std::vector<animorph::bench::Row> rows;
-  std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  const fs::path editor = self.parent_path() / "animorph";
   // The demo project lives in the source tree: ANIMORPH_DEMO overrides.
   const char* demoEnv = std::getenv("ANIMORPH_DEMO");
   fs::path demo = demoEnv ? fs::path(demoEnv) : fs::path(ANIMORPH_SOURCE_DIR) / "resources/demo/demo.animorph";
-  if (!fs::exists(editor) || !fs::exists(demo)) {
-    rows.push_back({"skipped: editor or demo project not found", 0.0, "", "", editor.string()});
-    return rows;
-  }
+  fs::path editor;
   std::string prefix;
-  if (!std::getenv("DISPLAY")) {
-    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) {
-      rows.push_back({"skipped: no DISPLAY and no xvfb-run", 0.0, "", "", ""});
-      return rows;
-    }
-    prefix = "xvfb-run -a -s '-screen 0 1600x900x24' ";
-  }
+  if (!animorph::bench::editorBenchSetup(demo, editor, prefix, rows)) return rows;
   const int frames = opt.quick ? 60 : 300;
   EditorRun play = runEditor(editor, demo, prefix, frames, "", "");
   if (play.first < 0 || play.p95 < 0) {

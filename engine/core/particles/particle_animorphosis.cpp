@@ -25,7 +25,9 @@ Result<ParticleAnimorphosis> makeParticleAnimorphosis(const BlobTree& particles,
                                                       const ParticleAnimorphosisSettings& s) {
   ParticleAnimorphosis out;
   out.exploding = particles;
-  out.gathering = particles;
+  out.gathering = s.gatheringRest ? *s.gatheringRest : particles;
+  if (identityPointLinks(out.gathering).links.size() != identityPointLinks(particles).links.size())
+    return Error{"gathering: the re-formed tree does not have the particles' points"};
   ParticleBakeOptions o;
   o.startSec = s.startSec;
   o.tolerance = s.tolerance;

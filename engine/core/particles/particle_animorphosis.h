@@ -2,11 +2,14 @@
 // Physically-based animorphosis (docs/particles.md): a shape made of particles
 // explodes (A(t): the explosion simulated forward from the shape) and re-forms
 // out of a swirling vortex (B(t): a vortex simulated forward from the same rest
-// positions, written backwards in time, so it ends at the rest positions). A and B
+// positions -- or from those of gatheringRest, another shape -- written backwards
+// in time, so it ends at the rest positions). A and B
 // are copies of the same particle tree, every particle linked to itself in the
 // correspondence graph (identity links), and the ordinary animorphosis morphs
 // them with s(t) over [startSec, startSec + duration]: at the start C is A at rest,
 // at the end B at rest.
+#include <optional>
+
 #include "animorph/correspondence.h"
 #include "blobtree/blob_tree.h"
 #include "particles/particle_tree.h"
@@ -19,6 +22,9 @@ struct ParticleAnimorphosisSettings {
   double startSec = 0.0;
   float tolerance = 3e-3f;     // bake tolerance of both (m)
   double quantum = 0.0;        // key rounding of both (ParticleBakeOptions)
+  // Re-forming into another shape: the same particles resting where B(t) ends (reformIntoShape,
+  // particles/particle_transport.h); empty: B ends where A starts.
+  std::optional<BlobTree> gatheringRest;
 };
 
 struct ParticleAnimorphosis {

@@ -9,6 +9,13 @@
 
 namespace animorph::test {
 
+// The document's first BlobTree actor, or null.
+inline const Actor* blobActor(EditorHarness& h) {
+  for (const auto& a : h.doc().project().actors)
+    if (a.kind == ActorKind::BlobTree) return &a;
+  return nullptr;
+}
+
 struct EditorFixture {
   TempDir dir;
   EditorHarness h;

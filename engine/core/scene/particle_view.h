@@ -1,0 +1,65 @@
+#pragma once
+// The viewport's fast view of particle systems (docs/particles.md): a BlobTree draw whose tree has
+// many point primitives (a converted or simulated shape, the statue demo's C(t)) is shown as its
+// particles -- each at its centre, the size of its visible radius -- while its time or its tree
+// changes (scrubbing, playing) and for holdSec after, and then until its polygonised surface has
+// caught up: the surface is not polygonised at every frame of a scrub, and a stale surface is not
+// shown in place of the moving particles. The renderer draws ParticleDraw as small markers.
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "doc/project.h"
+#include "particles/particle_tree.h"
+#include "scene/scene_frame.h"
+
+namespace animorph {
+
+struct ParticleViewSettings {
+  bool enabled = true;       // Preferences::particleView
+  size_t minParticles = 64;  // fewer point primitives: always the surface
+  double holdSec = 0.3;      // the surface is polygonised once the time has held this long
+  bool holding = false;      // the user holds the time (drags the timeline, plays): particles stay
+};
+
+// One draw's particles at its time, in the tree's space (model maps them to the world).
+struct ParticleDraw {
+  std::string actorId;
+  glm::mat4 model{1.0f};
+  std::vector<glm::vec3> centres;
+  std::vector<float> radii;  // visible radius of each (where a point alone reaches the threshold)
+};
+
+class ParticleView {
+ public:
+  // Before the surface previews are updated: takes out of frame.blobs (and returns) the draws of
+  // particle systems that moved less than holdSec before nowSec, so no surface is polygonised for them.
+  std::vector<ParticleDraw> takeMoving(SceneFrame& frame, const Project& project, double nowSec,
+                                       const ParticleViewSettings& settings);
+  // After the previews are updated: takes out (and returns) the held particle systems whose surface
+  // is not ready (surfaceReady(actorId) false: still computing its shape), which were moving before.
+  std::vector<ParticleDraw> takeUnready(SceneFrame& frame, const Project& project,
+                                        const std::function<bool(const std::string&)>& surfaceReady);
+  // Some draw was shown as particles by the last calls (it turns into its surface without input:
+  // keep drawing frames).
+  bool pending() const { return pending_; }
+
+ private:
+  struct Seen {
+    double treeTimeSec = 0.0;
+    const BlobTree* tree = nullptr;  // a draw's own tree (it changes by pointer)
+    double movedAt = -1e9;
+    bool waiting = false;            // held, its surface not shown yet
+  };
+  std::map<std::string, Seen> seen_;
+  bool pending_ = false;
+};
+
+// The particles of a draw's tree (its own, else the actor's) at its time; empty when the tree has
+// fewer than minParticles point primitives.
+ParticleDraw particleDraw(const BlobDraw& draw, const Project& project, size_t minParticles);
+
+}  // namespace animorph

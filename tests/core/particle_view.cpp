@@ -1,0 +1,111 @@
+// The viewport's particle view (scene/particle_view.h): which BlobTree draws are shown as particles.
+#include <catch2/catch.hpp>
+
+#include "scene/particle_view.h"
+#include "util/blob_builders.h"
+
+using namespace animorph;
+using namespace animorph::test;
+
+namespace {
+
+Project projectWithPoints(int points) {
+  std::vector<BlobNode> children;
+  for (int i = 0; i < points; ++i) children.push_back(pointNode(2 + i, glm::vec3(0.1f * float(i), 0.5f, 0.0f), 0.2f, 2.0f));
+  Actor a;
+  a.id = "cloud";
+  a.kind = ActorKind::BlobTree;
+  a.blobTree = treeOf(operatorNode(NodeType::Blend, 1, std::move(children)), 1.0f);
+  Project p;
+  p.actors.push_back(a);
+  return p;
+}
+
+SceneFrame frameAt(double treeTimeSec) {
+  SceneFrame f;
+  BlobDraw d;
+  d.actorId = "cloud";
+  d.treeTimeSec = treeTimeSec;
+  d.model = glm::mat4(2.0f);
+  d.model[3][3] = 1.0f;
+  f.blobs.push_back(d);
+  return f;
+}
+
+}  // namespace
+
+TEST_CASE("the particle view shows a particle system as particles while its time changes, then its surface",
+          "[particles][view]") {
+  const Project p = projectWithPoints(100);
+  ParticleView view;
+  ParticleViewSettings s;
+  auto never = [](const std::string&) { return false; };
+  auto always = [](const std::string&) { return true; };
+
+  // First seen: the surface.
+  SceneFrame f = frameAt(0.0);
+  CHECK(view.takeMoving(f, p, 0.0, s).empty());
+  CHECK(f.blobs.size() == 1);
+  CHECK(view.takeUnready(f, p, never).empty());
+  CHECK_FALSE(view.pending());
+
+  // The time changes: particles, no surface draw left for the previews.
+  f = frameAt(0.5);
+  auto moving = view.takeMoving(f, p, 1.0, s);
+  REQUIRE(moving.size() == 1);
+  CHECK(f.blobs.empty());
+  CHECK(moving[0].actorId == "cloud");
+  REQUIRE(moving[0].centres.size() == 100);
+  REQUIRE(moving[0].radii.size() == 100);
+  CHECK(moving[0].centres[3].x == Approx(0.3f));
+  CHECK(moving[0].radii[0] > 0.0f);
+  CHECK(moving[0].radii[0] < 0.2f);
+  CHECK(moving[0].model[0][0] == 2.0f);
+  CHECK(view.pending());
+
+  // Held for less than holdSec: still particles.
+  f = frameAt(0.5);
+  CHECK(view.takeMoving(f, p, 1.0 + 0.5 * s.holdSec, s).size() == 1);
+
+  // Held long enough: the previews get the draw; until its surface is ready it is still shown as particles.
+  f = frameAt(0.5);
+  CHECK(view.takeMoving(f, p, 2.0, s).empty());
+  CHECK(f.blobs.size() == 1);
+  CHECK(view.takeUnready(f, p, never).size() == 1);
+  CHECK(f.blobs.empty());
+  CHECK(view.pending());
+  f = frameAt(0.5);
+  CHECK(view.takeMoving(f, p, 2.1, s).empty());
+  CHECK(view.takeUnready(f, p, always).empty());
+  CHECK(f.blobs.size() == 1);
+  CHECK_FALSE(view.pending());
+  // Once shown, the surface stays (a later refinement does not bring the particles back).
+  f = frameAt(0.5);
+  CHECK(view.takeMoving(f, p, 2.2, s).empty());
+  CHECK(view.takeUnready(f, p, never).empty());
+
+  // Dragging the playhead without moving it (holding) keeps the particles.
+  s.holding = true;
+  f = frameAt(0.5);
+  CHECK(view.takeMoving(f, p, 3.0, s).size() == 1);
+
+  // Off: always the surface.
+  s.holding = false;
+  s.enabled = false;
+  f = frameAt(0.75);
+  CHECK(view.takeMoving(f, p, 4.0, s).empty());
+  CHECK(f.blobs.size() == 1);
+}
+
+TEST_CASE("a BlobTree of few point primitives is never shown as particles", "[particles][view]") {
+  const Project p = projectWithPoints(10);
+  ParticleView view;
+  ParticleViewSettings s;
+  for (int k = 0; k < 3; ++k) {
+    SceneFrame f = frameAt(0.1 * k);
+    CHECK(view.takeMoving(f, p, 0.1 * k, s).empty());
+    CHECK(f.blobs.size() == 1);
+  }
+  CHECK(particleDraw(frameAt(0.0).blobs[0], p, 64).centres.empty());
+  CHECK(particleDraw(frameAt(0.0).blobs[0], p, 10).centres.size() == 10);
+}

@@ -1,0 +1,38 @@
+#pragma once
+// The inspector's Particles section of a BlobTree actor (docs/particles.md, docs/editor.md):
+// *Convert to particles* (the count chosen here) for any BlobTree actor, and for one whose tree
+// has point primitives (a particle system) the simulation's forces, seed, rate, start and
+// duration with a Simulate button. The panel only edits its settings and asks: EditorUI runs the
+// asked operation as a background job (progress, Cancel) and applies its result as one undoable
+// command (doc/particle_commands.h).
+#include <string>
+
+#include "doc/document.h"
+#include "particles/particle_tree.h"
+
+namespace animorph {
+
+enum class ParticleRequest { None, Simulate, Convert };
+
+struct ParticlesPanelState {
+  std::string actorId;        // whose tree the settings below were set up for
+  ParticleSettings settings;  // forces, seed, rate, duration (progress and cancel unused here)
+  ParticleBakeOptions bake;   // start time, tolerance, reverse
+  int convertCount = 4000;    // Convert to particles
+  bool busy = false;          // set by EditorUI: a background job runs (the buttons are disabled)
+  // What the user asked for this frame; EditorUI takes it (and sets it back to None).
+  ParticleRequest request = ParticleRequest::None;
+};
+
+// The number of point primitives of tree (its particles).
+size_t countParticles(const BlobTree& tree);
+
+// Settings for a tree seen for the first time: the bake starts at the first key of its points'
+// centre tracks and lasts until the last one (3 s when they are not animated), the explosion
+// at the particles' centroid at the start.
+void resetParticleSettings(const BlobTree& tree, ParticlesPanelState& st);
+
+// Draws the section (inside the inspector window) for actorId.
+void drawParticlesSection(const Document& doc, const std::string& actorId, ParticlesPanelState& st);
+
+}  // namespace animorph
