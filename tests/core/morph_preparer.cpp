@@ -79,7 +79,7 @@ TEST_CASE("morph preparer: prepares off the calling thread and keeps the previou
   CHECK(waited->setup.markers.c == edited.morph.markers.c);
 }
 
-TEST_CASE("morph preparer: a failed preparation gives its error and no runtime; no morph gives null", "[morph]") {
+TEST_CASE("morph preparer: a failed preparation gives its error and no runtime, no morph gives null", "[morph]") {
   const test::DemoMorph& demo = test::demoMorph();
   MorphPreparer mp;
   AssetCache assets;
