@@ -116,7 +116,7 @@ std::vector<Row> benchExport(const bench::Options& opt) {
     ++volumes;
   }
   if (!st) return {{"skipped", 0, "", "", st.error()}};
-  std::snprintf(note, sizeof note, "%d implicit frames of %d at %d^3: sample %.2f s + write %.0f ms (%.1f MB, %.0fk voxels/frame)",
+  std::snprintf(note, sizeof note, "%d implicit frames of %d at %d^3: sample %.2f s + redistance, write %.0f ms (%.1f MB, %.0fk voxels sampled/frame)",
                 volumes, count, res, sampleMs / 1000.0, vdbWriteMs, vdbBytes / 1e6,
                 volumes ? double(voxels) / volumes / 1000.0 : 0.0);
   rows.push_back({"demo -> VDB level sets", (sampleMs + vdbWriteMs) / 1000.0, "s", "", note});

@@ -13,6 +13,7 @@
 #include "bake/export_project.h"
 #include "bake/frame_volume.h"
 #include "doc/animorphosis_project.h"
+#include "doc/project_io.h"
 #include "io/vdb_export.h"
 #include "util/animorph_fixtures.h"
 #include "util/morph_fixtures.h"
@@ -192,6 +193,13 @@ TEST_CASE("vdb export: an export writes a level set per implicit frame, bad path
   const std::string dir = (tmp.path() / "volumes").string();
   CHECK(r->files == std::vector<std::string>{dir + "/morph_me_0040.vdb", dir + "/morph_me_0041.vdb"});
   CHECK(readLevelSet(r->files[0])->getGridClass() == openvdb::GRID_LEVEL_SET);
+  // The format is saved in the project as "vdb".
+  Project saved = p;
+  saved.exportSettings = s;
+  auto back = projectFromJson(projectToJson(saved), "p.animorph");
+  REQUIRE(back.ok());
+  CHECK(back->exportSettings.format == ExportFormat::VdbSequence);
+  CHECK(projectToJson(saved).find("\"vdb\"") != std::string::npos);
 
   // Unwritable: the folder of the frames is an existing file.
   const std::string blocker = tmp.file("a_file");
