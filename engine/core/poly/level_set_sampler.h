@@ -2,9 +2,10 @@
 // A narrow-band signed distance sampled from an implicit field, on the polygoniser's grid: the
 // voxels of a level set (io/vdb_export.h writes them as an OpenVDB file). docs/export.md
 // describes the conversion: the field value f = p - T (>= 0 inside) is not a distance; near its
-// zero set the first-order estimate d = -f / |grad f| is one (exact for a linear field; within
-// 0.1-0.25 voxel of the real distance next to the surface, up to a voxel off 3 voxels away:
-// io/vdb_export.h redistances the far part of the band). World units, negative inside.
+// zero set the first-order estimate d = -f / |grad f| is one (exact for a linear field; measured
+// within 0.1-0.25 voxel of the real distance next to the surface at 32^3-64^3, but up to 1-1.5
+// voxels off 3 voxels away: io/vdb_export.h redistances that part of the band). World units,
+// negative inside.
 #include <atomic>
 #include <vector>
 
