@@ -15,16 +15,19 @@ ROOT=$PWD
 # "packages: run.sh installs every header, ..." (tests/packages/) fails naming what is missing.
 # libxrandr-dev: GLFW's native-access header (X11 presentation) includes X11/extensions/Xrandr.h.
 # ffmpeg: animorph-cli bake --mp4 encodes the playblast with it (and the test reads it with ffprobe).
+# libopenvdb-dev: the .vdb level sets (engine/core/io/vdb_export.cpp); its headers include Boost's
+# (libboost-dev), which it does not depend on.
 BUILD_PACKAGES=(build-essential cmake ninja-build pkg-config
   libimgui-dev libglfw3-dev libglm-dev libvulkan-dev mesa-vulkan-drivers
   glslang-tools libtinygltf-dev nlohmann-json3-dev libstb-dev libtbb-dev
-  libx11-dev libxext-dev libxrandr-dev ffmpeg)
+  libx11-dev libxext-dev libxrandr-dev ffmpeg libopenvdb-dev libboost-dev)
 # nodejs, npm: the Khronos glTF-Validator (an npm package) checks the glTF files we write;
 # blender (with python3-numpy, which its glTF importer needs) imports them in the export test.
 # slurm-wlm (slurmctld, slurmd, the client commands) and munge: the farm test starts a one-node
 # Slurm cluster on localhost and bakes the demo on it (animorph-cli farm slurm).
+# libopenvdb-tools: vdb_print reads the .vdb files back in the export test.
 TEST_PACKAGES=(catch2 vulkan-validationlayers xvfb xauth xdotool imagemagick
-  assimp-testmodels python3 nodejs blender python3-numpy slurm-wlm munge)
+  assimp-testmodels python3 nodejs blender python3-numpy slurm-wlm munge libopenvdb-tools)
 # clang and its runtimes (libFuzzer, ASan, UBSan: libclang-rt-dev) build the fuzz targets
 # (tests/fuzz), which ./run.sh test runs too.
 FUZZ_PACKAGES=(clang libclang-rt-dev)

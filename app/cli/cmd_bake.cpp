@@ -1,6 +1,6 @@
-// animorph-cli bake PROJECT --frames A:B --res N -o DIR [--format ...] [--gltf FILE.glb] [--png] [--jobs J]:
-// the morph's output meshes as a PLY/OBJ sequence and/or one animated glTF
-// (and optionally rendered PNG frames), frame by frame.
+// animorph-cli bake PROJECT --frames A:B --res N -o DIR [--format ...] [--gltf FILE.glb] [--vdb DIR] [--png] [--jobs J]:
+// the morph's output meshes as a PLY/OBJ sequence and/or one animated glTF, its implicit frames
+// as OpenVDB level sets (and optionally rendered PNG frames), frame by frame.
 #include <unistd.h>
 
 #include <atomic>
@@ -15,6 +15,7 @@
 
 #include "animorph/evaluate_generic.h"
 #include "bake/frame_files.h"
+#include "bake/frame_volume.h"
 #include "cli/cli_command.h"
 #include "cli/morph_method_option.h"
 #include "cli/playblast.h"
@@ -26,6 +27,7 @@
 #include "morph/morph_continuity.h"
 #include "morph/morph_runtime.h"
 #include "io/gltf_sequence_export.h"
+#include "io/vdb_export.h"
 #include "poly/mesh_io.h"
 #if ANIMORPH_HAS_GPU
 #include "vulkan/context.h"
@@ -76,6 +78,7 @@ class FrameSink {
     bool plys = true, objs = false, png = false;
     bool keep = false;  // keep every frame's mesh (for --png and --mp4)
     std::string gltf;  // empty: none
+    fs::path vdb;      // the folder of the level sets; empty: none
     double fps = 24.0;
     int first = 0, count = 0;
   };
@@ -111,8 +114,31 @@ class FrameSink {
     return {};
   }
 
-  // After every frame: writes the glTF (atomically) and says so; "" or the error.
+  bool wantsVolumes() const { return !o_.vdb.empty(); }
+  // Frame first + k's level set (null: the frame has no implicit field): writes
+  // VDB/NAME_####.vdb; "" or the error.
+  std::string addVolume(int k, const LevelSetVoxels* band) {
+    if (!band) {
+      ++volumesSkipped_;
+      return {};
+    }
+    if (Status st = writeVdbLevelSet(*band, frameFileName(o_.vdb.string(), o_.prefix, o_.first + k, "vdb")); !st)
+      return st.error();
+    ++volumesWritten_;
+    return {};
+  }
+
+  // After every frame: says what went into the VDB folder, writes the glTF (atomically) and says
+  // so; "" or the error.
   std::string finish() {
+    if (!o_.vdb.empty()) {
+      std::printf("wrote %d OpenVDB level sets into %s (%s_####.vdb)", int(volumesWritten_), o_.vdb.c_str(),
+                  o_.prefix.c_str());
+      if (volumesSkipped_ > 0)
+        std::printf("; %d frames are skinned meshes without an implicit field: no .vdb for them", int(volumesSkipped_));
+      std::printf("\n");
+      if (volumesWritten_ == 0) return "--vdb: no frame of the range has an implicit field (the morph's B->C stage)";
+    }
     if (!sequence_) return {};
     if (!sequenceError_.empty()) return sequenceError_;
     const auto g0 = std::chrono::steady_clock::now();
@@ -130,6 +156,7 @@ class FrameSink {
   std::string into() const {
     std::string s = o_.plys || o_.objs || o_.png ? o_.dir.string() : std::string();
     if (!o_.gltf.empty()) s += (s.empty() ? "" : " and ") + o_.gltf;
+    if (!o_.vdb.empty()) s += (s.empty() ? "" : " and ") + o_.vdb.string();
     return s;
   }
 
@@ -141,6 +168,7 @@ class FrameSink {
   std::vector<char> done_;
   int next_ = 0;
   std::string sequenceError_;
+  std::atomic<int> volumesWritten_{0}, volumesSkipped_{0};
 
  public:
   std::vector<TriangleMesh> kept;  // with keep: every frame's mesh, for renderPictures
@@ -161,8 +189,14 @@ int bakeAnimorphosis(const Project& p, const std::string& project, FrameSink& si
     PolygonizeSettings ps;
     ps.resolution = res;
     ps.threads = jobs > 1 ? 1 : 0;
-    auto r = polygonize(compileGeneric(*c, timing, p.timeline.frameToSec(first + k)), ps);
+    const FieldProgram field = compileGeneric(*c, timing, p.timeline.frameToSec(first + k));
+    auto r = polygonize(field, ps);
     if (!r) return r.error();
+    if (sink.wantsVolumes()) {
+      auto band = fieldLevelSet(field, res, ps.threads, nullptr);
+      if (!band) return band.error();
+      if (std::string e = sink.addVolume(k, &**band); !e.empty()) return e;
+    }
     triangles += r->mesh.triangleCount();
     return sink.add(k, std::move(r->mesh));
   });
@@ -182,7 +216,7 @@ int bakeAnimorphosis(const Project& p, const std::string& project, FrameSink& si
 }
 
 int runBake(const std::vector<std::string>& args) {
-  std::string project, output, frames, name, gltf, mp4, size = "1280x720", format = "ply";
+  std::string project, output, frames, name, gltf, vdb, mp4, size = "1280x720", format = "ply";
   int res = 48, jobs = 1;
   bool png = false, gpu = false, burnIn = false;
   cli::MorphMethodOptions methods;
@@ -190,7 +224,7 @@ int runBake(const std::vector<std::string>& args) {
     const std::string& a = args[i];
     auto value = [&]() -> const std::string* { return i + 1 < args.size() ? &args[++i] : nullptr; };
     if (a == "-o" || a == "--output" || a == "--frames" || a == "--res" || a == "--jobs" || a == "--name" ||
-        a == "--format" || a == "--gltf" || a == "--mp4" || a == "--size") {
+        a == "--format" || a == "--gltf" || a == "--vdb" || a == "--mp4" || a == "--size") {
       const std::string* v = value();
       if (!v) return cli::fail("bake", a + " needs a value", 2);
       if (a == "--frames") frames = *v;
@@ -199,6 +233,7 @@ int runBake(const std::vector<std::string>& args) {
       else if (a == "--name") name = *v;
       else if (a == "--format") format = *v;
       else if (a == "--gltf") gltf = *v;
+      else if (a == "--vdb") vdb = *v;
       else if (a == "--mp4") mp4 = *v;
       else if (a == "--size") size = *v;
       else output = *v;
@@ -237,8 +272,8 @@ int runBake(const std::vector<std::string>& args) {
   if (std::sscanf(size.c_str(), "%dx%d%c", &width, &height, &sizeTail) != 2 || width < 16 || height < 16 ||
       width > 8192 || height > 8192 || width % 2 || height % 2)
     return cli::fail("bake", "--size: expected WxH, even numbers 16..8192 (H.264 needs even sizes), got '" + size + "'", 2);
-  if (project.empty() || frames.empty() || (needDir && output.empty()) || (!needDir && gltf.empty() && mp4.empty()))
-    return cli::fail("bake", "usage: bake PROJECT --frames A:B --res N -o DIR [--format ply|obj|none] [--gltf FILE.glb] (see --help)", 2);
+  if (project.empty() || frames.empty() || (needDir && output.empty()) || (!needDir && gltf.empty() && vdb.empty() && mp4.empty()))
+    return cli::fail("bake", "usage: bake PROJECT --frames A:B --res N -o DIR [--format ply|obj|none] [--gltf FILE.glb] [--vdb DIR] (see --help)", 2);
   if (!name.empty() && framePrefix(name) != name)
     return cli::fail("bake", "--name: use letters, digits, '.', '-' and '_' only, got '" + name + "'", 2);
   int first = 0, last = 0;
@@ -262,6 +297,8 @@ int runBake(const std::vector<std::string>& args) {
   if (ec) return cli::fail("bake", output + ": cannot create directory: " + ec.message());
   if (!gltf.empty() && fs::path(gltf).has_parent_path()) fs::create_directories(fs::path(gltf).parent_path(), ec);
   if (ec) return cli::fail("bake", gltf + ": cannot create its directory: " + ec.message());
+  if (!vdb.empty()) fs::create_directories(vdb, ec);
+  if (ec) return cli::fail("bake", vdb + ": cannot create the VDB directory: " + ec.message());
   const int count = last - first + 1;
   PictureOptions pics;
   pics.png = png;
@@ -272,7 +309,7 @@ int runBake(const std::vector<std::string>& args) {
   pics.height = uint32_t(height);
   if (!mp4.empty() && fs::path(mp4).has_parent_path()) fs::create_directories(fs::path(mp4).parent_path(), ec);
   if (ec) return cli::fail("bake", mp4 + ": cannot create its directory: " + ec.message());
-  FrameSink sink({output, prefix, writePlys, writeObjs, png, png || !mp4.empty(), gltf, p->timeline.fps, first, count});
+  FrameSink sink({output, prefix, writePlys, writeObjs, png, png || !mp4.empty(), gltf, vdb, p->timeline.fps, first, count});
   if (!p->morph.enabled() && p->animorphosis.enabled()) {
     if (gpu) return cli::fail("bake", "--gpu: an animorphosis is baked on the CPU (run without --gpu)", 2);
     return bakeAnimorphosis(*p, project, sink, first, last, res, jobs, pics, output);
@@ -357,6 +394,11 @@ int runBake(const std::vector<std::string>& args) {
       ++stageCount[size_t(fr->stage)];
     }
     measures[size_t(k)] = measureFrame(f, fr->mesh, nullptr);
+    if (sink.wantsVolumes()) {
+      auto band = morphFrameLevelSet(**rt, timeSec, res, fs.threads, nullptr);
+      if (!band) return band.error();
+      if (std::string e = sink.addVolume(k, *band ? &**band : nullptr); !e.empty()) return e;
+    }
     return sink.add(k, std::move(fr->mesh));
   });
   if (!error.empty()) return cli::fail("bake", error);
@@ -396,9 +438,9 @@ int runBake(const std::vector<std::string>& args) {
 
 }  // namespace
 
-ANIMORPH_CLI_COMMAND("bake", "bake a project's morph into mesh sequences, an animated glTF (and PNG frames)",
+ANIMORPH_CLI_COMMAND("bake", "bake a project's morph into mesh sequences, an animated glTF, VDB level sets (and PNG frames)",
                      "usage: animorph-cli bake PROJECT.animorph --frames A:B --res N -o DIR [--format ply|obj|ply,obj|none]\n"
-                     "                         [--obj] [--name NAME] [--gltf FILE.glb] [--png] [--mp4 FILE.mp4 [--size WxH]\n"
+                     "                         [--obj] [--name NAME] [--gltf FILE.glb] [--vdb DIR] [--png] [--mp4 FILE.mp4 [--size WxH]\n"
                      "                         [--burn-in]] [--gpu] [--jobs J] [--method M [--correspondence-blend B]]\n"
                      "  Bakes every frame A..B: the source's skinned mesh before marker A, its\n"
                      "  collapse onto the stand-in A->B, the polygonised implicit morph B->C (N cells\n"
@@ -417,6 +459,11 @@ ANIMORPH_CLI_COMMAND("bake", "bake a project's morph into mesh sequences, an ani
                      "               on its frame by STEP scale keys 0 -> 1 -> 0 at frame/fps seconds\n"
                      "               (fps of the project's timeline), plus KHR_node_visibility keys\n"
                      "               (optional extension). Written atomically.\n"
+                     "  --vdb DIR    also DIR/NAME_####.vdb: the implicit field of every frame that has\n"
+                     "               one (B->C; a BlobTree side; an animorphosis' C(t)) as an OpenVDB\n"
+                     "               level set: grid 'surface', narrow band of 3 voxels on the grid of\n"
+                     "               --res, signed distance in world units, negative inside (see\n"
+                     "               docs/export.md). Skinned-mesh frames have no field: no file\n"
                      "  --png        also DIR/NAME_####.png, rendered offscreen (Vulkan; set\n"
                      "               ANIMORPH_VALIDATION=1 for validation layers)\n"
                      "  --mp4 FILE   also a playblast: every frame rendered offscreen (Vulkan) at --size\n"

@@ -17,6 +17,7 @@ usage: cli_checks.py MODE CLI [ARGS...]
 """
 import json
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -29,6 +30,26 @@ def run(cli, *args):
 def fail(msg):
     print("FAIL:", msg)
     sys.exit(1)
+
+
+def blender_or_skip():
+    """The blender program; exits 77 (ctest: skipped) when it is not installed."""
+    blender = shutil.which("blender")
+    if not blender:
+        print("blender not installed: skipped")
+        sys.exit(77)
+    return blender
+
+
+def run_blender(blender, script, *args, timeout=600):
+    """Runs SCRIPT inside Blender headless with ARGS after '--'. Debian's Blender embeds the system
+    Python and finds its standard library (and numpy) through the first python3 on PATH: a
+    pyenv/venv one must not shadow it."""
+    env = dict(os.environ, PATH=os.pathsep.join(["/usr/bin", "/bin", os.environ.get("PATH", "")]))
+    env.pop("PYTHONHOME", None)
+    env.pop("PYTHONPATH", None)
+    return subprocess.run([blender, "-b", "--factory-startup", "-P", script, "--", *args],
+                          capture_output=True, text=True, timeout=timeout, env=env)
 
 
 def info_json(cli, path):

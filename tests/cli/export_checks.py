@@ -18,14 +18,13 @@ usage: export_checks.py MODE CLI PROJECT [ARGS...]
 """
 import json
 import os
-import shutil
 import struct
 import subprocess
 import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cli_checks import fail, read_ply_header as ply_counts, run  # noqa: E402 (the script beside this one)
+from cli_checks import fail, read_ply_header as ply_counts, run, blender_or_skip, run_blender  # noqa: E402 (the script beside this one)
 
 FRAMES = (40, 215)  # collapse, morph, expand and target; the gear's 4 s turn repeats from frame 204
 RES = "16"
@@ -240,22 +239,13 @@ def mode_validator(cli, project, tools):
 
 
 def mode_blender(cli, project, script):
-    blender = shutil.which("blender")
-    if not blender:
-        print("blender not installed: skipped")
-        sys.exit(77)
+    blender = blender_or_skip()
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "ply")
         glb = os.path.join(tmp, "morph.glb")
         bake(cli, project, out, "--gltf", glb, "--jobs", "2")
         result = os.path.join(tmp, "blender.json")
-        # Debian's Blender embeds the system Python and finds its standard library
-        # (and numpy) through the first python3 on PATH: keep a pyenv/venv one from shadowing it.
-        env = dict(os.environ, PATH=os.pathsep.join(["/usr/bin", "/bin", os.environ.get("PATH", "")]))
-        env.pop("PYTHONHOME", None)
-        env.pop("PYTHONPATH", None)
-        r = subprocess.run([blender, "-b", "--factory-startup", "-P", script, "--", glb, result],
-                           capture_output=True, text=True, timeout=600, env=env)
+        r = run_blender(blender, script, glb, result)
         if r.returncode != 0 or not os.path.exists(result):
             fail(f"blender exited {r.returncode}: {r.stdout[-2000:]}{r.stderr[-2000:]}")
         with open(result) as fh:

@@ -1,7 +1,7 @@
 """File > Export... in the real editor: the demo morph exported as a PLY sequence at a high
 resolution is cancelled from the progress panel: no output file is left and the editor stays
 responsive; a short glTF export then runs to the end and writes its file; the settings are kept
-in the saved project.
+in the saved project; OpenVDB level sets of two frames are written.
 
 usage: test_export_dialog.py EDITOR_BIN DEMO_DIR"""
 import json
@@ -74,6 +74,22 @@ try:
         saved = json.load(f)["export"]
     g.check(saved["format"] == "gltf" and saved["first"] == 40 and saved["last"] == 44 and saved["output"] == glb,
             f"the last settings are saved in the project: {saved}")
+
+    # OpenVDB level sets of two B->C frames (the format comes from the shared format table).
+    vdb_dir = os.path.join(work, "vdb")
+    open_export(ed)
+    ed.click_widget("export/format")
+    ed.click_widget("export/format/vdb")
+    set_field(ed, "export/first", "60")
+    set_field(ed, "export/last", "61")
+    set_field(ed, "export/output", vdb_dir)
+    ed.screenshot(os.path.join(os.environ.get("ANIMORPH_GUI_SHOTS", work), "dialog_vdb.png"))
+    ed.click_widget("export/export")
+    want = ["demo_0060.vdb", "demo_0061.vdb"]
+    m = ed.wait_until(lambda m: m.get("job", "x") == "" and os.path.isdir(vdb_dir) and sorted(os.listdir(vdb_dir)) == want,
+                      "the VDB export writes a level set per frame", timeout=120)
+    g.check(all(os.path.getsize(os.path.join(vdb_dir, f)) > 1000 for f in want), f"{want} written: {m['status']!r}")
+    ed.key("ctrl+s")  # the export's settings are a change of the project
     g.xdo("key", "--clearmodifiers", "ctrl+q")
     rc = ed.wait_exit()
     g.check(rc == 0, f"the editor quits cleanly with no validation errors (exit {rc})")

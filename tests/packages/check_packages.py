@@ -49,6 +49,7 @@ PROGRAMS = {
     "npm": "glTF-Validator test (installs gltf-validator)",
     "timeout": "glTF-Validator test",
     "blender": "export test (imports the animated glTF headless)",
+    "vdb_print": "VDB export test (tests/cli/export_checks.py vdb)",
     "clang++": "fuzz targets (./run.sh fuzz, ./run.sh test: tests/fuzz)",
     "munged": "farm test (tests/cli/farm_slurm_check.py: MUNGE for the test's Slurm cluster)",
     "slurmctld": "farm test (the test's Slurm controller)",

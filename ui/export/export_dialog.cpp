@@ -103,6 +103,8 @@ ExportDialogChoice drawExportDialog(const Document& doc, ExportDialogState& st) 
   if (s.format != ExportFormat::GltfAnimated)
     ImGui::TextDisabled("Frames are written as %s_####.%s in that folder.", framePrefix(p.name).c_str(),
                         exportFormatName(s.format));
+  if (s.format == ExportFormat::VdbSequence)
+    ImGui::TextDisabled("Level sets of the implicit frames only (B->C); skinned-mesh frames get no file.");
   if (!st.error.empty()) {
     ImGui::PushTextWrapPos(480.0f);
     ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", st.error.c_str());

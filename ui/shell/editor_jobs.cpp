@@ -255,7 +255,11 @@ void EditorUI::startExport(EditorContext& ctx) {
         }
         char secs[32];
         std::snprintf(secs, sizeof secs, "%.1f s", report->seconds);
-        setStatus("Exported " + std::to_string(report->frames) + " frames to " + out + " in " + secs);
+        const std::string skipped = report->framesWithoutField > 0
+                                        ? " (" + std::to_string(report->framesWithoutField) +
+                                              " skinned-mesh frames have no level set)"
+                                        : std::string();
+        setStatus("Exported " + std::to_string(report->frames) + " frames to " + out + " in " + secs + skipped);
       });
 }
 

@@ -1,16 +1,19 @@
 // Benchmark of exporting the demo morph: every frame of the 145-frame demo
 // baked at 64^3 and written as one animated glTF, with the same frames written
-// as a PLY sequence as the baseline in the same run.
+// as a PLY sequence as the baseline in the same run; and its implicit (B->C)
+// frames as OpenVDB level sets, against baking and writing them as PLY.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 
+#include "bake/frame_volume.h"
 #include "cli/bench/bench.h"
 #include "cli/bench/bench_demo_project.h"
 #include "cli/bench/bench_scratch_dir.h"
 #include "doc/project_io.h"
 #include "io/gltf_sequence_export.h"
+#include "io/vdb_export.h"
 #include "morph/morph_runtime.h"
 #include "poly/mesh_io.h"
 
@@ -41,12 +44,15 @@ std::vector<Row> benchExport(const bench::Options& opt) {
   // Bake: the frames in order, each polygonised on all threads.
   auto t0 = std::chrono::steady_clock::now();
   std::vector<TriangleMesh> meshes;
+  std::vector<double> frameBakeMs;
   for (int f = first; f <= last; ++f) {
+    const auto f0 = std::chrono::steady_clock::now();
     MorphFrameSettings s;
     s.resolution = res;
     auto fr = evaluateMorphFrame(**rt, project->timeline.frameToSec(f), s);
     if (!fr) return {{"skipped", 0, "", "", "frame " + std::to_string(f) + ": " + fr.error()}};
     meshes.push_back(std::move(fr->mesh));
+    frameBakeMs.push_back(sinceMs(f0));
   }
   const double bakeMs = sinceMs(t0);
 
@@ -69,11 +75,14 @@ std::vector<Row> benchExport(const bench::Options& opt) {
   // Baseline: the same frames as a PLY sequence.
   t0 = std::chrono::steady_clock::now();
   double plyBytes = 0.0;
+  std::vector<double> framePlyMs;
   for (int k = 0; k < count; ++k) {
+    const auto f0 = std::chrono::steady_clock::now();
     char name[32];
     std::snprintf(name, sizeof name, "demo_%04d.ply", first + k);
     if (Status p = writePly(meshes[size_t(k)], (dir / name).string()); !p) st = p;
     plyBytes += double(fs::file_size(dir / name, ec));
+    framePlyMs.push_back(sinceMs(f0));
   }
   const double plyMs = sinceMs(t0);
   if (!st) return {{"skipped", 0, "", "", st.error()}};
@@ -85,9 +94,38 @@ std::vector<Row> benchExport(const bench::Options& opt) {
   std::snprintf(note, sizeof note, "baseline: the same frames as %d PLY files %.0f ms (%.1f MB): %.2fx", count, plyMs,
                 plyBytes / 1e6, gltfMs / plyMs);
   rows.push_back({"write the glTF", gltfMs, "ms", "", note});
+
+  // The implicit frames as VDB level sets (sampled from the field, then written); baseline: the
+  // same frames baked (polygonised) and written as PLY above.
+  double sampleMs = 0.0, vdbWriteMs = 0.0, vdbBytes = 0.0, meshMs = 0.0;
+  int volumes = 0;
+  size_t voxels = 0;
+  for (int k = 0; k < count && st; ++k) {
+    t0 = std::chrono::steady_clock::now();
+    auto band = morphFrameLevelSet(**rt, project->timeline.frameToSec(first + k), res, 0, nullptr);
+    if (!band) return {{"skipped", 0, "", "", "frame " + std::to_string(first + k) + ": " + band.error()}};
+    if (!*band) continue;  // a skinned-mesh frame: no field
+    sampleMs += sinceMs(t0);
+    t0 = std::chrono::steady_clock::now();
+    const fs::path vdb = dir / ("demo_" + std::to_string(first + k) + ".vdb");
+    st = writeVdbLevelSet(**band, vdb.string());
+    vdbWriteMs += sinceMs(t0);
+    vdbBytes += double(fs::file_size(vdb, ec));
+    voxels += (*band)->index.size();
+    meshMs += frameBakeMs[size_t(k)] + framePlyMs[size_t(k)];
+    ++volumes;
+  }
+  if (!st) return {{"skipped", 0, "", "", st.error()}};
+  std::snprintf(note, sizeof note, "%d implicit frames of %d at %d^3: sample %.2f s + redistance, write %.0f ms (%.1f MB, %.0fk voxels sampled/frame)",
+                volumes, count, res, sampleMs / 1000.0, vdbWriteMs, vdbBytes / 1e6,
+                volumes ? double(voxels) / volumes / 1000.0 : 0.0);
+  rows.push_back({"demo -> VDB level sets", (sampleMs + vdbWriteMs) / 1000.0, "s", "", note});
+  std::snprintf(note, sizeof note, "baseline: the same %d frames polygonised + written as PLY %.2f s: VDB %.2fx", volumes,
+                meshMs / 1000.0, meshMs > 0.0 ? (sampleMs + vdbWriteMs) / meshMs : 0.0);
+  rows.push_back({"demo -> PLY (same frames)", meshMs / 1000.0, "s", "", note});
   return rows;
 }
 
 }  // namespace
 
-ANIMORPH_BENCH("export", "bake the demo morph and write it as an animated glTF (baseline: a PLY sequence)", benchExport);
+ANIMORPH_BENCH("export", "bake the demo morph and write it as an animated glTF (baseline: a PLY sequence) and as VDB level sets (baseline: PLY)", benchExport);

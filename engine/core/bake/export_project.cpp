@@ -5,9 +5,11 @@
 
 #include "animorph/evaluate_generic.h"
 #include "bake/frame_files.h"
+#include "bake/frame_volume.h"
 #include "doc/animorphosis_project.h"
 #include "doc/asset_cache.h"
 #include "io/gltf_sequence_export.h"
+#include "io/vdb_export.h"
 #include "morph/morph_runtime.h"
 #include "poly/mesh_io.h"
 #include "poly/polygonizer.h"
@@ -83,6 +85,23 @@ Result<ExportReport> exportProject(const Project& p, const std::string& baseDir,
     progress.setStage("frame " + std::to_string(f) + " (" + std::to_string(k + 1) + " of " + std::to_string(count) +
                       ")");
     const double timeSec = p.timeline.frameToSec(f);
+    if (s.format == ExportFormat::VdbSequence) {
+      // The frame's field as a level set (no mesh); a skinned-mesh frame has none.
+      auto band = morph ? morphFrameLevelSet(*morph, timeSec, s.resolution, 0, progress.cancelFlag())
+                        : fieldLevelSet(compileGeneric(*generic, timing, timeSec), s.resolution, 0, progress.cancelFlag());
+      if (!band) return Error{"export: frame " + std::to_string(f) + ": " + band.error()};
+      if (progress.cancelled() || (*band && (*band)->cancelled)) return jobCancelled();
+      if (*band) {
+        const std::string final = frameFileName(dir.string(), prefix, f, "vdb");
+        if (Status st = writeVdbLevelSet(**band, staged.stage(final)); !st)
+          return Error{"export: frame " + std::to_string(f) + ": " + st.error()};
+        report.files.push_back(final);
+      } else {
+        ++report.framesWithoutField;
+      }
+      progress.setDone(k + 1);
+      continue;
+    }
     TriangleMesh mesh;
     if (morph) {
       MorphFrameSettings fs;
@@ -116,6 +135,9 @@ Result<ExportReport> exportProject(const Project& p, const std::string& baseDir,
     progress.setDone(k + 1);
   }
   if (progress.cancelled()) return jobCancelled();
+  if (s.format == ExportFormat::VdbSequence && report.files.empty())
+    return Error{"export: frames " + std::to_string(first) + ".." + std::to_string(last) +
+                 " are all skinned meshes (before B or after C): none has an implicit field to write as a VDB level set"};
   if (sequence) {
     progress.setStage("writing " + fs::path(out).filename().string());
     if (Status st = writeGltfSequence(*sequence, out); !st) return Error{"export: " + st.error()};

@@ -26,6 +26,7 @@ std::string exportOutputPath(const ExportSettings& s, const std::string& baseDir
 struct ExportReport {
   std::vector<std::string> files;  // what was written, in frame order (one .glb, or one per frame)
   int frames = 0;
+  int framesWithoutField = 0;      // VDB: skinned-mesh frames, which have no level set (no file)
   size_t triangles = 0;            // over all frames
   double seconds = 0.0;
 };

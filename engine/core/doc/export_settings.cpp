@@ -7,6 +7,7 @@ const char* exportFormatName(ExportFormat f) {
     case ExportFormat::GltfAnimated: return "gltf";
     case ExportFormat::PlySequence: return "ply";
     case ExportFormat::ObjSequence: return "obj";
+    case ExportFormat::VdbSequence: return "vdb";
   }
   return "gltf";
 }
@@ -25,6 +26,7 @@ const char* exportFormatLabel(ExportFormat f) {
     case ExportFormat::GltfAnimated: return "glTF animated (.glb)";
     case ExportFormat::PlySequence: return "PLY sequence (.ply per frame)";
     case ExportFormat::ObjSequence: return "OBJ sequence (.obj per frame)";
+    case ExportFormat::VdbSequence: return "OpenVDB level sets (.vdb per frame)";
   }
   return "";
 }

@@ -9,14 +9,15 @@ enum class ExportFormat {
   GltfAnimated,  // one animated .glb of the whole range (io/gltf_sequence_export.h)
   PlySequence,   // DIR/NAME_####.ply
   ObjSequence,   // DIR/NAME_####.obj
+  VdbSequence,   // DIR/NAME_####.vdb: OpenVDB level sets of the implicit frames (io/vdb_export.h)
 };
 
-// "gltf", "ply", "obj" (the project file's names); fromName: false on an unknown name.
+// "gltf", "ply", "obj", "vdb" (the project file's names); fromName: false on an unknown name.
 const char* exportFormatName(ExportFormat f);
 bool exportFormatFromName(const std::string& name, ExportFormat& out);
 // "glTF animated (.glb)", ... as the dialog lists them.
 const char* exportFormatLabel(ExportFormat f);
-inline constexpr int kExportFormatCount = 3;
+inline constexpr int kExportFormatCount = 4;
 
 struct ExportSettings {
   ExportFormat format = ExportFormat::GltfAnimated;

@@ -17,7 +17,7 @@ Result<ExportSettings> exportSettingsFromJson(const nlohmann::json& j, const std
   if (j.contains("format")) {
     const auto& f = j["format"];
     if (!f.is_string() || !exportFormatFromName(f.get<std::string>(), s.format))
-      return Error{at + ".format: expected \"gltf\", \"ply\" or \"obj\""};
+      return Error{at + ".format: expected \"gltf\", \"ply\", \"obj\" or \"vdb\""};
   }
   if (j.contains("use_timeline")) {
     if (!j["use_timeline"].is_boolean()) return Error{at + ".use_timeline: expected true or false"};

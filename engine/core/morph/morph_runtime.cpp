@@ -259,6 +259,22 @@ MorphImplicitField morphImplicitField(const MorphRuntime& rt, double timeSec, in
   return out;
 }
 
+std::optional<MorphImplicitField> morphFrameField(const MorphRuntime& rt, double timeSec, int resolution) {
+  double u = 0.0;
+  switch (morphStageAt(rt.setup, rt.timeline, timeSec, u)) {
+    case MorphStage::Morph: return morphImplicitField(rt, timeSec, resolution, std::clamp(u, 0.0, 1.0));
+    case MorphStage::Source:
+      if (rt.source.isTree()) return morphImplicitField(rt, timeSec, resolution, 0.0);
+      return std::nullopt;
+    case MorphStage::Target:
+      if (rt.target.isTree()) return morphImplicitField(rt, timeSec, resolution, 1.0);
+      return std::nullopt;
+    case MorphStage::Collapse:
+    case MorphStage::Expand: return std::nullopt;
+  }
+  return std::nullopt;
+}
+
 Result<MorphFrame> evaluateMorphFrame(const MorphRuntime& rt, double timeSec, const MorphFrameSettings& settings) {
   MorphFrame fr;
   fr.timeSec = timeSec;

@@ -107,6 +107,12 @@ struct MorphImplicitField {
 // just before B at u = 0 and just after C at u = 1).
 MorphImplicitField morphImplicitField(const MorphRuntime& rt, double timeSec, int resolution, double progress = -1.0);
 
+// The implicit field the frame at timeSec is polygonised from, as evaluateMorphFrame uses it: the
+// B->C stage's, and a BlobTree side's before A / after D (its tree: the morph at u = 0 / 1).
+// nullopt for a frame that is a skinned mesh (the source or target playing, the collapse, the
+// expansion): no field.
+std::optional<MorphImplicitField> morphFrameField(const MorphRuntime& rt, double timeSec, int resolution);
+
 // The output of the morph at timeSec. Errors: polygonisation failed (bad resolution).
 Result<MorphFrame> evaluateMorphFrame(const MorphRuntime& rt, double timeSec, const MorphFrameSettings& settings);
 

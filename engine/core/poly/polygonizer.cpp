@@ -171,40 +171,53 @@ struct PolygonizeHistoryAccess {
   static std::unique_ptr<PolygonizeHistory::State>& state(PolygonizeHistory& h) { return h.state_; }
 };
 
-Result<PolygonizeResult> polygonize(const FieldProgram& program, const PolygonizeSettings& s) {
-  auto t0 = std::chrono::steady_clock::now();
+Result<PolygonizeGrid> polygonizeGrid(const FieldProgram& program, const PolygonizeSettings& s) {
   if (s.resolution < 2 || s.resolution > 2048)
     return Error{"polygonize: resolution " + std::to_string(s.resolution) + " is out of range (2..2048)"};
-  PolygonizeResult result;
-  const float T = program.threshold;
-
-  // ---- grid
-  Grid g;
+  PolygonizeGrid g;
   Bounds box;
   if (s.bounds) {
     box = *s.bounds;
     if (box.empty() || !std::isfinite(box.diagonal()) || box.diagonal() <= 0.0f)
       return Error{"polygonize: the bounds override is empty or not finite"};
     float L = std::max({box.size().x, box.size().y, box.size().z});
-    g.h = L / float(s.resolution);
-    for (int a = 0; a < 3; ++a) g.n[a] = std::max(1, int(std::lround(box.size()[a] / g.h)));
-    g.origin = box.center() - 0.5f * g.h * glm::vec3(float(g.n[0]), float(g.n[1]), float(g.n[2]));
+    g.cellSize = L / float(s.resolution);
+    for (int a = 0; a < 3; ++a) g.cells[a] = std::max(1, int(std::lround(box.size()[a] / g.cellSize)));
   } else {
     if (program.unbounded())
       return Error{"polygonize: the field is inside everywhere far from its primitives (unbounded); give bounds"};
     box = program.tightBounds();
     if (box.empty()) {
-      result.stats.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-      return result;  // nothing inside anywhere
+      g.empty = true;
+      return g;
     }
     float L = std::max({box.size().x, box.size().y, box.size().z, 1e-6f});
     float margin = std::max(0.0f, s.marginCells);
     float usable = float(s.resolution) - 2.0f * margin;
-    g.h = usable >= 1.0f ? L / usable : L / float(s.resolution);
+    g.cellSize = usable >= 1.0f ? L / usable : L / float(s.resolution);
     for (int a = 0; a < 3; ++a)
-      g.n[a] = std::clamp(int(std::ceil(box.size()[a] / g.h + 2.0f * margin)), 1, s.resolution);
-    g.origin = box.center() - 0.5f * g.h * glm::vec3(float(g.n[0]), float(g.n[1]), float(g.n[2]));
+      g.cells[a] = std::clamp(int(std::ceil(box.size()[a] / g.cellSize + 2.0f * margin)), 1, s.resolution);
   }
+  g.origin = box.center() - 0.5f * g.cellSize * glm::vec3(float(g.cells[0]), float(g.cells[1]), float(g.cells[2]));
+  return g;
+}
+
+Result<PolygonizeResult> polygonize(const FieldProgram& program, const PolygonizeSettings& s) {
+  auto t0 = std::chrono::steady_clock::now();
+  PolygonizeResult result;
+  const float T = program.threshold;
+
+  // ---- grid
+  auto grid = polygonizeGrid(program, s);
+  if (!grid) return Error{grid.error()};
+  if (grid->empty) {
+    result.stats.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return result;  // nothing inside anywhere
+  }
+  Grid g;
+  g.origin = grid->origin;
+  g.h = grid->cellSize;
+  for (int a = 0; a < 3; ++a) g.n[a] = grid->cells[a];
   for (int a = 0; a < 3; ++a) {
     g.nb[a] = (g.n[a] + kBlock - 1) / kBlock;
     g.ns[a] = (g.nb[a] + kSuper - 1) / kSuper;

@@ -84,6 +84,17 @@ struct PolygonizeResult {
   bool cancelled = false;
 };
 
+// The grid polygonize() samples the program on (the same settings give the same grid): corner
+// (i, j, k), 0 <= i <= cells[0] ..., at origin + cellSize * (i, j, k). empty: the field is inside
+// nowhere (polygonize returns an empty mesh). Errors as polygonize's.
+struct PolygonizeGrid {
+  glm::vec3 origin{0.0f};
+  float cellSize = 0.0f;
+  int cells[3] = {0, 0, 0};
+  bool empty = false;
+};
+Result<PolygonizeGrid> polygonizeGrid(const FieldProgram& program, const PolygonizeSettings& settings);
+
 // Polygonises f = 0 of the program. Errors: bad resolution, an unbounded
 // field without a bounds override, or empty/invalid bounds.
 Result<PolygonizeResult> polygonize(const FieldProgram& program, const PolygonizeSettings& settings);

@@ -1,0 +1,173 @@
+#!/usr/bin/env python3
+"""End-to-end checks of animorph-cli bake --vdb: OpenVDB level sets of the implicit frames.
+
+usage: vdb_checks.py MODE CLI PROJECT [ARGS...]
+  bake CLI PROJECT           --vdb DIR beside the PLY sequence: a NAME_####.vdb for every B->C frame
+                             and none for skinned-mesh frames; vdb_print reads each back: one grid
+                             'surface' of class level set, background 3 voxels, values of both signs
+                             within the band, its active voxels' world box around the PLY's box of the
+                             same frame by at most the band (plus a voxel); a --vdb path that is a
+                             file and a range without an implicit frame fail naming the reason
+  blender CLI PROJECT SCRIPT Blender imports a .vdb as a volume object headless (SCRIPT runs inside
+                             it): one grid 'surface', the volume's box around the PLY's box of the same
+                             frame (exit 77: skipped when blender is not installed)
+"""
+import json
+import os
+import re
+import struct
+import subprocess
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cli_checks import fail, run, blender_or_skip, run_blender  # noqa: E402 (the script beside this one)
+
+FRAMES = (44, 54)  # the demo's collapse (no field) then B->C (B is at 48)
+RES = "24"
+
+
+def ply_box(path):
+    """The bounding box of a binary PLY's vertices (x, y, z: its first three float properties)."""
+    with open(path, "rb") as f:
+        data = f.read()
+    end = data.find(b"end_header\n")
+    header = data[:end].decode("ascii").split("\n")
+    verts = props = 0
+    in_vertex = False
+    for line in header:
+        if line.startswith("element "):
+            in_vertex = line.startswith("element vertex ")
+            if in_vertex:
+                verts = int(line.split()[2])
+        elif line.startswith("property float ") and in_vertex:
+            props += 1
+    body = data[end + len("end_header\n"):]
+    lo, hi = [float("inf")] * 3, [float("-inf")] * 3
+    for v in range(verts):
+        xyz = struct.unpack_from("<3f", body, v * props * 4)
+        lo = [min(a, b) for a, b in zip(lo, xyz)]
+        hi = [max(a, b) for a, b in zip(hi, xyz)]
+    return lo, hi
+
+
+def vdb_print(path):
+    r = subprocess.run(["vdb_print", "-l", "-m", path], capture_output=True, text=True)
+    if r.returncode != 0:
+        fail(f"vdb_print {path}: exit {r.returncode}: {r.stderr}")
+    return r.stdout
+
+
+def number(text, pattern, path):
+    m = re.search(pattern, text)
+    if not m:
+        fail(f"{path}: vdb_print shows no {pattern!r}:\n{text}")
+    return m.groups() if len(m.groups()) > 1 else m.group(1)
+
+
+def check_level_set(path, ply):
+    """vdb_print's account of one file against the PLY of the same frame; returns the voxel size."""
+    text = vdb_print(path)
+    if len(re.findall(r"^Name: ", text, re.M)) != 1 or not re.search(r"^Name: surface$", text, re.M):
+        fail(f"{path}: expected one grid named 'surface':\n{text}")
+    if "class: level set" not in text:
+        fail(f"{path}: the grid is not of class level set:\n{text}")
+    voxel = float(number(text, r"voxel size: ([-0-9.e+]+)", path))
+    background = float(number(text, r"Background value: ([-0-9.e+]+)", path))
+    lo_v = float(number(text, r"Min value: ([-0-9.e+]+)", path))
+    hi_v = float(number(text, r"Max value: ([-0-9.e+]+)", path))
+    if abs(background - 3 * voxel) > 2e-3 * background:  # vdb_print rounds to a few digits
+        fail(f"{path}: background {background}, expected 3 voxels of {voxel}")
+    if not (-background - 1e-6 <= lo_v < 0 < hi_v <= background + 1e-6):
+        fail(f"{path}: values {lo_v}..{hi_v} are not both signs within the band {background}")
+    imin = [int(x) for x in number(text, r"Bounding box of active voxels: \[(-?\d+), (-?\d+), (-?\d+)\]", path)]
+    imax = [int(x) for x in number(text, r"Bounding box of active voxels: \[[^]]*\] -> \[(-?\d+), (-?\d+), (-?\d+)\]", path)]
+    rows = re.findall(r"^\s*\[([-0-9.e+]+), ([-0-9.e+]+), ([-0-9.e+]+), ([-0-9.e+]+)\]", text, re.M)
+    if len(rows) != 4:
+        fail(f"{path}: no 4x4 index-to-world matrix:\n{text}")
+    translation = [float(x) for x in rows[3][:3]]
+    world_lo = [translation[a] + voxel * imin[a] for a in range(3)]
+    world_hi = [translation[a] + voxel * imax[a] for a in range(3)]
+    mesh_lo, mesh_hi = ply_box(ply)
+    slack = 4.0 * voxel  # the band (3 voxels) and the voxel the crossing lies in
+    eps = 0.1 * voxel  # vdb_print's rounding of the voxel size and the translation
+    for a in range(3):
+        if not (mesh_lo[a] - slack <= world_lo[a] <= mesh_lo[a] + eps and
+                mesh_hi[a] - eps <= world_hi[a] <= mesh_hi[a] + slack):
+            fail(f"{path}: active voxels span {world_lo}..{world_hi} (voxel {voxel}), the mesh {mesh_lo}..{mesh_hi}: "
+                 f"axis {a} is not the mesh's box grown by at most {slack}")
+    return voxel
+
+
+def mode_bake(cli, project):
+    with tempfile.TemporaryDirectory() as tmp:
+        ply_dir, vdb_dir = os.path.join(tmp, "ply"), os.path.join(tmp, "vdb")
+        r = run(cli, "bake", project, "--frames", f"{FRAMES[0]}:{FRAMES[1]}", "--res", RES, "-o", ply_dir,
+                "--vdb", vdb_dir, "--jobs", "2")
+        if r.returncode != 0:
+            fail(f"bake --vdb: exit {r.returncode}: {r.stderr}")
+        morph = int(number(r.stdout, r"(\d+) morph", "bake's log"))
+        vdbs = sorted(os.listdir(vdb_dir))
+        if len(vdbs) != morph or morph < 3 or morph >= FRAMES[1] - FRAMES[0] + 1:
+            fail(f"{len(vdbs)} .vdb files for {morph} B->C frames of {FRAMES}: {vdbs}\n{r.stdout}")
+        skipped = FRAMES[1] - FRAMES[0] + 1 - morph
+        if f"wrote {morph} OpenVDB level sets into {vdb_dir}" not in r.stdout or f"{skipped} frames are skinned" not in r.stdout:
+            fail(f"bake --vdb did not say what it wrote and skipped:\n{r.stdout}")
+        last = FRAMES[1]
+        expected = [f"demo_{f:04d}.vdb" for f in range(last - morph + 1, last + 1)]
+        if vdbs != expected:
+            fail(f"--vdb wrote {vdbs}, expected {expected}")
+        voxels = [check_level_set(os.path.join(vdb_dir, v), os.path.join(ply_dir, v[:-4] + ".ply")) for v in vdbs]
+        print(f"{len(vdbs)} level sets (voxel {voxels[0]:.4g}..{voxels[-1]:.4g}), {skipped} skinned frames without one")
+
+        # A --vdb path that is a file, and a range of skinned frames only: exit 1, naming the reason.
+        blocker = os.path.join(tmp, "a_file")
+        with open(blocker, "w") as fh:
+            fh.write("x")
+        r = run(cli, "bake", project, "--frames", "50:50", "--res", RES, "--format", "none", "--vdb", blocker)
+        if r.returncode != 1 or blocker not in r.stderr:
+            fail(f"--vdb onto a file: exit {r.returncode}, stderr {r.stderr!r}")
+        r = run(cli, "bake", project, "--frames", "0:1", "--res", RES, "--format", "none", "--vdb", os.path.join(tmp, "none"))
+        if r.returncode != 1 or "no frame of the range has an implicit field" not in r.stderr:
+            fail(f"--vdb over skinned frames: exit {r.returncode}, stderr {r.stderr!r}")
+
+
+def mode_blender(cli, project, script):
+    blender = blender_or_skip()
+    with tempfile.TemporaryDirectory() as tmp:
+        ply_dir, vdb_dir = os.path.join(tmp, "ply"), os.path.join(tmp, "vdb")
+        r = run(cli, "bake", project, "--frames", "60:60", "--res", RES, "-o", ply_dir, "--vdb", vdb_dir)
+        if r.returncode != 0:
+            fail(f"bake --vdb: exit {r.returncode}: {r.stderr}")
+        vdb, ply = os.path.join(vdb_dir, "demo_0060.vdb"), os.path.join(ply_dir, "demo_0060.ply")
+        voxel = check_level_set(vdb, ply)
+        result = os.path.join(tmp, "blender.json")
+        r = run_blender(blender, script, vdb, result, timeout=300)
+        if r.returncode != 0 or not os.path.exists(result):
+            fail(f"blender exited {r.returncode}: {r.stdout[-2000:]}{r.stderr[-2000:]}")
+        with open(result) as fh:
+            got = json.load(fh)
+        if got["grids"] != ["surface"]:
+            fail(f"Blender's volume has grids {got['grids']}, expected ['surface']")
+        # Blender's box is the grid's leaf nodes (8^3 voxels) in world units: around the mesh's box by at
+        # most the band, the crossing's voxel and a leaf.
+        mesh_lo, mesh_hi = ply_box(ply)
+        lo, hi = got["box"]
+        slack = (3 + 1 + 8) * voxel
+        for a in range(3):
+            if not (mesh_lo[a] - slack <= lo[a] <= mesh_lo[a] and mesh_hi[a] <= hi[a] <= mesh_hi[a] + slack):
+                fail(f"Blender's volume spans {lo}..{hi}, the mesh {mesh_lo}..{mesh_hi}: axis {a} off by more than {slack}")
+        print(f"Blender {got['version']}: volume object {got['object']} with grid 'surface' ({got['grid_type']}), "
+              f"box {lo}..{hi} around the mesh's {mesh_lo}..{mesh_hi}")
+
+
+def main():
+    if len(sys.argv) < 4:
+        fail(__doc__)
+    mode, args = sys.argv[1], sys.argv[2:]
+    {"bake": mode_bake, "blender": mode_blender}[mode](*args)
+    print("ok")
+
+
+if __name__ == "__main__":
+    main()
