@@ -50,6 +50,8 @@ PROGRAMS = {
     "timeout": "glTF-Validator test",
     "blender": "export test (imports the animated glTF headless)",
     "vdb_print": "VDB export test (tests/cli/export_checks.py vdb)",
+    "ffmpeg": "animorph-cli bake --mp4 and farm assemble --mp4 (playblast encoding)",
+    "ffprobe": "playblast tests (frame count and size of the mp4)",
     "clang++": "fuzz targets (./run.sh fuzz, ./run.sh test: tests/fuzz)",
     "munged": "farm test (tests/cli/farm_slurm_check.py: MUNGE for the test's Slurm cluster)",
     "slurmctld": "farm test (the test's Slurm controller)",
