@@ -29,7 +29,6 @@
 #include "io/gltf_sequence_export.h"
 #include "io/vdb_export.h"
 #include "poly/mesh_io.h"
-#if ANIMORPH_HAS_GPU
 #include "vulkan/context.h"
 #include "implicit/gpu_polygonizer.h"
 #include "render/mesh_cache.h"
@@ -37,7 +36,6 @@
 #include "render/scene_from_frame.h"
 #include "render/scene_renderer.h"
 #include "view/camera.h"
-#endif
 
 namespace {
 
@@ -206,12 +204,7 @@ int bakeAnimorphosis(const Project& p, const std::string& project, FrameSink& si
               p.animorphosis.sourceActorId.c_str(), p.animorphosis.targetActorId.c_str(), first, last, c->size(),
               size_t(triangles), res, sink.into().c_str(), sec);
   if (std::string e = sink.finish(); !e.empty()) return cli::fail("bake", e);
-#if ANIMORPH_HAS_GPU
   if (int code = renderPictures(sink.kept, first, output, sink.prefix(), p.view, pics); code != 0) return code;
-#else
-  (void)pics;
-  (void)output;
-#endif
   return 0;
 }
 
@@ -282,11 +275,6 @@ int runBake(const std::vector<std::string>& args) {
     return cli::fail("bake", "--frames: expected A:B with 0 <= A <= B, got '" + frames + "'", 2);
   if (res < 2 || res > 1024) return cli::fail("bake", "--res: expected 2..1024", 2);
   if (jobs < 1 || jobs > 256) return cli::fail("bake", "--jobs: expected 1..256", 2);
-#if !ANIMORPH_HAS_GPU
-  if (png) return cli::fail("bake", "--png: this animorph-cli was built without the GPU library", 2);
-  if (!mp4.empty()) return cli::fail("bake", "--mp4: this animorph-cli was built without the GPU library", 2);
-  if (gpu) return cli::fail("bake", "--gpu: this animorph-cli was built without the GPU library", 2);
-#endif
 
   auto p = loadProject(project);
   if (!p) return cli::fail("bake", p.error());
@@ -320,7 +308,6 @@ int runBake(const std::vector<std::string>& args) {
   if (!rt) return cli::fail("bake", project + ": " + rt.error());
   for (const auto& n : (*rt)->notes) std::printf("note: %s\n", n.c_str());
 
-#if ANIMORPH_HAS_GPU
   // --gpu: the B->C stage on the Vulkan compute polygoniser (one device, its
   // frames one at a time); the other stages are the same as on the CPU. No
   // device, or a device failure, is an error: no silent fallback to the CPU.
@@ -368,7 +355,6 @@ int runBake(const std::vector<std::string>& args) {
     fr.polygonize.milliseconds = stats->milliseconds;
     return fr;
   };
-#endif
 
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<int> stageCount(5, 0);
@@ -382,12 +368,7 @@ int runBake(const std::vector<std::string>& args) {
     const double timeSec = p->timeline.frameToSec(f);
     double u = 0.0;
     const bool onGpu = gpu && morphStageAt((*rt)->setup, (*rt)->timeline, timeSec, u) == MorphStage::Morph;
-#if ANIMORPH_HAS_GPU
     auto fr = onGpu ? gpuMorphFrame(timeSec) : evaluateMorphFrame(**rt, timeSec, fs);
-#else
-    (void)onGpu;
-    auto fr = evaluateMorphFrame(**rt, timeSec, fs);
-#endif
     if (!fr) return fr.error();
     {
       std::lock_guard<std::mutex> lock(stageMutex);
@@ -425,14 +406,12 @@ int runBake(const std::vector<std::string>& args) {
     std::printf("\n");
   }
   if (std::string e = sink.finish(); !e.empty()) return cli::fail("bake", e);
-#if ANIMORPH_HAS_GPU
   if (gpuCtx && gpuCtx->validationEnabled() && gpuCtx->validationErrorCount() > 0) {
     std::fprintf(stderr, "animorph-cli bake: %u Vulkan validation error(s) in the GPU polygoniser\n",
                  gpuCtx->validationErrorCount());
     return 3;
   }
   if (int code = renderPictures(sink.kept, first, output, prefix, p->view, pics); code != 0) return code;
-#endif
   return 0;
 }
 

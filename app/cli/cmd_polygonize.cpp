@@ -15,10 +15,8 @@
 #include "scene/scene_frame.h"
 #include "poly/mesh_io.h"
 #include "poly/polygonizer.h"
-#if ANIMORPH_HAS_GPU
 #include "vulkan/context.h"
 #include "implicit/gpu_polygonizer.h"
-#endif
 
 namespace {
 
@@ -134,7 +132,6 @@ int polygonizeCommand(const std::vector<std::string>& args) {
     if (!tree) return fail(me, tree.error());
   }
   animorph::FieldProgram program = animorph::compileFieldProgram(*tree, treeTimeSec);
-#if ANIMORPH_HAS_GPU
   if (gpu) {
     namespace g = animorph::gpu;
     auto field = g::GpuField::single(program);
@@ -163,9 +160,6 @@ int polygonizeCommand(const std::vector<std::string>& args) {
       return fail(me, std::to_string((*ctx)->validationErrorCount()) + " Vulkan validation error(s)", 3);
     return 0;
   }
-#else
-  if (gpu) return fail(me, "--gpu: this animorph-cli was built without Vulkan (run without --gpu for the CPU)", 2);
-#endif
   animorph::PolygonizeSettings settings;
   settings.resolution = int(res);
   settings.culling = cull;

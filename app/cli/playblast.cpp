@@ -1,6 +1,5 @@
 #include "cli/playblast.h"
 
-#if ANIMORPH_HAS_GPU
 #include <unistd.h>
 
 #include <algorithm>
@@ -119,4 +118,3 @@ int renderPictures(const std::vector<TriangleMesh>& meshes, int first, const fs:
 }
 
 }  // namespace animorph::cli
-#endif

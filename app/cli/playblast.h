@@ -9,9 +9,7 @@
 
 #include "doc/project.h"
 #include "poly/mesh.h"
-#if ANIMORPH_HAS_GPU
 #include "present/rgba_image.h"
-#endif
 
 namespace animorph::cli {
 
@@ -24,7 +22,6 @@ struct PictureOptions {
   double fps = 24.0;
 };
 
-#if ANIMORPH_HAS_GPU
 // Renders every mesh offscreen at width x height with one camera framing them all and hands each
 // picture to frameOut (frame number, image; "" or the error). Returns the command's exit status
 // (1 or 3 after printing the error).
@@ -35,6 +32,5 @@ int renderFrames(const std::vector<TriangleMesh>& meshes, int first, const ViewO
 // (H.264, yuv420p), written to a temporary name and renamed when ffmpeg succeeds. Exit status.
 int renderPictures(const std::vector<TriangleMesh>& meshes, int first, const std::filesystem::path& dir,
                    const std::string& name, const ViewOptions& view, const PictureOptions& o);
-#endif
 
 }  // namespace animorph::cli

@@ -16,10 +16,8 @@
 #include "cli/bench/bench.h"
 #include "demo/blob_creature.h"
 #include "poly/polygonizer.h"
-#if ANIMORPH_HAS_GPU
 #include "vulkan/context.h"
 #include "implicit/gpu_polygonizer.h"
-#endif
 
 namespace {
 
@@ -114,10 +112,6 @@ std::vector<Row> runGpuPoly(const animorph::bench::Options& opt) {
     rows.push_back({"skipped", 0, "", "", "run `bench gpu` or pass --gpu"});
     return rows;
   }
-#if !ANIMORPH_HAS_GPU
-  rows.push_back({"skipped", 0, "", "", "built without Vulkan"});
-  return rows;
-#else
   namespace g = animorph::gpu;
   const unsigned seedA = 1u, seedB = 2u;
   const float w = 0.5f;
@@ -270,7 +264,6 @@ std::vector<Row> runGpuPoly(const animorph::bench::Options& opt) {
     }
   }
   return rows;
-#endif
 }
 
 }  // namespace

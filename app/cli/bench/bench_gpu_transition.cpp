@@ -3,22 +3,15 @@
 #include <cstdio>
 #include <memory>
 
-#if ANIMORPH_HAS_GPU
 #include "vulkan/context.h"
 #include "morph/transition_frame.h"
 #include "present/offscreen_target.h"
 #include "rig/pose.h"
 #include "render/scene_renderer.h"
 #include "transition/transition_evaluator.h"
-#endif
 
 namespace animorph::bench {
 
-#if !ANIMORPH_HAS_GPU
-std::vector<Row> gpuTransitionRows(const Options&, const Character&, const Standin&, const StandinBinding&) {
-  return {{"GPU transition", 0.0, "", "", "skipped: built without Vulkan"}};
-}
-#else
 std::vector<Row> gpuTransitionRows(const Options& opt, const Character& c, const Standin& standin,
                                    const StandinBinding& binding) {
   using namespace animorph::gpu;
@@ -111,6 +104,5 @@ std::vector<Row> gpuTransitionRows(const Options& opt, const Character& c, const
   }
   return rows;
 }
-#endif
 
 }  // namespace animorph::bench

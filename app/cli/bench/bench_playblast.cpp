@@ -19,7 +19,6 @@ using animorph::bench::Row;
 namespace fs = std::filesystem;
 
 std::vector<Row> benchPlayblast(const bench::Options& opt) {
-#if ANIMORPH_HAS_GPU
   const bench::DemoMorph dm = bench::loadDemoMorph();
   if (!dm.error.empty()) return {{"skipped", 0, "", "", dm.error}};
   const Project* project = &dm.project;
@@ -52,10 +51,6 @@ std::vector<Row> benchPlayblast(const bench::Options& opt) {
   std::snprintf(note, sizeof note, "%d frames; baseline: rendering alone %.1f frames/s (the rest is ffmpeg's H.264)",
                 count, count / renderSec);
   return {{"playblast 1280x720 (render + encode)", count / totalSec, "frames/s", ">= 10 frames/s", note}};
-#else
-  (void)opt;
-  return {{"skipped", 0, "", "", "built without the GPU library"}};
-#endif
 }
 
 }  // namespace

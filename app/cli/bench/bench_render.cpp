@@ -1,7 +1,6 @@
 // Benchmark: offscreen render of a ~50k-triangle skinned mesh at 1600x900 —
 // median ms per frame (record + submit + wait), with and without read-back,
 // and the first-frame cost (pipeline creation and lazy shader compilation).
-#ifdef ANIMORPH_HAS_GPU
 #include <chrono>
 
 #include <sys/resource.h>
@@ -161,4 +160,3 @@ std::vector<bench::Row> runRenderBench(const bench::Options& opt) {
 }  // namespace
 
 ANIMORPH_BENCH("render", "offscreen render of a ~50k-triangle skinned mesh at 1600x900 (--gpu)", runRenderBench);
-#endif  // ANIMORPH_HAS_GPU

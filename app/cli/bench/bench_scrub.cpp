@@ -18,13 +18,11 @@
 #include "scene/morph_preview_source.h"
 #include "scene/morph_scene.h"
 #include "scene/scene_frame.h"
-#if ANIMORPH_HAS_GPU
 #include "vulkan/context.h"
 #include "implicit/implicit_preview.h"
 #include "render/mesh_cache.h"
 #include "present/offscreen_target.h"
 #include "render/scene_from_frame.h"
-#endif
 
 namespace {
 
@@ -42,10 +40,6 @@ double percentile(std::vector<double> v, double p) {
 
 std::vector<Row> runScrub(const animorph::bench::Options& opt) {
   std::vector<Row> rows;
-#if !ANIMORPH_HAS_GPU
-  rows.push_back({"skipped", 0, "", "", "built without Vulkan"});
-  return rows;
-#else
   namespace fs = std::filesystem;
   const char* demoEnv = std::getenv("ANIMORPH_DEMO");
   const fs::path demo = demoEnv ? fs::path(demoEnv) : fs::path(ANIMORPH_SOURCE_DIR) / "resources/demo/demo.animorph";
@@ -182,7 +176,6 @@ std::vector<Row> runScrub(const animorph::bench::Options& opt) {
     rows.push_back({tag + " refine to " + std::to_string(refined) + "^3 after scrubbing", refineMs, "ms", "", note});
   }
   return rows;
-#endif
 }
 
 }  // namespace

@@ -19,9 +19,6 @@ int runFarmAssemble(const FarmOptions& o) {
   namespace fs = std::filesystem;
   if (o.chunksDir.empty()) return fail("farm", "assemble: --chunks DIR is needed (where the chunks' glTFs are)", 2);
   if (o.gltf.empty() && o.mp4.empty()) return fail("farm", "assemble: nothing to write: give --gltf and/or --mp4", 2);
-#if !ANIMORPH_HAS_GPU
-  if (!o.mp4.empty()) return fail("farm", "assemble: --mp4: this animorph-cli was built without the GPU library", 2);
-#endif
   auto p = loadProject(o.project);
   if (!p) return fail("farm", p.error());
   const std::string name = o.name.empty() ? framePrefix(p->name) : o.name;
@@ -60,7 +57,6 @@ int runFarmAssemble(const FarmOptions& o) {
                 double(fs::file_size(o.gltf, ec)) / 1e6,
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   }
-#if ANIMORPH_HAS_GPU
   if (!o.mp4.empty()) {
     PictureOptions pics;
     pics.mp4 = o.mp4;
@@ -72,9 +68,6 @@ int runFarmAssemble(const FarmOptions& o) {
     std::printf("read %zu frames from %zu chunks in %.2f s\n", kept.size(), chunks.size(), readSec);
     if (int code = renderPictures(kept, o.first, fs::path(), name, p->view, pics); code != 0) return code;
   }
-#else
-  (void)readSec;
-#endif
   return 0;
 }
 
