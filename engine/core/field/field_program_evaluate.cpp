@@ -1,0 +1,352 @@
+// FieldProgram, part 4 of 4: batch evaluation of values and gradients.
+#include "field/field_program.h"
+
+#include <algorithm>
+#include <functional>
+#include <atomic>
+#include <cassert>
+#include <cmath>
+#include <limits>
+
+#include "field/convolution_segment.h"
+#include "field/potential.h"
+
+namespace animorph {
+
+namespace {
+constexpr int kChunk = 1024;
+}  // namespace
+
+
+// ------------------------------------------------------------------ evaluation
+
+float FieldEvaluator::evaluatePoint(const FieldProgram& program, const glm::vec3& p, glm::vec3* gradient) {
+  if (allFor_ != program.identity() || program.identity() == 0) {
+    program.specialiseAll(all_);
+    allFor_ = program.identity();
+  }
+  float f, gx, gy, gz;
+  evaluate(program, all_, &p.x, &p.y, &p.z, 1, &f, gradient ? &gx : nullptr, &gy, &gz);
+  if (gradient) *gradient = {gx, gy, gz};
+  return f;
+}
+
+void FieldEvaluator::evaluate(const FieldProgram& program, const ActiveProgram& active, const float* x,
+                              const float* y, const float* z, int n, float* f, float* gx, float* gy, float* gz) {
+  size_t needStack = size_t(std::max(1, program.maxStack())) * 4 * kChunk;
+  if (stack_.size() < needStack) stack_.resize(needStack);
+  size_t needCoords = size_t(program.maxMapDepth() + 1) * 3 * kChunk;
+  if (coords_.size() < needCoords) coords_.resize(needCoords);
+  for (int s = 0; s < n; s += kChunk) {
+    int m = std::min(kChunk, n - s);
+    runChunk(program, active, x + s, y + s, z + s, m, f + s, gx ? gx + s : nullptr, gx ? gy + s : nullptr,
+             gx ? gz + s : nullptr);
+  }
+}
+
+void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, const float* x, const float* y,
+                              const float* z, int n, float* fOut, float* gxOut, float* gyOut, float* gzOut) {
+  const bool grad = gxOut != nullptr;
+  const float T = P.threshold;
+  int sp = 0;  // stack size
+  int level = 0;
+  levels_.resize(size_t(P.maxMapDepth() + 1) * 3);
+  const float** cx = levels_.data();
+  const float** cy = cx + P.maxMapDepth() + 1;
+  const float** cz = cy + P.maxMapDepth() + 1;
+  cx[0] = x;
+  cy[0] = y;
+  cz[0] = z;
+  // Box of the points at each map level (skeletal primitives are skipped against it).
+  levelBoxes_.resize(size_t(P.maxMapDepth() + 1) * 2);
+  glm::vec3* boxes = levelBoxes_.data();
+  auto pointsBox = [&](const float* bx, const float* by, const float* bz, glm::vec3& lo, glm::vec3& hi) {
+    lo = glm::vec3(INFINITY);
+    hi = glm::vec3(-INFINITY);
+    for (int i = 0; i < n; ++i) {
+      lo = glm::min(lo, glm::vec3(bx[i], by[i], bz[i]));
+      hi = glm::max(hi, glm::vec3(bx[i], by[i], bz[i]));
+    }
+  };
+  pointsBox(x, y, z, boxes[0], boxes[1]);
+  auto F = [&](int s) { return stack_.data() + size_t(s) * 4 * kChunk; };
+  auto GX = [&](int s) { return F(s) + kChunk; };
+  auto GY = [&](int s) { return F(s) + 2 * kChunk; };
+  auto GZ = [&](int s) { return F(s) + 3 * kChunk; };
+  auto pushConstant = [&](float value) {
+    std::fill(F(sp), F(sp) + n, value);
+    if (grad) {
+      std::fill(GX(sp), GX(sp) + n, 0.0f);
+      std::fill(GY(sp), GY(sp) + n, 0.0f);
+      std::fill(GZ(sp), GZ(sp) + n, 0.0f);
+    }
+    ++sp;
+  };
+  const glm::vec3 worldLo = boxes[0], worldHi = boxes[1];
+  for (size_t opIndex = 0; opIndex < A.ops.size(); ++opIndex) {
+    const FieldOp& op = A.ops[opIndex];
+    if (op.code == OpCode::BeginMap) {
+      // A map whose primitives reach none of the points: its subtree has its empty value there.
+      const Bounds& r = P.mapReach(op.first);
+      if (r.empty() || glm::any(glm::greaterThan(r.min, worldHi)) || glm::any(glm::lessThan(r.max, worldLo))) {
+        int open = 1;
+        while (open > 0) {
+          const OpCode c = A.ops[++opIndex].code;
+          open += c == OpCode::BeginMap ? 1 : c == OpCode::EndMap ? -1 : 0;
+        }
+        pushConstant(A.ops[opIndex].emptyValue);
+        continue;
+      }
+    }
+    switch (op.code) {
+      case OpCode::Prims: {
+        float* f = F(sp);
+        std::fill(f, f + n, 0.0f);
+        if (grad) {
+          std::fill(GX(sp), GX(sp) + n, 0.0f);
+          std::fill(GY(sp), GY(sp) + n, 0.0f);
+          std::fill(GZ(sp), GZ(sp) + n, 0.0f);
+        }
+        const uint32_t* idx = A.indices.data() + op.first;
+        float* gx = grad ? GX(sp) : nullptr;
+        float* gy = grad ? GY(sp) : nullptr;
+        float* gz = grad ? GZ(sp) : nullptr;
+        switch (op.primClass) {
+          case PrimClass::Convolution:
+            convolutionKernel(P.convolution, idx, int(op.count), cx[level], cy[level], cz[level], n, f, gx, gy, gz);
+            break;
+          case PrimClass::Skeletal:
+            skeletalKernel(P, idx, int(op.count), op.combineMax, cx[level], cy[level], cz[level], n,
+                           boxes[2 * level], boxes[2 * level + 1], f, gx, gy, gz);
+            break;
+          case PrimClass::Capsule:
+            capsuleKernel(P.capsules, T, idx, int(op.count), op.combineMax, cx[level], cy[level], cz[level], n, f,
+                          gx, gy, gz);
+            break;
+        }
+        ++sp;
+        break;
+      }
+      case OpCode::Const: pushConstant(op.emptyValue); break;
+      case OpCode::BeginMap: {
+        const SpaceMap& m = P.maps[op.first];
+        float* out = coords_.data() + size_t(level + 1) * 3 * kChunk;
+        float* __restrict ox = out;  // the levels' coordinates never overlap: the loops vectorise
+        float* __restrict oy = out + kChunk;
+        float* __restrict oz = out + 2 * kChunk;
+        const float* __restrict ix = cx[level];
+        const float* __restrict iy = cy[level];
+        const float* __restrict iz = cz[level];
+        if (m.kind == SpaceMapKind::Affine) {
+          const glm::mat3& L = m.linear;
+          const glm::vec3 o = m.origin;
+          for (int i = 0; i < n; ++i) {
+            float dx = ix[i] - o.x, dy = iy[i] - o.y, dz = iz[i] - o.z;
+            ox[i] = L[0][0] * dx + L[1][0] * dy + L[2][0] * dz;
+            oy[i] = L[0][1] * dx + L[1][1] * dy + L[2][1] * dz;
+            oz[i] = L[0][2] * dx + L[1][2] * dy + L[2][2] * dz;
+          }
+        } else {
+          for (int i = 0; i < n; ++i) {
+            glm::vec3 q = m.toLocal({ix[i], iy[i], iz[i]});
+            ox[i] = q.x;
+            oy[i] = q.y;
+            oz[i] = q.z;
+          }
+        }
+        ++level;
+        cx[level] = ox;
+        cy[level] = oy;
+        cz[level] = oz;
+        if (m.kind == SpaceMapKind::Affine) {
+          // The image of the parent box's corners bounds the image of its points.
+          const glm::vec3 lo = boxes[2 * level - 2], hi = boxes[2 * level - 1];
+          glm::vec3 nlo(INFINITY), nhi(-INFINITY);
+          for (int c = 0; c < 8; ++c) {
+            glm::vec3 q((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
+            glm::vec3 r = m.linear * (q - m.origin);
+            nlo = glm::min(nlo, r);
+            nhi = glm::max(nhi, r);
+          }
+          const glm::vec3 pad = 1e-5f * (nhi - nlo) + 1e-6f * glm::max(glm::abs(nlo), glm::abs(nhi));  // rounding
+          boxes[2 * level] = nlo - pad;
+          boxes[2 * level + 1] = nhi + pad;
+        } else {
+          pointsBox(ox, oy, oz, boxes[2 * level], boxes[2 * level + 1]);
+        }
+        break;
+      }
+      case OpCode::EndMap: {
+        const SpaceMap& m = P.maps[op.first];
+        --level;
+        if (grad) {
+          float* gx = GX(sp - 1);
+          float* gy = GY(sp - 1);
+          float* gz = GZ(sp - 1);
+          if (m.kind == SpaceMapKind::Affine) {
+            const glm::mat3& L = m.linear;  // J = L; grad_world = L^T grad_local
+            for (int i = 0; i < n; ++i) {
+              float a = gx[i], b = gy[i], c = gz[i];
+              gx[i] = L[0][0] * a + L[0][1] * b + L[0][2] * c;
+              gy[i] = L[1][0] * a + L[1][1] * b + L[1][2] * c;
+              gz[i] = L[2][0] * a + L[2][1] * b + L[2][2] * c;
+            }
+          } else {
+            for (int i = 0; i < n; ++i) {
+              glm::mat3 J;
+              m.toLocal({cx[level][i], cy[level][i], cz[level][i]}, &J);
+              glm::vec3 g = glm::transpose(J) * glm::vec3(gx[i], gy[i], gz[i]);
+              gx[i] = g.x;
+              gy[i] = g.y;
+              gz[i] = g.z;
+            }
+          }
+        }
+        break;
+      }
+      default: {
+        int cnt = int(op.count);
+        int base = sp - cnt;
+        float* f0 = F(base);
+        float* gx0 = GX(base);
+        float* gy0 = GY(base);
+        float* gz0 = GZ(base);
+        const float* prm = P.params.data() + op.param;
+        switch (op.code) {
+          case OpCode::Sum:
+            for (int k = 1; k < cnt; ++k) {
+              const float* fk = F(base + k);
+              for (int i = 0; i < n; ++i) f0[i] += fk[i];
+              if (grad) {
+                const float* ax = GX(base + k);
+                const float* ay = GY(base + k);
+                const float* az = GZ(base + k);
+                for (int i = 0; i < n; ++i) {
+                  gx0[i] += ax[i];
+                  gy0[i] += ay[i];
+                  gz0[i] += az[i];
+                }
+              }
+            }
+            break;
+          case OpCode::Max:
+          case OpCode::Min: {
+            bool mx = op.code == OpCode::Max;
+            for (int k = 1; k < cnt; ++k) {
+              const float* fk = F(base + k);
+              if (grad) {
+                const float* ax = GX(base + k);
+                const float* ay = GY(base + k);
+                const float* az = GZ(base + k);
+                for (int i = 0; i < n; ++i) {
+                  bool take = mx ? fk[i] > f0[i] : fk[i] < f0[i];
+                  if (take) {
+                    f0[i] = fk[i];
+                    gx0[i] = ax[i];
+                    gy0[i] = ay[i];
+                    gz0[i] = az[i];
+                  }
+                }
+              } else {
+                for (int i = 0; i < n; ++i) f0[i] = mx ? std::max(f0[i], fk[i]) : std::min(f0[i], fk[i]);
+              }
+            }
+            break;
+          }
+          case OpCode::HyperBlend: {
+            float q = prm[0];
+            float vals[64], d[64];
+            int m = std::min(cnt, 64);
+            for (int i = 0; i < n; ++i) {
+              for (int k = 0; k < m; ++k) vals[k] = F(base + k)[i];
+              float h = hyperBlend(vals, m, q, d);
+              if (grad) {
+                float sx = 0, sy = 0, sz = 0;
+                for (int k = 0; k < m; ++k) {
+                  sx += d[k] * GX(base + k)[i];
+                  sy += d[k] * GY(base + k)[i];
+                  sz += d[k] * GZ(base + k)[i];
+                }
+                gx0[i] = sx;
+                gy0[i] = sy;
+                gz0[i] = sz;
+              }
+              f0[i] = h;
+            }
+            break;
+          }
+          case OpCode::Difference: {
+            const float* f1 = F(base + 1);
+            for (int i = 0; i < n; ++i) {
+              float other = 2.0f * T - f1[i];
+              if (other < f0[i]) {
+                f0[i] = other;
+                if (grad) {
+                  gx0[i] = -GX(base + 1)[i];
+                  gy0[i] = -GY(base + 1)[i];
+                  gz0[i] = -GZ(base + 1)[i];
+                }
+              }
+            }
+            break;
+          }
+          case OpCode::RUnion:
+          case OpCode::RIntersection: {
+            bool uni = op.code == OpCode::RUnion;
+            const float* f1 = F(base + 1);
+            for (int i = 0; i < n; ++i) {
+              float d1, d2;
+              float r = uni ? rUnion(f0[i] - T, f1[i] - T, d1, d2) : rIntersection(f0[i] - T, f1[i] - T, d1, d2);
+              f0[i] = T + r;
+              if (grad) {
+                gx0[i] = d1 * gx0[i] + d2 * GX(base + 1)[i];
+                gy0[i] = d1 * gy0[i] + d2 * GY(base + 1)[i];
+                gz0[i] = d1 * gz0[i] + d2 * GZ(base + 1)[i];
+              }
+            }
+            break;
+          }
+          case OpCode::BoundedBlend: {
+            BoundedBlendParams bp{prm[0], prm[1], prm[2], prm[3]};
+            const float* f1 = F(base + 1);
+            const float* f2 = F(base + 2);
+            for (int i = 0; i < n; ++i) {
+              float d[3];
+              float r = boundedBlend(f0[i] - T, f1[i] - T, f2[i] - T, bp, d);
+              f0[i] = T + r;
+              if (grad) {
+                gx0[i] = d[0] * gx0[i] + d[1] * GX(base + 1)[i] + d[2] * GX(base + 2)[i];
+                gy0[i] = d[0] * gy0[i] + d[1] * GY(base + 1)[i] + d[2] * GY(base + 2)[i];
+                gz0[i] = d[0] * gz0[i] + d[1] * GZ(base + 1)[i] + d[2] * GZ(base + 2)[i];
+              }
+            }
+            break;
+          }
+          case OpCode::Remap:
+            for (int i = 0; i < n; ++i) {
+              float d;
+              f0[i] = remapPotential(f0[i], prm[0], prm[1], T, d);
+              if (grad) {
+                gx0[i] *= d;
+                gy0[i] *= d;
+                gz0[i] *= d;
+              }
+            }
+            break;
+          default: break;
+        }
+        sp = base + 1;
+      }
+    }
+  }
+  const float* f = F(0);
+  for (int i = 0; i < n; ++i) fOut[i] = f[i] - T;
+  if (grad) {
+    std::copy(GX(0), GX(0) + n, gxOut);
+    std::copy(GY(0), GY(0) + n, gyOut);
+    std::copy(GZ(0), GZ(0) + n, gzOut);
+  }
+}
+
+
+}  // namespace animorph

@@ -1,0 +1,209 @@
+// FieldProgram, part 3 of 4: bounds of the field over a region (interval arithmetic), which let
+// the polygoniser skip regions of one sign.
+#include "field/field_program.h"
+
+#include <algorithm>
+#include <functional>
+#include <atomic>
+#include <cassert>
+#include <cmath>
+#include <limits>
+
+#include "field/convolution_segment.h"
+#include "field/field_program_detail.h"
+#include "field/potential.h"
+
+namespace animorph {
+
+using field_detail::boxesOverlap;
+using field_detail::distToSegment;
+
+// ------------------------------------------------------------------ intervals
+
+Bounds FieldProgram::tightBounds(int depth) const {
+  if (unbounded_ || bounds_.empty()) return bounds_;
+  Bounds out;
+  ActiveProgram active;
+  std::vector<uint32_t> reaching;
+  // Per level: the primitives whose box overlaps that level's current box. A child box lies inside
+  // its parent's (its corners are the parent's or the parent's centre), so its primitives are among
+  // the parent's: each box tests only those, with the same result as testing every primitive.
+  std::vector<std::vector<uint32_t>> overlapping(size_t(std::max(depth, 0) + 1));
+  // Depth-first over the octree of bounds(), children visited from the last to the first.
+  std::function<void(const Bounds&, int)> visit = [&](const Bounds& box, int level) {
+    // A box inside the bounds found so far cannot grow them, whatever its leaves: skip it (the
+    // result is the same; the preview computes these bounds every frame of a morph).
+    if (!out.empty() && glm::all(glm::greaterThanEqual(box.min, out.min)) &&
+        glm::all(glm::lessThanEqual(box.max, out.max)))
+      return;
+    std::vector<uint32_t>& mine = overlapping[size_t(std::min(level, depth))];
+    const std::vector<uint32_t>* parent = level > 0 ? &overlapping[size_t(level - 1)] : nullptr;
+    mine.clear();
+    auto keep = [&](uint32_t g) {
+      if (boxesOverlap(primitiveBounds[g].box, box)) mine.push_back(g);
+    };
+    if (parent) {
+      for (uint32_t g : *parent) keep(g);
+    } else {
+      for (uint32_t g = 0; g < primitiveBounds.size(); ++g) keep(g);
+    }
+    primitivesReaching(box, reaching, &mine);
+    specialise(reaching, active);
+    Interval iv = interval(active, box.center(), 0.5f * box.diagonal());
+    if (iv.hi < 0.0f) return;
+    if (level >= depth || iv.lo >= 0.0f) {
+      out.add(box);
+      return;
+    }
+    glm::vec3 c = box.center();
+    for (int k = 7; k >= 0; --k) {
+      Bounds child;
+      child.add(glm::vec3(k & 1 ? c.x : box.min.x, k & 2 ? c.y : box.min.y, k & 4 ? c.z : box.min.z));
+      child.add(glm::vec3(k & 1 ? box.max.x : c.x, k & 2 ? box.max.y : c.y, k & 4 ? box.max.z : c.z));
+      visit(child, level + 1);
+    }
+  };
+  visit(bounds_, 0);
+  return out;
+}
+
+namespace {
+
+float potentialAt(float d, float R, float I, float k) {
+  float gf;
+  return skeletalPotential(d * d, R, I, k, gf);
+}
+
+}  // namespace
+
+Interval FieldProgram::interval(const ActiveProgram& prog, const glm::vec3& centre, float radius) const {
+  thread_local std::vector<Interval> st;
+  thread_local std::vector<glm::vec4> balls;
+  st.clear();
+  balls.clear();
+  glm::vec3 c = centre;
+  float rho = radius;
+  const float T = threshold;
+  for (const FieldOp& op : prog.ops) {
+    switch (op.code) {
+      case OpCode::Prims: {
+        Interval acc{0.0f, 0.0f};
+        if (op.primClass == PrimClass::Convolution) {
+          thread_local std::vector<float> los, his;
+          los.resize(op.count);
+          his.resize(op.count);
+          convolutionIntervalKernel(convolution, prog.indices.data() + op.first, int(op.count), c, rho, los.data(),
+                                    his.data());
+          for (uint32_t k = 0; k < op.count; ++k) {
+            acc.lo += los[k];
+            acc.hi += his[k];
+          }
+          st.push_back(acc);
+          break;
+        }
+        for (uint32_t k = 0; k < op.count; ++k) {
+          uint32_t i = prog.indices[op.first + k];
+          Interval v{0.0f, 0.0f};
+          if (op.primClass == PrimClass::Skeletal) {
+            const SkeletalPrimitive& p = skeletal[i];
+            Skeleton s = p.skeleton;
+            if (s.kind == SkeletonKind::Curve) s.curve = curvePoints.data() + p.curveFirst;
+            float d = glm::length(c - closestOnSkeleton(s, c));
+            float g0 = potentialAt(std::max(0.0f, d - rho), p.radius, p.intensity, p.stiffness);
+            float g1 = potentialAt(d + rho, p.radius, p.intensity, p.stiffness);
+            v = {std::min(g0, g1), std::max(g0, g1)};
+          } else {
+            const CapsulePrimitive& cp = capsules[i];
+            float d = distToSegment(c, cp.a, cp.b);
+            auto pot = [&](float dd) { return cp.radius > 0.0f ? T * std::max(0.0f, 2.0f - dd / cp.radius) : 0.0f; };
+            v = {pot(d + rho), pot(std::max(0.0f, d - rho))};
+          }
+          if (op.combineMax) acc = {std::max(acc.lo, v.lo), std::max(acc.hi, v.hi)};
+          else acc = {acc.lo + v.lo, acc.hi + v.hi};
+        }
+        st.push_back(acc);
+        break;
+      }
+      case OpCode::Const: st.push_back({op.emptyValue, op.emptyValue}); break;
+      case OpCode::BeginMap: {
+        balls.push_back(glm::vec4(c, rho));
+        const SpaceMap& m = maps[op.first];
+        float stretch = m.localStretchBound(c, rho);
+        c = m.toLocal(c);
+        rho = std::isinf(stretch) ? INFINITY : rho * stretch * 1.0001f;
+        break;
+      }
+      case OpCode::EndMap: {
+        c = glm::vec3(balls.back());
+        rho = balls.back().w;
+        balls.pop_back();
+        break;
+      }
+      default: {
+        uint32_t n = op.count;
+        size_t base = st.size() - n;
+        const float* prm = params.data() + op.param;
+        Interval r;
+        switch (op.code) {
+          case OpCode::Sum:
+            r = {0.0f, 0.0f};
+            for (uint32_t k = 0; k < n; ++k) r = {r.lo + st[base + k].lo, r.hi + st[base + k].hi};
+            break;
+          case OpCode::Max:
+            r = st[base];
+            for (uint32_t k = 1; k < n; ++k) r = {std::max(r.lo, st[base + k].lo), std::max(r.hi, st[base + k].hi)};
+            break;
+          case OpCode::Min:
+            r = st[base];
+            for (uint32_t k = 1; k < n; ++k) r = {std::min(r.lo, st[base + k].lo), std::min(r.hi, st[base + k].hi)};
+            break;
+          case OpCode::HyperBlend: {
+            float los[64], his[64], d[64];
+            uint32_t m = std::min<uint32_t>(n, 64);
+            for (uint32_t k = 0; k < m; ++k) {
+              los[k] = std::max(0.0f, st[base + k].lo);
+              his[k] = std::max(0.0f, st[base + k].hi);
+            }
+            r = {hyperBlend(los, int(m), prm[0], d), hyperBlend(his, int(m), prm[0], d)};
+            break;
+          }
+          case OpCode::Difference:
+            r = {std::min(st[base].lo, 2.0f * T - st[base + 1].hi), std::min(st[base].hi, 2.0f * T - st[base + 1].lo)};
+            break;
+          case OpCode::RUnion:
+          case OpCode::RIntersection: {
+            float d1, d2;
+            auto f = [&](float a, float b) {
+              return op.code == OpCode::RUnion ? rUnion(a - T, b - T, d1, d2) : rIntersection(a - T, b - T, d1, d2);
+            };
+            r = {T + f(st[base].lo, st[base + 1].lo), T + f(st[base].hi, st[base + 1].hi)};
+            break;
+          }
+          case OpCode::BoundedBlend: {
+            float d1, d2;
+            float a0 = prm[0];
+            r = {T + rUnion(st[base].lo - T, st[base + 1].lo - T, d1, d2) + std::min(0.0f, a0),
+                 T + rUnion(st[base].hi - T, st[base + 1].hi - T, d1, d2) + std::max(0.0f, a0)};
+            break;
+          }
+          case OpCode::Remap: {  // monotone in p; a negative scale swaps the ends
+            float d;
+            const float a = remapPotential(st[base].lo, prm[0], prm[1], T, d);
+            const float b = remapPotential(st[base].hi, prm[0], prm[1], T, d);
+            r = {std::min(a, b), std::max(a, b)};
+            break;
+          }
+          default: r = {-INFINITY, INFINITY};
+        }
+        if (std::isnan(r.lo)) r.lo = -INFINITY;
+        if (std::isnan(r.hi)) r.hi = INFINITY;
+        st.resize(base + 1);
+        st[base] = r;
+      }
+    }
+  }
+  if (st.empty()) return {-T, -T};
+  return {st.back().lo - T, st.back().hi - T};
+}
+
+}  // namespace animorph
