@@ -49,14 +49,6 @@ void removeActorDraws(SceneFrame& frame, const std::string& actorId) {
   std::erase_if(frame.blobGuides, [&](const BlobGuides& g) { return g.actorId == actorId; });
 }
 
-glm::mat4 blendTransforms(const Transform& a, const Transform& b, float s) {
-  Transform t;
-  t.translation = glm::mix(a.translation, b.translation, s);
-  t.rotation = glm::slerp(a.rotation, b.rotation, s);
-  t.scale = glm::mix(a.scale, b.scale, s);
-  return t.matrix();
-}
-
 }  // namespace
 
 AnimorphosisSceneInfo applyAnimorphosis(SceneFrame& frame, const Project& project, AnimorphosisCache& cache,
@@ -93,7 +85,7 @@ AnimorphosisSceneInfo applyAnimorphosis(SceneFrame& frame, const Project& projec
   if (!anyShown) return info;
   BlobDraw d;
   d.actorId = m.sourceActorId;
-  d.model = blendTransforms(source->transform, target->transform, float(info.s));
+  d.model = blendedTransform(source->transform, target->transform, float(info.s)).matrix();
   d.treeTimeSec = 0.0;
   d.tree = cache.snapshot(project, t);
   frame.blobs.push_back(std::move(d));
