@@ -8,6 +8,7 @@
 
 #include "doc/animorphosis_project.h"
 #include "doc/blobtree_commands.h"
+#include "doc/project_io.h"
 #include "scene/animorphosis_scene.h"
 #include "anim/key_edit.h"
 #include "curves/curve_source.h"
@@ -254,6 +255,44 @@ TEST_CASE("the viewport's scene shows the source, then C(t), then the target", "
   CHECK(info.stage == AnimorphosisStage::Target);
   REQUIRE(after.blobs.size() == 1);
   CHECK(after.blobs[0].actorId == "flyer");
+  for (const SceneFrame* s : {&before, &mid, &after}) CHECK(s->blobs[0].opacity == 1.0f);
+}
+
+TEST_CASE("the Ghosts checkbox shows A(t) and B(t) translucent beside C(t), is saved and undoable", "[animorphosis_ui]") {
+  EditorFixture f({1600.0f, 1200.0f});
+  loadCreatures(f);
+  createThroughModal(f.h, /*autoMap=*/true);
+  CHECK_FALSE(f.h.doc().project().animorphosis.showGhosts);
+  f.h.clickWidget("corr/ghosts");
+  f.h.frames(1);
+  const Project& p = f.h.doc().project();
+  REQUIRE(p.animorphosis.showGhosts);
+  AnimorphosisCache cache;
+  auto sceneAt = [&](double frame, bool ghosts) {
+    SceneFrame s = evaluateScene(p, f.h.doc().baseDir(), f.h.assets, frame / p.timeline.fps);
+    applyAnimorphosis(s, p, cache, &f.h.doc(), f.h.doc().revision(), ghosts);
+    return s;
+  };
+  SceneFrame mid = sceneAt(48, true);
+  REQUIRE(mid.blobs.size() == 3);  // C, then the two ghosts with their own trees at their own times
+  CHECK(mid.blobs[0].tree);
+  CHECK(mid.blobs[0].opacity == 1.0f);
+  CHECK(mid.blobs[1].actorId == "walker");
+  CHECK(mid.blobs[1].key() == "walker#ghost");
+  CHECK(mid.blobs[2].key() == "flyer#ghost");
+  for (int i : {1, 2}) {
+    CHECK(mid.blobs[size_t(i)].opacity == Approx(kGhostOpacity));
+    CHECK_FALSE(mid.blobs[size_t(i)].tree);
+  }
+  CHECK(sceneAt(48, false).blobs.size() == 1);  // the CLI's renders and bakes ask for none
+  CHECK(sceneAt(12, true).blobs.size() == 1);   // outside the interval the actor is itself
+  // Saved in the project's animorphosis section.
+  auto back = projectFromJson(projectToJson(p), "ghosts.animorph");
+  REQUIRE(back.ok());
+  CHECK(back->animorphosis.showGhosts);
+  f.h.tapKey(GLFW_KEY_Z, true);
+  f.h.frames(2);
+  CHECK_FALSE(f.h.doc().project().animorphosis.showGhosts);
 }
 
 TEST_CASE("correspondence editor: a Ctrl+right-drag across wires cuts them in one undo step", "[animorphosis_ui]") {

@@ -11,7 +11,9 @@
 //    Ctrl+right-drag across wires: cut; the wheel zooms around the mouse, a
 //    middle drag pans, F frames all (as in the curve editor); Auto-map:
 //    propose links again keeping the artist's; Bake to key-frame actor: the
-//    animorphosis as a new key-framed BlobTree actor (Animorphosis menu too).
+//    animorphosis as a new key-framed BlobTree actor (Animorphosis menu too);
+//    Ghosts: the viewport also shows A(t) and B(t), translucent (saved in the
+//    project's animorphosis, undoable).
 //    A node with k links shows "x k"; the top of an unlinked
 //    sub-tree says "shrinks" (source) or "grows" (target). A selected link can
 //    get its own s(u), which the curve editor then shows beside the global one.

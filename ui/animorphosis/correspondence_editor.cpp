@@ -177,6 +177,18 @@ void drawToolbar(Document& doc, const BlobTree& a, const BlobTree& b, Correspond
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Bake the animorphosis into a new key-framed BlobTree actor (Animorphosis menu; undoable).");
   ImGui::SameLine();
+  bool ghosts = m.showGhosts;
+  if (ImGui::Checkbox("Ghosts", &ghosts)) {
+    AnimorphosisSetup after = m;
+    after.showGhosts = ghosts;
+    const std::string label = ghosts ? "Show ghosts of source and target" : "Hide ghosts of source and target";
+    doc.execute(setAnimorphosisCommand(doc.project(), std::move(after), label));
+    status = {label, false};
+  }
+  noteWidget("corr/ghosts");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Within the interval the viewport also shows the source and the target, translucent.");
+  ImGui::SameLine();
   const bool any = st.selected && m.graph.find(st.selected->nodeA, st.selected->nodeB) >= 0;
   ImGui::BeginDisabled(!any);
   if (ImGui::Button("Cut") && any) {

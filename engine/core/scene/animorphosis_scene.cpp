@@ -52,7 +52,7 @@ void removeActorDraws(SceneFrame& frame, const std::string& actorId) {
 }  // namespace
 
 AnimorphosisSceneInfo applyAnimorphosis(SceneFrame& frame, const Project& project, AnimorphosisCache& cache,
-                                        const void* owner, uint64_t revision) {
+                                        const void* owner, uint64_t revision, bool ghosts) {
   AnimorphosisSceneInfo info;
   auto c = cache.get(project, owner, revision);
   if (!c) {
@@ -80,6 +80,15 @@ AnimorphosisSceneInfo applyAnimorphosis(SceneFrame& frame, const Project& projec
     return std::any_of(frame.blobs.begin(), frame.blobs.end(), [&](const BlobDraw& d) { return d.actorId == id; });
   };
   const bool anyShown = shown(m.sourceActorId) || shown(m.targetActorId);
+  std::vector<BlobDraw> ghostDraws;
+  if (ghosts)
+    for (const BlobDraw& d : frame.blobs)
+      if (d.actorId == m.sourceActorId || d.actorId == m.targetActorId) {
+        BlobDraw g = d;
+        g.previewKey = d.actorId + "#ghost";
+        g.opacity = kGhostOpacity;
+        ghostDraws.push_back(std::move(g));
+      }
   removeActorDraws(frame, m.sourceActorId);
   removeActorDraws(frame, m.targetActorId);
   if (!anyShown) return info;
@@ -89,6 +98,7 @@ AnimorphosisSceneInfo applyAnimorphosis(SceneFrame& frame, const Project& projec
   d.treeTimeSec = 0.0;
   d.tree = cache.snapshot(project, t);
   frame.blobs.push_back(std::move(d));
+  for (BlobDraw& g : ghostDraws) frame.blobs.push_back(std::move(g));
   return info;
 }
 
