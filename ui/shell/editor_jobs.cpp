@@ -1,5 +1,6 @@
 // EditorUI's long operations, run as background jobs (util/background_job.h): opening a project
-// (and loading its characters), opening or importing a glTF, and File > Export.... The work
+// (and loading its characters), opening or importing a glTF, File > Export..., Refit all and
+// Animorphosis > Bake to Key-frame Actor. The work
 // runs on the job's thread on copies and fills a result that only the UI thread applies, in
 // pollJob(), as one step: a new document, or one undoable command.
 #include <cmath>
@@ -108,7 +109,7 @@ void EditorUI::startBakeKeysJob(EditorContext& ctx) {
     *baked = bakeAnimorphosisActor(*project);
     return pr.cancelled() ? jobCancelled() : Status::success();
   };
-  startJob("Bake to key-frame actor", std::move(work), [this, project, baked](EditorContext& c, const Status&) {
+  startJob("Bake to key-frame actor", std::move(work), [this, baked](EditorContext& c, const Status&) {
     Document& dd = doc(c);
     if (!*baked) {
       setStatus("Bake to key-frame actor: " + baked->error(), true);
