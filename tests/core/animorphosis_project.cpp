@@ -169,7 +169,7 @@ TEST_CASE("animorphosis: the project's animorphosis bakes to a key-frame BlobTre
   CHECK(back->findActor(morph.id)->blobTree == baked.tree);
 }
 
-TEST_CASE("animorphosis: Bake to key-frame actor adds one actor that evaluates to C at the key times; undo removes it",
+TEST_CASE("animorphosis: Bake to key-frame actor adds one actor that evaluates to C at the key times, undo removes it",
           "[animorph]") {
   auto doc = creaturesDocument();
   Project noLoops = doc->project();  // a looping clip puts more than nA + nB + ns keys on a channel

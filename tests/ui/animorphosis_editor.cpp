@@ -385,7 +385,7 @@ WidgetRect rectOf(EditorHarness& h, const std::string& key) {
 }
 }  // namespace
 
-TEST_CASE("correspondence editor: the wheel zooms around the mouse, a middle drag pans, F frames all; links still land",
+TEST_CASE("correspondence editor: the wheel zooms around the mouse, a middle drag pans, F frames all, links still land",
           "[animorphosis_ui]") {
   EditorFixture f({1600.0f, 1200.0f});
   loadCreatures(f);
