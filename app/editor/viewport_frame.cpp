@@ -93,7 +93,8 @@ ViewportFrameResult ViewportFrame::build(EditorGpu& g, EditorUI& ui, EditorConte
     ectx.viewportNote += std::string(ectx.viewportNote.empty() ? "" : "  |  ") + "preparing the morph...";
   if (!out.weightPaintMode) {
     const std::string note =
-        describeAnimorphosis(applyAnimorphosis(frame, doc.project(), animorphosisCache_, &doc, doc.revision()));
+        describeAnimorphosis(applyAnimorphosis(frame, doc.project(), animorphosisCache_, &doc, doc.revision(),
+                                               doc.project().animorphosis.showGhosts));
     if (!note.empty()) ectx.viewportNote += (ectx.viewportNote.empty() ? "" : "  |  ") + note;
   }
   // Particle systems moving (scrubbing, playing) are drawn as particles, not polygonised (not for screenshots).
@@ -115,7 +116,7 @@ ViewportFrameResult ViewportFrame::build(EditorGpu& g, EditorUI& ui, EditorConte
     const Ray ray = out.camera.rayThroughPixel(local.x, local.y, out.viewport.size);
     std::optional<ScenePick> hit = pickScene(frame, ray);
     for (const BlobDraw& b : frame.blobs)
-      if (auto res = g.blobPreviews->result(b.actorId))
+      if (auto res = b.opacity < 1.0f ? nullptr : g.blobPreviews->result(b.actorId))  // ghosts are not picked
         hit = nearerPick(hit, pickBlobSurface(b.actorId, b.model, res->mesh, ray));
     if (ectx.morphRuntime && !out.weightPaintMode) {
       auto cpu = r.morphStageShown ? g.morphPreview->cpuResult() : nullptr;

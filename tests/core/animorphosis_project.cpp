@@ -1,14 +1,17 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 
 #include "animorph/bake_keys.h"
 #include "animorph/evaluate_generic.h"
+#include "doc/animorphosis_bake_actor.h"
 #include "doc/animorphosis_commands.h"
 #include "doc/animorphosis_project.h"
 #include "doc/blobtree_commands.h"
 #include "doc/document.h"
 #include "doc/project_io.h"
+#include "blobtree/compile.h"
 #include "blobtree/validate.h"
 #include "util/animorph_fixtures.h"
 #include "util/temp_dir.h"
@@ -164,4 +167,70 @@ TEST_CASE("animorphosis: the project's animorphosis bakes to a key-frame BlobTre
   INFO(back.error());
   REQUIRE(back.ok());
   CHECK(back->findActor(morph.id)->blobTree == baked.tree);
+}
+
+TEST_CASE("animorphosis: Bake to key-frame actor adds one actor that evaluates to C at the key times, undo removes it",
+          "[animorph]") {
+  auto doc = creaturesDocument();
+  Project noLoops = doc->project();  // a looping clip puts more than nA + nB + ns keys on a channel
+  for (Actor& a : noLoops.actors) a.loop = false;
+  doc->reset(noLoops, "");
+  exec(*doc, createAnimorphosisCommand(doc->project(), "walker", "flyer", 1.0, 3.0, false));
+  // The authored graph without the bridged tails: the baked tree then has C's node kinds at both ends.
+  AnimorphosisSetup setup = doc->project().animorphosis;
+  setup.graph = walkerToFlyerGraph();
+  std::erase_if(setup.graph.links, [](const CorrespondenceLink& l) { return l.nodeA >= 9 && l.nodeA <= 11; });
+  doc->execute(setAnimorphosisCommand(doc->project(), setup, "graph"));
+  const size_t actorsBefore = doc->project().actors.size();
+
+  auto baked = bakeAnimorphosisActor(doc->project());
+  INFO(baked.error());
+  REQUIRE(baked.ok());
+  CHECK(baked->report.withinBound);
+  CHECK(baked->report.mostKeys <= baked->report.mostKeysBound);
+  CHECK(baked->report.keys > baked->report.parameters);
+  const std::string text = describeBakedActor(*baked);
+  CHECK_THAT(text, Contains("walker -> flyer (keys)"));
+  CHECK_THAT(text, Contains("nA + nB + ns"));
+
+  doc->execute(addBakedActorCommand(doc->project(), *baked));
+  REQUIRE(doc->project().actors.size() == actorsBefore + 1);
+  const Actor& added = doc->project().actors.back();
+  CHECK(added.id == "walker_to_flyer");
+  CHECK(added.kind == ActorKind::BlobTree);
+  CHECK_FALSE(added.loop);
+  REQUIRE(validateBlobTree(added.blobTree).ok());
+
+  // At the interval's ends and at the global s's keys (keys of every channel) the actor's field is C's.
+  auto c = projectGenericTree(doc->project());
+  REQUIRE(c.ok());
+  const AnimorphosisTiming timing = animorphosisTiming(doc->project());
+  std::vector<double> keyTimes;
+  for (const auto& k : timing.globalS.keys()) keyTimes.push_back(timing.startSec + k.timeSec * (timing.endSec - timing.startSec));
+  REQUIRE(keyTimes.size() >= 2);
+  FieldEvaluator ev;
+  double worst = 0.0;
+  for (double t : keyTimes) {
+    const double clipT = (t - added.timeOffsetSec) * added.speed;
+    FieldProgram pb = compileFieldProgram(added.blobTree, clipT), live = compileGeneric(*c, timing, t);
+    for (int i = 0; i < 200; ++i) {
+      const glm::vec3 p(-2.0f + 0.02f * float(i), 0.3f * std::sin(float(i)), -1.0f + 0.01f * float(i));
+      const double fb = ev.evaluatePoint(pb, p), fl = ev.evaluatePoint(live, p);
+      worst = std::max(worst, std::abs(fb - fl) / std::max(std::abs(fl), double(live.threshold)));
+    }
+  }
+  CHECK(worst <= 1e-4);
+
+  // A second bake gets its own id; undo removes the actors again.
+  doc->execute(addBakedActorCommand(doc->project(), *baked));
+  CHECK(doc->project().findActor("walker_to_flyer_2"));
+  doc->undo();
+  doc->undo();
+  CHECK(doc->project().actors.size() == actorsBefore);
+  CHECK_FALSE(doc->project().findActor("walker_to_flyer"));
+
+  // Without an animorphosis nothing is baked, and the reason says so.
+  Project none = doc->project();
+  none.animorphosis = {};
+  CHECK_FALSE(bakeAnimorphosisActor(none).ok());
 }

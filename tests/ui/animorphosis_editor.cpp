@@ -8,6 +8,7 @@
 
 #include "doc/animorphosis_project.h"
 #include "doc/blobtree_commands.h"
+#include "doc/project_io.h"
 #include "scene/animorphosis_scene.h"
 #include "anim/key_edit.h"
 #include "curves/curve_source.h"
@@ -254,6 +255,44 @@ TEST_CASE("the viewport's scene shows the source, then C(t), then the target", "
   CHECK(info.stage == AnimorphosisStage::Target);
   REQUIRE(after.blobs.size() == 1);
   CHECK(after.blobs[0].actorId == "flyer");
+  for (const SceneFrame* s : {&before, &mid, &after}) CHECK(s->blobs[0].opacity == 1.0f);
+}
+
+TEST_CASE("the Ghosts checkbox shows A(t) and B(t) translucent beside C(t), is saved and undoable", "[animorphosis_ui]") {
+  EditorFixture f({1600.0f, 1200.0f});
+  loadCreatures(f);
+  createThroughModal(f.h, /*autoMap=*/true);
+  CHECK_FALSE(f.h.doc().project().animorphosis.showGhosts);
+  f.h.clickWidget("corr/ghosts");
+  f.h.frames(1);
+  const Project& p = f.h.doc().project();
+  REQUIRE(p.animorphosis.showGhosts);
+  AnimorphosisCache cache;
+  auto sceneAt = [&](double frame, bool ghosts) {
+    SceneFrame s = evaluateScene(p, f.h.doc().baseDir(), f.h.assets, frame / p.timeline.fps);
+    applyAnimorphosis(s, p, cache, &f.h.doc(), f.h.doc().revision(), ghosts);
+    return s;
+  };
+  SceneFrame mid = sceneAt(48, true);
+  REQUIRE(mid.blobs.size() == 3);  // C, then the two ghosts with their own trees at their own times
+  CHECK(mid.blobs[0].tree);
+  CHECK(mid.blobs[0].opacity == 1.0f);
+  CHECK(mid.blobs[1].actorId == "walker");
+  CHECK(mid.blobs[1].key() == "walker#ghost");
+  CHECK(mid.blobs[2].key() == "flyer#ghost");
+  for (int i : {1, 2}) {
+    CHECK(mid.blobs[size_t(i)].opacity == Approx(kGhostOpacity));
+    CHECK_FALSE(mid.blobs[size_t(i)].tree);
+  }
+  CHECK(sceneAt(48, false).blobs.size() == 1);  // the CLI's renders and bakes ask for none
+  CHECK(sceneAt(12, true).blobs.size() == 1);   // outside the interval the actor is itself
+  // Saved in the project's animorphosis section.
+  auto back = projectFromJson(projectToJson(p), "ghosts.animorph");
+  REQUIRE(back.ok());
+  CHECK(back->animorphosis.showGhosts);
+  f.h.tapKey(GLFW_KEY_Z, true);
+  f.h.frames(2);
+  CHECK_FALSE(f.h.doc().project().animorphosis.showGhosts);
 }
 
 TEST_CASE("correspondence editor: a Ctrl+right-drag across wires cuts them in one undo step", "[animorphosis_ui]") {
@@ -329,4 +368,99 @@ TEST_CASE("the animorphosis curve source edits the global s and a link's own s, 
   });
   REQUIRE_FALSE(broken);
   CHECK(broken.error().find("global s") != std::string::npos);
+}
+
+namespace {
+// The last node of tree shown as a row by default (pre-order, the top three levels open).
+int lastDefaultRow(const BlobNode& n, int depth = 0) {
+  int last = n.id;
+  if (depth < 3)
+    for (const BlobNode& c : n.children) last = lastDefaultRow(c, depth + 1);
+  return last;
+}
+WidgetRect rectOf(EditorHarness& h, const std::string& key) {
+  auto r = h.ui->widgets().find(key);
+  REQUIRE(r);
+  return *r;
+}
+}  // namespace
+
+TEST_CASE("correspondence editor: the wheel zooms around the mouse, a middle drag pans, F frames all, links still land",
+          "[animorphosis_ui]") {
+  EditorFixture f({1600.0f, 1200.0f});
+  loadCreatures(f);
+  createThroughModal(f.h, /*autoMap=*/false);
+  const CorrespondenceEditorState& st = f.h.ui->state().correspondence;
+  const WidgetRect before = rectOf(f.h, row(0, 2));
+  const float h0 = before.max.y - before.min.y;
+
+  // Two notches up half-way between the two bodies' rows: rows grow around the mouse (the point
+  // half-way between the two rows stays under it).
+  const glm::vec2 at = 0.5f * (before.center() + rectOf(f.h, row(1, 102)).center());
+  f.h.wheel(at, 2.0f);
+  f.h.frames(2);
+  CHECK(st.zoom > 1.3f);
+  const WidgetRect zoomed = rectOf(f.h, row(0, 2));
+  CHECK(zoomed.max.y - zoomed.min.y == Approx(h0 * st.zoom).margin(1.0));
+  const glm::vec2 mid = 0.5f * (zoomed.center() + rectOf(f.h, row(1, 102)).center());
+  CHECK(mid.x == Approx(at.x).margin(1.5));
+  CHECK(mid.y == Approx(at.y).margin(1.5));
+
+  // A link dragged in the zoomed view joins the rows under the mouse.
+  dragLink(f.h, 2, 102);
+  CHECK(graph(f.h).find(2, 102) >= 0);
+  CHECK(graph(f.h).links.size() == 1);
+
+  // A middle drag moves the rows with the mouse.
+  const glm::vec2 c0 = rectOf(f.h, row(0, 3)).center();
+  f.h.drag(c0, c0 + glm::vec2(40.0f, -30.0f), 2, 6);
+  f.h.frames(1);
+  const glm::vec2 c1 = rectOf(f.h, row(0, 3)).center();
+  CHECK(c1.x - c0.x == Approx(40.0f).margin(2.0f));
+  CHECK(c1.y - c0.y == Approx(-30.0f).margin(2.0f));
+  dragLink(f.h, 3, 103);  // panned, links still land
+  CHECK(graph(f.h).find(3, 103) >= 0);
+
+  // F (the editor has the focus): every row fits in the window again.
+  f.h.tapKey(GLFW_KEY_F);
+  f.h.frames(2);
+  CHECK(st.zoom < 1.3f);
+  const WidgetRect window = rectOf(f.h, "corr/window");
+  for (const auto& [side, tree] : {std::pair{0, walkerTree()}, std::pair{1, flyerTree()}}) {
+    const WidgetRect last = rectOf(f.h, row(side, lastDefaultRow(tree.root)));
+    CHECK(last.max.y <= window.max.y);
+    CHECK(last.min.x >= window.min.x);
+    CHECK(last.max.x <= window.max.x);
+  }
+  CHECK(rectOf(f.h, row(0, 2)).min.y >= window.min.y);
+}
+
+TEST_CASE("Animorphosis > Bake to Key-frame Actor adds one key-framed BlobTree actor, reports the keys, Ctrl+Z removes it",
+          "[animorphosis_ui]") {
+  EditorFixture f({1600.0f, 1200.0f});
+  loadCreatures(f);
+  createThroughModal(f.h, /*autoMap=*/true);
+  const size_t actors = f.h.doc().project().actors.size();
+  f.h.clickWidget("menu/Animorphosis");
+  f.h.clickWidget("menu/Bake to Key-frame Actor");
+  f.h.frames(3);  // the bake runs as the background job; its result is applied on the UI thread
+  INFO(f.h.ui->state().status.text);
+  REQUIRE(f.h.doc().project().actors.size() == actors + 1);
+  const Actor& baked = f.h.doc().project().actors.back();
+  CHECK(baked.kind == ActorKind::BlobTree);
+  CHECK(baked.name == "walker -> flyer (keys)");
+  CHECK(baked.blobTree.root.subtreeSize() > walkerTree().root.subtreeSize());
+  CHECK(f.h.doc().selection.actorId == baked.id);
+  CHECK_FALSE(f.h.ui->state().status.error);
+  CHECK(f.h.ui->state().status.text.find("nA + nB + ns") != std::string::npos);
+  CHECK(f.h.ui->state().status.text.find("largest deviation") != std::string::npos);
+
+  f.h.tapKey(GLFW_KEY_Z, true);
+  f.h.frames(2);
+  CHECK(f.h.doc().project().actors.size() == actors);
+
+  // The correspondence editor's button does the same.
+  f.h.clickWidget("corr/bake_keys");
+  f.h.frames(3);
+  CHECK(f.h.doc().project().actors.size() == actors + 1);
 }

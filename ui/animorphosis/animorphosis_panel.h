@@ -8,8 +8,12 @@
 //    rows (automatic ones coloured by confidence, artist ones thick and blue,
 //    the selected one white). Drag from a node of one tree onto a node of the
 //    other: link; click a wire: select it; Del, right-click > Cut, or a
-//    Ctrl+right-drag across wires: cut; F: scroll the selected link into view;
-//    the wheel scrolls; Auto-map: propose links again keeping the artist's.
+//    Ctrl+right-drag across wires: cut; the wheel zooms around the mouse, a
+//    middle drag pans, F frames all (as in the curve editor); Auto-map:
+//    propose links again keeping the artist's; Bake to key-frame actor: the
+//    animorphosis as a new key-framed BlobTree actor (Animorphosis menu too);
+//    Ghosts: the viewport also shows A(t) and B(t), translucent (saved in the
+//    project's animorphosis, undoable).
 //    A node with k links shows "x k"; the top of an unlinked
 //    sub-tree says "shrinks" (source) or "grows" (target). A selected link can
 //    get its own s(u), which the curve editor then shows beside the global one.
@@ -57,6 +61,14 @@ struct CorrespondenceEditorState {
   int dragSide = -1, dragNode = -1;
   // A Ctrl+right-drag cutting wires: its trail in window pixels.
   std::vector<glm::vec2> cutTrail;
+  // View: rows and columns scaled by zoom around the graph's top-left, then
+  // moved by pan (pixels). Wheel: zoom around the mouse; middle drag: pan;
+  // F: frame all (every visible row fits the graph).
+  float zoom = 1.0f;
+  glm::vec2 pan{0.0f};
+  bool frameAllNext = false;
+  // The toolbar's Bake to key-frame actor was pressed; the editor starts the job.
+  bool bakeRequested = false;
 };
 
 // The modal; call every frame. On success it opens the correspondence editor.

@@ -13,6 +13,7 @@
 #include "doc/animorphosis_project.h"
 #include "animorphosis/animorphosis_panel.h"
 #include "widgets/tool_window.h"
+#include "widgets/view_zoom.h"
 #include "widgets/widget_rects.h"
 
 namespace animorph {
@@ -24,6 +25,7 @@ constexpr float kArrowW = 14.0f;    // the open / close arrow at the start of a 
 constexpr float kPickPx = 6.0f;     // a click this close to a wire selects it
 constexpr int kWireSamples = 24;    // segments of a wire's Bezier for picking and cutting
 constexpr int kDefaultOpenDepth = 3;
+constexpr float kMinZoom = 0.15f, kMaxZoom = 4.0f;
 
 struct Row {
   const BlobNode* node = nullptr;
@@ -170,6 +172,23 @@ void drawToolbar(Document& doc, const BlobTree& a, const BlobTree& b, Correspond
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Propose the automatic links again (kind, position, size, hierarchy); artist links are kept.");
   ImGui::SameLine();
+  if (ImGui::Button("Bake to key-frame actor")) st.bakeRequested = true;
+  noteWidget("corr/bake_keys");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Bake the animorphosis into a new key-framed BlobTree actor (Animorphosis menu; undoable).");
+  ImGui::SameLine();
+  bool ghosts = m.showGhosts;
+  if (ImGui::Checkbox("Ghosts", &ghosts)) {
+    AnimorphosisSetup after = m;
+    after.showGhosts = ghosts;
+    const std::string label = ghosts ? "Show ghosts of source and target" : "Hide ghosts of source and target";
+    doc.execute(setAnimorphosisCommand(doc.project(), std::move(after), label));
+    status = {label, false};
+  }
+  noteWidget("corr/ghosts");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Within the interval the viewport also shows the source and the target, translucent.");
+  ImGui::SameLine();
   const bool any = st.selected && m.graph.find(st.selected->nodeA, st.selected->nodeB) >= 0;
   ImGui::BeginDisabled(!any);
   if (ImGui::Button("Cut") && any) {
@@ -243,22 +262,67 @@ void drawCorrespondenceEditor(const LayoutRect& area, Document& doc, Corresponde
   const BlobTree& treeA = src->blobTree;
   const BlobTree& treeB = dst->blobTree;
 
-  ImGui::BeginChild("##corr_graph", ImVec2(0.0f, 0.0f), true, ImGuiWindowFlags_NoMove);
+  // The graph does not scroll: the wheel zooms, a middle drag pans (view_zoom.h).
+  ImGui::BeginChild("##corr_graph", ImVec2(0.0f, 0.0f), true,
+                    ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoScrollWithMouse | ImGuiWindowFlags_NoScrollbar);
   ImDrawList* dl = ImGui::GetWindowDrawList();
   const ImGuiIO& io = ImGui::GetIO();
   const glm::vec2 mouse(io.MousePos.x, io.MousePos.y);
   TreeRows ra = buildRows(treeA, st.toggledA, setup.graph, true);
   TreeRows rb = buildRows(treeB, st.toggledB, setup.graph, false);
+  // The layout in content units (pixels at zoom 1): the source's column, the gap the wires cross, the target's.
   const float rowH = ImGui::GetTextLineHeightWithSpacing() + 2.0f;
   const ImVec2 origin = ImGui::GetCursorScreenPos();
-  const float width = ImGui::GetContentRegionAvail().x;
-  const float gap = std::clamp(width * 0.3f, 80.0f, 360.0f);
-  const float colW = std::max(120.0f, (width - gap) * 0.5f);
-  const float xA0 = origin.x, xA1 = xA0 + colW, xB0 = xA1 + gap, xB1 = xB0 + colW;
+  const glm::vec2 avail(std::max(1.0f, ImGui::GetContentRegionAvail().x), std::max(1.0f, ImGui::GetContentRegionAvail().y));
+  const float gap = std::clamp(avail.x * 0.3f, 80.0f, 360.0f);
+  const float colW = std::max(120.0f, (avail.x - gap) * 0.5f);
   const float headerH = rowH;
-  dl->AddText(ImVec2(xA0, origin.y), IM_COL32(200, 200, 210, 255), ("Source: " + src->name).c_str());
-  dl->AddText(ImVec2(xB0, origin.y), IM_COL32(200, 200, 210, 255), ("Target: " + dst->name).c_str());
   const size_t rowCount = std::max(ra.rows.size(), rb.rows.size());
+  const glm::vec2 content(2.0f * colW + gap, headerH + float(rowCount) * rowH + 4.0f);
+
+  // F: frame all (every visible row fits); wheel: zoom around the mouse; middle drag: pan.
+  const bool viewHovered = ImGui::IsWindowHovered(ImGuiHoveredFlags_AllowWhenBlockedByActiveItem);
+  if (st.frameAllNext || (st.focused && !io.WantTextInput && !io.KeyCtrl && !io.KeyAlt && ImGui::IsKeyPressed('F', false))) {
+    st.zoom = std::clamp(std::min(avail.x / content.x, avail.y / content.y), kMinZoom, kMaxZoom);
+    st.pan = {std::max(0.0f, 0.5f * (avail.x - content.x * st.zoom)), 0.0f};
+    st.frameAllNext = false;
+  }
+  // The view as spans of content units over the graph's pixels, for the shared zoom / pan helpers.
+  auto viewSpans = [&](double& x0, double& x1, double& y0, double& y1) {
+    x0 = -st.pan.x / st.zoom, x1 = x0 + avail.x / st.zoom;
+    y0 = -st.pan.y / st.zoom, y1 = y0 + avail.y / st.zoom;
+  };
+  auto setView = [&](double x0, double x1, double y0) {
+    st.zoom = float(avail.x / (x1 - x0));
+    st.pan = {float(-x0 * st.zoom), float(-y0 * st.zoom)};
+  };
+  if (viewHovered && io.MouseWheel != 0.0f) {
+    double x0, x1, y0, y1;
+    viewSpans(x0, x1, y0, y1);
+    const float target = std::clamp(float(st.zoom / wheelSpanFactor(io.MouseWheel)), kMinZoom, kMaxZoom);
+    const double f = st.zoom / target;
+    const glm::vec2 pivot = (mouse - glm::vec2(origin.x, origin.y) - st.pan) / st.zoom;
+    scaleSpanAround(x0, x1, pivot.x, f);
+    scaleSpanAround(y0, y1, pivot.y, f);
+    setView(x0, x1, y0);
+  }
+  if (viewHovered && ImGui::IsMouseDragging(ImGuiMouseButton_Middle, 0.0f) &&
+      (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f)) {
+    double x0, x1, y0, y1;
+    viewSpans(x0, x1, y0, y1);
+    panSpan(x0, x1, io.MouseDelta.x, avail.x);
+    panSpan(y0, y1, io.MouseDelta.y, avail.y);
+    setView(x0, x1, y0);
+  }
+  const float z = st.zoom;
+  auto toScreen = [&](float cx, float cy) { return glm::vec2(origin.x + st.pan.x + cx * z, origin.y + st.pan.y + cy * z); };
+  ImFont* font = ImGui::GetFont();
+  const float fontPx = ImGui::GetFontSize() * z;
+  auto text = [&](glm::vec2 at, ImU32 col, const std::string& s) { dl->AddText(font, fontPx, ImVec2(at.x, at.y), col, s.c_str()); };
+  auto textW = [&](const std::string& s) { return ImGui::CalcTextSize(s.c_str()).x * z; };
+  const float xA0 = 0.0f, xA1 = colW, xB0 = colW + gap, xB1 = xB0 + colW;
+  text(toScreen(xA0, 0.0f), IM_COL32(200, 200, 210, 255), "Source: " + src->name);
+  text(toScreen(xB0, 0.0f), IM_COL32(200, 200, 210, 255), "Target: " + dst->name);
   const ImVec2 clipMin = ImGui::GetWindowPos();
   const float clipTop = clipMin.y, clipBottom = clipMin.y + ImGui::GetWindowSize().y;
 
@@ -268,13 +332,13 @@ void drawCorrespondenceEditor(const LayoutRect& area, Document& doc, Corresponde
     std::set<int>& toggled = side == 0 ? st.toggledA : st.toggledB;
     for (size_t i = 0; i < t.rows.size(); ++i) {
       Row& r = t.rows[i];
-      r.min = {x0, origin.y + headerH + float(i) * rowH};
-      r.max = {x1, r.min.y + rowH - 1.0f};
+      r.min = toScreen(x0, headerH + float(i) * rowH);
+      r.max = toScreen(x1, headerH + float(i + 1) * rowH - 1.0f);
       if (r.max.y < clipTop || r.min.y > clipBottom) continue;
       const BlobNode& n = *r.node;
       ImGui::SetCursorScreenPos(ImVec2(r.min.x, r.min.y));
       ImGui::PushID(side * 1000003 + n.id);
-      ImGui::InvisibleButton("##row", ImVec2(colW, rowH - 1.0f));
+      ImGui::InvisibleButton("##row", ImVec2(std::max(1.0f, r.max.x - r.min.x), std::max(1.0f, r.max.y - r.min.y)));
       ImGui::PopID();
       noteWidget(std::string(side == 0 ? "corr/a/" : "corr/b/") + std::to_string(n.id));
       const bool hovered = ImGui::IsItemHovered();
@@ -283,9 +347,9 @@ void drawCorrespondenceEditor(const LayoutRect& area, Document& doc, Corresponde
                               mouse.y >= r.min.y && mouse.y < r.max.y;
       if (hovered || dropTarget) st.hovered = Selection{side == 0 ? src->id : dst->id, n.id};
       // The target's sockets are on the left of its rows: its text starts after them.
-      const float indentX = r.min.x + (side == 0 ? 4.0f : 12.0f) + r.depth * kIndent;
+      const float indentX = r.min.x + ((side == 0 ? 4.0f : 12.0f) + r.depth * kIndent) * z;
       if (ImGui::IsItemClicked(0)) {
-        if (!n.children.empty() && mouse.x >= indentX && mouse.x < indentX + kArrowW) {
+        if (!n.children.empty() && mouse.x >= indentX && mouse.x < indentX + kArrowW * z) {
           if (!toggled.erase(n.id)) toggled.insert(n.id);
         } else {  // the node becomes the document's selection (inspector, outliner)
           doc.selection = Selection{side == 0 ? src->id : dst->id, n.id};
@@ -302,12 +366,12 @@ void drawCorrespondenceEditor(const LayoutRect& area, Document& doc, Corresponde
                           dropTarget ? IM_COL32(90, 170, 255, 90) : IM_COL32(255, 255, 255, selectedEnd ? 40 : 22),
                           3.0f);
       if (!n.children.empty()) {
-        const float cy = r.min.y + rowH * 0.5f, cx = indentX + 5.0f;
+        const float cy = r.min.y + rowH * 0.5f * z, cx = indentX + 5.0f * z;
         const ImU32 arrow = IM_COL32(180, 180, 190, 255);
         if (r.open)
-          dl->AddTriangleFilled(ImVec2(cx - 4, cy - 2), ImVec2(cx + 4, cy - 2), ImVec2(cx, cy + 3), arrow);
+          dl->AddTriangleFilled(ImVec2(cx - 4 * z, cy - 2 * z), ImVec2(cx + 4 * z, cy - 2 * z), ImVec2(cx, cy + 3 * z), arrow);
         else
-          dl->AddTriangleFilled(ImVec2(cx - 2, cy - 4), ImVec2(cx + 3, cy), ImVec2(cx - 2, cy + 4), arrow);
+          dl->AddTriangleFilled(ImVec2(cx - 2 * z, cy - 4 * z), ImVec2(cx + 3 * z, cy), ImVec2(cx - 2 * z, cy + 4 * z), arrow);
       }
       // Link state: "x k" for a node split k ways; the top of an unlinked sub-tree grows or shrinks.
       const int direct = int((side == 0 ? setup.graph.linksOfA(n.id) : setup.graph.linksOfB(n.id)).size());
@@ -316,13 +380,13 @@ void drawCorrespondenceEditor(const LayoutRect& area, Document& doc, Corresponde
       const bool topUnlinked = unlinked && parent >= 0 && t.linksIn[parent] > 0;
       const ImU32 textCol = unlinked && !topUnlinked ? IM_COL32(140, 140, 150, 255) : IM_COL32(225, 225, 230, 255);
       std::string label = nodeTitle(n);
-      const float tx = indentX + kArrowW, ty = r.min.y + 2.0f;
-      dl->AddText(ImVec2(tx, ty), textCol, label.c_str());
-      float after = tx + ImGui::CalcTextSize(label.c_str()).x + 6.0f;
+      const float tx = indentX + kArrowW * z, ty = r.min.y + 2.0f * z;
+      text({tx, ty}, textCol, label);
+      float after = tx + textW(label) + 6.0f * z;
       if (!n.name.empty()) {  // an unnamed node's title is its kind already
-        const char* kind = nodeTypeInfo(n.type).name;
-        dl->AddText(ImVec2(after, ty), IM_COL32(130, 130, 145, 255), kind);
-        after += ImGui::CalcTextSize(kind).x + 8.0f;
+        const std::string kind = nodeTypeInfo(n.type).name;
+        text({after, ty}, IM_COL32(130, 130, 145, 255), kind);
+        after += textW(kind) + 8.0f * z;
       }
       std::string badge;
       ImU32 badgeCol = IM_COL32(240, 200, 90, 255);
@@ -331,31 +395,25 @@ void drawCorrespondenceEditor(const LayoutRect& area, Document& doc, Corresponde
         badge = side == 0 ? "shrinks" : "grows";
         badgeCol = side == 0 ? IM_COL32(230, 130, 110, 255) : IM_COL32(120, 220, 140, 255);
       }
-      if (!badge.empty()) dl->AddText(ImVec2(after, ty), badgeCol, badge.c_str());
+      if (!badge.empty()) text({after, ty}, badgeCol, badge);
       // The socket wires attach to.
-      const float sx = side == 0 ? r.max.x - 4.0f : r.min.x + 4.0f;
-      dl->AddCircleFilled(ImVec2(sx, r.min.y + rowH * 0.5f), 3.0f,
+      const float sx = side == 0 ? r.max.x - 4.0f * z : r.min.x + 4.0f * z;
+      dl->AddCircleFilled(ImVec2(sx, r.min.y + rowH * 0.5f * z), std::max(1.5f, 3.0f * z),
                           t.linksIn[n.id] > 0 ? IM_COL32(200, 200, 210, 255) : IM_COL32(90, 90, 100, 255));
     }
   };
   drawRows(ra, 0, xA0, xA1);
   drawRows(rb, 1, xB0, xB1);
   ImGui::SetCursorScreenPos(origin);
-  ImGui::Dummy(ImVec2(width, headerH + float(rowCount) * rowH + 4.0f));
-  // F scrolls the selected link's rows (their middle) into the middle of the view.
-  if (st.focused && st.selected && !io.WantTextInput && ImGui::IsKeyPressed('F', false)) {
-    const float ya = headerH + float(ra.rowOf.count(st.selected->nodeA) ? ra.rowOf.at(st.selected->nodeA) : 0) * rowH;
-    const float yb = headerH + float(rb.rowOf.count(st.selected->nodeB) ? rb.rowOf.at(st.selected->nodeB) : 0) * rowH;
-    ImGui::SetScrollY(std::max(0.0f, 0.5f * (ya + yb) - 0.5f * ImGui::GetWindowHeight()));
-  }
+  ImGui::Dummy(ImVec2(avail.x, avail.y));
 
   auto socketA = [&](int id) {
     const Row& r = ra.rows[size_t(ra.rowOf.at(id))];
-    return glm::vec2(r.max.x - 4.0f, r.min.y + rowH * 0.5f);
+    return glm::vec2(r.max.x - 4.0f * z, r.min.y + rowH * 0.5f * z);
   };
   auto socketB = [&](int id) {
     const Row& r = rb.rows[size_t(rb.rowOf.at(id))];
-    return glm::vec2(r.min.x + 4.0f, r.min.y + rowH * 0.5f);
+    return glm::vec2(r.min.x + 4.0f * z, r.min.y + rowH * 0.5f * z);
   };
 
   // Wires. Links to nodes inside closed sub-trees end at the closed row.

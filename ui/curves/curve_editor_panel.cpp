@@ -8,6 +8,7 @@
 
 #include "curves/curve_source.h"
 #include "widgets/tool_window.h"
+#include "widgets/view_zoom.h"
 #include "widgets/widget_rects.h"
 
 namespace animorph {
@@ -269,21 +270,14 @@ void drawCurveEditorPanel(const LayoutRect& area, Document& doc, CurveEditorStat
   // Zoom (wheel: x, Ctrl+wheel: values) around the mouse; middle drag pans.
   if (hovered && io.MouseWheel != 0.0f) {
     glm::dvec2 pivot = pixelToCurve(st, mouse);
-    double f = std::pow(0.85, io.MouseWheel);
-    if (io.KeyCtrl) {
-      st.value0 = pivot.y - (pivot.y - st.value0) * f;
-      st.value1 = pivot.y + (st.value1 - pivot.y) * f;
-    } else {
-      st.frame0 = pivot.x - (pivot.x - st.frame0) * f;
-      st.frame1 = pivot.x + (st.frame1 - pivot.x) * f;
-    }
+    if (io.KeyCtrl)
+      scaleSpanAround(st.value0, st.value1, pivot.y, wheelSpanFactor(io.MouseWheel));
+    else
+      scaleSpanAround(st.frame0, st.frame1, pivot.x, wheelSpanFactor(io.MouseWheel));
   }
   if (active && ImGui::IsMouseDown(ImGuiMouseButton_Middle) && (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f)) {
-    double dfPx = (st.frame1 - st.frame0) / avail.x, dvPx = (st.value1 - st.value0) / avail.y;
-    st.frame0 -= io.MouseDelta.x * dfPx;
-    st.frame1 -= io.MouseDelta.x * dfPx;
-    st.value0 += io.MouseDelta.y * dvPx;
-    st.value1 += io.MouseDelta.y * dvPx;
+    panSpan(st.frame0, st.frame1, io.MouseDelta.x, avail.x);
+    panSpan(st.value0, st.value1, io.MouseDelta.y, avail.y, /*contentUp=*/true);
   }
 
   // Key positions of the visible channels.

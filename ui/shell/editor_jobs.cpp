@@ -1,7 +1,7 @@
 // EditorUI's long operations, run as background jobs (util/background_job.h): opening a project
-// (and loading its characters), opening or importing a glTF, File > Export..., and the Particles
-// section's Simulate and Convert to particles. The work
-// runs on the job's thread on copies and fills a result that only the UI thread applies, in
+// (and loading its characters), opening or importing a glTF, File > Export..., Refit all,
+// Animorphosis > Bake to Key-frame Actor, and the Particles section's Simulate and Convert to
+// particles. The work runs on the job's thread on copies and fills a result that only the UI thread applies, in
 // pollJob(), as one step: a new document, or one undoable command.
 #include <cmath>
 #include <cstdio>
@@ -12,6 +12,7 @@
 
 #include "bake/export_project.h"
 #include "doc/actor_commands.h"
+#include "doc/animorphosis_bake_actor.h"
 #include "doc/particle_commands.h"
 #include "doc/standin_commands.h"
 #include "io/gltf_import.h"
@@ -93,6 +94,33 @@ void EditorUI::startRefitJob(EditorContext& ctx) {
     if (dd.selection.actorId == actorId) dd.selection.segment = -1;
     // A poor fit is said loudly: the status bar names the bones.
     if ((*fitted)->report.poor) setStatus("Refit stand-in: POOR FIT: " + (*fitted)->report.problems.front(), true);
+  });
+}
+
+void EditorUI::startBakeKeysJob(EditorContext& ctx) {
+  const Project& p = doc(ctx).project();
+  if (!p.animorphosis.enabled()) {
+    setStatus("Bake to key-frame actor: the project has no animorphosis (Create > Animorphosis...)", true);
+    return;
+  }
+  // The bake reads a copy: the UI goes on (and may edit the project) while it runs.
+  auto project = std::make_shared<const Project>(p);
+  auto baked = std::make_shared<Result<BakedActor>>(Error{"not run"});
+  auto work = [project, baked](JobProgress& pr) -> Status {
+    pr.setStage("baking the key-frame tree");
+    *baked = bakeAnimorphosisActor(*project);
+    return pr.cancelled() ? jobCancelled() : Status::success();
+  };
+  startJob("Bake to key-frame actor", std::move(work), [this, baked](EditorContext& c, const Status&) {
+    Document& dd = doc(c);
+    if (!*baked) {
+      setStatus("Bake to key-frame actor: " + baked->error(), true);
+      return;
+    }
+    // The actor is added to the project as it is now (its id made unique there again).
+    setStatus(describeBakedActor(**baked));
+    dd.execute(addBakedActorCommand(dd.project(), std::move(**baked)));
+    dd.selection = {dd.project().actors.back().id, -1};
   });
 }
 

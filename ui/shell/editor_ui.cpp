@@ -218,6 +218,10 @@ void EditorUI::draw(EditorContext& ctx) {
     case ExportDialogChoice::None: break;
   }
   if (!st_.standinTool.refitAllRequest.empty()) startRefitJob(ctx);
+  if (st_.correspondence.bakeRequested) {
+    st_.correspondence.bakeRequested = false;
+    startBakeKeysJob(ctx);
+  }
   drawJob(ctx);
   drawCreateAnimorphosisPopup(doc(ctx), st_.createAnimorphosis, st_.correspondence, st_.status);
   drawCreateMorphPopup(doc(ctx), ctx.assets, st_.createMorph, st_.status);
@@ -443,6 +447,7 @@ void EditorUI::dispatch(Action a, EditorContext& ctx) {
     case Action::ToggleCorrespondenceEditor: st_.correspondence.visible = !st_.correspondence.visible; break;
     case Action::CreateAnimorphosis: openCreateAnimorphosis(d, st_.createAnimorphosis); break;
     case Action::CreateMorph: openCreateMorph(d, st_.createMorph); break;
+    case Action::BakeAnimorphosisKeys: startBakeKeysJob(ctx); break;
     case Action::ToggleGrid:
       d.execute(setViewOption(d.project(), &ViewOptions::showGrid, !d.project().view.showGrid, "Toggle grid"));
       break;

@@ -93,6 +93,9 @@ class EditorUI {
   void pollJob(EditorContext& ctx);
   // Runs the inspector's Refit all (st_.standinTool.refitAllRequest) as the background job.
   void startRefitJob(EditorContext& ctx);
+  // Animorphosis > Bake to Key-frame Actor: bakes the animorphosis off the UI thread, then adds
+  // the key-frame BlobTree as a new actor (one undoable step) and reports the key counts.
+  void startBakeKeysJob(EditorContext& ctx);
   void drawJob(EditorContext& ctx);
   void startExport(EditorContext& ctx);
   // The Particles section's Simulate or Convert to particles, as a job; one undoable command.

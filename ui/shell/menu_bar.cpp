@@ -93,6 +93,16 @@ MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& rece
     ImGui::EndMenu();
   }
 
+  bool animorphosisOpen = beginMenu("Animorphosis");
+  if (animorphosisOpen) {
+    item("New Animorphosis...", Action::CreateAnimorphosis);
+    ImGui::Separator();
+    item("Bake to Key-frame Actor", Action::BakeAnimorphosisKeys, doc.project().animorphosis.enabled());
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Bake the animorphosis into a new, plain key-framed BlobTree actor (one undoable step).");
+    ImGui::EndMenu();
+  }
+
   bool viewOpen = beginMenu("View");
   if (viewOpen) {
     const ViewOptions& v = doc.project().view;

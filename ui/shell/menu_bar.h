@@ -1,5 +1,5 @@
 #pragma once
-// The main menu bar: File, Edit, View, Help, with the shortcut of each item
+// The main menu bar: File, Edit, Create, Animorphosis, View, Help, with the shortcut of each item
 // shown beside it (from the shortcut table). Returns what the user chose;
 // EditorUI carries it out.
 #include <optional>

@@ -17,7 +17,7 @@ enum class Action {
   PlayPause, StepBack, StepForward, GoToStart, GoToEnd,
   Preferences, About, ShowShortcuts,
   ToggleWeightPaint, ToggleWeightOverlay, ImportWeights,
-  CreateAnimorphosis, ToggleCorrespondenceEditor, CreateMorph,
+  CreateAnimorphosis, ToggleCorrespondenceEditor, CreateMorph, BakeAnimorphosisKeys,
 };
 
 struct Shortcut {

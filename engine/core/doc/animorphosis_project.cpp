@@ -70,4 +70,12 @@ Result<GenericTree> projectGenericTree(const Project& p) {
   return c;
 }
 
+Transform blendedTransform(const Transform& source, const Transform& target, float s) {
+  Transform t;
+  t.translation = glm::mix(source.translation, target.translation, s);
+  t.rotation = glm::slerp(source.rotation, target.rotation, s);
+  t.scale = glm::mix(source.scale, target.scale, s);
+  return t;
+}
+
 }  // namespace animorph

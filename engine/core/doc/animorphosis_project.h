@@ -23,6 +23,10 @@ CorrespondenceGraph stillValidLinks(const Project& p);
 // tree's last key time when the actor loops).
 AnimorphosisTiming animorphosisTiming(const Project& p);
 
+// Where C stands at global s: the source's and the target's transforms blended
+// (translation and scale linearly, rotation by slerp).
+Transform blendedTransform(const Transform& source, const Transform& target, float s);
+
 // checkAnimorphosis, then buildGenericTree with null-partner anchors measured
 // at each actor's clip time at the start of the interval.
 Result<GenericTree> projectGenericTree(const Project& p);

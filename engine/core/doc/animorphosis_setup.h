@@ -17,6 +17,7 @@ struct AnimorphosisSetup {
   double endSec = 3.0;        // t1 > t0: after it the target plays
   FloatTrack globalS = defaultSCurve();
   CorrespondenceGraph graph;
+  bool showGhosts = false;    // the viewport also draws A(t) and B(t) as translucent ghosts within the interval
   bool enabled() const { return !sourceActorId.empty() && !targetActorId.empty(); }
   bool operator==(const AnimorphosisSetup&) const = default;
 };

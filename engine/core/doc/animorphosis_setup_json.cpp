@@ -10,8 +10,10 @@ namespace animorph {
 using nlohmann::json;
 
 json animorphosisSetupToJson(const AnimorphosisSetup& a) {
-  return json{{"source", a.sourceActorId}, {"target", a.targetActorId}, {"start", a.startSec},
-              {"end", a.endSec},           {"s", trackToJson(a.globalS)},  {"graph", correspondenceToJson(a.graph)}};
+  json j{{"source", a.sourceActorId}, {"target", a.targetActorId}, {"start", a.startSec},
+         {"end", a.endSec},           {"s", trackToJson(a.globalS)},  {"graph", correspondenceToJson(a.graph)}};
+  if (a.showGhosts) j["ghosts"] = true;
+  return j;
 }
 
 Result<AnimorphosisSetup> animorphosisSetupFromJson(const json& j, const std::string& sourceName) {
@@ -36,6 +38,10 @@ Result<AnimorphosisSetup> animorphosisSetupFromJson(const json& j, const std::st
     if (!s) return Error{s.error()};
     if (Status ok = checkSCurve(*s, at + ".s"); !ok) return Error{ok.error()};
     a.globalS = std::move(*s);
+  }
+  if (auto it = j.find("ghosts"); it != j.end()) {
+    if (!it->is_boolean()) return Error{at + ".ghosts: not true or false"};
+    a.showGhosts = it->get<bool>();
   }
   if (auto it = j.find("graph"); it != j.end()) {
     auto g = correspondenceFromJson(*it, at + ".graph");

@@ -49,18 +49,10 @@ void removeActorDraws(SceneFrame& frame, const std::string& actorId) {
   std::erase_if(frame.blobGuides, [&](const BlobGuides& g) { return g.actorId == actorId; });
 }
 
-glm::mat4 blendTransforms(const Transform& a, const Transform& b, float s) {
-  Transform t;
-  t.translation = glm::mix(a.translation, b.translation, s);
-  t.rotation = glm::slerp(a.rotation, b.rotation, s);
-  t.scale = glm::mix(a.scale, b.scale, s);
-  return t.matrix();
-}
-
 }  // namespace
 
 AnimorphosisSceneInfo applyAnimorphosis(SceneFrame& frame, const Project& project, AnimorphosisCache& cache,
-                                        const void* owner, uint64_t revision) {
+                                        const void* owner, uint64_t revision, bool ghosts) {
   AnimorphosisSceneInfo info;
   auto c = cache.get(project, owner, revision);
   if (!c) {
@@ -88,15 +80,25 @@ AnimorphosisSceneInfo applyAnimorphosis(SceneFrame& frame, const Project& projec
     return std::any_of(frame.blobs.begin(), frame.blobs.end(), [&](const BlobDraw& d) { return d.actorId == id; });
   };
   const bool anyShown = shown(m.sourceActorId) || shown(m.targetActorId);
+  std::vector<BlobDraw> ghostDraws;
+  if (ghosts)
+    for (const BlobDraw& d : frame.blobs)
+      if (d.actorId == m.sourceActorId || d.actorId == m.targetActorId) {
+        BlobDraw g = d;
+        g.previewKey = d.actorId + "#ghost";
+        g.opacity = kGhostOpacity;
+        ghostDraws.push_back(std::move(g));
+      }
   removeActorDraws(frame, m.sourceActorId);
   removeActorDraws(frame, m.targetActorId);
   if (!anyShown) return info;
   BlobDraw d;
   d.actorId = m.sourceActorId;
-  d.model = blendTransforms(source->transform, target->transform, float(info.s));
+  d.model = blendedTransform(source->transform, target->transform, float(info.s)).matrix();
   d.treeTimeSec = 0.0;
   d.tree = cache.snapshot(project, t);
   frame.blobs.push_back(std::move(d));
+  for (BlobDraw& g : ghostDraws) frame.blobs.push_back(std::move(g));
   return info;
 }
 

@@ -48,9 +48,12 @@ class AnimorphosisCache {
 // the interval, the target after it, C(t) within it, drawn under the source
 // actor's id with the actors' transforms interpolated by the global s (T and S
 // linearly, R by slerp). Hidden actors stay hidden; with neither visible
-// nothing is added.
+// nothing is added. ghosts (the editor's preview when the setup's showGhosts
+// is on): within the interval the visible source and target are kept too, as
+// ghosts (their own draws at kGhostOpacity, previewKey "id#ghost").
+inline constexpr float kGhostOpacity = 0.3f;
 AnimorphosisSceneInfo applyAnimorphosis(SceneFrame& frame, const Project& project, AnimorphosisCache& cache,
-                                        const void* owner, uint64_t revision);
+                                        const void* owner, uint64_t revision, bool ghosts = false);
 
 // "animorphosis u=0.42", "animorphosis: source", "animorphosis: target", or the error.
 std::string describeAnimorphosis(const AnimorphosisSceneInfo& info);

@@ -60,6 +60,11 @@ struct BlobDraw {
   // Drawn instead of the actor's tree when set: the animorphosis' C(t), a tree
   // of constant tracks (scene/animorphosis_scene.h); a new pointer when it changes.
   std::shared_ptr<const BlobTree> tree;
+  // A ghost (scene/animorphosis_scene.h): its own preview, keyed "actorId#ghost"
+  // (empty: the actor's), drawn dithered at opacity < 1 and not pickable.
+  std::string previewKey;
+  float opacity = 1.0f;
+  const std::string& key() const { return previewKey.empty() ? actorId : previewKey; }
 };
 
 struct SceneFrame {

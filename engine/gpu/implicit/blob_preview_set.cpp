@@ -8,9 +8,9 @@
 namespace animorph::gpu {
 
 void BlobPreviewSet::update(const Project& project, const SceneFrame& frame, const BlobPreviewSettings& settings) {
-  // Forget actors that are gone or no longer BlobTrees.
+  // Forget actors that are gone or no longer BlobTrees (a ghost's key is "actorId#ghost").
   for (auto it = entries_.begin(); it != entries_.end();) {
-    const Actor* a = project.findActor(it->first);
+    const Actor* a = project.findActor(it->first.substr(0, it->first.find('#')));
     if (!a || a->kind != ActorKind::BlobTree) {
       retired_.emplace_back(frame_, std::move(it->second.preview));
       it = entries_.erase(it);
@@ -27,7 +27,7 @@ void BlobPreviewSet::update(const Project& project, const SceneFrame& frame, con
   for (const BlobDraw& d : frame.blobs) {
     const Actor* a = project.findActor(d.actorId);
     if (!a || a->kind != ActorKind::BlobTree) continue;
-    Entry& e = entries_[d.actorId];
+    Entry& e = entries_[d.key()];
     if (!e.preview) e.preview = std::make_unique<ImplicitPreview>(ctx_);
     // A draw's own tree (the animorphosis' C(t)) changes by pointer; the actor's is compared.
     bool treeChanged = d.tree ? e.submittedTree != d.tree : !e.submittedTree || !(*e.submittedTree == a->blobTree);
