@@ -6,10 +6,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <future>
-#include <map>
 #include <tuple>
 
+#include "implicit/field_pipeline_cache.h"
 #include "implicit/gpu_field_program.h"
 #include "morph/solid_noise.h"
 #include "poly/marching_cubes_table.h"
@@ -125,15 +124,11 @@ struct GpuPolygonizer::Impl {
   VkPipelineLayout layout = VK_NULL_HANDLE;
   VkDescriptorPool descriptorPool = VK_NULL_HANDLE;
   VkDescriptorSet set = VK_NULL_HANDLE;
-  // The field passes per variant: (features, kinds, storage pool) -> pipelines,
-  // created on first use (docs/gpu-polygonizer.md, "Specialisation").
-  struct FieldPipelines {
-    VkPipeline blocks = VK_NULL_HANDLE, cells = VK_NULL_HANDLE, emit = VK_NULL_HANDLE, normals = VK_NULL_HANDLE;
-  };
-  using VariantKey = std::tuple<uint32_t, uint32_t, int>;
-  std::map<VariantKey, FieldPipelines> variants;
-  // Variants being compiled on a background thread (prewarm); fieldPipelines takes them over.
-  std::map<VariantKey, std::future<Result<FieldPipelines>>> compiling;
+  // The field passes per variant, created on first use or prewarmed (field_pipeline_cache.h).
+  using VariantKey = FieldVariantKey;
+  FieldPipelineCache fieldCache{[this](const VariantKey& k) {
+    return createFieldPipelines(std::get<0>(k), std::get<1>(k), std::get<2>(k) != 0);
+  }};
   VkPipeline scan = VK_NULL_HANDLE, scanSingle = VK_NULL_HANDLE, compact = VK_NULL_HANDLE, args = VK_NULL_HANDLE;
   VkPipeline noise = VK_NULL_HANDLE;  // solid-noise displacement (poly_noise.comp)
   VkCommandPool commandPool = VK_NULL_HANDLE;
@@ -159,7 +154,6 @@ struct GpuPolygonizer::Impl {
   ~Impl();
   Status init();
   Result<VkPipeline> pipeline(const char* name, const VkSpecializationInfo* spec = nullptr);
-  Result<FieldPipelines> fieldPipelines(uint32_t features, uint32_t kinds, bool storage);
   // Creates a variant's pipelines (any thread: it touches only the device and the layout).
   Result<FieldPipelines> createFieldPipelines(uint32_t features, uint32_t kinds, bool storage);
   // The variant (specialisation constants, pool buffer kind) packed programs pk of field need under s.
@@ -177,15 +171,12 @@ struct GpuPolygonizer::Impl {
 
 GpuPolygonizer::Impl::~Impl() {
   VkDevice dev = ctx.device();
-  for (auto& [key, f] : compiling)  // let background compilations finish, then destroy what they made
-    if (Result<FieldPipelines> r = f.get(); r) variants.emplace(key, *r);
+  fieldCache.finishCompiling();  // let background compilations finish, then destroy what they made
   vkDeviceWaitIdle(dev);
   for (Buffer* b : {&params, &pool, &bounds, &table, &blockMask, &blockFlag, &blockPrefix, &blockSlot, &partials,
                     &superFlag, &control, &active, &corners, &edges, &counts, &offsets, &positions, &normals, &indices, &readback})
     destroyBuffer(dev, *b);
-  for (auto& [key, v] : variants)
-    for (VkPipeline p : {v.blocks, v.cells, v.emit, v.normals})
-      if (p) vkDestroyPipeline(dev, p, nullptr);
+  fieldCache.destroy(dev);
   for (VkPipeline p : {scan, scanSingle, compact, args, noise})
     if (p) vkDestroyPipeline(dev, p, nullptr);
   if (fence) vkDestroyFence(dev, fence, nullptr);
@@ -310,21 +301,6 @@ Status GpuPolygonizer::Impl::init() {
   return Status::success();
 }
 
-Result<GpuPolygonizer::Impl::FieldPipelines> GpuPolygonizer::Impl::fieldPipelines(uint32_t features, uint32_t kinds,
-                                                                                   bool storage) {
-  auto key = std::make_tuple(features, kinds, storage ? 1 : 0);
-  if (auto it = variants.find(key); it != variants.end()) return it->second;
-  Result<FieldPipelines> made = Error{""};
-  if (auto it = compiling.find(key); it != compiling.end()) {  // prewarmed: wait for it
-    made = it->second.get();
-    compiling.erase(it);
-  } else {
-    made = createFieldPipelines(features, kinds, storage);
-  }
-  if (made) variants.emplace(key, *made);
-  return made;
-}
-
 GpuPolygonizer::Impl::VariantKey GpuPolygonizer::Impl::variantKey(const PackedFieldPrograms& pk, const GpuField& field,
                                                                   const GpuPolygonizeSettings& s) const {
   const bool fitsUniform = pk.pool.size() <= AM_POLY_UNIFORM_POOL_VEC4 &&
@@ -336,7 +312,7 @@ GpuPolygonizer::Impl::VariantKey GpuPolygonizer::Impl::variantKey(const PackedFi
   return {features, kinds, storagePool ? 1 : 0};
 }
 
-Result<GpuPolygonizer::Impl::FieldPipelines> GpuPolygonizer::Impl::createFieldPipelines(uint32_t features,
+Result<FieldPipelines> GpuPolygonizer::Impl::createFieldPipelines(uint32_t features,
                                                                                          uint32_t kinds, bool storage) {
   const uint32_t values[2] = {features, kinds};
   const VkSpecializationMapEntry entries[2] = {{0, 0, 4}, {1, 4, 4}};
@@ -503,7 +479,7 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   stats.uniformPool = !storagePool;
   stats.features = std::get<0>(variant);
   stats.kinds = std::get<1>(variant);
-  Result<FieldPipelines> fp = fieldPipelines(stats.features, stats.kinds, storagePool);
+  Result<FieldPipelines> fp = fieldCache.get({stats.features, stats.kinds, storagePool ? 1 : 0});
   if (!fp) return Error{fp.error()};
   lastGrid = g;
 
@@ -666,12 +642,7 @@ void GpuPolygonizer::prewarm(const GpuField& field, const GpuPolygonizeSettings&
   Result<PackedFieldPrograms> packed = packFieldPrograms(*field.a, field.b);
   if (!packed) return;
   const Impl::VariantKey key = m.variantKey(*packed, field, s);
-  if (m.variants.count(key) || m.compiling.count(key)) return;
-  const auto [features, kinds, storage] = key;
-  Impl* impl = &m;
-  m.compiling.emplace(key, std::async(std::launch::async, [impl, features = features, kinds = kinds, storage = storage] {
-                        return impl->createFieldPipelines(features, kinds, storage != 0);
-                      }));
+  m.fieldCache.prewarm(key);
 }
 
 bool GpuPolygonizer::ready(const GpuField& field, const GpuPolygonizeSettings& s) const {
@@ -680,19 +651,14 @@ bool GpuPolygonizer::ready(const GpuField& field, const GpuPolygonizeSettings& s
   Result<PackedFieldPrograms> packed = packFieldPrograms(*field.a, field.b);
   if (!packed) return true;
   const Impl::VariantKey key = m.variantKey(*packed, field, s);
-  if (m.variants.count(key)) return true;
-  auto it = m.compiling.find(key);
-  return it != m.compiling.end() && it->second.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+  return m.fieldCache.ready(key);
 }
 
 bool GpuPolygonizer::waitForCompilation(double timeoutSec) const {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(std::max(0.0, timeoutSec));
-  for (const auto& [key, f] : impl_->compiling)
-    if (f.wait_until(deadline) != std::future_status::ready) return false;
-  return true;
+  return impl_->fieldCache.waitForCompilation(timeoutSec);
 }
 
-size_t GpuPolygonizer::variantCount() const { return impl_->variants.size() + impl_->compiling.size(); }
+size_t GpuPolygonizer::variantCount() const { return impl_->fieldCache.size(); }
 
 Status GpuPolygonizer::absorbCounters(uint32_t slot) {
   Impl& m = *impl_;
