@@ -1,0 +1,217 @@
+// EditorUI's actions: what a menu item or a shortcut asks for (Action), carried out on the document
+// through commands.
+#include "shell/editor_ui.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <utility>
+
+#include <imgui.h>
+
+#include "doc/actor_commands.h"
+#include "doc/blobtree_commands.h"
+#include "doc/standin_commands.h"
+#include "outliner/node_type_menu.h"
+#include "shell/help_windows.h"
+#include "io/gltf_import.h"
+#include "shell/menu_bar.h"
+#include "shell/preferences_window.h"
+#include "shell/preview_controls.h"
+#include "doc/project_commands.h"
+#include "scene/selection_info.h"
+#include "timeline/transport.h"
+
+namespace animorph {
+namespace fs = std::filesystem;
+
+namespace {
+const std::vector<FileFilter> kGltfFilters = {{"glTF (*.gltf, *.glb)", {".gltf", ".glb"}}, {"All files", {}}};
+const std::vector<FileFilter> kPngFilters = {{"PNG image (*.png)", {".png"}}};
+}  // namespace
+
+void EditorUI::dispatch(Action a, EditorContext& ctx) {
+  Document& d = doc(ctx);
+  switch (a) {
+    case Action::New: guardUnsaved(PendingKind::New, {}, ctx); break;
+    case Action::Open: guardUnsaved(PendingKind::Open, {}, ctx); break;
+    case Action::Save: saveOrSaveAs(PendingKind::None, ctx); break;
+    case Action::SaveAs: startSaveAs(PendingKind::None, ctx); break;
+    case Action::Quit: guardUnsaved(PendingKind::Quit, {}, ctx); break;
+    case Action::ImportGltf:
+      st_.browser.open(FileBrowser::Mode::Open, "Import glTF", kGltfFilters, d.baseDir());
+      st_.browserPurpose = BrowserPurpose::ImportGltf;
+      break;
+    case Action::Export: openExportDialog(d, st_.exportDialog); break;
+    case Action::SaveScreenshot:
+      st_.browser.open(FileBrowser::Mode::Save, "Save Screenshot", kPngFilters, d.baseDir(),
+                       fs::path(d.displayName()).stem().string() + ".png");
+      st_.browserPurpose = BrowserPurpose::Screenshot;
+      break;
+    case Action::Undo: {
+      std::string label = d.history().undoLabel();
+      if (d.undo()) setStatus("Undid " + label);
+      break;
+    }
+    case Action::Redo: {
+      std::string label = d.history().redoLabel();
+      if (d.redo()) setStatus("Redid " + label);
+      break;
+    }
+    case Action::DeleteSelection: {
+      if (st_.viewportMode == ViewportMode::StandinEdit) {
+        int seg = selectedStandinSegment(d);
+        if (seg >= 0) {
+          auto cmd = deleteStandinSegmentCommand(d.project(), d.selection.actorId, seg);
+          if (cmd) {
+            setStatus((*cmd)->label());
+            d.execute(std::move(*cmd));
+            d.selection.segment = -1;
+          } else {
+            setStatus(cmd.error(), true);
+          }
+          break;
+        }
+      }
+      if (d.selection.actorId.empty()) break;
+      const Actor* sel = d.project().findActor(d.selection.actorId);
+      if (sel && sel->kind == ActorKind::BlobTree && d.selection.node >= 0) {
+        auto cmd = deleteBlobNodeCommand(d.project(), d.selection.actorId, d.selection.node);
+        if (!cmd) {
+          setStatus(cmd.error(), true);
+          break;
+        }
+        setStatus((*cmd)->label());
+        d.execute(std::move(*cmd));
+        d.selection.node = -1;
+        break;
+      }
+      if (d.selection.node >= 0) {
+        setStatus("Select the actor itself to delete it");
+        break;
+      }
+      if (auto cmd = deleteActorCommand(d.project(), d.selection.actorId)) {
+        setStatus(cmd->label());
+        d.execute(std::move(cmd));
+        d.selection = {};
+      }
+      break;
+    }
+    case Action::DuplicateSelection: {
+      const Actor* sel = d.project().findActor(d.selection.actorId);
+      if (!sel || sel->kind != ActorKind::BlobTree || d.selection.node < 0) {
+        setStatus("Select a BlobTree node to duplicate it");
+        break;
+      }
+      int copy = -1;
+      auto cmd = duplicateBlobNodeCommand(d.project(), d.selection.actorId, d.selection.node, &copy);
+      if (!cmd) {
+        setStatus(cmd.error(), true);
+        break;
+      }
+      setStatus((*cmd)->label());
+      d.execute(std::move(*cmd));
+      d.selection.node = copy;
+      break;
+    }
+    case Action::NewBlobActor: {
+      Actor a = makeBlobTreeActor(d.project(), "Blob");
+      a.loop = false;  // keys set past the last one must not wrap around while animating
+      std::string id = a.id;
+      setStatus("Added BlobTree actor " + a.name);
+      d.execute(addActorCommand(std::move(a)));
+      d.selection = {id, -1};
+      frameSelection(ctx);
+      break;
+    }
+    case Action::ToggleCurveEditor: st_.curveEditor.visible = !st_.curveEditor.visible; break;
+    case Action::ToggleCorrespondenceEditor: st_.correspondence.visible = !st_.correspondence.visible; break;
+    case Action::CreateAnimorphosis: openCreateAnimorphosis(d, st_.createAnimorphosis); break;
+    case Action::CreateMorph: openCreateMorph(d, st_.createMorph); break;
+    case Action::BakeAnimorphosisKeys: startBakeKeysJob(ctx); break;
+    case Action::ToggleGrid:
+      d.execute(setViewOption(d.project(), &ViewOptions::showGrid, !d.project().view.showGrid, "Toggle grid"));
+      break;
+    case Action::ToggleSkeleton:
+      d.execute(setViewOption(d.project(), &ViewOptions::showSkeleton, !d.project().view.showSkeleton,
+                              "Toggle skeleton"));
+      break;
+    case Action::ToggleWireframe:
+      d.execute(setViewOption(d.project(), &ViewOptions::wireframe, !d.project().view.wireframe, "Toggle wireframe"));
+      break;
+    case Action::ToggleAxes:
+      d.execute(setViewOption(d.project(), &ViewOptions::showAxes, !d.project().view.showAxes, "Toggle axes"));
+      break;
+    case Action::ToggleStandins:
+      d.execute(setViewOption(d.project(), &ViewOptions::showStandins, !d.project().view.showStandins,
+                              "Toggle stand-ins"));
+      break;
+    case Action::ToggleStandinEdit:
+      st_.viewportMode = st_.viewportMode == ViewportMode::StandinEdit ? ViewportMode::Object : ViewportMode::StandinEdit;
+      // One viewport mode at a time: entering stand-in editing leaves Weight Paint.
+      if (st_.viewportMode == ViewportMode::StandinEdit && st_.paint.active) toggleWeightPaint(d, st_.paint, st_.status);
+      if (st_.viewportMode == ViewportMode::StandinEdit && !d.project().morph.enabled())
+        setStatus("Stand-in edit mode: the project has no morph, so no stand-ins to edit");
+      else
+        setStatus(std::string(viewportModeName(st_.viewportMode)) + " mode");
+      break;
+    case Action::FrameSelection: frameSelection(ctx); break;
+    case Action::PlayPause: togglePlayback(d, st_.playback); break;
+    case Action::StepBack: stepFrames(d, st_.playback, -1); break;
+    case Action::StepForward: stepFrames(d, st_.playback, +1); break;
+    case Action::GoToStart: goToFrame(d, st_.playback, d.project().timeline.frameStart); break;
+    case Action::GoToEnd: goToFrame(d, st_.playback, d.project().timeline.frameEnd); break;
+    case Action::Preferences: st_.showPreferences = true; break;
+    case Action::About: st_.showAbout = true; break;
+    case Action::ShowShortcuts: st_.showShortcuts = true; break;
+    case Action::ToggleWeightPaint:
+      toggleWeightPaint(d, st_.paint, st_.status);
+      if (st_.paint.active) st_.viewportMode = ViewportMode::Object;  // one viewport mode at a time
+      break;
+    case Action::ToggleWeightOverlay: st_.paint.overlayAlways = !st_.paint.overlayAlways; break;
+    case Action::ImportWeights:
+      if (weightPaintActor(d).empty() && d.project().morph.enabled()) d.selection = {d.project().morph.sourceActorId, -1};
+      st_.paint.openImportPopup = true;
+      break;
+  }
+}
+
+void EditorUI::addNodeToSelection(NodeType type, EditorContext& ctx) {
+  Document& d = doc(ctx);
+  const Actor* sel = d.project().findActor(d.selection.actorId);
+  if (!sel || sel->kind != ActorKind::BlobTree) {
+    setStatus("Select a BlobTree actor or node first (Create > New BlobTree Actor makes one)", true);
+    return;
+  }
+  std::string why;
+  int parent = parentForNewNode(sel->blobTree, d.selection.node, &why);
+  if (parent < 0) {
+    setStatus(why, true);
+    return;
+  }
+  int created = -1;
+  auto cmd = addBlobNodeCommand(d.project(), d.selection.actorId, parent, type, &created);
+  if (!cmd) {
+    setStatus(cmd.error(), true);
+    return;
+  }
+  setStatus((*cmd)->label());
+  d.execute(std::move(*cmd));
+  d.selection.node = created;
+}
+
+void EditorUI::frameSelection(EditorContext& ctx) {
+  Document& d = doc(ctx);
+  const Timeline& tl = d.project().timeline;
+  double t = tl.currentTimeSec();
+  Bounds b = ctx.selectionBounds ? ctx.selectionBounds(d, t) : selectionBounds(d, ctx.assets, t);
+  if (b.empty()) {
+    setStatus("Nothing to frame");
+    return;
+  }
+  const LayoutRect& vp = st_.layout.viewport;
+  st_.camera.frame(b, vp.size.y > 0.0f ? vp.size.x / vp.size.y : 1.0f);
+}
+
+}  // namespace animorph
