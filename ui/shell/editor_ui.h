@@ -10,6 +10,10 @@
 // output().viewport with output().camera, then the ImGui draw data on top.
 // On the window's close button call requestQuit() and keep running until
 // output().quit (the user may cancel on the unsaved-changes prompt).
+//
+// Implemented in five files: editor_ui.cpp (the frame), editor_actions.cpp (menu and shortcut
+// actions), editor_project.cpp (open/save/quit and their prompts), editor_jobs.cpp (background
+// jobs), editor_theme.cpp (colours and style).
 #include <functional>
 #include <memory>
 #include <string>
