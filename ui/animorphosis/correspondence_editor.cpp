@@ -15,6 +15,7 @@
 #include "widgets/tool_window.h"
 #include "widgets/view_zoom.h"
 #include "widgets/widget_rects.h"
+#include "shell/command_result.h"
 
 namespace animorph {
 
@@ -141,12 +142,7 @@ std::string nodeTitle(const BlobNode& n) {
 }
 
 void runCommand(Document& doc, Result<std::unique_ptr<Command>> cmd, StatusMessage& status, std::string note = {}) {
-  if (!cmd) {
-    status = {cmd.error(), true};
-    return;
-  }
-  status = {(*cmd)->label() + note, false};
-  doc.execute(std::move(*cmd));
+  if (executeOrReport(doc, std::move(cmd), status, /*announce=*/true)) status.text += note;
 }
 
 void autoMap(Document& doc, StatusMessage& status) {

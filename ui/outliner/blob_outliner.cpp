@@ -9,6 +9,7 @@
 #include "outliner/node_type_menu.h"
 #include "shell/shortcuts.h"
 #include "widgets/widget_rects.h"
+#include "shell/command_result.h"
 
 namespace animorph {
 
@@ -144,12 +145,7 @@ void drawBlobTreeNodes(Document& doc, const std::string& actorId, BlobOutlinerSt
       break;
     case PendingEdit::Rename: cmd = renameBlobNodeCommand(doc.project(), actorId, edit.node, edit.name); break;
   }
-  if (!cmd) {
-    status = {cmd.error(), true};
-    return;
-  }
-  status = {(*cmd)->label(), false};
-  doc.execute(std::move(*cmd));
+  if (!executeOrReport(doc, std::move(cmd), status, /*announce=*/true)) return;
   if (edit.kind == PendingEdit::Delete && doc.selection.actorId == actorId) doc.selection = {actorId, -1};
   if (select >= 0) doc.selection = {actorId, select};
 }

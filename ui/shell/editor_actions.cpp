@@ -22,6 +22,7 @@
 #include "doc/project_commands.h"
 #include "scene/selection_info.h"
 #include "timeline/transport.h"
+#include "shell/command_result.h"
 
 namespace animorph {
 namespace fs = std::filesystem;
@@ -78,13 +79,7 @@ void EditorUI::dispatch(Action a, EditorContext& ctx) {
       const Actor* sel = d.project().findActor(d.selection.actorId);
       if (sel && sel->kind == ActorKind::BlobTree && d.selection.node >= 0) {
         auto cmd = deleteBlobNodeCommand(d.project(), d.selection.actorId, d.selection.node);
-        if (!cmd) {
-          setStatus(cmd.error(), true);
-          break;
-        }
-        setStatus((*cmd)->label());
-        d.execute(std::move(*cmd));
-        d.selection.node = -1;
+        if (executeOrReport(d, std::move(cmd), st_.status, /*announce=*/true)) d.selection.node = -1;
         break;
       }
       if (d.selection.node >= 0) {
@@ -106,13 +101,7 @@ void EditorUI::dispatch(Action a, EditorContext& ctx) {
       }
       int copy = -1;
       auto cmd = duplicateBlobNodeCommand(d.project(), d.selection.actorId, d.selection.node, &copy);
-      if (!cmd) {
-        setStatus(cmd.error(), true);
-        break;
-      }
-      setStatus((*cmd)->label());
-      d.execute(std::move(*cmd));
-      d.selection.node = copy;
+      if (executeOrReport(d, std::move(cmd), st_.status, /*announce=*/true)) d.selection.node = copy;
       break;
     }
     case Action::NewBlobActor: {
@@ -192,13 +181,7 @@ void EditorUI::addNodeToSelection(NodeType type, EditorContext& ctx) {
   }
   int created = -1;
   auto cmd = addBlobNodeCommand(d.project(), d.selection.actorId, parent, type, &created);
-  if (!cmd) {
-    setStatus(cmd.error(), true);
-    return;
-  }
-  setStatus((*cmd)->label());
-  d.execute(std::move(*cmd));
-  d.selection.node = created;
+  if (executeOrReport(d, std::move(cmd), st_.status, /*announce=*/true)) d.selection.node = created;
 }
 
 void EditorUI::frameSelection(EditorContext& ctx) {

@@ -12,6 +12,7 @@
 #include "scene/scene_frame.h"
 #include "scene/selection_info.h"
 #include "widgets/widget_rects.h"
+#include "shell/command_result.h"
 
 namespace animorph {
 namespace {
@@ -51,11 +52,7 @@ std::shared_ptr<const PaintMesh> posedMesh(const Document& doc, AssetCache& asse
 bool executeMap(Document& doc, const std::string& actorId, std::vector<float> map, const std::string& label,
                 StatusMessage& status) {
   auto cmd = setWeightMapCommand(doc.project(), actorId, std::move(map), label);
-  if (!cmd) {
-    status = {cmd.error(), true};
-    return false;
-  }
-  doc.execute(std::move(*cmd));
+  if (!executeOrReport(doc, std::move(cmd), status)) return false;
   status = {label + " (" + actorId + ")", false};
   return true;
 }
