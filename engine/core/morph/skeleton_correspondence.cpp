@@ -67,11 +67,11 @@ SkeletonChains skeletonChains(const Character& c, const Standin& s) {
   struct Start {
     int node, parentChain;
   };
-  std::vector<Start> todo;
-  for (int r : roots) todo.push_back({r, -1});
-  while (!todo.empty()) {
-    const Start st = todo.back();
-    todo.pop_back();
+  std::vector<Start> pending;
+  for (int r : roots) pending.push_back({r, -1});
+  while (!pending.empty()) {
+    const Start st = pending.back();
+    pending.pop_back();
     SkeletonChain ch;
     ch.parent = st.parentChain;
     ch.name = c.nodes[size_t(st.node)].name;
@@ -84,7 +84,7 @@ SkeletonChains skeletonChains(const Character& c, const Standin& s) {
     }
     const int id = static_cast<int>(out.chains.size());
     for (int seg : ch.segments) out.chainOfSegment[size_t(seg)] = id;
-    for (int child : children[size_t(n)]) todo.push_back({child, id});
+    for (int child : children[size_t(n)]) pending.push_back({child, id});
     out.chains.push_back(std::move(ch));
   }
   if (out.chains.empty()) return out;
