@@ -161,6 +161,7 @@ Status Mp4Writer::addFrame(const std::vector<uint8_t>& rgba) {
 }
 
 Status Mp4Writer::finish() {
+  if (pid_ <= 0) return Error{o_.path + ": ffmpeg is not running (an earlier frame failed)"};
   if (fd_ >= 0) ::close(fd_);
   fd_ = -1;
   int status = 0;
