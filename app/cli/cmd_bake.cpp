@@ -15,6 +15,7 @@
 
 #include "animorph/evaluate_generic.h"
 #include "bake/frame_files.h"
+#include "bake/frame_stage.h"
 #include "bake/frame_volume.h"
 #include "cli/cli_command.h"
 #include "cli/morph_method_option.h"
@@ -292,6 +293,7 @@ int runBake(const std::vector<std::string>& args) {
   pics.png = png;
   pics.mp4 = mp4;
   pics.burnIn = burnIn;
+  pics.stages = frameStageSpans(*p, first, last);
   pics.fps = p->timeline.fps;
   pics.width = uint32_t(width);
   pics.height = uint32_t(height);
@@ -448,7 +450,9 @@ ANIMORPH_CLI_COMMAND("bake", "bake a project's morph into mesh sequences, an ani
                      "  --mp4 FILE   also a playblast: every frame rendered offscreen (Vulkan) at --size\n"
                      "               (default 1280x720, even numbers) and encoded by ffmpeg (H.264, the\n"
                      "               timeline's fps); written under a temporary name, renamed when done\n"
-                     "  --burn-in    the frame number drawn into the playblast's top-left corner\n"
+                     "  --burn-in    the frame number and the morph's stage (before A, A..B, B..C, C..D,\n"
+                     "               after D; animorphosis for an animorphosis) drawn into the\n"
+                     "               playblast's top-left corner\n"
                      "  --gpu        the B->C stage on the Vulkan compute polygoniser (offscreen, no\n"
                      "               display needed); exits 1 with a message when no device is usable\n"
                      "               or the device fails (no silent fallback to the CPU)\n"

@@ -1,12 +1,13 @@
 #pragma once
 // Pictures of baked frames for animorph-cli bake (and its benchmark): PNG frames and the mp4
-// playblast, rendered offscreen with one camera framing every frame.
+// playblast, rendered offscreen with one camera framing every frame (render/playblast.h).
 #include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <string>
 #include <vector>
 
+#include "bake/frame_stage.h"
 #include "doc/project.h"
 #include "poly/mesh.h"
 #include "present/rgba_image.h"
@@ -18,7 +19,8 @@ struct PictureOptions {
   bool png = false;
   std::string mp4;  // empty: none
   uint32_t width = 1280, height = 720;
-  bool burnIn = false;  // the frame number drawn into the mp4's corner
+  bool burnIn = false;  // the frame number and stage drawn into the mp4's corner
+  std::vector<FrameStageSpan> stages;  // the stage labels burnt in (bake/frame_stage.h)
   double fps = 24.0;
 };
 

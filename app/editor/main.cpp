@@ -17,6 +17,7 @@
 #include "shell/editor_ui.h"
 #include "editor_window.h"
 #include "frame_clock.h"
+#include "render/playblast.h"
 #include "shell/redraw_policy.h"
 #include "ui_map.h"
 #include "viewport_frame.h"
@@ -47,6 +48,7 @@ int main(int argc, char** argv) {
   std::unique_ptr<Document> document = std::make_unique<Document>();
   if (!args.project.empty()) ui.requestOpen(args.project);
   EditorContext ectx(document, assets);
+  ectx.playblast = gpu::playblastProject;  // File > Export > Playblast...: its own offscreen device
   const char* uiMapPath = std::getenv("ANIMORPH_UI_MAP");
   const char* redrawEnv = std::getenv("ANIMORPH_REDRAW");
   const bool continuousRedraw = redrawEnv && std::strcmp(redrawEnv, "continuous") == 0;

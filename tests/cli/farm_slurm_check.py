@@ -12,8 +12,9 @@ usage: farm_slurm_check.py CLI PROJECT
     bake array and the assembly job that depends on it, then compares the assembled glTF with one
     `bake --gltf` of the same frames on this machine: the same frame nodes and, per frame, the
     same vertex and index counts, positions and indices (normals within 1e-6), and the chunks'
-    PLY sequence is complete; `farm assemble --mp4` over the same chunks gives a playblast of every
-    frame (ffprobe);
+    PLY sequence is complete (the run has --keep-chunks: the chunks are still there); `farm
+    assemble --mp4` over the same chunks gives a playblast of every frame (ffprobe) and then
+    removes the chunks;
   * a farm run whose first chunk cannot write its glTF: the assembly job never starts (it stays
     pending, DependencyNeverSatisfied), no glTF is written, the task's log names the chunk;
   * prints the wall times (farm run against the single bake) and the overhead per chunk.
@@ -273,7 +274,7 @@ def check_farm_run(cli, project, tmp, cluster):
     farm_glb = os.path.join(tmp, "farm.glb")
     t0 = time.monotonic()
     r = subprocess.run([cli, "farm", "slurm", project, "--frames", f"{FRAMES[0]}:{FRAMES[1]}", "--chunk", str(CHUNK),
-                        "--res", RES, "-o", out, "--gltf", farm_glb, "--submit"],
+                        "--res", RES, "-o", out, "--gltf", farm_glb, "--submit", "--keep-chunks"],
                        capture_output=True, text=True, env=cluster.env, timeout=60)
     if r.returncode != 0:
         cluster.fail(f"farm slurm --submit: exit {r.returncode}: {r.stdout}{r.stderr}")
@@ -304,6 +305,9 @@ def check_farm_run(cli, project, tmp, cluster):
             task_secs.append((int(m.group(1)), int(m.group(2)), float(m.group(3))))
     if sorted(t[:2] for t in task_secs) != [(0, 48), (49, 97), (98, 144)]:
         fail(f"the task logs in {logs} report the chunks {sorted(t[:2] for t in task_secs)}")
+    chunk_files = sorted(os.listdir(os.path.join(out, "chunks")))
+    if chunk_files != ["demo_0000-0048.glb", "demo_0049-0097.glb", "demo_0098-0144.glb"]:
+        fail(f"--keep-chunks: the assembly job left {chunk_files} in {out}/chunks")
     plys = sorted(f for f in os.listdir(out) if f.endswith(".ply"))
     if plys != [f"demo_{f:04d}.ply" for f in range(FRAMES[0], FRAMES[1] + 1)]:
         fail(f"the chunks wrote {len(plys)} PLY frames into {out}, expected {FRAMES[1] - FRAMES[0] + 1}")
@@ -351,6 +355,8 @@ def check_mp4(cli, project, tmp):
                             "stream=nb_read_frames,width,height", "-of", "csv=p=0", mp4], capture_output=True, text=True)
     if probe.stdout.strip() != f"320,180,{FRAMES[1] - FRAMES[0] + 1}":
         fail(f"farm assemble --mp4: ffprobe says {probe.stdout.strip()!r} {probe.stderr.strip()}")
+    if os.path.exists(os.path.join(tmp, "farm", "chunks")):
+        fail("farm assemble without --keep-chunks left the chunks' glTFs behind")
 
 
 def compare(farm_glb, single_glb):

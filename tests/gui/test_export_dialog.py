@@ -1,4 +1,4 @@
-"""File > Export... in the real editor: the demo morph exported as a PLY sequence at a high
+"""File > Export > Meshes and Volumes... in the real editor: the demo morph exported as a PLY sequence at a high
 resolution is cancelled from the progress panel: no output file is left and the editor stays
 responsive; a short glTF export then runs to the end and writes its file; the settings are kept
 in the saved project; OpenVDB level sets of two frames are written.
@@ -21,7 +21,8 @@ glb = os.path.join(work, "out", "morph.glb")
 
 def open_export(ed):
     ed.click_widget("menu/File")
-    ed.click_widget("menu/Export...")
+    ed.click_widget("menu/Export")
+    ed.click_widget("menu/Meshes and Volumes...")
     ed.widget("export/export")
 
 

@@ -4,10 +4,10 @@
 #include <filesystem>
 
 #include <imgui.h>
-#include <imgui_stdlib.h>
 
 #include "bake/export_project.h"
 #include "bake/frame_files.h"
+#include "export/export_fields.h"
 #include "widgets/create_modal.h"
 #include "widgets/widget_rects.h"
 
@@ -39,12 +39,8 @@ std::string exportSettingsProblem(const Project& p, const ExportSettings& s) {
   int first = 0, last = 0;
   exportFrameRange(p, s, first, last);
   if (s.output.empty()) return "Choose where to write the export (Browse...).";
-  if (first < 0) return "The first frame must be 0 or later.";
-  if (last < first) return "The last frame is before the first.";
   if (s.resolution < 2 || s.resolution > 1024) return "The resolution must be 2..1024 cells.";
-  if (!p.morph.enabled() && !p.animorphosis.enabled())
-    return "The project has no morph or animorphosis to export (Create > Animorphosis... makes one).";
-  return {};
+  return frameRangeProblem(p, first, last, "export");
 }
 
 ExportDialogChoice drawExportDialog(const Document& doc, ExportDialogState& st) {
@@ -70,62 +66,27 @@ ExportDialogChoice drawExportDialog(const Document& doc, ExportDialogState& st) 
     ImGui::EndCombo();
   }
   noteWidget("export/format");
-  if (ImGui::Checkbox("Timeline range", &s.useTimeline) && s.useTimeline) {
-    s.first = p.timeline.frameStart;
-    s.last = p.timeline.frameEnd;
-  }
-  noteWidget("export/use_timeline");
-  ImGui::BeginDisabled(s.useTimeline);
-  // Plain fields (no step buttons): the widget map's rectangle is the field itself.
-  auto intField = [](const char* label, const char* id, int& v) {
-    ImGui::AlignTextToFramePadding();
-    ImGui::TextUnformatted(label);
-    ImGui::SameLine();
-    ImGui::SetNextItemWidth(80.0f);
-    ImGui::InputInt(id, &v, 0, 0);
-  };
-  intField("First frame", "##first", s.first);
-  noteWidget("export/first");
-  ImGui::SameLine();
-  intField("Last frame", "##last", s.last);
-  noteWidget("export/last");
-  ImGui::EndDisabled();
-  intField("Resolution", "##resolution", s.resolution);
+  frameRangeFields(p, "export", s.useTimeline, s.first, s.last);
+  plainIntField("Resolution", "##resolution", s.resolution);
   s.resolution = std::clamp(s.resolution, 2, 1024);
   noteWidget("export/resolution");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Polygonisation cells along the longest side of the morph's bounds");
-  ImGui::SetNextItemWidth(380.0f);
-  ImGui::InputText(s.format == ExportFormat::GltfAnimated ? "File" : "Folder", &s.output);
-  noteWidget("export/output");
-  ImGui::SameLine();
-  if (ImGui::Button("Browse...")) choice = ExportDialogChoice::Browse;
-  noteWidget("export/browse");
+  if (outputPathField("export", s.format == ExportFormat::GltfAnimated ? "File" : "Folder", s.output))
+    choice = ExportDialogChoice::Browse;
   if (s.format != ExportFormat::GltfAnimated)
     ImGui::TextDisabled("Frames are written as %s_####.%s in that folder.", framePrefix(p.name).c_str(),
                         exportFormatName(s.format));
   if (s.format == ExportFormat::VdbSequence)
     ImGui::TextDisabled("Level sets of the implicit frames only (B->C); skinned-mesh frames get no file.");
-  if (!st.error.empty()) {
-    ImGui::PushTextWrapPos(480.0f);
-    ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", st.error.c_str());
-    ImGui::PopTextWrapPos();
-    noteWidget("export/error");
+  switch (createModalButtons(st.error, "export", "Export", "export")) {
+    case ModalChoice::Create:
+      st.error = exportSettingsProblem(p, s);
+      if (st.error.empty()) choice = ExportDialogChoice::Export;
+      break;
+    case ModalChoice::Cancel: choice = ExportDialogChoice::Cancel; break;
+    case ModalChoice::None: break;
   }
-  ImGui::Separator();
-  if (ImGui::Button("Export", ImVec2(110.0f, 0.0f))) {
-    st.error = exportSettingsProblem(p, s);
-    if (st.error.empty()) choice = ExportDialogChoice::Export;
-  }
-  noteWidget("export/export");
-  ImGui::SameLine();
-  if (ImGui::Button("Cancel", ImVec2(110.0f, 0.0f)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)))
-    choice = ExportDialogChoice::Cancel;
-  noteWidget("export/cancel");
-  if (choice != ExportDialogChoice::None) {
-    ImGui::CloseCurrentPopup();
-    st.isOpen = false;
-  }
-  ImGui::EndPopup();
+  endCreateModal(choice != ExportDialogChoice::None, st.isOpen);
   return choice;
 }
 

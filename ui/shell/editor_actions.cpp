@@ -45,6 +45,7 @@ void EditorUI::dispatch(Action a, EditorContext& ctx) {
       st_.browserPurpose = BrowserPurpose::ImportGltf;
       break;
     case Action::Export: openExportDialog(d, st_.exportDialog); break;
+    case Action::Playblast: openPlayblastDialog(d, st_.playblastDialog); break;
     case Action::SaveScreenshot:
       st_.browser.open(FileBrowser::Mode::Save, "Save Screenshot", kPngFilters, d.baseDir(),
                        fs::path(d.displayName()).stem().string() + ".png");

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "bake/playblast_job.h"
 #include "doc/asset_cache.h"
 #include "doc/document.h"
 #include "math/bounds.h"
@@ -33,6 +34,10 @@ struct EditorContext {
   // renderer sees them (F frames them). Without it, EditorUI skins the
   // selection on the CPU.
   std::function<Bounds(const Document&, double timeSec)> selectionBounds;
+  // File > Export > Playblast...: bakes and draws the frames into an .mp4 on the background job's
+  // thread (the app gives the GPU layer's gpu::playblastProject, which makes a Vulkan device of its
+  // own for it); null: the editor says a playblast needs the GPU renderer.
+  PlayblastRunner playblast;
 };
 
 struct EditorOutput {

@@ -1,5 +1,6 @@
 // EditorUI's long operations, run as background jobs (util/background_job.h): opening a project
-// (and loading its characters), opening or importing a glTF, File > Export..., Refit all,
+// (and loading its characters), opening or importing a glTF, File > Export > Meshes and Volumes...
+// and Playblast..., Refit all,
 // Animorphosis > Bake to Key-frame Actor, and the Particles section's Simulate and Convert to
 // particles. The work runs on the job's thread on copies and fills a result that only the UI thread applies, in
 // pollJob(), as one step: a new document, or one undoable command.
@@ -288,6 +289,41 @@ void EditorUI::startExport(EditorContext& ctx) {
                                               " skinned-mesh frames have no level set)"
                                         : std::string();
         setStatus("Exported " + std::to_string(report->frames) + " frames to " + out + " in " + secs + skipped);
+      });
+}
+
+void EditorUI::startPlayblast(EditorContext& ctx) {
+  Document& d = doc(ctx);
+  const PlayblastSettings s = st_.playblastDialog.edit;
+  if (!(s == d.project().playblastSettings))
+    d.execute(std::make_unique<SetValueCommand<PlayblastSettings>>(
+        "Playblast settings", [](Project& p) -> PlayblastSettings* { return &p.playblastSettings; },
+        d.project().playblastSettings, s));
+  if (!ctx.playblast) {
+    showError("Playblast: this editor was built without the GPU renderer that draws the frames.");
+    return;
+  }
+  // The job draws on a Vulkan device of its own (render/playblast.h): the editor's device and queue
+  // stay the UI thread's. It works on a copy of the project.
+  auto report = std::make_shared<PlayblastReport>();
+  startJob(
+      "Playblast",
+      [run = ctx.playblast, project = d.project(), baseDir = d.baseDir(), s, report](JobProgress& pr) -> Status {
+        auto r = run(project, baseDir, s, pr);
+        if (!r) return Error{r.error()};
+        *report = std::move(*r);
+        return Status::success();
+      },
+      [this, report](EditorContext&, const Status& st) {
+        if (!st) {
+          showError("Playblast failed:\n" + st.error());
+          return;
+        }
+        char text[160];
+        std::snprintf(text, sizeof text, " (%dx%d) in %.1f s, %.1f frames/s drawn and encoded on ", report->width,
+                      report->height, report->seconds,
+                      report->pictureSeconds > 0.0 ? report->frames / report->pictureSeconds : 0.0);
+        setStatus("Playblast: " + std::to_string(report->frames) + " frames to " + report->file + text + report->device);
       });
 }
 

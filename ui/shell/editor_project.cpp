@@ -162,6 +162,10 @@ void EditorUI::handleBrowserResult(const std::string& path, EditorContext& ctx) 
       st_.exportDialog.edit.output = path;
       st_.exportDialog.openNext = true;
       break;
+    case BrowserPurpose::PlayblastOutput:
+      st_.playblastDialog.edit.output = path;
+      st_.playblastDialog.openNext = true;
+      break;
     case BrowserPurpose::Screenshot:
       out_.screenshotPath = path;
       setStatus("Screenshot: " + path);
@@ -173,8 +177,9 @@ void EditorUI::drawPrompts(EditorContext& ctx) {
   if (auto chosen = st_.browser.draw()) handleBrowserResult(*chosen, ctx);
   if (!st_.browser.isOpen() && st_.browserPurpose != BrowserPurpose::None) {
     // Cancelled: a Save As that was to be followed by New/Open/Quit is dropped too; the Export
-    // dialog comes back as it was.
+    // and Playblast dialogs come back as they were.
     if (st_.browserPurpose == BrowserPurpose::ExportOutput) st_.exportDialog.openNext = true;
+    if (st_.browserPurpose == BrowserPurpose::PlayblastOutput) st_.playblastDialog.openNext = true;
     st_.browserPurpose = BrowserPurpose::None;
     st_.afterSaveAs = PendingKind::None;
   }

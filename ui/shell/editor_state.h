@@ -9,6 +9,7 @@
 #include "viewport/gizmo.h"
 #include "widgets/drag_merge.h"
 #include "export/export_dialog.h"
+#include "export/playblast_dialog.h"
 #include "widgets/file_browser.h"
 #include "inspector/inspector_panel.h"
 #include "shell/layout.h"
@@ -29,7 +30,8 @@ namespace animorph {
 enum class PendingKind { None, New, Open, OpenPath, Quit };
 
 // What a running file dialog is for.
-enum class BrowserPurpose { None, OpenProject, SaveProjectAs, ImportGltf, Screenshot, ExportOutput };
+enum class BrowserPurpose { None, OpenProject, SaveProjectAs, ImportGltf, Screenshot, ExportOutput,
+                            PlayblastOutput };
 
 struct EditorState {
   Preferences prefs;  // layout sizes, camera scheme, recent files, autosave interval
@@ -62,7 +64,8 @@ struct EditorState {
 
   // Dialogs.
   FileBrowser browser;
-  ExportDialogState exportDialog;  // File > Export...
+  ExportDialogState exportDialog;  // File > Export > Meshes and Volumes...
+  PlayblastDialogState playblastDialog;  // File > Export > Playblast...
   BrowserPurpose browserPurpose = BrowserPurpose::None;
   PendingKind pending = PendingKind::None;
   std::string pendingPath;            // for PendingKind::OpenPath

@@ -31,6 +31,7 @@ namespace fs = std::filesystem;
 namespace {
 const std::vector<FileFilter> kGlbFilters = {{"glTF binary (*.glb)", {".glb"}}};
 // A sequence goes into a folder: the name typed is the folder's (made when missing).
+const std::vector<FileFilter> kMp4Filters = {{"MPEG-4 video (*.mp4)", {".mp4"}}};
 const std::vector<FileFilter> kFolderFilters = {{"Folder (type its name)", {}}};
 
 constexpr float kGapColor[3] = {0.11f, 0.11f, 0.12f};  // between panels
@@ -210,6 +211,19 @@ void EditorUI::draw(EditorContext& ctx) {
     case ExportDialogChoice::Export: startExport(ctx); break;
     case ExportDialogChoice::Cancel:
     case ExportDialogChoice::None: break;
+  }
+  switch (drawPlayblastDialog(doc(ctx), st_.playblastDialog)) {
+    case PlayblastDialogChoice::Browse: {
+      const fs::path out(st_.playblastDialog.edit.output);
+      st_.browser.open(FileBrowser::Mode::Save, "Playblast to", kMp4Filters,
+                       out.has_parent_path() ? out.parent_path().string() : doc(ctx).baseDir(),
+                       out.filename().string());
+      st_.browserPurpose = BrowserPurpose::PlayblastOutput;
+      break;
+    }
+    case PlayblastDialogChoice::Start: startPlayblast(ctx); break;
+    case PlayblastDialogChoice::Cancel:
+    case PlayblastDialogChoice::None: break;
   }
   if (!st_.standinTool.refitAllRequest.empty()) startRefitJob(ctx);
   if (st_.correspondence.bakeRequested) {

@@ -102,6 +102,9 @@ class EditorUI {
   void startBakeKeysJob(EditorContext& ctx);
   void drawJob(EditorContext& ctx);
   void startExport(EditorContext& ctx);
+  // File > Export > Playblast...: the dialog's settings become the project's (one undoable step),
+  // then ctx.playblast runs on the background job (its own offscreen Vulkan device).
+  void startPlayblast(EditorContext& ctx);
   // The Particles section's Simulate or Convert to particles, as a job; one undoable command.
   void startParticleJob(ParticleRequest request, EditorContext& ctx);
   void handleDrop(const std::vector<std::string>& paths, EditorContext& ctx);

@@ -43,7 +43,12 @@ MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& rece
     item("Import glTF...", Action::ImportGltf);
     item("Import Weights from Vertex Colour...", Action::ImportWeights, doc.project().morph.enabled());
     item("Save Screenshot...", Action::SaveScreenshot);
-    item("Export...", Action::Export, doc.project().morph.enabled() || doc.project().animorphosis.enabled());
+    // Export: the morph's frames as files, or a playblast movie of them.
+    if (beginMenu("Export", doc.project().morph.enabled() || doc.project().animorphosis.enabled())) {
+      item("Meshes and Volumes...", Action::Export);
+      item("Playblast...", Action::Playblast);
+      ImGui::EndMenu();
+    }
     ImGui::Separator();
     bool recentOpen = beginMenu("Recent", !recentFiles.empty());
     if (recentOpen) {

@@ -17,16 +17,18 @@ bool beginCentredModal(const char* id, bool& openNext) {
   return ImGui::BeginPopupModal(id, nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings);
 }
 
-ModalChoice createModalButtons(const std::string& error, const std::string& keyPrefix) {
+ModalChoice createModalButtons(const std::string& error, const std::string& keyPrefix, const char* confirm,
+                               const char* confirmKey) {
   if (!error.empty()) {
     ImGui::PushTextWrapPos(460.0f);
     ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", error.c_str());
     ImGui::PopTextWrapPos();
+    noteWidget(keyPrefix + "/error");
   }
   ImGui::Separator();
   ModalChoice c = ModalChoice::None;
-  if (ImGui::Button("Create", ImVec2(110.0f, 0.0f))) c = ModalChoice::Create;
-  noteWidget(keyPrefix + "/create");
+  if (ImGui::Button(confirm, ImVec2(110.0f, 0.0f))) c = ModalChoice::Create;
+  noteWidget(keyPrefix + "/" + confirmKey);
   ImGui::SameLine();
   if (ImGui::Button("Cancel", ImVec2(110.0f, 0.0f)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)))
     c = ModalChoice::Cancel;

@@ -11,8 +11,10 @@ bool beginCentredModal(const char* id, bool& openNext);
 
 enum class ModalChoice { None, Create, Cancel };
 
-// The refusal (when not empty), a separator and the buttons, noted as keyPrefix + "/create" and "/cancel".
-ModalChoice createModalButtons(const std::string& error, const std::string& keyPrefix);
+// The refusal (when not empty, noted as keyPrefix + "/error"), a separator and the buttons, noted as
+// keyPrefix + "/" + confirmKey and keyPrefix + "/cancel". File > Export... names its button Export.
+ModalChoice createModalButtons(const std::string& error, const std::string& keyPrefix, const char* confirm = "Create",
+                               const char* confirmKey = "create");
 
 // Closes the popup when close (isOpen becomes false), then ends it.
 void endCreateModal(bool close, bool& isOpen);

@@ -21,6 +21,8 @@ struct FarmOptions {
   std::string chunksDir;    // --chunks DIR (assemble): where the chunks' glTFs are
   std::string partition;    // --partition P (slurm)
   bool submit = false;      // --submit (slurm)
+  bool gpu = false;         // --gpu (slurm): each task bakes B->C on the GPU, asking Slurm for one (--gres=gpu:1)
+  bool keepChunks = false;  // --keep-chunks: assemble leaves the chunks' glTFs (removed once it succeeded)
 };
 
 // Parses args (after "slurm"/"assemble"); "" or the message of a usage error (exit status 2).

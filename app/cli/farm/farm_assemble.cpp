@@ -61,6 +61,7 @@ int runFarmAssemble(const FarmOptions& o) {
     PictureOptions pics;
     pics.mp4 = o.mp4;
     pics.burnIn = o.burnIn;
+    pics.stages = frameStageSpans(*p, o.first, o.last);
     pics.fps = p->timeline.fps;
     std::sscanf(o.size.c_str(), "%ux%u", &pics.width, &pics.height);
     if (fs::path(o.mp4).has_parent_path()) fs::create_directories(fs::path(o.mp4).parent_path(), ec);
@@ -68,6 +69,12 @@ int runFarmAssemble(const FarmOptions& o) {
     std::printf("read %zu frames from %zu chunks in %.2f s\n", kept.size(), chunks.size(), readSec);
     if (int code = renderPictures(kept, o.first, fs::path(), name, p->view, pics); code != 0) return code;
   }
+  if (o.keepChunks) return 0;
+  // Everything is written: the chunks go (a long bake's chunks would fill the farm's disk).
+  size_t removed = 0;
+  for (const FrameChunk& c : chunks) removed += fs::remove(chunkGltfName(o.chunksDir, name, c), ec) ? 1 : 0;
+  fs::remove(o.chunksDir, ec);  // only when nothing else is in it
+  std::printf("removed the %zu chunk glTFs from %s (--keep-chunks keeps them)\n", removed, o.chunksDir.c_str());
   return 0;
 }
 

@@ -32,6 +32,10 @@ std::string parseFarmOptions(const std::vector<std::string>& args, FarmOptions& 
       o.burnIn = true;
     } else if (a == "--submit") {
       o.submit = true;
+    } else if (a == "--gpu") {
+      o.gpu = true;
+    } else if (a == "--keep-chunks") {
+      o.keepChunks = true;
     } else if (!a.empty() && a[0] == '-') {
       return "unknown option " + a;
     } else if (o.project.empty()) {

@@ -45,7 +45,11 @@ std::string bakeScript(const FarmOptions& o, const std::string& exe, const std::
                                  " in " + std::to_string(chunks.size()) + " chunks, one array task per chunk",
                              "animorph-bake-" + name, out + "/logs/bake_%A_%a.log", o.partition);
   s += "#SBATCH --array=0-" + std::to_string(chunks.size() - 1) + "\n";
-  s += "#SBATCH --cpus-per-task=" + std::to_string(o.jobs) + "\n#SBATCH --ntasks=1\nset -eu\n";
+  s += "#SBATCH --cpus-per-task=" + std::to_string(o.jobs) + "\n#SBATCH --ntasks=1\n";
+  // --gpu: every task on a node with a GPU (a generic resource the cluster's gres.conf declares);
+  // bake --gpu refuses to run without a usable device rather than fall back to the CPU.
+  if (o.gpu) s += "#SBATCH --gres=gpu:1\n";
+  s += "set -eu\n";
   std::string first = "FIRST=(", last = "LAST=(", glb = "GLB=(";
   for (size_t i = 0; i < chunks.size(); ++i) {
     const char* sep = i ? " " : "";
@@ -60,6 +64,7 @@ std::string bakeScript(const FarmOptions& o, const std::string& exe, const std::
        std::to_string(o.res) + " --jobs " + std::to_string(o.jobs) + " --name " + name + " --format " + o.format;
   if (o.format != "none") s += " -o " + shellQuote(out);
   if (!chunkDir.empty()) s += " --gltf \"${GLB[i]}\"";
+  if (o.gpu) s += " --gpu";
   return s + "\n";
 }
 
@@ -75,6 +80,7 @@ std::string assembleScript(const FarmOptions& o, const std::string& exe, const s
   if (!o.gltf.empty()) s += " --gltf " + shellQuote(absolutePath(o.gltf));
   if (!o.mp4.empty()) s += " --mp4 " + shellQuote(absolutePath(o.mp4)) + " --size " + o.size;
   if (o.burnIn) s += " --burn-in";
+  if (o.keepChunks) s += " --keep-chunks";
   return s + "\n";
 }
 
@@ -116,6 +122,8 @@ int runFarmSlurm(const FarmOptions& o) {
     return fail("farm", "slurm: nothing to bake: --format none and neither --gltf nor --mp4", 2);
   auto p = loadProject(o.project);
   if (!p) return fail("farm", p.error());
+  if (o.gpu && !p->morph.enabled())
+    return fail("farm", "slurm: --gpu: " + o.project + " has no morph (an animorphosis is baked on the CPU)", 2);
   std::error_code ec;
   const fs::path exePath = fs::read_symlink("/proc/self/exe", ec);
   if (ec) return fail("farm", "cannot find the path of this animorph-cli: " + ec.message());

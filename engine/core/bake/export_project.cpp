@@ -3,16 +3,11 @@
 #include <chrono>
 #include <filesystem>
 
-#include "animorph/evaluate_generic.h"
 #include "bake/frame_files.h"
-#include "bake/frame_volume.h"
-#include "doc/animorphosis_project.h"
-#include "doc/asset_cache.h"
+#include "bake/project_frames.h"
 #include "io/gltf_sequence_export.h"
 #include "io/vdb_export.h"
-#include "morph/morph_runtime.h"
 #include "poly/mesh_io.h"
-#include "poly/polygonizer.h"
 
 namespace animorph {
 namespace fs = std::filesystem;
@@ -23,9 +18,7 @@ void exportFrameRange(const Project& p, const ExportSettings& s, int& first, int
 }
 
 std::string exportOutputPath(const ExportSettings& s, const std::string& baseDir) {
-  if (s.output.empty()) return {};
-  fs::path out(s.output);
-  return (out.is_absolute() ? out : fs::path(baseDir) / out).lexically_normal().string();
+  return resolveOutputPath(s.output, baseDir);
 }
 
 Result<ExportReport> exportProject(const Project& p, const std::string& baseDir, const ExportSettings& s,
@@ -44,24 +37,8 @@ Result<ExportReport> exportProject(const Project& p, const std::string& baseDir,
   progress.setTotal(count);
   progress.setStage("preparing");
 
-  // The frame source: the morph, or else the animorphosis.
-  std::shared_ptr<const MorphRuntime> morph;
-  std::optional<GenericTree> generic;
-  AnimorphosisTiming timing;
-  if (p.morph.enabled()) {
-    AssetCache assets;  // this thread's own: the editor's cache stays on the UI thread
-    auto rt = prepareMorph(p, baseDir, assets);
-    if (!rt) return Error{"export: " + rt.error()};
-    morph = *rt;
-  } else if (p.animorphosis.enabled()) {
-    auto c = projectGenericTree(p);
-    if (!c) return Error{"export: " + c.error()};
-    generic = std::move(*c);
-    timing = animorphosisTiming(p);
-  } else {
-    return Error{"export: the project has no morph or animorphosis to bake (Create > Morph... or Create > "
-                 "Animorphosis... makes one)"};
-  }
+  auto frames = ProjectFrames::prepare(p, baseDir);
+  if (!frames) return Error{"export: " + frames.error()};
 
   std::error_code ec;
   const bool gltf = s.format == ExportFormat::GltfAnimated;
@@ -84,11 +61,9 @@ Result<ExportReport> exportProject(const Project& p, const std::string& baseDir,
     const int f = first + k;
     progress.setStage("frame " + std::to_string(f) + " (" + std::to_string(k + 1) + " of " + std::to_string(count) +
                       ")");
-    const double timeSec = p.timeline.frameToSec(f);
     if (s.format == ExportFormat::VdbSequence) {
       // The frame's field as a level set (no mesh); a skinned-mesh frame has none.
-      auto band = morph ? morphFrameLevelSet(*morph, timeSec, s.resolution, 0, progress.cancelFlag())
-                        : fieldLevelSet(compileGeneric(*generic, timing, timeSec), s.resolution, 0, progress.cancelFlag());
+      auto band = frames->levelSet(f, s.resolution, progress.cancelFlag());
       if (!band) return Error{"export: frame " + std::to_string(f) + ": " + band.error()};
       if (progress.cancelled() || (*band && (*band)->cancelled)) return jobCancelled();
       if (*band) {
@@ -102,24 +77,10 @@ Result<ExportReport> exportProject(const Project& p, const std::string& baseDir,
       progress.setDone(k + 1);
       continue;
     }
-    TriangleMesh mesh;
-    if (morph) {
-      MorphFrameSettings fs;
-      fs.resolution = s.resolution;
-      fs.cancel = progress.cancelFlag();
-      auto fr = evaluateMorphFrame(*morph, timeSec, fs);
-      if (!fr) return Error{"export: frame " + std::to_string(f) + ": " + fr.error()};
-      if (fr->cancelled || progress.cancelled()) return jobCancelled();
-      mesh = std::move(fr->mesh);
-    } else {
-      PolygonizeSettings ps;
-      ps.resolution = s.resolution;
-      ps.cancel = progress.cancelFlag();
-      auto r = polygonize(compileGeneric(*generic, timing, timeSec), ps);
-      if (!r) return Error{"export: frame " + std::to_string(f) + ": " + r.error()};
-      if (r->cancelled || progress.cancelled()) return jobCancelled();
-      mesh = std::move(r->mesh);
-    }
+    auto baked = frames->mesh(f, s.resolution, progress.cancelFlag());
+    if (!baked)
+      return progress.cancelled() ? jobCancelled() : Error{"export: frame " + std::to_string(f) + ": " + baked.error()};
+    TriangleMesh mesh = std::move(*baked);
     report.triangles += mesh.triangleCount();
     Status st;
     if (sequence) {

@@ -15,6 +15,12 @@ std::string frameFileName(const std::string& dir, const std::string& name, int f
   return (fs::path(dir) / (name + buf)).string();
 }
 
+std::string resolveOutputPath(const std::string& output, const std::string& baseDir) {
+  if (output.empty()) return {};
+  std::filesystem::path out(output);
+  return (out.is_absolute() ? out : std::filesystem::path(baseDir) / out).lexically_normal().string();
+}
+
 std::string framePrefix(const std::string& name) {
   std::string out;
   for (char c : name) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '_') ? c : '_';

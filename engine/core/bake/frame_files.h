@@ -13,6 +13,10 @@ namespace animorph {
 // mesh-sequence readers expect.
 std::string frameFileName(const std::string& dir, const std::string& name, int frame, const char* ext);
 
+// Where an output path chosen in a project points: relative paths are taken from baseDir (the
+// project's folder); "" stays "".
+std::string resolveOutputPath(const std::string& output, const std::string& baseDir);
+
 // A file-name prefix from a project name: characters outside [A-Za-z0-9._-] become '_'; "frame"
 // for an empty name.
 std::string framePrefix(const std::string& name);

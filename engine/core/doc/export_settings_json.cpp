@@ -1,9 +1,46 @@
 #include "doc/export_settings_json.h"
 
+#include <initializer_list>
+
 #include "doc/project_io.h"
 #include "util/json_text.h"
 
 namespace animorph {
+
+namespace {
+struct IntField {
+  const char* key;
+  int* value;
+  long long lo, hi;
+};
+struct BoolField {
+  const char* key;
+  bool* value;
+};
+
+// The fields both sections share (frame range, resolution, output) and their own ones, read from
+// j into the settings; "" or the error (at.KEY: why).
+std::string readFields(const nlohmann::json& j, const std::string& at, std::initializer_list<BoolField> bools,
+                       std::initializer_list<IntField> ints, std::string& output) {
+  for (const BoolField& f : bools) {
+    if (!j.contains(f.key)) continue;
+    if (!j[f.key].is_boolean()) return at + "." + f.key + ": expected true or false";
+    *f.value = j[f.key].get<bool>();
+  }
+  for (const IntField& f : ints) {
+    if (!j.contains(f.key)) continue;
+    std::string why;
+    auto v = jsonInteger(j[f.key], f.lo, f.hi, why);
+    if (!v) return at + "." + f.key + ": " + why;
+    *f.value = int(*v);
+  }
+  if (j.contains("output")) {
+    if (!j["output"].is_string()) return at + ".output: expected a string";
+    output = j["output"].get<std::string>();
+  }
+  return {};
+}
+}  // namespace
 
 nlohmann::json exportSettingsToJson(const ExportSettings& s) {
   return {{"format", exportFormatName(s.format)}, {"use_timeline", s.useTimeline}, {"first", s.first},
@@ -19,29 +56,38 @@ Result<ExportSettings> exportSettingsFromJson(const nlohmann::json& j, const std
     if (!f.is_string() || !exportFormatFromName(f.get<std::string>(), s.format))
       return Error{at + ".format: expected \"gltf\", \"ply\", \"obj\" or \"vdb\""};
   }
-  if (j.contains("use_timeline")) {
-    if (!j["use_timeline"].is_boolean()) return Error{at + ".use_timeline: expected true or false"};
-    s.useTimeline = j["use_timeline"].get<bool>();
-  }
-  struct IntField {
-    const char* key;
-    int* value;
-    long long lo, hi;
-  };
-  for (const IntField& f : {IntField{"first", &s.first, -kMaxFrame, kMaxFrame},
-                            IntField{"last", &s.last, -kMaxFrame, kMaxFrame},
-                            IntField{"resolution", &s.resolution, 2, 1024}}) {
-    if (!j.contains(f.key)) continue;
-    std::string why;
-    auto v = jsonInteger(j[f.key], f.lo, f.hi, why);
-    if (!v) return Error{at + "." + f.key + ": " + why};
-    *f.value = int(*v);
-  }
+  if (std::string e = readFields(j, at, {{"use_timeline", &s.useTimeline}},
+                                 {{"first", &s.first, -kMaxFrame, kMaxFrame},
+                                  {"last", &s.last, -kMaxFrame, kMaxFrame},
+                                  {"resolution", &s.resolution, 2, 1024}},
+                                 s.output);
+      !e.empty())
+    return Error{e};
   if (s.last < s.first) return Error{at + ".last: is before first"};
-  if (j.contains("output")) {
-    if (!j["output"].is_string()) return Error{at + ".output: expected a string"};
-    s.output = j["output"].get<std::string>();
-  }
+  return s;
+}
+
+nlohmann::json playblastSettingsToJson(const PlayblastSettings& s) {
+  return {{"use_timeline", s.useTimeline}, {"first", s.first},   {"last", s.last},      {"resolution", s.resolution},
+          {"width", s.width},              {"height", s.height}, {"burn_in", s.burnIn}, {"output", s.output}};
+}
+
+Result<PlayblastSettings> playblastSettingsFromJson(const nlohmann::json& j, const std::string& sourceName) {
+  const std::string at = sourceName + ": playblast";
+  if (!j.is_object()) return Error{at + ": expected an object"};
+  PlayblastSettings s;
+  if (std::string e = readFields(j, at, {{"use_timeline", &s.useTimeline}, {"burn_in", &s.burnIn}},
+                                 {{"first", &s.first, -kMaxFrame, kMaxFrame},
+                                  {"last", &s.last, -kMaxFrame, kMaxFrame},
+                                  {"resolution", &s.resolution, 2, 1024},
+                                  {"width", &s.width, 16, 8192},
+                                  {"height", &s.height, 16, 8192}},
+                                 s.output);
+      !e.empty())
+    return Error{e};
+  if (s.last < s.first) return Error{at + ".last: is before first"};
+  if (s.width % 2) return Error{at + ".width: expected an even number (H.264 needs even sizes)"};
+  if (s.height % 2) return Error{at + ".height: expected an even number (H.264 needs even sizes)"};
   return s;
 }
 

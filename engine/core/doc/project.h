@@ -8,6 +8,7 @@
 #include "blobtree/blob_tree.h"
 #include "doc/animorphosis_setup.h"
 #include "doc/export_settings.h"
+#include "doc/playblast_settings.h"
 #include "doc/morph_setup.h"
 #include "math/transform.h"
 
@@ -52,6 +53,7 @@ struct Project {
   MorphSetup morph;  // the source -> target morph; disabled when morph.sourceActorId is empty
   AnimorphosisSetup animorphosis;  // BlobTree -> BlobTree animorphosis; disabled when its source is empty
   ExportSettings exportSettings;   // File > Export...: the last settings used
+  PlayblastSettings playblastSettings;  // File > Export > Playblast...: the last settings used
   bool operator==(const Project&) const = default;
 
   Actor* findActor(const std::string& id);

@@ -97,6 +97,7 @@ std::string projectToJson(const Project& p) {
                {"wireframe", p.view.wireframe}, {"axes", p.view.showAxes},
                {"standins", p.view.showStandins}};
   if (!(p.exportSettings == ExportSettings{})) j["export"] = exportSettingsToJson(p.exportSettings);
+  if (!(p.playblastSettings == PlayblastSettings{})) j["playblast"] = playblastSettingsToJson(p.playblastSettings);
   json actors = json::array();
   for (const Actor& a : p.actors) {
     const glm::quat& q = a.transform.rotation;
@@ -198,6 +199,11 @@ Result<Project> projectFromJson(const std::string& text, const std::string& sour
     auto e = exportSettingsFromJson(j["export"], sourceName);
     if (!e) return Error{e.error()};
     p.exportSettings = std::move(*e);
+  }
+  if (j.contains("playblast")) {
+    auto e = playblastSettingsFromJson(j["playblast"], sourceName);
+    if (!e) return Error{e.error()};
+    p.playblastSettings = std::move(*e);
   }
   if (j.contains("actors")) {
     const json& actors = j["actors"];
