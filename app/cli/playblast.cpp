@@ -52,7 +52,7 @@ int renderPictures(const std::vector<TriangleMesh>& meshes, int first, const fs:
   mo.burnIn = o.burnIn;
   mo.firstFrame = first;
   mo.stages = o.stages;
-  auto r = gpu::playblastMeshes(meshes, view, mo, nullptr);
+  auto r = gpu::playblastMeshes(meshes, view, mo, std::nullopt, nullptr);
   if (!r) return fail("bake", "--mp4: " + r.error());
   std::printf("wrote %s: %d frames at %dx%d, %.1f frames/s rendered and encoded\n", o.mp4.c_str(), r->frames,
               r->width, r->height, r->pictureSeconds > 0.0 ? double(r->frames) / r->pictureSeconds : 0.0);

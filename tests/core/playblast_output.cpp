@@ -174,6 +174,7 @@ TEST_CASE("playblast settings: saved in the project file, read back, bad fields 
   p.playblastSettings.width = 640;
   p.playblastSettings.height = 360;
   p.playblastSettings.burnIn = false;
+  p.playblastSettings.viewportCamera = false;
   p.playblastSettings.output = "out/w.mp4";
   auto back = projectFromJson(projectToJson(p), "w.animorph");
   REQUIRE(back);

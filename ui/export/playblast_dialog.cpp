@@ -62,8 +62,12 @@ PlayblastDialogChoice drawPlayblastDialog(const Document& doc, PlayblastDialogSt
   ImGui::Checkbox("Burn in the frame number and stage", &s.burnIn);
   noteWidget("playblast/burn_in");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("\"frame 0042   B..C\" in the top-left corner of every frame");
+  ImGui::Checkbox("Viewport camera", &s.viewportCamera);
+  noteWidget("playblast/viewport_camera");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Seen as in the viewport now; off: one camera that frames every frame of the range");
   if (outputPathField("playblast", "File", s.output)) choice = PlayblastDialogChoice::Browse;
-  ImGui::TextDisabled("One camera frames every frame; %g frames/s (the timeline's).", p.timeline.fps);
+  ImGui::TextDisabled("%g frames/s (the timeline's).", p.timeline.fps);
   switch (createModalButtons(st.error, "playblast", "Playblast", "start")) {
     case ModalChoice::Create:
       st.error = playblastSettingsProblem(p, s);

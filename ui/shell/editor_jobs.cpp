@@ -308,8 +308,9 @@ void EditorUI::startPlayblast(EditorContext& ctx) {
   auto report = std::make_shared<PlayblastReport>();
   startJob(
       "Playblast",
-      [run = ctx.playblast, project = d.project(), baseDir = d.baseDir(), s, report](JobProgress& pr) -> Status {
-        auto r = run(project, baseDir, s, pr);
+      [run = ctx.playblast, project = d.project(), baseDir = d.baseDir(), s, camera = st_.camera,
+       report](JobProgress& pr) -> Status {
+        auto r = run(project, baseDir, s, camera, pr);
         if (!r) return Error{r.error()};
         *report = std::move(*r);
         return Status::success();

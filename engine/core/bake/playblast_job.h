@@ -4,11 +4,13 @@
 // job. The drawing needs a GPU device, which the core does not have: the app hands the editor a
 // PlayblastRunner (render/playblast.h, gpu::playblastProject) that does the whole job.
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "doc/project.h"
 #include "util/job_progress.h"
 #include "util/result.h"
+#include "view/camera.h"
 
 namespace animorph {
 
@@ -22,10 +24,13 @@ struct PlayblastReport {
 };
 
 // Runs a playblast of project (a copy; relative paths taken from baseDir) as the settings say,
-// under progress (frames baked, then frames drawn; cancel polled between frames). A cancelled
-// job returns jobCancelled() and leaves no file.
+// under progress (frames baked, then frames drawn; cancel polled between frames). camera: the
+// viewport's camera when s.viewportCamera (the editor passes it as it was when the job started);
+// none: one camera framing every frame. A cancelled job returns jobCancelled() and leaves no file.
 using PlayblastRunner = std::function<Result<PlayblastReport>(const Project& project, const std::string& baseDir,
-                                                              const PlayblastSettings& s, JobProgress& progress)>;
+                                                              const PlayblastSettings& s,
+                                                              const std::optional<OrbitCamera>& camera,
+                                                              JobProgress& progress)>;
 
 // The frames a playblast covers: the settings' range, or the timeline's when useTimeline.
 void playblastFrameRange(const Project& p, const PlayblastSettings& s, int& first, int& last);

@@ -69,14 +69,14 @@ Result<ExportSettings> exportSettingsFromJson(const nlohmann::json& j, const std
 
 nlohmann::json playblastSettingsToJson(const PlayblastSettings& s) {
   return {{"use_timeline", s.useTimeline}, {"first", s.first},   {"last", s.last},      {"resolution", s.resolution},
-          {"width", s.width},              {"height", s.height}, {"burn_in", s.burnIn}, {"output", s.output}};
+          {"width", s.width},              {"height", s.height}, {"burn_in", s.burnIn}, {"viewport_camera", s.viewportCamera}, {"output", s.output}};
 }
 
 Result<PlayblastSettings> playblastSettingsFromJson(const nlohmann::json& j, const std::string& sourceName) {
   const std::string at = sourceName + ": playblast";
   if (!j.is_object()) return Error{at + ": expected an object"};
   PlayblastSettings s;
-  if (std::string e = readFields(j, at, {{"use_timeline", &s.useTimeline}, {"burn_in", &s.burnIn}},
+  if (std::string e = readFields(j, at, {{"use_timeline", &s.useTimeline}, {"burn_in", &s.burnIn}, {"viewport_camera", &s.viewportCamera}},
                                  {{"first", &s.first, -kMaxFrame, kMaxFrame},
                                   {"last", &s.last, -kMaxFrame, kMaxFrame},
                                   {"resolution", &s.resolution, 2, 1024},

@@ -18,15 +18,20 @@ double secondsSince(std::chrono::steady_clock::time_point t0) {
 }  // namespace
 
 Result<PlayblastReport> playblastMeshes(const std::vector<TriangleMesh>& meshes, const ViewOptions& view,
-                                        const Mp4Options& o, JobProgress* progress) {
+                                        const Mp4Options& o, const std::optional<OrbitCamera>& camera,
+                                        JobProgress* progress) {
   const auto t0 = std::chrono::steady_clock::now();
   if (meshes.empty()) return Error{o.path + ": no frames to draw"};
   auto renderer = MeshSequenceRenderer::create(o.width, o.height, view);
   if (!renderer) return Error{"playblast: " + renderer.error()};
-  Bounds all;  // one camera for the whole sequence, framing every frame
-  for (const auto& m : meshes)
-    for (const auto& p : m.positions) all.add(p);
-  (*renderer)->frameBounds(all);
+  if (camera) {
+    (*renderer)->setCamera(*camera);
+  } else {  // one camera for the whole sequence, framing every frame
+    Bounds all;
+    for (const auto& m : meshes)
+      for (const auto& p : m.positions) all.add(p);
+    (*renderer)->frameBounds(all);
+  }
   auto writer = Mp4Writer::start(o);
   if (!writer) return Error{writer.error()};
   const double before = progress ? progress->done() : 0.0;
@@ -60,7 +65,8 @@ Result<PlayblastReport> playblastMeshes(const std::vector<TriangleMesh>& meshes,
 }
 
 Result<PlayblastReport> playblastProject(const Project& project, const std::string& baseDir,
-                                         const PlayblastSettings& s, JobProgress& progress) {
+                                         const PlayblastSettings& s, const std::optional<OrbitCamera>& camera,
+                                         JobProgress& progress) {
   const auto t0 = std::chrono::steady_clock::now();
   int first = 0, last = 0;
   playblastFrameRange(project, s, first, last);
@@ -103,7 +109,7 @@ Result<PlayblastReport> playblastProject(const Project& project, const std::stri
   o.burnIn = s.burnIn;
   o.firstFrame = first;
   o.stages = frameStageSpans(project, first, last);
-  auto r = playblastMeshes(meshes, project.view, o, &progress);
+  auto r = playblastMeshes(meshes, project.view, o, s.viewportCamera ? camera : std::nullopt, &progress);
   if (!r) return r;
   r->seconds = secondsSince(t0);
   return r;
