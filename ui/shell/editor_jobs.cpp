@@ -108,7 +108,14 @@ void EditorUI::startBakeKeysJob(EditorContext& ctx) {
   auto baked = std::make_shared<Result<BakedActor>>(Error{"not run"});
   auto work = [project, baked](JobProgress& pr) -> Status {
     pr.setStage("baking the key-frame tree");
-    *baked = bakeAnimorphosisActor(*project);
+    // Progress per node of C; Cancel (or Esc) stops the bake within one channel's work.
+    BakeKeysSettings settings;
+    settings.cancel = pr.cancelFlag();
+    settings.progress = [&pr](size_t done, size_t total) {
+      pr.setTotal(double(total));
+      pr.setDone(double(done));
+    };
+    *baked = bakeAnimorphosisActor(*project, settings);
     return pr.cancelled() ? jobCancelled() : Status::success();
   };
   startJob("Bake to key-frame actor", std::move(work), [this, baked](EditorContext& c, const Status&) {
