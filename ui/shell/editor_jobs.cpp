@@ -167,10 +167,13 @@ void EditorUI::drawJob(EditorContext& /*ctx*/) {
   if (!ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel) &&
       !ImGui::GetIO().WantTextInput && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false))
     cancel = true;
-  if (cancel && !job_->progress().cancelled()) {
-    job_->cancel();
-    setStatus("Cancelling " + job_->label() + "...");
-  }
+  if (cancel) cancelJob();
+}
+
+void EditorUI::cancelJob() {
+  if (!job_ || job_->progress().cancelled()) return;
+  job_->cancel();
+  setStatus("Cancelling " + job_->label() + "...");
 }
 
 void EditorUI::loadProject(const std::string& path, bool recover, EditorContext& ctx) {
