@@ -11,6 +11,7 @@
 #include "io/gltf_sequence_export.h"
 #include "io/vdb_export.h"
 #include "morph/morph_runtime.h"
+#include "poly/frame_sequence.h"
 #include "poly/mesh_io.h"
 #include "poly/polygonizer.h"
 
@@ -77,6 +78,23 @@ Result<ExportReport> exportProject(const Project& p, const std::string& baseDir,
     so.firstFrame = first;
     sequence = std::make_unique<GltfSequenceWriter>(so);
   }
+  // An animorphosis' meshes: its frames on one grid, each reusing the blocks of the frame before
+  // that the field provably left within 0.1 cell (temporal coherence, poly/frame_sequence.h).
+  PolygonizeHistory history;
+  std::optional<PolygonizeGrid> sharedGrid;
+  FrameSequenceSettings coherence;
+  coherence.resolution = s.resolution;
+  coherence.cancel = progress.cancelFlag();
+  if (generic && s.format != ExportFormat::VdbSequence) {
+    progress.setStage("choosing one grid for the frames");
+    bool cancelled = false;
+    auto grid = frameSequenceGrid(
+        count, [&](int k) { return compileGeneric(*generic, timing, p.timeline.frameToSec(first + k)); }, coherence,
+        &cancelled);
+    if (!grid) return Error{"export: " + grid.error()};
+    if (cancelled) return jobCancelled();
+    sharedGrid = *grid;
+  }
   StagedFiles staged;
   ExportReport report;
   for (int k = 0; k < count; ++k) {
@@ -115,6 +133,9 @@ Result<ExportReport> exportProject(const Project& p, const std::string& baseDir,
       PolygonizeSettings ps;
       ps.resolution = s.resolution;
       ps.cancel = progress.cancelFlag();
+      ps.grid = sharedGrid;
+      ps.history = &history;
+      ps.reuseToleranceCells = coherence.reuseToleranceCells;
       auto r = polygonize(compileGeneric(*generic, timing, timeSec), ps);
       if (!r) return Error{"export: frame " + std::to_string(f) + ": " + r.error()};
       if (r->cancelled || progress.cancelled()) return jobCancelled();

@@ -5,6 +5,21 @@
 
 namespace animorph {
 
+Result<std::optional<PolygonizeGrid>> frameSequenceGrid(int count, const std::function<FieldProgram(int)>& programOf,
+                                                        const FrameSequenceSettings& settings, bool* cancelled) {
+  PolygonizeSettings ps;
+  ps.resolution = settings.resolution;
+  SequenceGrid grid;
+  for (int k = 0; k < count; ++k) {
+    if (settings.cancel && settings.cancel->load(std::memory_order_relaxed)) {
+      if (cancelled) *cancelled = true;
+      return std::optional<PolygonizeGrid>();
+    }
+    if (Status s = grid.add(programOf(k), ps); !s) return Error{"frame " + std::to_string(k) + ": " + s.error()};
+  }
+  return grid.grid();
+}
+
 Result<FrameSequenceStats> polygonizeFrameSequence(int count, const std::function<FieldProgram(int)>& programOf,
                                                    const std::function<Status(int, PolygonizeResult&&)>& frameDone,
                                                    const FrameSequenceSettings& settings) {
@@ -15,19 +30,14 @@ Result<FrameSequenceStats> polygonizeFrameSequence(int count, const std::functio
   ps.threads = settings.threads;
   ps.cancel = settings.cancel;
   const auto t0 = std::chrono::steady_clock::now();
-  SequenceGrid grid;
-  for (int k = 0; k < count; ++k) {
-    if (stopped()) {
-      stats.cancelled = true;
-      return stats;
-    }
-    if (Status s = grid.add(programOf(k), ps); !s) return Error{"frame " + std::to_string(k) + ": " + s.error()};
-  }
+  auto grid = frameSequenceGrid(count, programOf, settings, &stats.cancelled);
+  if (!grid) return Error{grid.error()};
+  if (stats.cancelled) return stats;
   stats.gridMilliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   // No frame has an inside: each frame alone gives its (empty) mesh.
-  if (auto g = grid.grid()) {
-    ps.grid = *g;
-    stats.grid = *g;
+  if (*grid) {
+    ps.grid = **grid;
+    stats.grid = **grid;
   } else {
     stats.grid.empty = true;
   }

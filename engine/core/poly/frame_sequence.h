@@ -26,6 +26,12 @@ struct FrameSequenceStats {
   bool cancelled = false;
 };
 
+// The first pass alone: one grid for frames 0..count-1 (SequenceGrid over programOf(k) with
+// settings' resolution). nullopt when no frame has an inside, or when settings.cancel turned true
+// (then *cancelled is set). Errors: polygonizeGrid's, naming the frame.
+Result<std::optional<PolygonizeGrid>> frameSequenceGrid(int count, const std::function<FieldProgram(int)>& programOf,
+                                                        const FrameSequenceSettings& settings, bool* cancelled);
+
 // programOf(k), k = 0..count-1, makes frame k's program; it is called twice per frame (the grid
 // pass, then the polygonisation). frameDone(k, result) takes each frame's result in order; an
 // error from it stops the run and is returned. Errors: a frame's polygoniser error, naming the frame.
