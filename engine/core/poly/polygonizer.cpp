@@ -376,12 +376,17 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
           previous->summary[bi].subLive == liveMask) {
         // Tolerance reuse: the field moved here by at most the sum of the change bounds of the
         // primitives reaching the block in either frame (the others add exact zeros in both).
-        previous->program.primitivesReaching(bb, sc.previousReaching, &previous->superCandidates[si]);
+        // This frame's primitives alone already too much: no need to ask the previous program.
         double delta = previous->summary[bi].drift;
-        sc.merged.clear();
-        std::set_union(sc.reaching.begin(), sc.reaching.end(), sc.previousReaching.begin(),
-                       sc.previousReaching.end(), std::back_inserter(sc.merged));
-        for (uint32_t p : sc.merged) delta += double(changeBound[p]);
+        for (uint32_t p : sc.reaching) delta += double(changeBound[p]);
+        if (keepsBlock(previous->summary[bi], delta, tolerance, T)) {
+          previous->program.primitivesReaching(bb, sc.previousReaching, &previous->superCandidates[si]);
+          delta = previous->summary[bi].drift;
+          sc.merged.clear();
+          std::set_union(sc.reaching.begin(), sc.reaching.end(), sc.previousReaching.begin(),
+                         sc.previousReaching.end(), std::back_inserter(sc.merged));
+          for (uint32_t p : sc.merged) delta += double(changeBound[p]);
+        }
         if (keepsBlock(previous->summary[bi], delta, tolerance, T)) {
           out[bi] = std::move(previous->out[bi]);
           summary[bi] = previous->summary[bi];
