@@ -1,4 +1,4 @@
-// animorph-cli bake PROJECT --frames A:B --res N -o DIR [--format ...] [--gltf FILE.glb] [--vdb DIR] [--png] [--jobs J]:
+// animorph-cli bake PROJECT --frames A:B --res N -o DIR [--format ...] [--gltf FILE.glb] [--vdb DIR] [--png] [--jobs J] [--coherence C]:
 // the morph's output meshes as a PLY/OBJ sequence and/or one animated glTF, its implicit frames
 // as OpenVDB level sets (and optionally rendered PNG frames), frame by frame.
 #include <unistd.h>
@@ -22,6 +22,7 @@
 #include "cli/playblast.h"
 #include "cli/progress_bar.h"
 #include "doc/animorphosis_project.h"
+#include "poly/frame_sequence.h"
 #include "poly/polygonizer.h"
 #include "scene/mesh_character.h"
 #include "doc/project_io.h"
@@ -175,35 +176,66 @@ class FrameSink {
 
 
 // A project whose only transformation is an animorphosis: C(t) polygonised frame by frame (CPU), in
-// the trees' own space; with --png, rendered like the morph's frames.
+// the trees' own space; with --png, rendered like the morph's frames. coherence > 0: the frames in
+// order on one grid with temporal coherence (poly/frame_sequence.h), each vertex within `coherence`
+// cells of a full polygonisation's; 0: every frame on its own grid, frames in parallel over jobs.
 int bakeAnimorphosis(const Project& p, const std::string& project, FrameSink& sink, int first, int last, int res,
-                     int jobs, const PictureOptions& pics, const std::string& output) {
+                     int jobs, float coherence, const PictureOptions& pics, const std::string& output) {
   auto c = projectGenericTree(p);
   if (!c) return cli::fail("bake", project + ": " + c.error());
   const AnimorphosisTiming timing = animorphosisTiming(p);
   const auto t0 = std::chrono::steady_clock::now();
   const int count = last - first + 1;
   std::atomic<size_t> triangles{0};
-  std::string error = bakeFrames(first, count, jobs, [&](int k) -> std::string {
-    PolygonizeSettings ps;
-    ps.resolution = res;
-    ps.threads = jobs > 1 ? 1 : 0;
-    const FieldProgram field = compileGeneric(*c, timing, p.timeline.frameToSec(first + k));
-    auto r = polygonize(field, ps);
-    if (!r) return r.error();
+  // One frame's field, and what it adds to the sink (its level set first); "" or the error.
+  auto finishFrame = [&](int k, const FieldProgram& field, TriangleMesh&& mesh, int threads) -> std::string {
     if (sink.wantsVolumes()) {
-      auto band = fieldLevelSet(field, res, ps.threads, nullptr);
+      auto band = fieldLevelSet(field, res, threads, nullptr);
       if (!band) return band.error();
       if (std::string e = sink.addVolume(k, &**band); !e.empty()) return e;
     }
-    triangles += r->mesh.triangleCount();
-    return sink.add(k, std::move(r->mesh));
-  });
+    triangles += mesh.triangleCount();
+    return sink.add(k, std::move(mesh));
+  };
+  auto programOf = [&](int k) { return compileGeneric(*c, timing, p.timeline.frameToSec(first + k)); };
+  std::string error, coherenceNote;
+  if (coherence > 0.0f) {
+    FrameSequenceSettings fs;
+    fs.resolution = res;
+    fs.reuseToleranceCells = coherence;
+    ProgressBar bar("baking", count);
+    auto stats = polygonizeFrameSequence(
+        count, programOf,
+        [&](int k, PolygonizeResult&& r) -> Status {
+          std::string e = sink.wantsVolumes() ? finishFrame(k, programOf(k), std::move(r.mesh), 0)
+                                              : finishFrame(k, FieldProgram{}, std::move(r.mesh), 0);
+          bar.step();
+          if (!e.empty()) return Error{"frame " + std::to_string(first + k) + ": " + e};
+          return {};
+        },
+        fs);
+    if (!stats) error = stats.error();
+    else
+      coherenceNote = "; temporal coherence (" + std::to_string(coherence).substr(0, 4) + " cell): " +
+                      std::to_string(stats->blocksReused) + " of " + std::to_string(stats->blocksEvaluated) +
+                      " blocks reused, one " + std::to_string(stats->grid.cells[0]) + "x" +
+                      std::to_string(stats->grid.cells[1]) + "x" + std::to_string(stats->grid.cells[2]) + " grid";
+  } else {
+    error = bakeFrames(first, count, jobs, [&](int k) -> std::string {
+      PolygonizeSettings ps;
+      ps.resolution = res;
+      ps.threads = jobs > 1 ? 1 : 0;
+      const FieldProgram field = programOf(k);
+      auto r = polygonize(field, ps);
+      if (!r) return r.error();
+      return finishFrame(k, field, std::move(r->mesh), ps.threads);
+    });
+  }
   if (!error.empty()) return cli::fail("bake", error);
   const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("baked the animorphosis %s -> %s, frames %d..%d (%zu nodes, %zu triangles in all) at %d^3 into %s in %.2f s\n",
+  std::printf("baked the animorphosis %s -> %s, frames %d..%d (%zu nodes, %zu triangles in all) at %d^3 into %s in %.2f s%s\n",
               p.animorphosis.sourceActorId.c_str(), p.animorphosis.targetActorId.c_str(), first, last, c->size(),
-              size_t(triangles), res, sink.into().c_str(), sec);
+              size_t(triangles), res, sink.into().c_str(), sec, coherenceNote.c_str());
   if (std::string e = sink.finish(); !e.empty()) return cli::fail("bake", e);
   if (int code = renderPictures(sink.kept, first, output, sink.prefix(), p.view, pics); code != 0) return code;
   return 0;
@@ -212,13 +244,14 @@ int bakeAnimorphosis(const Project& p, const std::string& project, FrameSink& si
 int runBake(const std::vector<std::string>& args) {
   std::string project, output, frames, name, gltf, vdb, mp4, size = "1280x720", format = "ply";
   int res = 48, jobs = 1;
+  float coherence = 0.1f;  // an animorphosis' temporal coherence tolerance (cells); 0: off
   bool png = false, gpu = false, burnIn = false;
   cli::MorphMethodOptions methods;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     auto value = [&]() -> const std::string* { return i + 1 < args.size() ? &args[++i] : nullptr; };
     if (a == "-o" || a == "--output" || a == "--frames" || a == "--res" || a == "--jobs" || a == "--name" ||
-        a == "--format" || a == "--gltf" || a == "--vdb" || a == "--mp4" || a == "--size") {
+        a == "--format" || a == "--gltf" || a == "--vdb" || a == "--mp4" || a == "--size" || a == "--coherence") {
       const std::string* v = value();
       if (!v) return cli::fail("bake", a + " needs a value", 2);
       if (a == "--frames") frames = *v;
@@ -230,7 +263,12 @@ int runBake(const std::vector<std::string>& args) {
       else if (a == "--vdb") vdb = *v;
       else if (a == "--mp4") mp4 = *v;
       else if (a == "--size") size = *v;
-      else output = *v;
+      else if (a == "--coherence") {
+        char* end = nullptr;
+        coherence = std::strtof(v->c_str(), &end);
+        if (end == v->c_str() || *end != '\0' || !(coherence >= 0.0f && coherence <= 0.5f))
+          return cli::fail("bake", "--coherence: expected a tolerance in cells, 0..0.5 (0: off), got '" + *v + "'", 2);
+      } else output = *v;
     } else if (a == "--obj") {
       format = "obj";
     } else if (a == "--png") {
@@ -302,7 +340,7 @@ int runBake(const std::vector<std::string>& args) {
   FrameSink sink({output, prefix, writePlys, writeObjs, png, png || !mp4.empty(), gltf, vdb, p->timeline.fps, first, count});
   if (!p->morph.enabled() && p->animorphosis.enabled()) {
     if (gpu) return cli::fail("bake", "--gpu: an animorphosis is baked on the CPU (run without --gpu)", 2);
-    return bakeAnimorphosis(*p, project, sink, first, last, res, jobs, pics, output);
+    return bakeAnimorphosis(*p, project, sink, first, last, res, jobs, coherence, pics, output);
   }
   const std::string baseDir = fs::absolute(fs::path(project)).parent_path().string();
   AssetCache assets;
@@ -422,7 +460,7 @@ int runBake(const std::vector<std::string>& args) {
 ANIMORPH_CLI_COMMAND("bake", "bake a project's morph into mesh sequences, an animated glTF, VDB level sets (and PNG frames)",
                      "usage: animorph-cli bake PROJECT.animorph --frames A:B --res N -o DIR [--format ply|obj|ply,obj|none]\n"
                      "                         [--obj] [--name NAME] [--gltf FILE.glb] [--vdb DIR] [--png] [--mp4 FILE.mp4 [--size WxH]\n"
-                     "                         [--burn-in]] [--gpu] [--jobs J] [--method M [--correspondence-blend B]]\n"
+                     "                         [--burn-in]] [--gpu] [--jobs J] [--coherence C] [--method M [--correspondence-blend B]]\n"
                      "  Bakes every frame A..B: the source's skinned mesh before marker A, its\n"
                      "  collapse onto the stand-in A->B, the polygonised implicit morph B->C (N cells\n"
                      "  along the longest side), the target's expansion C->D and its skinned mesh\n"
@@ -456,7 +494,14 @@ ANIMORPH_CLI_COMMAND("bake", "bake a project's morph into mesh sequences, an ani
                      "  --gpu        the B->C stage on the Vulkan compute polygoniser (offscreen, no\n"
                      "               display needed); exits 1 with a message when no device is usable\n"
                      "               or the device fails (no silent fallback to the CPU)\n"
-                     "  --jobs J     frames baked in parallel (the output is the same for any J)\n"
+                     "  --jobs J     frames baked in parallel (the output is the same for any J; an\n"
+                     "               animorphosis with --coherence above 0 bakes its frames in order)\n"
+                     "  --coherence C  an animorphosis: its frames polygonised in order on one grid (the\n"
+                     "               union of the frames' own grids, at the finest of their cells), a\n"
+                     "               block reused from the frame before when the field provably moved\n"
+                     "               there so little that the block's corners keep their signs and its\n"
+                     "               vertices stay within C cells of a full polygonisation's (same\n"
+                     "               triangles); default 0.1, 0 = off (each frame on its own grid)\n"
                      "  --method M   bake with another morph method than the project's: interpolation,\n"
                      "               space_time or skeleton_correspondence (--correspondence-blend B:\n"
                      "               interpolation or space_time, how it combines its two stand-ins)\n"

@@ -4,7 +4,8 @@
 usage: animorph_checks.py CLI RESOURCES_DIR
   animorph makes a project from two BlobTree scenes (--auto proposes the graph),
   correspond prints it (text and --json), bake-keys writes a key-frame BlobTree
-  scene that polygonize reads; bad inputs fail naming the file and the reason."""
+  scene that polygonize reads; bake writes frames, the same for any --jobs, and by
+  default on one grid with temporal coherence; bad inputs fail naming the file and the reason."""
 import json
 import os
 import subprocess
@@ -81,11 +82,12 @@ def main():
         if r.returncode != 2 or "project" not in r.stderr:
             fail(f"--animorphosis on a scene file: {r.returncode} {r.stderr}")
 
-        # bake: the animorphosis frame by frame, the same for any --jobs.
+        # bake: the animorphosis frame by frame, the same for any --jobs (each frame on its own grid).
         outs = []
         for jobs in ("1", "2"):
             out = os.path.join(tmp, "frames" + jobs)
-            r = run(cli, "bake", project, "--frames", "10:14", "--res", "24", "-o", out, "--jobs", jobs)
+            r = run(cli, "bake", project, "--frames", "10:14", "--res", "24", "-o", out, "--jobs", jobs,
+                    "--coherence", "0")
             if r.returncode != 0 or "baked the animorphosis" not in r.stdout:
                 fail(f"bake --jobs {jobs}: {r.returncode} {r.stdout} {r.stderr}")
             outs.append(out)
@@ -98,6 +100,17 @@ def main():
             with open(os.path.join(outs[0], name), "rb") as a, open(os.path.join(outs[1], name), "rb") as b:
                 if a.read() != b.read():
                     fail(f"bake {name} differs between --jobs 1 and 2")
+
+        # By default the frames share one grid with temporal coherence, and the bake says what it reused.
+        out = os.path.join(tmp, "coherent")
+        r = run(cli, "bake", project, "--frames", "10:14", "--res", "24", "-o", out)
+        if r.returncode != 0 or "temporal coherence (0.10 cell)" not in r.stdout or "blocks reused" not in r.stdout:
+            fail(f"bake with coherence: {r.returncode} {r.stdout} {r.stderr}")
+        if len([n for n in os.listdir(out) if n.endswith(".ply")]) != 5:
+            fail(f"bake with coherence wrote {sorted(os.listdir(out))}, expected 5 frames")
+        r = run(cli, "bake", project, "--frames", "10:14", "--res", "24", "-o", out, "--coherence", "2")
+        if r.returncode != 2 or "--coherence" not in r.stderr:
+            fail(f"bake --coherence 2: {r.returncode} {r.stderr}")
 
         # Errors name the file and the reason.
         r = run(cli, "correspond", os.path.join(resources, "blob_demo.animorph"))

@@ -13,6 +13,8 @@
 #include "doc/project_io.h"
 #include "blobtree/compile.h"
 #include "blobtree/validate.h"
+#include "demo/animorphosis_demo.h"
+#include "util/job_progress.h"
 #include "util/animorph_fixtures.h"
 #include "util/temp_dir.h"
 
@@ -233,4 +235,48 @@ TEST_CASE("animorphosis: Bake to key-frame actor adds one actor that evaluates t
   Project none = doc->project();
   none.animorphosis = {};
   CHECK_FALSE(bakeAnimorphosisActor(none).ok());
+}
+
+TEST_CASE("animorphosis: a key-frame bake cancelled after some nodes stops there and leaves the document unchanged",
+          "[animorph]") {
+  auto demo = makeAnimorphosisDemoProject();
+  INFO(demo.error());
+  REQUIRE(demo.ok());
+  Document doc;
+  doc.reset(*demo, "");
+  const uint64_t revision = doc.revision();
+  const size_t actors = doc.project().actors.size();
+  auto c = projectGenericTree(doc.project());
+  REQUIRE(c.ok());
+  REQUIRE(c->size() >= 7000);
+
+  // The cancel flag turns on once 40 nodes are baked; the bake must not report (bake) another.
+  constexpr size_t kStopAfter = 40;
+  std::atomic<bool> cancel{false};
+  size_t calls = 0, lastDone = 0, total = 0;
+  BakeKeysSettings settings;
+  settings.cancel = &cancel;
+  settings.progress = [&](size_t done, size_t all) {
+    ++calls;
+    CHECK(done > lastDone);  // per node, forward
+    lastDone = done;
+    total = all;
+    if (done == kStopAfter) cancel.store(true);
+  };
+  auto baked = bakeAnimorphosisActor(doc.project(), settings);
+  REQUIRE_FALSE(baked.ok());
+  CHECK(isJobCancelled(Status(Error{baked.error()})));
+  CHECK(calls == kStopAfter);
+  CHECK(lastDone == kStopAfter);
+  CHECK(total == c->size());
+  CHECK(doc.revision() == revision);
+  CHECK(doc.project().actors.size() == actors);
+  CHECK_FALSE(doc.dirty());
+
+  // The core bake says it was cancelled and hands back nothing half-made.
+  cancel.store(true);
+  BakedAnimorphosis none = bakeKeyframes(*c, animorphosisTiming(doc.project()), settings);
+  CHECK(none.cancelled);
+  CHECK(none.report.parameters == 0);
+  CHECK(none.tree.root.children.empty());
 }

@@ -110,7 +110,7 @@ TEST_CASE("morph preview: the one-program field is the stage's surface and carri
   ps.bounds = field->bounds;
   auto one = polygonize(field->program, ps);
   REQUIRE(one.ok());
-  auto viaSource = source->polygonize(40, 0, nullptr);
+  auto viaSource = source->polygonize(40, 0, nullptr, nullptr);
   REQUIRE(viaSource.ok());
   CHECK(one->mesh.triangleCount() == viaSource->mesh.triangleCount());
   CHECK(one->mesh.triangleCount() > 100);

@@ -91,7 +91,7 @@ PolygonizeResult gpuFieldMatchesCpu(Context& ctx, const PreviewSource& source, i
   REQUIRE(st.ok());
   auto gpuMesh = (*poly)->readBack();
   REQUIRE(gpuMesh.ok());
-  auto cpu = source.polygonize(res, 0, nullptr);
+  auto cpu = source.polygonize(res, 0, nullptr, nullptr);
   REQUIRE(cpu.ok());
   const double cpuTris = double(cpu->mesh.triangleCount());
   REQUIRE(cpuTris > 100);

@@ -3,9 +3,13 @@
 // the interval markers on the timeline and the s curves in the curve editor.
 #include <catch2/catch.hpp>
 
+#include <chrono>
+#include <thread>
+
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include "demo/animorphosis_demo.h"
 #include "doc/animorphosis_project.h"
 #include "doc/blobtree_commands.h"
 #include "doc/project_io.h"
@@ -258,7 +262,7 @@ TEST_CASE("the viewport's scene shows the source, then C(t), then the target", "
   for (const SceneFrame* s : {&before, &mid, &after}) CHECK(s->blobs[0].opacity == 1.0f);
 }
 
-TEST_CASE("the Ghosts checkbox shows A(t) and B(t) translucent beside C(t), is saved and undoable", "[animorphosis_ui]") {
+TEST_CASE("the Ghosts checkbox shows A(t) and B(t) translucent and tinted beside C(t), is saved and undoable", "[animorphosis_ui]") {
   EditorFixture f({1600.0f, 1200.0f});
   loadCreatures(f);
   createThroughModal(f.h, /*autoMap=*/true);
@@ -284,6 +288,14 @@ TEST_CASE("the Ghosts checkbox shows A(t) and B(t) translucent beside C(t), is s
     CHECK(mid.blobs[size_t(i)].opacity == Approx(kGhostOpacity));
     CHECK_FALSE(mid.blobs[size_t(i)].tree);
   }
+  // Tinted apart from C (the clay tone) and from each other: the source blue, the target orange.
+  CHECK_FALSE(mid.blobs[0].tint);
+  REQUIRE(mid.blobs[1].tint);
+  REQUIRE(mid.blobs[2].tint);
+  CHECK(*mid.blobs[1].tint == kGhostSourceTint);
+  CHECK(*mid.blobs[2].tint == kGhostTargetTint);
+  CHECK(kGhostSourceTint.b > kGhostSourceTint.r);
+  CHECK(kGhostTargetTint.r > kGhostTargetTint.b);
   CHECK(sceneAt(48, false).blobs.size() == 1);  // the CLI's renders and bakes ask for none
   CHECK(sceneAt(12, true).blobs.size() == 1);   // outside the interval the actor is itself
   // Saved in the project's animorphosis section.
@@ -463,4 +475,38 @@ TEST_CASE("Animorphosis > Bake to Key-frame Actor adds one key-framed BlobTree a
   f.h.clickWidget("corr/bake_keys");
   f.h.frames(3);
   CHECK(f.h.doc().project().actors.size() == actors + 1);
+}
+
+TEST_CASE("Bake to Key-frame Actor on the demo: Cancel stops the bake part-way and adds nothing", "[animorphosis_ui]") {
+  EditorFixture f({1600.0f, 1200.0f});
+  auto demo = makeAnimorphosisDemoProject();
+  INFO(demo.error());
+  REQUIRE(demo.ok());
+  f.h.document->reset(*demo, f.dir.file("demo.animorph"));
+  f.h.frames(2);
+  const size_t actors = f.h.doc().project().actors.size();
+  const uint64_t revision = f.h.doc().revision();
+  f.h.finishJobs = false;  // the bake runs on while the person reaches for Cancel
+  f.h.clickWidget("menu/Animorphosis");
+  f.h.clickWidget("menu/Bake to Key-frame Actor");
+  const BackgroundJob* job = f.h.ui->runningJob();
+  REQUIRE(job);
+  REQUIRE(f.h.hasWidget("job/cancel"));  // the job's panel offers Cancel
+  // Once the first nodes of C are baked (the progress counts them), what Cancel does, at once: a
+  // click takes frames the whole bake may not need.
+  while (!job->finished() && job->progress().done() < 1.0) std::this_thread::sleep_for(std::chrono::microseconds(200));
+  f.h.ui->cancelJob();
+  // The bake polls the flag before every channel: it returns long before it would have finished.
+  while (!job->finished()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  const double done = job->progress().done(), total = job->progress().total();
+  INFO("nodes baked " << done << " of " << total);
+  CHECK(total >= 7000.0);  // C's nodes
+  CHECK(done >= 1.0);
+  CHECK(done < total);
+  f.h.ui->finishJob(f.h.ctx);
+  f.h.finishJobs = true;
+  f.h.frames(2);
+  CHECK(f.h.ui->state().status.text.find("cancelled") != std::string::npos);
+  CHECK(f.h.doc().project().actors.size() == actors);
+  CHECK(f.h.doc().revision() == revision);
 }

@@ -109,7 +109,14 @@ void EditorUI::startBakeKeysJob(EditorContext& ctx) {
   auto baked = std::make_shared<Result<BakedActor>>(Error{"not run"});
   auto work = [project, baked](JobProgress& pr) -> Status {
     pr.setStage("baking the key-frame tree");
-    *baked = bakeAnimorphosisActor(*project);
+    // Progress per node of C; Cancel (or Esc) stops the bake within one channel's work.
+    BakeKeysSettings settings;
+    settings.cancel = pr.cancelFlag();
+    settings.progress = [&pr](size_t done, size_t total) {
+      pr.setTotal(double(total));
+      pr.setDone(double(done));
+    };
+    *baked = bakeAnimorphosisActor(*project, settings);
     return pr.cancelled() ? jobCancelled() : Status::success();
   };
   startJob("Bake to key-frame actor", std::move(work), [this, baked](EditorContext& c, const Status&) {
@@ -161,10 +168,13 @@ void EditorUI::drawJob(EditorContext& /*ctx*/) {
   if (!ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel) &&
       !ImGui::GetIO().WantTextInput && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false))
     cancel = true;
-  if (cancel && !job_->progress().cancelled()) {
-    job_->cancel();
-    setStatus("Cancelling " + job_->label() + "...");
-  }
+  if (cancel) cancelJob();
+}
+
+void EditorUI::cancelJob() {
+  if (!job_ || job_->progress().cancelled()) return;
+  job_->cancel();
+  setStatus("Cancelling " + job_->label() + "...");
 }
 
 void EditorUI::loadProject(const std::string& path, bool recover, EditorContext& ctx) {

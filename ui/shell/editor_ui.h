@@ -53,6 +53,9 @@ class EditorUI {
   // export), or null. Its panel shows progress, the time left and Cancel; Esc cancels it too.
   // When it finishes, the next draw() applies its result to the Document (one undoable step).
   const BackgroundJob* runningJob() const { return job_.get(); }
+  // What the job panel's Cancel and Esc do: asks the running job to stop (its work polls the flag)
+  // and says so in the status bar; nothing without a job or once asked.
+  void cancelJob();
   // Waits for the running job's work and applies its result now (headless tests drive the UI
   // frame by frame and want each frame's work done; the editor never blocks on a job).
   void finishJob(EditorContext& ctx);

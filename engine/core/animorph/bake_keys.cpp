@@ -50,6 +50,10 @@ struct Baker {
   BakeKeysSettings settings;
   BakeKeysReport report;
   double span;
+  size_t nodesDone = 0, nodesTotal = 0;
+
+  // The cancel flag is set: the caller drops everything made so far.
+  bool stopped() const { return settings.cancel && settings.cancel->load(std::memory_order_relaxed); }
 
   // Timeline times in [t0, t1] at which a clip plays one of these clip key times.
   void mapTimes(const std::vector<double>& clipTimes, const ClipTiming& clip, std::vector<double>& out) const {
@@ -97,6 +101,7 @@ struct Baker {
 
   template <class T>
   Track<T> channel(const Mix<T>& a, const Mix<T>& b, const FloatTrack& s, const std::string& where) {
+    if (stopped()) return Track<T>(T(0.0f));
     std::vector<double> ka = a.keyTimes(), kb = b.keyTimes();
     std::vector<double> times = channelTimes(ka, kb, s);
     double speedA = timing.source.speed, speedB = timing.target.speed;
@@ -136,6 +141,7 @@ struct Baker {
   }
 
   QuatTrack quatChannel(const QuatTrack& a, const QuatTrack& b, const FloatTrack& s, const std::string& where) {
+    if (stopped()) return QuatTrack();
     auto timesOf = [](const QuatTrack& q) {
       std::vector<double> r;
       if (!q.driven())
@@ -210,8 +216,12 @@ struct Baker {
         }
       }
     }
+    if (settings.progress && !stopped()) settings.progress(++nodesDone, nodesTotal);
     n.children.reserve(g.children.size());
-    for (const GenericNode& ch : g.children) n.children.push_back(node(ch, nextId));
+    for (const GenericNode& ch : g.children) {
+      if (stopped()) break;
+      n.children.push_back(node(ch, nextId));
+    }
     return n;
   }
 };
@@ -220,10 +230,16 @@ struct Baker {
 
 BakedAnimorphosis bakeKeyframes(const GenericTree& c, const AnimorphosisTiming& timing, const BakeKeysSettings& settings) {
   Baker baker{c, timing, settings, {}, timing.endSec - timing.startSec};
+  baker.nodesTotal = c.size();
   BakedAnimorphosis out;
   out.tree.threshold = baker.channel(Baker::single(c.thresholdA), Baker::single(c.thresholdB), timing.globalS, "threshold");
   int next = 1;
   out.tree.root = baker.node(c.root, next);
+  if (baker.stopped()) {
+    out.cancelled = true;
+    out.tree = BlobTree{};
+    return out;  // the report stays empty: a part of the channels says nothing about the whole
+  }
   out.report = baker.report;
   return out;
 }

@@ -11,6 +11,8 @@
 // hyper-blend with q keyed the same way (q = 64 stands for the union, so at t1
 // it is a hyper-blend, not B's exact union). Before t0 the tree holds C(t0),
 // after t1 C(t1).
+#include <atomic>
+#include <functional>
 #include <string>
 
 #include "animorph/animorphosis_timing.h"
@@ -20,6 +22,11 @@ namespace animorph {
 
 struct BakeKeysSettings {
   int samplesPerInterval = 8;  // points between two keys where the bake is compared with the live C
+  // Called after each node of C is baked with (nodes done, nodes of C), on the baking thread.
+  std::function<void(size_t done, size_t total)> progress;
+  // Polled before every channel (a parameter, or one control point of a list): once true, the
+  // bake stops within one channel's work and returns cancelled = true with an empty tree.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 struct BakeKeysReport {
@@ -35,6 +42,7 @@ struct BakeKeysReport {
 struct BakedAnimorphosis {
   BlobTree tree;  // ids 1..n in pre-order, the same order as instantiateGeneric
   BakeKeysReport report;
+  bool cancelled = false;  // stopped by BakeKeysSettings::cancel: tree and report are empty
 };
 
 // Needs endSec > startSec. Works on any generic tree buildGenericTree made.

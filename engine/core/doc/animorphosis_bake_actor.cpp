@@ -4,6 +4,7 @@
 
 #include "doc/actor_commands.h"
 #include "doc/animorphosis_project.h"
+#include "util/job_progress.h"
 
 namespace animorph {
 
@@ -15,6 +16,7 @@ Result<BakedActor> bakeAnimorphosisActor(const Project& p, const BakeKeysSetting
   const Actor& dst = *p.findActor(m.targetActorId);
   const AnimorphosisTiming timing = animorphosisTiming(p);
   BakedAnimorphosis baked = bakeKeyframes(*c, timing, settings);
+  if (baked.cancelled) return jobCancelled();
   BakedActor out;
   out.report = baked.report;
   Actor& a = out.actor;

@@ -22,7 +22,9 @@ struct BakedActor {
   BakeKeysReport report;  // key counts and the largest deviation from the live C
 };
 
-// Needs a valid animorphosis (checkAnimorphosis); its error otherwise.
+// Needs a valid animorphosis (checkAnimorphosis); its error otherwise. settings' progress is
+// called per node of C; when settings.cancel turns true the bake stops within one channel and
+// returns jobCancelled() (util/job_progress.h). p is never changed.
 Result<BakedActor> bakeAnimorphosisActor(const Project& p, const BakeKeysSettings& settings = {});
 
 // Adds the baked actor to p (its id made unique again: the project may have

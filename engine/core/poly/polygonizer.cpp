@@ -4,6 +4,7 @@
 #include <chrono>
 #include <memory>
 #include <cmath>
+#include <limits>
 #include <mutex>
 #include <unordered_map>
 
@@ -13,6 +14,7 @@
 #include <tbb/task_arena.h>
 
 #include "poly/marching_cubes_table.h"
+#include "poly/program_change.h"
 
 namespace animorph {
 
@@ -55,6 +57,7 @@ struct Scratch {
   ActiveProgram subActive[8];
   std::vector<uint32_t> subReaching;
   std::vector<uint8_t> vertexSub;   // sub-block of each owned vertex
+  std::vector<uint32_t> previousReaching, merged;  // tolerance reuse: the previous frame's list, the union
   std::vector<uint32_t> gather;     // vertices of one sub-block
 };
 
@@ -71,84 +74,25 @@ glm::vec3 outwardNormal(float gx, float gy, float gz, const glm::vec3& fallback)
   return -g / l;
 }
 
-// Operators, operator parameters, threshold and primitive counts equal: the programs differ at
-// most in primitive data and maps.
-bool sameStructure(const FieldProgram& a, const FieldProgram& b) {
-  if (a.threshold != b.threshold || a.ops.size() != b.ops.size() || a.params != b.params ||
-      a.maps.size() != b.maps.size() || a.primitiveCount() != b.primitiveCount() ||
-      a.skeletal.size() != b.skeletal.size() || a.convolution.size() != b.convolution.size() ||
-      a.capsules.size() != b.capsules.size() || a.curvePoints.size() != b.curvePoints.size())
-    return false;
-  for (size_t i = 0; i < a.ops.size(); ++i) {
-    const FieldOp &x = a.ops[i], &y = b.ops[i];
-    if (x.code != y.code || x.primClass != y.primClass || x.combineMax != y.combineMax || x.first != y.first ||
-        x.count != y.count || x.primBegin != y.primBegin || x.param != y.param || x.emptyValue != y.emptyValue)
-      return false;
-  }
-  return true;
-}
+// What temporal coherence with a tolerance needs of an evaluated block (see
+// PolygonizeSettings::reuseToleranceCells): its output stays right while the field moved by less
+// than minAbs at every corner (no sign flips) and by little against minGap on its vertices' edges.
+struct BlockSummary {
+  float minAbs = 0.0f;   // smallest |f| over the evaluated corners off the grid boundary
+  float minGap = std::numeric_limits<float>::infinity();  // smallest |f0 - f1| over its own vertices' edges
+  float drift = 0.0f;    // bound on how far the field moved since the output was made
+  uint8_t subLive = 0;   // live 4^3 sub-blocks, one bit each
+  bool valid = false;
+};
 
-bool sameMap(const SpaceMap& a, const SpaceMap& b) {
-  return a.kind == b.kind && a.linear == b.linear && a.origin == b.origin && a.forwardLinear == b.forwardLinear &&
-         a.length == b.length && a.k0 == b.k0 && a.k1 == b.k1;
-}
-
-bool samePrimitive(const FieldProgram& a, const FieldProgram& b, PrimClass cls, uint32_t i) {
-  switch (cls) {
-    case PrimClass::Skeletal: {
-      const SkeletalPrimitive &p = a.skeletal[i], &q = b.skeletal[i];
-      const Skeleton &s = p.skeleton, &t = q.skeleton;
-      if (s.kind != t.kind || s.p0 != t.p0 || s.p1 != t.p1 || s.p2 != t.p2 || s.r0 != t.r0 || s.r1 != t.r1 ||
-          s.curveCount != t.curveCount || p.curveFirst != q.curveFirst || p.radius != q.radius ||
-          p.intensity != q.intensity || p.stiffness != q.stiffness)
-        return false;
-      const SkeletalReach &r = a.skeletalReach[i], &u = b.skeletalReach[i];
-      if (r.a != u.a || r.b != u.b || r.reach != u.reach) return false;
-      if (s.kind == SkeletonKind::Curve)
-        for (int k = 0; k < s.curveCount; ++k)
-          if (a.curvePoints[p.curveFirst + uint32_t(k)] != b.curvePoints[p.curveFirst + uint32_t(k)]) return false;
-      return true;
-    }
-    case PrimClass::Convolution: {
-      const ConvolutionData &c = a.convolution, &d = b.convolution;
-      return c.bx[i] == d.bx[i] && c.by[i] == d.by[i] && c.bz[i] == d.bz[i] && c.ax[i] == d.ax[i] &&
-             c.ay[i] == d.ay[i] && c.az[i] == d.az[i] && c.length[i] == d.length[i] && c.weight[i] == d.weight[i] &&
-             c.sharpness[i] == d.sharpness[i] && c.cut2[i] == d.cut2[i];
-    }
-    case PrimClass::Capsule: {
-      const CapsulePrimitive &c = a.capsules[i], &d = b.capsules[i];
-      return c.a == d.a && c.b == d.b && c.radius == d.radius;
-    }
-  }
-  return false;
-}
-
-// Per global primitive id of `now` (same structure as `prev`): 1 where its field may differ, its
-// data, its bound or a map above it being not exactly the same.
-std::vector<uint8_t> changedPrimitives(const FieldProgram& now, const FieldProgram& prev) {
-  std::vector<uint8_t> changed(now.primitiveCount(), 1);
-  std::vector<uint8_t> mapChanged(now.maps.size());
-  for (size_t m = 0; m < now.maps.size(); ++m) mapChanged[m] = !sameMap(now.maps[m], prev.maps[m]);
-  std::vector<uint8_t> open;
-  int openChanged = 0;
-  for (const FieldOp& op : now.ops) {
-    if (op.code == OpCode::BeginMap) {
-      open.push_back(mapChanged[op.first]);
-      openChanged += open.back();
-    } else if (op.code == OpCode::EndMap && !open.empty()) {
-      openChanged -= open.back();
-      open.pop_back();
-    } else if (op.code == OpCode::Prims) {
-      for (uint32_t k = 0; k < op.count; ++k) {
-        uint32_t g = op.primBegin + k;
-        const PrimitiveBound &x = now.primitiveBounds[g], &y = prev.primitiveBounds[g];
-        bool sameBound = x.a == y.a && x.b == y.b && x.radius == y.radius && x.box.min == y.box.min &&
-                         x.box.max == y.box.max;
-        changed[g] = openChanged > 0 || !sameBound || !samePrimitive(now, prev, op.primClass, op.first + k);
-      }
-    }
-  }
-  return changed;
+// A block's output may be kept when the field moved by at most `delta` since it was made: no
+// corner changes sign, and each vertex t = f0 / (f0 - f1) moves by at most delta / (G - 2 delta)
+// of its edge (G = |f0 - f1|), which must stay within `tolerance` cells.
+bool keepsBlock(const BlockSummary& b, double delta, float tolerance, float T) {
+  const double safety = 1e-5 * double(T);  // float rounding of the evaluations
+  if (!(delta + safety < double(b.minAbs))) return false;
+  if (std::isinf(b.minGap)) return true;
+  return delta + safety <= double(tolerance) * double(b.minGap) / (1.0 + 2.0 * double(tolerance));
 }
 
 }  // namespace
@@ -161,6 +105,7 @@ struct PolygonizeHistory::State {
   FieldProgram program;
   std::vector<std::vector<uint32_t>> superCandidates;
   std::vector<std::unique_ptr<BlockOutput>> out;  // null: the block was culled
+  std::vector<BlockSummary> summary;               // per block (valid for evaluated blocks)
 };
 
 PolygonizeHistory::PolygonizeHistory() = default;
@@ -171,7 +116,62 @@ struct PolygonizeHistoryAccess {
   static std::unique_ptr<PolygonizeHistory::State>& state(PolygonizeHistory& h) { return h.state_; }
 };
 
+std::optional<PolygonizeGrid> PolygonizeHistory::grid() const {
+  if (!state_) return std::nullopt;
+  PolygonizeGrid g;
+  g.origin = state_->origin;
+  g.cellSize = state_->h;
+  for (int a = 0; a < 3; ++a) g.cells[a] = state_->n[a];
+  return g;
+}
+
+namespace {
+Bounds gridBox(const PolygonizeGrid& g) {
+  Bounds b;
+  b.add(g.origin);
+  b.add(g.origin + g.cellSize * glm::vec3(float(g.cells[0]), float(g.cells[1]), float(g.cells[2])));
+  return b;
+}
+}  // namespace
+
+Status SequenceGrid::add(const FieldProgram& frame, const PolygonizeSettings& settings) {
+  auto g = polygonizeGrid(frame, settings);
+  if (!g) return Error{g.error()};
+  if (g->empty) return {};
+  box_.add(gridBox(*g));
+  cellSize_ = cellSize_ > 0.0f ? std::min(cellSize_, g->cellSize) : g->cellSize;
+  return {};
+}
+
+std::optional<PolygonizeGrid> SequenceGrid::grid() const {
+  if (!(cellSize_ > 0.0f)) return std::nullopt;
+  PolygonizeGrid g;
+  g.cellSize = cellSize_;
+  for (int a = 0; a < 3; ++a) g.cells[a] = std::clamp(int(std::ceil(box_.size()[a] / cellSize_ - 1e-4f)), 1, 2048);
+  g.origin = box_.min;
+  return g;
+}
+
+PolygonizeGrid scrubbingGrid(const PolygonizeGrid& own, const PolygonizeHistory& history, float coarser) {
+  std::optional<PolygonizeGrid> previous = history.grid();
+  if (own.empty || !previous || previous->cellSize > coarser * own.cellSize) return own;
+  const Bounds mine = gridBox(own), theirs = gridBox(*previous);
+  for (int a = 0; a < 3; ++a)
+    if (mine.min[a] < theirs.min[a] || mine.max[a] > theirs.max[a]) return own;
+  return *previous;
+}
+
 Result<PolygonizeGrid> polygonizeGrid(const FieldProgram& program, const PolygonizeSettings& s) {
+  if (s.grid) {
+    const PolygonizeGrid& g = *s.grid;
+    bool ok = g.cellSize > 0.0f && std::isfinite(g.cellSize) && std::isfinite(g.origin.x) &&
+              std::isfinite(g.origin.y) && std::isfinite(g.origin.z);
+    for (int a = 0; a < 3; ++a) ok = ok && g.cells[a] >= 1 && g.cells[a] <= 2048;
+    if (!ok) return Error{"polygonize: the grid override has no cells, a cell size <= 0 or a non-finite origin"};
+    PolygonizeGrid r = g;
+    r.empty = false;
+    return r;
+  }
   if (s.resolution < 2 || s.resolution > 2048)
     return Error{"polygonize: resolution " + std::to_string(s.resolution) + " is out of range (2..2048)"};
   PolygonizeGrid g;
@@ -266,6 +266,10 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
     changed = changedPrimitives(program, previous->program);
   else
     previous.reset();
+  const float tolerance = std::max(0.0f, s.reuseToleranceCells);
+  std::vector<float> changeBound;  // per primitive: how far its change can move the field
+  if (previous && tolerance > 0.0f) changeBound = primitiveChangeBounds(program, previous->program);
+  std::vector<BlockSummary> summary(nBlocks);
   // Superblocks whose primitives, this frame and the previous one, are all unchanged.
   std::vector<uint8_t> superReused(nSupers, 0);
 
@@ -337,6 +341,7 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
       if (superReused[si]) {
         // Same primitives reaching it, same data: the previous frame's output (null: culled).
         out[bi] = std::move(previous->out[bi]);
+        if (previous->summary.size() == nBlocks) summary[bi] = previous->summary[bi];
         (out[bi] ? evaluated : culled).fetch_add(1, std::memory_order_relaxed);
         reused.fetch_add(1, std::memory_order_relaxed);
         return;
@@ -365,6 +370,33 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
         }
         allLive &= subLive[q];
       }
+      uint8_t liveMask = 0;
+      for (int q = 0; q < 8; ++q) liveMask |= uint8_t(subLive[q] ? 1 << q : 0);
+      if (!changeBound.empty() && previous->out[bi] && previous->summary[bi].valid &&
+          previous->summary[bi].subLive == liveMask) {
+        // Tolerance reuse: the field moved here by at most the sum of the change bounds of the
+        // primitives reaching the block in either frame (the others add exact zeros in both).
+        // This frame's primitives alone already too much: no need to ask the previous program.
+        double delta = previous->summary[bi].drift;
+        for (uint32_t p : sc.reaching) delta += double(changeBound[p]);
+        if (keepsBlock(previous->summary[bi], delta, tolerance, T)) {
+          previous->program.primitivesReaching(bb, sc.previousReaching, &previous->superCandidates[si]);
+          delta = previous->summary[bi].drift;
+          sc.merged.clear();
+          std::set_union(sc.reaching.begin(), sc.reaching.end(), sc.previousReaching.begin(),
+                         sc.previousReaching.end(), std::back_inserter(sc.merged));
+          for (uint32_t p : sc.merged) delta += double(changeBound[p]);
+        }
+        if (keepsBlock(previous->summary[bi], delta, tolerance, T)) {
+          out[bi] = std::move(previous->out[bi]);
+          summary[bi] = previous->summary[bi];
+          summary[bi].drift = float(delta);
+          evaluated.fetch_add(1, std::memory_order_relaxed);
+          reused.fetch_add(1, std::memory_order_relaxed);
+          return;
+        }
+      }
+      summary[bi].subLive = liveMask;
     }
     const bool perSub = s.culling && s.subBlockLists && prog->primitiveCount > kSubSpecialise;
     int subLo[8][3], subHi[8][3];  // corner ranges (inclusive) of each sub-block, block-local
@@ -468,6 +500,23 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
           if (gi == 0 || gj == 0 || gk == 0 || gi == g.n[0] || gj == g.n[1] || gk == g.n[2])
             sc.v[size_t(p)] = std::min(sc.v[size_t(p)], -1e-6f * T);
         }
+    if (s.culling) {
+      // For tolerance reuse in the next frame: the smallest |f| over the evaluated corners (those of
+      // live sub-blocks) off the grid boundary (forced outside there in every frame).
+      float minAbs = std::numeric_limits<float>::infinity();
+      for (int q = 0; q < 8; ++q) {
+        if (!subLive[q]) continue;
+        for (int k = subLo[q][2]; k <= subHi[q][2]; ++k)
+          for (int j = subLo[q][1]; j <= subHi[q][1]; ++j)
+            for (int i = subLo[q][0]; i <= subHi[q][0]; ++i) {
+              int gi = c0[0] + i, gj = c0[1] + j, gk = c0[2] + k;
+              if (gi == 0 || gj == 0 || gk == 0 || gi == g.n[0] || gj == g.n[1] || gk == g.n[2]) continue;
+              minAbs = std::min(minAbs, std::abs(sc.v[size_t((k * cy + j) * cx + i)]));
+            }
+      }
+      summary[bi].minAbs = minAbs;
+      summary[bi].valid = true;
+    }
     out[bi] = std::make_unique<BlockOutput>();
     BlockOutput& o = *out[bi];
     auto val = [&](int i, int j, int k) { return sc.v[size_t((k * cy + j) * cx + i)]; };
@@ -484,6 +533,7 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
         if (o.ownedSlot.empty()) o.ownedSlot.assign(size_t(kBlock * kBlock * kBlock * 3), -1);
         int32_t& slot = o.ownedSlot[size_t(((lk * kBlock + lj) * kBlock + li) * 3 + axis)];
         if (slot < 0) {
+          summary[bi].minGap = std::min(summary[bi].minGap, std::abs(f0 - f1));
           slot = int32_t(o.positions.size());
           o.positions.push_back(pos);
           sc.vertexSub.push_back(uint8_t(cellSub));
@@ -666,6 +716,7 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
     next->program = program;
     next->superCandidates = std::move(superCandidates);
     next->out = std::move(out);
+    next->summary = std::move(summary);
     PolygonizeHistoryAccess::state(*s.history) = std::move(next);
   }
   st.pointsEvaluated = points.load() + orphans.size();

@@ -15,12 +15,23 @@
 
 namespace animorph {
 
+// The grid polygonize() samples the program on (the same settings give the same grid): corner
+// (i, j, k), 0 <= i <= cells[0] ..., at origin + cellSize * (i, j, k). empty: the field is inside
+// nowhere (polygonize returns an empty mesh). Errors as polygonize's.
+struct PolygonizeGrid {
+  glm::vec3 origin{0.0f};
+  float cellSize = 0.0f;
+  int cells[3] = {0, 0, 0};
+  bool empty = false;
+};
 // Temporal coherence between successive polygonisations (a bake, the editor scrubbing): with the
 // same grid, culling on and a program of the same structure (same operators, primitive counts and
 // operator parameters), a block whose primitives did not change since the previous call (same
 // data, same bounds, same maps above them; compared value by value, no tolerance) has the same
 // output, which is reused instead of being culled and evaluated again. The mesh is exactly the one
-// a full sweep makes; anything else (another grid, structure or threshold) is a full sweep. One
+// a full sweep makes; anything else (another grid, structure or threshold) is a full sweep. With
+// PolygonizeSettings::reuseToleranceCells, blocks whose primitives moved by a provably small amount
+// are reused too (the grid must still be the same: give the frames one bounds override). One
 // history per sequence of frames, used by one polygonisation at a time.
 class PolygonizeHistory {
  public:
@@ -29,6 +40,8 @@ class PolygonizeHistory {
   PolygonizeHistory(const PolygonizeHistory&) = delete;
   PolygonizeHistory& operator=(const PolygonizeHistory&) = delete;
   void clear();  // the next call is a full sweep
+  // The grid of the frame it holds (nullopt: none, or a frame without a culled sweep).
+  std::optional<PolygonizeGrid> grid() const;
   struct State;  // the previous frame: grid, program, superblock primitive lists, block outputs
 
  private:
@@ -45,6 +58,10 @@ struct PolygonizeSettings {
   // A surface cut by these bounds is closed by the grid boundary (treated as outside).
   std::optional<Bounds> bounds;
   float marginCells = 2.0f;
+  // This exact grid instead of the one resolution, bounds and marginCells make (a sequence of frames
+  // on one grid, for a PolygonizeHistory: sequenceGrid, scrubbingGrid). Needs cellSize > 0 and
+  // 1..2048 cells per axis.
+  std::optional<PolygonizeGrid> grid;
   // Skip blocks no primitive reaches or whose field interval has one sign. Off:
   // every grid corner is evaluated with every primitive (same mesh, slower).
   bool culling = true;
@@ -60,6 +77,13 @@ struct PolygonizeSettings {
   const std::atomic<bool>* cancel = nullptr;
   // Temporal coherence (see PolygonizeHistory): read, then replaced by this call's frame.
   PolygonizeHistory* history = nullptr;
+  // With a history: 0 reuses a block only when nothing reaching it changed (the mesh is exactly a
+  // full sweep's). Above 0, a block is also reused when the field provably moved there so little
+  // (program_change.h: per-primitive change bounds, summed since the block was made) that no corner
+  // of its cells changes sign and none of its vertices moves by more than this many cells along its
+  // edge: the mesh then has a full sweep's triangles and vertex count, its vertices within this
+  // many cells of a full sweep's; the reused normals are the older frame's. 0.1 is a good value.
+  float reuseToleranceCells = 0.0f;
 };
 
 struct PolygonizeStats {
@@ -84,16 +108,26 @@ struct PolygonizeResult {
   bool cancelled = false;
 };
 
-// The grid polygonize() samples the program on (the same settings give the same grid): corner
-// (i, j, k), 0 <= i <= cells[0] ..., at origin + cellSize * (i, j, k). empty: the field is inside
-// nowhere (polygonize returns an empty mesh). Errors as polygonize's.
-struct PolygonizeGrid {
-  glm::vec3 origin{0.0f};
-  float cellSize = 0.0f;
-  int cells[3] = {0, 0, 0};
-  bool empty = false;
-};
 Result<PolygonizeGrid> polygonizeGrid(const FieldProgram& program, const PolygonizeSettings& settings);
+
+// One grid for frames polygonised in order with a PolygonizeHistory (a bake): add each frame, then
+// grid() covers the grid polygonizeGrid gives every frame alone, with the finest of their cells.
+class SequenceGrid {
+ public:
+  // Errors: polygonizeGrid's for this frame.
+  Status add(const FieldProgram& frame, const PolygonizeSettings& settings);
+  // nullopt while no frame with an inside was added.
+  std::optional<PolygonizeGrid> grid() const;
+
+ private:
+  Bounds box_;
+  float cellSize_ = 0.0f;
+};
+
+// For scrubbing with a history: the grid the history's previous frame was polygonised on when the
+// grid `own` this frame would get alone lies inside it and its cells are at most `coarser` times
+// `own`'s; otherwise `own`. A preview that moves little then stays on one grid, so blocks can be reused.
+PolygonizeGrid scrubbingGrid(const PolygonizeGrid& own, const PolygonizeHistory& history, float coarser = 1.25f);
 
 // Polygonises f = 0 of the program. Errors: bad resolution, an unbounded
 // field without a bounds override, or empty/invalid bounds.

@@ -31,12 +31,21 @@ class BlobTreeSource final : public PreviewSource {
     return o && o->timeSec_ == timeSec_ && (o->tree_ == tree_ || *o->tree_ == *tree_);
   }
   Status validate() const override { return validateBlobTree(*tree_); }
-  Result<PolygonizeResult> polygonize(int resolution, int threads, const std::atomic<bool>* cancel) const override {
+  Result<PolygonizeResult> polygonize(int resolution, int threads, const std::atomic<bool>* cancel,
+                                      PolygonizeHistory* history) const override {
     std::call_once(compiled_, [&] { program_ = compileFieldProgram(*tree_, timeSec_); });
     PolygonizeSettings settings;
     settings.resolution = resolution;
     settings.threads = threads;
     settings.cancel = cancel;
+    if (history) {
+      // Stay on the last frame's grid while the shape fits in it, so its blocks can be reused.
+      auto own = polygonizeGrid(program_, settings);
+      if (!own) return Error{own.error()};
+      if (!own->empty) settings.grid = scrubbingGrid(*own, *history);
+      settings.history = history;
+      settings.reuseToleranceCells = kPreviewReuseToleranceCells;
+    }
     return animorph::polygonize(program_, settings);
   }
   Result<PreviewField> field(int) const override {
@@ -158,7 +167,7 @@ void PreviewPolygonizer::run() {
           std::lock_guard<std::mutex> lock(mutex_);
           ++counters_.runsStarted;
         }
-        auto result = source->polygonize(resolution, threads_, &cancel_);
+        auto result = source->polygonize(resolution, threads_, &cancel_, &history_[level]);
         if (!result) {
           fail(result.error());
           break;

@@ -5,7 +5,8 @@
 // polygoniser's cancel flag) and replaces any request still waiting. Each
 // request is answered first at a coarse resolution, then, if no newer request
 // came in meanwhile, at the fine one. The UI thread submits and polls; it
-// never waits. A request previews a BlobTree, or any other PreviewSource (the
+// never waits. Each level keeps the last frame (PolygonizeHistory): while
+// scrubbing, blocks the field provably left almost unchanged are reused. A request previews a BlobTree, or any other PreviewSource (the
 // morph's B->C stage: scene/morph_preview_source.h).
 #include <atomic>
 #include <condition_variable>
@@ -41,12 +42,20 @@ class PreviewSource {
   // Checked once per request before polygonising; the error is published as the result's.
   virtual Status validate() const { return {}; }
   // Polygonises at resolution (cells along the longest side) with threads;
-  // *cancel turning true stops it early (result.cancelled). Errors: polygoniser errors.
-  virtual Result<PolygonizeResult> polygonize(int resolution, int threads, const std::atomic<bool>* cancel) const = 0;
+  // *cancel turning true stops it early (result.cancelled). history (may be null): the worker's
+  // temporal coherence for this resolution, which a source may use (BlobTree sources do: scrubbing
+  // reuses the blocks the last frame's field provably left within kPreviewReuseToleranceCells).
+  // Errors: polygoniser errors.
+  virtual Result<PolygonizeResult> polygonize(int resolution, int threads, const std::atomic<bool>* cancel,
+                                              PolygonizeHistory* history) const = 0;
   // The same shape as one program at resolution. Errors: what one program
   // cannot express (the caller polygonises with polygonize() instead).
   virtual Result<PreviewField> field(int resolution) const = 0;
 };
+
+// How far (in cells) a preview's vertex may be from a full re-polygonisation's when the worker
+// reuses the previous frame's blocks (PolygonizeSettings::reuseToleranceCells).
+inline constexpr float kPreviewReuseToleranceCells = 0.1f;
 
 // A BlobTree at a tree time as a PreviewSource.
 std::shared_ptr<const PreviewSource> blobTreePreviewSource(std::shared_ptr<const BlobTree> tree, double timeSec);
@@ -124,6 +133,7 @@ class PreviewPolygonizer {
   bool stop_ = false;
   std::atomic<bool> cancel_{false};
   std::atomic<uint64_t> serial_{0};
+  PolygonizeHistory history_[2];          // the worker's, per level (coarse, fine): temporal coherence
   std::shared_ptr<const PreviewResult> latest_;
   PreviewCounters counters_;
   std::thread worker_;

@@ -87,6 +87,7 @@ AnimorphosisSceneInfo applyAnimorphosis(SceneFrame& frame, const Project& projec
         BlobDraw g = d;
         g.previewKey = d.actorId + "#ghost";
         g.opacity = kGhostOpacity;
+        g.tint = d.actorId == m.sourceActorId ? kGhostSourceTint : kGhostTargetTint;
         ghostDraws.push_back(std::move(g));
       }
   removeActorDraws(frame, m.sourceActorId);

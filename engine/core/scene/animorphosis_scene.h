@@ -50,8 +50,11 @@ class AnimorphosisCache {
 // linearly, R by slerp). Hidden actors stay hidden; with neither visible
 // nothing is added. ghosts (the editor's preview when the setup's showGhosts
 // is on): within the interval the visible source and target are kept too, as
-// ghosts (their own draws at kGhostOpacity, previewKey "id#ghost").
+// ghosts (their own draws at kGhostOpacity, previewKey "id#ghost"), tinted so
+// they cannot be taken for C(t): the source blue, the target orange.
 inline constexpr float kGhostOpacity = 0.3f;
+inline constexpr glm::vec3 kGhostSourceTint{0.15f, 0.25f, 1.00f};  // deeper than the clay tone of C
+inline constexpr glm::vec3 kGhostTargetTint{1.00f, 0.55f, 0.18f};
 AnimorphosisSceneInfo applyAnimorphosis(SceneFrame& frame, const Project& project, AnimorphosisCache& cache,
                                         const void* owner, uint64_t revision, bool ghosts = false);
 

@@ -12,7 +12,9 @@ class MorphStageSource final : public PreviewSource {
     auto* o = dynamic_cast<const MorphStageSource*>(&other);
     return o && o->rt_ == rt_ && o->timeSec_ == timeSec_ && o->progress_ == progress_;
   }
-  Result<PolygonizeResult> polygonize(int resolution, int threads, const std::atomic<bool>* cancel) const override {
+  // The morph's field is polygonised by the morph runtime, without temporal coherence.
+  Result<PolygonizeResult> polygonize(int resolution, int threads, const std::atomic<bool>* cancel,
+                                      PolygonizeHistory*) const override {
     MorphFrameSettings fs;
     fs.resolution = resolution;
     fs.threads = threads;

@@ -3,6 +3,7 @@
 // a pure function of the project, the loaded assets and the time; the
 // renderer, the picker and the CLI all consume a SceneFrame.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -64,6 +65,8 @@ struct BlobDraw {
   // (empty: the actor's), drawn dithered at opacity < 1 and not pickable.
   std::string previewKey;
   float opacity = 1.0f;
+  // The surface's colour (a ghost's tint: scene/animorphosis_scene.h); none: the implicit surfaces' clay tone.
+  std::optional<glm::vec3> tint;
   const std::string& key() const { return previewKey.empty() ? actorId : previewKey; }
 };
 

@@ -54,6 +54,9 @@ class EditorHarness {
   std::unique_ptr<EditorUI> ui;
   EditorContext ctx;
   double nowSec = 100.0;
+  // true: each frame waits for the background job it started (frame by frame, deterministic);
+  // false: jobs run on across frames, as in the editor (a test that cancels one).
+  bool finishJobs = true;
 
  private:
   void frame(double dtSec);
