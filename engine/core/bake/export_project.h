@@ -2,9 +2,7 @@
 // File > Export... (and tests): bakes a project's morph (or, when it has only an animorphosis,
 // its C(t)) frame by frame on the CPU and writes the frames as ExportSettings say, under a
 // JobProgress (progress counts frames; cancel is polled between frames and inside the
-// polygonisation). An animorphosis' meshes are polygonised on one grid for all its frames, with
-// temporal coherence within 0.1 cell (poly/frame_sequence.h). Meant to run as a BackgroundJob on a
-// copy of the project.
+// polygonisation). Meant to run as a BackgroundJob on a copy of the project.
 //
 // No half-written output: sequence frames are written as FINAL.part-PID and renamed when every
 // frame is done; the .glb is assembled in memory and written atomically at the end. A cancelled
