@@ -1,14 +1,14 @@
 #pragma once
-// The particle view's drawing (scene/particle_view.h; docs/particles.md): each particle as a small
-// marker -- three crossed segments along the world axes, as long as its visible diameter -- in the
-// depth-tested line batch, so a few thousand particles cost a few thousand segments a frame (no
-// polygonisation while scrubbing).
-#include "render/line_batch.h"
+// The particle view's drawing (scene/particle_view.h; docs/particles.md): a ParticleDraw (centres
+// and visible radii in its tree's space) as a ParticleSpheresDraw in the world, drawn by the scene
+// renderer as instanced, ray-cast spheres with true depth, shaded like the surface they stand for.
+#include "render/scene_renderer.h"
 #include "scene/particle_view.h"
 
 namespace animorph::gpu {
 
-// Appends the markers of draw (in the world, through draw.model) to lines in rgba.
-void addParticleMarkers(const ParticleDraw& draw, uint32_t rgba, LineBatch& lines);
+// The spheres of draw in the world (centres through draw.model, radii by its scale, at least
+// 1 mm), in color; selected adds the selection's rim as on meshes.
+ParticleSpheresDraw particleSpheres(const ParticleDraw& draw, const glm::vec4& color, bool selected);
 
 }  // namespace animorph::gpu
