@@ -59,7 +59,7 @@ void EditorHarness::frame(double dtSec) {
   ImGui::NewFrame();
   ui->draw(ctx);
   ImGui::Render();
-  if (ui->runningJob()) ui->finishJob(ctx);  // a frame's background work is done by the next frame
+  if (finishJobsEachFrame && ui->runningJob()) ui->finishJob(ctx);  // a frame's background work is done by the next frame
   io.MouseWheel = 0.0f;
 }
 

@@ -54,6 +54,9 @@ class EditorHarness {
   std::unique_ptr<EditorUI> ui;
   EditorContext ctx;
   double nowSec = 100.0;
+  // Each frame waits for the background job started in it (false: jobs run on while frames go on,
+  // so a test can cancel one).
+  bool finishJobsEachFrame = true;
 
  private:
   void frame(double dtSec);
