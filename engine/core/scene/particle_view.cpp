@@ -96,7 +96,7 @@ std::vector<ParticleDraw> ParticleView::takeMoving(SceneFrame& frame, const Proj
     float cell = 0.0f, radius = 0.0f;
     if (particlesBelowGrid(pd, settings.surfaceResolution, &cell, &radius)) {
       char buf[200];
-      std::snprintf(buf, sizeof buf, "%s%s: particles (%.3g m) below the %d^3 grid's cells (%.3g m), drawn as spheres",
+      std::snprintf(buf, sizeof buf, "%s%s: particles (%.2g m) below the %d^3 grid (%.2g m cells), as spheres",
                     note_.empty() ? "" : "; ", d.actorId.c_str(), double(radius), settings.surfaceResolution,
                     double(cell));
       note_ += buf;
