@@ -1,21 +1,23 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // The particle view's spheres (ParticleSpheresDraw in engine/gpu/render/scene_renderer.h): one
-// instance per particle, 6 vertices (two triangles) of a square facing the eye through the sphere's
-// centre, just large enough to hold its silhouette: the cone from the eye tangent to a sphere of
-// radius r at distance d cuts that plane in a circle of radius r d / sqrt(d^2 - r^2).
+// instance per particle, one triangle facing the eye through the sphere's centre, circumscribing
+// its silhouette: the cone from the eye tangent to a sphere of radius r at distance d cuts that
+// plane in a circle of radius r d / sqrt(d^2 - r^2), the triangle's inscribed circle. One
+// triangle rather than a square's two: a CPU rasteriser shades each small triangle's 4x4 pixel
+// blocks on its own, so two triangles over the same few pixels cost nearly twice as much.
 // particle_sphere.frag ray-casts the sphere inside it. A sphere around the eye draws nothing.
 #include "frame.glsl"
 #include "mesh_push.glsl"
 
 layout(location = 0) in vec4 inSphere;  // xyz: centre (world), w: radius
 
-layout(location = 0) out vec3 outWorldPos;      // on the square
+layout(location = 0) out vec3 outWorldPos;      // on the triangle
 layout(location = 1) flat out vec4 outSphere;
 
 void main() {
-  const vec2 corners[6] = vec2[](vec2(-1.0, -1.0), vec2(1.0, -1.0), vec2(1.0, 1.0), vec2(-1.0, -1.0), vec2(1.0, 1.0),
-                                 vec2(-1.0, 1.0));
+  // An equilateral triangle whose inscribed circle has radius 1 (counter-clockwise).
+  const vec2 corners[3] = vec2[](vec2(0.0, 2.0), vec2(-1.7320508, -1.0), vec2(1.7320508, -1.0));
   const vec2 corner = corners[gl_VertexIndex];
   outSphere = inSphere;
   const vec3 toCentre = inSphere.xyz - frame.cameraPos.xyz;

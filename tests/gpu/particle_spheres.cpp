@@ -1,6 +1,6 @@
 // The particle view's spheres on lavapipe (ParticleSpheresDraw, particle_sphere shaders): round,
 // where the camera projects them, shaded, depth from their true surface (a sphere drawn first in
-// front of one drawn later wins; a sphere half behind a mesh shows only where it pokes through).
+// front of one drawn later wins; a small sphere whose centre is inside a large one shows only its cap).
 #include <catch2/catch.hpp>
 
 #include "gpu_fixture.h"
@@ -59,8 +59,8 @@ TEST_CASE("particle spheres are round discs where the camera projects their cent
     CHECK(reddish(pixelAt(img, cam, c)));
     CHECK(reddish(pixelAt(img, cam, c + 0.8f * radius * right)));
     CHECK(reddish(pixelAt(img, cam, c - 0.8f * radius * up)));
-    // Outside the disc, though inside the square drawn around it (0.92 r diagonally = 1.3 r away).
-    CHECK_FALSE(differs(pixelAt(img, cam, c + 0.92f * radius * (right + up)), kBackground));
+    // Outside the disc, though inside the triangle drawn around it (its top corner is 2 r up).
+    CHECK_FALSE(differs(pixelAt(img, cam, c + 1.5f * radius * up), kBackground));
     CHECK_FALSE(differs(pixelAt(img, cam, c - 1.25f * radius * right), kBackground));
     // Shaded as a sphere: the middle (facing the eye) brighter than near the rim.
     CHECK(luminance(pixelAt(img, cam, c)) > luminance(pixelAt(img, cam, c + 0.93f * radius * right)) + 10.0f);
@@ -87,7 +87,7 @@ TEST_CASE("particle spheres take the depth of their surface", "[gpu][render][par
   SECTION("a small sphere whose centre is inside a large one shows only its cap") {
     // Large: r 0.5 at c; small: r 0.3, its centre 0.25 nearer the eye (inside the large one, 0.25
     // behind its front). In the middle the small one's front (0.55) beats the large one's (0.5);
-    // 0.27 to the side the large one's (0.42) beats it (0.38). A square at the small sphere's
+    // 0.27 to the side the large one's (0.42) beats it (0.38). A triangle at the small sphere's
     // centre depth would be hidden everywhere.
     Scene scene = emptyScene();
     scene.particles.push_back(spheres({glm::vec4(c, 0.5f)}, {0.2f, 0.85f, 0.15f, 1.0f}));

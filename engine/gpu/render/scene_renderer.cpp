@@ -563,7 +563,7 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
   };
   for (const GeneratedMeshDraw& g : scene.generatedMeshes)
     drawGenerated(g, g.opacity < 1.0f ? generatedDitherPipeline_ : generatedPipeline_, fadeColor(g), fadeFlags(g), 0.0f);
-  // Particles: one instanced draw of 6 vertices per particle draw, at its place in the ring buffer.
+  // Particles: one instanced draw of a triangle per particle draw, at its place in the ring buffer.
   VkDeviceSize particleOffset = particleBase;
   for (const ParticleSpheresDraw& d : scene.particles) {
     const VkDeviceSize bytes = d.spheres.size() * sizeof(glm::vec4);
@@ -577,7 +577,7 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
     p.flags = d.selected ? kDrawSelected : 0u;
     vkCmdPushConstants(cmd, layout_, kPushStages, 0, sizeof(p), &p);
     vkCmdBindVertexBuffers(cmd, 0, 1, &slot.particles.buffer, &particleOffset);
-    vkCmdDraw(cmd, 6, static_cast<uint32_t>(d.spheres.size()), 0, 0);
+    vkCmdDraw(cmd, 3, static_cast<uint32_t>(d.spheres.size()), 0, 0);
     particleOffset += bytes;
   }
   for (size_t k = 0; k < scene.weightOverlays.size(); ++k) {

@@ -89,7 +89,7 @@ struct WeightOverlayDraw {
 };
 
 // Particles drawn as spheres (the particle view while scrubbing, scene/particle_view.h): each a
-// ray-cast impostor (particle_sphere shaders: an eye-facing square per instance) with the depth of
+// ray-cast impostor (particle_sphere shaders: an eye-facing triangle per instance) with the depth of
 // its true surface, shaded like a mesh of color. spheres: world centre (xyz) and radius (w) of each;
 // copied into the frame's ring buffer while recording (16 bytes a particle).
 struct ParticleSpheresDraw {
