@@ -1,6 +1,8 @@
 // The viewport's particle view (scene/particle_view.h): which BlobTree draws are shown as particles.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+
 #include "scene/particle_view.h"
 #include "util/blob_builders.h"
 
@@ -123,6 +125,11 @@ TEST_CASE("particles spread too far for the surface's grid stay particles while 
   CHECK(radius < 0.5f * cell);
   CHECK_FALSE(particlesBelowGrid(particleDraw(frameAt(0.0).blobs[0], close, 64), 128));
   CHECK_FALSE(particlesBelowGrid(particleDraw(frameAt(0.0).blobs[0], spread, 64), 0));  // no grid given
+  // Points that show only together (each alone under the threshold: visible radius 0) are no
+  // particles to lose: the surface (the animorphosis demo's dinosaur has such points).
+  ParticleDraw together = particleDraw(frameAt(0.0).blobs[0], spread, 64);
+  std::fill(together.radii.begin(), together.radii.end(), 0.0f);
+  CHECK_FALSE(particlesBelowGrid(together, 128));
 
   ParticleView view;
   SceneFrame f = frameAt(0.0);

@@ -323,6 +323,7 @@ void EditorUI::startParticleJob(ParticleRequest request, EditorContext& ctx) {
     work = [=, settings = ps.settings, bake = ps.bake, into = ps.reformInto](JobProgress& pr) -> Status {
       ParticleAnimorphosisSettings s = reformSettings(settings, bake);
       bind(s.explosion, pr, "exploding, gathering and baking");
+      s.vortex.cancel = s.explosion.cancel;  // the gathering's simulation stops on Cancel too
       ParticleReformReport r;
       char buf[200];
       auto c = particleReformCommand(*snapshot, actorId, s, into, &r);

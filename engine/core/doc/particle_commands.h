@@ -56,8 +56,9 @@ struct ParticleReformReport {
 ParticleAnimorphosisSettings reformSettings(const ParticleSettings& settings, const ParticleBakeOptions& bake);
 
 // Errors name the actor and the reason (no BlobTree actor, the target is the actor itself, no
-// points, a shape that does not hold the particles); cancelled (settings.explosion.cancel): an
-// error "cancelled".
+// points, a shape that does not hold the particles); cancelled (settings.explosion.cancel, which
+// also stops the re-forming's assignment; the vortex's own cancel stops its simulation): an error
+// "cancelled".
 Result<ParticleReformEdit> particleReformEdit(const Project& p, const std::string& actorId,
                                               const ParticleAnimorphosisSettings& settings,
                                               const std::string& reformInto = {}, ParticleReformReport* report = nullptr);

@@ -54,7 +54,9 @@ bool particlesBelowGrid(const ParticleDraw& draw, int resolution, float* cellSiz
   const float median = radii[radii.size() / 2];
   if (cellSize) *cellSize = cell;
   if (medianRadius) *medianRadius = median;
-  return median < 0.5f * cell;
+  // A median of 0: points that show only together (each alone stays under the threshold, as in a
+  // creature's blend), not separate particles: their surface is what the grid must resolve.
+  return median > 0.0f && median < 0.5f * cell;
 }
 
 std::vector<ParticleDraw> ParticleView::takeMoving(SceneFrame& frame, const Project& project, double nowSec,

@@ -78,7 +78,8 @@ ParticleDraw particleDraw(const BlobDraw& draw, const Project& project, size_t m
 
 // Whether a grid of resolution cells along the longest side of the particles' bounds (centres
 // grown by their radii) has cells more than twice the particles' median visible radius: most of
-// them would fall between its corners. cellSize (if given) gets the cell, in the tree's space.
+// them would fall between its corners. False when that median is 0 (points that show only
+// together, e.g. a creature's blend, are not separate particles). cellSize (if given) gets the cell, in the tree's space.
 bool particlesBelowGrid(const ParticleDraw& draw, int resolution, float* cellSize = nullptr,
                         float* medianRadius = nullptr);
 
