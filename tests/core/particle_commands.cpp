@@ -7,14 +7,23 @@
 
 using namespace animorph;
 
-TEST_CASE("particles: Convert and Simulate are one undo step each", "[particles][commands]") {
-  Document d;
+namespace {
+
+// A project holding the statue as the BlobTree actor "statue".
+Project statueProject() {
   Project p;
   Actor a = makeBlobTreeActor(p, "statue");
   a.blobTree = makeStatue();
   p.actors.push_back(a);
-  d.reset(p, "");
-  const BlobTree original = a.blobTree;
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("particles: Convert and Simulate are one undo step each", "[particles][commands]") {
+  Document d;
+  d.reset(statueProject(), "");
+  const BlobTree original = d.project().actors[0].blobTree;
   auto tree = [&] { return d.project().findActor("statue")->blobTree; };
 
   ConvertToParticlesSettings cs;
@@ -56,10 +65,7 @@ TEST_CASE("particles: Convert and Simulate are one undo step each", "[particles]
 
 TEST_CASE("particles: Explode and re-form is one undo step and refuses bad targets", "[particles][commands]") {
   Document d;
-  Project p;
-  Actor a = makeBlobTreeActor(p, "statue");
-  a.blobTree = makeStatue();
-  p.actors.push_back(a);
+  Project p = statueProject();
   Actor sphere = makeBlobTreeActor(p, "ball");  // a blend of one sphere at the origin
   p.actors.push_back(sphere);
   d.reset(p, "");
