@@ -7,12 +7,9 @@
 
 #include "blobtree/compile.h"
 #include "cli/cli_command.h"
-#include "doc/animorphosis_project.h"
-#include "doc/blobtree_commands.h"
+#include "doc/particle_commands.h"
 #include "doc/project_io.h"
 #include "particles/convert_to_particles.h"
-#include "particles/particle_animorphosis.h"
-#include "particles/particle_transport.h"
 
 namespace {
 
@@ -107,46 +104,17 @@ int runSimulate(const std::vector<std::string>& args) {
     if (!tp.set.position.empty()) s.forces.explosion.centre = glm::vec3(c / double(tp.set.position.size()));
   }
   if (animorphosis) {
-    ParticleAnimorphosisSettings as;
-    as.explosion = s;
-    as.vortex = s;
-    as.vortex.forces.explosion.enabled = false;
-    as.vortex.forces.vortex.enabled = true;
-    as.vortex.forces.gravity = glm::vec3(0.0f);
-    as.startSec = bake.startSec;
-    as.tolerance = bake.tolerance;
-    if (!reformInto.empty()) {  // B gathers into another actor's shape (in the trees' own spaces)
-      const Actor* shape = p->findActor(reformInto);
-      if (!shape || shape->kind != ActorKind::BlobTree)
-        return cli::fail(kCmd, path + ": --reform-into: no BlobTree actor '" + reformInto + "'");
-      ParticleTransportReport tr;
-      auto rest = reformIntoShape(actor->blobTree, bake.startSec, compileFieldProgram(shape->blobTree, bake.startSec),
-                                  {}, {}, &tr);
-      if (!rest) return cli::fail(kCmd, path + ": actor '" + reformInto + "': " + rest.error());
-      as.gatheringRest = std::move(*rest);
+    ParticleReformReport rep;
+    auto e = particleReformEdit(*p, actorId, reformSettings(s, bake), reformInto, &rep);
+    if (!e) return cli::fail(kCmd, path + ": " + e.error());
+    if (rep.reformed)
       std::printf("re-forms into '%s': sum of squared paths %.4g m^2 (greedy start %.4g), %zu exchanges in %d sweeps\n",
-                  reformInto.c_str(), tr.cost, tr.greedyCost, tr.exchanges, tr.sweeps);
-    }
-    auto pa = makeParticleAnimorphosis(actor->blobTree, as);
-    if (!pa) return cli::fail(kCmd, path + ": actor '" + actorId + "': " + pa.error());
-    actor->blobTree = pa->exploding;
-    actor->loop = false;
-    Actor b = makeBlobTreeActor(*p, actor->name + " gathering");
-    b.blobTree = pa->gathering;
-    b.loop = false;
-    b.transform = actor->transform;
-    p->animorphosis = AnimorphosisSetup{};
-    p->animorphosis.sourceActorId = actorId;
-    p->animorphosis.targetActorId = b.id;
-    p->animorphosis.startSec = pa->startSec;
-    p->animorphosis.endSec = pa->endSec;
-    p->animorphosis.graph = pa->graph;
-    p->actors.push_back(b);
-    if (auto st = checkAnimorphosis(*p); !st) return cli::fail(kCmd, "internal: " + st.error(), 3);
-    std::printf("animorphosis '%s' -> '%s' over %g..%g s: %zu particles, %zu + %zu keys, largest error %.3g m\n",
-                actorId.c_str(), b.id.c_str(), pa->startSec, pa->endSec, pa->explosionReport.particles,
-                pa->explosionReport.keys, pa->vortexReport.keys,
-                std::max(pa->explosionReport.maxError, pa->vortexReport.maxError));
+                  reformInto.c_str(), rep.transport.cost, rep.transport.greedyCost, rep.transport.exchanges,
+                  rep.transport.sweeps);
+    applyParticleReform(*p, *e);
+    std::printf("animorphosis '%s' -> '%s' over %g..%g s: %zu particles, %zu keys, largest error %.3g m\n",
+                actorId.c_str(), e->gathering.id.c_str(), rep.startSec, rep.endSec, rep.particles, rep.keys,
+                double(rep.maxError));
   } else {
     auto r = simulateTreeParticles(actor->blobTree, s, bake);
     if (!r) return cli::fail(kCmd, path + ": actor '" + actorId + "': " + r.error());

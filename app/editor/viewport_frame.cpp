@@ -12,7 +12,7 @@
 #include "scene/pick.h"
 #include "scene/scene_frame.h"
 #include "scene/standin_guides.h"
-#include "render/particle_overlay.h"
+#include "render/particle_spheres.h"
 #include "render/scene_from_frame.h"
 #include "render/standin_overlay.h"
 #include "render/weight_overlay_scene.h"
@@ -97,11 +97,16 @@ ViewportFrameResult ViewportFrame::build(EditorGpu& g, EditorUI& ui, EditorConte
                                                doc.project().animorphosis.showGhosts));
     if (!note.empty()) ectx.viewportNote += (ectx.viewportNote.empty() ? "" : "  |  ") + note;
   }
-  // Particle systems moving (scrubbing, playing) are drawn as particles, not polygonised (not for screenshots).
+  // Particle systems moving (scrubbing, playing) are drawn as particles, not polygonised (not for
+  // screenshots); so are those spread too far for the surface's grid (scene/particle_view.h).
   ParticleViewSettings pv;
-  pv.enabled = prefs.particleView && !settle;
+  pv.enabled = prefs.particleView;
+  pv.settle = settle;
+  pv.surfaceResolution = prefs.previewResolution;
   pv.holding = ui.state().timeline.scrubbing || ui.state().playback.playing();
   std::vector<ParticleDraw> particles = particleView_.takeMoving(frame, doc.project(), ectx.nowSec, pv);
+  if (!particleView_.note().empty())
+    ectx.viewportNote += (ectx.viewportNote.empty() ? "" : "  |  ") + particleView_.note();
   g.blobPreviews->update(doc.project(), frame,
                          {prefs.previewCoarseResolution, prefs.previewResolution, interactivePreviewThreads(),
                           r.backend.gpu, settle});
@@ -143,10 +148,9 @@ ViewportFrameResult ViewportFrame::build(EditorGpu& g, EditorUI& ui, EditorConte
       gpu::addBlobHighlight(
           subtreeGuides(blobGuides(ha->blobTree, blobActorTimeSec(*ha, timeSec), ha->transform.matrix()), *hn), scene);
   }
+  // Particles as spheres in the colour of the BlobTree surfaces they stand for.
   for (const ParticleDraw& p : particles)
-    gpu::addParticleMarkers(p, gpu::packRgba(p.actorId == doc.selection.actorId ? glm::vec4(1.0f, 0.62f, 0.15f, 1.0f)
-                                                                               : glm::vec4(0.55f, 0.68f, 0.82f, 1.0f)),
-                            scene.lines);
+    scene.particles.push_back(gpu::particleSpheres(p, gpu::kBlobSurfaceColor, p.actorId == doc.selection.actorId));
   if (r.morphStageShown) {
     const size_t meshCount = scene.meshes.size(), generatedCount = scene.generatedMeshes.size();
     g.morphPreview->draw(scene, glm::mat4(1.0f), {0.62f, 0.62f, 0.62f, 1.0f}, doc.selection.actorId == morphSourceId);

@@ -1,6 +1,8 @@
 // The viewport's particle view (scene/particle_view.h): which BlobTree draws are shown as particles.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+
 #include "scene/particle_view.h"
 #include "util/blob_builders.h"
 
@@ -9,9 +11,9 @@ using namespace animorph::test;
 
 namespace {
 
-Project projectWithPoints(int points) {
+Project projectWithPoints(int points, float apart = 0.1f) {
   std::vector<BlobNode> children;
-  for (int i = 0; i < points; ++i) children.push_back(pointNode(2 + i, glm::vec3(0.1f * float(i), 0.5f, 0.0f), 0.2f, 2.0f));
+  for (int i = 0; i < points; ++i) children.push_back(pointNode(2 + i, glm::vec3(apart * float(i), 0.5f, 0.0f), 0.2f, 2.0f));
   Actor a;
   a.id = "cloud";
   a.kind = ActorKind::BlobTree;
@@ -108,4 +110,44 @@ TEST_CASE("a BlobTree of few point primitives is never shown as particles", "[pa
   }
   CHECK(particleDraw(frameAt(0.0).blobs[0], p, 64).centres.empty());
   CHECK(particleDraw(frameAt(0.0).blobs[0], p, 10).centres.size() == 10);
+}
+
+TEST_CASE("particles spread too far for the surface's grid stay particles while the time holds", "[particles][view]") {
+  // 100 particles (visible radius < 0.2) 0.5 m apart: 50 m, cells of 0.39 m at 128^3: the grid's
+  // corners would miss them. 0.1 m apart: 10 m, 0.08 m cells: the surface resolves them.
+  const Project spread = projectWithPoints(100, 0.5f), close = projectWithPoints(100, 0.1f);
+  ParticleViewSettings s;
+  s.surfaceResolution = 128;
+  float cell = 0.0f, radius = 0.0f;
+  CHECK(particlesBelowGrid(particleDraw(frameAt(0.0).blobs[0], spread, 64), 128, &cell, &radius));
+  CHECK(cell == Approx(50.0f / 128.0f).epsilon(0.02));
+  CHECK(radius > 0.0f);
+  CHECK(radius < 0.5f * cell);
+  CHECK_FALSE(particlesBelowGrid(particleDraw(frameAt(0.0).blobs[0], close, 64), 128));
+  CHECK_FALSE(particlesBelowGrid(particleDraw(frameAt(0.0).blobs[0], spread, 64), 0));  // no grid given
+  // Points that show only together (each alone under the threshold: visible radius 0) are no
+  // particles to lose: the surface (the animorphosis demo's dinosaur has such points).
+  ParticleDraw together = particleDraw(frameAt(0.0).blobs[0], spread, 64);
+  std::fill(together.radii.begin(), together.radii.end(), 0.0f);
+  CHECK_FALSE(particlesBelowGrid(together, 128));
+
+  ParticleView view;
+  SceneFrame f = frameAt(0.0);
+  auto held = view.takeMoving(f, spread, 10.0, s);
+  REQUIRE(held.size() == 1);
+  CHECK(f.blobs.empty());  // no surface to polygonise
+  CHECK(held[0].centres.size() == 100);
+  CHECK(view.note().find("cloud") != std::string::npos);
+  CHECK(view.note().find("128^3") != std::string::npos);
+  CHECK_FALSE(view.pending());  // it does not turn into a surface by itself
+  // Also for a screenshot (which otherwise shows the surface).
+  s.settle = true;
+  f = frameAt(0.0);
+  CHECK(view.takeMoving(f, spread, 20.0, s).size() == 1);
+
+  ParticleView closeView;
+  f = frameAt(0.0);
+  CHECK(closeView.takeMoving(f, close, 10.0, s).empty());
+  CHECK(f.blobs.size() == 1);
+  CHECK(closeView.note().empty());
 }

@@ -25,6 +25,41 @@ std::unique_ptr<gpu::Context> makeTestContext() {
   return std::move(*ctx);
 }
 
+SceneTarget makeSceneTarget(gpu::Context& ctx, uint32_t width, uint32_t height, gpu::SceneRendererSettings settings) {
+  SceneTarget t;
+  auto target = gpu::OffscreenTarget::create(ctx, width, height);
+  INFO(target.error());
+  REQUIRE(target.ok());
+  t.target = std::move(*target);
+  auto renderer = gpu::SceneRenderer::create(ctx, t.target->renderPass(), settings);
+  INFO(renderer.error());
+  REQUIRE(renderer.ok());
+  t.renderer = std::move(*renderer);
+  return t;
+}
+
+const gpu::RgbaImage& renderScene(SceneTarget& t, const OrbitCamera& cam, const gpu::Scene& scene) {
+  VkExtent2D e = t.target->extent();
+  Status recorded;
+  Status s = t.target->render([&](VkCommandBuffer cmd) {
+    recorded = t.renderer->record(cmd, t.target->serial(), {0, 0, e.width, e.height}, cam, scene);
+  });
+  INFO(s.error() + recorded.error());
+  REQUIRE(s.ok());
+  REQUIRE(recorded.ok());
+  REQUIRE(t.target->image().width == e.width);
+  return t.target->image();
+}
+
+glm::u8vec4 pixelAt(const gpu::RgbaImage& img, const OrbitCamera& cam, const glm::vec3& world) {
+  glm::vec3 p = cam.worldToPixel(world, {float(img.width), float(img.height)});
+  REQUIRE(p.x >= 0.0f);
+  REQUIRE(p.y >= 0.0f);
+  REQUIRE(p.x < float(img.width));
+  REQUIRE(p.y < float(img.height));
+  return img.at(uint32_t(p.x), uint32_t(p.y));
+}
+
 Mesh twoQuadMesh() {
   Mesh m;
   m.name = "two quads";

@@ -5,7 +5,10 @@
 
 #include "vulkan/context.h"
 #include "rig/character.h"
+#include "present/offscreen_target.h"
 #include "present/rgba_image.h"
+#include "render/scene_renderer.h"
+#include "view/camera.h"
 
 namespace animorph::test {
 
@@ -20,6 +23,21 @@ std::unique_ptr<gpu::Context> makeTestContext();
 // spread over 8 influences: 0.05 each on joints 2..5 (JOINTS_0) and 0.8 on
 // joint 1 (JOINTS_1), plus a zero weight on an out-of-range joint.
 Mesh twoQuadMesh();
+
+// An offscreen target and a scene renderer drawing into it.
+struct SceneTarget {
+  std::unique_ptr<gpu::OffscreenTarget> target;
+  std::unique_ptr<gpu::SceneRenderer> renderer;
+};
+SceneTarget makeSceneTarget(gpu::Context& ctx, uint32_t width, uint32_t height,
+                            gpu::SceneRendererSettings settings = {});
+
+// Draws scene through cam over the whole target and reads it back (REQUIREs success); the image
+// lives in the target until its next render.
+const gpu::RgbaImage& renderScene(SceneTarget& t, const OrbitCamera& cam, const gpu::Scene& scene);
+
+// The pixel world projects to (REQUIREs it inside the image).
+glm::u8vec4 pixelAt(const gpu::RgbaImage& img, const OrbitCamera& cam, const glm::vec3& world);
 
 // True when pixel p differs from colour c by more than tolerance in some channel.
 bool differs(glm::u8vec4 p, glm::vec4 c, int tolerance = 3);

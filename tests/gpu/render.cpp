@@ -12,6 +12,7 @@
 using namespace animorph;
 using namespace animorph::gpu;
 using animorph::test::differs;
+using animorph::test::pixelAt;
 
 namespace {
 
@@ -20,8 +21,7 @@ const glm::vec4 kRed{0.85f, 0.2f, 0.15f, 1.0f};
 
 struct Rig {
   std::unique_ptr<Context> ctx;
-  std::unique_ptr<OffscreenTarget> target;
-  std::unique_ptr<SceneRenderer> renderer;
+  test::SceneTarget draw;
   std::unique_ptr<GpuMesh> mesh;
   Mesh cpuMesh;
 };
@@ -29,14 +29,7 @@ struct Rig {
 Rig makeRig(uint32_t w, uint32_t h, SceneRendererSettings settings = {}) {
   Rig r;
   r.ctx = test::makeTestContext();
-  auto target = OffscreenTarget::create(*r.ctx, w, h);
-  INFO(target.error());
-  REQUIRE(target.ok());
-  r.target = std::move(*target);
-  auto renderer = SceneRenderer::create(*r.ctx, r.target->renderPass(), settings);
-  INFO(renderer.error());
-  REQUIRE(renderer.ok());
-  r.renderer = std::move(*renderer);
+  r.draw = test::makeSceneTarget(*r.ctx, w, h, settings);
   r.cpuMesh = test::twoQuadMesh();
   auto mesh = GpuMesh::upload(*r.ctx, r.cpuMesh, settings.forceEdgeListWireframe);
   INFO(mesh.error());
@@ -45,18 +38,7 @@ Rig makeRig(uint32_t w, uint32_t h, SceneRendererSettings settings = {}) {
   return r;
 }
 
-const RgbaImage& render(Rig& r, const OrbitCamera& cam, const Scene& scene) {
-  VkExtent2D e = r.target->extent();
-  Status recorded;
-  Status s = r.target->render([&](VkCommandBuffer cmd) {
-    recorded = r.renderer->record(cmd, r.target->serial(), {0, 0, e.width, e.height}, cam, scene);
-  });
-  INFO(s.error() + recorded.error());
-  REQUIRE(s.ok());
-  REQUIRE(recorded.ok());
-  REQUIRE(r.target->image().width == e.width);
-  return r.target->image();
-}
+const RgbaImage& render(Rig& r, const OrbitCamera& cam, const Scene& scene) { return test::renderScene(r.draw, cam, scene); }
 
 OrbitCamera frontCamera() {
   OrbitCamera c;
@@ -78,15 +60,6 @@ Scene meshScene(const Rig& r, const std::vector<glm::mat4>& joints) {
   d.color = kRed;
   s.meshes.push_back(d);
   return s;
-}
-
-glm::u8vec4 pixelAt(const RgbaImage& img, const OrbitCamera& cam, const glm::vec3& world) {
-  glm::vec3 p = cam.worldToPixel(world, {float(img.width), float(img.height)});
-  REQUIRE(p.x >= 0.0f);
-  REQUIRE(p.y >= 0.0f);
-  REQUIRE(p.x < float(img.width));
-  REQUIRE(p.y < float(img.height));
-  return img.at(uint32_t(p.x), uint32_t(p.y));
 }
 
 // The 3x3 neighbourhood of the pixel of world, for features one pixel wide.
@@ -231,7 +204,7 @@ TEST_CASE("wireframe overlay draws the edges over the surface", "[gpu][render][w
       SceneRendererSettings settings;
       settings.forceEdgeListWireframe = edgeList;
       Rig r = makeRig(256, 192, settings);
-      CHECK(r.renderer->wireframeUsesEdgeLists() == (edgeList || !r.ctx->supportsWireframeFill()));
+      CHECK(r.draw.renderer->wireframeUsesEdgeLists() == (edgeList || !r.ctx->supportsWireframeFill()));
       OrbitCamera cam = frontCamera();
       std::vector<glm::mat4> joints(6, glm::mat4(1.0f));
       Scene scene = meshScene(r, joints);
@@ -317,11 +290,11 @@ TEST_CASE("drawing into a viewport rectangle leaves the rest of the target alone
   Scene scene = meshScene(r, joints);
   const glm::vec4 clear(1, 1, 1, 1);
   Status recorded;
-  Status s = r.target->render(
-      [&](VkCommandBuffer cmd) { recorded = r.renderer->record(cmd, r.target->serial(), {100, 20, 100, 80}, cam, scene); }, clear);
+  Status s = r.draw.target->render(
+      [&](VkCommandBuffer cmd) { recorded = r.draw.renderer->record(cmd, r.draw.target->serial(), {100, 20, 100, 80}, cam, scene); }, clear);
   REQUIRE(s.ok());
   REQUIRE(recorded.ok());
-  const RgbaImage& img = r.target->image();
+  const RgbaImage& img = r.draw.target->image();
   CHECK_FALSE(differs(img.at(50, 50), clear));    // left of the rectangle
   CHECK_FALSE(differs(img.at(150, 10), clear));   // above it
   CHECK_FALSE(differs(img.at(102, 22), kBackground));  // its cleared corner
@@ -350,14 +323,14 @@ TEST_CASE("two viewports in one frame keep their own cameras, poses and lines", 
   const ViewportRect ra{0, 0, 200, 150}, rb{200, 0, 200, 150};
   for (int frame = 0; frame < 3; ++frame) {  // also reuses both ring slots after growth
     Status sa, sb;
-    Status s = r.target->render([&](VkCommandBuffer cmd) {
-      sa = r.renderer->record(cmd, r.target->serial(), ra, left, a);
-      sb = r.renderer->record(cmd, r.target->serial(), rb, right, b);
+    Status s = r.draw.target->render([&](VkCommandBuffer cmd) {
+      sa = r.draw.renderer->record(cmd, r.draw.target->serial(), ra, left, a);
+      sb = r.draw.renderer->record(cmd, r.draw.target->serial(), rb, right, b);
     });
     REQUIRE(s.ok());
     REQUIRE(sa.ok());
     REQUIRE(sb.ok());
-    const RgbaImage& img = r.target->image();
+    const RgbaImage& img = r.draw.target->image();
     glm::vec2 vp(200, 150);
     auto at = [&](const ViewportRect& rect, const OrbitCamera& cam, glm::vec3 w) {
       glm::vec3 p = cam.worldToPixel(w, vp);
@@ -381,9 +354,9 @@ TEST_CASE("resizing an offscreen target", "[gpu][render]") {
   std::vector<glm::mat4> joints(6, glm::mat4(1.0f));
   Scene scene = meshScene(r, joints);
   CHECK(render(r, cam, scene).pixels.size() == 64u * 48u * 4u);
-  REQUIRE(r.target->resize(300, 120).ok());
-  CHECK(r.target->extent().width == 300);
-  CHECK(r.target->extent().height == 120);
+  REQUIRE(r.draw.target->resize(300, 120).ok());
+  CHECK(r.draw.target->extent().width == 300);
+  CHECK(r.draw.target->extent().height == 120);
   const RgbaImage& img = render(r, cam, scene);
   CHECK(img.width == 300);
   CHECK(img.height == 120);
@@ -393,10 +366,10 @@ TEST_CASE("resizing an offscreen target", "[gpu][render]") {
   CHECK_FALSE(differs(pixelAt(img, cam, {0, 0, 0}), kBackground));
   CHECK_FALSE(differs(img.at(5, 5), kBackground));
   // A bad size is refused and the target keeps working at its old size.
-  Status bad = r.target->resize(0, 10);
+  Status bad = r.draw.target->resize(0, 10);
   CHECK_FALSE(bad.ok());
   CHECK(bad.error().find("0x10") != std::string::npos);
-  CHECK(r.target->extent().width == 300);
+  CHECK(r.draw.target->extent().width == 300);
   CHECK(render(r, cam, scene).width == 300);
   CHECK(r.ctx->validationErrorCount() == 0);
 }

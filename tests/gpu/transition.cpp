@@ -111,35 +111,11 @@ void checkTransition(Context& ctx, TransitionEvaluator& ev, const MorphRuntime& 
   }
 }
 
-struct DrawRig {
-  std::unique_ptr<OffscreenTarget> target;
-  std::unique_ptr<SceneRenderer> renderer;
-};
+using DrawRig = test::SceneTarget;
 
-DrawRig makeDrawRig(Context& ctx, uint32_t w, uint32_t h) {
-  DrawRig r;
-  auto target = OffscreenTarget::create(ctx, w, h);
-  INFO(target.error());
-  REQUIRE(target.ok());
-  r.target = std::move(*target);
-  auto renderer = SceneRenderer::create(ctx, r.target->renderPass());
-  INFO(renderer.error());
-  REQUIRE(renderer.ok());
-  r.renderer = std::move(*renderer);
-  return r;
-}
+DrawRig makeDrawRig(Context& ctx, uint32_t w, uint32_t h) { return test::makeSceneTarget(ctx, w, h); }
 
-RgbaImage draw(DrawRig& r, const OrbitCamera& cam, const Scene& scene) {
-  VkExtent2D e = r.target->extent();
-  Status recorded;
-  Status s = r.target->render([&](VkCommandBuffer cmd) {
-    recorded = r.renderer->record(cmd, r.target->serial(), {0, 0, e.width, e.height}, cam, scene);
-  });
-  INFO(s.error() + recorded.error());
-  REQUIRE(s.ok());
-  REQUIRE(recorded.ok());
-  return r.target->image();
-}
+RgbaImage draw(DrawRig& r, const OrbitCamera& cam, const Scene& scene) { return test::renderScene(r, cam, scene); }
 
 size_t countDifferent(const RgbaImage& a, const RgbaImage& b, int tolerance) {
   size_t n = 0;

@@ -1,6 +1,6 @@
 """The Particles section and the particle view in a real window, on a copy of the statue demo:
 select the exploding particle actor, raise the explosion's energy in the inspector's Particles
-section, Simulate (a background job, one undo step), scrub the timeline (particles drawn as markers
+section, Simulate (a background job, one undo step), scrub the timeline (particles drawn as spheres
 while the playhead is dragged, the polygonised surface once it is let go), undo. Judged by the UI
 map (selection, job, status, the particle view flag), screenshots of the viewport and the saved
 project (the simulated tracks fly farther than the demo's; after undo they are the demo's again).
@@ -103,7 +103,7 @@ try:
                       "the simulation job finishes", timeout=120)
     g.check("particles" in m["status"] and m["dirty"], f"Simulate changed the document ({m['status']})")
 
-    # Scrub: while the playhead is dragged the particles are drawn as markers.
+    # Scrub: while the playhead is dragged the particles are drawn as spheres.
     rx0, ry0, rx1, ry1 = ed.widget("timeline/ruler")
     ry = (ry0 + ry1) / 2
     x_start = rx0 + (rx1 - rx0) * 0.30
@@ -122,7 +122,7 @@ try:
     settle(ed)
     surface = ed.screenshot(os.path.join(work, "surface.png"))
     changed = g.differing_pixels(markers, surface, vx, vy, vw, vh)
-    g.check(changed > 1500, f"the surface replaces the markers once scrubbing stops ({changed} viewport pixels differ)")
+    g.check(changed > 1500, f"the surface replaces the spheres once scrubbing stops ({changed} viewport pixels differ)")
 
     ed.key("ctrl+s")
     g.check(not ed.fresh_map()["dirty"], "Ctrl+S saves")

@@ -29,6 +29,40 @@ void vec3Field(const char* label, const char* key, glm::vec3& v, float speed) {
   noteWidget(std::string("inspector/particles/") + key);
 }
 
+// Explode and re-form: the shape to gather into (its own, or another BlobTree actor) and the button.
+void drawReformControls(const Document& doc, const std::string& actorId, ParticlesPanelState& st) {
+  ImGui::Separator();
+  ImGui::TextUnformatted("Explode and re-form");
+  const Actor* into = st.reformInto.empty() ? nullptr : doc.project().findActor(st.reformInto);
+  if (!into || into->kind != ActorKind::BlobTree || into->id == actorId) {  // gone, or never set
+    st.reformInto.clear();
+    into = nullptr;
+  }
+  ImGui::SetNextItemWidth(-110.0f);
+  if (ImGui::BeginCombo("Re-form into", into ? into->name.c_str() : "its own shape")) {
+    if (ImGui::Selectable("its own shape", !into)) st.reformInto.clear();
+    for (const Actor& a : doc.project().actors) {
+      if (a.kind != ActorKind::BlobTree || a.id == actorId) continue;
+      ImGui::PushID(a.id.c_str());
+      if (ImGui::Selectable(a.name.c_str(), into == &a)) st.reformInto = a.id;
+      noteWidget("inspector/particles/reform_into/" + a.id);
+      ImGui::PopID();
+    }
+    ImGui::EndCombo();
+  }
+  noteWidget("inspector/particles/reform_into");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("The shape the particles gather into: their own, or another BlobTree actor's volume\n"
+                      "(each particle given one place so that paths do not cross)");
+  ImGui::BeginDisabled(st.busy);
+  if (ImGui::Button("Explode and re-form", ImVec2(-1.0f, 0.0f))) st.request = ParticleRequest::Reform;
+  noteWidget("inspector/particles/reform");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("The explosion above, then a vortex played backwards that gathers the particles into the\n"
+                      "chosen shape: a new actor and the project's animorphosis (one undo step)");
+  ImGui::EndDisabled();
+}
+
 }  // namespace
 
 size_t countParticles(const BlobTree& tree) {
@@ -55,6 +89,7 @@ void resetParticleSettings(const BlobTree& tree, ParticlesPanelState& st) {
   glm::vec3 centroid(0.0f);
   for (const glm::vec3& p : tp.set.position) centroid += p;
   if (!tp.set.position.empty()) centroid /= float(tp.set.position.size());
+  st.reformInto.clear();
   st.settings.forces.explosion.centre = centroid;
   st.settings.forces.vortex.centre = centroid;
   if (!tp.set.position.empty()) st.convertCount = int(tp.set.position.size());
@@ -80,7 +115,7 @@ void drawParticlesSection(const Document& doc, const std::string& actorId, Parti
   ImGui::InputInt("##count", &st.convertCount, 500, 5000);
   st.convertCount = std::clamp(st.convertCount, 1, 1'000'000);
   noteWidget("inspector/particles/count");
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("How many particles fill the shape (about; up to 1,000,000)");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("How many particles fill the shape (to 1 %% above; up to 1,000,000)");
   ImGui::SameLine();
   if (ImGui::Button("Convert to particles")) st.request = ParticleRequest::Convert;
   noteWidget("inspector/particles/convert");
@@ -145,6 +180,7 @@ void drawParticlesSection(const Document& doc, const std::string& actorId, Parti
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Run the simulation and bake it into the particles' tracks (one undo step)");
   ImGui::EndDisabled();
+  drawReformControls(doc, actorId, st);
 }
 
 }  // namespace animorph

@@ -2,7 +2,9 @@
 // The inspector's Particles section of a BlobTree actor (docs/particles.md, docs/editor.md):
 // *Convert to particles* (the count chosen here) for any BlobTree actor, and for one whose tree
 // has point primitives (a particle system) the simulation's forces, seed, rate, start and
-// duration with a Simulate button. The panel only edits its settings and asks: EditorUI runs the
+// duration with a Simulate button, and Explode and re-form: the particles explode and gather back
+// out of a vortex into their own shape or into another BlobTree actor's, as the project's
+// animorphosis (doc/particle_commands.h particleReformCommand). The panel only edits its settings and asks: EditorUI runs the
 // asked operation as a background job (progress, Cancel) and applies its result as one undoable
 // command (doc/particle_commands.h).
 #include <string>
@@ -12,13 +14,14 @@
 
 namespace animorph {
 
-enum class ParticleRequest { None, Simulate, Convert };
+enum class ParticleRequest { None, Simulate, Convert, Reform };
 
 struct ParticlesPanelState {
   std::string actorId;        // whose tree the settings below were set up for
   ParticleSettings settings;  // forces, seed, rate, duration (progress and cancel unused here)
   ParticleBakeOptions bake;   // start time, tolerance, reverse
   int convertCount = 4000;    // Convert to particles
+  std::string reformInto;     // Explode and re-form: the BlobTree actor to gather into; empty: its own shape
   bool busy = false;          // set by EditorUI: a background job runs (the buttons are disabled)
   // What the user asked for this frame; EditorUI takes it (and sets it back to None).
   ParticleRequest request = ParticleRequest::None;

@@ -347,7 +347,7 @@ void EditorUI::startParticleJob(ParticleRequest request, EditorContext& ctx) {
   // that tree is still the snapshot's when the work is done (else it would undo an edit made meanwhile).
   auto snapshot = std::make_shared<const Project>(d.project());
   const std::string actorId = ps.actorId, name = actor->name;
-  const bool simulate = request == ParticleRequest::Simulate;
+  const bool simulate = request == ParticleRequest::Simulate, reform = request == ParticleRequest::Reform;
   const double timeSec = blobTreeTimeNow(d, *actor);
   auto cmd = std::make_shared<std::unique_ptr<Command>>();
   auto note = std::make_shared<std::string>();
@@ -366,7 +366,19 @@ void EditorUI::startParticleJob(ParticleRequest request, EditorContext& ctx) {
     s.cancel = pr.cancelFlag();
   };
   BackgroundJob::Work work;
-  if (simulate) {
+  if (reform) {
+    work = [=, settings = ps.settings, bake = ps.bake, into = ps.reformInto](JobProgress& pr) -> Status {
+      ParticleAnimorphosisSettings s = reformSettings(settings, bake);
+      bind(s.explosion, pr, "exploding, gathering and baking");
+      s.vortex.cancel = s.explosion.cancel;  // the gathering's simulation stops on Cancel too
+      ParticleReformReport r;
+      char buf[200];
+      auto c = particleReformCommand(*snapshot, actorId, s, into, &r);
+      std::snprintf(buf, sizeof buf, "%zu particles over %.2f..%.2f s, %zu keys, largest error %.2g mm%s", r.particles,
+                    r.startSec, r.endSec, r.keys, double(r.maxError) * 1e3, r.reformed ? ", paths assigned" : "");
+      return finish(pr, std::move(c), buf);
+    };
+  } else if (simulate) {
     work = [=, settings = ps.settings, bake = ps.bake](JobProgress& pr) -> Status {
       ParticleSettings s = settings;
       bind(s, pr, "simulating and baking");
@@ -390,8 +402,10 @@ void EditorUI::startParticleJob(ParticleRequest request, EditorContext& ctx) {
       return finish(pr, std::move(c), buf);
     };
   }
-  const std::string what = simulate ? "Simulate " + name : "Convert " + name + " to particles";
-  startJob(what, std::move(work), [this, snapshot, actorId, what, simulate, cmd, note](EditorContext& ctx, const Status& st) {
+  const std::string what = reform     ? "Explode and re-form " + name
+                           : simulate ? "Simulate " + name
+                                      : "Convert " + name + " to particles";
+  startJob(what, std::move(work), [this, snapshot, actorId, what, simulate, reform, cmd, note](EditorContext& ctx, const Status& st) {
     if (!st) {
       showError(what + " failed:\n" + st.error());
       return;
@@ -399,13 +413,14 @@ void EditorUI::startParticleJob(ParticleRequest request, EditorContext& ctx) {
     Document& d = doc(ctx);
     const Actor* now = d.project().findActor(actorId);
     const Actor* then = snapshot->findActor(actorId);
-    if (!now || !then || !(now->blobTree == then->blobTree)) {
+    if (!now || !then || !(now->blobTree == then->blobTree) || (reform && !(d.project().actors == snapshot->actors))) {
       showError(what + ": the actor was edited (or the project replaced) meanwhile; nothing was changed.\n"
                 "Run it again.");
       return;
     }
     d.execute(std::move(*cmd));
     if (!simulate) st_.inspector.particles.actorId.clear();  // a new tree: its settings are set up again
+    if (reform) d.selection = {actorId, -1};
     setStatus(what + ": " + *note);
   });
 }

@@ -40,7 +40,7 @@ bool drawPreviewSettings(Preferences& prefs) {
   changed |= ImGui::IsItemDeactivatedAfterEdit();
   noteWidget("preview/refined");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Cells along the longest side once scrubbing stops");
-  changed |= ImGui::Checkbox("Particles as markers while scrubbing", &prefs.particleView);
+  changed |= ImGui::Checkbox("Particles as spheres while scrubbing", &prefs.particleView);
   noteWidget("preview/particle_view");
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("BlobTrees made of particles show each particle while the time changes; the surface once it stops");

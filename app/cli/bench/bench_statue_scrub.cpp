@@ -1,6 +1,6 @@
 // Benchmark: the real editor at 1600x900 scrubbing the statue demo (resources/demo/statue.animorph,
 // docs/particles.md) through its explosion and vortex, one new frame per redraw, with the particle
-// view (each particle a marker while the time changes) and, as the baseline in the same run, with
+// view (each particle a sphere while the time changes) and, as the baseline in the same run, with
 // it off (the surface preview polygonised for every new time, the CPU worker or the GPU as Auto picks).
 #include <cstdio>
 #include <cstdlib>

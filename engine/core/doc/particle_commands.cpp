@@ -1,6 +1,7 @@
 #include "doc/particle_commands.h"
 
 #include "blobtree/compile.h"
+#include "doc/animorphosis_project.h"
 #include "doc/blobtree_commands.h"
 
 namespace animorph {
@@ -39,6 +40,103 @@ Result<std::unique_ptr<Command>> convertToParticlesCommand(const Project& p, con
   if (r->report.cancelled) return Error{"actor '" + actorId + "': conversion cancelled"};
   if (report) *report = r->report;
   return setBlobTreeCommand(p, actorId, std::move(r->tree), "Convert to particles");
+}
+
+ParticleAnimorphosisSettings reformSettings(const ParticleSettings& settings, const ParticleBakeOptions& bake) {
+  ParticleAnimorphosisSettings as;
+  as.explosion = settings;
+  as.vortex = settings;
+  as.vortex.forces.explosion.enabled = false;
+  as.vortex.forces.vortex.enabled = true;
+  as.vortex.forces.gravity = glm::vec3(0.0f);
+  as.startSec = bake.startSec;
+  as.tolerance = bake.tolerance;
+  as.quantum = bake.quantum;
+  return as;
+}
+
+Result<ParticleReformEdit> particleReformEdit(const Project& p, const std::string& actorId,
+                                              const ParticleAnimorphosisSettings& settings,
+                                              const std::string& reformInto, ParticleReformReport* report) {
+  auto a = blobActor(p, actorId);
+  if (!a) return Error{a.error()};
+  const Actor& actor = **a;
+  ParticleAnimorphosisSettings as = settings;
+  ParticleReformReport rep;
+  const std::atomic<bool>* cancel = settings.explosion.cancel;
+  auto cancelled = [&] { return Error{"actor '" + actorId + "': explode and re-form cancelled"}; };
+  if (!reformInto.empty()) {  // B gathers into another actor's shape (in the trees' own spaces)
+    if (reformInto == actorId) return Error{"actor '" + actorId + "': cannot re-form into itself"};
+    auto shape = blobActor(p, reformInto);
+    if (!shape) return Error{"re-form into: " + shape.error()};
+    ConvertToParticlesSettings places;
+    places.cancel = cancel;
+    ParticleTransportSettings transport;
+    transport.cancel = cancel;
+    auto rest = reformIntoShape(actor.blobTree, settings.startSec,
+                                compileFieldProgram((*shape)->blobTree, settings.startSec), places, transport,
+                                &rep.transport);
+    if (cancel && cancel->load()) return cancelled();
+    if (!rest) return Error{"actor '" + reformInto + "': " + rest.error()};
+    as.gatheringRest = std::move(*rest);
+    rep.reformed = true;
+  }
+  auto pa = makeParticleAnimorphosis(actor.blobTree, as);
+  if (!pa) return Error{"actor '" + actorId + "': " + pa.error()};
+  if (pa->cancelled) return cancelled();
+  ParticleReformEdit e;
+  e.actorId = actorId;
+  e.exploding = std::move(pa->exploding);
+  e.gathering = makeBlobTreeActor(p, actor.name + " gathering");
+  e.gathering.blobTree = std::move(pa->gathering);
+  e.gathering.loop = false;
+  e.gathering.transform = actor.transform;
+  e.animorphosis.sourceActorId = actorId;
+  e.animorphosis.targetActorId = e.gathering.id;
+  e.animorphosis.startSec = pa->startSec;
+  e.animorphosis.endSec = pa->endSec;
+  e.animorphosis.graph = std::move(pa->graph);
+  rep.particles = pa->explosionReport.particles;
+  rep.keys = pa->explosionReport.keys + pa->vortexReport.keys;
+  rep.maxError = std::max(pa->explosionReport.maxError, pa->vortexReport.maxError);
+  rep.startSec = pa->startSec;
+  rep.endSec = pa->endSec;
+  Project trial = p;
+  applyParticleReform(trial, e);
+  if (Status st = checkAnimorphosis(trial); !st) return Error{"internal: " + st.error()};
+  if (report) *report = rep;
+  return e;
+}
+
+void applyParticleReform(Project& p, const ParticleReformEdit& edit) {
+  if (Actor* a = p.findActor(edit.actorId)) {
+    a->blobTree = edit.exploding;
+    a->loop = false;
+  }
+  p.actors.push_back(edit.gathering);
+  p.animorphosis = edit.animorphosis;
+}
+
+Result<std::unique_ptr<Command>> particleReformCommand(const Project& p, const std::string& actorId,
+                                                       const ParticleAnimorphosisSettings& settings,
+                                                       const std::string& reformInto, ParticleReformReport* report) {
+  auto e = particleReformEdit(p, actorId, settings, reformInto, report);
+  if (!e) return Error{e.error()};
+  const Actor* before = p.findActor(actorId);
+  auto edit = std::make_shared<const ParticleReformEdit>(std::move(*e));
+  auto tree = std::make_shared<const BlobTree>(before->blobTree);
+  const bool loop = before->loop;
+  const AnimorphosisSetup setup = p.animorphosis;
+  return std::unique_ptr<Command>(std::make_unique<LambdaCommand>(
+      "Explode and re-form " + before->name, [edit](Project& q) { applyParticleReform(q, *edit); },
+      [edit, tree, loop, setup](Project& q) {
+        if (Actor* a = q.findActor(edit->actorId)) {
+          a->blobTree = *tree;
+          a->loop = loop;
+        }
+        std::erase_if(q.actors, [&](const Actor& a) { return a.id == edit->gathering.id; });
+        q.animorphosis = setup;
+      }));
 }
 
 }  // namespace animorph

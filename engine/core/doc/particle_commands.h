@@ -10,6 +10,8 @@
 #include "doc/command.h"
 #include "doc/project.h"
 #include "particles/convert_to_particles.h"
+#include "particles/particle_animorphosis.h"
+#include "particles/particle_transport.h"
 #include "particles/particle_tree.h"
 
 namespace animorph {
@@ -26,5 +28,46 @@ Result<std::unique_ptr<Command>> simulateParticlesCommand(const Project& p, cons
 Result<std::unique_ptr<Command>> convertToParticlesCommand(const Project& p, const std::string& actorId,
                                                            double timeSec, const ConvertToParticlesSettings& settings,
                                                            ConvertToParticlesReport* report = nullptr);
+
+// Explode and re-form (docs/particles.md): the actor's particles explode (settings.explosion) and
+// gather out of a vortex played backwards (settings.vortex) -- back into their own rest positions
+// or, with a reformInto actor id, into that BlobTree actor's shape at settings.startSec (its tree's
+// own space; particles/particle_transport.h) -- as the project's animorphosis: the actor's tree
+// becomes A (exploding, not looping), a new actor "NAME gathering" B (the actor's transform), and
+// the animorphosis morphs A into B over the simulated interval with identity links.
+struct ParticleReformEdit {
+  std::string actorId;
+  BlobTree exploding;
+  Actor gathering;
+  AnimorphosisSetup animorphosis;
+};
+
+struct ParticleReformReport {
+  size_t particles = 0;
+  size_t keys = 0;          // A's and B's
+  float maxError = 0.0f;    // of both bakes (m)
+  bool reformed = false;    // gathers into another shape
+  ParticleTransportReport transport;
+  double startSec = 0.0, endSec = 0.0;
+};
+
+// The animorphosis settings the CLI and the editor start from: explosion as given, and a vortex of
+// the same settings without explosion and gravity.
+ParticleAnimorphosisSettings reformSettings(const ParticleSettings& settings, const ParticleBakeOptions& bake);
+
+// Errors name the actor and the reason (no BlobTree actor, the target is the actor itself, no
+// points, a shape that does not hold the particles); cancelled (settings.explosion.cancel, which
+// also stops the re-forming's assignment; the vortex's own cancel stops its simulation): an error
+// "cancelled".
+Result<ParticleReformEdit> particleReformEdit(const Project& p, const std::string& actorId,
+                                              const ParticleAnimorphosisSettings& settings,
+                                              const std::string& reformInto = {}, ParticleReformReport* report = nullptr);
+// Applies an edit made for p (or a project with the same actors).
+void applyParticleReform(Project& p, const ParticleReformEdit& edit);
+// particleReformEdit as one undoable command ("Explode and re-form NAME").
+Result<std::unique_ptr<Command>> particleReformCommand(const Project& p, const std::string& actorId,
+                                                       const ParticleAnimorphosisSettings& settings,
+                                                       const std::string& reformInto = {},
+                                                       ParticleReformReport* report = nullptr);
 
 }  // namespace animorph

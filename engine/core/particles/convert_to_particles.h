@@ -1,8 +1,12 @@
 #pragma once
 // Convert to particles (docs/particles.md): fills the inside (f >= 0) of a field
 // program -- a BlobTree actor, a character's stand-in, anything compiled to a
-// FieldProgram -- with about N point primitives on a regular lattice, blended
-// under one root. Each point's radius of influence is radiusFactor lattice
+// FieldProgram -- with N to N + 1 % point primitives on a regular lattice,
+// blended under one root: the spacing (and, when a step of the count jumps
+// over that window, the lattice's phase) is searched for the lattice with the
+// fewest points at or above N inside the shape. (Dropping the surplus would
+// make N exact but leaves a cavity where an inner point goes: its neighbours'
+// fields reach only half the threshold there.) Each point's radius of influence is radiusFactor lattice
 // spacings; their common intensity is calibrated on a fine grid so that the
 // particle version encloses the same volume as the shape at that grid, and a
 // particle left alone still shows as a small ball (intensity > threshold when
@@ -17,7 +21,7 @@
 namespace animorph {
 
 struct ConvertToParticlesSettings {
-  int count = 4000;            // target number of particles (the result is within a few % of it); 1..1,000,000
+  int count = 4000;            // number of particles (the result: count..count + 1 %, unless the shape cannot hold so many); 1..1,000,000
   float radiusFactor = 1.25f;  // radius of influence / lattice spacing
   float stiffness = 3.0f;
   float threshold = 1.0f;      // threshold of the particle tree

@@ -1,5 +1,10 @@
 #include "scene/particle_view.h"
 
+#include <algorithm>
+#include <cstdio>
+
+#include "math/bounds.h"
+
 namespace animorph {
 
 namespace {
@@ -33,9 +38,31 @@ ParticleDraw particleDraw(const BlobDraw& draw, const Project& project, size_t m
   return out;
 }
 
+bool particlesBelowGrid(const ParticleDraw& draw, int resolution, float* cellSize, float* medianRadius) {
+  if (resolution <= 0 || draw.centres.empty()) return false;
+  Bounds b;
+  for (size_t i = 0; i < draw.centres.size(); ++i) {
+    const float r = i < draw.radii.size() ? draw.radii[i] : 0.0f;
+    b.add(draw.centres[i] - glm::vec3(r));
+    b.add(draw.centres[i] + glm::vec3(r));
+  }
+  const glm::vec3 size = b.size();
+  const float cell = std::max({size.x, size.y, size.z}) / float(resolution);
+  std::vector<float> radii = draw.radii;
+  radii.resize(draw.centres.size(), 0.0f);
+  std::nth_element(radii.begin(), radii.begin() + long(radii.size() / 2), radii.end());
+  const float median = radii[radii.size() / 2];
+  if (cellSize) *cellSize = cell;
+  if (medianRadius) *medianRadius = median;
+  // A median of 0: points that show only together (each alone stays under the threshold, as in a
+  // creature's blend), not separate particles: their surface is what the grid must resolve.
+  return median > 0.0f && median < 0.5f * cell;
+}
+
 std::vector<ParticleDraw> ParticleView::takeMoving(SceneFrame& frame, const Project& project, double nowSec,
                                                    const ParticleViewSettings& settings) {
   pending_ = false;
+  note_.clear();
   std::vector<ParticleDraw> out;
   if (!settings.enabled) {
     seen_.clear();
@@ -59,10 +86,25 @@ std::vector<ParticleDraw> ParticleView::takeMoving(SceneFrame& frame, const Proj
     }
     s.treeTimeSec = d.treeTimeSec;
     s.tree = own;
+    if (settings.settle) s.waiting = false;  // a screenshot waits for the surface itself
     seen[d.actorId] = s;
-    if (nowSec - s.movedAt < settings.holdSec) {
+    if (!settings.settle && nowSec - s.movedAt < settings.holdSec) {
       out.push_back(particleDraw(d, project, settings.minParticles));
       pending_ = true;
+      continue;
+    }
+    // Holding still: the surface, unless its grid would lose the particles.
+    ParticleDraw pd = particleDraw(d, project, settings.minParticles);
+    float cell = 0.0f, radius = 0.0f;
+    if (particlesBelowGrid(pd, settings.surfaceResolution, &cell, &radius)) {
+      char buf[200];
+      std::snprintf(buf, sizeof buf, "%s%s: particles (%.2g m) below the %d^3 grid (%.2g m cells), as spheres",
+                    note_.empty() ? "" : "; ", d.actorId.c_str(), double(radius), settings.surfaceResolution,
+                    double(cell));
+      note_ += buf;
+      s.waiting = false;  // no surface to wait for
+      seen[d.actorId] = s;
+      out.push_back(std::move(pd));
     } else {
       kept.push_back(std::move(d));
     }

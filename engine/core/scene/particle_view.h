@@ -4,7 +4,15 @@
 // particles -- each at its centre, the size of its visible radius -- while its time or its tree
 // changes (scrubbing, playing) and for holdSec after, and then until its polygonised surface has
 // caught up: the surface is not polygonised at every frame of a scrub, and a stale surface is not
-// shown in place of the moving particles. The renderer draws ParticleDraw as small markers.
+// shown in place of the moving particles. The renderer draws ParticleDraw as spheres
+// (gpu/render/particle_spheres.h).
+//
+// Particles spread far apart are lost by the polygonised surface: the grid (surfaceResolution
+// cells along the longest side of the particles' bounds) gets cells larger than the particles,
+// and its corners miss them (the statue at 200 J spreads over 47 m: 0.37 m cells for 2 cm
+// particles, and the surface shows nothing). A particle system whose median visible radius is
+// below half a cell is therefore drawn as particles even while its time holds (and in
+// screenshots), and note() says so; its surface comes back once the particles gather.
 #include <functional>
 #include <map>
 #include <string>
@@ -23,6 +31,8 @@ struct ParticleViewSettings {
   size_t minParticles = 64;  // fewer point primitives: always the surface
   double holdSec = 0.3;      // the surface is polygonised once the time has held this long
   bool holding = false;      // the user holds the time (drags the timeline, plays): particles stay
+  bool settle = false;       // a screenshot: no particles for moving systems (only for those below the grid)
+  int surfaceResolution = 0; // the refined surface's grid (cells along the longest side); 0: no check
 };
 
 // One draw's particles at its time, in the tree's space (model maps them to the world).
@@ -46,6 +56,9 @@ class ParticleView {
   // Some draw was shown as particles by the last calls (it turns into its surface without input:
   // keep drawing frames).
   bool pending() const { return pending_; }
+  // Names the particle systems drawn as particles because the surface's grid would lose them,
+  // with the cell and particle sizes; empty when none is.
+  const std::string& note() const { return note_; }
 
  private:
   struct Seen {
@@ -56,10 +69,18 @@ class ParticleView {
   };
   std::map<std::string, Seen> seen_;
   bool pending_ = false;
+  std::string note_;
 };
 
 // The particles of a draw's tree (its own, else the actor's) at its time; empty when the tree has
 // fewer than minParticles point primitives.
 ParticleDraw particleDraw(const BlobDraw& draw, const Project& project, size_t minParticles);
+
+// Whether a grid of resolution cells along the longest side of the particles' bounds (centres
+// grown by their radii) has cells more than twice the particles' median visible radius: most of
+// them would fall between its corners. False when that median is 0 (points that show only
+// together, e.g. a creature's blend, are not separate particles). cellSize (if given) gets the cell, in the tree's space.
+bool particlesBelowGrid(const ParticleDraw& draw, int resolution, float* cellSize = nullptr,
+                        float* medianRadius = nullptr);
 
 }  // namespace animorph

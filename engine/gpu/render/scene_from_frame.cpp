@@ -10,6 +10,7 @@ void buildScene(const SceneFrame& frame, const ViewOptions& view, const std::str
   out.meshes.clear();
   out.transitionMeshes.clear();
   out.weightOverlays.clear();
+  out.particles.clear();
   out.lines.clear();
   out.overlay.clear();
   out.options.grid = view.showGrid;
@@ -56,12 +57,11 @@ void buildScene(const SceneFrame& frame, const ViewOptions& view, const std::str
   }
   out.generatedMeshes.clear();
   for (const auto& d : frame.blobs) {
-    // implicit surfaces: a cool clay tone
     if (!blobs) continue;
     // A ghost is dithered at its opacity, in its tint (the GPU preview draws a generated mesh, the CPU one a mesh).
     const size_t firstMesh = out.meshes.size(), firstGenerated = out.generatedMeshes.size();
     const bool ghost = d.opacity < 1.0f;
-    blobs->draw(d.key(), out, d.model, glm::vec4(d.tint.value_or(glm::vec3(0.55f, 0.68f, 0.82f)), 1.0f),
+    blobs->draw(d.key(), out, d.model, d.tint ? glm::vec4(*d.tint, 1.0f) : kBlobSurfaceColor,
                 !ghost && !selectedActorId.empty() && d.actorId == selectedActorId);
     for (size_t i = firstMesh; ghost && i < out.meshes.size(); ++i) out.meshes[i].opacity = d.opacity;
     for (size_t i = firstGenerated; ghost && i < out.generatedMeshes.size(); ++i) out.generatedMeshes[i].opacity = d.opacity;

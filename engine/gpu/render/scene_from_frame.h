@@ -12,6 +12,9 @@
 
 namespace animorph::gpu {
 
+// The colour BlobTree surfaces (and their particle view) are drawn in: a cool clay tone (sRGB).
+inline const glm::vec4 kBlobSurfaceColor{0.55f, 0.68f, 0.82f, 1.0f};
+
 // Fills out from frame (out keeps pointers into frame: frame must outlive the
 // recording). selectedActorId is highlighted. Meshes whose upload failed are
 // skipped (meshes.lastError()). BlobTree actors are drawn from blobs' newest

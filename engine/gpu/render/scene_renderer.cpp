@@ -52,7 +52,7 @@ constexpr VkShaderStageFlags kPushStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADE
 // Clip-space depth pulled toward the camera by the wireframe pass (in NDC depth units).
 constexpr float kWireDepthPull = 5e-5f;
 
-enum class VertexInput { None, Mesh, MeshWeights, Line, Generated, Transition };
+enum class VertexInput { None, Mesh, MeshWeights, Line, Generated, Transition, Sphere };
 
 struct PipelineDesc {
   const char* vert;
@@ -94,6 +94,9 @@ Result<VkPipeline> createPipeline(VkDevice device, VkRenderPass pass, VkPipeline
       bindings.push_back({s, GeneratedMeshDraw::kVertexStride, VK_VERTEX_INPUT_RATE_VERTEX});
       attributes.push_back({s, s, VK_FORMAT_R32G32B32_SFLOAT, 0});
     }
+  } else if (d.input == VertexInput::Sphere) {  // one vec4 (centre, radius) per instance
+    bindings.push_back({0, sizeof(glm::vec4), VK_VERTEX_INPUT_RATE_INSTANCE});
+    attributes.push_back({0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 0});
   } else if (d.input == VertexInput::Line) {
     bindings.push_back({0, sizeof(LineVertex), VK_VERTEX_INPUT_RATE_VERTEX});
     attributes.push_back({0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0});
@@ -119,7 +122,8 @@ struct SceneRenderer::Slot {
   Buffer joints;                 // mat4 per joint of every draw
   Buffer lines;                  // LineVertex
   Buffer weights;                // float per vertex of every weight overlay
-  VkDeviceSize frameUsed = 0, jointsUsed = 0, linesUsed = 0, weightsUsed = 0;
+  Buffer particles;              // vec4 (centre, radius) per particle of every particle draw
+  VkDeviceSize frameUsed = 0, jointsUsed = 0, linesUsed = 0, weightsUsed = 0, particlesUsed = 0;
   VkDescriptorSet set = VK_NULL_HANDLE;  // frame + joints
   bool setBound = false;                 // set is referenced by commands of this frame
   Buffer transitionParams;               // TransitionParams records at transitionParamStride_ (dynamic offset)
@@ -236,6 +240,8 @@ Status SceneRenderer::init(VkRenderPass renderPass, SceneRendererSettings settin
                              VK_POLYGON_MODE_FILL, true, true, false, back}},
       {&weightPipeline_, {"weight_overlay.vert", "weight_overlay.frag", VertexInput::MeshWeights,
                           VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, VK_POLYGON_MODE_FILL, true, true, false, none}},
+      {&particlePipeline_, {"particle_sphere.vert", "particle_sphere.frag", VertexInput::Sphere,
+                            VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, VK_POLYGON_MODE_FILL, true, true, false, none}},
       {&gridPipeline_, {"grid.vert", "grid.frag", VertexInput::None, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST,
                         VK_POLYGON_MODE_FILL, true, false, true}},
       {&linePipeline_, {"line.vert", "line.frag", VertexInput::Line, VK_PRIMITIVE_TOPOLOGY_LINE_LIST,
@@ -272,13 +278,14 @@ SceneRenderer::~SceneRenderer() {
     destroyBuffer(dev, s->joints);
     destroyBuffer(dev, s->lines);
     destroyBuffer(dev, s->weights);
+    destroyBuffer(dev, s->particles);
     destroyBuffer(dev, s->transitionParams);
   }
   for (VkPipeline p : {meshPipeline_[0], meshPipeline_[1], wirePipeline_[0], wirePipeline_[1], generatedPipeline_, weightPipeline_, gridPipeline_,
                        linePipeline_, overlayPipeline_, meshDitherPipeline_[0], meshDitherPipeline_[1], generatedDitherPipeline_,
                        transitionPipeline_[0], transitionPipeline_[1], transitionDitherPipeline_[0],
                        transitionWirePipeline_[0], transitionWirePipeline_[1], generatedWirePipeline_,
-                       transitionDitherPipeline_[1]})
+                       transitionDitherPipeline_[1], particlePipeline_})
     if (p) vkDestroyPipeline(dev, p, nullptr);
   if (layout_) vkDestroyPipelineLayout(dev, layout_, nullptr);
   if (transitionLayout_) vkDestroyPipelineLayout(dev, transitionLayout_, nullptr);
@@ -295,12 +302,14 @@ void SceneRenderer::rewind(Slot& slot, uint64_t frameSerial) {
     vkFreeDescriptorSets(dev, descriptorPool_, static_cast<uint32_t>(slot.retiredSets.size()), slot.retiredSets.data());
   slot.retiredSets.clear();
   slot.frameUsed = slot.jointsUsed = slot.linesUsed = slot.weightsUsed = slot.transitionParamsUsed = 0;
+  slot.particlesUsed = 0;
   slot.setBound = false;
   slot.transitionSetBound = false;
   slot.serial = frameSerial;
 }
 
-Status SceneRenderer::reserve(Slot& slot, VkDeviceSize jointBytes, VkDeviceSize lineBytes, VkDeviceSize weightBytes) {
+Status SceneRenderer::reserve(Slot& slot, VkDeviceSize jointBytes, VkDeviceSize lineBytes, VkDeviceSize weightBytes,
+                              VkDeviceSize particleBytes) {
   bool setStale = slot.set == VK_NULL_HANDLE;
   auto fit = [&](Buffer& b, VkDeviceSize& used, VkDeviceSize need, VkDeviceSize minimum, VkBufferUsageFlags usage,
                  const char* what) -> Status {
@@ -318,6 +327,9 @@ Status SceneRenderer::reserve(Slot& slot, VkDeviceSize jointBytes, VkDeviceSize 
   if (s) s = fit(slot.joints, slot.jointsUsed, jointBytes, 256 * sizeof(glm::mat4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "joint matrix");
   if (s) s = fit(slot.lines, slot.linesUsed, lineBytes, 4096 * sizeof(LineVertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "line");
   if (s && weightBytes) s = fit(slot.weights, slot.weightsUsed, weightBytes, 4096 * sizeof(float), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "weight");
+  if (s && particleBytes)
+    s = fit(slot.particles, slot.particlesUsed, particleBytes, 4096 * sizeof(glm::vec4), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
+            "particle");
   if (!s) return s;
   setStale |= slot.frame.buffer != oldFrame || slot.joints.buffer != oldJoints;
   if (!setStale) return Status::success();
@@ -417,7 +429,9 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
   const VkDeviceSize jointBytes = jointScratch_.size() * sizeof(glm::mat4);
   const VkDeviceSize lineBytes = lineScratch_.size() * sizeof(LineVertex);
   const VkDeviceSize weightBytes = weightScratch_.size() * sizeof(float);
-  Status cap = reserve(slot, jointBytes, lineBytes, weightBytes);
+  VkDeviceSize particleBytes = 0;
+  for (const ParticleSpheresDraw& d : scene.particles) particleBytes += d.spheres.size() * sizeof(glm::vec4);
+  Status cap = reserve(slot, jointBytes, lineBytes, weightBytes, particleBytes);
   if (cap && !scene.transitionMeshes.empty())
     cap = reserveTransitionParams(slot, scene.transitionMeshes.size() * transitionParamStride_);
   if (!cap) return cap;
@@ -428,6 +442,12 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
   const VkDeviceSize weightBase = slot.weightsUsed;
   if (weightBytes) std::memcpy(static_cast<uint8_t*>(slot.weights.mapped) + weightBase, weightScratch_.data(), weightBytes);
   slot.weightsUsed += weightBytes;
+  const VkDeviceSize particleBase = slot.particlesUsed;
+  for (const ParticleSpheresDraw& d : scene.particles) {
+    std::memcpy(static_cast<uint8_t*>(slot.particles.mapped) + slot.particlesUsed, d.spheres.data(),
+                d.spheres.size() * sizeof(glm::vec4));
+    slot.particlesUsed += d.spheres.size() * sizeof(glm::vec4);
+  }
   if (jointBytes) std::memcpy(static_cast<uint8_t*>(slot.joints.mapped) + slot.jointsUsed, jointScratch_.data(), jointBytes);
   if (lineBytes) std::memcpy(static_cast<uint8_t*>(slot.lines.mapped) + lineOffset, lineScratch_.data(), lineBytes);
   slot.frameUsed += uniformStride_;
@@ -543,6 +563,23 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
   };
   for (const GeneratedMeshDraw& g : scene.generatedMeshes)
     drawGenerated(g, g.opacity < 1.0f ? generatedDitherPipeline_ : generatedPipeline_, fadeColor(g), fadeFlags(g), 0.0f);
+  // Particles: one instanced draw of a triangle per particle draw, at its place in the ring buffer.
+  VkDeviceSize particleOffset = particleBase;
+  for (const ParticleSpheresDraw& d : scene.particles) {
+    const VkDeviceSize bytes = d.spheres.size() * sizeof(glm::vec4);
+    if (d.spheres.empty()) continue;
+    bind(particlePipeline_);
+    MeshPush p{};
+    p.model = glm::mat4(1.0f);
+    p.color = d.color;
+    p.baseLinear = linearRgb(d.color);
+    p.jointCount = 1;
+    p.flags = d.selected ? kDrawSelected : 0u;
+    vkCmdPushConstants(cmd, layout_, kPushStages, 0, sizeof(p), &p);
+    vkCmdBindVertexBuffers(cmd, 0, 1, &slot.particles.buffer, &particleOffset);
+    vkCmdDraw(cmd, 3, static_cast<uint32_t>(d.spheres.size()), 0, 0);
+    particleOffset += bytes;
+  }
   for (size_t k = 0; k < scene.weightOverlays.size(); ++k) {
     const WeightOverlayDraw& d = scene.weightOverlays[k];
     if (!d.mesh || d.mesh->indexCount() == 0 || d.weights.size() != d.mesh->vertexCount()) continue;

@@ -88,6 +88,16 @@ struct WeightOverlayDraw {
   std::span<const float> weights;
 };
 
+// Particles drawn as spheres (the particle view while scrubbing, scene/particle_view.h): each a
+// ray-cast impostor (particle_sphere shaders: an eye-facing triangle per instance) with the depth of
+// its true surface, shaded like a mesh of color. spheres: world centre (xyz) and radius (w) of each;
+// copied into the frame's ring buffer while recording (16 bytes a particle).
+struct ParticleSpheresDraw {
+  std::vector<glm::vec4> spheres;
+  glm::vec4 color{0.55f, 0.68f, 0.82f, 1.0f};  // sRGB
+  bool selected = false;
+};
+
 struct SceneOptions {
   glm::vec4 background{0.23f, 0.24f, 0.26f, 1.0f};  // the viewport rectangle is cleared to this
   bool grid = true;
@@ -104,6 +114,7 @@ struct Scene {
   std::vector<GeneratedMeshDraw> generatedMeshes;  // GPU-polygonised previews
   std::vector<TransitionMeshDraw> transitionMeshes;  // collapse / expansion (vertex-shader transition)
   std::vector<WeightOverlayDraw> weightOverlays;   // weight painting
+  std::vector<ParticleSpheresDraw> particles;      // the particle view
   LineBatch lines;    // depth-tested lines (guides, bounds)
   LineBatch overlay;  // drawn on top of everything (skeleton overlay)
   SceneOptions options;
@@ -142,7 +153,8 @@ class SceneRenderer {
   struct Slot;
   explicit SceneRenderer(Context& ctx);
   Status init(VkRenderPass renderPass, SceneRendererSettings settings);
-  Status reserve(Slot& slot, VkDeviceSize jointBytes, VkDeviceSize lineBytes, VkDeviceSize weightBytes = 0);
+  Status reserve(Slot& slot, VkDeviceSize jointBytes, VkDeviceSize lineBytes, VkDeviceSize weightBytes = 0,
+                 VkDeviceSize particleBytes = 0);
   Status reserveTransitionParams(Slot& slot, VkDeviceSize bytes);
   void rewind(Slot& slot, uint64_t frameSerial);
 
@@ -165,6 +177,7 @@ class SceneRenderer {
   std::vector<uint32_t> transitionParamOffsets_;   // per transition draw of the current record (the wireframe pass rebinds)
   VkDeviceSize transitionParamStride_ = 0;         // sizeof(TransitionParams), storage-offset aligned
   VkPipeline weightPipeline_ = VK_NULL_HANDLE;     // WeightOverlayDraw: mesh streams + a weight stream
+  VkPipeline particlePipeline_ = VK_NULL_HANDLE;   // ParticleSpheresDraw: instanced impostors
   VkPipeline gridPipeline_ = VK_NULL_HANDLE;
   VkPipeline linePipeline_ = VK_NULL_HANDLE;     // depth-tested
   VkPipeline overlayPipeline_ = VK_NULL_HANDLE;  // always on top
