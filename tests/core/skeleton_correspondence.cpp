@@ -7,15 +7,12 @@
 
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 
 #include <nlohmann/json.hpp>
 
 #include "doc/project_io.h"
-#include "io/gltf_import.h"
 #include "morph/correspondence_morph.h"
 #include "morph/morph_continuity.h"
-#include "morph/new_morph_project.h"
 #include "rig/pose.h"
 #include "util/morph_fixtures.h"
 
@@ -173,21 +170,12 @@ TEST_CASE("skeleton correspondence on the demo pair: no empty frame, smaller vol
 
 TEST_CASE("skeleton correspondence on tentacle.glb -> plate.glb: no empty frame, smaller volume jumps than interpolation",
           "[morph][correspondence][continuity]") {
-  const std::string dir = ANIMORPH_SHARED_ASSETS;
-  if (!std::filesystem::exists(dir + "/tentacle.glb") || !std::filesystem::exists(dir + "/plate.glb")) {
-    WARN(dir << "/tentacle.glb or plate.glb not present: skipped");
+  const Project* p = test::tentaclePlateMorph(ANIMORPH_SHARED_ASSETS);
+  if (!p) {
+    WARN(ANIMORPH_SHARED_ASSETS << "/tentacle.glb or plate.glb not present: skipped");
     return;
   }
-  auto tentacle = importGltf(dir + "/tentacle.glb");
-  auto plate = importGltf(dir + "/plate.glb");
-  REQUIRE(tentacle.ok());
-  REQUIRE(plate.ok());
-  NewMorphSettings ns;
-  ns.method = MorphMethod::SkeletonCorrespondence;
-  auto made = makeMorphProject(*tentacle, "tentacle.glb", *plate, "plate.glb", ns);
-  INFO(made.error());
-  REQUIRE(made.ok());
-  compareWithInterpolation("tentacle -> plate", made->project, dir);
+  compareWithInterpolation("tentacle -> plate", *p, ANIMORPH_SHARED_ASSETS);
 }
 
 TEST_CASE("skeleton correspondence: method and blend saved and read back, bad blend named", "[morph][correspondence]") {

@@ -2,12 +2,14 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 
 #include "demo/creature.h"
 #include "demo/gear.h"
 #include "doc/project_io.h"
 #include "io/gltf_export.h"
+#include "io/gltf_import.h"
 #include "morph/new_morph_project.h"
 
 namespace animorph::test {
@@ -59,6 +61,22 @@ const DemoMorph& demoMorph() {
   static const DemoMorph d = buildDemoMorph();
   static Cleanup cleanup{d.dir};
   return d;
+}
+
+const Project* tentaclePlateMorph(const std::string& dir) {
+  static const std::optional<Project> made = [&]() -> std::optional<Project> {
+    if (!std::filesystem::exists(dir + "/tentacle.glb") || !std::filesystem::exists(dir + "/plate.glb"))
+      return std::nullopt;
+    auto tentacle = importGltf(dir + "/tentacle.glb");
+    auto plate = importGltf(dir + "/plate.glb");
+    if (!tentacle || !plate) throw std::runtime_error(dir + ": tentacle.glb or plate.glb does not load");
+    NewMorphSettings ns;
+    ns.method = MorphMethod::SkeletonCorrespondence;
+    auto m = makeMorphProject(*tentacle, "tentacle.glb", *plate, "plate.glb", ns);
+    if (!m) throw std::runtime_error(m.error());
+    return m->project;
+  }();
+  return made ? &*made : nullptr;
 }
 
 float fieldAt(const FieldProgram& p, const glm::vec3& x, glm::vec3* gradient) {

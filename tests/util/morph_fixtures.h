@@ -24,6 +24,11 @@ struct DemoMorph {
 };
 const DemoMorph& demoMorph();
 
+// tentacle.glb -> plate.glb in assetsDir (the shared assets), as `new` makes
+// it (skeleton correspondence), built once; null when the files are not there
+// (the caller skips, saying so). Throws when they are there but do not load.
+const Project* tentaclePlateMorph(const std::string& assetsDir);
+
 // Field value of a program at one point.
 float fieldAt(const FieldProgram& p, const glm::vec3& x, glm::vec3* gradient = nullptr);
 
