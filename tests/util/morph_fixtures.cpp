@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "demo/creature.h"
+#include "demo/demo_morph.h"
 #include "demo/gear.h"
 #include "doc/project_io.h"
 #include "io/gltf_export.h"
@@ -33,8 +34,7 @@ DemoMorph buildDemoMorph() {
   d.dir = tmpl;
   if (!exportGlb(demoCreature(), d.dir + "/creature.glb") || !exportGlb(demoGear(), d.dir + "/gear.glb"))
     throw std::runtime_error("cannot write the demo characters");
-  NewMorphSettings s;
-  s.alignScaleRatio = 4.0;
+  const NewMorphSettings s = demoMorphSettings();
   auto made = makeMorphProject(demoCreature(), "creature.glb", demoGear(), "gear.glb", s);
   if (!made) throw std::runtime_error(made.error());
   d.project = made->project;

@@ -15,7 +15,7 @@ const Character& demoCreature();
 const Character& demoGear();
 
 // The demo morph: creature.glb -> gear.glb in a temporary directory (kept for
-// the whole test run), as makeMorphProject builds it.
+// the whole test run), as make-demo builds it (demo/demo_morph.h).
 struct DemoMorph {
   std::string dir;
   std::string projectPath;
