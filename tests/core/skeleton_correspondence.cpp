@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "doc/project_io.h"
+#include "morph/chain_matching.h"
 #include "morph/correspondence_morph.h"
 #include "morph/morph_continuity.h"
 #include "rig/pose.h"
@@ -203,4 +204,28 @@ TEST_CASE("skeleton correspondence needs a rig on both sides: a BlobTree side is
   auto c = morphSkeletonCorrespondence(rt.source, blob);
   REQUIRE_FALSE(c.ok());
   CHECK(c.error() == "actor 'blob' is a BlobTree (no rig to correspond)");
+}
+
+TEST_CASE("chain matching as shown: partners named, unmatched chains shrink into their matched ancestor's partner",
+          "[morph][correspondence]") {
+  const MorphRuntime& rt = *test::demoMorph().runtime;
+  REQUIRE(rt.correspondence != nullptr);  // the demo morphs by skeleton correspondence
+  const SkeletonCorrespondence& c = *rt.correspondence;
+  size_t unmatched = 0;
+  for (size_t i = 0; i < c.source.chains.size(); ++i) {
+    const std::string text = chainPartnerText(c.source, c.target, c.sourceMatch, int(i), "shrinks into");
+    const int anchor = matchedAnchor(c.source, c.sourceMatch, int(i));
+    INFO("chain " << i << " " << c.source.chains[i].name << ": " << text);
+    if (c.sourceMatch[i] >= 0) {
+      CHECK(anchor == int(i));
+      CHECK(text == "<-> " + c.target.chains[size_t(c.sourceMatch[i])].name);
+      continue;
+    }
+    ++unmatched;
+    REQUIRE(anchor >= 0);
+    CHECK(c.sourceMatch[size_t(anchor)] >= 0);
+    CHECK(text == "shrinks into " + c.target.chains[size_t(c.sourceMatch[size_t(anchor)])].name);
+  }
+  CHECK(unmatched > 0);  // the creature has more chains than the gear
+  CHECK(c.sourceMatch[size_t(c.source.mainRoot)] == c.target.mainRoot);
 }
