@@ -414,7 +414,7 @@ int runBake(const std::vector<std::string>& args) {
       std::lock_guard<std::mutex> lock(stageMutex);
       ++stageCount[size_t(fr->stage)];
     }
-    measures[size_t(k)] = measureFrame(f, fr->mesh, nullptr);
+    measures[size_t(k)] = measureFrame(f, fr->mesh, nullptr, fr->coreTriangles);
     if (sink.wantsVolumes()) {
       auto band = morphFrameLevelSet(**rt, timeSec, res, fs.threads, nullptr);
       if (!band) return band.error();

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "morph/chain_matching.h"
 #include "animorph/correspondence_json.h"
 #include "animorph/tree_index.h"
 #include "cli/cli_command.h"
@@ -31,9 +32,7 @@ nlohmann::json chainsJson(const SkeletonChains& own, const std::vector<int>& mat
                         {"direction", {c.direction.x, c.direction.y, c.direction.z}},
                         {"length", c.length},   {"subtree", c.subtree},   {"match", match[i]}};
     if (cost && match[i] >= 0) j["cost"] = (*cost)[i];
-    int anchor = int(i);
-    while (anchor >= 0 && match[size_t(anchor)] < 0) anchor = own.chains[size_t(anchor)].parent;
-    if (match[i] < 0) j["anchor_chain"] = anchor;  // the nearest matched ancestor (-1: none)
+    if (match[i] < 0) j["anchor_chain"] = matchedAnchor(own, match, int(i));  // the nearest matched ancestor (-1: none)
     out.push_back(std::move(j));
   }
   return out;
@@ -53,8 +52,7 @@ void printChains(const char* side, const char* verb, const SkeletonChains& own, 
       std::printf("\n");
       continue;
     }
-    int anchor = int(i);
-    while (anchor >= 0 && match[size_t(anchor)] < 0) anchor = own.chains[size_t(anchor)].parent;
+    const int anchor = matchedAnchor(own, match, int(i));
     if (anchor < 0) std::printf("unmatched: %s the other side's root\n", verb);
     else
       std::printf("unmatched: %s %d %s (the partner of %d %s)\n", verb, match[size_t(anchor)],

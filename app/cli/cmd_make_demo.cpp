@@ -5,6 +5,7 @@
 
 #include "cli/cli_command.h"
 #include "demo/creature.h"
+#include "demo/demo_morph.h"
 #include "demo/gear.h"
 #include "demo/rigged_figure.h"
 #include "doc/project_io.h"
@@ -43,11 +44,8 @@ int runMakeDemo(const std::vector<std::string>& args) {
     std::printf("wrote %s (%zu triangles, %zu joints)\n", path.c_str(), figure.totalTriangles(), figure.totalJoints());
   }
 
-  // The creature morphs into the gear: stand-ins fitted automatically, the
-  // default markers (A 1 s, B 2 s, C 3.5 s, D 4.5 s, end 6 s at 24 fps). The gear
-  // already stands where the creature does; keep its own size (no alignment).
-  animorph::NewMorphSettings settings;
-  settings.alignScaleRatio = 4.0;
+  // The creature morphs into the gear (demo/demo_morph.h: skeleton correspondence).
+  animorph::NewMorphSettings settings = animorph::demoMorphSettings();
   settings.acceptPoorFit = true;  // the demo is always written; a poor fit is printed as a warning
   auto made = animorph::makeMorphProject(creature, "creature.glb", gear, "gear.glb", settings);
   if (!made) return animorph::cli::fail("make-demo", made.error());
@@ -69,8 +67,8 @@ ANIMORPH_CLI_COMMAND("make-demo", "write the procedural demo characters and proj
                      "  Writes DIR/creature.glb (a skinned lizard-like quadruped with a 2 s walk cycle),\n"
                      "  DIR/gear.glb (a skinned gear with an axle hole and four windows, turning) and\n"
                      "  DIR/demo.animorph (the creature walks, collapses onto its stand-in from 1 s to\n"
-                     "  2 s, morphs into the gear's stand-in until 3.5 s, and the turning gear expands\n"
-                     "  from it until 4.5 s; 6 s at 24 fps), and DIR/rigged_figure.glb (a humanoid built\n"
+                     "  2 s, morphs into the gear's stand-in by skeleton correspondence until 3.5 s,\n"
+                     "  and the turning gear expands from it until 4.5 s; 6 s at 24 fps), and DIR/rigged_figure.glb (a humanoid built\n"
                      "  like production rig exports: 60 units tall, an armature node scaled 0.01 and\n"
                      "  turned 90 degrees, a scaled chest node, helper-bone chains, face and finger\n"
                      "  bones). DIR is created if needed; files are replaced.\n",

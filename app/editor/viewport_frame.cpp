@@ -74,7 +74,7 @@ ViewportFrameResult ViewportFrame::build(EditorGpu& g, EditorUI& ui, EditorConte
     MorphSceneInfo info = applyMorph(frame, rt, timeSec, morphSettings_, /*implicitStage=*/false);
     ectx.viewportNote = "morph: " + describeMorphStage(info);
     morphOpacity = float(info.implicitOpacity);
-    if (morphOpacity > 0.0f) {  // B..C, or the cross-fade's window around B and C
+    if (morphOpacity > 0.0f) {  // B..C, the cross-fade's window around B and C, the transitions' stand-in core
       gpu::ImplicitPreviewSettings ps;
       ps.threads = interactivePreviewThreads();
       ps.interactiveResolution = prefs.previewCoarseResolution;
@@ -82,7 +82,9 @@ ViewportFrameResult ViewportFrame::build(EditorGpu& g, EditorUI& ui, EditorConte
       ps.gpu = r.morphBackend.gpu;
       ps.settle = settle;
       const double u = info.stage == MorphStage::Morph ? -1.0 : info.implicitProgress;
-      g.morphPreview->update(morphPreviewSource(rt, timeSec, u), timeSec, ps);
+      g.morphPreview->update(info.implicitCore ? standinCorePreviewSource(rt, timeSec, info.stage == MorphStage::Expand, u)
+                                               : morphPreviewSource(rt, timeSec, u),
+                             timeSec, ps);
       r.morphStageShown = true;
       morphSourceId = rt->setup.sourceActorId;
     }

@@ -67,23 +67,25 @@ TEST_CASE("morph cross-fade: around B and C both shapes are drawn with complemen
   const MorphMarkers mk = p.morph.markers;
   AssetCache assets;
 
-  // Off: one shape per stage.
+  // Off: the collapsing mesh and its stand-in core (morph/standin_core.h), both opaque.
   auto rtOff = prepareMorph(p, demo.dir, assets);
   REQUIRE(rtOff.ok());
   MorphDraws off = drawsAt(*rtOff, p, demo.dir, mk.b - 1, false);
-  REQUIRE(off.meshes.size() == 1);
+  REQUIRE(off.meshes.size() == 2);
   CHECK(off.meshes[0].opacity == 1.0f);
+  CHECK(off.meshes[1].opacity == 1.0f);
 
   p.morph.crossFade = {true, 4};
   auto rt = prepareMorph(p, demo.dir, assets);
   REQUIRE(rt.ok());
-  // B - 1: the collapsing mesh at 5/8, the implicit surface (u = 0) at 3/8, complementary pattern.
+  // B - 1: the collapsing mesh at 5/8 over the stand-in core (opaque: it is the implicit
+  // surface the transition fades towards, and already the whole stand-in at B).
   MorphDraws before = drawsAt(*rt, p, demo.dir, mk.b - 1, false);
   REQUIRE(before.meshes.size() == 2);
   CHECK(before.meshes[0].opacity == Approx(0.625f));
   CHECK_FALSE(before.meshes[0].complementDither);
-  CHECK(before.meshes[1].opacity == Approx(0.375f));
-  CHECK(before.meshes[1].complementDither);
+  CHECK(before.meshes[1].opacity == 1.0f);
+  CHECK_FALSE(before.meshes[1].complementDither);
   // B + 1 on the GPU: the collapsed mesh (a transition draw at alpha 1) at 3/8, the morph at 5/8.
   MorphDraws after = drawsAt(*rt, p, demo.dir, mk.b + 1, true);
   REQUIRE(after.meshes.size() == 1);
@@ -92,12 +94,12 @@ TEST_CASE("morph cross-fade: around B and C both shapes are drawn with complemen
   CHECK(after.transitions[0].mesh.opacity == Approx(0.375f));
   CHECK(after.transitions[0].frame->uniformAlpha == 1.0f);
   CHECK_FALSE(after.transitions[0].targetActor);
-  // C + 2: the expanding target and the implicit surface (u = 1).
+  // C + 2: the expanding target at 3/4 and its stand-in core.
   MorphDraws nearC = drawsAt(*rt, p, demo.dir, mk.c + 2, true);
   REQUIRE(nearC.meshes.size() == 1);
   REQUIRE_FALSE(nearC.transitions.empty());
   CHECK(nearC.transitions[0].targetActor);
-  CHECK(nearC.meshes[0].opacity == Approx(0.25f));
+  CHECK(nearC.meshes[0].opacity == 1.0f);
   CHECK(nearC.transitions[0].mesh.opacity == Approx(0.75f));
   // Outside the windows: one shape, opaque.
   MorphDraws mid = drawsAt(*rt, p, demo.dir, (mk.b + mk.c) / 2, true);
@@ -110,7 +112,7 @@ TEST_CASE("morph scene: GPU transitions replace the CPU mesh, one draw per mesh 
   const Project& p = demo.project;
   const MorphMarkers mk = p.morph.markers;
   MorphDraws gpu = drawsAt(demo.runtime, p, demo.dir, (mk.a + mk.b) / 2, true);
-  CHECK(gpu.meshes.empty());
+  CHECK(gpu.meshes.size() == 1);  // the stand-in core (a CPU mesh here: implicitStage)
   const Character& c = *demo.runtime->source.character;
   REQUIRE(gpu.transitions.size() == c.meshNodes().size());
   size_t first = 0;
@@ -125,5 +127,5 @@ TEST_CASE("morph scene: GPU transitions replace the CPU mesh, one draw per mesh 
   CHECK(first == demo.runtime->source.vertexCount);
   MorphDraws cpu = drawsAt(demo.runtime, p, demo.dir, (mk.a + mk.b) / 2, false);
   CHECK(cpu.transitions.empty());
-  CHECK(cpu.meshes.size() == 1);
+  CHECK(cpu.meshes.size() == 2);  // the collapsing mesh and the core
 }

@@ -30,8 +30,8 @@ TEST_CASE("morph frames carry the characters' vertex colours on the skinned and 
   for (int frame : {mk.a - 2, (mk.a + mk.b) / 2}) {  // skinned source, collapse
     auto fr = evaluateMorphFrame(**rt, frame / fps, s);
     REQUIRE(fr.ok());
-    REQUIRE(fr->mesh.positions.size() == total);
-    REQUIRE(fr->mesh.colors.size() == total);
+    REQUIRE(fr->mesh.positions.size() >= total);  // the collapse: then the stand-in core's vertices
+    REQUIRE(fr->mesh.colors.size() == fr->mesh.positions.size());
     CHECK(fr->mesh.colors[13] == glm::vec4(float(13 % 7) / 6.0f, 0.25f, 0.5f, 1.0f));
   }
   // The gear has no colours; the implicit morph has none of its own.

@@ -7,15 +7,13 @@
 
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 
 #include <nlohmann/json.hpp>
 
 #include "doc/project_io.h"
-#include "io/gltf_import.h"
+#include "morph/chain_matching.h"
 #include "morph/correspondence_morph.h"
 #include "morph/morph_continuity.h"
-#include "morph/new_morph_project.h"
 #include "rig/pose.h"
 #include "util/morph_fixtures.h"
 
@@ -173,21 +171,12 @@ TEST_CASE("skeleton correspondence on the demo pair: no empty frame, smaller vol
 
 TEST_CASE("skeleton correspondence on tentacle.glb -> plate.glb: no empty frame, smaller volume jumps than interpolation",
           "[morph][correspondence][continuity]") {
-  const std::string dir = ANIMORPH_SHARED_ASSETS;
-  if (!std::filesystem::exists(dir + "/tentacle.glb") || !std::filesystem::exists(dir + "/plate.glb")) {
-    WARN(dir << "/tentacle.glb or plate.glb not present: skipped");
+  const Project* p = test::tentaclePlateMorph(ANIMORPH_SHARED_ASSETS);
+  if (!p) {
+    WARN(ANIMORPH_SHARED_ASSETS << "/tentacle.glb or plate.glb not present: skipped");
     return;
   }
-  auto tentacle = importGltf(dir + "/tentacle.glb");
-  auto plate = importGltf(dir + "/plate.glb");
-  REQUIRE(tentacle.ok());
-  REQUIRE(plate.ok());
-  NewMorphSettings ns;
-  ns.method = MorphMethod::SkeletonCorrespondence;
-  auto made = makeMorphProject(*tentacle, "tentacle.glb", *plate, "plate.glb", ns);
-  INFO(made.error());
-  REQUIRE(made.ok());
-  compareWithInterpolation("tentacle -> plate", made->project, dir);
+  compareWithInterpolation("tentacle -> plate", *p, ANIMORPH_SHARED_ASSETS);
 }
 
 TEST_CASE("skeleton correspondence: method and blend saved and read back, bad blend named", "[morph][correspondence]") {
@@ -215,4 +204,28 @@ TEST_CASE("skeleton correspondence needs a rig on both sides: a BlobTree side is
   auto c = morphSkeletonCorrespondence(rt.source, blob);
   REQUIRE_FALSE(c.ok());
   CHECK(c.error() == "actor 'blob' is a BlobTree (no rig to correspond)");
+}
+
+TEST_CASE("chain matching as shown: partners named, unmatched chains shrink into their matched ancestor's partner",
+          "[morph][correspondence]") {
+  const MorphRuntime& rt = *test::demoMorph().runtime;
+  REQUIRE(rt.correspondence != nullptr);  // the demo morphs by skeleton correspondence
+  const SkeletonCorrespondence& c = *rt.correspondence;
+  size_t unmatched = 0;
+  for (size_t i = 0; i < c.source.chains.size(); ++i) {
+    const std::string text = chainPartnerText(c.source, c.target, c.sourceMatch, int(i), "shrinks into");
+    const int anchor = matchedAnchor(c.source, c.sourceMatch, int(i));
+    INFO("chain " << i << " " << c.source.chains[i].name << ": " << text);
+    if (c.sourceMatch[i] >= 0) {
+      CHECK(anchor == int(i));
+      CHECK(text == "<-> " + c.target.chains[size_t(c.sourceMatch[i])].name);
+      continue;
+    }
+    ++unmatched;
+    REQUIRE(anchor >= 0);
+    CHECK(c.sourceMatch[size_t(anchor)] >= 0);
+    CHECK(text == "shrinks into " + c.target.chains[size_t(c.sourceMatch[size_t(anchor)])].name);
+  }
+  CHECK(unmatched > 0);  // the creature has more chains than the gear
+  CHECK(c.sourceMatch[size_t(c.source.mainRoot)] == c.target.mainRoot);
 }

@@ -399,3 +399,22 @@ TEST_CASE("implicit preview: the first GPU record of a shape fits its buffers (n
   }
   CHECK(ctx->validationErrorCount() == 0);
 }
+
+TEST_CASE("implicit preview: the transitions' stand-in core on the GPU matches the CPU mesh", "[gpu][preview]") {
+  auto ctx = test::makeTestContext();
+  const std::shared_ptr<const MorphRuntime> rt = test::demoMorph().runtime;
+  const MorphMarkers& mk = rt->setup.markers;
+  // The expansion a third in (the core scaled down, under its bound) and the collapse two thirds in.
+  const auto expanding = standinCorePreviewSource(rt, rt->timeline.frameToSec(mk.c + (mk.d - mk.c) / 3), true, 1.0 / 3.0);
+  const auto collapsing = standinCorePreviewSource(rt, rt->timeline.frameToSec(mk.a + 2 * (mk.b - mk.a) / 3), false, 2.0 / 3.0);
+  gpuFieldMatchesCpu(*ctx, *expanding, 48);
+  gpuFieldMatchesCpu(*ctx, *collapsing, 48);
+  // A source is the same as another on the same runtime, time, side and progress only.
+  CHECK(expanding->sameAs(*standinCorePreviewSource(rt, rt->timeline.frameToSec(mk.c + (mk.d - mk.c) / 3), true, 1.0 / 3.0)));
+  CHECK_FALSE(expanding->sameAs(*collapsing));
+  // Melted away at the end of the expansion: no field, said so.
+  auto gone = standinCorePreviewSource(rt, rt->timeline.frameToSec(mk.d), true, 1.0)->field(48);
+  REQUIRE_FALSE(gone.ok());
+  CHECK(gone.error() == "the stand-in core has melted away at this time");
+  CHECK(ctx->validationErrorCount() == 0);
+}

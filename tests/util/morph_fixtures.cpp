@@ -2,12 +2,15 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 
 #include "demo/creature.h"
+#include "demo/demo_morph.h"
 #include "demo/gear.h"
 #include "doc/project_io.h"
 #include "io/gltf_export.h"
+#include "io/gltf_import.h"
 #include "morph/new_morph_project.h"
 
 namespace animorph::test {
@@ -31,8 +34,7 @@ DemoMorph buildDemoMorph() {
   d.dir = tmpl;
   if (!exportGlb(demoCreature(), d.dir + "/creature.glb") || !exportGlb(demoGear(), d.dir + "/gear.glb"))
     throw std::runtime_error("cannot write the demo characters");
-  NewMorphSettings s;
-  s.alignScaleRatio = 4.0;
+  const NewMorphSettings s = demoMorphSettings();
   auto made = makeMorphProject(demoCreature(), "creature.glb", demoGear(), "gear.glb", s);
   if (!made) throw std::runtime_error(made.error());
   d.project = made->project;
@@ -59,6 +61,22 @@ const DemoMorph& demoMorph() {
   static const DemoMorph d = buildDemoMorph();
   static Cleanup cleanup{d.dir};
   return d;
+}
+
+const Project* tentaclePlateMorph(const std::string& dir) {
+  static const std::optional<Project> made = [&]() -> std::optional<Project> {
+    if (!std::filesystem::exists(dir + "/tentacle.glb") || !std::filesystem::exists(dir + "/plate.glb"))
+      return std::nullopt;
+    auto tentacle = importGltf(dir + "/tentacle.glb");
+    auto plate = importGltf(dir + "/plate.glb");
+    if (!tentacle || !plate) throw std::runtime_error(dir + ": tentacle.glb or plate.glb does not load");
+    NewMorphSettings ns;
+    ns.method = MorphMethod::SkeletonCorrespondence;
+    auto m = makeMorphProject(*tentacle, "tentacle.glb", *plate, "plate.glb", ns);
+    if (!m) throw std::runtime_error(m.error());
+    return m->project;
+  }();
+  return made ? &*made : nullptr;
 }
 
 float fieldAt(const FieldProgram& p, const glm::vec3& x, glm::vec3* gradient) {

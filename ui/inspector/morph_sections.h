@@ -16,6 +16,10 @@ void drawMorphCurveSettings(Document& doc, DragMerge& drag, StatusMessage& statu
 // report of the prepared morph (fallbacks, failures, notes). morph_projection_panel.cpp.
 void drawMorphProjection(Document& doc, const MorphPanelState& st, DragMerge& drag);
 
+// Skeleton correspondence: the source's and the target's chains with their
+// automatic pairing (read-only), from the prepared morph. morph_chains_panel.cpp.
+void drawMorphChains(const MorphPanelState& st);
+
 // The stand-in segments of source and target, and the selected one's A / B
 // offsets and radius scale at the current morph progress with key buttons.
 // morph_segments_panel.cpp.

@@ -4,7 +4,8 @@
 // relative to the same figures of the two characters' own motion (skinned, no
 // morph), for the unbounded interpolation (the old blend), the bounded one (the
 // default), space-time blending and skeleton correspondence (combined with
-// either), with what a B..C frame costs, all in the same run.
+// either; and without the transitions' stand-in core, the seam at C before it),
+// with what a B..C frame costs, all in the same run.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -63,12 +64,15 @@ void pairRows(const Project& base, const std::string& dir, const std::string& la
     MorphMethod method;
     float bound;
     MorphMethod blend;
+    bool core = true;  // the stand-in core in the transitions (false: the mesh alone, as before)
   };
   const Variant variants[] = {
       {"interpolation, unbounded (old blend)", MorphMethod::Interpolation, 0.0f, MorphMethod::Interpolation},
       {"interpolation, bounded (default)", MorphMethod::Interpolation, kDefaultInterpolationBound,
        MorphMethod::Interpolation},
       {"space-time blending", MorphMethod::SpaceTime, kDefaultInterpolationBound, MorphMethod::Interpolation},
+      {"skeleton correspondence + interpolation, no stand-in core (before)", MorphMethod::SkeletonCorrespondence,
+       kDefaultInterpolationBound, MorphMethod::Interpolation, false},
       {"skeleton correspondence + interpolation", MorphMethod::SkeletonCorrespondence, kDefaultInterpolationBound,
        MorphMethod::Interpolation},
       {"skeleton correspondence + space-time", MorphMethod::SkeletonCorrespondence, kDefaultInterpolationBound,
@@ -82,13 +86,14 @@ void pairRows(const Project& base, const std::string& dir, const std::string& la
     if (!rt) continue;
     MorphFrameSettings fs;
     fs.resolution = res;
+    fs.standinCore = v.core;
     std::vector<double> stageMs;
     const ContinuitySummary s = measureContinuity(first, last, [&](int f) {
       const auto t0 = std::chrono::steady_clock::now();
       auto fr = evaluateMorphFrame(**rt, p.timeline.frameToSec(f), fs);
       if (fr && fr->stage == MorphStage::Morph)
         stageMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-      return fr ? std::move(fr->mesh) : TriangleMesh{};
+      return fr ? FrameShape(std::move(fr->mesh), fr->coreTriangles) : FrameShape{};
     });
     const size_t defects = continuityDefects(s.frames).size();
     std::snprintf(note, sizeof note, "at frame %d; %d^3; %zu empty frames, %zu frames over %.0f%%", s.maxVolumeFrame,

@@ -7,6 +7,7 @@
 
 #include "morph/mesh_distance.h"
 #include "poly/mesh_checks.h"
+#include "poly/union_volume.h"
 
 namespace animorph {
 
@@ -22,11 +23,14 @@ double hausdorffDistance(const TriangleMesh& a, const TriangleMesh& b) {
   return std::max(pointsToMeshDistance(a.positions, b).maxDistance, pointsToMeshDistance(b.positions, a).maxDistance);
 }
 
-FrameMeasure measureFrame(int frame, const TriangleMesh& mesh, const TriangleMesh* previous) {
+FrameMeasure measureFrame(int frame, const TriangleMesh& mesh, const TriangleMesh* previous, size_t coreTriangles) {
   FrameMeasure m;
   m.frame = frame;
   m.triangles = mesh.triangleCount();
-  m.volume = m.triangles > 0 ? meshVolume(mesh) : 0.0;
+  if (coreTriangles > 0 && coreTriangles <= m.triangles)
+    m.volume = unionVolume(mesh, {0, m.triangles - coreTriangles});
+  else
+    m.volume = m.triangles > 0 ? meshVolume(mesh) : 0.0;
   if (previous) m.hausdorff = hausdorffDistance(*previous, mesh);
   return m;
 }
@@ -51,13 +55,14 @@ std::vector<ContinuityDefect> continuityDefects(const std::vector<FrameMeasure>&
   return out;
 }
 
-ContinuitySummary measureContinuity(int first, int last, const std::function<TriangleMesh(int)>& meshOf,
+ContinuitySummary measureContinuity(int first, int last, const std::function<FrameShape(int)>& shapeOf,
                                     bool hausdorff) {
   ContinuitySummary s;
   TriangleMesh prev;
   for (int f = first; f <= last; ++f) {
-    TriangleMesh mesh = meshOf(f);
-    s.frames.push_back(measureFrame(f, mesh, hausdorff && f > first ? &prev : nullptr));
+    FrameShape shape = shapeOf(f);
+    TriangleMesh& mesh = shape.mesh;
+    s.frames.push_back(measureFrame(f, mesh, hausdorff && f > first ? &prev : nullptr, shape.coreTriangles));
     const FrameMeasure& m = s.frames.back();
     s.emptyFrames += m.triangles == 0;
     if (f > first) {

@@ -8,6 +8,7 @@
 // morph-continuity compares them with the characters' own motion).
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "poly/mesh.h"
@@ -21,7 +22,7 @@ inline constexpr double kMaxFrameVolumeChange = 0.2;
 struct FrameMeasure {
   int frame = 0;
   size_t triangles = 0;
-  double volume = 0.0;     // m^3 (divergence theorem)
+  double volume = 0.0;     // m^3 (divergence theorem; with a stand-in core, the union's)
   double hausdorff = 0.0;  // m, to the previous frame's mesh (0 for the first, or when not measured)
 };
 
@@ -32,7 +33,11 @@ double relativeVolumeChange(double a, double b);
 // other's triangles; infinite when one is empty and the other not, 0 when both are.
 double hausdorffDistance(const TriangleMesh& a, const TriangleMesh& b);
 
-FrameMeasure measureFrame(int frame, const TriangleMesh& mesh, const TriangleMesh* previous);
+// coreTriangles > 0: the mesh's last coreTriangles triangles are the stand-in
+// core (MorphFrame::coreTriangles), a shell overlapping the rest; the volume is
+// then the union's (poly/union_volume.h), not the sum.
+FrameMeasure measureFrame(int frame, const TriangleMesh& mesh, const TriangleMesh* previous,
+                          size_t coreTriangles = 0);
 
 struct ContinuityDefect {
   int frame = 0;
@@ -52,8 +57,15 @@ struct ContinuitySummary {
   size_t emptyFrames = 0;
 };
 
-// Measures frames first..last, meshOf(frame) giving each frame's mesh (in order, one at a time).
-ContinuitySummary measureContinuity(int first, int last, const std::function<TriangleMesh(int)>& meshOf,
+// A frame's mesh and how many of its last triangles are the stand-in core.
+struct FrameShape {
+  FrameShape(TriangleMesh m = {}, size_t core = 0) : mesh(std::move(m)), coreTriangles(core) {}  // NOLINT
+  TriangleMesh mesh;
+  size_t coreTriangles = 0;
+};
+
+// Measures frames first..last, shapeOf(frame) giving each frame's mesh (in order, one at a time).
+ContinuitySummary measureContinuity(int first, int last, const std::function<FrameShape(int)>& shapeOf,
                                     bool hausdorff = true);
 
 }  // namespace animorph

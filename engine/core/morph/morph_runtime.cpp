@@ -8,6 +8,7 @@
 #include "morph/correspondence_morph.h"
 #include "morph/mesh_distance.h"
 #include "morph/solid_noise.h"
+#include "morph/standin_core.h"
 #include "rig/pose.h"
 #include "scene/scene_frame.h"
 #include "standin/character_pose.h"
@@ -297,8 +298,12 @@ Result<MorphFrame> evaluateMorphFrame(const MorphRuntime& rt, double timeSec, co
       break;
     }
     case MorphStage::Collapse:
-    case MorphStage::Expand:
-      return evaluateMorphTransition(rt, timeSec, fr.stage == MorphStage::Expand, fr.progress, settings);
+    case MorphStage::Expand: {
+      MorphFrame t = evaluateMorphTransition(rt, timeSec, fr.stage == MorphStage::Expand, fr.progress, settings);
+      if (settings.standinCore)
+        if (Status s = appendStandinCore(rt, t, settings); !s) return Error{s.error()};
+      return t;
+    }
     case MorphStage::Morph: return evaluateMorphImplicit(rt, timeSec, fr.progress, settings);
   }
   return fr;

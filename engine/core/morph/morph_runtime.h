@@ -74,6 +74,9 @@ struct MorphFrameSettings {
   // applyMorph (scene/morph_scene.h) only: collapse and expansion become
   // TransitionDraws deformed in the vertex shader instead of CPU meshes.
   bool gpuTransitions = false;
+  // Collapse and expansion frames carry the stand-in core (morph/standin_core.h)
+  // as a second shell of their mesh. false: the transitioned mesh alone.
+  bool standinCore = true;
 };
 
 struct MorphFrame {
@@ -83,7 +86,11 @@ struct MorphFrame {
   float blend = 0.0f;     // w(u) during the morph
   std::string actorId;    // whose mesh this is (empty during the morph)
   TriangleMesh mesh;      // world space, unit normals, counter-clockwise outside
-  PolygonizeStats polygonize;   // B->C only
+  // Collapse / expansion: the last coreTriangles triangles of mesh are the
+  // stand-in core, a closed shell overlapping the transitioned mesh (its volume
+  // is the union's: poly/union_volume.h). 0: none.
+  size_t coreTriangles = 0;
+  PolygonizeStats polygonize;   // B->C, and the stand-in core
   TransitionStats transition;   // A->B and C->D only
   bool cancelled = false;
 };
@@ -118,7 +125,8 @@ Result<MorphFrame> evaluateMorphFrame(const MorphRuntime& rt, double timeSec, co
 
 // The collapse (expand false: the source, alpha rising) or the expansion
 // (expand true: the target, alpha falling) at scene time timeSec and stage
-// progress u (clamped), computed on the CPU, whatever stage timeSec is in.
+// progress u (clamped), computed on the CPU, whatever stage timeSec is in: the
+// transitioned mesh alone (evaluateMorphFrame adds the stand-in core).
 MorphFrame evaluateMorphTransition(const MorphRuntime& rt, double timeSec, bool expand, double u,
                                    const MorphFrameSettings& settings);
 

@@ -16,4 +16,10 @@ namespace animorph {
 std::shared_ptr<const PreviewSource> morphPreviewSource(std::shared_ptr<const MorphRuntime> rt, double timeSec,
                                                         double progress = -1.0);
 
+// The stand-in core of the collapse (expand false) or the expansion at scene
+// time timeSec and transition progress u (morph/standin_core.h): empty when
+// it has melted away.
+std::shared_ptr<const PreviewSource> standinCorePreviewSource(std::shared_ptr<const MorphRuntime> rt, double timeSec,
+                                                              bool expand, double u);
+
 }  // namespace animorph

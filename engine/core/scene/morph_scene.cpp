@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "morph/standin_core.h"
 #include "morph/transition_frame.h"
 #include "rig/pose.h"
 #include "scene/mesh_character.h"
@@ -92,6 +93,13 @@ MorphSceneInfo apply(SceneFrame& frame, const MorphRuntime& rt, const std::share
   const float meshOpacity = float(1.0 - implicitOpacity);
   info.implicitOpacity = implicitOpacity;
   info.implicitProgress = implicitU;
+  // The collapse and the expansion are drawn around their stand-in core while it lasts.
+  const bool transition = info.stage == MorphStage::Collapse || info.stage == MorphStage::Expand;
+  if (transition && settings.standinCore && standinCoreField(rt, timeSec, expand, info.progress)) {
+    info.implicitOpacity = 1.0;
+    info.implicitProgress = info.progress;
+    info.implicitCore = true;
+  }
   if (meshOpacity > 0.0f) {
     if (shared && settings.gpuTransitions) {
       addGpuTransition(frame, shared, expand, timeSec, meshU, settings, meshOpacity);
@@ -100,7 +108,17 @@ MorphSceneInfo apply(SceneFrame& frame, const MorphRuntime& rt, const std::share
       addMeshDraw(frame, t.actorId, t.mesh, meshOpacity, false);
     }
   }
-  if (implicitOpacity > 0.0 && implicitStage) {
+  if (info.implicitCore && implicitStage) {
+    MorphFrame core;
+    core.timeSec = timeSec;
+    core.stage = info.stage;
+    core.progress = info.progress;
+    if (Status st = appendStandinCore(rt, core, settings); !st) {
+      info.error = st.error();
+      return info;
+    }
+    addMeshDraw(frame, expand ? dst : src, core.mesh, 1.0f, false);
+  } else if (implicitOpacity > 0.0 && implicitStage) {
     auto out = evaluateMorphImplicit(rt, timeSec, implicitU, settings);
     if (!out) {
       info.error = out.error();

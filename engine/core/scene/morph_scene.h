@@ -21,12 +21,17 @@ struct MorphSceneInfo {
   // surface itself (implicitStage false) draws it at this opacity.
   double implicitOpacity = 0.0;
   double implicitProgress = 0.0;
+  // Collapse / expansion: the implicit surface is the transition's stand-in
+  // core (morph/standin_core.h) at transition progress implicitProgress, drawn
+  // opaque with the mesh (implicitOpacity 1).
+  bool implicitCore = false;
 };
 
 // Replaces the source and target actors of frame by the morph at timeSec:
 // the transitioned mesh (collapse, expansion) or the polygonised implicit
 // morph, both (with complementary opacity) within the cross-fade window
-// around B and C when the setup enables it. Transitions are CPU meshes.
+// around B and C when the setup enables it; with the transitions, their
+// stand-in core while it lasts (settings.standinCore). Transitions are CPU meshes.
 // implicitStage false: no implicit surface is added (the caller draws it from
 // a preview, scene/morph_preview_source.h, at info.implicitOpacity).
 MorphSceneInfo applyMorph(SceneFrame& frame, const MorphRuntime& rt, double timeSec,
