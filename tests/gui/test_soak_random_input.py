@@ -23,7 +23,7 @@ import gui_driver as g  # noqa: E402
 
 W, H = 1600, 900
 # What one more actor in the project may add to the resident memory: a one-sphere BlobTree actor
-# (+ BlobTree) previewed at 128^3 measured about 29 MiB (docs/reliability.md, "Soak").
+# (+ BlobTree) previewed at 128^3 measured about 32 MiB (docs/reliability.md, "Soak").
 PER_ACTOR_MIB = 48.0
 # The editor's state (from its UI map) written to the trace once a second.
 STATE_KEYS = ["selected", "current_frame", "preview", "viewport_note", "status", "job", "preview_gpu",
