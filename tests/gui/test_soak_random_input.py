@@ -140,8 +140,9 @@ def quit_editor(ed):
             try:
                 ed.click((rect[0] + rect[2]) / 2, (rect[1] + rect[3]) / 2, wait=False)
             except subprocess.CalledProcessError:
-                if ed.proc.poll() is None:  # xdotool fails on a window that is gone: the editor quit meanwhile
-                    raise
+                # xdotool fails on a window that is gone: the editor is quitting (its process may outlive
+                # the window for a while); the loop below waits for it to exit.
+                return False
         return bool(rect)
 
     for attempt in range(4):
