@@ -11,6 +11,9 @@ import tempfile
 import time
 
 SCREEN = "1600x900x24"
+# Waits for the editor are this many times longer (3 in a sanitizer build, where the editor is slower;
+# tests/gui/CMakeLists.txt sets it).
+TIMEOUT_SCALE = float(os.environ.get("ANIMORPH_TEST_TIMEOUT_SCALE", "1"))
 
 
 def ensure_display(argv):
@@ -73,7 +76,7 @@ class Editor:
         self.proc = subprocess.Popen(args, env=env, stdout=self.log, stderr=subprocess.STDOUT)
         self.wait_until(lambda m: m.get("frame_count", 0) >= 6, "the editor draws frames", timeout=60)
         out = subprocess.run(["xdotool", "search", "--sync", "--name", "^Animorph"], capture_output=True,
-                             text=True, timeout=30)
+                             text=True, timeout=30 * TIMEOUT_SCALE)
         self.window = out.stdout.split()[0]
         xdo("windowfocus", "--sync", self.window)
         return self
@@ -101,7 +104,7 @@ class Editor:
                                "the editor draws after the input")
 
     def wait_until(self, pred, what, timeout=20):
-        end = time.time() + timeout
+        end = time.time() + timeout * TIMEOUT_SCALE
         m = {}
         while time.time() < end:
             if self.proc and self.proc.poll() is not None:
@@ -190,7 +193,7 @@ class Editor:
 
     def wait_exit(self, timeout=20):
         try:
-            return self.proc.wait(timeout=timeout)
+            return self.proc.wait(timeout=timeout * TIMEOUT_SCALE)
         except subprocess.TimeoutExpired:
             self.proc.kill()
             fail("editor did not exit")

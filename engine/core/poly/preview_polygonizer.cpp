@@ -6,6 +6,7 @@
 
 #include "blobtree/compile.h"
 #include "blobtree/validate.h"
+#include "util/heap_trim.h"
 
 namespace animorph {
 
@@ -187,6 +188,10 @@ void PreviewPolygonizer::run() {
         publish(std::move(r));
       }
     }
+    // The request is answered and no newer one waits: give the run's freed working memory (grids,
+    // cell tables: tens of MiB at 128^3, in this thread's malloc arena) back to the system, or the
+    // editor's resident memory keeps it for every preview worker that ever ran (util/heap_trim.h).
+    if (!newer()) trimFreedHeap();
     {
       std::lock_guard<std::mutex> lock(mutex_);
       running_ = false;
