@@ -49,7 +49,9 @@ class StandinCoreSource final : public PreviewSource {
     auto* o = dynamic_cast<const StandinCoreSource*>(&other);
     return o && o->rt_ == rt_ && o->timeSec_ == timeSec_ && o->expand_ == expand_ && o->u_ == u_;
   }
-  Result<PolygonizeResult> polygonize(int resolution, int threads, const std::atomic<bool>* cancel) const override {
+  // Polygonised by the morph runtime too, without temporal coherence.
+  Result<PolygonizeResult> polygonize(int resolution, int threads, const std::atomic<bool>* cancel,
+                                      PolygonizeHistory*) const override {
     MorphFrame fr;
     fr.timeSec = timeSec_;
     fr.stage = expand_ ? MorphStage::Expand : MorphStage::Collapse;
