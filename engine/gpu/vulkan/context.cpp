@@ -10,6 +10,7 @@
 
 #include "vulkan/command_resources.h"
 #include "vulkan/device_select.h"
+#include "vulkan/driver_pin.h"
 #include "vulkan/vk_check.h"
 
 namespace animorph::gpu {
@@ -138,6 +139,7 @@ Status Context::init(const ContextSettings& settings) {
   vkEnumeratePhysicalDevices(instance_, &count, nullptr);
   std::vector<VkPhysicalDevice> physicals(count);
   vkEnumeratePhysicalDevices(instance_, &count, physicals.data());
+  keepVulkanDriversLoadedUnderSanitizer();  // a no-op outside AddressSanitizer builds
   std::vector<DeviceCandidate> candidates;
   for (VkPhysicalDevice pd : physicals) {
     VkPhysicalDeviceProperties p;
