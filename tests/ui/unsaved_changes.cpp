@@ -146,6 +146,30 @@ TEST_CASE("autosave runs from the frame loop at the preference's interval", "[un
   CHECK(loadProject(path + ".autosave")->timeline.frameEnd == 42);
 }
 
+TEST_CASE("an autosave does not replace a report shown moments before, and says so once it is old", "[unsaved]") {
+  EditorFixture f;
+  auto& h = f.h;
+  std::string path = f.dir.file("report.animorph");
+  REQUIRE(saveProject(Project{}, path).ok());
+  h.ui->requestOpen(path);
+  h.frames(1);
+  REQUIRE(h.doc().path() == path);
+  h.ui->state().prefs.autosaveIntervalSec = 5.0;
+  makeDirty(h.doc());
+  h.ui->state().status = {"Baked 12 keys", false};  // a job's report, set as a panel sets it
+  h.frames(1);
+  h.frames(7, 1.0);
+  REQUIRE(fs::exists(path + ".autosave"));  // saved all the same
+  CHECK(h.ui->state().status.text == "Baked 12 keys");
+  // Later, with the report older than the hold, the next autosave is the status bar's news.
+  fs::remove(path + ".autosave");
+  h.doc().execute(std::make_unique<SetValueCommand<int>>(
+      "Set range end", [](Project& p) { return &p.timeline.frameEnd; }, h.doc().project().timeline.frameEnd, 43));
+  h.frames(12, 1.0);
+  REQUIRE(fs::exists(path + ".autosave"));
+  CHECK(h.ui->state().status.text.rfind("Autosaved to ", 0) == 0);
+}
+
 TEST_CASE("opening a glTF starts a new untitled project with the character imported", "[unsaved][open]") {
   EditorFixture f;
   f.loadHeroScene();

@@ -99,7 +99,7 @@ bool EditorUI::savePreferences() {
   return s.ok();
 }
 
-void EditorUI::setStatus(const std::string& text, bool error) { st_.status = {text, error}; }
+void EditorUI::setStatus(const std::string& text, bool error) { st_.status = {text, error, nowSec_}; }
 
 void EditorUI::showError(const std::string& message) {
   setStatus(message, true);
@@ -122,13 +122,16 @@ void EditorUI::draw(EditorContext& ctx) {
   out_.screenshotPath.reset();
   out_.documentReplaced = false;
   ImGuiIO& io = ImGui::GetIO();
+  nowSec_ = ctx.nowSec;
+  if (st_.status.setSec < 0.0 && !st_.status.text.empty()) st_.status.setSec = nowSec_;  // set by a panel
   pollJob(ctx);  // a finished job's result first: this frame shows it
 
   // Housekeeping: autosave, asset reload, playback.
   {
     Document& d = doc(ctx);
-    if (st_.prefs.autosaveIntervalSec > 0.0 && d.autosaveIfDue(ctx.nowSec, st_.prefs.autosaveIntervalSec))
-      setStatus("Autosaved to " + d.autosavePath());
+    if (st_.prefs.autosaveIntervalSec > 0.0 && d.autosaveIfDue(ctx.nowSec, st_.prefs.autosaveIntervalSec) &&
+        (st_.status.text.empty() || ctx.nowSec - st_.status.setSec >= kStatusHoldSec))
+      setStatus("Autosaved to " + d.autosavePath());  // saved all the same; a recent report stays
     if (ctx.nowSec - st_.lastAssetRefreshSec >= 1.0 || st_.lastAssetRefreshSec < 0.0) {
       st_.lastAssetRefreshSec = ctx.nowSec;
       if (int n = ctx.assets.refresh(); n > 0) setStatus("Reloaded " + std::to_string(n) + " changed asset(s)");

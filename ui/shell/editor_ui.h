@@ -121,6 +121,7 @@ class EditorUI {
   const std::vector<int>& keyFrames(EditorContext& ctx);
 
   EditorState st_;
+  double nowSec_ = 0.0;  // the clock of the frame being drawn (stamps status messages)
   EditorOutput out_;
   std::unique_ptr<BackgroundJob> job_;
   JobDone jobDone_;

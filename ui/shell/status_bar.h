@@ -19,7 +19,12 @@ struct FrameStats {
 struct StatusMessage {
   std::string text;
   bool error = false;
+  double setSec = -1.0;  // the editor's clock when it was set
 };
+
+// How long a message stays before housekeeping (an autosave) may replace it: a job's report or
+// an error is not overwritten by "Autosaved to ..." before the user could read it.
+inline constexpr double kStatusHoldSec = 10.0;
 
 // "name.animorph*" when dirty.
 std::string documentTitle(const Document& doc);
