@@ -18,6 +18,18 @@ void makeDirty(Document& d) {
   d.execute(std::make_unique<SetValueCommand<int>>(
       "Set range end", [](Project& p) { return &p.timeline.frameEnd; }, d.project().timeline.frameEnd, 42));
 }
+
+// Saves an empty project as NAME in the fixture's folder, opens it, sets autosave to every 5 s;
+// returns its path.
+std::string openWithAutosaveEvery5s(EditorFixture& f, const std::string& name) {
+  const std::string path = f.dir.file(name);
+  REQUIRE(saveProject(Project{}, path).ok());
+  f.h.ui->requestOpen(path);
+  f.h.frames(1);
+  REQUIRE(f.h.doc().path() == path);
+  f.h.ui->state().prefs.autosaveIntervalSec = 5.0;
+  return path;
+}
 }  // namespace
 
 TEST_CASE("New with a dirty document asks Save / Don't Save / Cancel", "[unsaved]") {
@@ -131,12 +143,7 @@ TEST_CASE("a bad project shows an error and the editor keeps running", "[unsaved
 TEST_CASE("autosave runs from the frame loop at the preference's interval", "[unsaved]") {
   EditorFixture f;
   auto& h = f.h;
-  std::string path = f.dir.file("auto.animorph");
-  REQUIRE(saveProject(Project{}, path).ok());
-  h.ui->requestOpen(path);
-  h.frames(1);
-  REQUIRE(h.doc().path() == path);
-  h.ui->state().prefs.autosaveIntervalSec = 5.0;
+  const std::string path = openWithAutosaveEvery5s(f, "auto.animorph");
   makeDirty(h.doc());
   h.frames(1);
   h.frames(3, 1.0);
@@ -149,12 +156,7 @@ TEST_CASE("autosave runs from the frame loop at the preference's interval", "[un
 TEST_CASE("an autosave does not replace a report shown moments before, and says so once it is old", "[unsaved]") {
   EditorFixture f;
   auto& h = f.h;
-  std::string path = f.dir.file("report.animorph");
-  REQUIRE(saveProject(Project{}, path).ok());
-  h.ui->requestOpen(path);
-  h.frames(1);
-  REQUIRE(h.doc().path() == path);
-  h.ui->state().prefs.autosaveIntervalSec = 5.0;
+  const std::string path = openWithAutosaveEvery5s(f, "report.animorph");
   makeDirty(h.doc());
   h.ui->state().status = {"Baked 12 keys", false};  // a job's report, set as a panel sets it
   h.frames(1);
