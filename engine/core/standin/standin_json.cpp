@@ -1,6 +1,7 @@
 #include "standin/standin_json.h"
 
 #include <cmath>
+#include <limits>
 
 #include "util/atomic_file.h"
 #include "util/json_text.h"
@@ -18,7 +19,8 @@ bool readVec3(const json& j, glm::vec3& out) {
   for (int i = 0; i < 3; ++i) {
     if (!j[size_t(i)].is_number()) return false;
     const double d = j[size_t(i)].get<double>();
-    if (!std::isfinite(d)) return false;
+    // Finite as a float too: 1e306 would become inf, and the saved file would not load.
+    if (!std::isfinite(d) || std::abs(d) > double(std::numeric_limits<float>::max())) return false;
     out[i] = float(d);
   }
   return true;
@@ -60,10 +62,10 @@ Result<Standin> standinFromJson(const json& j, const std::string& where) {
         e["node"].get<long long>() > 1000000)
       return Error{w + ".node: expected a node index (integer >= 0)"};
     seg.node = e["node"].get<int>();
-    if (!e.contains("a") || !readVec3(e["a"], seg.a)) return Error{w + ".a: expected an array of 3 finite numbers"};
-    if (!e.contains("b") || !readVec3(e["b"], seg.b)) return Error{w + ".b: expected an array of 3 finite numbers"};
+    if (!e.contains("a") || !readVec3(e["a"], seg.a)) return Error{w + ".a: expected an array of 3 finite numbers (within +-3.4e38)"};
+    if (!e.contains("b") || !readVec3(e["b"], seg.b)) return Error{w + ".b: expected an array of 3 finite numbers (within +-3.4e38)"};
     if (!e.contains("radius") || !e["radius"].is_number() || !std::isfinite(e["radius"].get<double>()) ||
-        !(e["radius"].get<double>() > 0.0))
+        !(e["radius"].get<double>() > 0.0) || e["radius"].get<double>() > double(std::numeric_limits<float>::max()))
       return Error{w + ".radius: must be a positive number (metres)"};
     seg.radius = e["radius"].get<float>();
     s.segments.push_back(seg);
