@@ -110,6 +110,26 @@ TEST_CASE("preview: a newer request cancels the run in progress", "[poly][previe
   CHECK(r->resolution == 20);
 }
 
+TEST_CASE("preview: a newer request lets the coarse run finish and shows it (scrubbing)", "[poly][preview]") {
+  PreviewPolygonizer p(1);
+  // A coarse level heavy enough to be caught running (while scrubbing: slower than a frame), then a
+  // newer time: the coarse mesh of the older time is still published before the newer request runs.
+  uint64_t older = p.submit(request(creature(), 0.0, 220, 240));
+  REQUIRE(eventually([&] { return p.counters().runsStarted >= 1; }));
+  uint64_t newer = p.submit(request(creature(), 1.0, 12, 20));
+  REQUIRE(p.waitIdle(120.0));
+  const PreviewCounters c = p.counters();
+  CHECK(c.runsCancelled == 0);
+  CHECK(c.runsStarted == 3);  // the older request's coarse level, the newer one's two levels
+  CHECK(c.published == 3);
+  auto r = p.latest();
+  REQUIRE(r);
+  CHECK(r->requestId == newer);
+  CHECK(r->requestId == older + 1);
+  CHECK(r->resolution == 20);
+  CHECK(r->final);
+}
+
 TEST_CASE("preview: an invalid tree gives an error naming the node, not a crash", "[poly][preview]") {
   BlobTree bad = makeStarterTree();
   bad.root.children.clear();  // a blend needs at least one child

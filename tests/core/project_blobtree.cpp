@@ -85,8 +85,8 @@ TEST_CASE("scene evaluation lists BlobTree actors with their guides and looped t
   CHECK(f.blobs[0].actorId == "creature");
   CHECK(f.blobs[0].treeTimeSec == Approx(0.25));  // loops
   CHECK(f.blobs[0].model[3][0] == 1.0f);
-  REQUIRE(f.blobGuides.size() == 1);
-  const BlobGuides& g = f.blobGuides[0];
+  REQUIRE(f.blobGuides.get().size() == 1);
+  const BlobGuides& g = f.blobGuides.get()[0];
   CHECK(g.actorId == "creature");
   CHECK(g.lines.size() > 10);
   CHECK(g.axes.size() >= 5);  // body, legs, head frames

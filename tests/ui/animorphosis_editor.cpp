@@ -247,7 +247,7 @@ TEST_CASE("the viewport's scene shows the source, then C(t), then the target", "
   CHECK(mid.blobs[0].actorId == "walker");
   REQUIRE(mid.blobs[0].tree);
   CHECK(mid.blobs[0].tree->root.subtreeSize() == projectGenericTree(p)->size());
-  CHECK(mid.blobGuides.empty());
+  CHECK(mid.blobGuides.get().empty());
   CHECK(describeAnimorphosis(info).rfind("animorphosis u=0.50", 0) == 0);
   // The same time gives the same snapshot (the preview is not asked again); another time a new one.
   SceneFrame again = sceneAt(48, info);

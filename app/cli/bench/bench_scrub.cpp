@@ -14,29 +14,22 @@
 #include <map>
 
 #include "cli/bench/bench.h"
+#include "cli/bench/bench_offscreen.h"
 #include "doc/project_io.h"
 #include "scene/morph_preview_source.h"
 #include "scene/morph_scene.h"
 #include "scene/scene_frame.h"
-#include "vulkan/context.h"
 #include "implicit/implicit_preview.h"
 #include "render/mesh_cache.h"
-#include "present/offscreen_target.h"
 #include "render/scene_from_frame.h"
 
 namespace {
 
 using namespace animorph;
+using animorph::bench::Clock;
+using animorph::bench::msSince;
+using animorph::bench::percentile;
 using animorph::bench::Row;
-using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
-
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, size_t(p * double(v.size())))];
-}
 
 std::vector<Row> runScrub(const animorph::bench::Options& opt) {
   std::vector<Row> rows;
@@ -55,20 +48,9 @@ std::vector<Row> runScrub(const animorph::bench::Options& opt) {
     rows.push_back({"skipped", 0, "", "", rt.error()});
     return rows;
   }
-  auto ctx = gpu::Context::create(gpu::ContextSettings{});
-  if (!ctx) {
-    rows.push_back({"skipped", 0, "", "", "no Vulkan device: " + ctx.error()});
-    return rows;
-  }
-  const uint32_t width = 1280, height = 720;
-  auto target = gpu::OffscreenTarget::create(**ctx, width, height);
-  if (!target) {
-    rows.push_back({"skipped", 0, "", "", target.error()});
-    return rows;
-  }
-  auto renderer = gpu::SceneRenderer::create(**ctx, (*target)->renderPass());
-  if (!renderer) {
-    rows.push_back({"skipped", 0, "", "", renderer.error()});
+  bench::OffscreenBench off;
+  if (std::string why = off.create(); !why.empty()) {
+    rows.push_back({"skipped", 0, "", "", why});
     return rows;
   }
   const Timeline& tl = project->timeline;
@@ -78,21 +60,21 @@ std::vector<Row> runScrub(const animorph::bench::Options& opt) {
   for (int f = mk.b; f <= last; ++f) frames.push_back(f);
   for (int f = last - 1; f >= mk.b; --f) frames.push_back(f);
   const int interactive = opt.quick ? 48 : 96, refined = opt.quick ? 64 : 128;
-  rows.push_back({"device", 0, "", "", (*ctx)->deviceName() + "; " + std::to_string(frames.size()) +
+  rows.push_back({"device", 0, "", "", off.ctx->deviceName() + "; " + std::to_string(frames.size()) +
                                            " frames B..C..B of the demo morph, 1280x720 offscreen"});
   OrbitCamera camera;
   Bounds view;
   view.add(glm::vec3(-1.2f, 0.0f, -1.2f));
   view.add(glm::vec3(1.2f, 2.0f, 1.2f));
-  camera.frame(view, float(width) / float(height));
+  camera.frame(view, float(off.width) / float(off.height));
 
   // CPU worker; GPU as the editor runs it (frame pacing); GPU polygonising every frame's shape.
   for (int mode : {0, 1, 2}) {
     const bool gpuPath = mode > 0;
     const std::string tag = std::string(gpuPath ? "GPU" : "CPU") + " preview " + std::to_string(interactive) + "^3" +
                             (mode == 2 ? " every frame" : "");
-    gpu::ImplicitPreview preview(**ctx);
-    gpu::MeshCache meshes(**ctx);
+    gpu::ImplicitPreview preview(*off.ctx);
+    gpu::MeshCache meshes(*off.ctx);
     gpu::Scene scene;
     gpu::ImplicitPreviewSettings ps;
     ps.interactiveResolution = interactive;
@@ -112,13 +94,7 @@ std::vector<Row> runScrub(const animorph::bench::Options& opt) {
       preview.update(morphPreviewSource(*rt, timeSec), timeSec, ps);
       gpu::buildScene(frame, project->view, {}, meshes, scene);
       preview.draw(scene, glm::mat4(1.0f), {0.62f, 0.62f, 0.62f, 1.0f}, false);
-      Status st = (*target)->render(
-          [&](VkCommandBuffer cmd) {
-            Status r = (*renderer)->record(cmd, (*target)->serial(), {0, 0, width, height}, camera, scene);
-            if (!r) error = r.error();
-          },
-          {0.1f, 0.1f, 0.1f, 1.0f}, /*readBack=*/false);
-      if (!st) error = st.error();
+      if (std::string e = off.render(camera, scene); !e.empty()) error = e;
       meshes.endFrame();
       preview.endFrame();
       // Latency: from the frame that first asked for a time to the end of the frame that drew
@@ -162,9 +138,7 @@ std::vector<Row> runScrub(const animorph::bench::Options& opt) {
     }
     std::string how = st.gpu ? "GPU" : "CPU";
     if (!st.gpuFallback.empty()) how += " (fell back: " + st.gpuFallback + ")";
-    double mean = 0.0;
-    for (double x : frameMs) mean += x;
-    mean /= double(std::max<size_t>(1, frameMs.size()));
+    const double mean = bench::mean(frameMs);
     rows.push_back({tag + " frame time p50", percentile(frameMs, 0.5), "ms", "", how});
     rows.push_back({tag + " frame time p95", percentile(frameMs, 0.95), "ms", "", ""});
     rows.push_back({tag + " fps", 1000.0 / mean, "fps", ">= 30", "mean over the scrub"});

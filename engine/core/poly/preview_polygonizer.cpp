@@ -85,7 +85,9 @@ uint64_t PreviewPolygonizer::submit(PreviewRequest request) {
     if (pendingId_ != 0 && sameRequest(request, pending_)) return pendingId_;
     pending_ = std::move(request);
     ++pendingId_;
-    cancel_ = true;  // the run in progress (if any) answers an older request
+    // The run in progress (if any) answers an older request: a fine one stops, a coarse one is
+    // finished and shown (the loop below then takes this request).
+    if (runningLevel_ != 0) cancel_ = true;
   }
   wake_.notify_all();
   return pendingId_;
@@ -167,8 +169,13 @@ void PreviewPolygonizer::run() {
         {
           std::lock_guard<std::mutex> lock(mutex_);
           ++counters_.runsStarted;
+          runningLevel_ = level;
         }
         auto result = source->polygonize(resolution, threads_, &cancel_, &history_[level]);
+        {
+          std::lock_guard<std::mutex> lock(mutex_);
+          runningLevel_ = -1;
+        }
         if (!result) {
           fail(result.error());
           break;

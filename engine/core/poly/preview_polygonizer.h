@@ -102,7 +102,11 @@ class PreviewPolygonizer {
 
   // Submits a request and returns its id. A request equal to the latest one
   // (same tree contents, time and resolutions) changes nothing and returns the
-  // latest id; any other cancels the work in progress. Requests without a tree
+  // latest id; any other supersedes it: a refining (fine) run in progress is
+  // cancelled, while a coarse run is finished and published first, so that
+  // scrubbing a shape whose coarse polygonisation takes longer than a frame
+  // still shows a new mesh every coarse run instead of none until it stops
+  // (the worker then takes the newest request). Requests without a tree
   // or a source are ignored (id 0).
   uint64_t submit(PreviewRequest request);
   // The newest published result, or null before the first. Never blocks on the worker's runs.
@@ -130,6 +134,7 @@ class PreviewPolygonizer {
   uint64_t pendingId_ = 0;                // id of pending_ (0: none yet)
   uint64_t doneId_ = 0;                   // last request fully handled
   bool running_ = false;
+  int runningLevel_ = -1;                 // level of the run in progress (0 coarse, 1 fine; -1 none)
   bool stop_ = false;
   std::atomic<bool> cancel_{false};
   std::atomic<uint64_t> serial_{0};

@@ -46,7 +46,7 @@ namespace {
 
 void removeActorDraws(SceneFrame& frame, const std::string& actorId) {
   std::erase_if(frame.blobs, [&](const BlobDraw& d) { return d.actorId == actorId; });
-  std::erase_if(frame.blobGuides, [&](const BlobGuides& g) { return g.actorId == actorId; });
+  frame.blobGuides.dropIf([&](const std::string& id) { return id == actorId; });
 }
 
 }  // namespace

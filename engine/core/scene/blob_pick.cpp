@@ -11,7 +11,7 @@ std::optional<BlobGuidePick> pickBlobGuide(const SceneFrame& frame, const OrbitC
     float d = glm::length(glm::vec2(p) - pixel);
     if (d <= maxPixels && (!best || d < best->pixelDistance)) best = BlobGuidePick{actorId, node, d};
   };
-  for (const BlobGuides& g : frame.blobGuides) {
+  for (const BlobGuides& g : frame.blobGuides.get()) {
     for (const auto& m : g.markers) consider(g.actorId, m.position, m.node);
     for (const auto& a : g.axes) consider(g.actorId, a.origin, a.node);
   }

@@ -70,7 +70,7 @@ MorphSceneInfo apply(SceneFrame& frame, const MorphRuntime& rt, const std::share
   auto drop = [&](const std::string& id, const std::string& kept) { return (id == src || id == dst) && id != kept; };
   std::erase_if(frame.meshes, [&](const MeshDraw& d) { return drop(d.actorId, keep); });
   std::erase_if(frame.blobs, [&](const BlobDraw& d) { return drop(d.actorId, keep); });
-  std::erase_if(frame.blobGuides, [&](const BlobGuides& g) { return drop(g.actorId, bonesOf); });
+  frame.blobGuides.dropIf([&](const std::string& id) { return drop(id, bonesOf); });
   std::erase_if(frame.bones, [&](const BoneDraw& b) { return drop(b.actorId, bonesOf); });
   if (!keep.empty()) return info;
 

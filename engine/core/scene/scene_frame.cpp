@@ -10,6 +10,23 @@
 
 namespace animorph {
 
+void LazyBlobGuides::add(const std::string& actorId, const BlobTree& tree, double timeSec, const glm::mat4& model) {
+  sources_.push_back({actorId, &tree, timeSec, model});
+  built_.reset();
+}
+
+const std::vector<BlobGuides>& LazyBlobGuides::get() const {
+  if (!built_) {
+    built_.emplace();
+    built_->reserve(sources_.size());
+    for (const Source& s : sources_) {
+      built_->push_back(blobGuides(*s.tree, s.timeSec, s.model));
+      built_->back().actorId = s.actorId;
+    }
+  }
+  return *built_;
+}
+
 double actorClipTimeSec(const Actor& actor, const AnimationClip& clip, double timeSec) {
   return clipTime(clip, (timeSec - actor.timeOffsetSec) * actor.speed, actor.loop);
 }
@@ -81,8 +98,7 @@ SceneFrame evaluateScene(const Project& project, const std::string& baseDir, Ass
       d.actorId = actor.id;
       d.model = actor.transform.matrix();
       d.treeTimeSec = blobActorTimeSec(actor, timeSec);
-      out.blobGuides.push_back(blobGuides(actor.blobTree, d.treeTimeSec, d.model));
-      out.blobGuides.back().actorId = actor.id;
+      out.blobGuides.add(actor.id, actor.blobTree, d.treeTimeSec, d.model);
       out.blobs.push_back(std::move(d));
       continue;
     }

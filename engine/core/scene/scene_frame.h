@@ -70,12 +70,43 @@ struct BlobDraw {
   const std::string& key() const { return previewKey.empty() ? actorId : previewKey; }
 };
 
+// The skeleton drawings (scene/blob_guides.h) of a frame's BlobTree actors,
+// built when first asked for. Building one walks every node of the tree (about
+// 140 ms for each creature of the animorphosis demo), which a frame that
+// neither shows nor picks the skeleton -- or whose animorphosis replaces the
+// actors -- never pays. The drawings are built from the project's trees, so
+// get() must be called before the project the frame came from changes.
+class LazyBlobGuides {
+ public:
+  // The drawing of tree at timeSec under the actor transform model, for actorId.
+  void add(const std::string& actorId, const BlobTree& tree, double timeSec, const glm::mat4& model);
+  // Forgets the drawings of the actors for which drop(actorId) is true.
+  template <class Pred>
+  void dropIf(Pred drop) {
+    std::erase_if(sources_, [&](const Source& s) { return drop(s.actorId); });
+    if (built_) std::erase_if(*built_, [&](const BlobGuides& g) { return drop(g.actorId); });
+  }
+  // Every drawing, in the order added (built on the first call).
+  const std::vector<BlobGuides>& get() const;
+  bool empty() const { return sources_.empty(); }
+
+ private:
+  struct Source {
+    std::string actorId;
+    const BlobTree* tree = nullptr;
+    double timeSec = 0.0;
+    glm::mat4 model{1.0f};
+  };
+  std::vector<Source> sources_;
+  mutable std::optional<std::vector<BlobGuides>> built_;
+};
+
 struct SceneFrame {
   double timeSec = 0.0;
   std::vector<MeshDraw> meshes;
   std::vector<TransitionDraw> transitions;
   std::vector<BlobDraw> blobs;
-  std::vector<BlobGuides> blobGuides;     // skeleton drawing of each BlobTree actor
+  LazyBlobGuides blobGuides;              // skeleton drawing of each BlobTree actor
   std::vector<BoneDraw> bones;
   std::vector<glm::vec3> jointPositions;  // every skin joint, world space
   std::vector<std::string> errors;        // "actor 'x': <asset load error>"

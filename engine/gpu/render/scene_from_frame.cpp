@@ -66,8 +66,10 @@ void buildScene(const SceneFrame& frame, const ViewOptions& view, const std::str
     for (size_t i = firstMesh; ghost && i < out.meshes.size(); ++i) out.meshes[i].opacity = d.opacity;
     for (size_t i = firstGenerated; ghost && i < out.generatedMeshes.size(); ++i) out.generatedMeshes[i].opacity = d.opacity;
   }
-  for (const auto& g : frame.blobGuides)
-    for (const auto& m : g.markers) b.add(m.position);
+  // The skeleton's drawings are built only when it is shown (scene_frame.h, LazyBlobGuides).
+  if (view.showSkeleton)
+    for (const auto& g : frame.blobGuides.get())
+      for (const auto& m : g.markers) b.add(m.position);
   if (view.showSkeleton && !frame.blobGuides.empty()) {
     float radius = std::max(0.006f, 0.006f * b.diagonal());
     const uint32_t guide = packRgba({0.45f, 0.95f, 0.55f, 1.0f});
@@ -75,7 +77,7 @@ void buildScene(const SceneFrame& frame, const ViewOptions& view, const std::str
     const uint32_t guideSel = packRgba({1.0f, 0.7f, 0.25f, 1.0f});
     const uint32_t axisColor[3] = {packRgba({0.95f, 0.3f, 0.3f, 1.0f}), packRgba({0.4f, 0.9f, 0.3f, 1.0f}),
                                    packRgba({0.35f, 0.55f, 1.0f, 1.0f})};
-    for (const auto& g : frame.blobGuides) {
+    for (const auto& g : frame.blobGuides.get()) {
       bool actorSel = g.actorId == selectedActorId;
       auto color = [&](int node) {
         return actorSel && node == selectedBlobNode ? guideSel : actorSel ? guideActor : guide;

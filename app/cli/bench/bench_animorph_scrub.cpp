@@ -1,0 +1,168 @@
+// Benchmark of the editor scrubbing the animorphosis demo (dinosaur -> dragon,
+// resources/demo/animorphosis.animorph) through its interval, forward then
+// back, through the editor's own pipeline: scene evaluation, the animorphosis'
+// C(t) snapshot (scene/animorphosis_scene.h), the BlobTree previews at the
+// interactive resolution (96^3; the CPU worker, then the GPU polygoniser), the
+// renderer into an offscreen 1280x720 target (no window). The frame loop never
+// waits for a polygoniser, so two figures matter: frames per second of the
+// loop, and new C(t) meshes shown per second while scrubbing (what the artist
+// sees move); plus how long the preview takes to settle at 128^3 once
+// scrubbing stops.
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+#include "cli/bench/bench.h"
+#include "cli/bench/bench_offscreen.h"
+#include "blobtree/compile.h"
+#include "doc/project_io.h"
+#include "implicit/blob_preview_set.h"
+#include "poly/preview_polygonizer.h"
+#include "render/mesh_cache.h"
+#include "render/scene_from_frame.h"
+#include "scene/animorphosis_scene.h"
+#include "scene/scene_frame.h"
+
+namespace {
+
+using namespace animorph;
+using namespace animorph::bench;
+
+std::vector<Row> runAnimorphScrub(const Options& opt) {
+  std::vector<Row> rows;
+  namespace fs = std::filesystem;
+  const fs::path demo = fs::path(ANIMORPH_SOURCE_DIR) / "resources/demo/animorphosis.animorph";
+  auto project = loadProject(demo.string());
+  if (!project) return {{"skipped", 0, "", "", project.error()}};
+  if (!project->animorphosis.enabled()) return {{"skipped", 0, "", "", "the demo has no animorphosis"}};
+  const std::string baseDir = demo.parent_path().string();
+  OffscreenBench off;
+  if (std::string why = off.create(); !why.empty()) return {{"skipped", 0, "", "", why}};
+
+  // The middle of the interval, a frame at a time (24 fps), forward then back.
+  const Timeline& tl = project->timeline;
+  const int f0 = int(tl.secToFrame(project->animorphosis.startSec) + 0.5),
+            f1 = int(tl.secToFrame(project->animorphosis.endSec) + 0.5);
+  const int span = opt.quick ? 4 : 24, mid = (f0 + f1) / 2;
+  std::vector<int> frames;
+  for (int f = mid - span; f <= mid + span; ++f) frames.push_back(f);
+  for (int f = mid + span - 1; f >= mid - span; --f) frames.push_back(f);
+  const int interactive = opt.quick ? 48 : 96, refined = opt.quick ? 64 : 128;
+  AssetCache assets;
+  AnimorphosisCache cache;
+  std::string actorId;
+  Bounds view;
+  {
+    SceneFrame frame = evaluateScene(*project, baseDir, assets, tl.frameToSec(mid));
+    applyAnimorphosis(frame, *project, cache, &*project, 0);
+    if (frame.blobs.empty() || !frame.blobs.front().tree) return {{"skipped", 0, "", "", "no C(t) draw at the middle"}};
+    actorId = frame.blobs.front().actorId;
+    view = compileFieldProgram(*frame.blobs.front().tree, 0.0).bounds();
+  }
+  rows.push_back({"device", 0, "", "",
+                  off.ctx->deviceName() + "; " + std::to_string(frames.size()) + " frames " +
+                      std::to_string(frames.front()) + ".." + std::to_string(frames.front() + 2 * span) + ".." +
+                      std::to_string(frames.back()) + " of the animorphosis demo, 1280x720 offscreen"});
+  OrbitCamera camera;
+  camera.frame(view, float(off.width) / float(off.height));
+
+  for (bool gpuPath : {false, true}) {
+    if (gpuPath && !opt.gpu && off.ctx->deviceType() == VK_PHYSICAL_DEVICE_TYPE_CPU) {
+      rows.push_back({"GPU preview: skipped", 0, "", "", "a CPU Vulkan device (run with --gpu to measure it anyway)"});
+      continue;
+    }
+    const std::string tag = std::string(gpuPath ? "GPU" : "CPU") + " preview of C(t) at " + std::to_string(interactive) + "^3";
+    gpu::BlobPreviewSet previews(*off.ctx);
+    gpu::MeshCache meshes(*off.ctx);
+    const gpu::BlobPreviewSettings ps{interactive, refined, interactivePreviewThreads(), gpuPath, false};
+    std::vector<double> frameMs, polyMs;
+    double stageMs[4] = {0, 0, 0, 0};  // evaluate the scene, C(t) into it, previews.update, draw
+    std::string error;
+    size_t meshesShown = 0;
+    gpu::ImplicitPreviewStatus last;
+    auto oneFrame = [&](double timeSec) {
+      auto t = Clock::now();
+      auto lap = [&](int stage) {
+        stageMs[stage] += msSince(t);
+        t = Clock::now();
+      };
+      SceneFrame frame = evaluateScene(*project, baseDir, assets, timeSec);
+      lap(0);
+      applyAnimorphosis(frame, *project, cache, &*project, 0);
+      lap(1);
+      previews.update(*project, frame, ps);
+      lap(2);
+      gpu::Scene scene;
+      gpu::buildScene(frame, project->view, {}, meshes, scene, &previews);
+      if (std::string e = off.render(camera, scene); !e.empty()) error = e;
+      lap(3);
+      meshes.endFrame();
+      previews.endFrame();
+      // A new mesh on screen: its polygonisation time or triangle count differs from the last one's.
+      const gpu::ImplicitPreviewStatus st = previews.status(actorId);
+      if (st.hasMesh && (st.milliseconds != last.milliseconds || st.triangles != last.triangles)) {
+        ++meshesShown;
+        polyMs.push_back(st.milliseconds);
+      }
+      last = st;
+      if (!st.error.empty()) error = st.error;
+    };
+    // Warm-up: the first shape (GPU pipelines compile, buffers grow), settled.
+    const auto warm = Clock::now();
+    oneFrame(tl.frameToSec(frames.front()));
+    while (previews.busy() && msSince(warm) < 120000.0) {
+      previews.waitIdle(1.0);
+      oneFrame(tl.frameToSec(frames.front()));
+    }
+    meshesShown = 0;
+    polyMs.clear();
+    for (double& m : stageMs) m = 0.0;
+    const auto scrubStart = Clock::now();
+    for (int f : frames) {
+      const auto t0 = Clock::now();
+      oneFrame(tl.frameToSec(f));
+      frameMs.push_back(msSince(t0));
+    }
+    const double scrubMs = msSince(scrubStart);
+    char stages[160];
+    const double n = double(frames.size());
+    std::snprintf(stages, sizeof stages, "evaluate the scene %.1f, C(t) into it %.1f, previews %.1f, draw %.1f ms",
+                  stageMs[0] / n, stageMs[1] / n, stageMs[2] / n, stageMs[3] / n);
+    const size_t shownWhileScrubbing = meshesShown;
+    const std::vector<double> polyWhileScrubbing = polyMs;
+    // Scrubbing stops: frames keep coming until the refined mesh is on screen.
+    const auto stop = Clock::now();
+    int settleFrames = 0;
+    while (previews.busy() && msSince(stop) < 60000.0) {
+      oneFrame(tl.frameToSec(frames.back()));
+      ++settleFrames;
+    }
+    const double refineMs = msSince(stop);
+    const gpu::ImplicitPreviewStatus st = previews.status(actorId);
+    if (!error.empty()) {
+      rows.push_back({tag + ": failed", 0, "", "", error});
+      continue;
+    }
+    std::string how = st.gpu ? "GPU" : "CPU, " + std::to_string(ps.threads) + " threads";
+    if (!st.gpuFallback.empty()) how += " (fell back: " + st.gpuFallback + ")";
+    rows.push_back({tag + ", frame loop", 1000.0 / mean(frameMs), "fps", "",
+                    "frame time p50 " + std::to_string(int(percentile(frameMs, 0.5) + 0.5)) + " ms, p95 " +
+                        std::to_string(int(percentile(frameMs, 0.95) + 0.5)) + " ms; " + how});
+    rows.push_back({tag + ", frame loop per frame", mean(frameMs), "ms", "", stages});
+    rows.push_back({tag + ", new meshes shown while scrubbing", 1000.0 * double(shownWhileScrubbing) / scrubMs,
+                    "fps", ">= 20 fps",
+                    std::to_string(shownWhileScrubbing) + " of " + std::to_string(frames.size()) + " frames got their own mesh"});
+    rows.push_back({tag + ", polygonisation p50", percentile(polyWhileScrubbing, 0.5), "ms", "",
+                    "p95 " + std::to_string(int(percentile(polyWhileScrubbing, 0.95) + 0.5)) + " ms, per mesh shown"});
+    rows.push_back({tag + ", settle at " + std::to_string(refined) + "^3 after scrubbing", refineMs, "ms", "",
+                    std::to_string(settleFrames) + " frames; " + std::to_string(st.resolution) + "^3, " +
+                        std::to_string(st.triangles) + " tris"});
+  }
+  return rows;
+}
+
+}  // namespace
+
+ANIMORPH_BENCH("animorph-scrub",
+               "editor preview pipeline scrubbing the dinosaur -> dragon animorphosis, CPU worker vs GPU (offscreen)",
+               runAnimorphScrub);
