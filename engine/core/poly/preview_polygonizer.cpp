@@ -148,6 +148,10 @@ void PreviewPolygonizer::run() {
       std::lock_guard<std::mutex> lock(mutex_);
       return stop_ || pendingId_ != id;
     };
+    auto stopping = [&] {
+      std::lock_guard<std::mutex> lock(mutex_);
+      return stop_;
+    };
 
     auto fail = [&](std::string message) {
       auto r = std::make_shared<PreviewResult>();
@@ -164,7 +168,9 @@ void PreviewPolygonizer::run() {
       int levels[2] = {req.coarseResolution, req.fineResolution};
       int first = req.coarseResolution >= req.fineResolution ? 1 : 0;
       for (int level = first; level < 2; ++level) {
-        if (newer()) break;
+        // A newer request skips the refinement, not the coarse answer: while scrubbing, requests
+        // come faster than one is validated and polygonised, and breaking here would show none.
+        if (level == 1 ? newer() : stopping()) break;
         const int resolution = std::clamp(levels[level], 2, 4096);
         {
           std::lock_guard<std::mutex> lock(mutex_);
