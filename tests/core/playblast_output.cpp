@@ -60,6 +60,15 @@ std::vector<uint8_t> gradient(uint32_t w, uint32_t h, int k) {
   return px;
 }
 
+// A 64x48 mp4 named name in dir, frames as gradient(64, 48, k).
+Mp4Options smallMp4(const TempDir& dir, const std::string& name) {
+  Mp4Options o;
+  o.path = dir.file(name);
+  o.width = 64;
+  o.height = 48;
+  return o;
+}
+
 std::vector<std::string> filesIn(const fs::path& dir) {
   std::vector<std::string> out;
   for (const auto& e : fs::directory_iterator(dir)) out.push_back(e.path().filename().string());
@@ -118,10 +127,7 @@ TEST_CASE("Mp4Writer: frames piped to ffmpeg become an mp4 of that size and coun
     return;
   }
   TempDir dir;
-  Mp4Options o;
-  o.path = dir.file("blast.mp4");
-  o.width = 64;
-  o.height = 48;
+  Mp4Options o = smallMp4(dir, "blast.mp4");
   o.fps = 24.0;
   o.burnIn = true;
   o.firstFrame = 18;
@@ -149,10 +155,7 @@ TEST_CASE("Mp4Writer: a writer dropped before finish (a cancelled playblast) lea
     return;
   }
   TempDir dir;
-  Mp4Options o;
-  o.path = dir.file("cancelled.mp4");
-  o.width = 64;
-  o.height = 48;
+  Mp4Options o = smallMp4(dir, "cancelled.mp4");
   {
     auto w = Mp4Writer::start(o);
     REQUIRE(w);

@@ -13,7 +13,11 @@ using namespace animorph::test;
 namespace fs = std::filesystem;
 
 namespace {
-void openExportMenuItem(EditorHarness& h, const std::string& item) {
+// The walker -> flyer project (frames 30..32) as creatures.animorph in f's folder, then File > Export > item.
+void openExportMenuItem(EditorFixture& f, const std::string& item) {
+  auto& h = f.h;
+  h.document->reset(walkerToFlyerProject("creatures", 30, 32), f.dir.file("creatures.animorph"));
+  h.frames(2);
   h.clickWidget("menu/File");
   h.clickWidget("menu/Export");
   h.frames(1);
@@ -26,9 +30,7 @@ TEST_CASE("File > Export > Meshes and Volumes... writes a PLY sequence, remember
           "[export_ui]") {
   EditorFixture f({1600.0f, 1000.0f});
   auto& h = f.h;
-  h.document->reset(walkerToFlyerProject("creatures", 30, 32), f.dir.file("creatures.animorph"));
-  h.frames(2);
-  openExportMenuItem(h, "Meshes and Volumes...");
+  openExportMenuItem(f, "Meshes and Volumes...");
   REQUIRE(h.hasWidget("export/export"));
   h.clickWidget("export/format");
   h.frames(1);
@@ -57,9 +59,7 @@ TEST_CASE("File > Export > Playblast... checks its settings, remembers them in t
           "[export_ui]") {
   EditorFixture f({1600.0f, 1000.0f});
   auto& h = f.h;
-  h.document->reset(walkerToFlyerProject("creatures", 30, 32), f.dir.file("creatures.animorph"));
-  h.frames(2);
-  openExportMenuItem(h, "Playblast...");
+  openExportMenuItem(f, "Playblast...");
   REQUIRE(h.hasWidget("playblast/start"));
   auto& edit = h.ui->state().playblastDialog.edit;
   CHECK(edit.output == f.dir.file("creatures.mp4"));  // beside the project

@@ -25,14 +25,8 @@ std::string defaultOutput(const Document& doc, ExportFormat f) {
 }  // namespace
 
 void openExportDialog(const Document& doc, ExportDialogState& st) {
-  st.edit = doc.project().exportSettings;
-  if (st.edit.output.empty()) st.edit.output = defaultOutput(doc, st.edit.format);
-  if (st.edit.useTimeline) {
-    st.edit.first = doc.project().timeline.frameStart;
-    st.edit.last = doc.project().timeline.frameEnd;
-  }
-  st.error.clear();
-  st.openNext = true;
+  const ExportSettings& saved = doc.project().exportSettings;
+  openSettingsDialog(doc.project(), saved, defaultOutput(doc, saved.format), st);
 }
 
 std::string exportSettingsProblem(const Project& p, const ExportSettings& s) {
@@ -43,10 +37,10 @@ std::string exportSettingsProblem(const Project& p, const ExportSettings& s) {
   return frameRangeProblem(p, first, last, "export");
 }
 
-ExportDialogChoice drawExportDialog(const Document& doc, ExportDialogState& st) {
+SettingsDialogChoice drawExportDialog(const Document& doc, ExportDialogState& st) {
   st.isOpen = beginCentredModal(kPopup, st.openNext);
-  if (!st.isOpen) return ExportDialogChoice::None;
-  ExportDialogChoice choice = ExportDialogChoice::None;
+  if (!st.isOpen) return SettingsDialogChoice::None;
+  SettingsDialogChoice choice = SettingsDialogChoice::None;
   ExportSettings& s = st.edit;
   const Project& p = doc.project();
 
@@ -72,22 +66,14 @@ ExportDialogChoice drawExportDialog(const Document& doc, ExportDialogState& st) 
   noteWidget("export/resolution");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Polygonisation cells along the longest side of the morph's bounds");
   if (outputPathField("export", s.format == ExportFormat::GltfAnimated ? "File" : "Folder", s.output))
-    choice = ExportDialogChoice::Browse;
+    choice = SettingsDialogChoice::Browse;
   if (s.format != ExportFormat::GltfAnimated)
     ImGui::TextDisabled("Frames are written as %s_####.%s in that folder.", framePrefix(p.name).c_str(),
                         exportFormatName(s.format));
   if (s.format == ExportFormat::VdbSequence)
     ImGui::TextDisabled("Level sets of the implicit frames only (B->C); skinned-mesh frames get no file.");
-  switch (createModalButtons(st.error, "export", "Export", "export")) {
-    case ModalChoice::Create:
-      st.error = exportSettingsProblem(p, s);
-      if (st.error.empty()) choice = ExportDialogChoice::Export;
-      break;
-    case ModalChoice::Cancel: choice = ExportDialogChoice::Cancel; break;
-    case ModalChoice::None: break;
-  }
-  endCreateModal(choice != ExportDialogChoice::None, st.isOpen);
-  return choice;
+  return finishSettingsDialog(choice, st.error, st.isOpen, "export", "Export", "export",
+                              [&] { return exportSettingsProblem(p, s); });
 }
 
 }  // namespace animorph

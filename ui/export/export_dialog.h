@@ -6,17 +6,11 @@
 #include <string>
 
 #include "doc/document.h"
+#include "export/settings_dialog.h"
 
 namespace animorph {
 
-struct ExportDialogState {
-  bool openNext = false;  // open the modal on the next draw
-  bool isOpen = false;
-  ExportSettings edit;    // what the dialog shows
-  std::string error;      // why Export was refused, shown in the dialog
-};
-
-enum class ExportDialogChoice { None, Browse, Export, Cancel };
+using ExportDialogState = SettingsDialogState<ExportSettings>;
 
 // Opens the dialog with the project's last export settings; with no output yet, NAME.glb (or the
 // folder NAME_frames for a sequence) beside the project.
@@ -26,7 +20,7 @@ void openExportDialog(const Document& doc, ExportDialogState& st);
 // resolution out of range.
 std::string exportSettingsProblem(const Project& p, const ExportSettings& s);
 
-// Draws the modal while open. Export is answered only for settings without a problem.
-ExportDialogChoice drawExportDialog(const Document& doc, ExportDialogState& st);
+// Draws the modal while open. Its Export button answers Start, only for settings without a problem.
+SettingsDialogChoice drawExportDialog(const Document& doc, ExportDialogState& st);
 
 }  // namespace animorph

@@ -19,15 +19,8 @@ constexpr const char* kPopup = "Playblast##modal";
 }  // namespace
 
 void openPlayblastDialog(const Document& doc, PlayblastDialogState& st) {
-  st.edit = doc.project().playblastSettings;
-  if (st.edit.output.empty())
-    st.edit.output = (fs::path(doc.baseDir()) / (framePrefix(doc.project().name) + ".mp4")).string();
-  if (st.edit.useTimeline) {
-    st.edit.first = doc.project().timeline.frameStart;
-    st.edit.last = doc.project().timeline.frameEnd;
-  }
-  st.error.clear();
-  st.openNext = true;
+  openSettingsDialog(doc.project(), doc.project().playblastSettings,
+                     (fs::path(doc.baseDir()) / (framePrefix(doc.project().name) + ".mp4")).string(), st);
 }
 
 std::string playblastSettingsProblem(const Project& p, const PlayblastSettings& s) {
@@ -39,10 +32,10 @@ std::string playblastSettingsProblem(const Project& p, const PlayblastSettings& 
   return frameRangeProblem(p, first, last, "playblast");
 }
 
-PlayblastDialogChoice drawPlayblastDialog(const Document& doc, PlayblastDialogState& st) {
+SettingsDialogChoice drawPlayblastDialog(const Document& doc, PlayblastDialogState& st) {
   st.isOpen = beginCentredModal(kPopup, st.openNext);
-  if (!st.isOpen) return PlayblastDialogChoice::None;
-  PlayblastDialogChoice choice = PlayblastDialogChoice::None;
+  if (!st.isOpen) return SettingsDialogChoice::None;
+  SettingsDialogChoice choice = SettingsDialogChoice::None;
   PlayblastSettings& s = st.edit;
   const Project& p = doc.project();
 
@@ -66,18 +59,10 @@ PlayblastDialogChoice drawPlayblastDialog(const Document& doc, PlayblastDialogSt
   noteWidget("playblast/viewport_camera");
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Seen as in the viewport now; off: one camera that frames every frame of the range");
-  if (outputPathField("playblast", "File", s.output)) choice = PlayblastDialogChoice::Browse;
+  if (outputPathField("playblast", "File", s.output)) choice = SettingsDialogChoice::Browse;
   ImGui::TextDisabled("%g frames/s (the timeline's).", p.timeline.fps);
-  switch (createModalButtons(st.error, "playblast", "Playblast", "start")) {
-    case ModalChoice::Create:
-      st.error = playblastSettingsProblem(p, s);
-      if (st.error.empty()) choice = PlayblastDialogChoice::Start;
-      break;
-    case ModalChoice::Cancel: choice = PlayblastDialogChoice::Cancel; break;
-    case ModalChoice::None: break;
-  }
-  endCreateModal(choice != PlayblastDialogChoice::None, st.isOpen);
-  return choice;
+  return finishSettingsDialog(choice, st.error, st.isOpen, "playblast", "Playblast", "start",
+                              [&] { return playblastSettingsProblem(p, s); });
 }
 
 }  // namespace animorph

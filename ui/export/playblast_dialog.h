@@ -7,17 +7,11 @@
 #include <string>
 
 #include "doc/document.h"
+#include "export/settings_dialog.h"
 
 namespace animorph {
 
-struct PlayblastDialogState {
-  bool openNext = false;  // open the modal on the next draw
-  bool isOpen = false;
-  PlayblastSettings edit;  // what the dialog shows
-  std::string error;       // why Playblast was refused, shown in the dialog
-};
-
-enum class PlayblastDialogChoice { None, Browse, Start, Cancel };
+using PlayblastDialogState = SettingsDialogState<PlayblastSettings>;
 
 // Opens the dialog with the project's last playblast settings; with no output yet, NAME.mp4
 // beside the project.
@@ -27,7 +21,7 @@ void openPlayblastDialog(const Document& doc, PlayblastDialogState& st);
 // before first, picture size or resolution out of range, nothing to bake.
 std::string playblastSettingsProblem(const Project& p, const PlayblastSettings& s);
 
-// Draws the modal while open. Start is answered only for settings without a problem.
-PlayblastDialogChoice drawPlayblastDialog(const Document& doc, PlayblastDialogState& st);
+// Draws the modal while open. Its Playblast button answers Start, only for settings without a problem.
+SettingsDialogChoice drawPlayblastDialog(const Document& doc, PlayblastDialogState& st);
 
 }  // namespace animorph

@@ -201,7 +201,7 @@ void EditorUI::draw(EditorContext& ctx) {
 
   drawPrompts(ctx);
   switch (drawExportDialog(doc(ctx), st_.exportDialog)) {
-    case ExportDialogChoice::Browse: {
+    case SettingsDialogChoice::Browse: {
       const bool gltf = st_.exportDialog.edit.format == ExportFormat::GltfAnimated;
       const fs::path out(st_.exportDialog.edit.output);
       st_.browser.open(FileBrowser::Mode::Save, gltf ? "Export to" : "Export into the folder",
@@ -211,12 +211,12 @@ void EditorUI::draw(EditorContext& ctx) {
       st_.browserPurpose = BrowserPurpose::ExportOutput;
       break;
     }
-    case ExportDialogChoice::Export: startExport(ctx); break;
-    case ExportDialogChoice::Cancel:
-    case ExportDialogChoice::None: break;
+    case SettingsDialogChoice::Start: startExport(ctx); break;
+    case SettingsDialogChoice::Cancel:
+    case SettingsDialogChoice::None: break;
   }
   switch (drawPlayblastDialog(doc(ctx), st_.playblastDialog)) {
-    case PlayblastDialogChoice::Browse: {
+    case SettingsDialogChoice::Browse: {
       const fs::path out(st_.playblastDialog.edit.output);
       st_.browser.open(FileBrowser::Mode::Save, "Playblast to", kMp4Filters,
                        out.has_parent_path() ? out.parent_path().string() : doc(ctx).baseDir(),
@@ -224,9 +224,9 @@ void EditorUI::draw(EditorContext& ctx) {
       st_.browserPurpose = BrowserPurpose::PlayblastOutput;
       break;
     }
-    case PlayblastDialogChoice::Start: startPlayblast(ctx); break;
-    case PlayblastDialogChoice::Cancel:
-    case PlayblastDialogChoice::None: break;
+    case SettingsDialogChoice::Start: startPlayblast(ctx); break;
+    case SettingsDialogChoice::Cancel:
+    case SettingsDialogChoice::None: break;
   }
   if (!st_.standinTool.refitAllRequest.empty()) startRefitJob(ctx);
   if (st_.correspondence.bakeRequested) {
