@@ -146,9 +146,10 @@ ViewportFrameResult ViewportFrame::build(EditorGpu& g, EditorUI& ui, EditorConte
                   g.standinBindings.get());
   if (const Actor* ha = doc.project().findActor(out.highlightBlobNode.actorId);
       ha && ha->kind == ActorKind::BlobTree) {  // a node hovered in the correspondence editor
-    if (const BlobNode* hn = ha->blobTree.find(out.highlightBlobNode.node))
-      gpu::addBlobHighlight(
-          subtreeGuides(blobGuides(ha->blobTree, blobActorTimeSec(*ha, timeSec), ha->transform.matrix()), *hn), scene);
+    if (ha->blobTree.find(out.highlightBlobNode.node))
+      gpu::addBlobHighlight(blobSubtreeGuides(ha->blobTree, out.highlightBlobNode.node, blobActorTimeSec(*ha, timeSec),
+                                              ha->transform.matrix()),
+                            scene);
   }
   // Particles as spheres in the colour of the BlobTree surfaces they stand for.
   for (const ParticleDraw& p : particles)

@@ -162,16 +162,40 @@ struct GuideBuilder {
       default: break;
     }
     // Children, in the space this node maps them into.
-    int copies = 1;
-    if (n.type == NodeType::SplineOfNodes)
-      copies = std::clamp(int(std::lround(f("count"))), 1, 64);
-    for (int copy = 0; copy < copies; ++copy) {
-      SpaceMap m;
-      bool mapped = childMap(n, t, copy, m);
-      if (mapped) s.maps.push_back(m);
+    eachChildSpace(n, s, [&] {
       for (const auto& c : n.children) node(c, s);
+    });
+  }
+
+  // Calls visit once per space n maps its children into (a spline-of-nodes: once per drawn copy,
+  // its frames computed once), with that map on s.
+  template <class Visit>
+  void eachChildSpace(const BlobNode& n, NodeSpace& s, Visit&& visit) {
+    if (n.type != NodeType::SplineOfNodes) {
+      SpaceMap m;
+      const bool mapped = childMap(n, t, 0, m);
+      if (mapped) s.maps.push_back(m);
+      visit();
       if (mapped) s.maps.pop_back();
+      return;
     }
+    const std::vector<SpaceMap> frames = splineOfNodesFrames(n, t);
+    const int copies = std::clamp(int(std::lround(n.floatParam("count").evaluate(t))), 1, 64);
+    for (int copy = 0; copy < copies; ++copy) {
+      if (!frames.empty()) s.maps.push_back(frames[size_t(std::min(copy, int(frames.size()) - 1))]);
+      visit();
+      if (!frames.empty()) s.maps.pop_back();
+    }
+  }
+
+  // The guides of path.back()'s sub-tree alone: down path[i..] through the spaces of the nodes
+  // above it (every copy of a spline-of-nodes), drawing nothing of those nodes themselves.
+  void along(const std::vector<const BlobNode*>& path, size_t i, NodeSpace& s) {
+    if (i + 1 == path.size()) {
+      node(*path[i], s);
+      return;
+    }
+    eachChildSpace(*path[i], s, [&] { along(path, i + 1, s); });
   }
 };
 
@@ -212,6 +236,18 @@ BlobGuides blobGuides(const BlobTree& tree, double timeSec, const glm::mat4& act
   s.actor = actor;
   GuideBuilder b{g, timeSec, axisLengthM};
   b.node(tree.root, s);
+  return g;
+}
+
+BlobGuides blobSubtreeGuides(const BlobTree& tree, int nodeId, double timeSec, const glm::mat4& actor,
+                             float axisLengthM) {
+  BlobGuides g;
+  std::vector<const BlobNode*> path;
+  if (!findPath(tree.root, nodeId, path)) return g;
+  NodeSpace s;
+  s.actor = actor;
+  GuideBuilder b{g, timeSec, axisLengthM};
+  b.along(path, 0, s);
   return g;
 }
 

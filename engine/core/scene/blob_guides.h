@@ -58,4 +58,10 @@ BlobGuides blobGuides(const BlobTree& tree, double timeSec, const glm::mat4& act
 // The lines, markers and axes of guides that belong to top or a node below it.
 BlobGuides subtreeGuides(const BlobGuides& guides, const BlobNode& top);
 
+// subtreeGuides(blobGuides(tree, ...), node nodeId) without drawing the rest of the tree: only the
+// spaces of the node's ancestors are evaluated (a node hovered in a tree of thousands). Empty
+// when nodeId is not in the tree.
+BlobGuides blobSubtreeGuides(const BlobTree& tree, int nodeId, double timeSec, const glm::mat4& actor,
+                             float axisLengthM = 0.12f);
+
 }  // namespace animorph
