@@ -150,6 +150,7 @@ ViewportFrameResult ViewportFrame::build(EditorGpu& g, EditorUI& ui, EditorConte
       gpu::addBlobHighlight(
           subtreeGuides(blobGuides(ha->blobTree, blobActorTimeSec(*ha, timeSec), ha->transform.matrix()), *hn), scene);
   }
+  if (!out.highlightChain.lines.empty()) gpu::addBlobHighlight(out.highlightChain, scene);  // Chain matching's hovered row
   // Particles as spheres in the colour of the BlobTree surfaces they stand for.
   for (const ParticleDraw& p : particles)
     scene.particles.push_back(gpu::particleSpheres(p, gpu::kBlobSurfaceColor, p.actorId == doc.selection.actorId));

@@ -271,6 +271,12 @@ TEST_CASE("chain matching: a partner combo re-pairs a chain in one undo step, th
   const std::string combo = "morph/chains/source/" + std::to_string(root);
   REQUIRE(h.hasWidget(combo));
   CHECK_FALSE(h.hasWidget("morph/chains/reset/" + std::to_string(root)));  // automatic: nothing to reset
+  // Hovering the row highlights the chain's stand-in segments in the viewport.
+  CHECK(h.ui->output().highlightChain.lines.empty());
+  h.moveTo(h.widgetCenter(combo));
+  h.frames(1);
+  CHECK(h.ui->output().highlightChain.lines.size() == automatic.source.chains[size_t(root)].segments.size());
+  CHECK(h.ui->output().highlightChain.actorId == "hero");
   // Open the combo and pick "unmatched" (its second entry), overriding the root rule.
   h.clickWidget(combo);
   h.frames(1);

@@ -52,9 +52,18 @@ void partnerCombo(Document& doc, const SkeletonCorrespondence& c, size_t i, cons
   ImGui::EndCombo();
 }
 
+// The pointer is over the table row drawn from rowTop to the last item (the window hovered,
+// no popup open over it).
+bool rowHovered(float rowTop) {
+  if (!ImGui::IsWindowHovered(ImGuiHoveredFlags_AllowWhenBlockedByActiveItem)) return false;
+  const float y = ImGui::GetIO().MousePos.y;
+  return y >= rowTop && y < ImGui::GetItemRectMax().y + ImGui::GetStyle().CellPadding.y;
+}
+
 }  // namespace
 
-void drawMorphChains(Document& doc, const MorphPanelState& st) {
+void drawMorphChains(Document& doc, MorphPanelState& st) {
+  st.hoveredChain = -1;
   const bool open = ImGui::CollapsingHeader("Chain matching");
   noteWidget("morph/chains");
   if (!open) return;
@@ -88,6 +97,7 @@ void drawMorphChains(Document& doc, const MorphPanelState& st) {
       const ChainPair* pair = it != pairs.end() ? &*it : nullptr;
       ImGui::PushID(int(i));
       ImGui::TableNextRow();
+      const float rowTop = ImGui::GetCursorScreenPos().y;
       ImGui::TableNextColumn();
       const char* root = int(i) == source.mainRoot ? " (root)" : "";
       if (pair) ImGui::TextColored(kArtistColour, "%s%s *", name.c_str(), root);
@@ -103,6 +113,7 @@ void drawMorphChains(Document& doc, const MorphPanelState& st) {
         noteWidget("morph/chains/reset/" + std::to_string(i));
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("Reset: back to the automatic matching");
       }
+      if (rowHovered(rowTop)) st.hoveredChain = int(i), st.hoveredChainTarget = false;
       ImGui::PopID();
     }
     ImGui::EndTable();
@@ -116,6 +127,7 @@ void drawMorphChains(Document& doc, const MorphPanelState& st) {
     ImGui::TableHeadersRow();
     for (size_t i = 0; i < target.chains.size(); ++i) {
       ImGui::TableNextRow();
+      const float rowTop = ImGui::GetCursorScreenPos().y;
       ImGui::TableNextColumn();
       ImGui::Text("%s%s", target.chains[i].name.c_str(), int(i) == target.mainRoot ? " (root)" : "");
       ImGui::TableNextColumn();
@@ -123,9 +135,29 @@ void drawMorphChains(Document& doc, const MorphPanelState& st) {
       if (c->targetMatch[i] >= 0) ImGui::TextUnformatted(text.c_str());
       else ImGui::TextDisabled("%s", text.c_str());
       noteWidget("morph/chains/target/" + std::to_string(i));
+      if (rowHovered(rowTop)) st.hoveredChain = int(i), st.hoveredChainTarget = true;
     }
     ImGui::EndTable();
   }
+}
+
+BlobGuides hoveredChainGuides(const MorphPanelState& st, double timeSec) {
+  BlobGuides out;
+  const SkeletonCorrespondence* c = st.runtime ? st.runtime->correspondence.get() : nullptr;
+  if (!c || st.hoveredChain < 0) return out;
+  const SkeletonChains& chains = st.hoveredChainTarget ? c->target : c->source;
+  const MorphActorRuntime& actor = st.hoveredChainTarget ? st.runtime->target : st.runtime->source;
+  if (size_t(st.hoveredChain) >= chains.chains.size() || actor.isTree()) return out;
+  const std::vector<PosedSegment> posed = posedOperand(actor, timeSec, -1.0).segments;
+  out.actorId = actor.actor.id;
+  for (int seg : chains.chains[size_t(st.hoveredChain)].segments) {
+    if (seg < 0 || size_t(seg) >= posed.size()) continue;
+    const PosedSegment& s = posed[size_t(seg)];
+    out.lines.push_back({s.a, s.b, -1});
+    out.markers.push_back({s.a, -1});
+    out.markers.push_back({s.b, -1});
+  }
+  return out;
 }
 
 }  // namespace animorph
