@@ -11,6 +11,7 @@
 
 #include "doc/chain_pair_commands.h"
 #include "doc/document.h"
+#include "doc/morph_create.h"
 #include "doc/project_io.h"
 #include "morph/chain_matching.h"
 #include "morph/correspondence_morph.h"
@@ -270,4 +271,35 @@ TEST_CASE("chain pair commands: one undo step each, a taken target moves, reset 
   for (int i = 0; i < 5; ++i) REQUIRE(doc.undo());
   CHECK(doc.project().morph == test::demoMorph().project.morph);
   CHECK_FALSE(doc.dirty());
+}
+
+TEST_CASE("chain pairs follow the sides: reversed by a swap, kept by the same choice, dropped for other actors",
+          "[morph][chain_pairs]") {
+  Document doc;
+  Project p = test::demoMorph().project;
+  p.morph.chainPairs = {{"chest", std::string("hub")}, {"neck", std::nullopt}};
+  doc.reset(p, "");
+  doc.execute(swapMorphSidesCommand(doc.project()));
+  CHECK(doc.project().morph.sourceActorId == p.morph.targetActorId);
+  CHECK(doc.project().morph.chainPairs == std::vector<ChainPair>{{"hub", std::string("chest")}});
+  REQUIRE(doc.undo());
+  CHECK(doc.project().morph.chainPairs == p.morph.chainPairs);
+
+  AssetCache assets;
+  const std::string& dir = test::demoMorph().dir;
+  const MorphSetup& m = p.morph;
+  auto same = proposeMorph(p, dir, assets, {m.sourceActorId, m.targetActorId, m.method, m.markers});
+  REQUIRE(same);
+  CHECK(same->chainPairs == m.chainPairs);
+  auto swapped = proposeMorph(p, dir, assets, {m.targetActorId, m.sourceActorId, m.method, m.markers});
+  REQUIRE(swapped);
+  CHECK(swapped->chainPairs == std::vector<ChainPair>{{"hub", std::string("chest")}});
+  // Another actor on one side: the pairs named the old rig's joints.
+  Project three = p;
+  Actor other = *three.findActor(m.targetActorId);
+  other.id = "gear2";
+  three.actors.push_back(other);
+  auto changed = proposeMorph(three, dir, assets, {m.sourceActorId, "gear2", m.method, m.markers});
+  REQUIRE(changed);
+  CHECK(changed->chainPairs.empty());
 }

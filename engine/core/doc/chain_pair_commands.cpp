@@ -31,6 +31,13 @@ bool resetChainPair(std::vector<ChainPair>& pairs, const std::string& source) {
   return pairs.size() != before;
 }
 
+std::vector<ChainPair> swappedChainPairs(const std::vector<ChainPair>& pairs) {
+  std::vector<ChainPair> out;
+  for (const ChainPair& p : pairs)
+    if (p.target) out.push_back({*p.target, p.source});
+  return out;
+}
+
 std::unique_ptr<Command> setChainPairCommand(const Project& p, ChainPair pair) {
   const std::string label = pair.target ? "Pair chain " + pair.source + " with " + *pair.target
                                         : "Leave chain " + pair.source + " unmatched";

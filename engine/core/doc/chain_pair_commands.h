@@ -18,6 +18,9 @@ namespace animorph {
 void setChainPair(std::vector<ChainPair>& pairs, ChainPair pair);
 // Removes source's pairing; false when it has none.
 bool resetChainPair(std::vector<ChainPair>& pairs, const std::string& source);
+// The pairs of the morph with source and target swapped: each pair reversed;
+// a chain left unmatched names the new target's chain, so its entry goes.
+std::vector<ChainPair> swappedChainPairs(const std::vector<ChainPair>& pairs);
 
 // "Pair chain SRC with TGT" / "Leave chain SRC unmatched". Null when the pair is already set.
 std::unique_ptr<Command> setChainPairCommand(const Project& p, ChainPair pair);
