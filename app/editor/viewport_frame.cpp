@@ -151,6 +151,7 @@ ViewportFrameResult ViewportFrame::build(EditorGpu& g, EditorUI& ui, EditorConte
                                               ha->transform.matrix()),
                             scene);
   }
+  if (!out.highlightChain.lines.empty()) gpu::addBlobHighlight(out.highlightChain, scene);  // Chain matching's hovered row
   // Particles as spheres in the colour of the BlobTree surfaces they stand for.
   for (const ParticleDraw& p : particles)
     scene.particles.push_back(gpu::particleSpheres(p, gpu::kBlobSurfaceColor, p.actorId == doc.selection.actorId));

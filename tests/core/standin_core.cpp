@@ -161,3 +161,32 @@ TEST_CASE("no pop through A..D on tentacle.glb -> plate.glb", "[morph][continuit
   }
   checkNoPop("tentacle -> plate", *p, ANIMORPH_SHARED_ASSETS);
 }
+
+TEST_CASE("stand-in core: its segments shorten as it melts, so no segment end stays in it mid-expansion",
+          "[morph][continuity][core]") {
+  // The gear's outermost chords end on its teeth's circle, outside the rim between two teeth:
+  // a core melting onto its whole skeleton kept a blob there, outside the expanded mesh.
+  const MorphRuntime& rt = *test::demoMorph().runtime;
+  const MorphMarkers& k = rt.setup.markers;
+  auto inside = [](const FieldProgram& p, const glm::vec3& x) { return test::fieldAt(p, x) > 0.0f; };  // f - T
+  for (double u : {0.0, 0.67}) {
+    const double t = rt.timeline.frameToSec(k.c + u * (k.d - k.c));
+    auto core = standinCoreField(rt, t, true, u);
+    REQUIRE(core);
+    size_t endsInside = 0, middlesInside = 0;
+    const std::vector<PosedSegment> segs = posedOperand(rt.target, t, 1.0).segments;
+    size_t ends = 0;  // of segments longer than their diameter (the gear's chords, not its hub)
+    for (const PosedSegment& s : segs) {
+      middlesInside += inside(core->program, 0.5f * (s.a + s.b));
+      if (glm::length(s.b - s.a) <= 2.0f * s.radius) continue;
+      ends += 2;
+      endsInside += inside(core->program, s.a) + inside(core->program, s.b);
+    }
+    INFO("u " << u << ": " << endsInside << " of " << ends << " segment ends inside the core, " << middlesInside
+              << " middles");
+    REQUIRE(ends >= 8);
+    if (u == 0.0) CHECK(endsInside == ends);  // at C the core is the stand-in
+    else CHECK(endsInside == 0);
+    CHECK(middlesInside > 0);  // melting, not gone
+  }
+}

@@ -250,3 +250,65 @@ TEST_CASE("everything edited in the morph panel and curve editor survives save a
   CHECK((*back)->project().morph == m);
   CHECK((*back)->project().findActor("other")->loop == loop);
 }
+
+TEST_CASE("chain matching: a partner combo re-pairs a chain in one undo step, the preview and the file follow",
+          "[morph][chain_pairs]") {
+  MorphFixture f;
+  auto& h = f.h;
+  Project p = h.doc().project();
+  p.morph.method = MorphMethod::SkeletonCorrespondence;
+  h.document->reset(p, f.dir.file("scene.animorph"));
+  h.ctx.morphRuntime = prepare(h, h.doc().project());
+  REQUIRE(h.ctx.morphRuntime->correspondence);
+  const SkeletonCorrespondence& automatic = *h.ctx.morphRuntime->correspondence;
+  const int root = automatic.source.mainRoot;
+  REQUIRE(root >= 0);
+  REQUIRE(automatic.sourceMatch[size_t(root)] == automatic.target.mainRoot);  // the root rule
+  const std::string name = automatic.source.chains[size_t(root)].name;
+  h.frames(1);
+  h.clickWidget("morph/chains");
+  h.frames(1);
+  const std::string combo = "morph/chains/source/" + std::to_string(root);
+  REQUIRE(h.hasWidget(combo));
+  CHECK_FALSE(h.hasWidget("morph/chains/reset/" + std::to_string(root)));  // automatic: nothing to reset
+  // Hovering the row highlights the chain's stand-in segments in the viewport.
+  CHECK(h.ui->output().highlightChain.lines.empty());
+  h.moveTo(h.widgetCenter(combo));
+  h.frames(1);
+  CHECK(h.ui->output().highlightChain.lines.size() == automatic.source.chains[size_t(root)].segments.size());
+  CHECK(h.ui->output().highlightChain.actorId == "hero");
+  // Open the combo and pick "unmatched" (its second entry), overriding the root rule.
+  h.clickWidget(combo);
+  h.frames(1);
+  REQUIRE(h.hasWidget("morph/chains/option/1"));
+  h.clickWidget("morph/chains/option/1");
+  CHECK(f.morph().chainPairs == std::vector<ChainPair>{{name, std::nullopt}});
+  CHECK(h.doc().history().size() == 1);
+  // The morph prepared again (as the app does on a new revision) follows the pair.
+  h.ctx.morphRuntime = prepare(h, h.doc().project());
+  const SkeletonCorrespondence& paired = *h.ctx.morphRuntime->correspondence;
+  CHECK(paired.sourceMatch[size_t(root)] == -1);
+  CHECK(paired.pinned[size_t(root)]);
+  CHECK(paired.automatic[size_t(root)] == automatic.target.mainRoot);
+  h.frames(2);
+  // Saved and opened again, the pair is there.
+  const std::string path = f.dir.file("paired.animorph");
+  REQUIRE(h.doc().saveAs(path));
+  auto back = Document::open(path);
+  REQUIRE(back);
+  CHECK((*back)->project().morph.chainPairs == f.morph().chainPairs);
+  // The row's reset button gives the chain back to the automatic matching; undo restores the pair.
+  REQUIRE(h.hasWidget("morph/chains/reset/" + std::to_string(root)));
+  h.clickWidget("morph/chains/reset/" + std::to_string(root));
+  CHECK(f.morph().chainPairs.empty());
+  CHECK(h.doc().history().size() == 2);
+  h.tapKey(GLFW_KEY_Z, true);
+  CHECK(f.morph().chainPairs == std::vector<ChainPair>{{name, std::nullopt}});
+  h.tapKey(GLFW_KEY_Z, true);
+  CHECK(f.morph().chainPairs.empty());
+  // "Reset all to automatic" is disabled with no pair: clicking it changes nothing.
+  h.frames(1);
+  h.clickWidget("morph/chains/reset-all");
+  CHECK_FALSE(h.doc().history().canUndo());
+  CHECK(h.doc().history().canRedo());
+}

@@ -125,7 +125,7 @@ void drawMorphSettings(Document& doc, AssetCache& assets, MorphPanelState& st, D
   } else {
     noteWidget("morph/clips");
   }
-  if (m.method == MorphMethod::SkeletonCorrespondence) drawMorphChains(st);
+  if (m.method == MorphMethod::SkeletonCorrespondence) drawMorphChains(doc, st);
   drawMorphProjection(doc, st, drag);
   drawMorphSegments(doc, assets, st, drag, status);
 }

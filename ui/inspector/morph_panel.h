@@ -13,6 +13,7 @@
 #include "doc/document.h"
 #include "widgets/drag_merge.h"
 #include "morph/morph_runtime.h"
+#include "scene/blob_guides.h"
 #include "shell/status_bar.h"
 
 namespace animorph {
@@ -23,7 +24,16 @@ struct MorphPanelState {
   // The prepared morph the viewport shows (the app sets it; null: none yet).
   // Its projection statistics and notes are the projection report.
   std::shared_ptr<const MorphRuntime> runtime;
+  // The chain whose row the pointer is over in Chain matching (-1: none), of
+  // the target's rig when hoveredChainTarget; the viewport highlights it.
+  int hoveredChain = -1;
+  bool hoveredChainTarget = false;
 };
+
+// The chain hovered in Chain matching drawn as guides: its stand-in segments
+// posed at timeSec (world space) as lines, their ends as markers. Empty when no
+// chain is hovered or the prepared morph has no skeleton correspondence.
+BlobGuides hoveredChainGuides(const MorphPanelState& st, double timeSec);
 
 // Refused edits report to status.
 void drawMorphSettings(Document& doc, AssetCache& assets, MorphPanelState& st, DragMerge& drag,

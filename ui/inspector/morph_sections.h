@@ -17,8 +17,11 @@ void drawMorphCurveSettings(Document& doc, DragMerge& drag, StatusMessage& statu
 void drawMorphProjection(Document& doc, const MorphPanelState& st, DragMerge& drag);
 
 // Skeleton correspondence: the source's and the target's chains with their
-// automatic pairing (read-only), from the prepared morph. morph_chains_panel.cpp.
-void drawMorphChains(const MorphPanelState& st);
+// pairing, from the prepared morph; per source chain a combo pairs it by hand
+// (or leaves it unmatched, or gives it back to the automatic matching), each
+// change one command on the morph's chain pairs. Sets st.hoveredChain to the
+// row under the pointer. morph_chains_panel.cpp.
+void drawMorphChains(Document& doc, MorphPanelState& st);
 
 // The stand-in segments of source and target, and the selected one's A / B
 // offsets and radius scale at the current morph progress with key buttons.

@@ -10,6 +10,7 @@
 #include "doc/document.h"
 #include "math/bounds.h"
 #include "morph/morph_runtime.h"
+#include "scene/blob_guides.h"
 #include "view/camera.h"
 #include "shell/status_bar.h"
 #include "viewport/viewport_input.h"
@@ -51,6 +52,7 @@ struct EditorOutput {
   bool weightPaintMode = false;              // Weight Paint mode: show weightOverlay.actorId alone, unmorphed
   WeightOverlayRequest weightOverlay;        // draw this actor in heat colours of these weights
   Selection highlightBlobNode;               // highlight this BlobTree node's skeleton (empty actorId: none)
+  BlobGuides highlightChain;                 // highlight these lines (a chain hovered in Chain matching; empty: none)
 };
 
 }  // namespace animorph

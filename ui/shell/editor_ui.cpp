@@ -164,6 +164,7 @@ void EditorUI::draw(EditorContext& ctx) {
 
   drawOutlinerPanel(st_.layout.outliner, doc(ctx), ctx.assets, st_.outliner, actions, st_.status);
   st_.inspector.morph.runtime = ctx.morphRuntime;
+  st_.inspector.morph.hoveredChain = -1;  // set again while Chain matching is drawn
   st_.inspector.particles.busy = job_ != nullptr;
   drawInspectorPanel(st_.layout.inspector, doc(ctx), ctx.assets, st_.inspector, st_.drag, st_.status,
                      st_.standinTool);
@@ -246,6 +247,8 @@ void EditorUI::draw(EditorContext& ctx) {
   out_.jobRunning = job_ != nullptr;
   out_.weightOverlay = weightOverlayRequest(doc(ctx), st_.paint);
   out_.highlightBlobNode = st_.correspondence.visible ? st_.correspondence.hovered : Selection{};
+  out_.highlightChain = hoveredChainGuides(st_.inspector.morph,
+                                           doc(ctx).project().timeline.currentTimeSec());
   const LayoutRect& vp = st_.layout.viewport;
   out_.viewport = {vp.min, vp.size};
   setActiveWidgetRects(nullptr);

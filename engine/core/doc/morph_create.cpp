@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "doc/chain_pair_commands.h"
 #include "standin/fit_standin.h"
 
 namespace animorph {
@@ -28,6 +29,9 @@ Result<MorphSetup> proposeMorph(const Project& p, const std::string& baseDir, As
   if (!(k.a <= k.b && k.b <= k.c && k.c <= k.d))
     return Error{"morph.markers: A <= B <= C <= D is needed (got " + std::to_string(k.a) + ", " +
                  std::to_string(k.b) + ", " + std::to_string(k.c) + ", " + std::to_string(k.d) + ")"};
+  // Chain pairs name the two rigs' joints: kept for the same sides, reversed for swapped ones.
+  if (c.sourceActorId == m.targetActorId && c.targetActorId == m.sourceActorId) m.chainPairs = swappedChainPairs(m.chainPairs);
+  else if (c.sourceActorId != m.sourceActorId || c.targetActorId != m.targetActorId) m.chainPairs.clear();
   m.sourceActorId = c.sourceActorId;
   m.targetActorId = c.targetActorId;
   m.method = c.method;
@@ -69,6 +73,7 @@ std::unique_ptr<Command> setMorphCommand(const Project& p, MorphSetup after, std
 std::unique_ptr<Command> swapMorphSidesCommand(const Project& p) {
   MorphSetup m = p.morph;
   std::swap(m.sourceActorId, m.targetActorId);
+  m.chainPairs = swappedChainPairs(m.chainPairs);
   const MorphMarkers k = m.markers;
   // Mirrored inside [A, D]: the target's expansion becomes the new source's collapse.
   m.markers = {k.a, k.a + (k.d - k.c), k.d - (k.b - k.a), k.d};

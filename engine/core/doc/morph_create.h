@@ -22,7 +22,8 @@ struct MorphChoice {
 };
 
 // The project's morph with choice applied (the rest of the setup, e.g. easing
-// and projection, kept). baseDir resolves glTF asset paths; messages (may be
+// and projection, kept; the chain pairs kept for the same two actors, reversed
+// when they swap sides, dropped for other actors). baseDir resolves glTF asset paths; messages (may be
 // null) receive one line per stand-in fitted. Errors name the actor and the
 // reason: unknown id, source = target, markers out of order, an asset that
 // does not load, a stand-in that cannot be fitted.
@@ -37,7 +38,7 @@ std::unique_ptr<Command> setMorphCommand(const Project& p, MorphSetup after, std
 
 // The inspector's swap: source and target exchanged, markers mirrored inside
 // [A, D] so that the transition lengths follow their actors; the stand-ins
-// and tracks stay with their actors.
+// and tracks stay with their actors, chain pairs are reversed (swappedChainPairs).
 std::unique_ptr<Command> swapMorphSidesCommand(const Project& p);
 
 }  // namespace animorph

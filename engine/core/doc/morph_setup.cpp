@@ -39,7 +39,7 @@ bool sameTrack(const Track<T>& a, const Track<T>& b) {
 
 bool MorphSetup::operator==(const MorphSetup& o) const {
   if (sourceActorId != o.sourceActorId || targetActorId != o.targetActorId || !(markers == o.markers) ||
-      method != o.method || correspondenceBlend != o.correspondenceBlend || interpolationBound != o.interpolationBound || !(spaceTime == o.spaceTime) || !sameTrack(easing, o.easing) || !sameTrack(blend, o.blend) ||
+      method != o.method || correspondenceBlend != o.correspondenceBlend || chainPairs != o.chainPairs || interpolationBound != o.interpolationBound || !(spaceTime == o.spaceTime) || !sameTrack(easing, o.easing) || !sameTrack(blend, o.blend) ||
       weightMapShift != o.weightMapShift || !sameTrack(noiseAmplitude, o.noiseAmplitude) ||
       noiseFrequency != o.noiseFrequency || !(projection == o.projection) || !(crossFade == o.crossFade) ||
       actors.size() != o.actors.size())

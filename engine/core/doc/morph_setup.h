@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "anim/track.h"
+#include "morph/chain_pair.h"
 #include "morph/morph_field.h"
 #include "standin/standin.h"
 
@@ -71,6 +72,9 @@ struct MorphSetup {
   // SkeletonCorrespondence: how its two in-between stand-ins are combined
   // (Interpolation or SpaceTime; morph/correspondence_morph.h).
   MorphMethod correspondenceBlend = MorphMethod::Interpolation;
+  // SkeletonCorrespondence: the artist's chain pairings, at most one per source
+  // chain (morph/chain_pair.h); the automatic matching fills in the rest.
+  std::vector<ChainPair> chainPairs;
   // Interpolation: each side's potential bounded at this many T before the
   // blend (morph/morph_field.h: buildMorphProgram); <= 1: unbounded.
   float interpolationBound = kDefaultInterpolationBound;

@@ -22,6 +22,12 @@ json morphSetupToJson(const MorphSetup& m) {
   j["method"] = morphMethodName(m.method);
   if (m.correspondenceBlend != MorphMethod::Interpolation)  // written when set: older projects stay byte-identical
     j["correspondence_blend"] = morphMethodName(m.correspondenceBlend);
+  if (!m.chainPairs.empty()) {  // written when set: older projects stay byte-identical
+    json pairs = json::array();
+    for (const ChainPair& p : m.chainPairs)
+      pairs.push_back({{"source", p.source}, {"target", p.target ? json(*p.target) : json(nullptr)}});
+    j["chain_pairs"] = pairs;
+  }
   if (m.interpolationBound != kDefaultInterpolationBound) j["interpolation_bound"] = m.interpolationBound;
   const SpaceTimeParams& st = m.spaceTime;
   j["space_time"] = {{"time_scale", st.timeScale}, {"a0", st.a0}, {"a1", st.a1}, {"a2", st.a2}, {"a3", st.a3}};
@@ -100,6 +106,32 @@ struct Parser {
   }
 };
 
+// The artist's chain pairs: [{"source": JOINT, "target": JOINT or null}], one per
+// source chain. Names are checked against the rigs when the morph is prepared.
+std::vector<ChainPair> chainPairsFromJson(Parser& r, const json& j, const std::string& where) {
+  std::vector<ChainPair> out;
+  if (!j.is_array()) {
+    r.fail(where, "expected an array of {\"source\": JOINT, \"target\": JOINT or null}");
+    return out;
+  }
+  for (size_t i = 0; r.ok() && i < j.size(); ++i) {
+    const std::string wi = where + "[" + std::to_string(i) + "]";
+    if (!j[i].is_object()) { r.fail(wi, "expected an object {\"source\": JOINT, \"target\": JOINT or null}"); break; }
+    ChainPair p;
+    p.source = r.string(j[i], "source", wi);
+    if (r.ok() && p.source.empty()) r.fail(wi + ".source", "expected a joint name");
+    if (r.ok() && !j[i].contains("target")) r.fail(wi + ".target", "missing (a joint name, or null: left unmatched)");
+    if (!r.ok()) break;
+    const json& t = j[i]["target"];
+    if (t.is_string() && !t.get<std::string>().empty()) p.target = t.get<std::string>();
+    else if (!t.is_null()) { r.fail(wi + ".target", "expected a joint name, or null: left unmatched"); break; }
+    for (const ChainPair& q : out)
+      if (q.source == p.source) r.fail(wi + ".source", "chain '" + p.source + "' is already paired by an earlier entry");
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
 }  // namespace
 
 Result<MorphSetup> morphSetupFromJson(const json& j, const std::string& sourceName,
@@ -138,6 +170,7 @@ Result<MorphSetup> morphSetupFromJson(const json& j, const std::string& sourceNa
         m.correspondenceBlend == MorphMethod::SkeletonCorrespondence)
       r.fail(w + ".correspondence_blend", "expected \"interpolation\" or \"space_time\"");
   }
+  if (r.ok() && j.contains("chain_pairs")) m.chainPairs = chainPairsFromJson(r, j["chain_pairs"], w + ".chain_pairs");
   if (r.ok() && j.contains("interpolation_bound")) {  // absent: the default bound
     m.interpolationBound = float(r.number(j, "interpolation_bound", w, m.interpolationBound));
     if (r.ok() && !(m.interpolationBound >= 0.0f && m.interpolationBound <= 1e6f))

@@ -169,9 +169,11 @@ Result<std::shared_ptr<const MorphRuntime>> prepareMorph(const Project& project,
   rt->source = std::move(*src);
   rt->target = std::move(*dst);
   if (m.method == MorphMethod::SkeletonCorrespondence) {
-    auto c = morphSkeletonCorrespondence(rt->source, rt->target);
-    if (c) rt->correspondence = std::make_shared<const SkeletonCorrespondence>(std::move(*c));
-    else rt->notes.push_back("skeleton correspondence: " + c.error() + ": interpolation used instead");
+    auto c = morphSkeletonCorrespondence(rt->source, rt->target, m.chainPairs);
+    if (c) {
+      for (const std::string& w : c->warnings) rt->notes.push_back("skeleton correspondence: morph." + w);
+      rt->correspondence = std::make_shared<const SkeletonCorrespondence>(std::move(*c));
+    } else rt->notes.push_back("skeleton correspondence: " + c.error() + ": interpolation used instead");
   }
   MorphMarkers& k = rt->setup.markers;
   if (rt->source.isTree()) k.a = k.b;
@@ -180,7 +182,8 @@ Result<std::shared_ptr<const MorphRuntime>> prepareMorph(const Project& project,
 }
 
 Result<SkeletonCorrespondence> morphSkeletonCorrespondence(const MorphActorRuntime& source,
-                                                           const MorphActorRuntime& target) {
+                                                           const MorphActorRuntime& target,
+                                                           const std::vector<ChainPair>& pairs) {
   for (const MorphActorRuntime* a : {&source, &target})
     if (a->isTree() || !a->character)
       return Error{"actor '" + a->actor.id + "' is a BlobTree (no rig to correspond)"};
@@ -188,7 +191,7 @@ Result<SkeletonCorrespondence> morphSkeletonCorrespondence(const MorphActorRunti
   SkeletonChains t = skeletonChains(*target.character, target.morph.standin);
   for (const auto& [chains, a] : {std::pair{&s, &source}, std::pair{&t, &target}})
     if (chains->chains.empty()) return Error{"actor '" + a->actor.id + "': no stand-in segment is on a node of its rig"};
-  return correspondSkeletons(std::move(s), std::move(t));
+  return correspondSkeletons(std::move(s), std::move(t), pairs);
 }
 
 MorphStage morphStageAt(const MorphSetup& s, const Timeline& tl, double timeSec, double& u) {

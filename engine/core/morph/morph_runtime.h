@@ -61,10 +61,13 @@ struct MorphRuntime {
 Result<std::shared_ptr<const MorphRuntime>> prepareMorph(const Project& project, const std::string& baseDir,
                                                          AssetCache& assets, const MorphRuntime* previous = nullptr);
 
-// The automatic skeleton correspondence between two prepared actors'
-// stand-ins. Errors: a side is a BlobTree actor (no rig), or has no chain.
+// The skeleton correspondence between two prepared actors' stand-ins, with
+// the artist's chain pairs (MorphSetup::chainPairs) applied. Errors: a side is
+// a BlobTree actor (no rig), or has no chain. Pairs that name no chain are
+// warnings of the result (prepareMorph adds them to the notes).
 Result<SkeletonCorrespondence> morphSkeletonCorrespondence(const MorphActorRuntime& source,
-                                                           const MorphActorRuntime& target);
+                                                           const MorphActorRuntime& target,
+                                                           const std::vector<ChainPair>& pairs = {});
 
 struct MorphFrameSettings {
   int resolution = 48;     // B->C: polygonisation cells along the longest side of the morph's bounds

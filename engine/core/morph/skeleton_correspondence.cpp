@@ -151,35 +151,118 @@ float chainMatchCost(const SkeletonChain& a, const SkeletonChain& b) {
   return side + direction + 2.0f * std::abs(a.length - b.length) + std::abs(a.subtree - b.subtree);
 }
 
-SkeletonCorrespondence correspondSkeletons(SkeletonChains source, SkeletonChains target) {
+namespace {
+
+// Per source chain in `fixed`: -1 free, kArtistUnmatched, or the target chain an
+// artist pair gives it. Returns per source chain its target chain (-1: none):
+// the fixed ones as given, the free ones by a minimum-cost assignment over the
+// target chains no pair takes. The main roots match each other while both are
+// free: any other pairing with either costs more than any real one.
+constexpr int kArtistUnmatched = -2;
+
+std::vector<int> assignChains(const SkeletonChains& source, const SkeletonChains& target, const std::vector<int>& fixed) {
+  std::vector<int> match(source.chains.size(), -1);
+  std::vector<char> taken(target.chains.size(), 0);
+  std::vector<int> rows, cols;
+  for (size_t r = 0; r < source.chains.size(); ++r) {
+    if (fixed[r] >= 0) match[r] = fixed[r], taken[size_t(fixed[r])] = 1;
+    else if (fixed[r] == -1) rows.push_back(int(r));
+  }
+  for (size_t k = 0; k < target.chains.size(); ++k)
+    if (!taken[k]) cols.push_back(int(k));
+  if (rows.empty() || cols.empty()) return match;
+  const bool rootRule = source.mainRoot >= 0 && target.mainRoot >= 0 && fixed[size_t(source.mainRoot)] == -1 &&
+                        !taken[size_t(target.mainRoot)];
+  constexpr double kForbidden = 100.0;
+  const size_t nr = rows.size(), nc = cols.size();
+  std::vector<double> cost(nr * nc);
+  for (size_t i = 0; i < nr; ++i)
+    for (size_t j = 0; j < nc; ++j) {
+      const bool rootR = rootRule && rows[i] == source.mainRoot, rootK = rootRule && cols[j] == target.mainRoot;
+      cost[i * nc + j] = rootR && rootK ? 0.0
+                         : rootR || rootK
+                             ? kForbidden
+                             : double(chainMatchCost(source.chains[size_t(rows[i])], target.chains[size_t(cols[j])]));
+    }
+  const std::vector<int> assigned = minCostAssignment(cost, int(nr), int(nc));
+  for (size_t i = 0; i < nr; ++i) {
+    const int j = assigned[i];
+    if (j < 0) continue;
+    const int r = rows[i], k = cols[size_t(j)];
+    const bool roots = rootRule && r == source.mainRoot && k == target.mainRoot;
+    const float cst = chainMatchCost(source.chains[size_t(r)], target.chains[size_t(k)]);
+    if (!roots && (cost[i * nc + size_t(j)] >= kForbidden || cst > kMaxChainMatchCost)) continue;
+    match[size_t(r)] = k;
+  }
+  return match;
+}
+
+}  // namespace
+
+int chainNamed(const SkeletonChains& chains, const std::string& name) {
+  for (size_t i = 0; i < chains.chains.size(); ++i)
+    if (chains.chains[i].name == name) return int(i);
+  return -1;
+}
+
+SkeletonCorrespondence correspondSkeletons(SkeletonChains source, SkeletonChains target,
+                                           const std::vector<ChainPair>& pairs) {
   SkeletonCorrespondence c;
   c.source = std::move(source);
   c.target = std::move(target);
-  const int rows = static_cast<int>(c.source.chains.size()), cols = static_cast<int>(c.target.chains.size());
-  c.sourceMatch.assign(size_t(rows), -1);
-  c.targetMatch.assign(size_t(cols), -1);
-  c.cost.assign(size_t(rows), 0.0f);
+  const size_t rows = c.source.chains.size(), cols = c.target.chains.size();
+  c.sourceMatch.assign(rows, -1);
+  c.targetMatch.assign(cols, -1);
+  c.cost.assign(rows, 0.0f);
+  c.pinned.assign(rows, 0);
+  c.automatic.assign(rows, -1);
   if (rows == 0 || cols == 0) return c;
-  // The main roots match each other: any other pairing with them costs more than any real one.
-  constexpr double kForbidden = 100.0;
-  std::vector<double> cost(size_t(rows) * size_t(cols));
-  for (int r = 0; r < rows; ++r)
-    for (int k = 0; k < cols; ++k) {
-      const bool rootR = r == c.source.mainRoot, rootK = k == c.target.mainRoot;
-      cost[size_t(r) * size_t(cols) + size_t(k)] =
-          rootR && rootK ? 0.0 : rootR || rootK ? kForbidden
-                                                : double(chainMatchCost(c.source.chains[size_t(r)], c.target.chains[size_t(k)]));
+  // The artist's pairs, in order; one that cannot apply is skipped with its reason.
+  std::vector<int> fixed(rows, -1), pairOfTarget(cols, -1);
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    const ChainPair& p = pairs[i];
+    const std::string where = "chain_pairs[" + std::to_string(i) + "]";
+    const int r = chainNamed(c.source, p.source);
+    if (r < 0) {
+      c.warnings.push_back(where + ".source: no source chain starts at joint '" + p.source + "': pair ignored");
+      continue;
     }
-  const std::vector<int> assigned = minCostAssignment(cost, rows, cols);
-  for (int r = 0; r < rows; ++r) {
-    const int k = assigned[size_t(r)];
-    if (k < 0) continue;
-    const bool roots = r == c.source.mainRoot && k == c.target.mainRoot;
-    const float cst = chainMatchCost(c.source.chains[size_t(r)], c.target.chains[size_t(k)]);
-    if (!roots && (cost[size_t(r) * size_t(cols) + size_t(k)] >= kForbidden || cst > kMaxChainMatchCost)) continue;
-    c.sourceMatch[size_t(r)] = k;
-    c.targetMatch[size_t(k)] = r;
-    c.cost[size_t(r)] = cst;
+    if (fixed[size_t(r)] != -1) {
+      c.warnings.push_back(where + ".source: chain '" + p.source + "' is paired by an earlier entry: pair ignored");
+      continue;
+    }
+    if (!p.target) {
+      fixed[size_t(r)] = kArtistUnmatched;
+      continue;
+    }
+    const int k = chainNamed(c.target, *p.target);
+    if (k < 0) {
+      c.warnings.push_back(where + ".target: no target chain starts at joint '" + *p.target + "': pair ignored");
+      continue;
+    }
+    if (pairOfTarget[size_t(k)] >= 0) {
+      c.warnings.push_back(where + ".target: chain '" + *p.target + "' is already paired with '" +
+                           c.source.chains[size_t(pairOfTarget[size_t(k)])].name + "': pair ignored");
+      continue;
+    }
+    fixed[size_t(r)] = k;
+    pairOfTarget[size_t(k)] = r;
+  }
+  c.sourceMatch = assignChains(c.source, c.target, fixed);
+  for (size_t r = 0; r < rows; ++r) {
+    const int k = c.sourceMatch[r];
+    if (k >= 0) {
+      c.targetMatch[size_t(k)] = int(r);
+      c.cost[r] = chainMatchCost(c.source.chains[r], c.target.chains[size_t(k)]);
+    }
+    c.pinned[r] = fixed[r] != -1;
+    if (!c.pinned[r]) {
+      c.automatic[r] = k;
+      continue;
+    }
+    std::vector<int> without = fixed;
+    without[r] = -1;
+    c.automatic[r] = assignChains(c.source, c.target, without)[r];
   }
   return c;
 }

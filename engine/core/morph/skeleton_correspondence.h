@@ -8,7 +8,9 @@
 // by its side (sign of x), its direction from the root, its length as a share
 // of the rig's and its sub-tree's share of the segments; chains are matched
 // by a minimum-cost assignment over these features, the main root chains with
-// each other. Along a chain, every segment covers an interval of normalised
+// each other. Artist pairs (morph/chain_pair.h) are fixed first: the
+// assignment fills in the remaining chains only, and the root rule holds only
+// while neither main root chain is in an artist pair. Along a chain, every segment covers an interval of normalised
 // arc length; a segment of one side maps onto the segment of the matched
 // chain that covers its interval's middle (its ends clamped to that
 // segment). A segment of an unmatched chain maps onto the point where its
@@ -19,6 +21,7 @@
 
 #include <glm/glm.hpp>
 
+#include "morph/chain_pair.h"
 #include "rig/character.h"
 #include "standin/standin.h"
 
@@ -60,9 +63,25 @@ struct SkeletonCorrespondence {
   std::vector<int> sourceMatch;  // per source chain: its target chain, -1: unmatched
   std::vector<int> targetMatch;  // per target chain: its source chain, -1: unmatched
   std::vector<float> cost;       // per source chain: chainMatchCost of its match (0 when unmatched)
+  // Per source chain: 1 when an artist pair sets its match (sourceMatch[i] then
+  // is the pair's target, -1 for "unmatched").
+  std::vector<char> pinned;
+  // Per source chain: its match by the automatic rule with its own artist pair
+  // left out (the others kept); equals sourceMatch for a chain without one.
+  std::vector<int> automatic;
+  // Artist pairs that could not be applied, one line each, e.g.
+  // "chain_pairs[1].target: no target chain starts at joint 'Hub2': pair ignored".
+  std::vector<std::string> warnings;
 };
 
-SkeletonCorrespondence correspondSkeletons(SkeletonChains source, SkeletonChains target);
+// The chain whose first joint is named name, or -1.
+int chainNamed(const SkeletonChains& chains, const std::string& name);
+
+// pairs: the artist's, applied first (a pair naming a chain that does not
+// exist, a source named twice or a target already taken is skipped with a
+// warning); the automatic assignment matches the chains left over.
+SkeletonCorrespondence correspondSkeletons(SkeletonChains source, SkeletonChains target,
+                                           const std::vector<ChainPair>& pairs = {});
 
 // Where segment `segment` of one side goes on the other side, posed: a segment
 // of the other side's posed stand-in (or a point of it, for an unmatched chain),

@@ -34,7 +34,14 @@ std::optional<MorphImplicitField> standinCoreField(const MorphRuntime& rt, doubl
   out.progress = std::clamp(u, 0.0, 1.0);
   out.blend = expand ? 1.0f : 0.0f;
   // The stand-in as the morph ends (expansion) or starts (collapse): segment tracks at u = 1 / 0.
-  const MorphOperand op = posedOperand(a, timeSec, expand ? 1.0 : 0.0);
+  MorphOperand op = posedOperand(a, timeSec, expand ? 1.0 : 0.0);
+  // Segments shorten about their middles as the core melts (1 at c = 1, 0 at c = 1/K).
+  const float shrink = (c - 1.0f / K) / (1.0f - 1.0f / K);
+  for (PosedSegment& g : op.segments) {
+    const glm::vec3 mid = 0.5f * (g.a + g.b);
+    g.a = mid + shrink * (g.a - mid);
+    g.b = mid + shrink * (g.b - mid);
+  }
   out.program.threshold = kStandinThreshold;
   appendMorphOperand(out.program, op, 1.0f);
   if (c < 1.0f) {

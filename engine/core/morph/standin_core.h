@@ -14,7 +14,11 @@
 // kDefaultInterpolationBound when unbounded), capped at c K T: the core equals
 // the stand-in exactly at c = 1 (the morph's end field at C, its start field at
 // B) and shrinks into its skeleton's densest points, gone at c = 1/K, i.e. when
-// the mesh is fully expanded (at the start of the collapse).
+// the mesh is fully expanded (at the start of the collapse). Each segment of the
+// core also shortens about its middle, to s = (c - 1/K) / (1 - 1/K) of its
+// length (1 at C / B): a segment whose end lies outside the mesh (the gear's
+// outer chords end on its teeth's circle, beyond the rim between two teeth)
+// draws its end back inside instead of melting onto it in plain view.
 // A BlobTree side has no transition and no core.
 #include <optional>
 

@@ -29,7 +29,8 @@ inline const glm::vec4 kBlobSurfaceColor{0.55f, 0.68f, 0.82f, 1.0f};
 void setCrossFade(Scene& scene, size_t firstMesh, size_t firstGenerated, float opacity);
 
 // Draws guides (e.g. the sub-tree of a node hovered in the correspondence
-// editor, scene/blob_guides.h subtreeGuides) in the highlight colour over
+// editor, scene/blob_guides.h subtreeGuides, or a skeleton chain hovered in the
+// morph's Chain matching) in the highlight colour over
 // everything else in the overlay, whether the skeleton is shown or not.
 void addBlobHighlight(const BlobGuides& guides, Scene& out);
 
