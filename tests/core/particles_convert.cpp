@@ -7,20 +7,12 @@
 #include "particles/convert_to_particles.h"
 #include "poly/mesh_checks.h"
 #include "poly/polygonizer.h"
+#include "util/manifold_checks.h"
 
 using namespace animorph;
+using animorph::test::polygonisedVolume;
 
 namespace {
-
-double polygonisedVolume(const FieldProgram& program, const Bounds& box, int res) {
-  PolygonizeSettings ps;
-  ps.resolution = res;
-  ps.bounds = box;
-  auto r = polygonize(program, ps);
-  REQUIRE(r);
-  REQUIRE(analyzeMesh(r->mesh).watertight());
-  return meshVolume(r->mesh);
-}
 
 void checkVolume(int count, int res) {
   BlobTree statue = makeStatue();
