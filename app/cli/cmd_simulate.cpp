@@ -3,10 +3,12 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <map>
 
 #include "blobtree/compile.h"
 #include "cli/cli_command.h"
+#include "doc/asset_cache.h"
 #include "doc/particle_commands.h"
 #include "doc/project_io.h"
 #include "particles/convert_to_particles.h"
@@ -29,6 +31,7 @@ bool parseVec3(const std::string& s, glm::vec3& out) {
 int runSimulate(const std::vector<std::string>& args) {
   std::string path, output, actorId, reformInto;
   int convert = 0;
+  std::string from;  // a character actor's: standin or mesh
   bool animorphosis = false, vortexOnly = false;
   ParticleSettings s;
   ParticleBakeOptions bake;
@@ -49,12 +52,14 @@ int runSimulate(const std::vector<std::string>& args) {
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     bool takesValue = floats.count(a) || vectors.count(a) || a == "-o" || a == "--actor" || a == "--convert" ||
-                      a == "--seed" || a == "--duration" || a == "--rate" || a == "--start" || a == "--reform-into";
+                      a == "--seed" || a == "--duration" || a == "--rate" || a == "--start" || a == "--reform-into" ||
+                      a == "--from";
     if (takesValue && i + 1 >= args.size()) return cli::fail(kCmd, a + " needs a value", 2);
     if (a == "-o") output = args[++i];
     else if (a == "--actor") actorId = args[++i];
     else if (a == "--reform-into") reformInto = args[++i];
     else if (a == "--convert") convert = std::atoi(args[++i].c_str());
+    else if (a == "--from") from = args[++i];
     else if (a == "--seed") s.seed = std::strtoull(args[++i].c_str(), nullptr, 10);
     else if (a == "--duration") s.durationSec = std::atof(args[++i].c_str());
     else if (a == "--rate") s.rateHz = std::atof(args[++i].c_str());
@@ -82,10 +87,41 @@ int runSimulate(const std::vector<std::string>& args) {
   }
   auto p = loadProject(path);
   if (!p) return cli::fail(kCmd, p.error());
+  ParticleSource source = ParticleSource::Standin;
+  if (!from.empty() && !particleSourceFromName(from, source))
+    return cli::fail(kCmd, "--from: expected standin or mesh, got " + from, 2);
   Actor* actor = p->findActor(actorId);
-  if (!actor || actor->kind != ActorKind::BlobTree)
-    return cli::fail(kCmd, path + ": no BlobTree actor '" + actorId + "'");
   auto t0 = std::chrono::steady_clock::now();
+  if (actor && actor->kind == ActorKind::Gltf) {
+    // A character: its stand-in or posed mesh becomes a new BlobTree actor, which is simulated.
+    if (convert <= 0) return cli::fail(kCmd, path + ": actor '" + actorId + "' is a character: give --convert N");
+    const std::string asset =
+        (std::filesystem::path(path).parent_path() / actor->assetPath).lexically_normal().string();
+    AssetCache::Entry e = AssetCache::load(asset);
+    if (!e.character) return cli::fail(kCmd, path + ": actor '" + actorId + "': " + asset + ": " + e.error);
+    ConvertToParticlesSettings cs;
+    cs.count = convert;
+    CharacterParticlesReport rep;
+    auto made = characterParticlesActor(*p, actorId, *e.character, bake.startSec, source, cs, &rep);
+    if (!made) return cli::fail(kCmd, path + ": " + made.error());
+    std::printf("converted the %s of '%s' into actor '%s': %zu particles (spacing %.4g m, volume %.4g m^3, "
+                "particles %.4g m^3)%s\n",
+                source == ParticleSource::Mesh ? "mesh" : "stand-in", actorId.c_str(), made->id.c_str(),
+                rep.convert.particles, rep.convert.spacing, rep.convert.shapeVolume, rep.convert.particleVolume,
+                rep.standinFitted ? "; no stand-in: one was fitted" : "");
+    if (source == ParticleSource::Mesh)
+      std::printf("mesh: %zu triangles, %zu boundary edges%s, volume %.4g m^3\n", rep.triangles, rep.boundaryEdges,
+                  rep.boundaryEdges ? " (not closed: filled where 2 of 3 rays are inside)" : " (closed)",
+                  rep.meshVolume);
+    actorId = made->id;
+    p->actors.push_back(std::move(*made));
+    actor = &p->actors.back();
+    convert = 0;
+  } else if (!from.empty()) {
+    return cli::fail(kCmd, "--from applies to a character actor only", 2);
+  }
+  if (!actor || actor->kind != ActorKind::BlobTree)
+    return cli::fail(kCmd, path + ": no BlobTree or character actor '" + actorId + "'");
   if (convert > 0) {
     ConvertToParticlesSettings cs;
     cs.count = convert;
@@ -136,7 +172,11 @@ ANIMORPH_CLI_COMMAND("simulate", "simulate particles on a BlobTree actor and bak
                      "  Every point primitive of the actor's tree is a particle. Runs the particle\n"
                      "  system (deterministic for a seed, fixed step) from their positions and bakes\n"
                      "  the trajectories into their centre tracks (thinned within --tolerance).\n"
-                     "  --convert N         first fill the actor's shape with about N particles\n"
+                     "  --convert N         first fill the actor's shape with about N particles; on a\n"
+                     "                      character actor: a new BlobTree actor \"NAME particles\" is\n"
+                     "                      made (the character stays) and simulated\n"
+                     "  --from standin|mesh a character's stand-in (default; fitted when it has none)\n"
+                     "                      or its skinned mesh, posed at --start\n"
                      "  --animorphosis      explosion A(t) and a time-reversed vortex B(t) of the same\n"
                      "                      particles (B a new actor), linked one to one, as the\n"
                      "                      project's animorphosis: the shape explodes and re-forms\n"

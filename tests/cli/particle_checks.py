@@ -6,7 +6,8 @@ usage: particle_checks.py CLI RESOURCES_DIR
   simulate --convert --animorphosis --reform-into gathers a ball of particles into another ball;
   simulate --convert --animorphosis turns the blob demo's creature into
   particles, adds the gathering actor and the identity-linked animorphosis;
-  simulate again with a seed is repeatable; bad input fails naming the actor
+  simulate again with a seed is repeatable; a character's mesh and stand-in
+  convert into a new particle actor; bad input fails naming the actor
   and the reason, writing nothing."""
 import json
 import os
@@ -84,7 +85,29 @@ def main():
         r = run(cli, "simulate", two, "--actor", "a", "--reform-into", "b", "-o", os.path.join(tmp, "bad.animorph"))
         if r.returncode == 0 or "--animorphosis" not in r.stderr:
             fail(f"--reform-into without --animorphosis: exit {r.returncode}, {r.stderr!r}")
+        # A character: its posed mesh, then its stand-in, fill a new particle actor; the character stays.
+        demo = os.path.join(resources, "demo.animorph")
+        before = json.load(open(demo))
+        for source in ("mesh", "standin"):
+            conv = os.path.join(tmp, f"{source}.animorph")
+            r = run(cli, "simulate", demo, "--actor", "creature", "--convert", "500", "--from", source,
+                    "--duration", "0.5", "-o", conv)
+            if r.returncode != 0 or ("boundary edges" in r.stdout) != (source == "mesh"):
+                fail(f"simulate --from {source} exited {r.returncode}: {r.stdout} {r.stderr}")
+            p = json.load(open(conv))
+            if p["actors"][:2] != before["actors"] or len(p["actors"]) != 3:
+                fail(f"--from {source}: expected the two characters unchanged and one new actor")
+            made = p["actors"][2]
+            points = len(made["blobtree"]["root"]["children"])
+            if made.get("kind") != "blobtree" or not 500 <= points <= 505:
+                fail(f"--from {source}: {points} particles in {made['id']} (expected 500..505)")
         bad = os.path.join(tmp, "bad.animorph")
+        r = run(cli, "simulate", demo, "--actor", "creature", "--convert", "500", "--from", "skin", "-o", bad)
+        if r.returncode == 0 or "--from" not in r.stderr or os.path.exists(bad):
+            fail(f"--from skin: exit {r.returncode}, {r.stderr!r}")
+        r = run(cli, "simulate", demo, "--actor", "creature", "-o", bad)
+        if r.returncode == 0 or "--convert" not in r.stderr or os.path.exists(bad):
+            fail(f"a character without --convert: exit {r.returncode}, {r.stderr!r}")
         r = run(cli, "simulate", out, "--actor", "nobody", "-o", bad)
         if r.returncode == 0 or "nobody" not in r.stderr or os.path.exists(bad):
             fail(f"an unknown actor: exit {r.returncode}, {r.stderr!r}")

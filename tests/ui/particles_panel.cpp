@@ -169,3 +169,58 @@ TEST_CASE("cancelling Simulate in the Particles section leaves the particles as 
   CHECK(h.doc().history().size() == steps);
   CHECK(h.doc().project().findActor(id)->blobTree == before);
 }
+
+TEST_CASE("the Particles section converts a character's stand-in into a new particle actor, and refuses a flat mesh",
+          "[ui][particles]") {
+  EditorFixture f({1600.0f, 1800.0f});
+  auto& h = f.h;
+  f.loadHeroScene();  // the hero: a flat quad skinned to two bones, no stand-in
+  h.doc().selection = {"hero", -1};
+  h.frames(2);
+  REQUIRE(h.hasWidget("inspector/particles/convert"));
+  REQUIRE(h.hasWidget("inspector/particles/from_standin"));
+  CHECK_FALSE(h.hasWidget("inspector/particles/simulate"));  // a character has no particles of its own
+  const Project before = h.doc().project();
+  const size_t steps = h.doc().history().size();
+  auto& st = h.ui->state().inspector.particles;
+  st.convertCount = 200;
+
+  // Its mesh encloses nothing: a clear error, nothing changed.
+  h.clickWidget("inspector/particles/from_mesh");
+  CHECK(st.convertFrom == ParticleSource::Mesh);
+  h.clickWidget("inspector/particles/convert");
+  h.frames(2);
+  CHECK(h.ui->state().status.error);
+  CHECK(h.ui->state().status.text.find("actor 'hero'") != std::string::npos);
+  CHECK(h.ui->state().status.text.find("flat") != std::string::npos);
+  CHECK(h.doc().project() == before);
+  CHECK(h.doc().history().size() == steps);
+  REQUIRE(h.hasWidget("error/ok"));  // the error dialog, the editor still running
+  h.clickWidget("error/ok");
+  h.frames(1);
+
+  // Its stand-in: none yet, one is fitted for the conversion (the actor keeps none).
+  h.clickWidget("inspector/particles/from_standin");
+  CHECK(st.convertFrom == ParticleSource::Standin);
+  h.clickWidget("inspector/particles/convert");
+  h.frames(2);
+  INFO(h.ui->state().status.text);
+  CHECK_FALSE(h.ui->state().status.error);
+  CHECK(h.ui->state().status.text.find("from the stand-in") != std::string::npos);
+  CHECK(h.ui->state().status.text.find("one was fitted") != std::string::npos);
+  CHECK(h.doc().history().size() == steps + 1);
+  REQUIRE(h.doc().project().actors.size() == 2);
+  const Actor& made = h.doc().project().actors[1];
+  CHECK(made.kind == ActorKind::BlobTree);
+  CHECK(h.doc().selection.actorId == made.id);  // the new actor is selected
+  const size_t n = countParticles(made.blobTree);
+  CHECK(n >= 200);
+  CHECK(n <= 202);
+  CHECK(h.doc().project().actors[0] == before.actors[0]);  // the character is left as it is
+  CHECK(h.doc().project().morph.actors.empty());
+  h.frames(2);
+  CHECK(h.hasWidget("inspector/particles/simulate"));  // the new actor's particles can be simulated
+  h.doc().undo();
+  h.frames(1);
+  CHECK(h.doc().project() == before);
+}

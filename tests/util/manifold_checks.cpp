@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include "poly/mesh_checks.h"
+#include "poly/polygonizer.h"
 
 namespace animorph::test {
 
@@ -14,6 +15,16 @@ void requireClosedManifold(const TriangleMesh& m) {
   CHECK(t.nonManifoldVertices == 0);
   CHECK(t.degenerateTriangles == 0);
   CHECK(t.manifold());
+}
+
+double polygonisedVolume(const FieldProgram& program, const Bounds& box, int resolution) {
+  PolygonizeSettings ps;
+  ps.resolution = resolution;
+  ps.bounds = box;
+  auto r = polygonize(program, ps);
+  REQUIRE(r);
+  REQUIRE(analyzeMesh(r->mesh).watertight());
+  return meshVolume(r->mesh);
 }
 
 }  // namespace animorph::test

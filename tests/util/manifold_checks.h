@@ -2,10 +2,14 @@
 // Catch2 checks that a polygonised mesh is a closed 2-manifold: no boundary,
 // non-manifold or misoriented edges, no non-manifold vertices, no degenerate
 // triangles. Shared by the CPU and GPU polygoniser tests.
+#include "field/field_program.h"
 #include "poly/mesh.h"
 
 namespace animorph::test {
 
 void requireClosedManifold(const TriangleMesh& m);
+
+// The volume of program polygonised over box at resolution (the mesh required watertight).
+double polygonisedVolume(const FieldProgram& program, const Bounds& box, int resolution);
 
 }  // namespace animorph::test

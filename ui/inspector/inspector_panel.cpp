@@ -198,7 +198,7 @@ void drawInspectorPanel(const LayoutRect& rect, Document& doc, AssetCache& asset
   drag.end(doc);
   ImGui::PopItemWidth();
 
-  if (actor.kind == ActorKind::BlobTree) drawParticlesSection(doc, id, st.particles);
+  drawParticlesSection(doc, id, st.particles);
   if (c) {
     ImGui::Separator();
     ImGui::TextDisabled("%zu meshes, %zu vertices, %zu triangles, %zu joints, %zu clips", c->meshes.size(),

@@ -95,8 +95,57 @@ void resetParticleSettings(const BlobTree& tree, ParticlesPanelState& st) {
   if (!tp.set.position.empty()) st.convertCount = int(tp.set.position.size());
 }
 
+namespace {
+
+// The count field and the Convert to particles button.
+void drawConvertControls(ParticlesPanelState& st, const char* tooltip) {
+  ImGui::BeginDisabled(st.busy);
+  ImGui::SetNextItemWidth(110.0f);
+  ImGui::InputInt("##count", &st.convertCount, 500, 5000);
+  st.convertCount = std::clamp(st.convertCount, 1, 1'000'000);
+  noteWidget("inspector/particles/count");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("How many particles fill the shape (to 1 %% above; up to 1,000,000)");
+  ImGui::SameLine();
+  if (ImGui::Button("Convert to particles")) st.request = ParticleRequest::Convert;
+  noteWidget("inspector/particles/convert");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tooltip);
+  ImGui::EndDisabled();
+}
+
+// A character actor's section: what to fill (its stand-in or its posed mesh) and Convert.
+void drawCharacterParticles(const Document& doc, const Actor& actor, ParticlesPanelState& st) {
+  if (st.actorId != actor.id) {
+    st.actorId = actor.id;
+    st.reformInto.clear();
+  }
+  ImGui::Separator();
+  const bool open = ImGui::CollapsingHeader("Particles", ImGuiTreeNodeFlags_DefaultOpen);
+  noteWidget("inspector/particles/header");
+  if (!open) return;
+  const ActorMorph* am = doc.project().morph.findActor(actor.id);
+  const bool hasStandin = am && !am->standin.segments.empty();
+  ImGui::TextUnformatted("from:");
+  ImGui::SameLine();
+  if (ImGui::RadioButton("stand-in", st.convertFrom == ParticleSource::Standin)) st.convertFrom = ParticleSource::Standin;
+  noteWidget("inspector/particles/from_standin");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(hasStandin ? "The morph's stand-in of this actor, posed at the current frame"
+                                 : "No stand-in yet: one is fitted for the conversion (the actor keeps none)");
+  ImGui::SameLine();
+  if (ImGui::RadioButton("mesh", st.convertFrom == ParticleSource::Mesh)) st.convertFrom = ParticleSource::Mesh;
+  noteWidget("inspector/particles/from_mesh");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("The skinned mesh posed at the current frame (a mesh with holes is filled all the same,\n"
+                      "its boundary edges reported)");
+  drawConvertControls(st, "Fill the character's shape at the current frame with point primitives, as a new\n"
+                          "BlobTree actor (the character stays; one undo step)");
+}
+
+}  // namespace
+
 void drawParticlesSection(const Document& doc, const std::string& actorId, ParticlesPanelState& st) {
   const Actor* actor = doc.project().findActor(actorId);
+  if (actor && actor->kind == ActorKind::Gltf) return drawCharacterParticles(doc, *actor, st);
   if (!actor || actor->kind != ActorKind::BlobTree) return;
   if (st.actorId != actorId) {
     st.actorId = actorId;
@@ -110,18 +159,7 @@ void drawParticlesSection(const Document& doc, const std::string& actorId, Parti
   if (count > 0) ImGui::Text("%zu particles (point primitives)", count);
   else ImGui::TextDisabled("No particles: convert the shape first.");
 
-  ImGui::BeginDisabled(st.busy);
-  ImGui::SetNextItemWidth(110.0f);
-  ImGui::InputInt("##count", &st.convertCount, 500, 5000);
-  st.convertCount = std::clamp(st.convertCount, 1, 1'000'000);
-  noteWidget("inspector/particles/count");
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("How many particles fill the shape (to 1 %% above; up to 1,000,000)");
-  ImGui::SameLine();
-  if (ImGui::Button("Convert to particles")) st.request = ParticleRequest::Convert;
-  noteWidget("inspector/particles/convert");
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Fill the shape at the current frame with point primitives (one undo step)");
-  ImGui::EndDisabled();
+  drawConvertControls(st, "Fill the shape at the current frame with point primitives (one undo step)");
   if (count == 0) return;
 
   ParticleForces& f = st.settings.forces;

@@ -1,6 +1,8 @@
 #pragma once
 // The inspector's Particles section of a BlobTree actor (docs/particles.md, docs/editor.md):
-// *Convert to particles* (the count chosen here) for any BlobTree actor, and for one whose tree
+// *Convert to particles* (the count chosen here) for any BlobTree actor -- and for a glTF
+// character actor, from its stand-in or its posed mesh, into a new BlobTree actor
+// (doc/particle_commands.h characterParticlesActor) --, and for a BlobTree actor whose tree
 // has point primitives (a particle system) the simulation's forces, seed, rate, start and
 // duration with a Simulate button, and Explode and re-form: the particles explode and gather back
 // out of a vortex into their own shape or into another BlobTree actor's, as the project's
@@ -10,6 +12,7 @@
 #include <string>
 
 #include "doc/document.h"
+#include "doc/particle_commands.h"
 #include "particles/particle_tree.h"
 
 namespace animorph {
@@ -21,6 +24,7 @@ struct ParticlesPanelState {
   ParticleSettings settings;  // forces, seed, rate, duration (progress and cancel unused here)
   ParticleBakeOptions bake;   // start time, tolerance, reverse
   int convertCount = 4000;    // Convert to particles
+  ParticleSource convertFrom = ParticleSource::Standin;  // a character actor's: its stand-in or its mesh
   std::string reformInto;     // Explode and re-form: the BlobTree actor to gather into; empty: its own shape
   bool busy = false;          // set by EditorUI: a background job runs (the buttons are disabled)
   // What the user asked for this frame; EditorUI takes it (and sets it back to None).
@@ -35,7 +39,8 @@ size_t countParticles(const BlobTree& tree);
 // at the particles' centroid at the start.
 void resetParticleSettings(const BlobTree& tree, ParticlesPanelState& st);
 
-// Draws the section (inside the inspector window) for actorId.
+// Draws the section (inside the inspector window) for actorId: a BlobTree actor's whole section, a
+// glTF character actor's Convert to particles (from: stand-in | mesh) only.
 void drawParticlesSection(const Document& doc, const std::string& actorId, ParticlesPanelState& st);
 
 }  // namespace animorph

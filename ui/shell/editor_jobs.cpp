@@ -342,6 +342,8 @@ void EditorUI::startParticleJob(ParticleRequest request, EditorContext& ctx) {
   Document& d = doc(ctx);
   const ParticlesPanelState& ps = st_.inspector.particles;
   const Actor* actor = d.project().findActor(ps.actorId);
+  if (actor && actor->kind == ActorKind::Gltf && request == ParticleRequest::Convert)
+    return startCharacterParticlesJob(ctx);
   if (!actor || actor->kind != ActorKind::BlobTree) return;
   // The work runs on a snapshot; its command replaces the actor's tree, so it is applied only if
   // that tree is still the snapshot's when the work is done (else it would undo an edit made meanwhile).
@@ -421,6 +423,61 @@ void EditorUI::startParticleJob(ParticleRequest request, EditorContext& ctx) {
     d.execute(std::move(*cmd));
     if (!simulate) st_.inspector.particles.actorId.clear();  // a new tree: its settings are set up again
     if (reform) d.selection = {actorId, -1};
+    setStatus(what + ": " + *note);
+  });
+}
+
+void EditorUI::startCharacterParticlesJob(EditorContext& ctx) {
+  Document& d = doc(ctx);
+  const ParticlesPanelState& ps = st_.inspector.particles;
+  const Actor* actor = d.project().findActor(ps.actorId);
+  if (!actor || actor->kind != ActorKind::Gltf) return;
+  // The character is shared, immutable: the job reads it while the UI goes on drawing it.
+  const AssetCache::Entry& entry = ctx.assets.get(d.resolveAsset(actor->assetPath));
+  const std::string what = "Convert " + actor->name + " to particles";
+  if (!entry.character) {
+    showError(what + " failed:\n" + actor->assetPath + ": " + entry.error);
+    return;
+  }
+  auto snapshot = std::make_shared<const Project>(d.project());
+  const double timeSec = d.project().timeline.currentTimeSec();
+  auto made = std::make_shared<Actor>();
+  auto note = std::make_shared<std::string>();
+  auto work = [=, character = entry.character, id = ps.actorId, from = ps.convertFrom,
+               count = ps.convertCount](JobProgress& pr) -> Status {
+    ConvertToParticlesSettings s;
+    s.count = count;
+    pr.setTotal(1.0);
+    pr.setStage(from == ParticleSource::Mesh ? "filling the mesh" : "filling the stand-in");
+    s.progress = [&pr](float f) { pr.setDone(f); };
+    s.cancel = pr.cancelFlag();
+    CharacterParticlesReport r;
+    auto a = characterParticlesActor(*snapshot, id, *character, timeSec, from, s, &r);
+    if (pr.cancelled()) return jobCancelled();
+    if (!a) return Error{a.error()};
+    *made = std::move(*a);
+    char buf[240];
+    std::snprintf(buf, sizeof buf, "%zu particles from the %s, spacing %.3g m, volume %.4g m^3 (shape %.4g m^3)",
+                  r.convert.particles, from == ParticleSource::Mesh ? "mesh" : "stand-in", double(r.convert.spacing),
+                  r.convert.particleVolume, r.convert.shapeVolume);
+    *note = buf;
+    if (r.standinFitted) *note += "; no stand-in: one was fitted";
+    if (r.boundaryEdges > 0)
+      *note += "; the mesh is not closed (" + std::to_string(r.boundaryEdges) +
+               " boundary edges): filled where 2 of 3 rays are inside";
+    return Status::success();
+  };
+  startJob(what, std::move(work), [this, what, made, note](EditorContext& c, const Status& st) {
+    if (!st) {
+      showError(what + " failed:\n" + st.error());
+      return;
+    }
+    Document& dd = doc(c);
+    // Its id was made unused in the snapshot; another actor may have taken it meanwhile.
+    if (dd.project().findActor(made->id)) made->id = dd.project().uniqueActorId(made->id);
+    const std::string id = made->id;
+    dd.execute(addActorCommand(std::move(*made)));
+    dd.selection = {id, -1};
     setStatus(what + ": " + *note);
   });
 }

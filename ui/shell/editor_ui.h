@@ -110,6 +110,8 @@ class EditorUI {
   void startPlayblast(EditorContext& ctx);
   // The Particles section's Simulate or Convert to particles, as a job; one undoable command.
   void startParticleJob(ParticleRequest request, EditorContext& ctx);
+  // Convert to particles of a glTF character actor: a new BlobTree actor, selected.
+  void startCharacterParticlesJob(EditorContext& ctx);
   void handleDrop(const std::vector<std::string>& paths, EditorContext& ctx);
   void frameSelection(EditorContext& ctx);
   void addNodeToSelection(NodeType type, EditorContext& ctx);

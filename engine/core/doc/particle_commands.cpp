@@ -3,6 +3,10 @@
 #include "blobtree/compile.h"
 #include "doc/animorphosis_project.h"
 #include "doc/blobtree_commands.h"
+#include "particles/character_shape.h"
+#include "particles/mesh_inside.h"
+#include "scene/scene_frame.h"
+#include "standin/fit_standin.h"
 
 namespace animorph {
 
@@ -40,6 +44,66 @@ Result<std::unique_ptr<Command>> convertToParticlesCommand(const Project& p, con
   if (r->report.cancelled) return Error{"actor '" + actorId + "': conversion cancelled"};
   if (report) *report = r->report;
   return setBlobTreeCommand(p, actorId, std::move(r->tree), "Convert to particles");
+}
+
+const char* particleSourceName(ParticleSource s) { return s == ParticleSource::Mesh ? "mesh" : "standin"; }
+
+bool particleSourceFromName(const std::string& name, ParticleSource& out) {
+  for (ParticleSource s : {ParticleSource::Standin, ParticleSource::Mesh})
+    if (name == particleSourceName(s)) {
+      out = s;
+      return true;
+    }
+  return false;
+}
+
+Result<Actor> characterParticlesActor(const Project& p, const std::string& actorId, const Character& character,
+                                      double timeSec, ParticleSource from, const ConvertToParticlesSettings& settings,
+                                      CharacterParticlesReport* report) {
+  const Actor* a = p.findActor(actorId);
+  if (!a || a->kind != ActorKind::Gltf) return Error{"no glTF character actor '" + actorId + "'"};
+  const std::string where = "actor '" + actorId + "' (" + a->assetPath + "): ";
+  const AnimationClip* clip =
+      a->clip >= 0 && a->clip < int(character.clips.size()) ? &character.clips[size_t(a->clip)] : nullptr;
+  const float clipTime = clip ? float(actorClipTimeSec(*a, *clip, timeSec)) : 0.0f;
+  CharacterParticlesReport rep;
+  Result<ConvertToParticlesResult> conv = Error{"not run"};
+  if (from == ParticleSource::Standin) {
+    const ActorMorph* am = p.morph.findActor(actorId);
+    Standin standin;
+    if (am && !am->standin.segments.empty()) {
+      standin = am->standin;
+    } else {
+      FitSettings fs;
+      fs.measure = false;
+      auto fit = fitStandin(character, fs);
+      if (!fit) return Error{where + "no stand-in, and fitting one failed: " + fit.error()};
+      standin = std::move(fit->standin);
+      rep.standinFitted = true;
+    }
+    if (standin.segments.empty()) return Error{where + "the stand-in has no segment"};
+    conv = convertToParticles(posedStandinProgram(character, standin, clip, clipTime), settings);
+  } else {
+    const MeshInside mesh(posedCharacterMesh(character, clip, clipTime));
+    rep.triangles = mesh.info().triangles;
+    rep.boundaryEdges = mesh.info().boundaryEdges;
+    rep.meshVolume = mesh.info().volume;
+    auto shape = meshParticleShape(mesh);
+    if (!shape) return Error{where + shape.error()};
+    conv = convertToParticles(*shape, settings);
+    if (!conv && !mesh.closed())
+      conv = Error{conv.error() + " (the mesh is not closed: " + std::to_string(mesh.info().boundaryEdges) +
+                   " boundary edges)"};
+  }
+  if (!conv) return Error{where + conv.error()};
+  if (conv->report.cancelled) return Error{where + "conversion cancelled"};
+  rep.convert = conv->report;
+  Actor out = makeBlobTreeActor(p, a->name + " particles");
+  out.blobTree = std::move(conv->tree);
+  out.transform = a->transform;
+  out.loop = false;
+  if (report) *report = rep;
+  return out;
 }
 
 ParticleAnimorphosisSettings reformSettings(const ParticleSettings& settings, const ParticleBakeOptions& bake) {

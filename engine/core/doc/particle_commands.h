@@ -9,6 +9,7 @@
 
 #include "doc/command.h"
 #include "doc/project.h"
+#include "rig/character.h"
 #include "particles/convert_to_particles.h"
 #include "particles/particle_animorphosis.h"
 #include "particles/particle_transport.h"
@@ -28,6 +29,30 @@ Result<std::unique_ptr<Command>> simulateParticlesCommand(const Project& p, cons
 Result<std::unique_ptr<Command>> convertToParticlesCommand(const Project& p, const std::string& actorId,
                                                            double timeSec, const ConvertToParticlesSettings& settings,
                                                            ConvertToParticlesReport* report = nullptr);
+
+// Convert to particles from a glTF character actor (docs/particles.md): its stand-in (the morph's
+// stand-in of the actor, or one fitted now when it has none) or its skinned meshes
+// (particles/character_shape.h), posed at scene time timeSec, filled with particles as a new
+// BlobTree actor "NAME particles" (a fresh id, the character's transform, not looping) to add with
+// addActorCommand (one undo step); the character is left as it is. A mesh with holes is still
+// filled (particles/mesh_inside.h: the majority of three rays) and its boundary edges reported.
+// Errors name the actor and the reason (no glTF actor, no triangle, an empty stand-in);
+// cancelled: an error "cancelled".
+enum class ParticleSource { Standin, Mesh };
+const char* particleSourceName(ParticleSource s);  // "standin", "mesh"
+bool particleSourceFromName(const std::string& name, ParticleSource& out);
+
+struct CharacterParticlesReport {
+  ConvertToParticlesReport convert;
+  bool standinFitted = false;  // the actor had no stand-in: one was fitted for the conversion
+  size_t triangles = 0;        // mesh: triangles filled
+  size_t boundaryEdges = 0;    // mesh: 0 when closed
+  double meshVolume = 0.0;     // mesh: enclosed volume (m^3), meaningful when closed
+};
+
+Result<Actor> characterParticlesActor(const Project& p, const std::string& actorId, const Character& character,
+                                      double timeSec, ParticleSource from, const ConvertToParticlesSettings& settings,
+                                      CharacterParticlesReport* report = nullptr);
 
 // Explode and re-form (docs/particles.md): the actor's particles explode (settings.explosion) and
 // gather out of a vortex played backwards (settings.vortex) -- back into their own rest positions

@@ -13,19 +13,10 @@ namespace animorph {
 
 namespace {
 
-struct Grid {
-  glm::vec3 origin{0.0f};  // position of point (0, 0, 0)
-  float spacing = 1.0f;
-  glm::ivec3 dims{0};
-  size_t size() const { return size_t(dims.x) * size_t(dims.y) * size_t(dims.z); }
-  glm::vec3 point(int x, int y, int z) const { return origin + spacing * glm::vec3(x, y, z); }
-  size_t index(int x, int y, int z) const { return size_t(x) + size_t(dims.x) * (size_t(y) + size_t(dims.y) * size_t(z)); }
-};
-
 // Points spaced `spacing` over box, centred in it (at least one per axis); shifted by shift
 // spacings (each in [0, 1)), with one more point per axis so that the box stays covered.
-Grid gridOver(const Bounds& box, float spacing, glm::vec3 shift = glm::vec3(0.0f)) {
-  Grid g;
+SampleLattice gridOver(const Bounds& box, float spacing, glm::vec3 shift = glm::vec3(0.0f)) {
+  SampleLattice g;
   g.spacing = spacing;
   glm::vec3 size = box.size();
   const bool shifted = shift != glm::vec3(0.0f);
@@ -35,7 +26,7 @@ Grid gridOver(const Bounds& box, float spacing, glm::vec3 shift = glm::vec3(0.0f
 }
 
 // inside[x + dims.x (y + dims.y z)] = f(point) >= 0, one z slice per task.
-std::vector<uint8_t> insideOnGrid(const FieldProgram& shape, const Grid& g) {
+std::vector<uint8_t> insideOfField(const FieldProgram& shape, const SampleLattice& g) {
   std::vector<uint8_t> inside(g.size(), 0);
   tbb::parallel_for(0, g.dims.z, [&](int z) {
     thread_local FieldEvaluator evaluator;
@@ -73,7 +64,7 @@ bool cancelled(const ConvertToParticlesSettings& s) { return s.cancel && s.cance
 // with the lattice shifted by fractions of a spacing when a step jumps over the 1 % window. At
 // most 30 lattices per shift. Fewer than n only when no spacing tried reaches n. h: the estimate
 // in, the spacing chosen out.
-std::vector<uint8_t> latticeNear(const FieldProgram& shape, const Bounds& box, size_t n, float& h, Grid& lattice,
+std::vector<uint8_t> latticeNear(const ParticleShape& shape, const Bounds& box, size_t n, float& h, SampleLattice& lattice,
                                  const ConvertToParticlesSettings& s) {
   std::vector<uint8_t> best;
   size_t bestCount = 0;
@@ -91,8 +82,8 @@ std::vector<uint8_t> latticeNear(const FieldProgram& shape, const Bounds& box, s
     float lo = 0.0f, hi = 0.0f;  // spacings giving >= n and < n (0: none yet)
     float trial = bestCount >= n && bestH > 0.0f ? bestH : h0;
     for (int iter = 0; iter < 30 && !cancelled(s); ++iter) {
-      Grid g = gridOver(box, trial, shift);
-      std::vector<uint8_t> inside = insideOnGrid(shape, g);
+      SampleLattice g = gridOver(box, trial, shift);
+      std::vector<uint8_t> inside = shape.insideOnLattice(g);
       const size_t c = countSet(inside);
       if (better(c)) {
         best = std::move(inside);
@@ -118,15 +109,28 @@ std::vector<uint8_t> latticeNear(const FieldProgram& shape, const Bounds& box, s
 
 }  // namespace
 
-Result<ConvertToParticlesResult> convertToParticles(const FieldProgram& shape, const ConvertToParticlesSettings& s) {
+Result<ParticleShape> fieldParticleShape(const FieldProgram& program) {
+  if (program.unbounded()) return Error{"convert to particles: the shape is unbounded"};
+  ParticleShape shape;
+  shape.bounds = program.tightBounds();
+  shape.insideOnLattice = [&program](const SampleLattice& g) { return insideOfField(program, g); };
+  return shape;
+}
+
+Result<ConvertToParticlesResult> convertToParticles(const FieldProgram& program, const ConvertToParticlesSettings& s) {
+  auto shape = fieldParticleShape(program);
+  if (!shape) return Error{shape.error()};
+  return convertToParticles(*shape, s);
+}
+
+Result<ConvertToParticlesResult> convertToParticles(const ParticleShape& shape, const ConvertToParticlesSettings& s) {
   if (s.count < 1 || s.count > 1'000'000) return Error{"convert to particles: count " + std::to_string(s.count) +
                                                       " is not in 1..1000000"};
   if (!(s.radiusFactor >= 0.6f && s.radiusFactor <= 4.0f))
     return Error{"convert to particles: radius factor must be in [0.6, 4]"};
   if (!(s.threshold > 0.0f) || !(s.stiffness > 0.0f))
     return Error{"convert to particles: threshold and stiffness must be > 0"};
-  if (shape.unbounded()) return Error{"convert to particles: the shape is unbounded"};
-  Bounds box = shape.tightBounds();
+  Bounds box = shape.bounds;
   if (box.empty() || !(glm::length(box.size()) > 0.0f)) return Error{"convert to particles: the shape is empty"};
   int cells = std::max(1000, s.calibrationCells);
   tbb::task_arena arena(s.threads > 0 ? s.threads : tbb::task_arena::automatic);
@@ -141,8 +145,8 @@ Result<ConvertToParticlesResult> convertToParticles(const FieldProgram& shape, c
     glm::vec3 size = box.size();
     double boxVolume = double(std::max(size.x, 1e-6f)) * std::max(size.y, 1e-6f) * std::max(size.z, 1e-6f);
     // 1. The shape's volume on a coarse grid, then the lattice spacing for about `count` points.
-    Grid coarse = gridOver(box, float(std::cbrt(boxVolume / (cells / 4))));
-    double volume = double(countSet(insideOnGrid(shape, coarse))) * std::pow(double(coarse.spacing), 3);
+    SampleLattice coarse = gridOver(box, float(std::cbrt(boxVolume / (cells / 4))));
+    double volume = double(countSet(shape.insideOnLattice(coarse))) * std::pow(double(coarse.spacing), 3);
     if (volume <= 0.0) {
       status = Error{"convert to particles: nothing inside the shape at a " + std::to_string(coarse.dims.x) + "x" +
                      std::to_string(coarse.dims.y) + "x" + std::to_string(coarse.dims.z) + " grid"};
@@ -150,7 +154,7 @@ Result<ConvertToParticlesResult> convertToParticles(const FieldProgram& shape, c
     }
     progress(0.1f);
     float h = float(std::cbrt(volume / s.count));
-    Grid lattice;
+    SampleLattice lattice;
     std::vector<uint8_t> occupied = latticeNear(shape, box, size_t(s.count), h, lattice, s);
     if (cancelled(s)) return;
     if (countSet(occupied) == 0) {
@@ -166,8 +170,8 @@ Result<ConvertToParticlesResult> convertToParticles(const FieldProgram& shape, c
     grown.add(box.min - glm::vec3(R));
     grown.add(box.max + glm::vec3(R));
     glm::vec3 gs = grown.size();
-    Grid fine = gridOver(grown, std::min(h * 0.5f, float(std::cbrt(double(gs.x) * gs.y * gs.z / cells))));
-    std::vector<uint8_t> shapeInside = insideOnGrid(shape, fine);
+    SampleLattice fine = gridOver(grown, std::min(h * 0.5f, float(std::cbrt(double(gs.x) * gs.y * gs.z / cells))));
+    std::vector<uint8_t> shapeInside = shape.insideOnLattice(fine);
     size_t target = countSet(shapeInside);
     if (target == 0) {
       status = Error{"convert to particles: nothing inside the shape on the calibration grid"};

@@ -61,9 +61,21 @@ struct Scratch {
   std::vector<uint32_t> gather;     // vertices of one sub-block
 };
 
-// A block reached by more primitives than this evaluates each 4^3 sub-block with
-// only the primitives reaching it (the same values: the others add exact zeros).
+// A block reached by more primitives than this that the evaluator cannot skip evaluates each 4^3
+// sub-block with only the primitives reaching it (the same values: the others add exact zeros).
 constexpr size_t kSubSpecialise = 48;
+
+// Primitives of prog that the evaluator does not skip against the box of a run of points
+// (field_program_evaluate.cpp skips skeletal primitives -- points, particles -- whose reach misses
+// it): per-sub-block lists prune only these. For skeletal ones the block's corners and vertices,
+// evaluated one sub-block at a time, get the same pruning without the lists' cost (listing and
+// specialising 8 programs, the sub-blocks' shared faces evaluated twice).
+size_t unskippedCount(const ActiveProgram& prog) {
+  size_t n = 0;
+  for (const FieldOp& op : prog.ops)
+    if (op.code == OpCode::Prims && op.primClass != PrimClass::Skeletal) n += op.count;
+  return n;
+}
 
 enum class SuperState : uint8_t { Culled, Partial };
 
@@ -398,7 +410,8 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
       }
       summary[bi].subLive = liveMask;
     }
-    const bool perSub = s.culling && s.subBlockLists && prog->primitiveCount > kSubSpecialise;
+    const bool perSub = s.culling && s.subBlockLists &&
+                        (s.subBlockListsForSkeletal ? prog->primitiveCount : unskippedCount(*prog)) > kSubSpecialise;
     int subLo[8][3], subHi[8][3];  // corner ranges (inclusive) of each sub-block, block-local
     for (int q = 0; q < 8; ++q)
       for (int a = 0; a < 3; ++a) {
@@ -573,38 +586,28 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
       sc.gx.resize(nv);
       sc.gy.resize(nv);
       sc.gz.resize(nv);
-      for (size_t q = 0; q < nv; ++q) {
-        sc.x[q] = o.positions[q].x;
-        sc.y[q] = o.positions[q].y;
-        sc.z[q] = o.positions[q].z;
-      }
-      if (perSub) {
-        // Each sub-block's vertices with its program (a vertex lies on an edge of its cell).
-        for (int sq = 0; sq < 8; ++sq) {
-          sc.gather.clear();
-          for (size_t q = 0; q < nv; ++q)
-            if (sc.vertexSub[q] == sq) sc.gather.push_back(uint32_t(q));
-          if (sc.gather.empty()) continue;
-          size_t m = sc.gather.size();
-          for (size_t q = 0; q < m; ++q) {
-            const glm::vec3& pq = o.positions[sc.gather[q]];
-            sc.x[q] = pq.x;
-            sc.y[q] = pq.y;
-            sc.z[q] = pq.z;
-          }
-          sc.evaluator.evaluate(program, sc.subActive[sq], sc.x.data(), sc.y.data(), sc.z.data(), int(m),
-                                sc.v.data(), sc.gx.data(), sc.gy.data(), sc.gz.data());
-          for (size_t q = 0; q < m; ++q) {
-            glm::vec3& nq = o.normals[sc.gather[q]];
-            nq = outwardNormal(sc.gx[q], sc.gy[q], sc.gz[q], nq);
-          }
-          pairs.fetch_add(m * sc.subActive[sq].primitiveCount, std::memory_order_relaxed);
+      // Each sub-block's vertices in one run (a vertex lies on an edge of its cell), with its own
+      // program, or the block's (the evaluator then skips the skeletal primitives missing the run).
+      for (int sq = 0; sq < 8; ++sq) {
+        sc.gather.clear();
+        for (size_t q = 0; q < nv; ++q)
+          if (sc.vertexSub[q] == sq) sc.gather.push_back(uint32_t(q));
+        if (sc.gather.empty()) continue;
+        size_t m = sc.gather.size();
+        for (size_t q = 0; q < m; ++q) {
+          const glm::vec3& pq = o.positions[sc.gather[q]];
+          sc.x[q] = pq.x;
+          sc.y[q] = pq.y;
+          sc.z[q] = pq.z;
         }
-      } else {
-        sc.evaluator.evaluate(program, *prog, sc.x.data(), sc.y.data(), sc.z.data(), int(nv), sc.v.data(),
+        const ActiveProgram& active = perSub ? sc.subActive[sq] : *prog;
+        sc.evaluator.evaluate(program, active, sc.x.data(), sc.y.data(), sc.z.data(), int(m), sc.v.data(),
                               sc.gx.data(), sc.gy.data(), sc.gz.data());
-        for (size_t q = 0; q < nv; ++q) o.normals[q] = outwardNormal(sc.gx[q], sc.gy[q], sc.gz[q], o.normals[q]);
-        pairs.fetch_add(nv * prog->primitiveCount, std::memory_order_relaxed);
+        for (size_t q = 0; q < m; ++q) {
+          glm::vec3& nq = o.normals[sc.gather[q]];
+          nq = outwardNormal(sc.gx[q], sc.gy[q], sc.gz[q], nq);
+        }
+        pairs.fetch_add(m * active.primitiveCount, std::memory_order_relaxed);
       }
       points.fetch_add(nv, std::memory_order_relaxed);
     }

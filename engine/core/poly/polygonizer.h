@@ -65,10 +65,14 @@ struct PolygonizeSettings {
   // Skip blocks no primitive reaches or whose field interval has one sign. Off:
   // every grid corner is evaluated with every primitive (same mesh, slower).
   bool culling = true;
-  // With culling: a block reached by many primitives (e.g. tens of thousands of small
-  // particles) evaluates each 4^3-cell sub-block with only the primitives reaching it.
-  // Same mesh; off only to measure the difference.
+  // With culling: a block reached by many primitives that the evaluator cannot skip against a
+  // run of points (convolution segments, capsules) evaluates each 4^3-cell sub-block with only
+  // the primitives reaching it. Skeletal primitives (points: particles) need no lists: the block's
+  // corners and vertices are evaluated one sub-block at a time, and the evaluator skips those
+  // whose reach misses the run (docs/particles.md, "Speed"). Same mesh; off only to measure.
   bool subBlockLists = true;
+  // Measuring only: the lists also for skeletal primitives (as before: slower, same mesh).
+  bool subBlockListsForSkeletal = false;
   // Worker threads; 0 = all hardware threads.
   int threads = 0;
   // Called with the fraction done (0..1), from worker threads, one call at a time.
@@ -95,7 +99,8 @@ struct PolygonizeStats {
   size_t blocksWithSurface = 0;         // evaluated blocks that produced triangles
   size_t cellsVisited = 0;              // cells of evaluated blocks
   size_t pointsEvaluated = 0;           // field evaluations (grid corners + normals)
-  size_t primitiveEvaluations = 0;      // (point, primitive) pairs evaluated
+  // (point, primitive) pairs given to the evaluator (it skips skeletal ones missing a run of points)
+  size_t primitiveEvaluations = 0;
   size_t orphanVertices = 0;            // edge vertices their owner block did not make (should be 0)
   size_t blocksReused = 0;              // with a history: blocks taken from the previous frame
                                         // (counted in blocksCulled / blocksEvaluated as before)
