@@ -339,3 +339,35 @@ TEST_CASE("the Remap op scales and bounds a potential, keeps its surface, with e
   }
   CHECK(peak > 2.0f * T);  // the points reached the part where bounding matters
 }
+
+TEST_CASE("a program compiled into a kept one equals a fresh compile of the same tree", "[field_program]") {
+  FieldProgram kept;
+  std::mt19937 rng(41);
+  FieldEvaluator ev;
+  for (unsigned seed = 300; seed < 320; ++seed) {
+    std::mt19937 treeRng(seed);
+    int id = 1;
+    BlobTree tree = treeOf(randomNode(treeRng, 3, id), 0.5f);
+    const uint64_t before = kept.identity();
+    compileFieldProgram(tree, 0.37, kept);  // over the previous seed's program
+    FieldProgram fresh = compileFieldProgram(tree, 0.37);
+    INFO("seed " << seed);
+    CHECK(kept.identity() != before);
+    REQUIRE(kept.ops.size() == fresh.ops.size());
+    for (size_t i = 0; i < fresh.ops.size(); ++i) {
+      CHECK(kept.ops[i].code == fresh.ops[i].code);
+      CHECK(kept.ops[i].count == fresh.ops[i].count);
+      CHECK(kept.ops[i].first == fresh.ops[i].first);
+      CHECK(kept.ops[i].emptyValue == fresh.ops[i].emptyValue);
+    }
+    CHECK(kept.primitiveCount() == fresh.primitiveCount());
+    CHECK(kept.maps.size() == fresh.maps.size());
+    CHECK(kept.bounds().min == fresh.bounds().min);
+    CHECK(kept.bounds().max == fresh.bounds().max);
+    CHECK(kept.maxStack() == fresh.maxStack());
+    for (int k = 0; k < 32; ++k) {
+      glm::vec3 q = randomIn(rng, 0.8f);
+      CHECK(ev.evaluatePoint(kept, q) == ev.evaluatePoint(fresh, q));
+    }
+  }
+}

@@ -298,10 +298,15 @@ struct Compiler {
 
 FieldProgram compileFieldProgram(const BlobTree& tree, double timeSec, const CompileOptions& options) {
   FieldProgram prog;
+  compileFieldProgram(tree, timeSec, prog, options);
+  return prog;
+}
+
+void compileFieldProgram(const BlobTree& tree, double timeSec, FieldProgram& prog, const CompileOptions& options) {
+  prog.reset();
   prog.threshold = std::max(1e-6f, tree.threshold.evaluate(timeSec));
   appendBlobTree(prog, tree, timeSec, options);
   prog.finish();
-  return prog;
 }
 
 void appendBlobTree(FieldProgram& prog, const BlobTree& tree, double timeSec, const CompileOptions& options) {
