@@ -410,3 +410,43 @@ TEST_CASE("animorphosis: a snapshot updated in place while scrubbing equals a fr
   REQUIRE(tail != nullptr);
   CHECK(tail->type == NodeType::HyperBlend);  // kept was last updated at t = 1.6, inside the interval
 }
+
+namespace {
+
+// Walks a snapshot of C (taken before the interval, s = 0) beside A' in pre-order: ids 1..n in
+// order, A's types, and every float or vector parameter at A's value at tA.
+void checkSnapshotIsA(const BlobNode& snap, const BlobNode& a, double tA, int& nextId) {
+  CHECK(snap.id == nextId++);
+  REQUIRE(snap.type == a.type);
+  REQUIRE(snap.params.size() == a.params.size());
+  for (size_t i = 0; i < a.params.size(); ++i) {
+    if (auto* f = std::get_if<FloatTrack>(&a.params[i])) CHECK(std::get<FloatTrack>(snap.params[i]).evaluate(0.0) == f->evaluate(tA));
+    if (auto* v = std::get_if<Vec3Track>(&a.params[i])) CHECK(std::get<Vec3Track>(snap.params[i]).evaluate(0.0) == v->evaluate(tA));
+  }
+  REQUIRE(snap.children.size() == a.children.size());
+  for (size_t k = 0; k < a.children.size(); ++k) checkSnapshotIsA(snap.children[k], a.children[k], tA, nextId);
+}
+
+}  // namespace
+
+TEST_CASE("animorphosis: a node with many children is written with the ids and values of a walk in order",
+          "[animorph]") {
+  GenericTree c = walkerToFlyer();
+  // 150 more copies of the root's sub-trees: wide enough that the children are written in parallel.
+  const std::vector<GenericNode> original = c.root.children;
+  for (int k = 0; k < 150; ++k) c.root.children.push_back(original[size_t(k) % original.size()]);
+  AnimorphosisTiming timing;
+  timing.startSec = 1.0;
+  timing.endSec = 2.0;
+  BlobTree kept;
+  for (double t : {1.5, 0.5, 2.4, 0.25}) {
+    updateGenericSnapshot(c, timing, t, kept);
+    INFO("t = " << t);
+    CHECK(kept == instantiateGeneric(c, timing, t));
+    if (t < timing.startSec) {
+      int nextId = 1;
+      checkSnapshotIsA(kept.root, genericSide(c, MorphSide::A).root, timing.source.localTime(t), nextId);
+      CHECK(size_t(nextId - 1) == c.size());
+    }
+  }
+}

@@ -146,6 +146,45 @@ TEST_CASE("primitives of one class under one operator share one op", "[field_pro
   CHECK(p.primitiveCount() == 12);
 }
 
+namespace {
+
+// A flat Coons patch over [x0, x0 + 0.3] x [-0.15, 0.15] at height y, `cells` per side, radius 0.15.
+BlobNode coonsPatchNode(int id, float x0, float y, int cells) {
+  BlobNode n = makeBlobNode(NodeType::CoonsPatch, id);
+  auto edge = [](glm::vec3 a, glm::vec3 b) { return ControlPoints{Vec3Track(a), Vec3Track(0.5f * (a + b)), Vec3Track(b)}; };
+  glm::vec3 p00{x0, y, -0.15f}, p10{x0 + 0.3f, y, -0.15f}, p01{x0, y, 0.15f}, p11{x0 + 0.3f, y + 0.1f, 0.15f};
+  n.pointsParam("bottom") = edge(p00, p10);
+  n.pointsParam("top") = edge(p01, p11);
+  n.pointsParam("left") = edge(p00, p01);
+  n.pointsParam("right") = edge(p10, p11);
+  n.floatParam("resolution") = FloatTrack(float(cells));
+  n.floatParam("radius") = FloatTrack(0.15f);
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("Coons patches under a union join the run of primitives, with the reference's values", "[field_program]") {
+  std::mt19937 rng(7);
+  BlobNode u = makeBlobNode(NodeType::Union, 1);
+  for (int i = 0; i < 3; ++i) u.children.push_back(coonsPatchNode(2 + i, -0.45f + 0.3f * float(i), 0.05f * float(i), 2));
+  u.children.push_back(pointNode(9, {0, 0.25f, 0}, 0.2f));
+  BlobTree unionTree = treeOf(u, 0.5f);
+  FieldProgram p = compileFieldProgram(unionTree, 0.0);
+  REQUIRE(p.ops.size() == 1);  // one Prims op: 3 patches x 8 triangles and the point, max-combined
+  CHECK(p.ops[0].code == OpCode::Prims);
+  CHECK(p.ops[0].combineMax);
+  CHECK(p.ops[0].count == 25);
+  checkAgainstReference(p, unionTree, rng);
+  // Under a blend each patch stays one operand (a sum of the patches' maxima).
+  BlobNode b = u;
+  b.type = NodeType::Blend;
+  BlobTree blendTree = treeOf(b, 0.5f);
+  FieldProgram q = compileFieldProgram(blendTree, 0.0);
+  CHECK(std::count_if(q.ops.begin(), q.ops.end(), [](const FieldOp& op) { return op.code == OpCode::Prims; }) == 4);
+  checkAgainstReference(q, blendTree, rng);
+}
+
 TEST_CASE("wide operators fold into a shallow stack with the values of the tree", "[field_program]") {
   // 23 children that each push their own operand (a frame around a point): before folding the
   // stack held 23 values, beyond the GPU's 16 (a spline of nodes with 20 copies did the same).
@@ -299,4 +338,36 @@ TEST_CASE("the Remap op scales and bounds a potential, keeps its surface, with e
     }
   }
   CHECK(peak > 2.0f * T);  // the points reached the part where bounding matters
+}
+
+TEST_CASE("a program compiled into a kept one equals a fresh compile of the same tree", "[field_program]") {
+  FieldProgram kept;
+  std::mt19937 rng(41);
+  FieldEvaluator ev;
+  for (unsigned seed = 300; seed < 320; ++seed) {
+    std::mt19937 treeRng(seed);
+    int id = 1;
+    BlobTree tree = treeOf(randomNode(treeRng, 3, id), 0.5f);
+    const uint64_t before = kept.identity();
+    compileFieldProgram(tree, 0.37, kept);  // over the previous seed's program
+    FieldProgram fresh = compileFieldProgram(tree, 0.37);
+    INFO("seed " << seed);
+    CHECK(kept.identity() != before);
+    REQUIRE(kept.ops.size() == fresh.ops.size());
+    for (size_t i = 0; i < fresh.ops.size(); ++i) {
+      CHECK(kept.ops[i].code == fresh.ops[i].code);
+      CHECK(kept.ops[i].count == fresh.ops[i].count);
+      CHECK(kept.ops[i].first == fresh.ops[i].first);
+      CHECK(kept.ops[i].emptyValue == fresh.ops[i].emptyValue);
+    }
+    CHECK(kept.primitiveCount() == fresh.primitiveCount());
+    CHECK(kept.maps.size() == fresh.maps.size());
+    CHECK(kept.bounds().min == fresh.bounds().min);
+    CHECK(kept.bounds().max == fresh.bounds().max);
+    CHECK(kept.maxStack() == fresh.maxStack());
+    for (int k = 0; k < 32; ++k) {
+      glm::vec3 q = randomIn(rng, 0.8f);
+      CHECK(ev.evaluatePoint(kept, q) == ev.evaluatePoint(fresh, q));
+    }
+  }
 }

@@ -109,8 +109,32 @@ std::vector<Row> runDemoBench(const bench::Options& opt) {
     updateGenericSnapshot(*c, timing, t, kept);
     (void)compileFieldProgram(kept, 0.0);
   });
+  const double scrubCpu = cpuMs([&] {
+    for (int r = 0; r < repeats; ++r) {
+      t += 0.02;
+      updateGenericSnapshot(*c, timing, t, kept);
+      (void)compileFieldProgram(kept, 0.0);
+    }
+  }) / repeats;
   rows.push_back({"update C(t) in place + flatten (scrubbing)", n / (scrub * 1e-3), "nodes/s", ">= 1,000,000",
-                  ms(scrub) + " per frame"});
+                  ms(scrub) + " per frame; processor time " + ms(scrubCpu) + " per frame (" +
+                      std::to_string(long(n / (scrubCpu * 1e-3))) + " nodes/s)"});
+  // The same, flattened into one kept program (FieldProgram::reset: its memory reused).
+  FieldProgram keptProgram;
+  t = kDemoMorphStartSec;
+  auto scrubKeptFrame = [&] {
+    t += 0.02;
+    updateGenericSnapshot(*c, timing, t, kept);
+    compileFieldProgram(kept, 0.0, keptProgram);
+  };
+  double scrubKept = bench::medianMs(repeats, scrubKeptFrame);
+  const double scrubKeptCpu = cpuMs([&] {
+    for (int r = 0; r < repeats; ++r) scrubKeptFrame();
+  }) / repeats;
+  rows.push_back({"update C(t) in place + flatten into the kept program", n / (scrubKept * 1e-3), "nodes/s",
+                  ">= 1,000,000",
+                  ms(scrubKept) + " per frame; processor time " + ms(scrubKeptCpu) + " per frame (" +
+                      std::to_string(long(n / (scrubKeptCpu * 1e-3))) + " nodes/s)"});
   double base = bench::medianMs(repeats, [&] { (void)compileFieldProgram(dragon, 0.5); });
   rows.push_back({"flatten the dragon alone (baseline)", double(dragon.root.subtreeSize()) / (base * 1e-3),
                   "nodes/s", "", ms(base) + " per frame"});
@@ -240,7 +264,7 @@ std::vector<Row> runDemoBench(const bench::Options& opt) {
   // frame instantiated into the kept snapshot, flattened and polygonised at 96^3, consecutive frames
   // 1/24 s apart, with the worker's history (its grid kept while the shape fits, 0.1 cell) against none.
   const int scrubFrames = opt.quick ? 3 : 12, scrubRes = opt.quick ? 48 : 96;
-  auto scrubbing = [&](bool coherent, size_t& reusedOut) {
+  auto scrubbing = [&](bool coherent, size_t& reusedOut, int resolution) {
     PolygonizeHistory history;
     auto snapshot = std::make_shared<BlobTree>();
     reusedOut = 0;
@@ -250,19 +274,28 @@ std::vector<Row> runDemoBench(const bench::Options& opt) {
       for (int f = 0; f < scrubFrames; ++f) {
         updateGenericSnapshot(*c, timing, mid + f / 24.0, *snapshot);
         auto source = blobTreePreviewSource(std::make_shared<const BlobTree>(*snapshot), 0.0);
-        if (auto r = source->polygonize(scrubRes, 0, nullptr, coherent ? &history : nullptr))
+        if (auto r = source->polygonize(resolution, 0, nullptr, coherent ? &history : nullptr))
           reusedOut += r->stats.blocksReused;
       }
     }) / scrubFrames;
   };
   size_t scrubReused = 0;
-  const double scrubPlain = scrubbing(false, scrubReused);
-  const double scrubCoherent = scrubbing(true, scrubReused);
+  const double scrubPlain = scrubbing(false, scrubReused, scrubRes);
+  const double scrubCoherent = scrubbing(true, scrubReused, scrubRes);
   const std::string scrubHead = "scrub C(t) at " + std::to_string(scrubRes) + "^3 on the CPU (preview worker)";
   rows.push_back({scrubHead + ", no history (baseline)", 1e3 / scrubPlain, "fps", "", ms(scrubPlain) + " per frame"});
   rows.push_back({scrubHead + ", with its history", 1e3 / scrubCoherent, "fps", ">= 20 fps",
                   ms(scrubCoherent) + " per frame; " + std::to_string(scrubReused) + " blocks reused over " +
                       std::to_string(scrubFrames) + " frames"});
+  // The same at coarser grids: what a preview that dropped to them while the slider is dragged
+  // would show (the editor's preview answers at 96^3 first, then 128^3; it has no such level).
+  for (int coarse : {64, 48}) {
+    if (coarse >= scrubRes) continue;
+    size_t reusedCoarse = 0;
+    const double coarseMs = scrubbing(true, reusedCoarse, coarse);
+    rows.push_back({"scrub C(t) at " + std::to_string(coarse) + "^3 on the CPU (preview worker), with its history",
+                    1e3 / coarseMs, "fps", "", ms(coarseMs) + " per frame (a coarser grid than the editor's 96^3)"});
+  }
 
   // A bake with temporal coherence (poly/frame_sequence.h: one grid, 0.1 cell) against frames on
   // their own grids, consecutive frames of C(t) from the middle of the morph.

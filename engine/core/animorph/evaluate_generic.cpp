@@ -1,5 +1,8 @@
 #include "animorph/evaluate_generic.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "animorph/param_blend.h"
 
 namespace animorph {
@@ -11,14 +14,24 @@ float nodeS(const GenericTree& c, const GenericNode& n, const AnimorphosisTiming
 
 namespace {
 
+int subtreeNodes(const GenericNode& g) {
+  int count = 1;
+  for (const GenericNode& k : g.children) count += subtreeNodes(k);
+  return count;
+}
+
+// Children of one node written in parallel from this many on (a wing membrane's patches, a
+// part's fibres): each child's sub-tree is independent, its ids known from the sizes before it.
+constexpr size_t kParallelChildren = 64;
+
 struct Writer {
   const GenericTree& c;
   const AnimorphosisTiming& timing;
   double t, tA, tB;
   std::vector<float> sOfCurve;  // s(u) of each override curve, then of the global one (last)
-  int nextId = 1;
 
-  void node(const GenericNode& g, BlobNode& n) {
+  // Writes g's sub-tree into n with ids from `id` in pre-order; returns the id after the sub-tree.
+  int node(const GenericNode& g, BlobNode& n, int id) {
     float s = sOfCurve[g.sCurve >= 0 ? size_t(g.sCurve) : sOfCurve.size() - 1];
     bool bridged = g.a.type != g.b.type;
     const BlobNode& named = s >= 1.0f ? g.b : g.a;
@@ -38,9 +51,22 @@ struct Writer {
     } else {
       for (size_t i = 0; i < params; ++i) writeBlendedParam(n.params[i], g.a.params[i], g.b.params[i], tA, tB, s);
     }
-    n.id = nextId++;
+    n.id = id++;
     if (n.children.size() != g.children.size()) n.children.resize(g.children.size());
-    for (size_t k = 0; k < g.children.size(); ++k) node(g.children[k], n.children[k]);
+    const size_t count = g.children.size();
+    if (count < kParallelChildren) {
+      for (size_t k = 0; k < count; ++k) id = node(g.children[k], n.children[k], id);
+      return id;
+    }
+    std::vector<int> first(count);
+    for (size_t k = 0; k < count; ++k) {
+      first[k] = id;
+      id += subtreeNodes(g.children[k]);
+    }
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 32), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t k = r.begin(); k < r.end(); ++k) node(g.children[k], n.children[k], first[k]);
+    });
+    return id;
   }
 };
 
@@ -59,7 +85,7 @@ void updateGenericSnapshot(const GenericTree& c, const AnimorphosisTiming& timin
   const double u = timing.u(timeSec);
   for (const FloatTrack& curve : c.sCurves) w.sOfCurve.push_back(evaluateS(curve, u));
   w.sOfCurve.push_back(s);
-  w.node(c.root, snapshot.root);
+  w.node(c.root, snapshot.root, 1);
 }
 
 BlobTree instantiateGeneric(const GenericTree& c, const AnimorphosisTiming& timing, double timeSec) {

@@ -29,12 +29,29 @@ std::vector<ResampleWeight> resampleWeights(size_t from, size_t to) {
 
 namespace {
 
-std::vector<glm::vec3> pointsAt(const ControlPoints& pts, double t, size_t count) {
-  std::vector<glm::vec3> r;
-  r.reserve(count);
-  for (const ResampleWeight& w : resampleWeights(pts.size(), count))
-    r.push_back(pts[w.i0].evaluate(t) * (1.0f - w.w) + pts[w.i1].evaluate(t) * w.w);
-  return r;
+// The list at t resampled to `count` points, written into `out`: each control point's track is
+// evaluated once (a resampled point reads two of them, an unresampled one the same one twice),
+// then lerp(p[i0], p[i1], w) as resampleWeights gives it.
+void pointsAt(const ControlPoints& pts, double t, size_t count, std::vector<glm::vec3>& at,
+              std::vector<glm::vec3>& out) {
+  at.resize(pts.size());
+  for (size_t i = 0; i < pts.size(); ++i) at[i] = pts[i].evaluate(t);
+  out.resize(count);
+  if (count == pts.size()) {  // weights (k, k, 0): the points themselves (v * 1 + v * 0 == v, v finite)
+    std::copy(at.begin(), at.end(), out.begin());
+    return;
+  }
+  const std::vector<ResampleWeight> weights = resampleWeights(pts.size(), count);
+  for (size_t k = 0; k < count; ++k) out[k] = at[weights[k].i0] * (1.0f - weights[k].w) + at[weights[k].i1] * weights[k].w;
+}
+
+// Per-thread scratch lists for the control points of one parameter (scrubbing allocates nothing).
+struct PointScratch {
+  std::vector<glm::vec3> at, a, b;
+};
+PointScratch& pointScratch() {
+  thread_local PointScratch s;
+  return s;
 }
 
 }  // namespace
@@ -75,7 +92,9 @@ void writeConstantParam(ParamValue& slot, const ParamValue& p, double t) {
   if (auto* v = std::get_if<Vec3Track>(&p)) return setOne(slot, v->evaluate(t));
   if (auto* q = std::get_if<QuatTrack>(&p)) return setOne(slot, q->evaluate(t));
   const auto& list = std::get<ControlPoints>(p);
-  setPoints(slot, pointsAt(list, t, list.size()));
+  PointScratch& s = pointScratch();
+  pointsAt(list, t, list.size(), s.at, s.a);
+  setPoints(slot, s.a);
 }
 
 void writeBlendedParam(ParamValue& slot, const ParamValue& a, const ParamValue& b, double tA, double tB, float s) {
@@ -88,9 +107,11 @@ void writeBlendedParam(ParamValue& slot, const ParamValue& a, const ParamValue& 
   const auto& pa = std::get<ControlPoints>(a);
   const auto& pb = std::get<ControlPoints>(b);
   size_t n = std::max(pa.size(), pb.size());
-  std::vector<glm::vec3> va = pointsAt(pa, tA, n), vb = pointsAt(pb, tB, n);
-  for (size_t k = 0; k < n; ++k) va[k] = (1.0f - s) * va[k] + s * vb[k];
-  setPoints(slot, va);
+  PointScratch& sc = pointScratch();
+  pointsAt(pa, tA, n, sc.at, sc.a);
+  pointsAt(pb, tB, n, sc.at, sc.b);
+  for (size_t k = 0; k < n; ++k) sc.a[k] = (1.0f - s) * sc.a[k] + s * sc.b[k];
+  setPoints(slot, sc.a);
 }
 
 }  // namespace animorph

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <numeric>
 #include <unordered_map>
 
@@ -12,9 +13,18 @@ namespace animorph {
 namespace {
 
 struct Compiler {
+  Compiler(FieldProgram& program, double timeSec, const CompileOptions& options)
+      : prog(program), t(timeSec), opt(options) {}
+
   FieldProgram& prog;
   double t;
   CompileOptions opt;
+  // Reused memory: meta-primitive expansion, Coons triangles, one frame list per nesting level of
+  // spline-of-nodes (a copy's child may itself be a spline-of-nodes).
+  MetaScratch scratch;
+  std::vector<std::array<glm::vec3, 3>> triangles;
+  std::deque<std::vector<SpaceMap>> frameLevels;  // a deque: deeper levels added keep references valid
+  size_t splineDepth = 0;
 
   float f(const BlobNode& n, const char* name) const { return n.floatParam(name).evaluate(t); }
   glm::vec3 v(const BlobNode& n, const char* name) const { return n.vec3Param(name).evaluate(t); }
@@ -58,6 +68,7 @@ struct Compiler {
   }
 
   int need(const BlobNode& n) {
+    if (n.children.empty()) return 1;  // every childless node needs one value (not memoised)
     if (auto it = needs.find(&n); it != needs.end()) return it->second;
     int r = 1;
     switch (n.type) {
@@ -130,7 +141,8 @@ struct Compiler {
         break;
       case NodeType::Curve: {
         s.kind = SkeletonKind::Curve;
-        std::vector<glm::vec3> pts = evaluatePoints(n.pointsParam("points"), t);
+        std::vector<glm::vec3>& pts = scratch.points[0];
+        evaluatePoints(n.pointsParam("points"), t, pts);
         p.curveFirst = uint32_t(prog.curvePoints.size());
         s.curveCount = int(pts.size());
         prog.curvePoints.insert(prog.curvePoints.end(), pts.begin(), pts.end());
@@ -156,13 +168,39 @@ struct Compiler {
     return prog.addCapsule(c, combine, combineMax);
   }
 
-  // Emits children[first..] combined by `code` (Sum or Max) as one operand.
+  // Emits a Coons patch: the union (max) of its triangles, the first joining the previous Prims op
+  // when `combine` (a union's run of primitives: max of maxes is one max, and the first triangle
+  // reaching the largest value gives the gradient either way). Returns true when it pushed an operand.
+  bool coonsPatch(const BlobNode& n, bool combine) {
+    std::vector<std::array<glm::vec3, 3>>& tris = triangles;
+    coonsPatchTriangles(n, t, scratch, tris);
+    SkeletalPrimitive p;
+    p.skeleton.kind = SkeletonKind::Triangle;
+    p.radius = std::max(0.0f, f(n, "radius"));
+    p.intensity = f(n, "intensity");
+    p.stiffness = std::max(0.0f, f(n, "stiffness"));
+    bool pushed = false;
+    for (size_t i = 0; i < tris.size(); ++i) {
+      p.skeleton.p0 = tris[i][0];
+      p.skeleton.p1 = tris[i][1];
+      p.skeleton.p2 = tris[i][2];
+      bool added = prog.addSkeletal(p, combine || i > 0, true);
+      if (i == 0) pushed = added;
+    }
+    return pushed;
+  }
+
+  // Emits children[first..] combined by `code` (Sum or Max) as one operand. Under a union, Coons
+  // patches join the run of primitives like primitives (their triangles are max-combined).
   void group(const std::vector<BlobNode>& children, size_t first, OpCode code) {
     uint32_t operands = 0;
     bool prevPrim = false;
     for (size_t i : operandOrder(children, first)) {
       const BlobNode& c = children[i];
-      if (isPrimitive(c.type)) {
+      if (code == OpCode::Max && c.type == NodeType::CoonsPatch) {
+        if (coonsPatch(c, prevPrim)) ++operands;
+        prevPrim = true;
+      } else if (isPrimitive(c.type)) {
         if (primitive(c, prevPrim, code == OpCode::Max)) ++operands;
         prevPrim = true;
       } else {
@@ -237,30 +275,20 @@ struct Compiler {
         prog.endMap();
         return;
       case NodeType::SplineOfNodes: {
-        std::vector<SpaceMap> frames = splineOfNodesFrames(n, t);
+        if (frameLevels.size() <= splineDepth) frameLevels.resize(splineDepth + 1);
+        std::vector<SpaceMap>& frames = frameLevels[splineDepth];
+        splineOfNodesFrames(n, t, scratch, frames);
+        ++splineDepth;
         for (const SpaceMap& m : frames) {
           prog.beginMap(m);
           node(n.children[0]);
           prog.endMap();
         }
+        --splineDepth;
         if (frames.size() > 1) prog.addOperator(OpCode::Sum, uint32_t(frames.size()));
         return;
       }
-      case NodeType::CoonsPatch: {
-        auto tris = coonsPatchTriangles(n, t);
-        SkeletalPrimitive p;
-        p.skeleton.kind = SkeletonKind::Triangle;
-        p.radius = std::max(0.0f, f(n, "radius"));
-        p.intensity = f(n, "intensity");
-        p.stiffness = std::max(0.0f, f(n, "stiffness"));
-        for (size_t i = 0; i < tris.size(); ++i) {
-          p.skeleton.p0 = tris[i][0];
-          p.skeleton.p1 = tris[i][1];
-          p.skeleton.p2 = tris[i][2];
-          prog.addSkeletal(p, i > 0, true);
-        }
-        return;
-      }
+      case NodeType::CoonsPatch: coonsPatch(n, false); return;
       default: prog.addConstant(0.0f); return;
     }
   }
@@ -270,14 +298,19 @@ struct Compiler {
 
 FieldProgram compileFieldProgram(const BlobTree& tree, double timeSec, const CompileOptions& options) {
   FieldProgram prog;
-  prog.threshold = std::max(1e-6f, tree.threshold.evaluate(timeSec));
-  appendBlobTree(prog, tree, timeSec, options);
-  prog.finish();
+  compileFieldProgram(tree, timeSec, prog, options);
   return prog;
 }
 
+void compileFieldProgram(const BlobTree& tree, double timeSec, FieldProgram& prog, const CompileOptions& options) {
+  prog.reset();
+  prog.threshold = std::max(1e-6f, tree.threshold.evaluate(timeSec));
+  appendBlobTree(prog, tree, timeSec, options);
+  prog.finish();
+}
+
 void appendBlobTree(FieldProgram& prog, const BlobTree& tree, double timeSec, const CompileOptions& options) {
-  Compiler c{prog, timeSec, options, {}};
+  Compiler c{prog, timeSec, options};
   c.node(tree.root);
 }
 

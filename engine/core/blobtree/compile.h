@@ -16,6 +16,9 @@ struct CompileOptions {
 // The tree must be valid (validateBlobTree); values that animation pushes out
 // of range between keys are clamped (radii to >= 0, q to >= 1, scales to non-zero).
 FieldProgram compileFieldProgram(const BlobTree& tree, double timeSec, const CompileOptions& options = {});
+// The same program built into `out` (whatever it held is replaced), reusing its memory: flattening
+// every frame into one kept program allocates nothing once warm.
+void compileFieldProgram(const BlobTree& tree, double timeSec, FieldProgram& out, const CompileOptions& options = {});
 
 // The same tree appended to prog as one operand (prog not finished yet), under
 // whatever maps prog has open: how a morph puts a BlobTree beside a stand-in.

@@ -11,17 +11,29 @@ namespace animorph {
 
 std::vector<glm::vec3> evaluatePoints(const ControlPoints& pts, double t) {
   std::vector<glm::vec3> out;
-  out.reserve(pts.size());
-  for (const auto& p : pts) out.push_back(p.evaluate(t));
+  evaluatePoints(pts, t, out);
   return out;
 }
 
+void evaluatePoints(const ControlPoints& pts, double t, std::vector<glm::vec3>& out) {
+  out.resize(pts.size());
+  for (size_t i = 0; i < pts.size(); ++i) out[i] = pts[i].evaluate(t);
+}
+
 std::vector<SpaceMap> splineOfNodesFrames(const BlobNode& node, double t) {
-  std::vector<glm::vec3> pts = evaluatePoints(node.pointsParam("points"), t);
+  MetaScratch scratch;
+  std::vector<SpaceMap> frames;
+  splineOfNodesFrames(node, t, scratch, frames);
+  return frames;
+}
+
+void splineOfNodesFrames(const BlobNode& node, double t, MetaScratch& scratch, std::vector<SpaceMap>& frames) {
+  std::vector<glm::vec3>& pts = scratch.points[0];
+  evaluatePoints(node.pointsParam("points"), t, pts);
   int count = std::clamp(int(std::lround(node.floatParam("count").evaluate(t))), 1, 1000);
   float s0 = std::max(1e-4f, node.floatParam("scaleStart").evaluate(t));
   float s1 = std::max(1e-4f, node.floatParam("scaleEnd").evaluate(t));
-  std::vector<SpaceMap> frames;
+  frames.clear();
   frames.reserve(size_t(count));
   for (int i = 0; i < count; ++i) {
     float s = count == 1 ? 0.0f : float(i) / float(count - 1);
@@ -31,20 +43,28 @@ std::vector<SpaceMap> splineOfNodesFrames(const BlobNode& node, double t) {
     float scale = s0 + (s1 - s0) * s;
     frames.push_back(makeAffineMap(c.position, rot, glm::vec3(scale)));
   }
-  return frames;
 }
 
 std::vector<std::array<glm::vec3, 3>> coonsPatchTriangles(const BlobNode& node, double t) {
-  std::vector<glm::vec3> bottom = evaluatePoints(node.pointsParam("bottom"), t);
-  std::vector<glm::vec3> top = evaluatePoints(node.pointsParam("top"), t);
-  std::vector<glm::vec3> left = evaluatePoints(node.pointsParam("left"), t);
-  std::vector<glm::vec3> right = evaluatePoints(node.pointsParam("right"), t);
+  MetaScratch scratch;
+  std::vector<std::array<glm::vec3, 3>> tris;
+  coonsPatchTriangles(node, t, scratch, tris);
+  return tris;
+}
+
+void coonsPatchTriangles(const BlobNode& node, double t, MetaScratch& scratch,
+                         std::vector<std::array<glm::vec3, 3>>& tris) {
+  static constexpr const char* kCurves[4] = {"bottom", "top", "left", "right"};
+  for (int k = 0; k < 4; ++k) evaluatePoints(node.pointsParam(kCurves[k]), t, scratch.points[k]);
+  const std::vector<glm::vec3>&bottom = scratch.points[0], &top = scratch.points[1], &left = scratch.points[2],
+  &right = scratch.points[3];
   int res = std::clamp(int(std::lround(node.floatParam("resolution").evaluate(t))), 1, 64);
   glm::vec3 p00 = evaluateCurve(bottom, 0.0f).position, p10 = evaluateCurve(bottom, 1.0f).position;
   glm::vec3 p01 = evaluateCurve(top, 0.0f).position, p11 = evaluateCurve(top, 1.0f).position;
   // The four boundary curves sampled once at the grid's parameters (not once per grid point).
-  std::vector<glm::vec3> atBottom(size_t(res + 1)), atTop(size_t(res + 1)), atLeft(size_t(res + 1)),
-      atRight(size_t(res + 1));
+  for (auto& samples : scratch.samples) samples.resize(size_t(res + 1));
+  std::vector<glm::vec3>&atBottom = scratch.samples[0], &atTop = scratch.samples[1], &atLeft = scratch.samples[2],
+  &atRight = scratch.samples[3];
   for (int i = 0; i <= res; ++i) {
     float w = float(i) / res;
     atBottom[size_t(i)] = evaluateCurve(bottom, w).position;
@@ -59,10 +79,11 @@ std::vector<std::array<glm::vec3, 3>> coonsPatchTriangles(const BlobNode& node, 
     glm::vec3 bilinear = (1.0f - u) * (1.0f - v) * p00 + u * (1.0f - v) * p10 + (1.0f - u) * v * p01 + u * v * p11;
     return ruled - bilinear;
   };
-  std::vector<glm::vec3> grid(size_t((res + 1) * (res + 1)));
+  std::vector<glm::vec3>& grid = scratch.grid;
+  grid.resize(size_t((res + 1) * (res + 1)));
   for (int j = 0; j <= res; ++j)
     for (int i = 0; i <= res; ++i) grid[size_t(j * (res + 1) + i)] = surface(i, j);
-  std::vector<std::array<glm::vec3, 3>> tris;
+  tris.clear();
   tris.reserve(size_t(2 * res * res));
   for (int j = 0; j < res; ++j)
     for (int i = 0; i < res; ++i) {
@@ -71,7 +92,6 @@ std::vector<std::array<glm::vec3, 3>> coonsPatchTriangles(const BlobNode& node, 
       tris.push_back({a, b, d});
       tris.push_back({a, d, c});
     }
-  return tris;
 }
 
 }  // namespace animorph

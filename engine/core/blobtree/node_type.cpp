@@ -132,9 +132,19 @@ const NodeTypeInfo* findNodeType(std::string_view name) {
 }
 
 int paramIndex(NodeType t, std::string_view name) {
-  const auto& ps = nodeTypeInfo(t).params;
+  // The parameter names of each type as string_views, measured once: the compiler looks parameters
+  // up by name for every node of every frame.
+  static const std::vector<std::vector<std::string_view>> names = [] {
+    std::vector<std::vector<std::string_view>> r;
+    for (const NodeTypeInfo& info : allNodeTypes()) {
+      r.emplace_back();
+      for (const ParamSpec& p : info.params) r.back().emplace_back(p.name);
+    }
+    return r;
+  }();
+  const std::vector<std::string_view>& ps = names[size_t(t)];
   for (size_t i = 0; i < ps.size(); ++i)
-    if (name == ps[i].name) return int(i);
+    if (name == ps[i]) return int(i);
   return -1;
 }
 

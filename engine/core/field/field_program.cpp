@@ -142,7 +142,10 @@ void foldWideOperators(std::vector<FieldOp>& ops) {
       }
     }
   }
-  std::vector<FieldOp> out;
+  // The rewritten list goes to a per-thread buffer that is then swapped with ops: a program
+  // rebuilt every frame (FieldProgram::reset) reuses both buffers instead of allocating.
+  thread_local std::vector<FieldOp> out;
+  out.clear();
   out.reserve(ops.size() + ops.size() / (K - 1) + 1);
   for (uint32_t i = 0; i < ops.size(); ++i) {
     FieldOp op = ops[i];
@@ -154,7 +157,7 @@ void foldWideOperators(std::vector<FieldOp>& ops) {
       out.push_back(part);
     }
   }
-  ops = std::move(out);
+  ops.swap(out);
 }
 }  // namespace
 
@@ -167,11 +170,11 @@ PrimitiveBound FieldProgram::worldBound(const glm::vec3& a, const glm::vec3& b, 
   pb.radius = radius;
   pb.box.add(glm::min(a, b) - glm::vec3(radius));
   pb.box.add(glm::max(a, b) + glm::vec3(radius));
-  for (auto it = openMaps_.rbegin(); it != openMaps_.rend(); ++it) {
-    const SpaceMap& m = maps[*it];
+  for (size_t level = openMaps_.size(); level-- > 0;) {
+    const SpaceMap& m = maps[openMaps_[level]];
     Bounds box = m.worldBounds(pb.box);
-    float s;
-    if (m.kind == SpaceMapKind::Affine && uniformScaleRigid(m.forwardLinear, s)) {
+    const float s = openScale_[level];
+    if (s >= 0.0f) {
       pb.a = m.toWorld(pb.a);
       pb.b = m.toWorld(pb.b);
       pb.radius *= s;
@@ -276,6 +279,8 @@ void FieldProgram::beginMap(const SpaceMap& m) {
   op.first = uint32_t(maps.size());
   openMaps_.push_back(op.first);
   openBegins_.push_back(uint32_t(ops.size()));
+  float scale;
+  openScale_.push_back(m.kind == SpaceMapKind::Affine && uniformScaleRigid(m.forwardLinear, scale) ? scale : -1.0f);
   maps.push_back(m);
   ops.push_back(op);
 }
@@ -287,7 +292,35 @@ void FieldProgram::endMap() {
   op.first = openMaps_.back();
   openMaps_.pop_back();
   openBegins_.pop_back();
+  openScale_.pop_back();
   ops.push_back(op);
+}
+
+void FieldProgram::reset() {
+  threshold = 1.0f;
+  ops.clear();
+  params.clear();
+  maps.clear();
+  skeletal.clear();
+  skeletalReach.clear();
+  curvePoints.clear();
+  for (std::vector<float>* v : {&convolution.bx, &convolution.by, &convolution.bz, &convolution.ax, &convolution.ay,
+                                &convolution.az, &convolution.length, &convolution.weight, &convolution.sharpness,
+                                &convolution.cut2})
+    v->clear();
+  capsules.clear();
+  primitiveBounds.clear();
+  openMaps_.clear();
+  openBegins_.clear();
+  openScale_.clear();
+  outermostEnd_.clear();
+  primsBefore_.clear();
+  bounds_ = Bounds{};
+  unbounded_ = false;
+  maxStack_ = 0;
+  maxMapDepth_ = 0;
+  mapReach_.clear();
+  identity_ = 0;
 }
 
 void FieldProgram::finish() {

@@ -134,6 +134,9 @@ class FieldProgram {
   // Finishes building: empty values, subtree extents, stack sizes and bounds.
   // Call once after the last add; the program is then immutable.
   void finish();
+  // Empties the program to build another one into it, keeping its memory (a scrubbing editor
+  // flattens every frame into one kept program: no allocation once warm).
+  void reset();
 
   // --- queries ---
   size_t primitiveCount() const { return primitiveBounds.size(); }
@@ -170,6 +173,9 @@ class FieldProgram {
   PrimitiveBound worldBound(const glm::vec3& a, const glm::vec3& b, float radius) const;
   std::vector<uint32_t> openMaps_;    // while building
   std::vector<uint32_t> openBegins_;  // while building: op index of each open BeginMap
+  // While building, per open map: its scale when affine with a uniformly scaled rotation (a
+  // primitive's capsule bound then maps to a capsule), else -1. Measured once per map, not per primitive.
+  std::vector<float> openScale_;
   std::vector<uint32_t> outermostEnd_;
   std::vector<uint32_t> primsBefore_;  // primitives in ops[0..i): global id of the first at or after op i
   Bounds bounds_;

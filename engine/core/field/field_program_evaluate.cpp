@@ -138,13 +138,17 @@ void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, con
         const float* __restrict iy = cy[level];
         const float* __restrict iz = cz[level];
         if (m.kind == SpaceMapKind::Affine) {
-          const glm::mat3& L = m.linear;
-          const glm::vec3 o = m.origin;
+          // The matrix in locals: read through a reference, the stores could alias it and every
+          // element would be loaded again per point (a scalar loop); copied, the loop vectorises.
+          const glm::mat3 L = m.linear;
+          const float l00 = L[0][0], l01 = L[0][1], l02 = L[0][2], l10 = L[1][0], l11 = L[1][1], l12 = L[1][2],
+                      l20 = L[2][0], l21 = L[2][1], l22 = L[2][2];
+          const float o0 = m.origin.x, o1 = m.origin.y, o2 = m.origin.z;
           for (int i = 0; i < n; ++i) {
-            float dx = ix[i] - o.x, dy = iy[i] - o.y, dz = iz[i] - o.z;
-            ox[i] = L[0][0] * dx + L[1][0] * dy + L[2][0] * dz;
-            oy[i] = L[0][1] * dx + L[1][1] * dy + L[2][1] * dz;
-            oz[i] = L[0][2] * dx + L[1][2] * dy + L[2][2] * dz;
+            float dx = ix[i] - o0, dy = iy[i] - o1, dz = iz[i] - o2;
+            ox[i] = l00 * dx + l10 * dy + l20 * dz;
+            oy[i] = l01 * dx + l11 * dy + l21 * dz;
+            oz[i] = l02 * dx + l12 * dy + l22 * dz;
           }
         } else {
           for (int i = 0; i < n; ++i) {
@@ -184,12 +188,14 @@ void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, con
           float* gy = GY(sp - 1);
           float* gz = GZ(sp - 1);
           if (m.kind == SpaceMapKind::Affine) {
-            const glm::mat3& L = m.linear;  // J = L; grad_world = L^T grad_local
+            const glm::mat3 L = m.linear;  // J = L; grad_world = L^T grad_local (in locals, as above)
+            const float l00 = L[0][0], l01 = L[0][1], l02 = L[0][2], l10 = L[1][0], l11 = L[1][1], l12 = L[1][2],
+                        l20 = L[2][0], l21 = L[2][1], l22 = L[2][2];
             for (int i = 0; i < n; ++i) {
               float a = gx[i], b = gy[i], c = gz[i];
-              gx[i] = L[0][0] * a + L[0][1] * b + L[0][2] * c;
-              gy[i] = L[1][0] * a + L[1][1] * b + L[1][2] * c;
-              gz[i] = L[2][0] * a + L[2][1] * b + L[2][2] * c;
+              gx[i] = l00 * a + l01 * b + l02 * c;
+              gy[i] = l10 * a + l11 * b + l12 * c;
+              gz[i] = l20 * a + l21 * b + l22 * c;
             }
           } else {
             for (int i = 0; i < n; ++i) {

@@ -209,6 +209,19 @@ Bounds SpaceMap::worldBounds(const Bounds& child) const {
     const glm::vec3 px[2] = {m[0] * child.min.x, m[0] * child.max.x};
     const glm::vec3 py[2] = {m[1] * child.min.y, m[1] * child.max.y};
     const glm::vec3 pz[2] = {m[2] * child.min.z, m[2] * child.max.z};
+    // Rounded addition is monotonic in each operand, so per component the smallest (largest) corner
+    // image is the sum of the smallest (largest) products: the box without visiting the corners.
+    // A zero bound (whose sign depends on which corner gave it) takes the corner loop below.
+    bool zero = false;
+    for (int k = 0; k < 3; ++k) {
+      out.min[k] = origin[k] + ((std::min(px[0][k], px[1][k]) + std::min(py[0][k], py[1][k])) +
+                                std::min(pz[0][k], pz[1][k]));
+      out.max[k] = origin[k] + ((std::max(px[0][k], px[1][k]) + std::max(py[0][k], py[1][k])) +
+                                std::max(pz[0][k], pz[1][k]));
+      zero |= out.min[k] == 0.0f || out.max[k] == 0.0f;
+    }
+    if (!zero) return out;
+    out = Bounds{};
     for (int i = 0; i < 8; ++i) {
       const glm::vec3 &a = px[i & 1], &b = py[(i >> 1) & 1], &c = pz[(i >> 2) & 1];
       out.add(origin + glm::vec3(a.x + b.x + c.x, a.y + b.y + c.y, a.z + b.z + c.z));
