@@ -20,6 +20,20 @@ const BlobNode* firstPoint(const BlobNode& n) {
   return nullptr;
 }
 
+// Presses Cancel in the job panel of the job just started (still running) and waits for it to end.
+void cancelRunningJob(EditorHarness& h) {
+  REQUIRE(h.ui->runningJob());
+  h.frames(1);  // the job panel with its Cancel button
+  REQUIRE(h.ui->runningJob());
+  REQUIRE(h.hasWidget("job/cancel"));
+  h.clickWidget("job/cancel");
+  for (int i = 0; i < 3000 && h.ui->runningJob(); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    h.frames(1);
+  }
+  REQUIRE_FALSE(h.ui->runningJob());
+}
+
 }  // namespace
 
 TEST_CASE("the Particles section converts a BlobTree actor and simulates it, one undo step each", "[ui][particles]") {
@@ -154,16 +168,7 @@ TEST_CASE("cancelling Simulate in the Particles section leaves the particles as 
   st.settings.durationSec = 5.0;  // seconds of work: still running when Cancel is pressed
   h.finishJobs = false;
   h.clickWidget("inspector/particles/simulate");
-  REQUIRE(h.ui->runningJob());
-  h.frames(1);  // the job panel with its Cancel button
-  REQUIRE(h.ui->runningJob());
-  REQUIRE(h.hasWidget("job/cancel"));
-  h.clickWidget("job/cancel");
-  for (int i = 0; i < 3000 && h.ui->runningJob(); ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    h.frames(1);
-  }
-  REQUIRE_FALSE(h.ui->runningJob());
+  cancelRunningJob(h);
   INFO(h.ui->state().status.text);
   CHECK(h.ui->state().status.text.find("cancelled") != std::string::npos);
   CHECK(h.doc().history().size() == steps);
@@ -223,4 +228,23 @@ TEST_CASE("the Particles section converts a character's stand-in into a new part
   h.doc().undo();
   h.frames(1);
   CHECK(h.doc().project() == before);
+}
+
+TEST_CASE("cancelling a character's Convert to particles adds no actor", "[ui][particles]") {
+  EditorFixture f({1600.0f, 1800.0f});
+  auto& h = f.h;
+  f.loadHeroScene();
+  h.doc().selection = {"hero", -1};
+  h.frames(2);
+  const Project before = h.doc().project();
+  auto& st = h.ui->state().inspector.particles;
+  st.convertCount = 1'000'000;  // seconds of work: still running when Cancel is pressed
+  h.clickWidget("inspector/particles/from_standin");
+  h.finishJobs = false;
+  h.clickWidget("inspector/particles/convert");
+  cancelRunningJob(h);
+  INFO(h.ui->state().status.text);
+  CHECK(h.ui->state().status.text.find("cancelled") != std::string::npos);
+  CHECK(h.doc().project() == before);
+  CHECK(h.doc().history().size() == 0);
 }

@@ -1,8 +1,8 @@
 // EditorUI's long operations, run as background jobs (util/background_job.h): opening a project
 // (and loading its characters), opening or importing a glTF, File > Export > Meshes and Volumes...
 // and Playblast..., Refit all,
-// Animorphosis > Bake to Key-frame Actor, and the Particles section's Simulate and Convert to
-// particles. The work runs on the job's thread on copies and fills a result that only the UI thread applies, in
+// Animorphosis > Bake to Key-frame Actor, and the Particles section's Simulate, Explode and re-form
+// and Convert to particles (of a BlobTree actor, or of a character into a new actor). The work runs on the job's thread on copies and fills a result that only the UI thread applies, in
 // pollJob(), as one step: a new document, or one undoable command.
 #include <cmath>
 #include <cstdio>
