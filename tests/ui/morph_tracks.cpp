@@ -312,3 +312,40 @@ TEST_CASE("chain matching: a partner combo re-pairs a chain in one undo step, th
   CHECK_FALSE(h.doc().history().canUndo());
   CHECK(h.doc().history().canRedo());
 }
+
+TEST_CASE("the Correspondence Editor shows a skeleton-correspondence morph's chain matching and re-pairs its chains",
+          "[morph][chain_pairs]") {
+  MorphFixture f;
+  auto& h = f.h;
+  Project p = h.doc().project();
+  p.morph.method = MorphMethod::SkeletonCorrespondence;
+  h.document->reset(p, f.dir.file("scene.animorph"));
+  h.ctx.morphRuntime = prepare(h, h.doc().project());
+  REQUIRE(h.ctx.morphRuntime->correspondence);
+  const SkeletonCorrespondence& automatic = *h.ctx.morphRuntime->correspondence;
+  const int root = automatic.source.mainRoot;
+  REQUIRE(root >= 0);
+  const std::string name = automatic.source.chains[size_t(root)].name;
+  h.frames(1);
+  // View > Correspondence Editor: the project has no animorphosis, so the window is the chain matching.
+  h.clickWidget("menu/View");
+  h.frames(1);
+  h.clickWidget("menu/Correspondence Editor");
+  h.frames(2);
+  REQUIRE(h.hasWidget("corr/window"));
+  CHECK_FALSE(h.hasWidget("corr/tab/chains"));  // one thing to show: no tabs
+  const std::string combo = "corr/chains/source/" + std::to_string(root);
+  REQUIRE(h.hasWidget(combo));
+  REQUIRE(h.hasWidget("corr/chains/target/0"));
+  h.clickWidget(combo);
+  h.frames(1);
+  REQUIRE(h.hasWidget("corr/chains/option/1"));
+  h.clickWidget("corr/chains/option/1");  // "unmatched"
+  CHECK(f.morph().chainPairs == std::vector<ChainPair>{{name, std::nullopt}});
+  CHECK(h.doc().history().size() == 1);
+  h.ctx.morphRuntime = prepare(h, h.doc().project());
+  h.frames(2);
+  REQUIRE(h.hasWidget("corr/chains/reset/" + std::to_string(root)));
+  h.tapKey(GLFW_KEY_Z, true);
+  CHECK(f.morph().chainPairs.empty());
+}

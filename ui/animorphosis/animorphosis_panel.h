@@ -29,6 +29,7 @@
 #include <glm/glm.hpp>
 
 #include "doc/document.h"
+#include "inspector/morph_panel.h"
 #include "shell/layout.h"
 #include "shell/status_bar.h"
 
@@ -78,9 +79,12 @@ void drawCreateAnimorphosisPopup(Document& doc, CreateAnimorphosisState& st, Cor
 // animorphosis or the middle half of the range) and opens it next draw.
 void openCreateAnimorphosis(const Document& doc, CreateAnimorphosisState& st);
 
-// The correspondence editor window when visible. area: the region it opens over.
+// The correspondence editor window when visible. area: the region it opens over. It edits the
+// animorphosis' graph; a morph by skeleton correspondence has its chain matching there too
+// (drawChainMatching on morph, the inspector's morph state: widgets noted corr/chains/...), on a
+// tab of its own when the project has both.
 void drawCorrespondenceEditor(const LayoutRect& area, Document& doc, CorrespondenceEditorState& st,
-                              StatusMessage& status);
+                              MorphPanelState& morph, StatusMessage& status);
 
 // The interval [t0, t1] on a timeline ruler spanning [x0, x1] pixels for
 // frames [viewStart, viewEnd], from y0 to y1: a band and two markers.

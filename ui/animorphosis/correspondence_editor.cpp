@@ -227,7 +227,7 @@ void drawToolbar(Document& doc, const BlobTree& a, const BlobTree& b, Correspond
 }  // namespace
 
 void drawCorrespondenceEditor(const LayoutRect& area, Document& doc, CorrespondenceEditorState& st,
-                              StatusMessage& status) {
+                              MorphPanelState& morph, StatusMessage& status) {
   st.hovered = {};
   const float h = std::clamp(area.size.y * 0.45f, 220.0f, 440.0f);  // the centre of the viewport stays in view
   if (!beginToolWindow("Correspondence Editor", ImVec2(area.min.x + 8.0f, area.min.y + 28.0f),
@@ -238,7 +238,29 @@ void drawCorrespondenceEditor(const LayoutRect& area, Document& doc, Corresponde
   const AnimorphosisSetup& m = project.animorphosis;
   const Actor* src = project.findActor(m.sourceActorId);
   const Actor* dst = project.findActor(m.targetActorId);
-  if (!m.enabled() || !src || !dst || src->kind != ActorKind::BlobTree || dst->kind != ActorKind::BlobTree) {
+  const bool chains = project.morph.enabled() && project.morph.method == MorphMethod::SkeletonCorrespondence;
+  const bool graph = m.enabled() && src && dst && src->kind == ActorKind::BlobTree && dst->kind == ActorKind::BlobTree;
+  bool chainTab = chains && !graph;
+  if (chains && graph) {  // both: a tab each
+    if (ImGui::BeginTabBar("##corr_tabs")) {
+      if (ImGui::BeginTabItem("Animorphosis")) ImGui::EndTabItem();
+      noteWidget("corr/tab/animorphosis");
+      if (ImGui::BeginTabItem("Morph chains")) {
+        chainTab = true;
+        ImGui::EndTabItem();
+      }
+      noteWidget("corr/tab/chains");
+      ImGui::EndTabBar();
+    }
+  }
+  if (chainTab) {
+    ImGui::TextDisabled("Morph %s -> %s: skeleton correspondence by chains", project.morph.sourceActorId.c_str(),
+                        project.morph.targetActorId.c_str());
+    drawChainMatching(doc, morph, "corr/chains");
+    ImGui::End();
+    return;
+  }
+  if (!graph) {
     ImGui::TextDisabled(m.enabled() ? "The animorphosis' source or target is not a BlobTree actor of the project."
                                     : "The project has no animorphosis: Create > Animorphosis... makes one.");
     ImGui::End();

@@ -21,7 +21,8 @@ void execute(Document& doc, std::unique_ptr<Command> cmd) {
 
 // The partner combo of source chain i: "automatic (X)", "unmatched", then every target chain.
 // pair: the document's artist pair for the chain (null: automatic).
-void partnerCombo(Document& doc, const SkeletonCorrespondence& c, size_t i, const ChainPair* pair) {
+void partnerCombo(Document& doc, const SkeletonCorrespondence& c, size_t i, const ChainPair* pair,
+                  const std::string& keys) {
   const SkeletonChains& target = c.target;
   const int automatic = c.automatic[i];
   const std::string autoPick = automatic >= 0 ? target.chains[size_t(automatic)].name : std::string("unmatched");
@@ -33,21 +34,21 @@ void partnerCombo(Document& doc, const SkeletonCorrespondence& c, size_t i, cons
   if (pair) ImGui::PushStyleColor(ImGuiCol_Text, kArtistColour);
   const bool open = ImGui::BeginCombo(("##partner" + std::to_string(i)).c_str(), preview.c_str());
   if (pair) ImGui::PopStyleColor();
-  noteWidget("morph/chains/source/" + std::to_string(i));
+  noteWidget(keys + "/source/" + std::to_string(i));
   if (ImGui::IsItemHovered() && !open)
     ImGui::SetTooltip("%s %s", name.c_str(), chainPartnerText(c.source, target, c.sourceMatch, int(i), "shrinks into").c_str());
   if (!open) return;
   if (ImGui::Selectable(autoText.c_str(), !pair)) execute(doc, resetChainPairCommand(doc.project(), name));
-  noteWidget("morph/chains/option/0");
+  noteWidget(keys + "/option/0");
   if (ImGui::Selectable("unmatched", pair && !pair->target))
     execute(doc, setChainPairCommand(doc.project(), {name, std::nullopt}));
-  noteWidget("morph/chains/option/1");
+  noteWidget(keys + "/option/1");
   for (size_t k = 0; k < target.chains.size(); ++k) {
     const std::string& tn = target.chains[k].name;
     const std::string label = tn + (int(k) == target.mainRoot ? " (root)" : "") + "##t" + std::to_string(k);
     if (ImGui::Selectable(label.c_str(), pair && pair->target == tn))
       execute(doc, setChainPairCommand(doc.project(), {name, tn}));
-    noteWidget("morph/chains/option/" + std::to_string(k + 2));
+    noteWidget(keys + "/option/" + std::to_string(k + 2));
   }
   ImGui::EndCombo();
 }
@@ -63,10 +64,12 @@ bool rowHovered(float rowTop) {
 }  // namespace
 
 void drawMorphChains(Document& doc, MorphPanelState& st) {
-  st.hoveredChain = -1;
   const bool open = ImGui::CollapsingHeader("Chain matching");
   noteWidget("morph/chains");
-  if (!open) return;
+  if (open) drawChainMatching(doc, st, "morph/chains");
+}
+
+void drawChainMatching(Document& doc, MorphPanelState& st, const std::string& keys) {
   const SkeletonCorrespondence* c = st.runtime ? st.runtime->correspondence.get() : nullptr;
   if (!c) {
     ImGui::TextDisabled(st.runtime ? "No skeleton correspondence (see the projection report's notes)."
@@ -80,7 +83,7 @@ void drawMorphChains(Document& doc, MorphPanelState& st) {
   ImGui::BeginDisabled(pairs.empty());
   if (ImGui::Button("Reset all to automatic")) execute(doc, resetAllChainPairsCommand(doc.project()));
   ImGui::EndDisabled();
-  noteWidget("morph/chains/reset-all");
+  noteWidget(keys + "/reset-all");
   for (const std::string& w : c->warnings) ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.35f, 1.0f), "%s", w.c_str());
 
   // The source's chains: name, partner combo, reset for an artist pair.
@@ -106,11 +109,11 @@ void drawMorphChains(Document& doc, MorphPanelState& st) {
         ImGui::SetTooltip(pair ? "* paired by hand: the automatic matching leaves it as it is"
                                : "paired by the automatic matching");
       ImGui::TableNextColumn();
-      partnerCombo(doc, *c, i, pair);
+      partnerCombo(doc, *c, i, pair, keys);
       ImGui::TableNextColumn();
       if (pair) {
         if (ImGui::SmallButton("x")) execute(doc, resetChainPairCommand(doc.project(), name));
-        noteWidget("morph/chains/reset/" + std::to_string(i));
+        noteWidget(keys + "/reset/" + std::to_string(i));
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("Reset: back to the automatic matching");
       }
       if (rowHovered(rowTop)) st.hoveredChain = int(i), st.hoveredChainTarget = false;
@@ -134,7 +137,7 @@ void drawMorphChains(Document& doc, MorphPanelState& st) {
       const std::string text = chainPartnerText(target, source, c->targetMatch, int(i), "grows from");
       if (c->targetMatch[i] >= 0) ImGui::TextUnformatted(text.c_str());
       else ImGui::TextDisabled("%s", text.c_str());
-      noteWidget("morph/chains/target/" + std::to_string(i));
+      noteWidget(keys + "/target/" + std::to_string(i));
       if (rowHovered(rowTop)) st.hoveredChain = int(i), st.hoveredChainTarget = true;
     }
     ImGui::EndTable();

@@ -35,6 +35,15 @@ struct MorphPanelState {
 // chain is hovered or the prepared morph has no skeleton correspondence.
 BlobGuides hoveredChainGuides(const MorphPanelState& st, double timeSec);
 
+// Skeleton correspondence: the source's and the target's chains with their
+// pairing, from the prepared morph (st.runtime); per source chain a combo pairs it
+// by hand (or leaves it unmatched, or gives it back to the automatic matching),
+// each change one command on the morph's chain pairs. Sets st.hoveredChain to the
+// row under the pointer (the caller clears it once a frame). Widgets are noted as
+// keys + "/source/I", "/option/K", "/reset/I", "/reset-all", "/target/I". Drawn
+// by the inspector's Chain matching section and the Correspondence Editor.
+void drawChainMatching(Document& doc, MorphPanelState& st, const std::string& keys);
+
 // Refused edits report to status.
 void drawMorphSettings(Document& doc, AssetCache& assets, MorphPanelState& st, DragMerge& drag,
                        StatusMessage& status);

@@ -16,11 +16,8 @@ void drawMorphCurveSettings(Document& doc, DragMerge& drag, StatusMessage& statu
 // report of the prepared morph (fallbacks, failures, notes). morph_projection_panel.cpp.
 void drawMorphProjection(Document& doc, const MorphPanelState& st, DragMerge& drag);
 
-// Skeleton correspondence: the source's and the target's chains with their
-// pairing, from the prepared morph; per source chain a combo pairs it by hand
-// (or leaves it unmatched, or gives it back to the automatic matching), each
-// change one command on the morph's chain pairs. Sets st.hoveredChain to the
-// row under the pointer. morph_chains_panel.cpp.
+// The inspector's "Chain matching" section: drawChainMatching (morph_panel.h) under a
+// collapsing header, its widgets noted as morph/chains/... morph_chains_panel.cpp.
 void drawMorphChains(Document& doc, MorphPanelState& st);
 
 // The stand-in segments of source and target, and the selected one's A / B

@@ -174,7 +174,7 @@ void EditorUI::draw(EditorContext& ctx) {
   drawTimelinePanel(st_.layout.timeline, doc(ctx), st_.playback, keyFrames(ctx), st_.timeline, st_.drag, actions);
   drawStatusBar(st_.layout.statusBar, doc(ctx), ctx.stats, st_.status);
   drawViewport(ctx);
-  drawCorrespondenceEditor(st_.layout.viewport, doc(ctx), st_.correspondence, st_.status);
+  drawCorrespondenceEditor(st_.layout.viewport, doc(ctx), st_.correspondence, st_.inspector.morph, st_.status);
   // While the correspondence editor is open the curve editor shows the s curves,
   // unless a BlobTree node is selected (and no link is).
   st_.curveEditor.animorphosis = st_.correspondence.visible &&
