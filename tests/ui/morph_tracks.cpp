@@ -251,16 +251,25 @@ TEST_CASE("everything edited in the morph panel and curve editor survives save a
   CHECK((*back)->project().findActor("other")->loop == loop);
 }
 
-TEST_CASE("chain matching: a partner combo re-pairs a chain in one undo step, the preview and the file follow",
-          "[morph][chain_pairs]") {
-  MorphFixture f;
+
+namespace {
+// The fixture's morph switched to skeleton correspondence and prepared; a copy of its matching.
+SkeletonCorrespondence skeletonMorph(MorphFixture& f) {
   auto& h = f.h;
   Project p = h.doc().project();
   p.morph.method = MorphMethod::SkeletonCorrespondence;
   h.document->reset(p, f.dir.file("scene.animorph"));
   h.ctx.morphRuntime = prepare(h, h.doc().project());
   REQUIRE(h.ctx.morphRuntime->correspondence);
-  const SkeletonCorrespondence& automatic = *h.ctx.morphRuntime->correspondence;
+  return *h.ctx.morphRuntime->correspondence;
+}
+}  // namespace
+
+TEST_CASE("chain matching: a partner combo re-pairs a chain in one undo step, the preview and the file follow",
+          "[morph][chain_pairs]") {
+  MorphFixture f;
+  auto& h = f.h;
+  const SkeletonCorrespondence automatic = skeletonMorph(f);  // a copy: the runtime is prepared again below
   const int root = automatic.source.mainRoot;
   REQUIRE(root >= 0);
   REQUIRE(automatic.sourceMatch[size_t(root)] == automatic.target.mainRoot);  // the root rule
@@ -317,12 +326,7 @@ TEST_CASE("the Correspondence Editor shows a skeleton-correspondence morph's cha
           "[morph][chain_pairs]") {
   MorphFixture f;
   auto& h = f.h;
-  Project p = h.doc().project();
-  p.morph.method = MorphMethod::SkeletonCorrespondence;
-  h.document->reset(p, f.dir.file("scene.animorph"));
-  h.ctx.morphRuntime = prepare(h, h.doc().project());
-  REQUIRE(h.ctx.morphRuntime->correspondence);
-  const SkeletonCorrespondence& automatic = *h.ctx.morphRuntime->correspondence;
+  const SkeletonCorrespondence automatic = skeletonMorph(f);  // a copy: the runtime is prepared again below
   const int root = automatic.source.mainRoot;
   REQUIRE(root >= 0);
   const std::string name = automatic.source.chains[size_t(root)].name;
