@@ -130,6 +130,55 @@ TEST_CASE("preview: a newer request lets the coarse run finish and shows it (scr
   CHECK(r->final);
 }
 
+namespace {
+// A BlobTree source whose validation takes a while (a tree of thousands of nodes), so that new
+// requests come faster than one is validated.
+class SlowToValidate final : public PreviewSource {
+ public:
+  SlowToValidate(std::shared_ptr<const BlobTree> tree, double t) : inner_(blobTreePreviewSource(tree, t)), t_(t) {}
+  bool sameAs(const PreviewSource& other) const override {
+    auto* o = dynamic_cast<const SlowToValidate*>(&other);
+    return o && o->t_ == t_;
+  }
+  Status validate() const override {
+    std::this_thread::sleep_for(std::chrono::milliseconds(60));
+    return inner_->validate();
+  }
+  Result<PolygonizeResult> polygonize(int resolution, int threads, const std::atomic<bool>* cancel,
+                                      PolygonizeHistory* history) const override {
+    return inner_->polygonize(resolution, threads, cancel, history);
+  }
+  Result<PreviewField> field(int resolution) const override { return inner_->field(resolution); }
+
+ private:
+  std::shared_ptr<const PreviewSource> inner_;
+  double t_;
+};
+}  // namespace
+
+TEST_CASE("preview: scrubbing faster than a request is validated still shows coarse answers", "[poly][preview]") {
+  PreviewPolygonizer p(1);
+  auto tree = creature();
+  // A new time every 5 ms for 1.2 s: each request is superseded long before its validation ends.
+  const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(1200);
+  int submitted = 0;
+  for (double t = 0.0; std::chrono::steady_clock::now() < end; t += 0.01, ++submitted) {
+    PreviewRequest r;
+    r.source = std::make_shared<const SlowToValidate>(tree, t);
+    r.timeSec = t;
+    r.coarseResolution = 12;
+    r.fineResolution = 24;
+    p.submit(std::move(r));
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  const PreviewCounters during = p.counters();
+  INFO(submitted << " requests; " << during.published << " published, " << during.runsCancelled << " cancelled");
+  CHECK(during.published >= 3);  // about one per 60 ms validation; none when each request was dropped
+  CHECK(during.runsCancelled == 0);
+  REQUIRE(p.waitIdle(60.0));
+  CHECK(p.latest()->final);
+}
+
 TEST_CASE("preview: an invalid tree gives an error naming the node, not a crash", "[poly][preview]") {
   BlobTree bad = makeStarterTree();
   bad.root.children.clear();  // a blend needs at least one child

@@ -142,7 +142,10 @@ void PreviewPolygonizer::run() {
       req = pending_;
       id = pendingId_;
       running_ = true;
-      cancel_ = false;  // a submit after this point sets it again
+      cancel_ = false;  // a submit after this point sets it again (or not: runningLevel_)
+      // From now on the request's first level is under way, its validation included: a newer
+      // request must not cancel a coarse answer before it has started.
+      runningLevel_ = req.coarseResolution >= req.fineResolution ? 1 : 0;
     }
     auto newer = [&] {
       std::lock_guard<std::mutex> lock(mutex_);
@@ -208,6 +211,7 @@ void PreviewPolygonizer::run() {
     {
       std::lock_guard<std::mutex> lock(mutex_);
       running_ = false;
+      runningLevel_ = -1;
       // Only a request answered without a newer one arriving is done; otherwise loop.
       if (pendingId_ == id) doneId_ = id;
     }
