@@ -2,12 +2,14 @@
 
 #include <cmath>
 #include <functional>
+#include <random>
 
 #include "blobtree/compile.h"
 #include "blobtree/validate.h"
 #include "demo/blob_creature.h"
 #include "doc/blobtree_commands.h"
 #include "doc/document.h"
+#include "util/blob_builders.h"
 
 using namespace animorph;
 
@@ -365,4 +367,25 @@ TEST_CASE("the demo creature survives a round of edits and undo exactly", "[blob
   while (d->undo()) {
   }
   CHECK(treeOf(*d) == original);
+}
+
+TEST_CASE("animationEndSec is the last of the tree's animated key times", "[blobtree]") {
+  int animated = 0;
+  for (unsigned seed = 1; seed <= 30; ++seed) {
+    std::mt19937 rng(seed);
+    int next = 1;
+    BlobTree tree = test::treeOf(test::randomNode(rng, 4, next));
+    const std::vector<double> times = animatedKeyTimes(tree, -1);
+    INFO("seed " << seed << ", " << times.size() << " key times");
+    animated += !times.empty();
+    if (times.empty()) CHECK(animationEndSec(tree) == 0.0);
+    else CHECK(animationEndSec(tree) == Approx(times.back()).margin(kSameKeyTimeSec));
+  }
+  CHECK(animated >= 10);
+  BlobTree still = test::treeOf(test::pointNode(1, {0, 0, 0}, 0.5f));
+  CHECK(animationEndSec(still) == 0.0);
+  still.threshold = FloatTrack(0.5f);
+  still.threshold.setKey(0.0, 0.4f);
+  still.threshold.setKey(3.5, 0.6f);
+  CHECK(animationEndSec(still) == 3.5);  // the threshold's keys count too
 }

@@ -377,20 +377,26 @@ float keySlope(const BlobTree& tree, const KeyChannelRef& k) {
 }
 
 namespace {
-void keyTimesOf(const BlobNode& n, bool recurse, std::vector<double>& out) {
+// Calls f(time) for every key of n's animated tracks (two keys or more), and its sub-tree's when recurse.
+template <class F>
+void eachAnimatedKeyTime(const BlobNode& n, bool recurse, F&& f) {
   auto add = [&](const auto& track) {
     if (track.keys().size() >= 2)
-      for (const auto& k : track.keys()) out.push_back(k.timeSec);
+      for (const auto& k : track.keys()) f(k.timeSec);
   };
   for (const auto& pv : n.params) {
-    if (auto* f = std::get_if<FloatTrack>(&pv)) add(*f);
+    if (auto* t = std::get_if<FloatTrack>(&pv)) add(*t);
     else if (auto* v = std::get_if<Vec3Track>(&pv)) add(*v);
     else if (auto* q = std::get_if<QuatTrack>(&pv)) add(*q);
     else
       for (const auto& p : std::get<ControlPoints>(pv)) add(p);
   }
   if (recurse)
-    for (const auto& c : n.children) keyTimesOf(c, true, out);
+    for (const auto& c : n.children) eachAnimatedKeyTime(c, true, f);
+}
+
+void keyTimesOf(const BlobNode& n, bool recurse, std::vector<double>& out) {
+  eachAnimatedKeyTime(n, recurse, [&](double t) { out.push_back(t); });
 }
 }  // namespace
 
@@ -410,8 +416,18 @@ std::vector<double> animatedKeyTimes(const BlobTree& tree, int id) {
 }
 
 double animationEndSec(const BlobTree& tree) {
-  std::vector<double> t = animatedKeyTimes(tree, -1);
-  return t.empty() ? 0.0 : t.back();
+  // The last of animatedKeyTimes(tree, -1), without collecting and sorting every key time: the
+  // scene asks for it every frame for every looping BlobTree actor (thousands of keys on a demo creature).
+  double latest = 0.0;
+  bool any = false;
+  auto add = [&](double t) {
+    latest = any ? std::max(latest, t) : t;
+    any = true;
+  };
+  eachAnimatedKeyTime(tree.root, true, add);
+  if (tree.threshold.keys().size() >= 2)
+    for (const auto& k : tree.threshold.keys()) add(k.timeSec);
+  return latest;
 }
 
 }  // namespace animorph
