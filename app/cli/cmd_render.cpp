@@ -85,6 +85,7 @@ int runRender(const std::vector<std::string>& args) {
     d.meshNode = 0;
     d.meshIndex = 0;
     d.joints = {b.model};
+    d.color = b.tint ? *b.tint : glm::vec3(gpu::kBlobSurfaceColor);  // as the editor draws it
     frame.meshes.push_back(std::move(d));
   }
 

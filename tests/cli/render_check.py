@@ -72,7 +72,22 @@ for name, frame in (("blob_demo.animorph", 12), ("animorphosis.animorph", 96)):
     drawn = int(float(diff.stderr.split()[0]))
     if drawn < 0.03 * 320 * 180:
         fail(f"{name}: only {drawn} pixels differ from the scene without its actors: the BlobTree is not drawn")
-    print(f"ok: {name} frame {frame}: the BlobTree actors cover {drawn} pixels")
+    # Drawn in the clay tone the editor gives implicit surfaces (blue over red), not the grey of
+    # imported meshes: the mean colour of the lit pixels the actors cover (brighter than the
+    # background and the grid, which the framing moves when the actors are hidden).
+    mask = os.path.join(work, name + ".mask.png")
+    subprocess.run(["convert", "(", shown_png, hidden_png, "-compose", "difference", "-composite", "-colorspace",
+                    "gray", "-threshold", "3%", ")", "(", shown_png, "-colorspace", "gray", "-threshold", "45%", ")",
+                    "-compose", "multiply", "-composite", mask], check=True)
+    covered = float(subprocess.run(["convert", mask, "-format", "%[fx:mean]", "info:"], capture_output=True,
+                                   text=True).stdout)
+    rgb = subprocess.run(["convert", shown_png, mask, "-compose", "multiply", "-composite", "-format",
+                          "%[fx:mean.r] %[fx:mean.g] %[fx:mean.b]", "info:"], capture_output=True, text=True).stdout
+    r_, g_, b_ = (float(v) / max(covered, 1e-9) for v in rgb.split())
+    if not b_ > 1.15 * r_:
+        fail(f"{name}: the BlobTree surface's mean colour is r {r_:.2f} g {g_:.2f} b {b_:.2f}: not the clay tone")
+    print(f"ok: {name} frame {frame}: the BlobTree actors cover {drawn} pixels, mean colour "
+          f"r {r_:.2f} g {g_:.2f} b {b_:.2f}")
 
 bad = os.path.join(work, "bad.animorph")
 with open(bad, "w") as f:

@@ -30,6 +30,9 @@ struct MeshDraw {
   std::vector<glm::mat4> joints;     // skinning matrices (rig/pose.h jointMatrices)
   float opacity = 1.0f;              // < 1: cross-fade, drawn dithered (gpu::MeshDraw::opacity)
   bool complementDither = false;     // the complementary dither pattern
+  // Base colour (sRGB); none: the renderer's default for imported meshes. A BlobTree surface
+  // polygonised into a mesh (animorph-cli render) takes the implicit surfaces' clay tone.
+  std::optional<glm::vec3> color;
 };
 
 // A mesh of a morph actor in its collapse or expansion, deformed on the GPU
