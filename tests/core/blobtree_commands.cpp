@@ -7,6 +7,7 @@
 #include "blobtree/compile.h"
 #include "blobtree/validate.h"
 #include "demo/blob_creature.h"
+#include "doc/actor_commands.h"
 #include "doc/blobtree_commands.h"
 #include "doc/document.h"
 #include "util/blob_builders.h"
@@ -56,6 +57,30 @@ TEST_CASE("a new BlobTree actor is a valid blend of one visible sphere", "[blobt
   FieldEvaluator ev;
   CHECK(ev.evaluatePoint(prog, glm::vec3(0.0f)) > 0.0f);
   CHECK(ev.evaluatePoint(prog, glm::vec3(2.0f, 0.0f, 0.0f)) < 0.0f);
+}
+
+TEST_CASE("new BlobTree actors get names no other actor has, as outliners number them", "[blobtree][commands]") {
+  Project p;
+  for (const char* expected : {"Blob", "Blob 2", "Blob 3"}) {
+    Actor a = makeBlobTreeActor(p, "Blob");
+    CHECK(a.name == expected);
+    p.actors.push_back(std::move(a));
+  }
+  CHECK(p.uniqueActorName("Blob 2") == "Blob 4");  // counts on from the number a name ends with
+  CHECK(p.uniqueActorName("Statue") == "Statue");
+  p.actors[1].name = "Gone";  // a freed name is taken again
+  CHECK(p.uniqueActorName("Blob") == "Blob 2");
+  CHECK(p.uniqueActorName("Blob 2") == "Blob 2");
+  // Ids stay what they were: unique, and independent of the display name.
+  CHECK(p.actors[0].id != p.actors[1].id);
+  CHECK(p.actors[1].id != p.actors[2].id);
+  // The same glTF file imported twice.
+  Actor w1 = actorForAsset(p, "/assets/walker.glb", "/assets");
+  p.actors.push_back(w1);
+  Actor w2 = actorForAsset(p, "/assets/walker.glb", "/assets");
+  CHECK(w1.name == "walker");
+  CHECK(w2.name == "walker 2");
+  CHECK(w2.id != w1.id);
 }
 
 TEST_CASE("every node type can be added, keeps the tree valid and is undoable", "[blobtree][commands]") {

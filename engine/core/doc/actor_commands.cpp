@@ -30,7 +30,7 @@ Actor actorForAsset(const Project& p, const std::string& absoluteAssetPath, cons
   std::string base;
   for (char c : stem) base += (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-') ? c : '_';
   a.id = p.uniqueActorId(base.empty() ? "actor" : base);
-  a.name = stem.empty() ? a.id : stem;
+  a.name = p.uniqueActorName(stem.empty() ? a.id : stem);
   if (!projectDir.empty()) {
     fs::path rel = asset.lexically_relative(projectDir);
     a.assetPath = rel.empty() ? asset.generic_string() : rel.generic_string();

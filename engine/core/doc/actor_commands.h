@@ -17,7 +17,8 @@ std::unique_ptr<Command> addActorCommand(Actor actor);
 // exists or the name is unchanged or empty.
 std::unique_ptr<Command> renameActorCommand(const Project& p, const std::string& actorId, const std::string& name);
 
-// An actor for a glTF file: id and name from the file's stem, assetPath
+// An actor for a glTF file: id and name from the file's stem (the name numbered when another
+// actor has it: the same file imported twice gives "walker" and "walker 2"), assetPath
 // relative to projectDir when that directory is known (else absolute).
 Actor actorForAsset(const Project& p, const std::string& absoluteAssetPath, const std::string& projectDir);
 

@@ -22,7 +22,7 @@ Result<BakedActor> bakeAnimorphosisActor(const Project& p, const BakeKeysSetting
   Actor& a = out.actor;
   a.kind = ActorKind::BlobTree;
   a.id = p.uniqueActorId(src.id + "_to_" + dst.id);
-  a.name = src.name + " -> " + dst.name + " (keys)";
+  a.name = p.uniqueActorName(src.name + " -> " + dst.name + " (keys)");
   a.blobTree = std::move(baked.tree);
   a.timeOffsetSec = 0.0;
   a.speed = 1.0;

@@ -67,7 +67,7 @@ Actor makeBlobTreeActor(const Project& p, const std::string& name) {
   for (char c : name.empty() ? std::string("blob") : name)
     stem += (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-') ? char(std::tolower(c)) : '_';
   a.id = p.uniqueActorId(stem);
-  a.name = name.empty() ? std::string("Blob") : name;
+  a.name = p.uniqueActorName(name.empty() ? std::string("Blob") : name);
   a.kind = ActorKind::BlobTree;
   a.blobTree = makeStarterTree();
   return a;

@@ -28,7 +28,8 @@ Result<std::unique_ptr<Command>> editBlobTree(const Project& p, const std::strin
                                               Edit&& edit, std::string mergeKey = {});
 
 // A new actor of kind blobtree holding makeStarterTree() (a blend of one
-// sphere), with an unused id built from name.
+// sphere), with an unused id built from name and a name no other actor has
+// (Project::uniqueActorName: converting an actor twice gives "X particles" and "X particles 2").
 Actor makeBlobTreeActor(const Project& p, const std::string& name);
 
 // Adds a default node of type (blobtree/tree_edit.h makeDefaultNode) under parentId; newId gets its id.

@@ -60,6 +60,9 @@ struct Project {
   const Actor* findActor(const std::string& id) const;
   // An id not used by any actor, built from base ("actor" -> "actor_2").
   std::string uniqueActorId(const std::string& base) const;
+  // A display name no actor has, built from base as outliners do ("Blob" -> "Blob 2"; a name that
+  // already ends in a number counts on from it: "Blob 2" -> "Blob 3").
+  std::string uniqueActorName(const std::string& base) const;
 };
 
 }  // namespace animorph
