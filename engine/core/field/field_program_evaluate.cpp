@@ -73,13 +73,28 @@ void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, con
   auto GX = [&](int s) { return F(s) + kChunk; };
   auto GY = [&](int s) { return F(s) + 2 * kChunk; };
   auto GZ = [&](int s) { return F(s) + 3 * kChunk; };
-  auto pushConstant = [&](float value) {
-    std::fill(F(sp), F(sp) + n, value);
+  // Stack entries known to be +0 everywhere (value and gradient) are only flagged, not filled: a
+  // map subtree that reaches none of the points pushes one, and a sum skips it (x + 0 is x), so a
+  // wide blend of many small mapped primitives costs nothing for those away from the points.
+  thread_local std::vector<uint8_t> zeroSlots;
+  zeroSlots.assign(size_t(std::max(1, P.maxStack())) + 1, 0);
+  uint8_t* zero = zeroSlots.data();
+  auto fillSlot = [&](int s, float value) {
+    std::fill(F(s), F(s) + n, value);
     if (grad) {
-      std::fill(GX(sp), GX(sp) + n, 0.0f);
-      std::fill(GY(sp), GY(sp) + n, 0.0f);
-      std::fill(GZ(sp), GZ(sp) + n, 0.0f);
+      std::fill(GX(s), GX(s) + n, 0.0f);
+      std::fill(GY(s), GY(s) + n, 0.0f);
+      std::fill(GZ(s), GZ(s) + n, 0.0f);
     }
+  };
+  auto materialise = [&](int s) {
+    if (!zero[s]) return;
+    fillSlot(s, 0.0f);
+    zero[s] = 0;
+  };
+  auto pushConstant = [&](float value) {
+    zero[sp] = value == 0.0f && !std::signbit(value);
+    if (!zero[sp]) fillSlot(sp, value);
     ++sp;
   };
   const glm::vec3 worldLo = boxes[0], worldHi = boxes[1];
@@ -101,6 +116,7 @@ void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, con
     switch (op.code) {
       case OpCode::Prims: {
         float* f = F(sp);
+        zero[sp] = 0;
         std::fill(f, f + n, 0.0f);
         if (grad) {
           std::fill(GX(sp), GX(sp) + n, 0.0f);
@@ -183,7 +199,7 @@ void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, con
       case OpCode::EndMap: {
         const SpaceMap& m = P.maps[op.first];
         --level;
-        if (grad) {
+        if (grad && !zero[sp - 1]) {  // a zero gradient stays zero
           float* gx = GX(sp - 1);
           float* gy = GY(sp - 1);
           float* gz = GZ(sp - 1);
@@ -218,23 +234,45 @@ void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, con
         float* gy0 = GY(base);
         float* gz0 = GZ(base);
         const float* prm = P.params.data() + op.param;
-        switch (op.code) {
-          case OpCode::Sum:
-            for (int k = 1; k < cnt; ++k) {
-              const float* fk = F(base + k);
-              for (int i = 0; i < n; ++i) f0[i] += fk[i];
-              if (grad) {
-                const float* ax = GX(base + k);
-                const float* ay = GY(base + k);
-                const float* az = GZ(base + k);
-                for (int i = 0; i < n; ++i) {
-                  gx0[i] += ax[i];
-                  gy0[i] += ay[i];
-                  gz0[i] += az[i];
-                }
+        if (op.code == OpCode::Sum) {
+          // Zero operands add nothing: the first other operand is copied (0 + a is a), the
+          // others added in their order, as the plain fold below would.
+          int k0 = 0;
+          while (k0 < cnt && zero[base + k0]) ++k0;
+          if (k0 == cnt) {
+            zero[base] = 1;
+            sp = base + 1;
+            break;
+          }
+          if (k0 > 0) {
+            std::copy(F(base + k0), F(base + k0) + n, f0);
+            if (grad) {
+              std::copy(GX(base + k0), GX(base + k0) + n, gx0);
+              std::copy(GY(base + k0), GY(base + k0) + n, gy0);
+              std::copy(GZ(base + k0), GZ(base + k0) + n, gz0);
+            }
+            zero[base] = 0;
+          }
+          for (int k = k0 + 1; k < cnt; ++k) {
+            if (zero[base + k]) continue;
+            const float* fk = F(base + k);
+            for (int i = 0; i < n; ++i) f0[i] += fk[i];
+            if (grad) {
+              const float* ax = GX(base + k);
+              const float* ay = GY(base + k);
+              const float* az = GZ(base + k);
+              for (int i = 0; i < n; ++i) {
+                gx0[i] += ax[i];
+                gy0[i] += ay[i];
+                gz0[i] += az[i];
               }
             }
-            break;
+          }
+          sp = base + 1;
+          break;
+        }
+        for (int k = 0; k < cnt; ++k) materialise(base + k);
+        switch (op.code) {
           case OpCode::Max:
           case OpCode::Min: {
             bool mx = op.code == OpCode::Max;
@@ -345,6 +383,7 @@ void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, con
       }
     }
   }
+  materialise(0);
   const float* f = F(0);
   for (int i = 0; i < n; ++i) fOut[i] = f[i] - T;
   if (grad) {
