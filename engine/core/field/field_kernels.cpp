@@ -11,12 +11,7 @@
 #include "field/potential.h"
 #include "field/skeleton.h"
 #include "field/spline_curve.h"
-
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
-#define ANIMORPH_KERNEL __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-#else
-#define ANIMORPH_KERNEL
-#endif
+#include "field/field_program_detail.h"
 
 namespace animorph {
 

@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "field/convolution_segment.h"
+#include "field/field_program_detail.h"
 #include "field/potential.h"
 
 namespace animorph {
@@ -44,6 +45,9 @@ void FieldEvaluator::evaluate(const FieldProgram& program, const ActiveProgram& 
   }
 }
 
+// Cloned for wider vectors (its map, sum and fill loops run over the whole run of points); this
+// file does not contract products into FMAs, so each clone computes the same values.
+ANIMORPH_KERNEL
 void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, const float* x, const float* y,
                               const float* z, int n, float* fOut, float* gxOut, float* gyOut, float* gzOut) {
   const bool grad = gxOut != nullptr;
