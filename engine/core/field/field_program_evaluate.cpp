@@ -16,6 +16,55 @@ namespace animorph {
 
 namespace {
 constexpr int kChunk = 1024;
+
+// The value of a map subtree made of one affine map over one point primitive (no gradients), at
+// every point of the run: the map loop's transform, then skeletalPotential's operations in its
+// order with t clamped at 0 instead of its early return, so the loop vectorises (in runChunk's
+// clones). The Prims op this replaces starts at 0 and adds v where d^2 < R^2 (a sum) or keeps the
+// larger (a union); 0 + v and max(0, v) here give the same values, and v is +-0 beyond R.
+template <int kPower, bool kMax>
+__attribute__((always_inline)) inline void mappedPointValues(const SpaceMap& m, const SkeletalPrimitive& p,
+                                                             const float* __restrict ix, const float* __restrict iy,
+                                                             const float* __restrict iz, int n, float* __restrict f) {
+  const glm::mat3 L = m.linear;
+  const float l00 = L[0][0], l01 = L[0][1], l02 = L[0][2], l10 = L[1][0], l11 = L[1][1], l12 = L[1][2],
+              l20 = L[2][0], l21 = L[2][1], l22 = L[2][2];
+  const float o0 = m.origin.x, o1 = m.origin.y, o2 = m.origin.z;
+  const float px = p.skeleton.p0.x, py = p.skeleton.p0.y, pz = p.skeleton.p0.z;
+  const float r2 = p.radius * p.radius, I = p.intensity;
+  for (int i = 0; i < n; ++i) {
+    float dx = ix[i] - o0, dy = iy[i] - o1, dz = iz[i] - o2;
+    float qx = l00 * dx + l10 * dy + l20 * dz;
+    float qy = l01 * dx + l11 * dy + l21 * dz;
+    float qz = l02 * dx + l12 * dy + l22 * dz;
+    float ex = qx - px, ey = qy - py, ez = qz - pz;
+    float d2 = ex * ex + ey * ey + ez * ez;
+    float t = 1.0f - d2 / r2;
+    t = t > 0.0f ? t : 0.0f;  // beyond R (or NaN): v is +-0
+    float tk1 = 1.0f;         // powStiffness's multiply chain, written out
+    if constexpr (kPower >= 1) tk1 *= t;
+    if constexpr (kPower >= 2) tk1 *= t;
+    if constexpr (kPower >= 3) tk1 *= t;
+    float v = I * tk1 * t;
+    if constexpr (kMax) f[i] = v > 0.0f ? v : 0.0f;
+    else f[i] = 0.0f + v;
+  }
+}
+
+// mappedPointValues for a point primitive with R > 0 and an integer stiffness 1..4 (true); else
+// false (the ops run one by one).
+template <bool kMax>
+__attribute__((always_inline)) inline bool mappedPoint(const SpaceMap& m, const SkeletalPrimitive& p, const float* x,
+                                                       const float* y, const float* z, int n, float* f) {
+  if (p.skeleton.kind != SkeletonKind::Point || !(p.radius > 0.0f)) return false;
+  const float K = p.stiffness;
+  if (K == 1.0f) mappedPointValues<0, kMax>(m, p, x, y, z, n, f);
+  else if (K == 2.0f) mappedPointValues<1, kMax>(m, p, x, y, z, n, f);
+  else if (K == 3.0f) mappedPointValues<2, kMax>(m, p, x, y, z, n, f);
+  else if (K == 4.0f) mappedPointValues<3, kMax>(m, p, x, y, z, n, f);
+  else return false;
+  return true;
+}
 }  // namespace
 
 
@@ -150,6 +199,22 @@ void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, con
       case OpCode::Const: pushConstant(op.emptyValue); break;
       case OpCode::BeginMap: {
         const SpaceMap& m = P.maps[op.first];
+        if (!grad && m.kind == SpaceMapKind::Affine && opIndex + 2 < A.ops.size()) {
+          // One affine map over one point primitive (a meta-primitive's instance): one loop.
+          const FieldOp& prims = A.ops[opIndex + 1];
+          if (prims.code == OpCode::Prims && prims.primClass == PrimClass::Skeletal && prims.count == 1 &&
+              A.ops[opIndex + 2].code == OpCode::EndMap) {
+            const SkeletalPrimitive& p = P.skeletal[A.indices[prims.first]];
+            const bool done = prims.combineMax ? mappedPoint<true>(m, p, cx[level], cy[level], cz[level], n, F(sp))
+                                               : mappedPoint<false>(m, p, cx[level], cy[level], cz[level], n, F(sp));
+            if (done) {
+              zero[sp] = 0;
+              ++sp;
+              opIndex += 2;
+              break;
+            }
+          }
+        }
         float* out = coords_.data() + size_t(level + 1) * 3 * kChunk;
         float* __restrict ox = out;  // the levels' coordinates never overlap: the loops vectorise
         float* __restrict oy = out + kChunk;
