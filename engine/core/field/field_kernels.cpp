@@ -11,12 +11,7 @@
 #include "field/potential.h"
 #include "field/skeleton.h"
 #include "field/spline_curve.h"
-
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
-#define ANIMORPH_KERNEL __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-#else
-#define ANIMORPH_KERNEL
-#endif
+#include "field/field_program_detail.h"
 
 namespace animorph {
 
@@ -236,8 +231,12 @@ void skeletalLoop(const FieldProgram& prog, const uint32_t* idx, int count, cons
         gapBuffer[j] = ex * ex + ey * ey + ez * ez;
       }
     }
-    for (int j = 0; j < n; ++j)
-      if (!(gapBuffer[j] >= reach2)) insideBuffer[inside++] = j;
+    // Branch-free compaction: which points pass is data-dependent (a branch per point mispredicts
+    // often); each index is written and the count advances only when it passes.
+    for (int j = 0; j < n; ++j) {
+      insideBuffer[inside] = j;
+      inside += !(gapBuffer[j] >= reach2) ? 1 : 0;
+    }
     for (int w = 0; w < inside; ++w) {
       const int j = insideBuffer[w];
       glm::vec3 q(x[j], y[j], z[j]);

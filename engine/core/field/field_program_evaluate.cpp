@@ -9,12 +9,62 @@
 #include <limits>
 
 #include "field/convolution_segment.h"
+#include "field/field_program_detail.h"
 #include "field/potential.h"
 
 namespace animorph {
 
 namespace {
 constexpr int kChunk = 1024;
+
+// The value of a map subtree made of one affine map over one point primitive (no gradients), at
+// every point of the run: the map loop's transform, then skeletalPotential's operations in its
+// order with t clamped at 0 instead of its early return, so the loop vectorises (in runChunk's
+// clones). The Prims op this replaces starts at 0 and adds v where d^2 < R^2 (a sum) or keeps the
+// larger (a union); 0 + v and max(0, v) here give the same values, and v is +-0 beyond R.
+template <int kPower, bool kMax>
+__attribute__((always_inline)) inline void mappedPointValues(const SpaceMap& m, const SkeletalPrimitive& p,
+                                                             const float* __restrict ix, const float* __restrict iy,
+                                                             const float* __restrict iz, int n, float* __restrict f) {
+  const glm::mat3 L = m.linear;
+  const float l00 = L[0][0], l01 = L[0][1], l02 = L[0][2], l10 = L[1][0], l11 = L[1][1], l12 = L[1][2],
+              l20 = L[2][0], l21 = L[2][1], l22 = L[2][2];
+  const float o0 = m.origin.x, o1 = m.origin.y, o2 = m.origin.z;
+  const float px = p.skeleton.p0.x, py = p.skeleton.p0.y, pz = p.skeleton.p0.z;
+  const float r2 = p.radius * p.radius, I = p.intensity;
+  for (int i = 0; i < n; ++i) {
+    float dx = ix[i] - o0, dy = iy[i] - o1, dz = iz[i] - o2;
+    float qx = l00 * dx + l10 * dy + l20 * dz;
+    float qy = l01 * dx + l11 * dy + l21 * dz;
+    float qz = l02 * dx + l12 * dy + l22 * dz;
+    float ex = qx - px, ey = qy - py, ez = qz - pz;
+    float d2 = ex * ex + ey * ey + ez * ez;
+    float t = 1.0f - d2 / r2;
+    t = t > 0.0f ? t : 0.0f;  // beyond R (or NaN): v is +-0
+    float tk1 = 1.0f;         // powStiffness's multiply chain, written out
+    if constexpr (kPower >= 1) tk1 *= t;
+    if constexpr (kPower >= 2) tk1 *= t;
+    if constexpr (kPower >= 3) tk1 *= t;
+    float v = I * tk1 * t;
+    if constexpr (kMax) f[i] = v > 0.0f ? v : 0.0f;
+    else f[i] = 0.0f + v;
+  }
+}
+
+// mappedPointValues for a point primitive with R > 0 and an integer stiffness 1..4 (true); else
+// false (the ops run one by one).
+template <bool kMax>
+__attribute__((always_inline)) inline bool mappedPoint(const SpaceMap& m, const SkeletalPrimitive& p, const float* x,
+                                                       const float* y, const float* z, int n, float* f) {
+  if (p.skeleton.kind != SkeletonKind::Point || !(p.radius > 0.0f)) return false;
+  const float K = p.stiffness;
+  if (K == 1.0f) mappedPointValues<0, kMax>(m, p, x, y, z, n, f);
+  else if (K == 2.0f) mappedPointValues<1, kMax>(m, p, x, y, z, n, f);
+  else if (K == 3.0f) mappedPointValues<2, kMax>(m, p, x, y, z, n, f);
+  else if (K == 4.0f) mappedPointValues<3, kMax>(m, p, x, y, z, n, f);
+  else return false;
+  return true;
+}
 }  // namespace
 
 
@@ -44,6 +94,9 @@ void FieldEvaluator::evaluate(const FieldProgram& program, const ActiveProgram& 
   }
 }
 
+// Cloned for wider vectors (its map, sum and fill loops run over the whole run of points); this
+// file does not contract products into FMAs, so each clone computes the same values.
+ANIMORPH_KERNEL
 void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, const float* x, const float* y,
                               const float* z, int n, float* fOut, float* gxOut, float* gyOut, float* gzOut) {
   const bool grad = gxOut != nullptr;
@@ -73,13 +126,28 @@ void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, con
   auto GX = [&](int s) { return F(s) + kChunk; };
   auto GY = [&](int s) { return F(s) + 2 * kChunk; };
   auto GZ = [&](int s) { return F(s) + 3 * kChunk; };
-  auto pushConstant = [&](float value) {
-    std::fill(F(sp), F(sp) + n, value);
+  // Stack entries known to be +0 everywhere (value and gradient) are only flagged, not filled: a
+  // map subtree that reaches none of the points pushes one, and a sum skips it (x + 0 is x), so a
+  // wide blend of many small mapped primitives costs nothing for those away from the points.
+  thread_local std::vector<uint8_t> zeroSlots;
+  zeroSlots.assign(size_t(std::max(1, P.maxStack())) + 1, 0);
+  uint8_t* zero = zeroSlots.data();
+  auto fillSlot = [&](int s, float value) {
+    std::fill(F(s), F(s) + n, value);
     if (grad) {
-      std::fill(GX(sp), GX(sp) + n, 0.0f);
-      std::fill(GY(sp), GY(sp) + n, 0.0f);
-      std::fill(GZ(sp), GZ(sp) + n, 0.0f);
+      std::fill(GX(s), GX(s) + n, 0.0f);
+      std::fill(GY(s), GY(s) + n, 0.0f);
+      std::fill(GZ(s), GZ(s) + n, 0.0f);
     }
+  };
+  auto materialise = [&](int s) {
+    if (!zero[s]) return;
+    fillSlot(s, 0.0f);
+    zero[s] = 0;
+  };
+  auto pushConstant = [&](float value) {
+    zero[sp] = value == 0.0f && !std::signbit(value);
+    if (!zero[sp]) fillSlot(sp, value);
     ++sp;
   };
   const glm::vec3 worldLo = boxes[0], worldHi = boxes[1];
@@ -101,6 +169,7 @@ void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, con
     switch (op.code) {
       case OpCode::Prims: {
         float* f = F(sp);
+        zero[sp] = 0;
         std::fill(f, f + n, 0.0f);
         if (grad) {
           std::fill(GX(sp), GX(sp) + n, 0.0f);
@@ -130,6 +199,22 @@ void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, con
       case OpCode::Const: pushConstant(op.emptyValue); break;
       case OpCode::BeginMap: {
         const SpaceMap& m = P.maps[op.first];
+        if (!grad && m.kind == SpaceMapKind::Affine && opIndex + 2 < A.ops.size()) {
+          // One affine map over one point primitive (a meta-primitive's instance): one loop.
+          const FieldOp& prims = A.ops[opIndex + 1];
+          if (prims.code == OpCode::Prims && prims.primClass == PrimClass::Skeletal && prims.count == 1 &&
+              A.ops[opIndex + 2].code == OpCode::EndMap) {
+            const SkeletalPrimitive& p = P.skeletal[A.indices[prims.first]];
+            const bool done = prims.combineMax ? mappedPoint<true>(m, p, cx[level], cy[level], cz[level], n, F(sp))
+                                               : mappedPoint<false>(m, p, cx[level], cy[level], cz[level], n, F(sp));
+            if (done) {
+              zero[sp] = 0;
+              ++sp;
+              opIndex += 2;
+              break;
+            }
+          }
+        }
         float* out = coords_.data() + size_t(level + 1) * 3 * kChunk;
         float* __restrict ox = out;  // the levels' coordinates never overlap: the loops vectorise
         float* __restrict oy = out + kChunk;
@@ -183,7 +268,7 @@ void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, con
       case OpCode::EndMap: {
         const SpaceMap& m = P.maps[op.first];
         --level;
-        if (grad) {
+        if (grad && !zero[sp - 1]) {  // a zero gradient stays zero
           float* gx = GX(sp - 1);
           float* gy = GY(sp - 1);
           float* gz = GZ(sp - 1);
@@ -218,23 +303,45 @@ void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, con
         float* gy0 = GY(base);
         float* gz0 = GZ(base);
         const float* prm = P.params.data() + op.param;
-        switch (op.code) {
-          case OpCode::Sum:
-            for (int k = 1; k < cnt; ++k) {
-              const float* fk = F(base + k);
-              for (int i = 0; i < n; ++i) f0[i] += fk[i];
-              if (grad) {
-                const float* ax = GX(base + k);
-                const float* ay = GY(base + k);
-                const float* az = GZ(base + k);
-                for (int i = 0; i < n; ++i) {
-                  gx0[i] += ax[i];
-                  gy0[i] += ay[i];
-                  gz0[i] += az[i];
-                }
+        if (op.code == OpCode::Sum) {
+          // Zero operands add nothing: the first other operand is copied (0 + a is a), the
+          // others added in their order, as the plain fold below would.
+          int k0 = 0;
+          while (k0 < cnt && zero[base + k0]) ++k0;
+          if (k0 == cnt) {
+            zero[base] = 1;
+            sp = base + 1;
+            break;
+          }
+          if (k0 > 0) {
+            std::copy(F(base + k0), F(base + k0) + n, f0);
+            if (grad) {
+              std::copy(GX(base + k0), GX(base + k0) + n, gx0);
+              std::copy(GY(base + k0), GY(base + k0) + n, gy0);
+              std::copy(GZ(base + k0), GZ(base + k0) + n, gz0);
+            }
+            zero[base] = 0;
+          }
+          for (int k = k0 + 1; k < cnt; ++k) {
+            if (zero[base + k]) continue;
+            const float* fk = F(base + k);
+            for (int i = 0; i < n; ++i) f0[i] += fk[i];
+            if (grad) {
+              const float* ax = GX(base + k);
+              const float* ay = GY(base + k);
+              const float* az = GZ(base + k);
+              for (int i = 0; i < n; ++i) {
+                gx0[i] += ax[i];
+                gy0[i] += ay[i];
+                gz0[i] += az[i];
               }
             }
-            break;
+          }
+          sp = base + 1;
+          break;
+        }
+        for (int k = 0; k < cnt; ++k) materialise(base + k);
+        switch (op.code) {
           case OpCode::Max:
           case OpCode::Min: {
             bool mx = op.code == OpCode::Max;
@@ -345,6 +452,7 @@ void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, con
       }
     }
   }
+  materialise(0);
   const float* f = F(0);
   for (int i = 0; i < n; ++i) fOut[i] = f[i] - T;
   if (grad) {
