@@ -241,9 +241,11 @@ bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& sour
   fieldFailed_.reset();
   fieldFallback_.clear();
   // The frame before asked for this shape too (it was recorded, or it waited: pacing, pipelines, its field).
+  // (sameAs may walk whole trees: C(t) snapshots all have tree time 0, so two are compared node by
+  // node up to the first difference)
   const bool repeated = lastAsked_ && samePreviewShape(*lastAsked_, *source);
+  const bool sameShape = gpuSource_ && (gpuSource_ == lastAsked_ ? repeated : samePreviewShape(*gpuSource_, *source));
   lastAsked_ = source;
-  const bool sameShape = gpuSource_ && samePreviewShape(*gpuSource_, *source);
   const double now = nowSec(), frameSec = now - lastUpdateAt_;
   if (!repeated) {
     previousShapeLasted_ = now - shapeSince_;
