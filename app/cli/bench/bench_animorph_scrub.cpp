@@ -117,6 +117,7 @@ std::vector<Row> runAnimorphScrub(const Options& opt) {
     meshesShown = 0;
     polyMs.clear();
     for (double& m : stageMs) m = 0.0;
+    const gpu::PreviewFieldCounters fieldsBefore = previews.fieldCounters(actorId);
     const auto scrubStart = Clock::now();
     for (int f : frames) {
       const auto t0 = Clock::now();
@@ -128,6 +129,12 @@ std::vector<Row> runAnimorphScrub(const Options& opt) {
     const double n = double(frames.size());
     std::snprintf(stages, sizeof stages, "evaluate the scene %.1f, C(t) into it %.1f, previews %.1f, draw %.1f ms",
                   stageMs[0] / n, stageMs[1] / n, stageMs[2] / n, stageMs[3] / n);
+    gpu::PreviewFieldCounters fields = previews.fieldCounters(actorId);
+    fields.onCompileThread -= fieldsBefore.onCompileThread;
+    fields.onCallerThread -= fieldsBefore.onCallerThread;
+    fields.compileThreadMs -= fieldsBefore.compileThreadMs;
+    fields.callerThreadMs -= fieldsBefore.callerThreadMs;
+    fields.superseded -= fieldsBefore.superseded;
     const size_t shownWhileScrubbing = meshesShown;
     const std::vector<double> polyWhileScrubbing = polyMs;
     // Scrubbing stops: frames keep coming until the refined mesh is on screen.
@@ -149,6 +156,22 @@ std::vector<Row> runAnimorphScrub(const Options& opt) {
                     "frame time p50 " + std::to_string(int(percentile(frameMs, 0.5) + 0.5)) + " ms, p95 " +
                         std::to_string(int(percentile(frameMs, 0.95) + 0.5)) + " ms; " + how});
     rows.push_back({tag + ", frame loop per frame", mean(frameMs), "ms", "", stages});
+    if (gpuPath) {
+      // C(t) flattened into the GPU's program (PreviewSource::field): on the compile thread, or in
+      // the frame (previews stage above) when it is cheap or a screenshot needs it.
+      const uint64_t compiles = fields.onCompileThread + fields.onCallerThread;
+      char where[200];
+      std::snprintf(where, sizeof where,
+                    "%llu on the compile thread (%.1f ms each), %llu on the UI thread (%.1f ms each), %llu superseded "
+                    "before compiling",
+                    (unsigned long long)fields.onCompileThread,
+                    fields.onCompileThread ? fields.compileThreadMs / double(fields.onCompileThread) : 0.0,
+                    (unsigned long long)fields.onCallerThread,
+                    fields.onCallerThread ? fields.callerThreadMs / double(fields.onCallerThread) : 0.0,
+                    (unsigned long long)fields.superseded);
+      rows.push_back({tag + ", field compile", compiles ? (fields.compileThreadMs + fields.callerThreadMs) / double(compiles) : 0.0,
+                      "ms", "", where});
+    }
     rows.push_back({tag + ", new meshes shown while scrubbing", 1000.0 * double(shownWhileScrubbing) / scrubMs,
                     "fps", ">= 20 fps",
                     std::to_string(shownWhileScrubbing) + " of " + std::to_string(frames.size()) + " frames got their own mesh"});

@@ -56,6 +56,11 @@ ImplicitPreviewStatus BlobPreviewSet::status(const std::string& actorId) const {
   return it == entries_.end() ? ImplicitPreviewStatus{} : it->second.preview->status();
 }
 
+PreviewFieldCounters BlobPreviewSet::fieldCounters(const std::string& actorId) const {
+  auto it = entries_.find(actorId);
+  return it == entries_.end() ? PreviewFieldCounters{} : it->second.preview->fieldCounters();
+}
+
 bool BlobPreviewSet::busy() const {
   for (const auto& [id, e] : entries_)
     if (e.preview->busy()) return true;

@@ -38,6 +38,8 @@ class BlobPreviewSet {
   std::shared_ptr<const PreviewResult> result(const std::string& actorId) const;
   // The actor's preview status (empty for an unknown actor).
   ImplicitPreviewStatus status(const std::string& actorId) const;
+  // The actor's GPU field compiles so far (ImplicitPreview::fieldCounters; empty for an unknown actor).
+  PreviewFieldCounters fieldCounters(const std::string& actorId) const;
   // True while some actor's preview is being computed.
   bool busy() const;
   // True while some actor's preview moves on only with more frames (ImplicitPreview::needsFrames).

@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "implicit/gpu_polygonizer.h"
+#include "implicit/preview_field_compiler.h"
 #include "vulkan/command_resources.h"
 #include "vulkan/vk_check.h"
 
@@ -59,6 +60,7 @@ ImplicitPreview::ImplicitPreview(Context& ctx) : ctx_(ctx) {}
 
 ImplicitPreview::~ImplicitPreview() {
   worker_.reset();  // cancels and joins
+  compiler_.reset();  // joins (after the compile in progress)
   VkDevice dev = ctx_.device();
   for (uint32_t i = 0; i < kFramesInFlight; ++i)
     if (fences_[i]) {
@@ -93,7 +95,14 @@ void ImplicitPreview::update(std::shared_ptr<const PreviewSource> source, double
   }
   gpuActive_ = false;
   cpuFillIn_ = false;  // the worker's mesh is the CPU path's now
-  gpuSource_.reset();  // back on the GPU later, the shape starts over
+  // Back on the GPU later, the shape starts over, and until its first record the CPU's mesh stays
+  // on screen (draw()), not the GPU's mesh of a shape from before.
+  gpuSource_.reset();
+  lastAsked_.reset();
+  recordedField_.reset();
+  ready_.reset();
+  fieldPending_ = false;
+  gpuDrawable_ = false;
   updateCpu(std::move(source), timeSec, s);
 }
 
@@ -147,7 +156,9 @@ void ImplicitPreview::prewarm(const PreviewSource& source, const ImplicitPreview
       return;
     }
   }
+  const double t0 = nowSec();
   auto field = source.field(s.interactiveResolution);
+  lastFieldMs_ = 1000.0 * (nowSec() - t0);  // (whether the next fields compile on this thread)
   if (!field) return;  // update() reports it
   GpuPolygonizeSettings gs;
   gs.resolution = s.interactiveResolution;
@@ -181,6 +192,40 @@ void ImplicitPreview::pollGpu() {
   }
 }
 
+std::shared_ptr<const CompiledPreviewField> ImplicitPreview::takeField(
+    const std::shared_ptr<const PreviewSource>& source, int res, double timeSec, bool settle) {
+  if (!compiler_) compiler_ = std::make_unique<PreviewFieldCompiler>();
+  auto keep = [&](std::shared_ptr<const CompiledPreviewField> c) {
+    lastFieldMs_ = c->milliseconds;
+    ready_ = std::move(c);
+  };
+  // The newest field the thread has compiled, this shape's or an older one's: newer than the mesh on screen.
+  auto pollThread = [&] {
+    auto latest = compiler_->latest();
+    if (latest && latest->id > takenFieldId_ && (!ready_ || latest->id > ready_->id)) keep(std::move(latest));
+  };
+  pollThread();
+  if (ready_ && ready_->matches(*source, res)) return ready_;
+  // A screenshot must show this shape, and a field measured cheap costs less here than a frame's
+  // delay: compiled on this thread (a request waiting is for an older shape).
+  if (settle || (lastFieldMs_ >= 0.0 && lastFieldMs_ < kCompileHereMs)) {
+    compiler_->dropWaiting();
+    keep(compiler_->compileHere(source, res, timeSec));
+    return ready_;
+  }
+  const bool threadIdle = !compiler_->busy();
+  const uint64_t id = compiler_->request(source, res, timeSec);
+  // The first field of this preview (its cost unknown; most take well under a millisecond): wait a
+  // moment for it, so that a cheap shape is recorded in its own frame as before.
+  if (lastFieldMs_ < 0.0 && threadIdle && compiler_->waitFor(id, kFirstFieldWaitSec)) pollThread();
+  return ready_;
+}
+
+void ImplicitPreview::fieldTaken(const std::shared_ptr<const CompiledPreviewField>& field) {
+  takenFieldId_ = std::max(takenFieldId_, field->id);
+  if (ready_ == field) ready_.reset();
+}
+
 bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& source, double timeSec,
                                 const ImplicitPreviewSettings& s) {
   if (!poly_) {
@@ -191,10 +236,16 @@ bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& sour
   }
   pollGpu();
   if (!gpuFailure_.empty()) return false;
-  const bool sameShape = gpuSource_ && gpuSource_->sameAs(*source);
-  // A shape asked for again after it waited a frame (pacing) has stopped changing too.
-  const bool repeated = sameShape || (deferredSource_ && deferredSource_->sameAs(*source));
-  deferredSource_.reset();
+  // A shape whose field failed or that the GPU cannot express: the CPU worker draws it (fieldFallback_ says why).
+  if (fieldFailed_ && samePreviewShape(*fieldFailed_, *source)) return false;
+  fieldFailed_.reset();
+  fieldFallback_.clear();
+  // The frame before asked for this shape too (it was recorded, or it waited: pacing, pipelines, its field).
+  // (sameAs may walk whole trees: C(t) snapshots all have tree time 0, so two are compared node by
+  // node up to the first difference)
+  const bool repeated = lastAsked_ && samePreviewShape(*lastAsked_, *source);
+  const bool sameShape = gpuSource_ && (gpuSource_ == lastAsked_ ? repeated : samePreviewShape(*gpuSource_, *source));
+  lastAsked_ = source;
   const double now = nowSec(), frameSec = now - lastUpdateAt_;
   if (!repeated) {
     previousShapeLasted_ = now - shapeSince_;
@@ -212,16 +263,22 @@ bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& sour
   const bool recordedLast = lastUpdateRecorded_;
   lastUpdateRecorded_ = false;
   deferred_ = false;
-  if (sameShape && res == gpuResolution_ && settled_) return true;  // quiet
+  fieldPending_ = false;
+  if (sameShape && res == gpuResolution_ && settled_) {  // quiet; a field compiled for another shape is not wanted
+    ready_.reset();
+    if (compiler_) compiler_->dropWaiting();
+    return true;
+  }
   // Frame pacing: after a frame over the 30 fps budget that recorded a new shape, this frame
-  // draws the last mesh and the new shape waits (gpuSource_ stays the old one, so the next
-  // frame records it).
+  // draws the last mesh and the new shape waits (its field compiles meanwhile off this thread;
+  // the next frame asks for it again and records it).
   constexpr double kFrameBudgetSec = 1.0 / 30.0;
   if (s.paceGpu && !repeated && !s.settle && gpuDrawable_ && recordedLast && frameSec > kFrameBudgetSec) {
     deferred_ = true;
-    deferredSource_ = source;
+    if (compiler_ && !(lastFieldMs_ >= 0.0 && lastFieldMs_ < kCompileHereMs)) compiler_->request(source, res, timeSec);
     return true;
   }
+  std::shared_ptr<const CompiledPreviewField> field;
   // The shape just recorded, again: that record drew it. Once it has completed, its counters say
   // whether it fitted (then the preview goes quiet); until then nothing new is recorded.
   if (sameShape && res == gpuResolution_ && recordsOfShape_ > 0 && !s.settle) {
@@ -240,27 +297,32 @@ bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& sour
     }
     // It overflowed (the buffers grew) or its counters are gone: record the shape again.
   }
-  if (!sameShape || res != gpuResolution_) {
-    recordsOfShape_ = 0;
-    settled_ = false;
-  }
+  if (sameShape && res == gpuResolution_ && recordedField_) field = recordedField_;
 
-  auto field = source->field(res);
+  // The field of this shape, or of the newest shape compiled since the last record: compiled off
+  // this thread (PreviewFieldCompiler) unless it is cheap or a screenshot needs it now. While it
+  // compiles the viewport keeps the last mesh.
+  if (!field) field = takeField(source, res, timeSec, s.settle);
   if (!field) {
-    fieldFallback_ = field.error();
-    return false;
+    fieldPending_ = true;
+    return true;
   }
-  const GpuField gf = GpuField::single(field->program);
-  if (std::string why = GpuPolygonizer::unsupported(gf); !why.empty()) {
-    fieldFallback_ = why;
-    return false;
+  if (!field->error.empty()) {
+    fieldTaken(field);
+    if (samePreviewShape(*field->source, *source)) {
+      fieldFallback_ = field->error;
+      fieldFailed_ = source;
+      return false;
+    }
+    fieldPending_ = true;  // an older shape's: this one is on its way
+    return true;
   }
-  fieldFallback_.clear();
+  const GpuField gf = GpuField::single(field->field->program);
   GpuPolygonizeSettings gs;
-  gs.resolution = res;
-  gs.bounds = field->bounds;
-  gs.noiseAmplitude = field->noiseAmplitude;
-  gs.noiseFrequency = field->noiseFrequency;
+  gs.resolution = field->resolution;
+  gs.bounds = field->field->bounds;
+  gs.noiseAmplitude = field->field->noiseAmplitude;
+  gs.noiseFrequency = field->field->noiseFrequency;
   // A kind of shape whose pipelines are not compiled yet: compile them in the background while the
   // CPU worker draws it (update(); the frame would otherwise stall ~1 s on lavapipe); retried every frame.
   // A screenshot (settle) waits for them instead: it must show this shape.
@@ -268,9 +330,9 @@ bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& sour
   if (compiling_) {
     poly_->prewarm(gf, gs);
     deferred_ = true;
-    deferredSource_ = source;
     return true;
   }
+  const bool sameRecord = gpuSource_ && gpuResolution_ == field->resolution && samePreviewShape(*gpuSource_, *field->source);
   VkDevice dev = ctx_.device();
   if (s.settle) {
     // A screenshot: the whole shape in this frame. A record reads its counters frames later, so
@@ -293,19 +355,31 @@ bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& sour
     gpuDrawnTime_ = timeSec;
     gpuSource_ = source;
     gpuResolution_ = res;
+    recordedField_ = field;
+    fieldTaken(field);
     settled_ = true;
     gpuDrawable_ = true;
     return true;
   }
   const uint32_t slot = uint32_t(serial_ % kFramesInFlight);
-  // The record kFramesInFlight ago used this slot; GpuPolygonizer::record reads its counters.
+  // The record kFramesInFlight ago used this slot; GpuPolygonizer::record reads its counters. While
+  // the GPU is still on it this frame draws the last mesh and the next one records (the field
+  // stays ready): the UI thread does not wait for the GPU.
   if (pending_[slot]) {
-    VkResult w = vkWaitForFences(dev, 1, &fences_[slot], VK_TRUE, UINT64_MAX);
+    const VkResult w = vkGetFenceStatus(dev, fences_[slot]);
+    if (w == VK_NOT_READY) {
+      deferred_ = true;
+      return true;
+    }
     if (w != VK_SUCCESS) {
       gpuFailure_ = "GPU preview: " + std::string(vkResultName(w));
       return false;
     }
     pollGpu();
+  }
+  if (!sameRecord) {
+    recordsOfShape_ = 0;
+    settled_ = false;
   }
   VkCommandBuffer cmd = cmds_[slot];
   vkResetCommandBuffer(cmd, 0);
@@ -328,8 +402,8 @@ bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& sour
   }
   pending_[slot] = true;
   submittedAt_[slot] = nowSec();
-  submittedRes_[slot] = res;
-  gpuDrawnTime_ = timeSec;
+  submittedRes_[slot] = field->resolution;
+  gpuDrawnTime_ = field->timeSec;
   lastUpdateRecorded_ = true;
   ++serial_;
   ++recordsOfShape_;
@@ -337,14 +411,19 @@ bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& sour
   // also read kFramesInFlight records later inside record(): once those of a record of this shape
   // show it fitted, the records since fit too.
   settled_ = recordsOfShape_ > int(kFramesInFlight) && !poly_->lastStats().overflowed;
-  gpuSource_ = source;
-  gpuResolution_ = res;
+  gpuSource_ = field->source;
+  gpuResolution_ = field->resolution;
+  recordedField_ = field;
+  fieldTaken(field);
+  // An older shape's field (compiled while this one was asked for): this one is still on its way.
+  fieldPending_ = !field->matches(*source, res);
   gpuDrawable_ = true;
   return true;
 }
 
 void ImplicitPreview::draw(Scene& scene, const glm::mat4& model, const glm::vec4& color, bool selected) const {
-  if (usingGpu() && !(cpuFillIn_ && mesh_)) {
+  // (the GPU path's first shape after the CPU's: the CPU's mesh until the GPU's is recorded)
+  if (usingGpu() && !(cpuFillIn_ && mesh_) && (gpuDrawable_ || !mesh_)) {
     if (!gpuDrawable_) return;
     GeneratedMeshDraw g = poly_->generatedMesh(color);
     g.model = model;
@@ -393,7 +472,7 @@ bool ImplicitPreview::busy() const {
   if (usingGpu()) {
     for (bool p : pending_)
       if (p) return true;
-    return deferred_ || refineHeld_ || !settled_;
+    return deferred_ || refineHeld_ || fieldPending_ || !settled_;
   }
   // A finished result not uploaded yet (the next update() does) still counts.
   return worker_ && (worker_->busy() || worker_->latestSerial() != uploadedSerial_);
@@ -411,7 +490,9 @@ bool ImplicitPreview::waitIdle(double timeoutSec) {
       worker_->waitIdle(timeoutSec);
       uploadNew();
     }
-    bool idle = !compiling_ || poly_->waitForCompilation(timeoutSec);  // the next update records it
+    // The field being compiled, then the pipelines: the next update records the shape.
+    bool idle = !fieldPending_ || !compiler_ || compiler_->waitIdle(timeoutSec);
+    idle = (!compiling_ || poly_->waitForCompilation(timeoutSec)) && idle;
     if (refineHeld_) {  // the next update after the hold records the refined shape
       const double left = std::min(timeoutSec, shapeSince_ + kRefineDelaySec - nowSec());
       if (left > 0.0) std::this_thread::sleep_for(std::chrono::duration<double>(left));

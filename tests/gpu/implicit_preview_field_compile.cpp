@@ -1,0 +1,196 @@
+// The GPU preview's field compiles off the UI thread (implicit_preview.h,
+// preview_field_compiler.h), on lavapipe: a shape whose field takes long to
+// compile does not hold up update(), the viewport keeps the last mesh until it
+// is compiled, shapes superseded while waiting are never compiled, and a
+// screenshot (settle) still shows exactly the shape asked for.
+#include <catch2/catch.hpp>
+
+#include <atomic>
+#include <chrono>
+#include <thread>
+
+#include "gpu_fixture.h"
+#include "implicit/implicit_preview.h"
+#include "scene/morph_preview_source.h"
+#include "util/morph_fixtures.h"
+
+using namespace animorph;
+using namespace animorph::gpu;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+constexpr double kFieldSleepSec = 0.4;
+
+// The demo morph's B->C stage at a time, whose field() takes kFieldSleepSec longer (a big tree's
+// flattening) and counts its calls.
+class SlowFieldSource final : public PreviewSource {
+ public:
+  explicit SlowFieldSource(std::shared_ptr<const PreviewSource> inner) : inner_(std::move(inner)) {}
+  bool sameAs(const PreviewSource& other) const override {
+    auto* o = dynamic_cast<const SlowFieldSource*>(&other);
+    return o && inner_->sameAs(*o->inner_);
+  }
+  Status validate() const override { return inner_->validate(); }
+  Result<PolygonizeResult> polygonize(int resolution, int threads, const std::atomic<bool>* cancel,
+                                      PolygonizeHistory* history) const override {
+    return inner_->polygonize(resolution, threads, cancel, history);
+  }
+  Result<PreviewField> field(int resolution) const override {
+    ++calls_;
+    std::this_thread::sleep_for(std::chrono::duration<double>(kFieldSleepSec));
+    return inner_->field(resolution);
+  }
+  int fieldCalls() const { return calls_.load(); }
+
+ private:
+  std::shared_ptr<const PreviewSource> inner_;
+  mutable std::atomic<int> calls_{0};
+};
+
+struct SlowStage {
+  double t;
+  std::shared_ptr<const SlowFieldSource> source;
+};
+
+struct Fixture {
+  std::unique_ptr<Context> ctx = test::makeTestContext();
+  std::shared_ptr<const MorphRuntime> rt = test::demoMorph().runtime;
+  ImplicitPreviewSettings ps;
+  Fixture() {
+    ps.interactiveResolution = 24;
+    ps.refinedResolution = 32;
+    ps.gpu = true;
+    ps.paceGpu = false;  // every frame may record: what is drawn depends on the fields alone
+  }
+  double at(double u) const {
+    const MorphMarkers& mk = rt->setup.markers;
+    return rt->timeline.frameToSec(int(mk.b + u * (mk.c - mk.b)));
+  }
+  SlowStage slow(double u) const { return {at(u), std::make_shared<SlowFieldSource>(morphPreviewSource(rt, at(u)))}; }
+  // Frames of the editor's loop on one shape until the preview is idle.
+  ImplicitPreviewStatus settle(ImplicitPreview& p, const std::shared_ptr<const PreviewSource>& source, double t) {
+    for (int i = 0; i < 60 && (i == 0 || p.busy()); ++i) {
+      p.update(source, t, ps);
+      p.endFrame();
+      p.waitIdle(60.0);
+    }
+    REQUIRE_FALSE(p.busy());
+    return p.status();
+  }
+  // The triangles of the shape at t on a preview of its own, with a field of the usual cost.
+  size_t trianglesAt(double t) {
+    ImplicitPreview fast(*ctx);
+    return settle(fast, morphPreviewSource(rt, t), t).triangles;
+  }
+};
+
+}  // namespace
+
+TEST_CASE("implicit preview: a slow field compiles off the UI thread and the shape appears once compiled",
+          "[gpu][preview]") {
+  Fixture f;
+  ImplicitPreview preview(*f.ctx);
+  const SlowStage first = f.slow(0.3);
+  f.settle(preview, first.source, first.t);  // pipelines, buffers; the field's cost is known now
+  REQUIRE(preview.status().gpu);
+  REQUIRE(preview.status().timeSec == first.t);
+  const PreviewFieldCounters before = preview.fieldCounters();
+
+  const SlowStage next = f.slow(0.6);
+  const auto start = Clock::now();
+  preview.update(next.source, next.t, f.ps);
+  CHECK(secondsSince(start) < kFieldSleepSec / 2);  // the frame did not wait for the field
+  // Meanwhile the viewport draws the last mesh, and the preview asks for frames.
+  CHECK(preview.status().timeSec == first.t);
+  CHECK(preview.busy());
+  CHECK(preview.needsFrames());
+  Scene scene;
+  preview.draw(scene, glm::mat4(1.0f), glm::vec4(1.0f), false);
+  CHECK(scene.generatedMeshes.size() == 1);
+  preview.endFrame();
+  // The editor's loop goes on; the shape is drawn once its field is compiled.
+  double slowestUpdate = 0.0;
+  for (int i = 0; i < 300 && preview.status().timeSec != next.t; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    const auto t = Clock::now();
+    preview.update(next.source, next.t, f.ps);
+    slowestUpdate = std::max(slowestUpdate, secondsSince(t));
+    preview.endFrame();
+  }
+  CHECK(preview.status().timeSec == next.t);
+  CHECK(secondsSince(start) >= kFieldSleepSec);
+  CHECK(slowestUpdate < kFieldSleepSec / 2);
+  const PreviewFieldCounters after = preview.fieldCounters();
+  CHECK(after.onCompileThread > before.onCompileThread);
+  CHECK(after.onCallerThread == before.onCallerThread);
+  // Refined, it is the shape a preview with a fast field shows.
+  const ImplicitPreviewStatus s = f.settle(preview, next.source, next.t);
+  CHECK(s.gpu);
+  CHECK(s.resolution == f.ps.refinedResolution);
+  CHECK(s.triangles == f.trianglesAt(next.t));
+  CHECK(f.ctx->validationErrorCount() == 0);
+}
+
+TEST_CASE("implicit preview: a shape superseded while its field waits is never compiled", "[gpu][preview]") {
+  Fixture f;
+  ImplicitPreview preview(*f.ctx);
+  const SlowStage first = f.slow(0.2);
+  f.settle(preview, first.source, first.t);
+  const PreviewFieldCounters before = preview.fieldCounters();
+  // Scrubbing three frames while the first new field compiles: the second waits, the third replaces it.
+  const SlowStage a = f.slow(0.4), b = f.slow(0.5), c = f.slow(0.6);
+  preview.update(a.source, a.t, f.ps);
+  preview.endFrame();
+  for (int i = 0; i < 500 && a.source->fieldCalls() == 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  REQUIRE(a.source->fieldCalls() == 1);  // being compiled
+  preview.update(b.source, b.t, f.ps);
+  preview.endFrame();
+  preview.update(c.source, c.t, f.ps);
+  preview.endFrame();
+  std::vector<double> drawn;
+  for (int i = 0; i < 300 && (preview.busy() || preview.status().timeSec != c.t); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    preview.update(c.source, c.t, f.ps);
+    preview.endFrame();
+    drawn.push_back(preview.status().timeSec);
+  }
+  CHECK(drawn.back() == c.t);
+  CHECK(b.source->fieldCalls() == 0);
+  CHECK(std::find(drawn.begin(), drawn.end(), b.t) == drawn.end());
+  // The field compiled when b came in was a newer shape than the one on screen: it was drawn.
+  CHECK(std::find(drawn.begin(), drawn.end(), a.t) != drawn.end());
+  CHECK(preview.fieldCounters().superseded > before.superseded);
+  CHECK(f.ctx->validationErrorCount() == 0);
+}
+
+TEST_CASE("implicit preview: a screenshot shows the shape asked for while an older field compiles",
+          "[gpu][preview]") {
+  Fixture f;
+  ImplicitPreview preview(*f.ctx);
+  const SlowStage first = f.slow(0.2);
+  f.settle(preview, first.source, first.t);
+  const SlowStage older = f.slow(0.4), shot = f.slow(0.7);
+  preview.update(older.source, older.t, f.ps);  // its field compiles on the thread
+  preview.endFrame();
+  ImplicitPreviewSettings settle = f.ps;
+  settle.settle = true;
+  preview.update(shot.source, shot.t, settle);
+  ImplicitPreviewStatus s = preview.status();
+  CHECK(s.timeSec == shot.t);
+  CHECK(s.resolution == f.ps.refinedResolution);
+  CHECK_FALSE(preview.busy());
+  const uint64_t records = preview.gpuRecordCount();
+  // The older field, finished afterwards, does not replace it.
+  std::this_thread::sleep_for(std::chrono::duration<double>(1.5 * kFieldSleepSec));
+  preview.endFrame();
+  preview.update(shot.source, shot.t, f.ps);
+  preview.endFrame();
+  CHECK(preview.status().timeSec == shot.t);
+  CHECK(preview.gpuRecordCount() == records);
+  CHECK_FALSE(preview.busy());
+  CHECK(s.triangles == f.trianglesAt(shot.t));
+  CHECK(f.ctx->validationErrorCount() == 0);
+}
