@@ -1,0 +1,53 @@
+#pragma once
+// C(t) compiled straight into a FieldProgram, without the BlobTree snapshot of
+// evaluate_generic.h: the program is byte for byte that of
+// compileFieldProgram(instantiateGeneric(c, timing, t), 0, options) -- the same
+// ops, primitives and floats in the same order -- at a fraction of the cost.
+// The compiler is built once per C: its nodes in pre-order with their children,
+// and the memory of their values at one time. compile() then evaluates every
+// node's blended parameters (in parallel), expands the meta-primitives
+// (spline-of-nodes frames, Coons triangles) into that kept memory, and
+// flattens C(t) into a kept program through the BlobTree compiler's emitter
+// (blobtree/compile_emit.h), so scrubbing allocates nothing once warm.
+#include <memory>
+#include <vector>
+
+#include "animorph/animorphosis_timing.h"
+#include "animorph/generic_tree.h"
+#include "blobtree/compile.h"
+
+namespace animorph {
+
+class GenericProgramCompiler {
+ public:
+  // c must outlive the compiler (hold it by shared_ptr beside it).
+  explicit GenericProgramCompiler(const GenericTree& c);
+  ~GenericProgramCompiler();
+  GenericProgramCompiler(const GenericProgramCompiler&) = delete;
+  GenericProgramCompiler& operator=(const GenericProgramCompiler&) = delete;
+
+  // C at timeline time timeSec into out (whatever it held is replaced, its memory reused).
+  // One call at a time per compiler (it keeps the values of the frame it compiles).
+  void compile(const AnimorphosisTiming& timing, double timeSec, FieldProgram& out,
+               const CompileOptions& options = {});
+  const GenericTree& tree() const;
+  size_t nodeCount() const;
+
+  // Seconds the last compile() spent evaluating the nodes' values and expanding the
+  // meta-primitives, and flattening (emitting ops and primitives, FieldProgram::finish).
+  struct Timing {
+    double evaluateSec = 0.0, emitSec = 0.0, finishSec = 0.0;
+  };
+  const Timing& lastTiming() const;
+
+  struct Impl;  // the nodes and their values (compile_generic.cpp)
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+// One compile of C(timeSec) (a compiler built and dropped: for one-off frames; scrubbing keeps one).
+FieldProgram compileGenericDirect(const GenericTree& c, const AnimorphosisTiming& timing, double timeSec,
+                                  const CompileOptions& options = {});
+
+}  // namespace animorph
