@@ -55,9 +55,9 @@ std::vector<Row> runAnimorphScrub(const Options& opt) {
   {
     SceneFrame frame = evaluateScene(*project, baseDir, assets, tl.frameToSec(mid));
     applyAnimorphosis(frame, *project, cache, &*project, 0);
-    if (frame.blobs.empty() || !frame.blobs.front().tree) return {{"skipped", 0, "", "", "no C(t) draw at the middle"}};
+    if (frame.blobs.empty() || !frame.blobs.front().source) return {{"skipped", 0, "", "", "no C(t) draw at the middle"}};
     actorId = frame.blobs.front().actorId;
-    view = compileFieldProgram(*frame.blobs.front().tree, 0.0).bounds();
+    view = compileFieldProgram(*frame.blobs.front().ownTree(), 0.0).bounds();
   }
   rows.push_back({"device", 0, "", "",
                   off.ctx->deviceName() + "; " + std::to_string(frames.size()) + " frames " +
