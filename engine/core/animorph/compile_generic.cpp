@@ -1,9 +1,11 @@
 #include "animorph/compile_generic.h"
 
+#include <atomic>
 #include <chrono>
+#include <thread>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
 #include "animorph/evaluate_generic.h"
 #include "animorph/param_blend.h"
@@ -50,7 +52,16 @@ struct GenericProgramCompiler::Impl {
   std::vector<std::vector<std::array<glm::vec3, 3>>> triangles;
   std::vector<int> needs;
   std::vector<float> sOfCurve;  // s(u) of each override curve, then of the global one (last)
+  std::vector<float> splineCounts;  // a spline-of-nodes' count at this frame (the stack need reads it first)
   Timing timing;
+  double tA = 0.0, tB = 0.0;
+
+  // The values are evaluated in chunks of nodes (pre-order) by helper threads while the emitter
+  // walks the tree; the emitter evaluates a chunk itself when it needs one nobody has taken.
+  static constexpr uint32_t kChunk = 96;
+  std::unique_ptr<std::atomic<uint8_t>[]> chunkState;  // 0 free, 1 taken, 2 done
+  std::atomic<uint32_t> nextChunk{0};
+  uint32_t chunkCount = 0;
 
   explicit Impl(const GenericTree& tree) : c(tree) {
     size_t valueCount = 0, listCount = 0, metaCount = 0;
@@ -86,17 +97,56 @@ struct GenericProgramCompiler::Impl {
     frames.resize(metaCount);
     triangles.resize(metaCount);
     needs.resize(nodes.size());
+    splineCounts.resize(nodes.size());
+    chunkCount = uint32_t((nodes.size() + kChunk - 1) / kChunk);
+    chunkState = std::make_unique<std::atomic<uint8_t>[]>(chunkCount);
+  }
+
+  float sOf(const GenericNode& g) const { return sOfCurve[g.sCurve >= 0 ? size_t(g.sCurve) : sOfCurve.size() - 1]; }
+
+  // Every node's type at this frame, and each spline-of-nodes' count: what the emitter's stack
+  // need reads across the tree before it emits anything (cheap: no other value).
+  void prepare() {
+    for (size_t i = 0; i < nodes.size(); ++i) {
+      const GenericNode& g = *nodes[i].g;
+      const float s = sOf(g);
+      const bool bridged = g.a.type != g.b.type;
+      types[i] = s <= 0.0f ? g.a.type : s >= 1.0f ? g.b.type : bridged ? NodeType::HyperBlend : g.a.type;
+      if (types[i] != NodeType::SplineOfNodes) continue;
+      const size_t k = size_t(compileParamSlot(NodeType::SplineOfNodes, CompileParam::Count));
+      const FloatTrack& a = std::get<FloatTrack>(g.a.params[k]);
+      const FloatTrack& b = std::get<FloatTrack>(g.b.params[k]);
+      splineCounts[i] = s <= 0.0f ? a.evaluate(tA) : s >= 1.0f ? b.evaluate(tB) : blendFloat(a, b, tA, tB, s);
+    }
+    for (uint32_t c = 0; c < chunkCount; ++c) chunkState[c].store(0, std::memory_order_relaxed);
+    nextChunk.store(0, std::memory_order_release);
+  }
+
+  // Takes the next free chunk and evaluates it; false when none is left.
+  bool evaluateNextChunk() {
+    const uint32_t c = nextChunk.fetch_add(1, std::memory_order_acq_rel);
+    if (c >= chunkCount) return false;
+    chunkState[c].store(1, std::memory_order_relaxed);
+    const uint32_t end = std::min<uint32_t>(uint32_t(nodes.size()), (c + 1) * kChunk);
+    for (uint32_t i = c * kChunk; i < end; ++i) evaluate(i);
+    chunkState[c].store(2, std::memory_order_release);
+    return true;
+  }
+
+  // Node i's values, evaluated (waiting for the thread that took its chunk, or taking chunks up to it).
+  void ensure(uint32_t i) {
+    const uint32_t c = i / kChunk;
+    while (chunkState[c].load(std::memory_order_acquire) != 2)
+      if (!evaluateNextChunk()) std::this_thread::yield();
   }
 
   // The node's values at this frame, as updateGenericSnapshot writes them into its snapshot node.
-  void evaluate(uint32_t i, double tA, double tB) {
+  void evaluate(uint32_t i) {
     const PlanNode& p = nodes[i];
     const GenericNode& g = *p.g;
-    const float s = sOfCurve[g.sCurve >= 0 ? size_t(g.sCurve) : sOfCurve.size() - 1];
+    const float s = sOf(g);
     const bool bridged = g.a.type != g.b.type;
-    const NodeType type =
-        s <= 0.0f ? g.a.type : s >= 1.0f ? g.b.type : bridged ? NodeType::HyperBlend : g.a.type;
-    types[i] = type;
+    const NodeType type = types[i];
     glm::vec4* out = values.data() + p.valueBase;
     const size_t params = paramCount(type);
     if (bridged && s > 0.0f && s < 1.0f) {
@@ -157,17 +207,30 @@ struct PlanSource {
   size_t childCount(Node n) const { return m.nodes[n].childCount; }
   Node child(Node n, size_t k) const { return m.children[m.nodes[n].childBegin + k]; }
   int& needMemo(Node n) { return m.needs[n]; }
-  float f(Node n, CompileParam p) const { return m.value(n, p).x; }
-  glm::vec3 v(Node n, CompileParam p) const { return glm::vec3(m.value(n, p)); }
+  float f(Node n, CompileParam p) const {
+    if (p == CompileParam::Count && m.types[n] == NodeType::SplineOfNodes) return m.splineCounts[n];
+    m.ensure(n);
+    return m.value(n, p).x;
+  }
+  glm::vec3 v(Node n, CompileParam p) const {
+    m.ensure(n);
+    return glm::vec3(m.value(n, p));
+  }
   glm::quat q(Node n, CompileParam p) const {
+    m.ensure(n);
     const glm::vec4& x = m.value(n, p);
     return glm::quat(x.w, x.x, x.y, x.z);
   }
-  const std::vector<glm::vec3>& points(Node n, CompileParam p, std::vector<glm::vec3>&) const { return m.list(n, p); }
+  const std::vector<glm::vec3>& points(Node n, CompileParam p, std::vector<glm::vec3>&) const {
+    m.ensure(n);
+    return m.list(n, p);
+  }
   const std::vector<SpaceMap>& splineFrames(Node n, std::vector<SpaceMap>&) const {
+    m.ensure(n);
     return m.frames[size_t(m.nodes[n].meta)];
   }
   const std::vector<std::array<glm::vec3, 3>>& coonsTriangles(Node n, std::vector<std::array<glm::vec3, 3>>&) const {
+    m.ensure(n);
     return m.triangles[size_t(m.nodes[n].meta)];
   }
 };
@@ -185,22 +248,29 @@ void GenericProgramCompiler::compile(const AnimorphosisTiming& timing, double ti
                                      const CompileOptions& options) {
   Impl& m = *impl_;
   const auto t0 = std::chrono::steady_clock::now();
-  const double tA = timing.source.localTime(timeSec), tB = timing.target.localTime(timeSec);
+  m.tA = timing.source.localTime(timeSec);
+  m.tB = timing.target.localTime(timeSec);
   const double u = timing.u(timeSec);
   m.sOfCurve.clear();
   for (const FloatTrack& curve : m.c.sCurves) m.sOfCurve.push_back(evaluateS(curve, u));
   m.sOfCurve.push_back(evaluateS(timing.globalS, u));
-  const uint32_t count = uint32_t(m.nodes.size());
-  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, count, 512), [&](const tbb::blocked_range<uint32_t>& r) {
-    for (uint32_t i = r.begin(); i < r.end(); ++i) m.evaluate(i, tA, tB);
-  });
+  m.prepare();
   std::fill(m.needs.begin(), m.needs.end(), -1);
   const auto t1 = std::chrono::steady_clock::now();
+  // Helpers evaluate chunks ahead of the emitter (which takes any it reaches first).
+  tbb::task_group helpers;
+  const int helperCount = std::min(int(m.chunkCount), tbb::this_task_arena::max_concurrency() - 1);
+  for (int h = 0; h < helperCount; ++h)
+    helpers.run([&m] {
+      while (m.evaluateNextChunk()) {
+      }
+    });
   out.reset();
   out.threshold = std::max(1e-6f, genericThreshold(m.c, timing, timeSec));
   PlanSource source{m};
   FlatEmitter<PlanSource> emitter(out, source, options.cutoffEpsilon);
   emitter.node(0);
+  helpers.wait();
   const auto t2 = std::chrono::steady_clock::now();
   out.finish();
   const auto t3 = std::chrono::steady_clock::now();

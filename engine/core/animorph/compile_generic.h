@@ -4,11 +4,12 @@
 // compileFieldProgram(instantiateGeneric(c, timing, t), 0, options) -- the same
 // ops, primitives and floats in the same order -- at a fraction of the cost.
 // The compiler is built once per C: its nodes in pre-order with their children,
-// and the memory of their values at one time. compile() then evaluates every
-// node's blended parameters (in parallel), expands the meta-primitives
-// (spline-of-nodes frames, Coons triangles) into that kept memory, and
-// flattens C(t) into a kept program through the BlobTree compiler's emitter
-// (blobtree/compile_emit.h), so scrubbing allocates nothing once warm.
+// and the memory of their values at one time. compile() then takes every
+// node's type at t, and flattens C(t) into a kept program through the BlobTree
+// compiler's emitter (blobtree/compile_emit.h) while helper threads evaluate
+// the nodes' blended parameters and expand the meta-primitives (spline-of-nodes
+// frames, Coons triangles) into that kept memory, in chunks of nodes ahead of
+// the emitter; scrubbing allocates nothing once warm.
 #include <memory>
 #include <vector>
 
@@ -33,10 +34,10 @@ class GenericProgramCompiler {
   const GenericTree& tree() const;
   size_t nodeCount() const;
 
-  // Seconds the last compile() spent evaluating the nodes' values and expanding the
-  // meta-primitives, and flattening (emitting ops and primitives, FieldProgram::finish).
+  // Seconds the last compile() spent on the nodes' types (and spline counts), on emitting ops
+  // and primitives (the values evaluated meanwhile, partly by the emitter), and in FieldProgram::finish.
   struct Timing {
-    double evaluateSec = 0.0, emitSec = 0.0, finishSec = 0.0;
+    double typesSec = 0.0, emitSec = 0.0, finishSec = 0.0;
   };
   const Timing& lastTiming() const;
 
