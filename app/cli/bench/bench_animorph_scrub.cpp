@@ -1,7 +1,7 @@
 // Benchmark of the editor scrubbing the animorphosis demo (dinosaur -> dragon,
 // resources/demo/animorphosis.animorph) through its interval, forward then
 // back, through the editor's own pipeline: scene evaluation, the animorphosis'
-// C(t) snapshot (scene/animorphosis_scene.h), the BlobTree previews at the
+// C(t) preview source (scene/animorphosis_scene.h: C compiled directly), the BlobTree previews at the
 // interactive resolution (96^3; the CPU worker, then the GPU polygoniser), the
 // renderer into an offscreen 1280x720 target (no window). The frame loop never
 // waits for a polygoniser, so two figures matter: frames per second of the

@@ -55,12 +55,14 @@ class FlatEmitter {
       case NodeType::Union: group(n, 0, OpCode::Max); return;
       case NodeType::Intersection: {
         const size_t count = src.childCount(n);
-        for (size_t i : operandOrder(n, 0)) node(src.child(n, i));
+        OrderList order(*this, n, 0);
+        for (size_t i : order.v) node(src.child(n, i));
         if (count > 1) prog.addOperator(OpCode::Min, uint32_t(count));
         return;
       }
       case NodeType::HyperBlend: {
-        for (size_t i : operandOrder(n, 0)) node(src.child(n, i));
+        OrderList order(*this, n, 0);
+        for (size_t i : order.v) node(src.child(n, i));
         float q = std::max(1.0f, f(n, CompileParam::Q));
         prog.addOperator(OpCode::HyperBlend, uint32_t(src.childCount(n)), &q, 1);
         return;
@@ -139,6 +141,8 @@ class FlatEmitter {
   std::vector<glm::vec3> curve;
   std::deque<std::vector<SpaceMap>> frameLevels;  // a deque: deeper levels added keep references valid
   size_t splineDepth = 0;
+  std::deque<std::vector<size_t>> orderLists;  // operand orders, one per nesting level in use
+  size_t orderListsInUse = 0;
 
   float f(Node n, CompileParam p) { return src.f(n, p); }
   glm::vec3 v(Node n, CompileParam p) { return src.v(n, p); }
@@ -163,20 +167,32 @@ class FlatEmitter {
     return m;
   }
 
-  // Emission order of children[first..] under a commuting operator.
-  std::vector<size_t> operandOrder(Node n, size_t first) {
+  // Emission order of children[first..] under a commuting operator, in a list of the emitter's
+  // kept memory (lists are taken and given back in nesting order: nothing allocated once warm).
+  struct OrderList {
+    FlatEmitter& e;
+    std::vector<size_t>& v;
+    OrderList(FlatEmitter& em, Node n, size_t first) : e(em), v(em.takeOrderList()) { e.operandOrder(n, first, v); }
+    ~OrderList() { --e.orderListsInUse; }
+    OrderList(const OrderList&) = delete;
+    OrderList& operator=(const OrderList&) = delete;
+  };
+  std::vector<size_t>& takeOrderList() {
+    if (orderListsInUse == orderLists.size()) orderLists.emplace_back();
+    return orderLists[orderListsInUse++];
+  }
+  void operandOrder(Node n, size_t first, std::vector<size_t>& order) {
     const size_t count = src.childCount(n);
-    std::vector<size_t> order(count - std::min(first, count));
+    order.resize(count - std::min(first, count));
     std::iota(order.begin(), order.end(), first);
     if (sequenceNeed(order.size(), [&](size_t i) { return need(src.child(n, order[i])); }) > kShallowStack)
       std::stable_sort(order.begin(), order.end(),
                        [&](size_t a, size_t b) { return need(src.child(n, a)) > need(src.child(n, b)); });
-    return order;
   }
 
   int operandsNeed(Node n, size_t first) {
-    const std::vector<size_t> order = operandOrder(n, first);
-    return sequenceNeed(order.size(), [&](size_t i) { return need(src.child(n, order[i])); });
+    OrderList order(*this, n, first);
+    return sequenceNeed(order.v.size(), [&](size_t i) { return need(src.child(n, order.v[i])); });
   }
 
   int need(Node n) {
@@ -309,7 +325,8 @@ class FlatEmitter {
   void group(Node n, size_t first, OpCode code) {
     uint32_t operands = 0;
     bool prevPrim = false;
-    for (size_t i : operandOrder(n, first)) {
+    OrderList order(*this, n, first);
+    for (size_t i : order.v) {
       const Node c = src.child(n, i);
       const NodeType type = src.type(c);
       if (code == OpCode::Max && type == NodeType::CoonsPatch) {
