@@ -124,6 +124,7 @@ struct GenericProgramCompiler::Impl {
 
   // Takes the next free chunk and evaluates it; false when none is left.
   bool evaluateNextChunk() {
+    if (nextChunk.load(std::memory_order_relaxed) >= chunkCount) return false;  // (a waiting emitter spins here)
     const uint32_t c = nextChunk.fetch_add(1, std::memory_order_acq_rel);
     if (c >= chunkCount) return false;
     chunkState[c].store(1, std::memory_order_relaxed);
