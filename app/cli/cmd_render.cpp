@@ -74,10 +74,11 @@ int runRender(const std::vector<std::string>& args) {
   if (ai.stage != AnimorphosisStage::None) stage += ", " + describeAnimorphosis(ai);
   for (const BlobDraw& b : frame.blobs) {
     const Actor* actor = doc.project().findActor(b.actorId);
-    if (!b.tree && !actor) continue;
+    const std::shared_ptr<const BlobTree> own = b.ownTree();
+    if (!own && !actor) continue;
     PolygonizeSettings ps;
     ps.resolution = morphResolution;
-    auto poly = polygonize(compileFieldProgram(b.tree ? *b.tree : actor->blobTree, b.treeTimeSec), ps);
+    auto poly = polygonize(compileFieldProgram(own ? *own : actor->blobTree, b.treeTimeSec), ps);
     if (!poly) return cli::fail("render", "BlobTree actor '" + b.actorId + "': " + poly.error());
     MeshDraw d;
     d.actorId = b.actorId;

@@ -237,7 +237,8 @@ TEST_CASE("the viewport's scene shows the source, then C(t), then the target", "
   CHECK(info.stage == AnimorphosisStage::Source);
   REQUIRE(before.blobs.size() == 1);
   CHECK(before.blobs[0].actorId == "walker");
-  CHECK_FALSE(before.blobs[0].tree);
+  CHECK_FALSE(before.blobs[0].source);
+  CHECK_FALSE(before.blobs[0].ownTree());
   CHECK(describeAnimorphosis(info) == "animorphosis: source");
 
   SceneFrame mid = sceneAt(48, info);
@@ -245,15 +246,19 @@ TEST_CASE("the viewport's scene shows the source, then C(t), then the target", "
   CHECK(info.u == Approx(0.5));
   REQUIRE(mid.blobs.size() == 1);
   CHECK(mid.blobs[0].actorId == "walker");
-  REQUIRE(mid.blobs[0].tree);
-  CHECK(mid.blobs[0].tree->root.subtreeSize() == projectGenericTree(p)->size());
+  REQUIRE(mid.blobs[0].source);
+  REQUIRE(mid.blobs[0].ownTree());  // the snapshot of C(t), built when asked
+  CHECK(mid.blobs[0].ownTree()->root.subtreeSize() == projectGenericTree(p)->size());
   CHECK(mid.blobGuides.get().empty());
   CHECK(describeAnimorphosis(info).rfind("animorphosis u=0.50", 0) == 0);
-  // The same time gives the same snapshot (the preview is not asked again); another time a new one.
+  // The same time gives the same source and snapshot (the preview is not asked again); another time new ones.
+  const std::shared_ptr<const BlobTree> midTree = mid.blobs[0].ownTree();
   SceneFrame again = sceneAt(48, info);
-  CHECK(again.blobs[0].tree == mid.blobs[0].tree);
+  CHECK(again.blobs[0].source == mid.blobs[0].source);
+  CHECK(again.blobs[0].ownTree() == midTree);
   SceneFrame later = sceneAt(60, info);
-  CHECK(later.blobs[0].tree != mid.blobs[0].tree);
+  CHECK(later.blobs[0].source != mid.blobs[0].source);
+  CHECK(later.blobs[0].ownTree() != midTree);
 
   SceneFrame after = sceneAt(90, info);
   CHECK(info.stage == AnimorphosisStage::Target);
@@ -279,14 +284,14 @@ TEST_CASE("the Ghosts checkbox shows A(t) and B(t) translucent and tinted beside
   };
   SceneFrame mid = sceneAt(48, true);
   REQUIRE(mid.blobs.size() == 3);  // C, then the two ghosts with their own trees at their own times
-  CHECK(mid.blobs[0].tree);
+  CHECK(mid.blobs[0].source);
   CHECK(mid.blobs[0].opacity == 1.0f);
   CHECK(mid.blobs[1].actorId == "walker");
   CHECK(mid.blobs[1].key() == "walker#ghost");
   CHECK(mid.blobs[2].key() == "flyer#ghost");
   for (int i : {1, 2}) {
     CHECK(mid.blobs[size_t(i)].opacity == Approx(kGhostOpacity));
-    CHECK_FALSE(mid.blobs[size_t(i)].tree);
+    CHECK_FALSE(mid.blobs[size_t(i)].source);
   }
   // Tinted apart from C (the clay tone) and from each other: the source blue, the target orange.
   CHECK_FALSE(mid.blobs[0].tint);

@@ -1,7 +1,7 @@
 // Benchmark of the editor scrubbing the animorphosis demo (dinosaur -> dragon,
 // resources/demo/animorphosis.animorph) through its interval, forward then
 // back, through the editor's own pipeline: scene evaluation, the animorphosis'
-// C(t) snapshot (scene/animorphosis_scene.h), the BlobTree previews at the
+// C(t) preview source (scene/animorphosis_scene.h: C compiled directly), the BlobTree previews at the
 // interactive resolution (96^3; the CPU worker, then the GPU polygoniser), the
 // renderer into an offscreen 1280x720 target (no window). The frame loop never
 // waits for a polygoniser, so two figures matter: frames per second of the
@@ -55,9 +55,9 @@ std::vector<Row> runAnimorphScrub(const Options& opt) {
   {
     SceneFrame frame = evaluateScene(*project, baseDir, assets, tl.frameToSec(mid));
     applyAnimorphosis(frame, *project, cache, &*project, 0);
-    if (frame.blobs.empty() || !frame.blobs.front().tree) return {{"skipped", 0, "", "", "no C(t) draw at the middle"}};
+    if (frame.blobs.empty() || !frame.blobs.front().source) return {{"skipped", 0, "", "", "no C(t) draw at the middle"}};
     actorId = frame.blobs.front().actorId;
-    view = compileFieldProgram(*frame.blobs.front().tree, 0.0).bounds();
+    view = compileFieldProgram(*frame.blobs.front().ownTree(), 0.0).bounds();
   }
   rows.push_back({"device", 0, "", "",
                   off.ctx->deviceName() + "; " + std::to_string(frames.size()) + " frames " +

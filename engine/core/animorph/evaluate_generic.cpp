@@ -72,12 +72,18 @@ struct Writer {
 
 }  // namespace
 
+float genericThreshold(const GenericTree& c, const AnimorphosisTiming& timing, double timeSec) {
+  double tA = timing.source.localTime(timeSec), tB = timing.target.localTime(timeSec);
+  float s = evaluateS(timing.globalS, timing.u(timeSec));
+  return s <= 0.0f   ? c.thresholdA.evaluate(tA)
+         : s >= 1.0f ? c.thresholdB.evaluate(tB)
+                     : (1.0f - s) * c.thresholdA.evaluate(tA) + s * c.thresholdB.evaluate(tB);
+}
+
 void updateGenericSnapshot(const GenericTree& c, const AnimorphosisTiming& timing, double timeSec, BlobTree& snapshot) {
   double tA = timing.source.localTime(timeSec), tB = timing.target.localTime(timeSec);
   float s = evaluateS(timing.globalS, timing.u(timeSec));
-  float threshold = s <= 0.0f   ? c.thresholdA.evaluate(tA)
-                    : s >= 1.0f ? c.thresholdB.evaluate(tB)
-                                : (1.0f - s) * c.thresholdA.evaluate(tA) + s * c.thresholdB.evaluate(tB);
+  float threshold = genericThreshold(c, timing, timeSec);
   if (snapshot.threshold.keys().size() == 1 && !snapshot.threshold.driven()) snapshot.threshold.keys()[0] = {0.0, threshold};
   else snapshot.threshold = FloatTrack(threshold);
   Writer w{c, timing, timeSec, tA, tB, {}};

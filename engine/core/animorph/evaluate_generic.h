@@ -15,6 +15,9 @@ namespace animorph {
 // s of a node of C at timeline time t.
 float nodeS(const GenericTree& c, const GenericNode& n, const AnimorphosisTiming& timing, double timeSec);
 
+// T of C at timeline time t: T_A(tA) before, T_B(tB) after, blended by the global s in between.
+float genericThreshold(const GenericTree& c, const AnimorphosisTiming& timing, double timeSec);
+
 // C at timeline time t as a BlobTree of constant tracks (ids 1..n in pre-order).
 BlobTree instantiateGeneric(const GenericTree& c, const AnimorphosisTiming& timing, double timeSec);
 
@@ -23,7 +26,8 @@ BlobTree instantiateGeneric(const GenericTree& c, const AnimorphosisTiming& timi
 // node has been seen at its current kind.
 void updateGenericSnapshot(const GenericTree& c, const AnimorphosisTiming& timing, double timeSec, BlobTree& snapshot);
 
-// compileFieldProgram of that snapshot.
+// compileFieldProgram of that snapshot (animorph/compile_generic.h gives the same program
+// without the snapshot, faster).
 FieldProgram compileGeneric(const GenericTree& c, const AnimorphosisTiming& timing, double timeSec,
                             const CompileOptions& options = {});
 

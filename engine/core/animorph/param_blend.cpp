@@ -85,32 +85,48 @@ void setPoints(ParamValue& slot, const std::vector<glm::vec3>& pts) {
 
 }  // namespace
 
+float blendFloat(const FloatTrack& a, const FloatTrack& b, double tA, double tB, float s) {
+  return (1.0f - s) * a.evaluate(tA) + s * b.evaluate(tB);
+}
+
+glm::vec3 blendVec3(const Vec3Track& a, const Vec3Track& b, double tA, double tB, float s) {
+  return (1.0f - s) * a.evaluate(tA) + s * b.evaluate(tB);
+}
+
+glm::quat blendQuat(const QuatTrack& a, const QuatTrack& b, double tA, double tB, float s) {
+  return glm::normalize(glm::slerp(a.evaluate(tA), b.evaluate(tB), s));
+}
+
+void constantPoints(const ControlPoints& p, double t, std::vector<glm::vec3>& out) {
+  pointsAt(p, t, p.size(), pointScratch().at, out);
+}
+
+void blendPoints(const ControlPoints& pa, const ControlPoints& pb, double tA, double tB, float s,
+                 std::vector<glm::vec3>& out) {
+  size_t n = std::max(pa.size(), pb.size());
+  PointScratch& sc = pointScratch();
+  pointsAt(pa, tA, n, sc.at, out);
+  pointsAt(pb, tB, n, sc.at, sc.b);
+  for (size_t k = 0; k < n; ++k) out[k] = (1.0f - s) * out[k] + s * sc.b[k];
+}
+
 void writeConstantFloat(ParamValue& slot, float v) { setOne(slot, v); }
 
 void writeConstantParam(ParamValue& slot, const ParamValue& p, double t) {
   if (auto* f = std::get_if<FloatTrack>(&p)) return setOne(slot, f->evaluate(t));
   if (auto* v = std::get_if<Vec3Track>(&p)) return setOne(slot, v->evaluate(t));
   if (auto* q = std::get_if<QuatTrack>(&p)) return setOne(slot, q->evaluate(t));
-  const auto& list = std::get<ControlPoints>(p);
   PointScratch& s = pointScratch();
-  pointsAt(list, t, list.size(), s.at, s.a);
+  constantPoints(std::get<ControlPoints>(p), t, s.a);
   setPoints(slot, s.a);
 }
 
 void writeBlendedParam(ParamValue& slot, const ParamValue& a, const ParamValue& b, double tA, double tB, float s) {
-  if (auto* f = std::get_if<FloatTrack>(&a))
-    return setOne(slot, (1.0f - s) * f->evaluate(tA) + s * std::get<FloatTrack>(b).evaluate(tB));
-  if (auto* v = std::get_if<Vec3Track>(&a))
-    return setOne(slot, (1.0f - s) * v->evaluate(tA) + s * std::get<Vec3Track>(b).evaluate(tB));
-  if (auto* q = std::get_if<QuatTrack>(&a))
-    return setOne(slot, glm::normalize(glm::slerp(q->evaluate(tA), std::get<QuatTrack>(b).evaluate(tB), s)));
-  const auto& pa = std::get<ControlPoints>(a);
-  const auto& pb = std::get<ControlPoints>(b);
-  size_t n = std::max(pa.size(), pb.size());
+  if (auto* f = std::get_if<FloatTrack>(&a)) return setOne(slot, blendFloat(*f, std::get<FloatTrack>(b), tA, tB, s));
+  if (auto* v = std::get_if<Vec3Track>(&a)) return setOne(slot, blendVec3(*v, std::get<Vec3Track>(b), tA, tB, s));
+  if (auto* q = std::get_if<QuatTrack>(&a)) return setOne(slot, blendQuat(*q, std::get<QuatTrack>(b), tA, tB, s));
   PointScratch& sc = pointScratch();
-  pointsAt(pa, tA, n, sc.at, sc.a);
-  pointsAt(pb, tB, n, sc.at, sc.b);
-  for (size_t k = 0; k < n; ++k) sc.a[k] = (1.0f - s) * sc.a[k] + s * sc.b[k];
+  blendPoints(std::get<ControlPoints>(a), std::get<ControlPoints>(b), tA, tB, s, sc.a);
   setPoints(slot, sc.a);
 }
 

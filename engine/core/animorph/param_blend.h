@@ -23,6 +23,16 @@ struct ResampleWeight {
 };
 std::vector<ResampleWeight> resampleWeights(size_t from, size_t to);
 
+// The blended values themselves, as the write functions below store them (the direct compile of C
+// reads them without a snapshot): (1 - s) a(tA) + s b(tB); quaternions by normalised slerp.
+float blendFloat(const FloatTrack& a, const FloatTrack& b, double tA, double tB, float s);
+glm::vec3 blendVec3(const Vec3Track& a, const Vec3Track& b, double tA, double tB, float s);
+glm::quat blendQuat(const QuatTrack& a, const QuatTrack& b, double tA, double tB, float s);
+// Control points at t, and the blend of two lists (resampled to the longer one), into out.
+void constantPoints(const ControlPoints& p, double timeSec, std::vector<glm::vec3>& out);
+void blendPoints(const ControlPoints& a, const ControlPoints& b, double tA, double tB, float s,
+                 std::vector<glm::vec3>& out);
+
 // Writes the parameter's value at t into `slot` as a one-key track, reusing
 // the slot's memory when it already holds a one-key track of that kind.
 void writeConstantParam(ParamValue& slot, const ParamValue& p, double timeSec);

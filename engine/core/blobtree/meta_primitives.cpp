@@ -30,9 +30,15 @@ std::vector<SpaceMap> splineOfNodesFrames(const BlobNode& node, double t) {
 void splineOfNodesFrames(const BlobNode& node, double t, MetaScratch& scratch, std::vector<SpaceMap>& frames) {
   std::vector<glm::vec3>& pts = scratch.points[0];
   evaluatePoints(node.pointsParam("points"), t, pts);
-  int count = std::clamp(int(std::lround(node.floatParam("count").evaluate(t))), 1, 1000);
-  float s0 = std::max(1e-4f, node.floatParam("scaleStart").evaluate(t));
-  float s1 = std::max(1e-4f, node.floatParam("scaleEnd").evaluate(t));
+  splineOfNodesFrames(pts, node.floatParam("count").evaluate(t), node.floatParam("scaleStart").evaluate(t),
+                      node.floatParam("scaleEnd").evaluate(t), frames);
+}
+
+void splineOfNodesFrames(const std::vector<glm::vec3>& pts, float countValue, float scaleStart, float scaleEnd,
+                         std::vector<SpaceMap>& frames) {
+  int count = std::clamp(int(std::lround(countValue)), 1, 1000);
+  float s0 = std::max(1e-4f, scaleStart);
+  float s1 = std::max(1e-4f, scaleEnd);
   frames.clear();
   frames.reserve(size_t(count));
   for (int i = 0; i < count; ++i) {
@@ -56,9 +62,14 @@ void coonsPatchTriangles(const BlobNode& node, double t, MetaScratch& scratch,
                          std::vector<std::array<glm::vec3, 3>>& tris) {
   static constexpr const char* kCurves[4] = {"bottom", "top", "left", "right"};
   for (int k = 0; k < 4; ++k) evaluatePoints(node.pointsParam(kCurves[k]), t, scratch.points[k]);
-  const std::vector<glm::vec3>&bottom = scratch.points[0], &top = scratch.points[1], &left = scratch.points[2],
-  &right = scratch.points[3];
-  int res = std::clamp(int(std::lround(node.floatParam("resolution").evaluate(t))), 1, 64);
+  coonsPatchTriangles(scratch.points[0], scratch.points[1], scratch.points[2], scratch.points[3],
+                      node.floatParam("resolution").evaluate(t), scratch, tris);
+}
+
+void coonsPatchTriangles(const std::vector<glm::vec3>& bottom, const std::vector<glm::vec3>& top,
+                         const std::vector<glm::vec3>& left, const std::vector<glm::vec3>& right, float resolution,
+                         MetaScratch& scratch, std::vector<std::array<glm::vec3, 3>>& tris) {
+  int res = std::clamp(int(std::lround(resolution)), 1, 64);
   glm::vec3 p00 = evaluateCurve(bottom, 0.0f).position, p10 = evaluateCurve(bottom, 1.0f).position;
   glm::vec3 p01 = evaluateCurve(top, 0.0f).position, p11 = evaluateCurve(top, 1.0f).position;
   // The four boundary curves sampled once at the grid's parameters (not once per grid point).

@@ -27,11 +27,19 @@ struct MetaScratch {
 // from scaleStart to scaleEnd.
 std::vector<SpaceMap> splineOfNodesFrames(const BlobNode& node, double timeSec);
 void splineOfNodesFrames(const BlobNode& node, double timeSec, MetaScratch& scratch, std::vector<SpaceMap>& out);
+// The same from the parameters' values (points, count, scaleStart, scaleEnd as evaluated).
+void splineOfNodesFrames(const std::vector<glm::vec3>& points, float count, float scaleStart, float scaleEnd,
+                         std::vector<SpaceMap>& out);
 
 // Triangles of a CoonsPatch node: the bilinearly blended Coons surface of its
 // four boundary curves sampled on a resolution x resolution grid.
 std::vector<std::array<glm::vec3, 3>> coonsPatchTriangles(const BlobNode& node, double timeSec);
 void coonsPatchTriangles(const BlobNode& node, double timeSec, MetaScratch& scratch,
                          std::vector<std::array<glm::vec3, 3>>& out);
+// The same from the parameters' values (its four curves' points and resolution as evaluated);
+// uses scratch.samples and scratch.grid only.
+void coonsPatchTriangles(const std::vector<glm::vec3>& bottom, const std::vector<glm::vec3>& top,
+                         const std::vector<glm::vec3>& left, const std::vector<glm::vec3>& right, float resolution,
+                         MetaScratch& scratch, std::vector<std::array<glm::vec3, 3>>& out);
 
 }  // namespace animorph

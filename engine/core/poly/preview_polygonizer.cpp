@@ -35,19 +35,7 @@ class BlobTreeSource final : public PreviewSource {
   Result<PolygonizeResult> polygonize(int resolution, int threads, const std::atomic<bool>* cancel,
                                       PolygonizeHistory* history) const override {
     std::call_once(compiled_, [&] { program_ = compileFieldProgram(*tree_, timeSec_); });
-    PolygonizeSettings settings;
-    settings.resolution = resolution;
-    settings.threads = threads;
-    settings.cancel = cancel;
-    if (history) {
-      // Stay on the last frame's grid while the shape fits in it, so its blocks can be reused.
-      auto own = polygonizeGrid(program_, settings);
-      if (!own) return Error{own.error()};
-      if (!own->empty) settings.grid = scrubbingGrid(*own, *history);
-      settings.history = history;
-      settings.reuseToleranceCells = kPreviewReuseToleranceCells;
-    }
-    return animorph::polygonize(program_, settings);
+    return polygonizePreviewProgram(program_, resolution, threads, cancel, history);
   }
   Result<PreviewField> field(int) const override {
     if (Status s = validateBlobTree(*tree_); !s) return Error{s.error()};
@@ -61,6 +49,23 @@ class BlobTreeSource final : public PreviewSource {
   mutable FieldProgram program_;
 };
 }  // namespace
+
+Result<PolygonizeResult> polygonizePreviewProgram(const FieldProgram& program, int resolution, int threads,
+                                                  const std::atomic<bool>* cancel, PolygonizeHistory* history) {
+  PolygonizeSettings settings;
+  settings.resolution = resolution;
+  settings.threads = threads;
+  settings.cancel = cancel;
+  if (history) {
+    // Stay on the last frame's grid while the shape fits in it, so its blocks can be reused.
+    auto own = polygonizeGrid(program, settings);
+    if (!own) return Error{own.error()};
+    if (!own->empty) settings.grid = scrubbingGrid(*own, *history);
+    settings.history = history;
+    settings.reuseToleranceCells = kPreviewReuseToleranceCells;
+  }
+  return animorph::polygonize(program, settings);
+}
 
 std::shared_ptr<const PreviewSource> blobTreePreviewSource(std::shared_ptr<const BlobTree> tree, double timeSec) {
   return std::make_shared<const BlobTreeSource>(std::move(tree), timeSec);

@@ -57,6 +57,11 @@ class PreviewSource {
 // reuses the previous frame's blocks (PolygonizeSettings::reuseToleranceCells).
 inline constexpr float kPreviewReuseToleranceCells = 0.1f;
 
+// How a preview polygonises one program (BlobTree sources, the animorphosis' C(t)): with the
+// worker's history, on the last frame's grid while the shape fits in it, its blocks reused.
+Result<PolygonizeResult> polygonizePreviewProgram(const FieldProgram& program, int resolution, int threads,
+                                                  const std::atomic<bool>* cancel, PolygonizeHistory* history);
+
 // A BlobTree at a tree time as a PreviewSource.
 std::shared_ptr<const PreviewSource> blobTreePreviewSource(std::shared_ptr<const BlobTree> tree, double timeSec);
 

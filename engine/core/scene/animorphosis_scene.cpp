@@ -13,6 +13,8 @@ std::shared_ptr<const GenericTree> AnimorphosisCache::get(const Project& project
   if (!project.animorphosis.enabled()) {
     tree_.reset();
     snapshot_.reset();
+    compiler_.reset();
+    source_.reset();
     error_.clear();
     owner_ = nullptr;
     return nullptr;
@@ -21,12 +23,15 @@ std::shared_ptr<const GenericTree> AnimorphosisCache::get(const Project& project
   owner_ = owner;
   revision_ = revision;
   snapshot_.reset();
+  source_.reset();
   auto c = projectGenericTree(project);
   if (c) {
     tree_ = std::make_shared<const GenericTree>(std::move(*c));
+    compiler_ = std::make_shared<SharedGenericCompiler>(tree_);
     error_.clear();
   } else {
     tree_.reset();
+    compiler_.reset();
     error_ = c.error();
   }
   return tree_;
@@ -40,6 +45,15 @@ std::shared_ptr<const BlobTree> AnimorphosisCache::snapshot(const Project& proje
   updateGenericSnapshot(*tree_, animorphosisTiming(project), timeSec, *snapshot_);
   snapshotTimeSec_ = timeSec;
   return snapshot_;
+}
+
+std::shared_ptr<const PreviewSource> AnimorphosisCache::previewSource(const Project& project, double timeSec) {
+  if (!compiler_) return nullptr;
+  if (!source_ || sourceTimeSec_ != timeSec) {
+    source_ = animorphosisPreviewSource(compiler_, animorphosisTiming(project), timeSec);
+    sourceTimeSec_ = timeSec;
+  }
+  return source_;
 }
 
 namespace {
@@ -97,7 +111,8 @@ AnimorphosisSceneInfo applyAnimorphosis(SceneFrame& frame, const Project& projec
   d.actorId = m.sourceActorId;
   d.model = blendedTransform(source->transform, target->transform, float(info.s)).matrix();
   d.treeTimeSec = 0.0;
-  d.tree = cache.snapshot(project, t);
+  d.source = cache.previewSource(project, t);
+  d.snapshot = [&cache, &project, t] { return cache.snapshot(project, t); };
   frame.blobs.push_back(std::move(d));
   for (BlobDraw& g : ghostDraws) frame.blobs.push_back(std::move(g));
   return info;

@@ -1,13 +1,16 @@
 #pragma once
 // Showing a project's animorphosis in an evaluated scene: before its interval
 // the source actor alone, after it the target alone, in between the generic
-// tree C(t) in their place, as one BlobTree draw whose tree is the snapshot of
-// C at t (so the BlobTree preview polygonises it like any other tree).
+// tree C(t) in their place, as one BlobTree draw whose preview source compiles
+// C(t) straight into its program on the preview worker
+// (scene/animorphosis_preview_source.h); the snapshot of C at t as a BlobTree is
+// built only for what asks for one.
 #include <memory>
 #include <string>
 
 #include "animorph/generic_tree.h"
 #include "doc/project.h"
+#include "scene/animorphosis_preview_source.h"
 #include "scene/scene_frame.h"
 
 namespace animorph {
@@ -22,8 +25,8 @@ struct AnimorphosisSceneInfo {
 };
 
 // Keeps the generic tree C of one document state (built again only when the
-// project changes: its revision or the document itself) and the last
-// snapshot of C(t).
+// project changes: its revision or the document itself) with its compiler, the
+// last preview source and the last snapshot of C(t).
 class AnimorphosisCache {
  public:
   // C for project at revision, or null (no animorphosis, or building it
@@ -32,6 +35,9 @@ class AnimorphosisCache {
   // C(timeSec) of the tree get() returned last, as a BlobTree of constant
   // tracks; the same pointer while neither C nor the time change.
   std::shared_ptr<const BlobTree> snapshot(const Project& project, double timeSec);
+  // C(timeSec) of the same tree as a preview source (compiled when polygonised); the same
+  // pointer while neither C nor the time change.
+  std::shared_ptr<const PreviewSource> previewSource(const Project& project, double timeSec);
   const std::string& error() const { return error_; }
 
  private:
@@ -41,6 +47,9 @@ class AnimorphosisCache {
   std::string error_;
   std::shared_ptr<BlobTree> snapshot_;
   double snapshotTimeSec_ = 0.0;
+  std::shared_ptr<SharedGenericCompiler> compiler_;
+  std::shared_ptr<const PreviewSource> source_;
+  double sourceTimeSec_ = 0.0;
 };
 
 // Replaces the source and target BlobTree draws (and their skeleton guides)

@@ -9,8 +9,9 @@ namespace animorph {
 
 namespace {
 
+// The draw's tree; the animorphosis' C(t) snapshot stays alive in its cache until the next frame's.
 const BlobTree* drawTree(const BlobDraw& d, const Project& project) {
-  if (d.tree) return d.tree.get();
+  if (auto own = d.ownTree()) return own.get();
   const Actor* a = project.findActor(d.actorId);
   return a && a->kind == ActorKind::BlobTree ? &a->blobTree : nullptr;
 }
@@ -78,7 +79,7 @@ std::vector<ParticleDraw> ParticleView::takeMoving(SceneFrame& frame, const Proj
     }
     auto it = seen_.find(d.actorId);
     Seen s = it != seen_.end() ? it->second : Seen{};
-    const BlobTree* own = d.tree ? d.tree.get() : nullptr;
+    const void* own = d.source.get();
     const bool first = it == seen_.end();
     if (settings.holding || (!first && (s.treeTimeSec != d.treeTimeSec || s.tree != own))) {
       s.movedAt = nowSec;

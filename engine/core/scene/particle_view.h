@@ -63,7 +63,7 @@ class ParticleView {
  private:
   struct Seen {
     double treeTimeSec = 0.0;
-    const BlobTree* tree = nullptr;  // a draw's own tree (it changes by pointer)
+    const void* tree = nullptr;  // a draw's own tree, by its preview source (a new pointer when it changes)
     double movedAt = -1e9;
     bool waiting = false;            // held, its surface not shown yet
   };

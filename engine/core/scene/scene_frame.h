@@ -2,6 +2,7 @@
 // The scene at one time: what to draw, in world space. Evaluating a frame is
 // a pure function of the project, the loaded assets and the time; the
 // renderer, the picker and the CLI all consume a SceneFrame.
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -19,6 +20,7 @@ namespace animorph {
 
 struct MorphRuntime;
 struct TransitionFrame;
+class PreviewSource;
 
 // One mesh of one actor, posed.
 struct MeshDraw {
@@ -61,9 +63,16 @@ struct BlobDraw {
   std::string actorId;
   glm::mat4 model{1.0f};    // the actor's transform
   double treeTimeSec = 0.0; // blobActorTimeSec of the scene time
-  // Drawn instead of the actor's tree when set: the animorphosis' C(t), a tree
-  // of constant tracks (scene/animorphosis_scene.h); a new pointer when it changes.
-  std::shared_ptr<const BlobTree> tree;
+  // Drawn instead of the actor's tree when set: the animorphosis' C(t)
+  // (scene/animorphosis_scene.h) as a preview source compiled straight from C (a
+  // new pointer when it changes), which the preview polygonises...
+  std::shared_ptr<const PreviewSource> source;
+  // ... and as a tree of constant tracks, built only when asked (ownTree(): the
+  // particle view, the CLI's render); valid while the AnimorphosisCache and the
+  // project of the frame are.
+  std::function<std::shared_ptr<const BlobTree>()> snapshot;
+  // A tree of the draw's own (the snapshot when one is set), or null: the actor's.
+  std::shared_ptr<const BlobTree> ownTree() const { return snapshot ? snapshot() : nullptr; }
   // A ghost (scene/animorphosis_scene.h): its own preview, keyed "actorId#ghost"
   // (empty: the actor's), drawn dithered at opacity < 1 and not pickable.
   std::string previewKey;

@@ -29,10 +29,14 @@ void BlobPreviewSet::update(const Project& project, const SceneFrame& frame, con
     if (!a || a->kind != ActorKind::BlobTree) continue;
     Entry& e = entries_[d.key()];
     if (!e.preview) e.preview = std::make_unique<ImplicitPreview>(ctx_);
-    // A draw's own tree (the animorphosis' C(t)) changes by pointer; the actor's is compared.
-    bool treeChanged = d.tree ? e.submittedTree != d.tree : !e.submittedTree || !(*e.submittedTree == a->blobTree);
-    if (treeChanged || e.submittedTimeSec != d.treeTimeSec || !e.source) {
-      if (treeChanged) e.submittedTree = d.tree ? d.tree : std::make_shared<const BlobTree>(a->blobTree);
+    if (d.source) {
+      // The animorphosis' C(t): its own source, a new pointer when it changes.
+      e.submittedTree.reset();
+      e.source = d.source;
+    } else if (!e.submittedTree || !(*e.submittedTree == a->blobTree) || e.submittedTimeSec != d.treeTimeSec ||
+               !e.source) {
+      if (!e.submittedTree || !(*e.submittedTree == a->blobTree))
+        e.submittedTree = std::make_shared<const BlobTree>(a->blobTree);
       e.submittedTimeSec = d.treeTimeSec;
       e.source = blobTreePreviewSource(e.submittedTree, d.treeTimeSec);
     }

@@ -1,0 +1,50 @@
+#include "scene/animorphosis_preview_source.h"
+
+namespace animorph {
+
+SharedGenericCompiler::SharedGenericCompiler(std::shared_ptr<const GenericTree> c)
+    : tree_(std::move(c)), compiler_(*tree_) {}
+
+void SharedGenericCompiler::compile(const AnimorphosisTiming& timing, double timeSec, FieldProgram& out) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  compiler_.compile(timing, timeSec, out);
+}
+
+namespace {
+
+class AnimorphosisSource final : public PreviewSource {
+ public:
+  AnimorphosisSource(std::shared_ptr<SharedGenericCompiler> compiler, const AnimorphosisTiming& timing, double timeSec)
+      : compiler_(std::move(compiler)), timing_(timing), timeSec_(timeSec) {}
+  bool sameAs(const PreviewSource& other) const override {
+    auto* o = dynamic_cast<const AnimorphosisSource*>(&other);
+    return o && o->compiler_ == compiler_ && o->timeSec_ == timeSec_;
+  }
+  // Like a BlobTree's preview: on the last frame's grid while C fits in it, its blocks reused.
+  Result<PolygonizeResult> polygonize(int resolution, int threads, const std::atomic<bool>* cancel,
+                                      PolygonizeHistory* history) const override {
+    std::call_once(compiled_, [&] { compiler_->compile(timing_, timeSec_, program_); });
+    return polygonizePreviewProgram(program_, resolution, threads, cancel, history);
+  }
+  Result<PreviewField> field(int) const override {
+    PreviewField f;
+    compiler_->compile(timing_, timeSec_, f.program);
+    return f;
+  }
+
+ private:
+  std::shared_ptr<SharedGenericCompiler> compiler_;
+  AnimorphosisTiming timing_;
+  double timeSec_;
+  mutable std::once_flag compiled_;  // the worker compiles once for both levels
+  mutable FieldProgram program_;
+};
+
+}  // namespace
+
+std::shared_ptr<const PreviewSource> animorphosisPreviewSource(std::shared_ptr<SharedGenericCompiler> compiler,
+                                                               const AnimorphosisTiming& timing, double timeSec) {
+  return std::make_shared<const AnimorphosisSource>(std::move(compiler), timing, timeSec);
+}
+
+}  // namespace animorph
