@@ -96,7 +96,8 @@ TEST_CASE("Import glTF adds an actor with a project-relative path, undoable", "[
   CHECK(added.id == "hero_2");
   CHECK(added.assetPath == "hero.gltf");
   CHECK(h.doc().selection.actorId == "hero_2");
-  CHECK(h.doc().history().undoLabel() == "Add hero");
+  CHECK(added.name == "hero 2");  // the scene's hero keeps its name, the second one is numbered
+  CHECK(h.doc().history().undoLabel() == "Add hero 2");
   h.tapKey(GLFW_KEY_Z, true);
   CHECK(h.doc().project().actors.size() == 1);
 }
