@@ -155,36 +155,24 @@ std::string gpuUnsupportedReason(const FieldProgram& program) {
 
 namespace {
 
-// Loop iterations of one evaluation of a program by the shaders' interpreters, every primitive
-// active (poly_field_program.glsl for values at 4 AM_POLY_CORNER_V points, poly_field.glsl for
-// intervals; the gradient's kernels loop no more than the values').
+// Loop iterations of one evaluation of a program by the shaders' interpreters that do not depend
+// on which primitives reach the block (poly_field_program.glsl for values, poly_field.glsl for
+// intervals; the gradient's walk is the values').
 struct ProgramLoops {
   uint64_t value = 0, interval = 0;
 };
 
 ProgramLoops programLoops(const FieldProgram& p) {
-  constexpr uint64_t kPoints = 4 * AM_POLY_CORNER_V;  // the skeletal kernels' per-point loop
   ProgramLoops c;
   for (const FieldOp& op : p.ops) {
     c.value += 1;  // the op loop
     c.interval += 1;
     if (op.code == OpCode::Prims) {
       if (op.primClass == PrimClass::Convolution) {
-        c.value += op.count + op.count / 32 + 2;  // mask words, then set bits
-        c.interval += 9ull * op.count;            // 8 sub-segments each
-        continue;
-      }
-      for (uint32_t k = 0; k < op.count; ++k) {
-        uint64_t kernel = 1;  // loops inside one evaluation of the kernel: the potential's power, a curve's search
-        if (op.primClass == PrimClass::Skeletal) {
-          const SkeletalPrimitive& sp = p.skeletal[op.first + k];
-          const float ks = sp.stiffness;
-          if (ks >= 0.0f && ks <= 8.0f && float(int(ks)) == ks) kernel += uint64_t(ks);
-          if (sp.skeleton.kind == SkeletonKind::Curve)
-            kernel += 16ull * uint64_t(std::max(1, sp.skeleton.curveCount)) + 9;  // samples, then Newton steps
-        }
-        c.value += 1 + kPoints * kernel;
-        c.interval += 1 + 2 * kernel;
+        c.value += op.count / 32 + 2;  // the mask words (then only the set bits)
+      } else {
+        c.value += op.count;  // every primitive of the run is stepped over (then the active ones' kernels)
+        c.interval += op.count;
       }
     } else if (op.code != OpCode::Const && op.code != OpCode::BeginMap && op.code != OpCode::EndMap) {
       c.value += uint64_t(AM_POLY_CORNER_V) * (op.count + 1);  // per point vec4, per operand
@@ -196,7 +184,7 @@ ProgramLoops programLoops(const FieldProgram& p) {
 
 }  // namespace
 
-uint64_t gpuLoopIterationBound(const FieldProgram& a, const FieldProgram* b) {
+uint64_t gpuLoopIterationEstimate(const FieldProgram& a, const FieldProgram* b) {
   ProgramLoops c = programLoops(a);
   uint64_t total = a.primitiveCount();
   if (b) {

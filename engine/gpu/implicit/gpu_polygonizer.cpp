@@ -112,16 +112,16 @@ void computeToCompute(VkCommandBuffer cmd) {
 // (0: none), for the static unsupported(): the editor has one device.
 std::atomic<uint64_t> gLoopLimit{0};
 
-// Why field's loops could outrun limit (empty when they cannot, or limit is 0).
+// Why field's loops would outrun limit by the estimate (empty when not, or limit is 0).
 std::string loopBudgetReason(const GpuField& field, uint64_t limit) {
   if (limit == 0 || !field.a) return {};
-  const uint64_t need = gpuLoopIterationBound(*field.a, field.b);
+  const uint64_t need = gpuLoopIterationEstimate(*field.a, field.b);
   if (need + 64 < limit) return {};
-  return "the programs (" + std::to_string(field.a->primitiveCount() + (field.b ? field.b->primitiveCount() : 0)) +
+  return "walking the programs (" + std::to_string(field.a->primitiveCount() + (field.b ? field.b->primitiveCount() : 0)) +
          " primitives, " + std::to_string(field.a->ops.size() + (field.b ? field.b->ops.size() : 0)) +
-         " ops) need up to " + std::to_string(need) +
-         " shader loop iterations per invocation; this device (llvmpipe) stops a shader's loops after " +
-         std::to_string(limit);
+         " ops) takes about " + std::to_string(need) +
+         " shader loop iterations per invocation before any primitive's kernel; this device (llvmpipe) stops a "
+         "shader's loops after " + std::to_string(limit);
 }
 
 // vkCmdUpdateBuffer in chunks of at most 64 KiB.

@@ -143,8 +143,9 @@ class GpuPolygonizer {
 
   // Why the GPU cannot polygonise field (empty when it can). Callers use the CPU path otherwise.
   // Besides the programs' own limits: once a polygoniser exists on a device that stops long shader
-  // loops (loopLimit), programs whose loops could exceed that limit (gpuLoopIterationBound) --
-  // BlobTrees of thousands of primitives, such as the animorphosis demo's creatures, on lavapipe.
+  // loops (loopLimit), programs whose walk alone exceeds that limit (gpuLoopIterationEstimate) --
+  // BlobTrees of thousands of ops, such as the animorphosis demo's creatures, on lavapipe. A frame
+  // whose loops still run out (many primitives reaching a block) fails in polygonize() and record().
   static std::string unsupported(const GpuField& field);
   // Loop iterations after which the device stops every loop of a shader invocation, all loops
   // together (0: no such limit). llvmpipe (lavapipe): AM_POLY_LLVMPIPE_LOOP_LIMIT.
