@@ -754,6 +754,18 @@ TEST_CASE("GPU polygoniser never draws a wrong mesh of a BlobTree of thousands o
     auto cut = r.poly->polygonize(field, s);
     REQUIRE(!cut.ok());
     CHECK_THAT(cut.error(), Catch::Contains("cut the shaders' loops short"));
+    // The editor's path: the record draws nothing; recordFitted() and the next record() say why, so
+    // the preview goes to the CPU instead of redoing a frame that cannot fit.
+    Status recorded, again;
+    Status submitted = r.ctx->submitImmediate([&](VkCommandBuffer cmd) { recorded = r.poly->record(cmd, 0, field, s); });
+    REQUIRE(recorded.ok());
+    REQUIRE(submitted.ok());
+    auto fitted = r.poly->recordFitted(0);
+    REQUIRE(!fitted.ok());
+    CHECK_THAT(fitted.error(), Catch::Contains("cut the shaders' loops short"));
+    CHECK(r.ctx->submitImmediate([&](VkCommandBuffer cmd) { again = r.poly->record(cmd, 1, field, s); }).ok());
+    REQUIRE(!again.ok());
+    CHECK_THAT(again.error(), Catch::Contains("cut the shaders' loops short"));
     // The polygoniser goes on: the small demo creature still agrees with the CPU afterwards.
     FieldProgram small = compileFieldProgram(makeBlobCreature(), 0.5);
     CHECK(GpuPolygonizer::unsupported(GpuField::single(small)).empty());

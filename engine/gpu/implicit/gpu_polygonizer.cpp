@@ -164,6 +164,10 @@ struct GpuPolygonizer::Impl {
   std::array<uint64_t, kFramesInFlight + 1> slotSerial{};  // serial whose counters each readback slot holds
   uint64_t syncSerial = 0;  // serials of polygonize(), far from the editor's
   bool haveMesh = false;
+  // The counters of a record said its loops were cut (AM_OVERFLOW_LOOPS): the next record() fails
+  // with it too, even when recordFitted() took those counters, so the caller goes to the CPU rather
+  // than redoing a frame that cannot fit.
+  bool cutLoops = false;
   GpuPolygonizeSettings lastSettings;
   Grid lastGrid;
 
@@ -705,7 +709,10 @@ Status GpuPolygonizer::absorbCounters(uint32_t slot) {
   stats_.triangles = c[AM_CTL_TRIANGLES];
   stats_.overflowed = c[AM_CTL_OVERFLOW] != 0;
   if (c[AM_CTL_OVERFLOW] == 0) return Status::success();
-  if (c[AM_CTL_OVERFLOW] & AM_OVERFLOW_LOOPS) return Error{kCutLoops};  // redoing it would cut them again
+  if (c[AM_CTL_OVERFLOW] & AM_OVERFLOW_LOOPS) {  // redoing it would cut them again
+    m.cutLoops = true;
+    return Error{kCutLoops};
+  }
   // That frame drew nothing; grow to what it needed (counts past a block overflow are
   // partial, so those buffers double too) for the record that redoes it.
   bool blocksShort = (c[AM_CTL_OVERFLOW] & AM_OVERFLOW_BLOCKS) != 0;
@@ -730,6 +737,10 @@ Status GpuPolygonizer::record(VkCommandBuffer cmd, uint64_t frameSerial, const G
   const uint32_t slot = uint32_t(frameSerial % kFramesInFlight);
   // The counters of the frame that last used this slot (complete, by the caller's contract).
   if (Status g = absorbCounters(slot); !g) return g;
+  if (m.cutLoops) {
+    m.cutLoops = false;
+    return Error{kCutLoops};
+  }
   // First frames: size the buffers for the grid as polygonize() does.
   if (Result<Grid> g = makeGrid(field, s); g) {
     uint32_t blocks = firstBlockCapacity(g->blocks());

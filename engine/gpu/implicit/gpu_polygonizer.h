@@ -157,7 +157,8 @@ class GpuPolygonizer {
   // frameSerial - kFramesInFlight, which the caller guarantees has completed,
   // are read here, and if that frame overflowed the buffers grow first (waiting
   // for the device). Buffers may be replaced: take generatedMesh() after record().
-  // Errors: unsupported field, bad settings or bounds, Vulkan failures.
+  // Errors: unsupported field, bad settings or bounds, an earlier record whose loops the device
+  // cut short (lavapipe's loop limiter: that frame drew nothing), Vulkan failures.
   Status record(VkCommandBuffer cmd, uint64_t frameSerial, const GpuField& field, const GpuPolygonizeSettings& s);
 
   // Starts compiling, on a background thread, the shader pipelines record() and polygonize() will
