@@ -117,11 +117,11 @@ std::string loopBudgetReason(const GpuField& field, uint64_t limit) {
   if (limit == 0 || !field.a) return {};
   const uint64_t need = gpuLoopIterationEstimate(*field.a, field.b);
   if (need + 64 < limit) return {};
-  return "walking the programs (" + std::to_string(field.a->primitiveCount() + (field.b ? field.b->primitiveCount() : 0)) +
-         " primitives, " + std::to_string(field.a->ops.size() + (field.b ? field.b->ops.size() : 0)) +
-         " ops) takes about " + std::to_string(need) +
-         " shader loop iterations per invocation before any primitive's kernel; this device (llvmpipe) stops a "
-         "shader's loops after " + std::to_string(limit);
+  // Short: the editor's status bar shows it.
+  return "the programs (" + std::to_string(field.a->primitiveCount() + (field.b ? field.b->primitiveCount() : 0)) +
+         " primitives, " + std::to_string(field.a->ops.size() + (field.b ? field.b->ops.size() : 0)) + " ops) need ~" +
+         std::to_string(need) + " shader loop iterations per invocation; llvmpipe stops a shader's loops after " +
+         std::to_string(limit);
 }
 
 // vkCmdUpdateBuffer in chunks of at most 64 KiB.
