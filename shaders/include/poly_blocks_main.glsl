@@ -28,7 +28,7 @@ bool reaches(uint g, vec3 dlo, vec3 dhi) {
   return length(dc - closestOnSegment(dc, ba.xyz, bb.xyz)) <= ba.w + 0.5 * length(dhi - dlo);
 }
 
-void main() {
+void coarsePass() {
   uint words = P.modes.y;
   uint total = P.caps.z;
   vec3 grow = vec3(P.extra.x);  // the normal pass may leave a box by the normal step
@@ -81,4 +81,9 @@ void main() {
     blockMask[maskBase + w] = bits;
   }
   blockFlag[b] = uvec2(canHoldSurface(c0, cnt, maskBase) ? 1u : 0u, 0u);
+}
+
+void main() {
+  coarsePass();
+  flagCutLoops();
 }

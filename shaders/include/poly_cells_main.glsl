@@ -152,7 +152,7 @@ void lineOfGroup(uint g, uvec3 c0, out vec4 v, out float s1, out float s2, out u
   axis = alongX ? 0u : 1u;
 }
 
-void main() {
+void cellsPass() {
   uint slot = fineSlot();
   if (slot >= fineSlots()) return;  // the last row's spare workgroups (the whole workgroup returns)
   uint t = gl_LocalInvocationID.x;
@@ -268,4 +268,9 @@ void main() {
     }
     counts[slot] = uvec2(run, sTriangles);
   }
+}
+
+void main() {
+  cellsPass();
+  flagCutLoops();
 }

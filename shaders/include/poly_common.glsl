@@ -74,7 +74,24 @@ layout(set = 0, binding = AM_PB_CONTROL, std430) buffer Control { uint control[]
 // The fine passes (one workgroup per active block, dispatched in rows of P.gridCells.w
 // workgroups): this workgroup's slot, and whether it is one of the active slots.
 uint fineSlot() { return gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x; }
-uint fineSlots() { return min(control[AM_CTL_ACTIVE], P.modes.w); }
+// None once a pass has found its loops cut short (AM_OVERFLOW_LOOPS): the frame's data is not to be
+// trusted, and the emit pass would otherwise index shared memory with stale edge prefixes.
+uint fineSlots() {
+  if ((control[AM_CTL_OVERFLOW] & AM_OVERFLOW_LOOPS) != 0u) return 0u;
+  return min(control[AM_CTL_ACTIVE], P.modes.w);
+}
+
+// lavapipe (llvmpipe) ends every loop of a shader invocation once AM_POLY_LLVMPIPE_LOOP_LIMIT loop
+// iterations have run in it, all loops counted together (gallivm's loop limiter): past that each
+// loop runs its current iteration and stops, and the pass computes garbage from half-walked
+// programs. A loop of two iterations at the end of a pass then runs once: the pass flags the frame
+// (AM_OVERFLOW_LOOPS), which then draws nothing and is reported, never shown. (GpuPolygonizer
+// refuses the programs that could get there beforehand: this catches what its bound missed.)
+void flagCutLoops() {
+  uint n = 0u;
+  for (uint k = 0u; k < 2u * P.caps.w; ++k) ++n;
+  if (n < 2u) atomicOr(control[AM_CTL_OVERFLOW], AM_OVERFLOW_LOOPS);
+}
 
 #define kInf uintBitsToFloat(0x7f800000u)
 

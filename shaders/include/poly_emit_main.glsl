@@ -80,7 +80,7 @@ void main() {
     while (m != 0u) {
       uint bit = uint(findLSB(m));
       m &= m - 1u;
-      sVertexEdge[p++] = 32u * t + bit;
+      sVertexEdge[min(p++, uint(AM_POLY_BLOCK_EDGES) - 1u)] = 32u * t + bit;  // in bounds whatever the prefixes
     }
   }
   barrier();

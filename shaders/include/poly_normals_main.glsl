@@ -39,7 +39,7 @@ vec3 stencilGradient(vec4 f) {
   return vec3(dot(f, vec4(1, -1, -1, 1)), dot(f, vec4(-1, -1, 1, 1)), dot(f, vec4(-1, 1, -1, 1)));
 }
 
-void main() {
+void normalsPass() {
   uint total = min(control[AM_CTL_VERTICES], P.caps.x);
   uint v0 = 4u * gl_GlobalInvocationID.x;
   uint last = max(total, 1u) - 1u;
@@ -71,4 +71,9 @@ void main() {
       if (va + 1u < total) writeNormal(va + 1u, stencilGradient(f[1]));
     }
   }
+}
+
+void main() {
+  normalsPass();
+  flagCutLoops();
 }

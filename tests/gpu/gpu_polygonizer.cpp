@@ -16,7 +16,9 @@
 
 #include "blobtree/compile.h"
 #include "demo/blob_creature.h"
+#include "demo/dino_dragon.h"
 #include "gpu_fixture.h"
+#include "implicit/gpu_field_program.h"
 #include "implicit/gpu_polygonizer.h"
 #include "morph/solid_noise.h"
 #include "morph_field.h"
@@ -715,9 +717,71 @@ TEST_CASE("GPU polygoniser reports what it cannot do and bad settings", "[gpu][g
   CHECK(r.ctx->validationErrorCount() == 0);
 }
 
+TEST_CASE("GPU polygoniser never draws a wrong mesh of a BlobTree of thousands of primitives (the demo dragon)",
+          "[gpu][gpupoly]") {
+  // The animorphosis demo's dragon: ~21 700 point primitives, each under its own frame. lavapipe
+  // stops every loop of a shader invocation after 65 535 iterations, all loops together, and the
+  // passes' interpreters walk every op and loop over every primitive reaching a block: the GPU
+  // mesh had a quarter of the CPU's triangles and a few dozen vertices, and stale edge prefixes
+  // sent the emit pass's shared-memory writes out of bounds (heap corruption, crashes). Now the
+  // GPU either agrees with the CPU or refuses with its reason (the editor then uses the CPU).
+  FieldProgram dragon = compileFieldProgram(makeDragon(), 0.5);
+  REQUIRE(dragon.primitiveCount() > 10000);
+  Rig r = makeRig();
+  const GpuField field = GpuField::single(dragon);
+  GpuPolygonizeSettings s;
+  s.resolution = 32;
+  TriangleMesh cpu = cpuMesh(dragon, 32, std::nullopt);
+  REQUIRE(cpu.triangleCount() > 500);
+  auto agreesOrRefused = [&](const Result<GpuPolygonizeStats>& st, const char* reason) {
+    if (!st.ok()) {
+      CHECK_THAT(st.error(), Catch::Contains(reason));
+      return;
+    }
+    auto mesh = r.poly->readBack();
+    REQUIRE(mesh.ok());
+    requireAgrees(*mesh, cpu, st->cellSize);
+  };
+  agreesOrRefused(r.poly->polygonize(field, s), "shader loop iterations");
+  const uint64_t limit = GpuPolygonizer::loopLimit(r.ctx->properties());
+  if (limit != 0) {
+    // lavapipe: the bound exceeds its limit, so the field is refused up front with the reason...
+    CHECK(gpuLoopIterationEstimate(dragon) > limit);
+    CHECK_THAT(GpuPolygonizer::unsupported(field), Catch::Contains("llvmpipe") &&
+                                                       Catch::Contains(std::to_string(dragon.primitiveCount())));
+    // ...and, run anyway, the passes find their loops cut and the frame fails: no mesh, no crash.
+    s.loopBudgetCheck = false;
+    auto cut = r.poly->polygonize(field, s);
+    REQUIRE(!cut.ok());
+    CHECK_THAT(cut.error(), Catch::Contains("cut the shaders' loops short"));
+    // The editor's path: the record draws nothing; recordFitted() and the next record() say why, so
+    // the preview goes to the CPU instead of redoing a frame that cannot fit.
+    Status recorded, again;
+    Status submitted = r.ctx->submitImmediate([&](VkCommandBuffer cmd) { recorded = r.poly->record(cmd, 0, field, s); });
+    REQUIRE(recorded.ok());
+    REQUIRE(submitted.ok());
+    auto fitted = r.poly->recordFitted(0);
+    REQUIRE(!fitted.ok());
+    CHECK_THAT(fitted.error(), Catch::Contains("cut the shaders' loops short"));
+    CHECK(r.ctx->submitImmediate([&](VkCommandBuffer cmd) { again = r.poly->record(cmd, 1, field, s); }).ok());
+    REQUIRE(!again.ok());
+    CHECK_THAT(again.error(), Catch::Contains("cut the shaders' loops short"));
+    // The polygoniser goes on: the small demo creature still agrees with the CPU afterwards.
+    FieldProgram small = compileFieldProgram(makeBlobCreature(), 0.5);
+    CHECK(GpuPolygonizer::unsupported(GpuField::single(small)).empty());
+    CHECK(gpuLoopIterationEstimate(small) < limit / 8);
+    s.loopBudgetCheck = true;
+    GpuPolygonizeStats st;
+    TriangleMesh gpuSmall = gpuMesh(*r.poly, GpuField::single(small), s, &st);
+    requireAgrees(gpuSmall, cpuMesh(small, 32, std::nullopt), st.cellSize);
+  }
+  CHECK(r.ctx->validationErrorCount() == 0);
+}
+
 TEST_CASE("GPU polygoniser: a skeleton-correspondence pair is refused with its reason, the core's methods combine",
           "[gpu][gpupoly]") {
-  // No device needed: unsupported() looks at the field only.
+  // No device needed: unsupported() looks at the field (and at the loop limit of the devices polygonisers
+  // were made on, which these small programs are far below).
   BlobTree ta = chainTree(4, 11, 1.3f), tb = chainTree(4, 11, 1.8f);
   FieldProgram a = compileFieldProgram(ta, 0.0), b = compileFieldProgram(tb, 0.0);
   CHECK(GpuPolygonizer::unsupported(GpuField::interpolation(a, b, 0.5f)).empty());

@@ -1,5 +1,6 @@
 #include "implicit/gpu_field_program.h"
 
+#include <algorithm>
 #include <bit>
 
 #include "field/skeleton.h"
@@ -150,6 +151,53 @@ std::string gpuUnsupportedReason(const FieldProgram& program) {
     if (p.skeleton.kind == SkeletonKind::Curve && p.skeleton.curveCount > 0xffffff)
       return "a spline-curve primitive with " + std::to_string(p.skeleton.curveCount) + " control points";
   return {};
+}
+
+namespace {
+
+// Loop iterations of one evaluation of a program by the shaders' interpreters that do not depend
+// on which primitives reach the block (poly_field_program.glsl for values, poly_field.glsl for
+// intervals; the gradient's walk is the values').
+struct ProgramLoops {
+  uint64_t value = 0, interval = 0;
+};
+
+ProgramLoops programLoops(const FieldProgram& p) {
+  ProgramLoops c;
+  for (const FieldOp& op : p.ops) {
+    c.value += 1;  // the op loop
+    c.interval += 1;
+    if (op.code == OpCode::Prims) {
+      if (op.primClass == PrimClass::Convolution) {
+        c.value += op.count / 32 + 2;  // the mask words (then only the set bits)
+      } else {
+        c.value += op.count;  // every primitive of the run is stepped over (then the active ones' kernels)
+        c.interval += op.count;
+      }
+    } else if (op.code != OpCode::Const && op.code != OpCode::BeginMap && op.code != OpCode::EndMap) {
+      c.value += uint64_t(AM_POLY_CORNER_V) * (op.count + 1);  // per point vec4, per operand
+      c.interval += op.count + 1;
+    }
+  }
+  return c;
+}
+
+}  // namespace
+
+uint64_t gpuLoopIterationEstimate(const FieldProgram& a, const FieldProgram* b) {
+  ProgramLoops c = programLoops(a);
+  uint64_t total = a.primitiveCount();
+  if (b) {
+    ProgramLoops cb = programLoops(*b);
+    c.value += cb.value;
+    c.interval += cb.interval;
+    total += b->primitiveCount();
+  }
+  const uint64_t words = (total + 31) / 32;
+  const uint64_t coarse = total + 2 * words + 32 + c.interval;  // primitive lists, then the interval
+  const uint64_t cells = c.interval + c.value + 512;            // sub-block intervals, corners, bookkeeping
+  const uint64_t normals = 2 * c.value + 16;                    // the stencil: two evaluations
+  return std::max({coarse, cells, normals});
 }
 
 Result<PackedFieldPrograms> packFieldPrograms(const FieldProgram& a, const FieldProgram* b) {

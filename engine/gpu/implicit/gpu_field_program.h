@@ -36,6 +36,15 @@ struct PackedFieldPrograms {
 // back to the CPU polygoniser when it is not empty.
 std::string gpuUnsupportedReason(const FieldProgram& program);
 
+// The loop iterations one invocation of a field pass (coarse, corners + cells, normals) runs for
+// a and b (b may be null), all loops counted together, in the part that culling does not change:
+// every op walked (an unreached map subtree is skipped in one step, so the walk may be shorter),
+// every primitive of a skeletal or capsule run stepped over, operators' operands, the coarse
+// pass's primitive lists. The kernels of the primitives reaching a block add to it. lavapipe
+// stops a shader invocation's loops past AM_POLY_LLVMPIPE_LOOP_LIMIT (poly_constants.h): programs
+// estimated above it are refused there up front; the passes detect the rest (AM_OVERFLOW_LOOPS).
+uint64_t gpuLoopIterationEstimate(const FieldProgram& a, const FieldProgram* b = nullptr);
+
 // Packs a (and b, when non-null) for the shaders. Errors: gpuUnsupportedReason's,
 // prefixed with "program A"/"program B".
 Result<PackedFieldPrograms> packFieldPrograms(const FieldProgram& a, const FieldProgram* b = nullptr);

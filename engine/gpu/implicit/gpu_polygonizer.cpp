@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <chrono>
 #include <cmath>
@@ -107,6 +108,22 @@ void computeToCompute(VkCommandBuffer cmd) {
           VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
 }
 
+// The smallest loop limit (GpuPolygonizer::loopLimit) of the devices polygonisers were created on
+// (0: none), for the static unsupported(): the editor has one device.
+std::atomic<uint64_t> gLoopLimit{0};
+
+// Why field's loops would outrun limit by the estimate (empty when not, or limit is 0).
+std::string loopBudgetReason(const GpuField& field, uint64_t limit) {
+  if (limit == 0 || !field.a) return {};
+  const uint64_t need = gpuLoopIterationEstimate(*field.a, field.b);
+  if (need + 64 < limit) return {};
+  // Short: the editor's status bar shows it.
+  return "the programs (" + std::to_string(field.a->primitiveCount() + (field.b ? field.b->primitiveCount() : 0)) +
+         " primitives, " + std::to_string(field.a->ops.size() + (field.b ? field.b->ops.size() : 0)) + " ops) need ~" +
+         std::to_string(need) + " shader loop iterations per invocation; llvmpipe stops a shader's loops after " +
+         std::to_string(limit);
+}
+
 // vkCmdUpdateBuffer in chunks of at most 64 KiB.
 void updateBuffer(VkCommandBuffer cmd, VkBuffer buffer, const void* data, VkDeviceSize bytes) {
   const auto* p = static_cast<const uint8_t*>(data);
@@ -147,6 +164,10 @@ struct GpuPolygonizer::Impl {
   std::array<uint64_t, kFramesInFlight + 1> slotSerial{};  // serial whose counters each readback slot holds
   uint64_t syncSerial = 0;  // serials of polygonize(), far from the editor's
   bool haveMesh = false;
+  // The counters of a record said its loops were cut (AM_OVERFLOW_LOOPS): the next record() fails
+  // with it too, even when recordFitted() took those counters, so the caller goes to the CPU rather
+  // than redoing a frame that cannot fit.
+  bool cutLoops = false;
   GpuPolygonizeSettings lastSettings;
   Grid lastGrid;
 
@@ -431,6 +452,9 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   if (!grid) return Error{grid.error()};
   Result<PackedFieldPrograms> packed = packFieldPrograms(*field.a, field.b);
   if (!packed) return Error{"GPU polygoniser: " + packed.error()};
+  if (s.loopBudgetCheck)
+    if (std::string why = loopBudgetReason(field, loopLimit(ctx.properties())); !why.empty())
+      return Error{"GPU polygoniser: " + why};
   const Grid& g = *grid;
   const PackedFieldPrograms& pk = *packed;
   const uint32_t nBlocks = g.blocks();
@@ -598,6 +622,11 @@ namespace {
 // every block (the preview's bounds hug the shape: the demo morph has 283 of ~900 blocks active
 // at 128^3); larger ones a quarter, at least 4096 (~14 KiB a block with its vertices and triangles).
 uint32_t firstBlockCapacity(uint32_t nb) { return nb <= 4096u ? nb : std::max(4096u, nb / 4u); }
+
+// A frame whose shaders found their loops cut short (AM_OVERFLOW_LOOPS): nothing of it is drawn.
+constexpr const char* kCutLoops =
+    "GPU polygoniser: the device cut the shaders' loops short (llvmpipe stops a shader's loops after "
+    "65535 iterations): the program is too large for this device; polygonise it on the CPU";
 }  // namespace
 
 GpuPolygonizer::GpuPolygonizer(Context& ctx) : impl_(std::make_unique<Impl>(ctx)) {}
@@ -619,10 +648,20 @@ std::string GpuPolygonizer::deviceShortfall(const VkPhysicalDeviceLimits& l) {
 
 Result<std::unique_ptr<GpuPolygonizer>> GpuPolygonizer::create(Context& ctx) {
   if (std::string why = deviceShortfall(ctx.properties().limits); !why.empty()) return Error{"GPU polygoniser: " + why};
+  if (uint64_t limit = loopLimit(ctx.properties()); limit != 0) {
+    uint64_t seen = gLoopLimit.load();
+    while ((seen == 0 || limit < seen) && !gLoopLimit.compare_exchange_weak(seen, limit)) {
+    }
+  }
   std::unique_ptr<GpuPolygonizer> p(new GpuPolygonizer(ctx));
   Status s = p->impl_->init();
   if (!s) return Error{"GPU polygoniser: " + s.error()};
   return p;
+}
+
+uint64_t GpuPolygonizer::loopLimit(const VkPhysicalDeviceProperties& p) {
+  const bool llvmpipe = p.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU && std::strstr(p.deviceName, "llvmpipe") != nullptr;
+  return llvmpipe ? AM_POLY_LLVMPIPE_LOOP_LIMIT : 0;
 }
 
 std::string GpuPolygonizer::unsupported(const GpuField& field) {
@@ -633,7 +672,7 @@ std::string GpuPolygonizer::unsupported(const GpuField& field) {
   if (std::string why = gpuUnsupportedReason(*field.a); !why.empty()) return why;
   if (field.b)
     if (std::string why = gpuUnsupportedReason(*field.b); !why.empty()) return "target program: " + why;
-  return {};
+  return loopBudgetReason(field, gLoopLimit.load());
 }
 
 void GpuPolygonizer::prewarm(const GpuField& field, const GpuPolygonizeSettings& s) {
@@ -670,6 +709,10 @@ Status GpuPolygonizer::absorbCounters(uint32_t slot) {
   stats_.triangles = c[AM_CTL_TRIANGLES];
   stats_.overflowed = c[AM_CTL_OVERFLOW] != 0;
   if (c[AM_CTL_OVERFLOW] == 0) return Status::success();
+  if (c[AM_CTL_OVERFLOW] & AM_OVERFLOW_LOOPS) {  // redoing it would cut them again
+    m.cutLoops = true;
+    return Error{kCutLoops};
+  }
   // That frame drew nothing; grow to what it needed (counts past a block overflow are
   // partial, so those buffers double too) for the record that redoes it.
   bool blocksShort = (c[AM_CTL_OVERFLOW] & AM_OVERFLOW_BLOCKS) != 0;
@@ -694,6 +737,10 @@ Status GpuPolygonizer::record(VkCommandBuffer cmd, uint64_t frameSerial, const G
   const uint32_t slot = uint32_t(frameSerial % kFramesInFlight);
   // The counters of the frame that last used this slot (complete, by the caller's contract).
   if (Status g = absorbCounters(slot); !g) return g;
+  if (m.cutLoops) {
+    m.cutLoops = false;
+    return Error{kCutLoops};
+  }
   // First frames: size the buffers for the grid as polygonize() does.
   if (Result<Grid> g = makeGrid(field, s); g) {
     uint32_t blocks = firstBlockCapacity(g->blocks());
@@ -719,7 +766,9 @@ GeneratedMeshDraw GpuPolygonizer::generatedMesh(const glm::vec4& color) const {
 
 Result<GpuPolygonizeStats> GpuPolygonizer::polygonize(const GpuField& field, const GpuPolygonizeSettings& s) {
   Impl& m = *impl_;
-  if (std::string why = unsupported(field); !why.empty()) return Error{"GPU polygoniser: " + why};
+  if (std::string why = unsupported(field); !why.empty() && (s.loopBudgetCheck || !field.a ||
+                                                             loopBudgetReason(field, gLoopLimit.load()).empty()))
+    return Error{"GPU polygoniser: " + why};
   // Initial capacities for this grid (or the caller's, e.g. tiny ones in tests).
   {
     Result<Grid> g = makeGrid(field, s);
@@ -762,6 +811,7 @@ Result<GpuPolygonizeStats> GpuPolygonizer::polygonize(const GpuField& field, con
     stats.vertices = c[AM_CTL_VERTICES];
     stats.triangles = c[AM_CTL_TRIANGLES];
     uint32_t overflow = c[AM_CTL_OVERFLOW];
+    if (overflow & AM_OVERFLOW_LOOPS) return Error{kCutLoops};
     if (overflow == 0) {
       uint64_t ticks[kTimestamps] = {};
       if (m.timestamps && vkGetQueryPoolResults(dev, m.timestamps, 0, kTimestamps, sizeof ticks, ticks, sizeof(uint64_t),

@@ -103,6 +103,10 @@ struct GpuPolygonizeSettings {
   // Workgroups a row of the fine passes' dispatch (0: AM_POLY_MAX_DISPATCH_X, the least every
   // device allows); the blocks past a row go on in the next. Tests narrow it to run that path.
   uint32_t dispatchRow = 0;
+  // Refuse programs whose loops could run past the device's per-invocation loop limit (lavapipe:
+  // GpuPolygonizer::loopLimit). Tests turn it off to run the shaders' own detection of cut loops,
+  // which fails the polygonisation instead of drawing a wrong mesh.
+  bool loopBudgetCheck = true;
   // Initial buffer capacities (0: automatic). They grow when a frame overflows.
   uint32_t initialBlockCapacity = 0;
   uint32_t initialVertexCapacity = 0;
@@ -138,7 +142,14 @@ class GpuPolygonizer {
   GpuPolygonizer& operator=(const GpuPolygonizer&) = delete;
 
   // Why the GPU cannot polygonise field (empty when it can). Callers use the CPU path otherwise.
+  // Besides the programs' own limits: once a polygoniser exists on a device that stops long shader
+  // loops (loopLimit), programs whose walk alone exceeds that limit (gpuLoopIterationEstimate) --
+  // BlobTrees of thousands of ops, such as the animorphosis demo's creatures, on lavapipe. A frame
+  // whose loops still run out (many primitives reaching a block) fails in polygonize() and record().
   static std::string unsupported(const GpuField& field);
+  // Loop iterations after which the device stops every loop of a shader invocation, all loops
+  // together (0: no such limit). llvmpipe (lavapipe): AM_POLY_LLVMPIPE_LOOP_LIMIT.
+  static uint64_t loopLimit(const VkPhysicalDeviceProperties& properties);
 
   // Records one polygonisation into cmd (outside any render pass), no CPU
   // read-back: the editor's per-frame call, then draw generatedMesh(). frameSerial
@@ -146,7 +157,8 @@ class GpuPolygonizer {
   // frameSerial - kFramesInFlight, which the caller guarantees has completed,
   // are read here, and if that frame overflowed the buffers grow first (waiting
   // for the device). Buffers may be replaced: take generatedMesh() after record().
-  // Errors: unsupported field, bad settings or bounds, Vulkan failures.
+  // Errors: unsupported field, bad settings or bounds, an earlier record whose loops the device
+  // cut short (lavapipe's loop limiter: that frame drew nothing), Vulkan failures.
   Status record(VkCommandBuffer cmd, uint64_t frameSerial, const GpuField& field, const GpuPolygonizeSettings& s);
 
   // Starts compiling, on a background thread, the shader pipelines record() and polygonize() will

@@ -165,6 +165,11 @@
 #define AM_OVERFLOW_BLOCKS 1u
 #define AM_OVERFLOW_VERTICES 2u
 #define AM_OVERFLOW_TRIANGLES 4u
+// A field pass found its loops cut short by the device (lavapipe stops every loop of a shader
+// invocation once AM_POLY_LLVMPIPE_LOOP_LIMIT iterations have run in it, all loops together):
+// the frame draws nothing and is not redone (GpuPolygonizer reports it).
+#define AM_OVERFLOW_LOOPS 8u
+#define AM_POLY_LLVMPIPE_LOOP_LIMIT 65535
 
 // Push constants (one uvec4) of the helper passes.
 #define AM_SCAN_REDUCE 0
