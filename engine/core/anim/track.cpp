@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "anim/track_segment.h"
+
 namespace animorph {
 
 namespace {
@@ -12,18 +14,6 @@ template <class T>
 T zeroOf() {
   if constexpr (std::is_same_v<T, glm::quat>) return glm::quat(1.0f, 0.0f, 0.0f, 0.0f);
   else return T(0.0f);
-}
-
-glm::quat shortArc(const glm::quat& from, const glm::quat& to) { return glm::dot(from, to) < 0.0f ? -to : to; }
-
-// Slerp of unit quaternions along the shortest arc, stable near equal inputs.
-glm::quat slerpShort(const glm::quat& a, const glm::quat& bIn, float s) {
-  glm::quat b = shortArc(a, bIn);
-  float c = glm::clamp(glm::dot(a, b), -1.0f, 1.0f);
-  if (c > 0.9995f) return glm::normalize(a * (1.0f - s) + b * s);
-  float theta = std::acos(c);
-  float sn = std::sin(theta);
-  return glm::normalize(a * (std::sin((1.0f - s) * theta) / sn) + b * (std::sin(s * theta) / sn));
 }
 
 // log(a^-1 b) as a pure quaternion (0, axis * halfAngle), shortest arc.
@@ -117,21 +107,9 @@ T Track<T>::evaluate(double t) const {
     T v0, a0, v1, a1;
     keyDerivatives(i, v0, a0);
     keyDerivatives(i + 1, v1, a1);
-    T dp = k1.value - k0.value;
     T c[6];
-    c[0] = k0.value;
-    c[1] = v0 * h;
-    if (degree_ == 2) {
-      c[2] = dp * 3.0f - v0 * (2.0f * h) - v1 * h;
-      c[3] = dp * -2.0f + v0 * h + v1 * h;
-      return c[0] + s * (c[1] + s * (c[2] + s * c[3]));
-    }
-    float h2 = h * h;
-    c[2] = a0 * (0.5f * h2);
-    c[3] = dp * 10.0f - v0 * (6.0f * h) - v1 * (4.0f * h) - a0 * (1.5f * h2) + a1 * (0.5f * h2);
-    c[4] = dp * -15.0f + v0 * (8.0f * h) + v1 * (7.0f * h) + a0 * (1.5f * h2) - a1 * h2;
-    c[5] = dp * 6.0f - v0 * (3.0f * h) - v1 * (3.0f * h) - a0 * (0.5f * h2) + a1 * (0.5f * h2);
-    return c[0] + s * (c[1] + s * (c[2] + s * (c[3] + s * (c[4] + s * c[5]))));
+    hermiteCoefficients(k0.value, k1.value, v0, a0, v1, a1, h, degree_, c);
+    return hermiteValue(c, degree_, s);
   }
 }
 
@@ -172,21 +150,10 @@ T Track<T>::derivative(double t, int order) const {
     T v0, a0, v1, a1;
     keyDerivatives(i, v0, a0);
     keyDerivatives(i + 1, v1, a1);
-    T dp = k1.value - k0.value;
     T c[6];
     int deg = degree_ == 2 ? 3 : 5;
-    c[0] = k0.value;
-    c[1] = v0 * h;
     float h2 = h * h;
-    if (degree_ == 2) {
-      c[2] = dp * 3.0f - v0 * (2.0f * h) - v1 * h;
-      c[3] = dp * -2.0f + v0 * h + v1 * h;
-    } else {
-      c[2] = a0 * (0.5f * h2);
-      c[3] = dp * 10.0f - v0 * (6.0f * h) - v1 * (4.0f * h) - a0 * (1.5f * h2) + a1 * (0.5f * h2);
-      c[4] = dp * -15.0f + v0 * (8.0f * h) + v1 * (7.0f * h) + a0 * (1.5f * h2) - a1 * h2;
-      c[5] = dp * 6.0f - v0 * (3.0f * h) - v1 * (3.0f * h) - a0 * (0.5f * h2) + a1 * (0.5f * h2);
-    }
+    hermiteCoefficients(k0.value, k1.value, v0, a0, v1, a1, h, degree_, c);
     T r = zero;
     if (order == 1) {
       for (int k = deg; k >= 1; --k) r = r * s + c[k] * float(k);

@@ -8,7 +8,7 @@
 #include <tbb/task_group.h>
 
 #include "animorph/evaluate_generic.h"
-#include "animorph/param_blend.h"
+#include "animorph/param_samplers.h"
 #include "blobtree/compile_emit.h"
 #include "blobtree/meta_primitives.h"
 
@@ -23,6 +23,8 @@ struct PlanNode {
   uint32_t valueBase = 0;                   // slots in Impl::values, one per parameter
   int32_t listBase = -1;                    // slots in Impl::lists (nodes with point lists), else -1
   int32_t meta = -1;                        // Impl::frames / Impl::triangles index of a meta-primitive
+  uint32_t slotsA = 0, slotsB = 0;          // A's and B's parameters in Impl::samplers
+  uint32_t bridgeA = 0, bridgeB = 0;        // bridged nodes: the q of A's and B's operator
 };
 
 size_t paramCount(NodeType type) { return nodeTypeInfo(type).params.size(); }
@@ -39,10 +41,13 @@ double seconds(std::chrono::steady_clock::time_point a, std::chrono::steady_cloc
 
 }  // namespace
 
+// Every animated track C's nodes read is precompiled once (animorph/param_samplers.h: each key
+// segment's coefficients, a cursor on the last segment), giving Track::evaluate's values bit for bit.
 struct GenericProgramCompiler::Impl {
   const GenericTree& c;
   std::vector<PlanNode> nodes;
   std::vector<uint32_t> children;
+  ParamSamplers samplers;  // every node's parameter tracks, precompiled
   // One frame's values: each node's type at t, its parameters (a float in x, a vector in xyz, a
   // quaternion as x, y, z, w), point lists, meta-primitive expansions; the stack need memo.
   std::vector<NodeType> types;
@@ -81,6 +86,21 @@ struct GenericProgramCompiler::Impl {
           listCount += std::max(paramCount(g.a.type), paramCount(g.b.type));
         }
         if (g.a.type == NodeType::SplineOfNodes || g.a.type == NodeType::CoonsPatch) p.meta = int32_t(metaCount++);
+        if (g.a.type != g.b.type) {
+          p.slotsA = m.samplers.add(g.a);
+          p.slotsB = m.samplers.add(g.b);
+          p.bridgeA = m.samplers.addBridgeQ(g.a);
+          p.bridgeB = m.samplers.addBridgeQ(g.b);
+        } else {  // blended lists are resampled to the longer one
+          std::vector<size_t> counts(std::max(g.a.params.size(), g.b.params.size()), 0);
+          for (size_t k = 0; k < counts.size(); ++k) {
+            auto* la = k < g.a.params.size() ? std::get_if<ControlPoints>(&g.a.params[k]) : nullptr;
+            auto* lb = k < g.b.params.size() ? std::get_if<ControlPoints>(&g.b.params[k]) : nullptr;
+            if (la && lb) counts[k] = std::max(la->size(), lb->size());
+          }
+          p.slotsA = m.samplers.add(g.a, &counts);
+          p.slotsB = m.samplers.add(g.b, &counts);
+        }
         m.nodes.push_back(p);
         std::vector<uint32_t> kids;
         kids.reserve(g.children.size());
@@ -113,10 +133,11 @@ struct GenericProgramCompiler::Impl {
       const bool bridged = g.a.type != g.b.type;
       types[i] = s <= 0.0f ? g.a.type : s >= 1.0f ? g.b.type : bridged ? NodeType::HyperBlend : g.a.type;
       if (types[i] != NodeType::SplineOfNodes) continue;
-      const size_t k = size_t(compileParamSlot(NodeType::SplineOfNodes, CompileParam::Count));
-      const FloatTrack& a = std::get<FloatTrack>(g.a.params[k]);
-      const FloatTrack& b = std::get<FloatTrack>(g.b.params[k]);
-      splineCounts[i] = s <= 0.0f ? a.evaluate(tA) : s >= 1.0f ? b.evaluate(tB) : blendFloat(a, b, tA, tB, s);
+      const uint32_t k = uint32_t(compileParamSlot(NodeType::SplineOfNodes, CompileParam::Count));
+      const uint32_t a = nodes[i].slotsA + k, b = nodes[i].slotsB + k;
+      splineCounts[i] = s <= 0.0f   ? samplers.floatAt(a, tA)
+                        : s >= 1.0f ? samplers.floatAt(b, tB)
+                                    : samplers.blendFloatAt(a, b, tA, tB, s);
     }
     for (uint32_t c = 0; c < chunkCount; ++c) chunkState[c].store(0, std::memory_order_relaxed);
     nextChunk.store(0, std::memory_order_release);
@@ -150,31 +171,17 @@ struct GenericProgramCompiler::Impl {
     const NodeType type = types[i];
     glm::vec4* out = values.data() + p.valueBase;
     const size_t params = paramCount(type);
+    std::vector<glm::vec3>* nodeLists = p.listBase >= 0 ? lists.data() + p.listBase : nullptr;
+    thread_local std::vector<glm::vec3> noList;
     if (bridged && s > 0.0f && s < 1.0f) {
-      out[0].x = (1.0f - s) * bridgeQ(g.a, tA) + s * bridgeQ(g.b, tB);
+      out[0].x = (1.0f - s) * samplers.bridgeQ(p.bridgeA, tA) + s * samplers.bridgeQ(p.bridgeB, tB);
     } else if (s <= 0.0f || s >= 1.0f) {
-      const BlobNode& src = s <= 0.0f ? g.a : g.b;
+      const uint32_t slots = s <= 0.0f ? p.slotsA : p.slotsB;
       const double ts = s <= 0.0f ? tA : tB;
-      for (size_t k = 0; k < params; ++k) {
-        const ParamValue& v = src.params[k];
-        if (auto* f = std::get_if<FloatTrack>(&v)) out[k].x = f->evaluate(ts);
-        else if (auto* x = std::get_if<Vec3Track>(&v)) out[k] = glm::vec4(x->evaluate(ts), 0.0f);
-        else if (auto* q = std::get_if<QuatTrack>(&v)) out[k] = quatSlot(q->evaluate(ts));
-        else constantPoints(std::get<ControlPoints>(v), ts, lists[size_t(p.listBase) + k]);
-      }
+      for (uint32_t k = 0; k < params; ++k) samplers.constant(slots + k, ts, out[k], nodeLists ? nodeLists[k] : noList);
     } else {
-      for (size_t k = 0; k < params; ++k) {
-        const ParamValue& a = g.a.params[k];
-        const ParamValue& b = g.b.params[k];
-        if (auto* f = std::get_if<FloatTrack>(&a)) out[k].x = blendFloat(*f, std::get<FloatTrack>(b), tA, tB, s);
-        else if (auto* x = std::get_if<Vec3Track>(&a))
-          out[k] = glm::vec4(blendVec3(*x, std::get<Vec3Track>(b), tA, tB, s), 0.0f);
-        else if (auto* q = std::get_if<QuatTrack>(&a))
-          out[k] = quatSlot(blendQuat(*q, std::get<QuatTrack>(b), tA, tB, s));
-        else
-          blendPoints(std::get<ControlPoints>(a), std::get<ControlPoints>(b), tA, tB, s,
-                      lists[size_t(p.listBase) + k]);
-      }
+      for (uint32_t k = 0; k < params; ++k)
+        samplers.blend(p.slotsA + k, p.slotsB + k, tA, tB, s, out[k], nodeLists ? nodeLists[k] : noList);
     }
     if (type == NodeType::SplineOfNodes) {
       splineOfNodesFrames(list(i, CompileParam::Points), value(i, CompileParam::Count).x,
@@ -188,7 +195,6 @@ struct GenericProgramCompiler::Impl {
     }
   }
 
-  static glm::vec4 quatSlot(const glm::quat& q) { return {q.x, q.y, q.z, q.w}; }
   const glm::vec4& value(uint32_t i, CompileParam p) const {
     return values[nodes[i].valueBase + uint32_t(compileParamSlot(types[i], p))];
   }

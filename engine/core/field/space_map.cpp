@@ -4,9 +4,31 @@
 #include <cmath>
 #include <limits>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace animorph {
 
 namespace {
+
+#if defined(__SSE2__)
+// A vec3 in lanes 0-2 (lane 3 is whatever follows it in memory: vec3s of a SpaceMap, its mat3s'
+// columns, are followed by more of the map, and lane 3 is never stored).
+__m128 lanes(const glm::vec3& v) { return _mm_loadu_ps(&v.x); }
+void store3(__m128 v, glm::vec3& out) {
+  alignas(16) float f[4];
+  _mm_store_ps(f, v);
+  out = glm::vec3(f[0], f[1], f[2]);
+}
+// origin + m * c with glm's operations per component: origin + ((m[0] c.x + m[1] c.y) + m[2] c.z).
+__m128 affineToWorld(const glm::mat3& m, const glm::vec3& origin, const glm::vec3& c) {
+  const __m128 x = _mm_mul_ps(lanes(m[0]), _mm_set1_ps(c.x));
+  const __m128 y = _mm_mul_ps(lanes(m[1]), _mm_set1_ps(c.y));
+  const __m128 z = _mm_mul_ps(lanes(m[2]), _mm_set1_ps(c.z));
+  return _mm_add_ps(lanes(origin), _mm_add_ps(_mm_add_ps(x, y), z));
+}
+#endif
 
 // Rows e_x, e_y, e_z with e_z along axis and e_y as close to `up` as possible.
 glm::mat3 warpFrame(const glm::vec3& axis, const glm::vec3& up) {
@@ -164,7 +186,15 @@ glm::vec3 SpaceMap::toLocal(const glm::vec3& x, glm::mat3* J) const {
 }
 
 glm::vec3 SpaceMap::toWorld(const glm::vec3& c) const {
-  if (kind == SpaceMapKind::Affine) return origin + forwardLinear * c;
+  if (kind == SpaceMapKind::Affine) {
+#if defined(__SSE2__)
+    glm::vec3 w;
+    store3(affineToWorld(forwardLinear, origin, c), w);
+    return w;
+#else
+    return origin + forwardLinear * c;
+#endif
+  }
   glm::vec3 L = linear * (c - origin);
   glm::vec3 P = L;
   switch (kind) {
@@ -206,6 +236,27 @@ Bounds SpaceMap::worldBounds(const Bounds& child) const {
     // toWorld of the 8 corners, origin + ((m[0] x + m[1] y) + m[2] z) per component as glm computes
     // it, with the 6 column products shared between corners: the same values, a third of the work.
     const glm::mat3& m = forwardLinear;
+#if defined(__SSE2__)
+    {
+      // The same operations per lane: std::min(a, b) is b < a ? b : a, which is _mm_min_ps(b, a)
+      // (signed zeros and NaNs included), and std::max(a, b) is _mm_max_ps(b, a).
+      const __m128 c0 = lanes(m[0]), c1 = lanes(m[1]), c2 = lanes(m[2]);
+      const __m128 x0 = _mm_mul_ps(c0, _mm_set1_ps(child.min.x)), x1 = _mm_mul_ps(c0, _mm_set1_ps(child.max.x));
+      const __m128 y0 = _mm_mul_ps(c1, _mm_set1_ps(child.min.y)), y1 = _mm_mul_ps(c1, _mm_set1_ps(child.max.y));
+      const __m128 z0 = _mm_mul_ps(c2, _mm_set1_ps(child.min.z)), z1 = _mm_mul_ps(c2, _mm_set1_ps(child.max.z));
+      const __m128 o = lanes(origin);
+      const __m128 lo =
+          _mm_add_ps(o, _mm_add_ps(_mm_add_ps(_mm_min_ps(x1, x0), _mm_min_ps(y1, y0)), _mm_min_ps(z1, z0)));
+      const __m128 hi =
+          _mm_add_ps(o, _mm_add_ps(_mm_add_ps(_mm_max_ps(x1, x0), _mm_max_ps(y1, y0)), _mm_max_ps(z1, z0)));
+      const __m128 zero = _mm_setzero_ps();
+      if ((_mm_movemask_ps(_mm_or_ps(_mm_cmpeq_ps(lo, zero), _mm_cmpeq_ps(hi, zero))) & 7) == 0) {
+        store3(lo, out.min);
+        store3(hi, out.max);
+        return out;
+      }
+    }
+#endif
     const glm::vec3 px[2] = {m[0] * child.min.x, m[0] * child.max.x};
     const glm::vec3 py[2] = {m[1] * child.min.y, m[1] * child.max.y};
     const glm::vec3 pz[2] = {m[2] * child.min.z, m[2] * child.max.z};
