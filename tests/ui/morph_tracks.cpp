@@ -253,15 +253,24 @@ TEST_CASE("everything edited in the morph panel and curve editor survives save a
 
 
 namespace {
-// The fixture's morph switched to skeleton correspondence and prepared; a copy of its matching.
-SkeletonCorrespondence skeletonMorph(MorphFixture& f) {
+// The fixture's morph switched to skeleton correspondence and prepared: a copy of its automatic
+// matching (the runtime is prepared again by the tests), the source's root chain and its name.
+struct SkeletonMorph {
+  SkeletonCorrespondence automatic;
+  int root = -1;
+  std::string name;
+};
+SkeletonMorph skeletonMorph(MorphFixture& f) {
   auto& h = f.h;
   Project p = h.doc().project();
   p.morph.method = MorphMethod::SkeletonCorrespondence;
   h.document->reset(p, f.dir.file("scene.animorph"));
   h.ctx.morphRuntime = prepare(h, h.doc().project());
   REQUIRE(h.ctx.morphRuntime->correspondence);
-  return *h.ctx.morphRuntime->correspondence;
+  const SkeletonCorrespondence& c = *h.ctx.morphRuntime->correspondence;
+  const int root = c.source.mainRoot;
+  REQUIRE(root >= 0);
+  return {c, root, c.source.chains[size_t(root)].name};
 }
 }  // namespace
 
@@ -269,11 +278,8 @@ TEST_CASE("chain matching: a partner combo re-pairs a chain in one undo step, th
           "[morph][chain_pairs]") {
   MorphFixture f;
   auto& h = f.h;
-  const SkeletonCorrespondence automatic = skeletonMorph(f);  // a copy: the runtime is prepared again below
-  const int root = automatic.source.mainRoot;
-  REQUIRE(root >= 0);
+  const auto [automatic, root, name] = skeletonMorph(f);
   REQUIRE(automatic.sourceMatch[size_t(root)] == automatic.target.mainRoot);  // the root rule
-  const std::string name = automatic.source.chains[size_t(root)].name;
   h.frames(1);
   h.clickWidget("morph/chains");
   h.frames(1);
@@ -326,10 +332,7 @@ TEST_CASE("the Correspondence Editor shows a skeleton-correspondence morph's cha
           "[morph][chain_pairs]") {
   MorphFixture f;
   auto& h = f.h;
-  const SkeletonCorrespondence automatic = skeletonMorph(f);  // a copy: the runtime is prepared again below
-  const int root = automatic.source.mainRoot;
-  REQUIRE(root >= 0);
-  const std::string name = automatic.source.chains[size_t(root)].name;
+  const auto [automatic, root, name] = skeletonMorph(f);
   h.frames(1);
   // View > Correspondence Editor: the project has no animorphosis, so the window is the chain matching.
   h.clickWidget("menu/View");
