@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "demo/dino_dragon.h"
 #include "scene/particle_view.h"
 #include "util/blob_builders.h"
 
@@ -32,6 +33,17 @@ SceneFrame frameAt(double treeTimeSec) {
   d.model[3][3] = 1.0f;
   f.blobs.push_back(d);
   return f;
+}
+
+// The project's draw keeps its surface (never particles) over `frames` frames whose time changes.
+void checkAlwaysSurface(const Project& p, int frames) {
+  ParticleView view;
+  ParticleViewSettings s;
+  for (int k = 0; k < frames; ++k) {
+    SceneFrame f = frameAt(0.1 * k);
+    CHECK(view.takeMoving(f, p, 0.1 * k, s).empty());
+    CHECK(f.blobs.size() == 1);
+  }
 }
 
 }  // namespace
@@ -101,15 +113,33 @@ TEST_CASE("the particle view shows a particle system as particles while its time
 
 TEST_CASE("a BlobTree of few point primitives is never shown as particles", "[particles][view]") {
   const Project p = projectWithPoints(10);
-  ParticleView view;
-  ParticleViewSettings s;
-  for (int k = 0; k < 3; ++k) {
-    SceneFrame f = frameAt(0.1 * k);
-    CHECK(view.takeMoving(f, p, 0.1 * k, s).empty());
-    CHECK(f.blobs.size() == 1);
-  }
+  checkAlwaysSurface(p, 3);
   CHECK(particleDraw(frameAt(0.0).blobs[0], p, 64).centres.empty());
   CHECK(particleDraw(frameAt(0.0).blobs[0], p, 10).centres.size() == 10);
+}
+
+TEST_CASE("points under a frame or a meta-primitive are not particles: a creature keeps its surface while it moves",
+          "[particles][view]") {
+  // The demo's dinosaur: hundreds of point primitives, each a template of a spline of nodes under
+  // its joint's frame (their centres are not places in the tree's space).
+  Project p;
+  Actor a;
+  a.id = "cloud";
+  a.kind = ActorKind::BlobTree;
+  a.blobTree = makeDinosaur();
+  p.actors.push_back(a);
+  CHECK(treeParticles(a.blobTree, 0.5).nodeIds.empty());
+  checkAlwaysSurface(p, 4);
+  CHECK(particleDraw(frameAt(0.0).blobs[0], p, 1).centres.empty());
+
+  // Beside 100 particles under the root's blend, 100 points under a frame: only the first 100 count.
+  Project mixed = projectWithPoints(100);
+  std::vector<BlobNode> framed;
+  for (int i = 0; i < 100; ++i) framed.push_back(pointNode(1000 + i, glm::vec3(0.0f, 5.0f, 0.0f), 0.2f, 2.0f));
+  mixed.actors[0].blobTree.root.children.push_back(operatorNode(NodeType::Frame, 999, std::move(framed)));
+  const ParticleDraw pd = particleDraw(frameAt(0.0).blobs[0], mixed, 64);
+  REQUIRE(pd.centres.size() == 100);
+  CHECK(std::all_of(pd.centres.begin(), pd.centres.end(), [](const glm::vec3& c) { return c.y < 1.0f; }));
 }
 
 TEST_CASE("particles spread too far for the surface's grid stay particles while the time holds", "[particles][view]") {

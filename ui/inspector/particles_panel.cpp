@@ -12,12 +12,6 @@ namespace animorph {
 
 namespace {
 
-template <class Fn>
-void forEachPoint(const BlobNode& n, Fn&& fn) {
-  if (n.type == NodeType::Point) fn(n);
-  for (const BlobNode& c : n.children) forEachPoint(c, fn);
-}
-
 // A float field; its widget is noted as inspector/particles/<key>.
 void floatField(const char* label, const char* key, float& v, float speed, float lo, float hi, const char* fmt) {
   ImGui::DragFloat(label, &v, speed, lo, hi, fmt, ImGuiSliderFlags_AlwaysClamp);
@@ -67,13 +61,13 @@ void drawReformControls(const Document& doc, const std::string& actorId, Particl
 
 size_t countParticles(const BlobTree& tree) {
   size_t n = 0;
-  forEachPoint(tree.root, [&](const BlobNode&) { ++n; });
+  forEachParticleNode(tree.root, [&](const BlobNode&) { ++n; });
   return n;
 }
 
 void resetParticleSettings(const BlobTree& tree, ParticlesPanelState& st) {
   double first = std::numeric_limits<double>::infinity(), last = -first;
-  forEachPoint(tree.root, [&](const BlobNode& n) {
+  forEachParticleNode(tree.root, [&](const BlobNode& n) {
     const auto& keys = n.vec3Param("center").keys();
     if (keys.size() < 2) return;
     first = std::min(first, keys.front().timeSec);

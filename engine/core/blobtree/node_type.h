@@ -66,5 +66,8 @@ int paramIndex(NodeType t, std::string_view name);
 
 // True for the skeletal-potential primitives (Point ... Curve).
 inline bool isSkeletalType(NodeType t) { return t <= NodeType::Curve; }
+// True for the operators (Blend ... BoundedBlend): nodes that combine their children's fields in
+// the same space.
+inline bool isOperatorType(NodeType t) { return t >= NodeType::Blend && t <= NodeType::BoundedBlend; }
 
 }  // namespace animorph

@@ -148,26 +148,16 @@ Result<ParticleTransport> assignParticles(const std::vector<glm::vec3>& from, co
   return out;
 }
 
-namespace {
-
-template <class Fn>
-void forEachPointNode(BlobNode& n, Fn&& fn) {
-  if (n.type == NodeType::Point) fn(n);
-  for (BlobNode& c : n.children) forEachPointNode(c, fn);
-}
-
-}  // namespace
-
 Result<BlobTree> reformedParticles(const BlobTree& particles, const std::vector<glm::vec3>& places,
                                    const std::vector<int>& target) {
   BlobTree out = particles;
   size_t count = 0;
-  forEachPointNode(out.root, [&](BlobNode&) { ++count; });
+  forEachParticleNode(out.root, [&](BlobNode&) { ++count; });
   if (count != target.size() || count != places.size())
     return Error{"particle transport: the tree has " + std::to_string(count) + " particles, the assignment " +
                  std::to_string(target.size()) + " and the shape " + std::to_string(places.size()) + " places"};
   size_t i = 0;
-  forEachPointNode(out.root, [&](BlobNode& n) { n.vec3Param("center") = Vec3Track(places[size_t(target[i++])]); });
+  forEachParticleNode(out.root, [&](BlobNode& n) { n.vec3Param("center") = Vec3Track(places[size_t(target[i++])]); });
   return out;
 }
 

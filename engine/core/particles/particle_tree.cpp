@@ -6,22 +6,6 @@
 
 namespace animorph {
 
-namespace {
-
-template <class Fn>
-void forEachPoint(BlobNode& n, Fn&& fn) {
-  if (n.type == NodeType::Point) fn(n);
-  for (BlobNode& c : n.children) forEachPoint(c, fn);
-}
-
-template <class Fn>
-void forEachPoint(const BlobNode& n, Fn&& fn) {
-  if (n.type == NodeType::Point) fn(n);
-  for (const BlobNode& c : n.children) forEachPoint(c, fn);
-}
-
-}  // namespace
-
 float visiblePointRadius(float radius, float intensity, float stiffness, float threshold) {
   if (!(intensity > threshold) || !(radius > 0.0f)) return 0.0f;
   float ratio = threshold / intensity;
@@ -32,7 +16,7 @@ float visiblePointRadius(float radius, float intensity, float stiffness, float t
 TreeParticles treeParticles(const BlobTree& tree, double t) {
   TreeParticles out;
   float threshold = tree.threshold.evaluate(t);
-  forEachPoint(tree.root, [&](const BlobNode& n) {
+  forEachParticleNode(tree.root, [&](const BlobNode& n) {
     out.nodeIds.push_back(n.id);
     out.set.position.push_back(n.vec3Param("center").evaluate(t));
     out.set.radius.push_back(visiblePointRadius(n.floatParam("radius").evaluate(t), n.floatParam("intensity").evaluate(t),
@@ -73,7 +57,7 @@ Result<ParticleBakeReport> simulateTreeParticles(BlobTree& tree, const ParticleS
     return report;
   }
   size_t i = 0;
-  forEachPoint(tree.root, [&](BlobNode& n) {
+  forEachParticleNode(tree.root, [&](BlobNode& n) {
     report.keys += tracks[i].keys().size();
     report.maxError = std::max(report.maxError, errors[i]);
     n.vec3Param("center") = std::move(tracks[i]);

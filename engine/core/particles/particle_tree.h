@@ -1,7 +1,9 @@
 #pragma once
 // Particles as BlobTree primitives (docs/particles.md): every point primitive of a
-// tree is one particle (its centre the position, its visible radius the collision
-// radius). simulateTreeParticles runs the particle system from their positions at
+// tree reached from its root through operators only is one particle (its centre the
+// position, its visible radius the collision radius). A point under a space map (a
+// frame, a warp) or a meta-primitive (a template repeated along a spline or over a
+// patch) is not one: its centre is not a place in the tree's space. simulateTreeParticles runs the particle system from their positions at
 // a time and bakes the trajectories into their centre tracks (particles/
 // trajectory_bake.h), so the result saves, undoes and plays like any animated
 // BlobTree; the other nodes are left as they are.
@@ -13,7 +15,15 @@
 
 namespace animorph {
 
-// The point primitives of a tree, in depth-first order, at time t.
+// Calls fn(node) for each particle node (BlobNode or const BlobNode), depth first.
+template <class Node, class Fn>
+void forEachParticleNode(Node& n, Fn&& fn) {
+  if (n.type == NodeType::Point) fn(n);
+  else if (isOperatorType(n.type))
+    for (Node& c : n.children) forEachParticleNode(c, fn);
+}
+
+// The particles of a tree, in depth-first order, at time t.
 struct TreeParticles {
   std::vector<int> nodeIds;
   ParticleSet set;  // positions at t, radii = visible radius of each point alone; masses empty (equal)

@@ -16,13 +16,11 @@ const BlobTree* drawTree(const BlobDraw& d, const Project& project) {
   return a && a->kind == ActorKind::BlobTree ? &a->blobTree : nullptr;
 }
 
-size_t countPoints(const BlobNode& n, size_t enough) {
-  size_t c = n.type == NodeType::Point ? 1 : 0;
-  for (const BlobNode& ch : n.children) {
-    if (c >= enough) break;
-    c += countPoints(ch, enough - c);
-  }
-  return c;
+// Whether the tree has at least `enough` particles (points reached through operators only).
+bool hasParticles(const BlobTree& tree, size_t enough) {
+  size_t c = 0;
+  forEachParticleNode(tree.root, [&](const BlobNode&) { ++c; });
+  return c >= enough;
 }
 
 }  // namespace
@@ -32,7 +30,7 @@ ParticleDraw particleDraw(const BlobDraw& draw, const Project& project, size_t m
   out.actorId = draw.actorId;
   out.model = draw.model;
   const BlobTree* tree = drawTree(draw, project);
-  if (!tree || countPoints(tree->root, minParticles) < minParticles) return out;
+  if (!tree || !hasParticles(*tree, minParticles)) return out;
   TreeParticles tp = treeParticles(*tree, draw.treeTimeSec);
   out.centres = std::move(tp.set.position);
   out.radii = std::move(tp.set.radius);
@@ -73,7 +71,7 @@ std::vector<ParticleDraw> ParticleView::takeMoving(SceneFrame& frame, const Proj
   std::vector<BlobDraw> kept;
   for (BlobDraw& d : frame.blobs) {
     const BlobTree* tree = drawTree(d, project);
-    if (!tree || countPoints(tree->root, settings.minParticles) < settings.minParticles) {
+    if (!tree || !hasParticles(*tree, settings.minParticles)) {
       kept.push_back(std::move(d));
       continue;
     }

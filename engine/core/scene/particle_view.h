@@ -1,6 +1,8 @@
 #pragma once
 // The viewport's fast view of particle systems (docs/particles.md): a BlobTree draw whose tree has
-// many point primitives (a converted or simulated shape, the statue demo's C(t)) is shown as its
+// many particles (point primitives reached through operators only, particles/particle_tree.h: a
+// converted or simulated shape, the statue demo's C(t); not a creature whose points are templates
+// of meta-primitives under its joints' frames) is shown as its
 // particles -- each at its centre, the size of its visible radius -- while its time or its tree
 // changes (scrubbing, playing) and for holdSec after, and then until its polygonised surface has
 // caught up: the surface is not polygonised at every frame of a scrub, and a stale surface is not
@@ -28,7 +30,7 @@ namespace animorph {
 
 struct ParticleViewSettings {
   bool enabled = true;       // Preferences::particleView
-  size_t minParticles = 64;  // fewer point primitives: always the surface
+  size_t minParticles = 64;  // fewer particles: always the surface
   double holdSec = 0.3;      // the surface is polygonised once the time has held this long
   bool holding = false;      // the user holds the time (drags the timeline, plays): particles stay
   bool settle = false;       // a screenshot: no particles for moving systems (only for those below the grid)
@@ -73,7 +75,7 @@ class ParticleView {
 };
 
 // The particles of a draw's tree (its own, else the actor's) at its time; empty when the tree has
-// fewer than minParticles point primitives.
+// fewer than minParticles particles.
 ParticleDraw particleDraw(const BlobDraw& draw, const Project& project, size_t minParticles);
 
 // Whether a grid of resolution cells along the longest side of the particles' bounds (centres
