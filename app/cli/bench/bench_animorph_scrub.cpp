@@ -95,6 +95,7 @@ std::vector<Row> runAnimorphScrub(const Options& opt) {
     gpu::BlobPreviewSettings ps{interactive, refined, interactivePreviewThreads(), gpuPath, false};
     ScrubPacer pacer(ScrubPacer::intervalFor(tl.fps));
     bool paced = false;  // the previous frame paced the loop (the editor's viewport_frame: its threads)
+    int scrubThreads = 0;  // the most polygoniser threads a scrubbing frame asked for
     std::vector<double> frameMs, polyMs, inputWaitMs;
     double stageMs[4] = {0, 0, 0, 0};  // evaluate the scene, C(t) into it, previews.update, draw
     std::string error;
@@ -156,6 +157,7 @@ std::vector<Row> runAnimorphScrub(const Options& opt) {
       const auto t0 = Clock::now();
       oneFrame(tl.frameToSec(frames[moves]));
       frameMs.push_back(msSince(t0));
+      scrubThreads = std::max(scrubThreads, ps.threads);
       // The editor's loop (app/editor/main.cpp): paced while the worker computes, else the next frame at once.
       paced = mode.paced && ScrubPacer::applies(true, previews.busy(), previews.needsFrames());
       for (double waitSec = 1.0; paced && waitSec > 0.0;) {
@@ -197,7 +199,7 @@ std::vector<Row> runAnimorphScrub(const Options& opt) {
       rows.push_back({tag + ": failed", 0, "", "", error});
       continue;
     }
-    std::string how = st.gpu ? "GPU" : "CPU, " + std::to_string(ps.threads) + " threads";
+    std::string how = st.gpu ? "GPU" : "CPU, up to " + std::to_string(scrubThreads) + " threads";
     if (!st.gpuFallback.empty()) how += " (fell back: " + st.gpuFallback + ")";
     rows.push_back({tag + ", frame loop", 1000.0 * double(frameMs.size()) / scrubMs, "fps", "",
                     std::to_string(frameMs.size()) + " frames drawn; frame time p50 " +
