@@ -124,7 +124,7 @@ void ImplicitPreview::updateCpu(std::shared_ptr<const PreviewSource> source, dou
   r.timeSec = timeSec;
   r.coarseResolution = s.interactiveResolution;
   r.fineResolution = s.refinedResolution;
-  r.threads = s.threads;
+  r.threads = s.threads > 0 ? s.threads : pacedPreviewThreads();  // 0: all, as the worker's own
   worker_->submit(std::move(r));
   uploadNew();
 }
