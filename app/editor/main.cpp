@@ -17,7 +17,9 @@
 #include "shell/editor_ui.h"
 #include "editor_window.h"
 #include "frame_clock.h"
+#include "poly/preview_polygonizer.h"
 #include "render/playblast.h"
+#include "scene/scrub_pacing.h"
 #include "shell/redraw_policy.h"
 #include "ui_map.h"
 #include "viewport_frame.h"
@@ -55,6 +57,7 @@ int main(int argc, char** argv) {
   EditorAutomation automation(args);
   ViewportFrame viewport(ui.state().prefs.previewDevice);
   RedrawPolicy redraw;  // on demand: an idle editor waits for events
+  ScrubPacer pacer;     // while scrubbing a CPU preview: a frame per new mesh, input at most once an interval
   gpu::Scene scene;
   std::string lastTitle, pendingCapture;
   int frameCount = 0, captureFrames = 0;  // captureFrames: since pendingCapture was set (taken on the second)
@@ -99,6 +102,7 @@ int main(int argc, char** argv) {
     if (out.quit) break;
     if (out.screenshotPath) pendingCapture = *out.screenshotPath;
     if (auto due = automation.screenshotDue(frameCount, out.jobRunning || viewport.morphPreparing())) pendingCapture = *due;
+    pacer.frameStarted(ectx.nowSec, events, PreviewPolygonizer::publishedTotal());  // meshes after this are new
     const ViewportFrameResult vf = viewport.build(*gpuSide, ui, ectx, !pendingCapture.empty(), scene);
     // The first frame settles the previews; the second, whose status bar already shows them, is captured.
     if (!pendingCapture.empty() && captureFrames++ >= 1) gpuSide->swapchain->requestCapture();
@@ -124,30 +128,40 @@ int main(int argc, char** argv) {
     glfwGetFramebufferSize(window, &fbw, &fbh);
     RedrawState rs;
     rs.input = inputThisFrame;
-    rs.animating = ui.state().playback.playing() || gpuSide->blobPreviews->needsFrames() ||
-                   (vf.morphStageShown && gpuSide->morphPreview->needsFrames()) || vf.particlesShown ||
-                   ImGui::IsAnyMouseDown() ||
-                   frameCount < 10 || automation.needsFrames() || !pendingCapture.empty() ||
-                   (shown.status == gpu::FrameStatus::Skipped && fbw > 0 && fbh > 0);
+    const bool movesOnItsOwn = ui.state().playback.playing() || gpuSide->blobPreviews->needsFrames() ||
+                               (vf.morphStageShown && gpuSide->morphPreview->needsFrames()) || vf.particlesShown ||
+                               frameCount < 10 || automation.needsFrames() || !pendingCapture.empty() ||
+                               (shown.status == gpu::FrameStatus::Skipped && fbw > 0 && fbh > 0) || continuousRedraw;
+    rs.awaitingWork = blobBusy || (vf.morphStageShown && morphBusy);
+    // Scrubbing while the CPU worker computes: paced (scene/scrub_pacing.h), not a frame per motion.
+    const bool paced = ScrubPacer::applies(ui.state().timeline.scrubbing, rs.awaitingWork, movesOnItsOwn);
+    viewport.setScrubPaced(paced);
     // The status bar is built before the previews update: one more frame shows what they did (a mesh
     // that arrived without input would otherwise sit under a stale "refining" until the idle tick).
-    rs.animating |= continuousRedraw || ectx.stats.previewInfo != previewInfoDrawn;
-    rs.awaitingWork = blobBusy || (vf.morphStageShown && morphBusy);
+    // Paced, the next frame comes with the next mesh or input anyway.
+    rs.animating = movesOnItsOwn || (!paced && (ImGui::IsAnyMouseDown() || ectx.stats.previewInfo != previewInfoDrawn));
     rs.jobRunning = out.jobRunning || viewport.morphPreparing();  // polled ten times a second
     rs.textInput = ImGui::GetIO().WantTextInput;
-    const double waitSec = redraw.waitAfterFrame(rs);
+    double waitSec = redraw.waitAfterFrame(rs);
+    pacer.setIntervalSec(ScrubPacer::intervalFor(document->project().timeline.fps));
+    if (paced)
+      waitSec = pacer.waitSec(clock.sinceStartMs() / 1000.0, windowEventCount(), PreviewPolygonizer::publishedTotal());
     if (uiMapPath && (frameCount % 3 == 0 || waitSec > 0.0))
       writeEditorUiMap(uiMapPath, ui, ectx, frameCount,
                        {rs.awaitingWork, waitSec > 0.0, clock.tickEpochSec(),
                         vf.morphStageShown ? vf.morphBackend.gpu : vf.backend.gpu, gpuSide->swapchain->presentPath(),
-                        vf.particlesShown});
+                        vf.particlesShown, paced});
     const std::string title = "Animorph - " + document->displayName() + (document->dirty() ? " *" : "");
     if (title != lastTitle) glfwSetWindowTitle(window, (lastTitle = title).c_str());
     if (waitSec > 0.0) {
       Status flushed = gpuSide->swapchain->flushPresentation();  // the last frame is in the window before we wait
       if (!flushed) std::fprintf(stderr, "animorph: %s\n", flushed.error().c_str());
       glfwWaitEventsTimeout(waitSec);
-      clock.woke();  // frame times and playback count from the wake, not the wait
+      // Paced: events before the interval is up (the cursor moving) are taken in by the next frame.
+      while (paced && (waitSec = pacer.waitSec(clock.sinceStartMs() / 1000.0, windowEventCount(),
+                                               PreviewPolygonizer::publishedTotal())) > 0.0)
+        glfwWaitEventsTimeout(waitSec);
+      if (!paced) clock.woke();  // frame times and playback count from the wake, not the wait
     }
   }
 

@@ -34,6 +34,7 @@ void writeEditorUiMap(const std::string& path, const EditorUI& ui, EditorContext
               {"preview_gpu", info.previewGpu},
               {"present", info.presentPath},
               {"particle_view", info.particlesShown},
+              {"paced", info.paced},
               {"standin_segment", selectedStandinSegment(doc)},
               {"job", ui.runningJob() ? ui.runningJob()->label() : std::string()},
               {"job_fraction", ui.runningJob() ? ui.runningJob()->progress().fraction() : 0.0}});

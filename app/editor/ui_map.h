@@ -22,6 +22,7 @@ struct FrameMapInfo {
   bool previewGpu = false;   // the preview shown is the GPU's
   std::string presentPath;   // how frames reach the window
   bool particlesShown = false;  // some BlobTree was drawn as particles (scene/particle_view.h)
+  bool paced = false;           // scrubbing while a CPU preview computes: the loop is paced (scene/scrub_pacing.h)
 };
 
 // writeUiMap with the editor's state: the status line, the preview line, the stand-in segment.

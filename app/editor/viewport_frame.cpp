@@ -49,6 +49,7 @@ ViewportFrameResult ViewportFrame::build(EditorGpu& g, EditorUI& ui, EditorConte
     g.blobPreviews->clearGpuFailures();
   }
   updateMorphRuntime(ectx, out, settle);
+  const int previewThreads = scrubPaced_ ? pacedPreviewThreads() : interactivePreviewThreads();
   r.morphBackend = r.backend;
   float morphOpacity = 0.0f;  // below 1: the cross-fade (dithered, complementary to the mesh)
   std::string morphSourceId;
@@ -76,7 +77,7 @@ ViewportFrameResult ViewportFrame::build(EditorGpu& g, EditorUI& ui, EditorConte
     morphOpacity = float(info.implicitOpacity);
     if (morphOpacity > 0.0f) {  // B..C, the cross-fade's window around B and C, the transitions' stand-in core
       gpu::ImplicitPreviewSettings ps;
-      ps.threads = interactivePreviewThreads();
+      ps.threads = previewThreads;
       ps.interactiveResolution = prefs.previewCoarseResolution;
       ps.refinedResolution = prefs.previewResolution;
       ps.gpu = r.morphBackend.gpu;
@@ -110,7 +111,7 @@ ViewportFrameResult ViewportFrame::build(EditorGpu& g, EditorUI& ui, EditorConte
   if (!particleView_.note().empty())
     ectx.viewportNote += (ectx.viewportNote.empty() ? "" : "  |  ") + particleView_.note();
   g.blobPreviews->update(doc.project(), frame,
-                         {prefs.previewCoarseResolution, prefs.previewResolution, interactivePreviewThreads(),
+                         {prefs.previewCoarseResolution, prefs.previewResolution, previewThreads,
                           r.backend.gpu, settle});
   for (ParticleDraw& p : particleView_.takeUnready(frame, doc.project(), [&](const std::string& id) {
          const gpu::ImplicitPreviewStatus st = g.blobPreviews->status(id);

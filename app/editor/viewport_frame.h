@@ -42,6 +42,9 @@ class ViewportFrame {
   // refined surfaces now (waiting up to 120 s) instead of in the background.
   ViewportFrameResult build(EditorGpu& gpuSide, EditorUI& ui, EditorContext& ectx, bool settle, gpu::Scene& scene);
 
+  // The frame loop is paced (scene/scrub_pacing.h): the CPU previews get every hardware thread.
+  void setScrubPaced(bool paced) { scrubPaced_ = paced; }
+
   // After a lost device: the new device has compiled no morph pipelines yet.
   void forgetPrewarm() { prewarmedMorph_ = nullptr; }
 
@@ -51,6 +54,7 @@ class ViewportFrame {
   MorphFrameSettings morphSettings_;             // the transitions; the B->C stage is the implicit preview's
   const MorphRuntime* prewarmedMorph_ = nullptr;  // whose B->C pipelines are compiling or compiled
   PreviewDevice previewDevice_;                   // the preference last seen (a switch retries the GPU)
+  bool scrubPaced_ = false;                       // the previous frame paced the loop
   // The scene is drawn from these, alive until the frame is recorded: the gpu::Scene points into them.
   SceneFrame frame_;
   ParticleView particleView_;  // particle systems as markers while their time changes

@@ -15,6 +15,8 @@ int interactivePreviewThreads() {
   return std::max(1, hw - 1);
 }
 
+int pacedPreviewThreads() { return std::max(1, int(std::thread::hardware_concurrency())); }
+
 namespace {
 bool sameRequest(const PreviewRequest& a, const PreviewRequest& b) {
   if (a.timeSec != b.timeSec || a.coarseResolution != b.coarseResolution || a.fineResolution != b.fineResolution)
@@ -121,9 +123,23 @@ PreviewCounters PreviewPolygonizer::counters() const {
 
 namespace {
 std::atomic<void (*)()> g_publishHook{nullptr};
-}
+std::mutex g_publishedMutex;
+std::condition_variable g_publishedCv;
+uint64_t g_published = 0;  // under g_publishedMutex
+}  // namespace
 
 void PreviewPolygonizer::setPublishHook(void (*hook)()) { g_publishHook = hook; }
+
+uint64_t PreviewPolygonizer::publishedTotal() {
+  std::lock_guard<std::mutex> lock(g_publishedMutex);
+  return g_published;
+}
+
+bool PreviewPolygonizer::waitForPublish(uint64_t seen, double timeoutSec) {
+  std::unique_lock<std::mutex> lock(g_publishedMutex);
+  return g_publishedCv.wait_for(lock, std::chrono::duration<double>(std::max(0.0, timeoutSec)),
+                                [&] { return g_published != seen; });
+}
 
 void PreviewPolygonizer::publish(std::shared_ptr<PreviewResult> r) {
   {
@@ -133,6 +149,11 @@ void PreviewPolygonizer::publish(std::shared_ptr<PreviewResult> r) {
     serial_ = latest_->serial;
     ++counters_.published;
   }
+  {
+    std::lock_guard<std::mutex> lock(g_publishedMutex);
+    ++g_published;
+  }
+  g_publishedCv.notify_all();
   if (auto hook = g_publishHook.load()) hook();
 }
 
@@ -185,7 +206,7 @@ void PreviewPolygonizer::run() {
           ++counters_.runsStarted;
           runningLevel_ = level;
         }
-        auto result = source->polygonize(resolution, threads_, &cancel_, &history_[level]);
+        auto result = source->polygonize(resolution, req.threads > 0 ? req.threads : threads_, &cancel_, &history_[level]);
         {
           std::lock_guard<std::mutex> lock(mutex_);
           runningLevel_ = -1;

@@ -71,6 +71,7 @@ struct PreviewRequest {
   double timeSec = 0.0;                  // tree time to evaluate at
   int coarseResolution = 48;             // first answer (skipped when >= fineResolution)
   int fineResolution = 128;              // refined answer once the request stays unchanged
+  int threads = 0;                       // polygoniser threads for this request (0: the worker's own)
 };
 
 struct PreviewResult {
@@ -95,6 +96,9 @@ struct PreviewCounters {
 // 2-core machine with lavapipe, bench scrub at 96^3 measured frame p95 33-38 ms
 // with one worker thread against 36-49 ms with two, and no slower previews.
 int interactivePreviewThreads();
+// Worker threads while the frame loop is paced (scrubbing, scene/scrub_pacing.h): every hardware
+// thread, the loop drawing only on a new mesh or once a paced interval.
+int pacedPreviewThreads();
 
 class PreviewPolygonizer {
  public:
@@ -126,6 +130,11 @@ class PreviewPolygonizer {
   // Called on a worker thread after every published result, by every PreviewPolygonizer (the
   // editor wakes its frame loop with it: glfwPostEmptyEvent). Set it before the first is made.
   static void setPublishHook(void (*hook)());
+  // Results published so far by every PreviewPolygonizer (the paced frame loop draws when it changes).
+  static uint64_t publishedTotal();
+  // Waits until publishedTotal() differs from seen or timeoutSec passes (a loop without window
+  // events to wake it: the bench). Returns whether it differs.
+  static bool waitForPublish(uint64_t seen, double timeoutSec);
 
  private:
   void run();

@@ -115,9 +115,8 @@ void ImplicitPreview::endCpuFillIn() {
 
 void ImplicitPreview::updateCpu(std::shared_ptr<const PreviewSource> source, double timeSec,
                                 const ImplicitPreviewSettings& s) {
-  if (!worker_ || workerThreads_ != s.threads) {
+  if (!worker_) {  // one worker per preview: each request says its threads (its history stays)
     worker_ = std::make_unique<PreviewPolygonizer>(s.threads);
-    workerThreads_ = s.threads;
     uploadedSerial_ = 0;
   }
   PreviewRequest r;
@@ -125,6 +124,7 @@ void ImplicitPreview::updateCpu(std::shared_ptr<const PreviewSource> source, dou
   r.timeSec = timeSec;
   r.coarseResolution = s.interactiveResolution;
   r.fineResolution = s.refinedResolution;
+  r.threads = s.threads > 0 ? s.threads : pacedPreviewThreads();  // 0: all, as the worker's own
   worker_->submit(std::move(r));
   uploadNew();
 }

@@ -150,7 +150,6 @@ class ImplicitPreview {
   Context& ctx_;
   // CPU path
   std::unique_ptr<PreviewPolygonizer> worker_;
-  int workerThreads_ = -1;
   uint64_t uploadedSerial_ = 0;
   std::shared_ptr<const PreviewResult> result_;
   std::unique_ptr<GpuMesh> mesh_;
