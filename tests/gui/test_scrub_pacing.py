@@ -2,8 +2,8 @@
 C(t) at 96^3: while the worker computes, the frame loop is paced (scene/scrub_pacing.h: a frame
 per new mesh, the cursor's motion at most once a project frame) instead of redrawing on every
 motion, yet the playhead follows the cursor, new C(t) meshes keep appearing while the button is
-held, and the preview refines once it is released. The particle view (Preferences) is off: with it
-on, the demo's C(t), which has many point primitives, is drawn as particles while scrubbed.
+held, and the preview refines once it is released. The particle view is on (the default): the
+demo's creatures are made of meta-primitives, not particles, so their surface is what is scrubbed.
 
 usage: test_scrub_pacing.py EDITOR_BIN DEMO_DIR"""
 import json
@@ -24,7 +24,7 @@ project = os.path.join(work, "animorphosis.animorph")
 shutil.copy(os.path.join(demo_dir, "animorphosis.animorph"), project)
 os.makedirs(os.path.join(work, "config", "animorph"))
 with open(os.path.join(work, "config", "animorph", "prefs.json"), "w") as f:
-    json.dump({"particleView": False, "previewDevice": "cpu"}, f)
+    json.dump({"previewDevice": "cpu"}, f)
 
 ed = g.Editor(editor_bin, project, workdir=work).start()
 try:
