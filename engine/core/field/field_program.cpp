@@ -9,10 +9,12 @@
 #include <atomic>
 #include <cassert>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "field/convolution_segment.h"
 #include "field/potential.h"
+#include "field/space_map_simd.h"
 
 namespace animorph {
 namespace {
@@ -112,9 +114,13 @@ void foldWideOperators(std::vector<FieldOp>& ops) {
   for (const FieldOp& op : ops) any |= foldsLeft(op.code) && op.count > K;
   if (!any) return;
   // Which op completes each operand: a push, or the EndMap closing a map around it.
-  std::vector<uint32_t> doneAt;
-  std::vector<int32_t> insertFrom(ops.size(), -1);  // insert a copy of ops[from] after this op
-  std::vector<uint32_t> finalCount(ops.size(), 0);
+  // Per-thread memory, kept: a program rebuilt every frame allocates nothing here once warm.
+  thread_local std::vector<uint32_t> doneAt;
+  thread_local std::vector<int32_t> insertFrom;  // insert a copy of ops[from] after this op
+  thread_local std::vector<uint32_t> finalCount;
+  doneAt.clear();
+  insertFrom.assign(ops.size(), -1);
+  finalCount.assign(ops.size(), 0);
   for (uint32_t i = 0; i < ops.size(); ++i) {
     const FieldOp& op = ops[i];
     switch (op.code) {
@@ -170,7 +176,50 @@ PrimitiveBound FieldProgram::worldBound(const glm::vec3& a, const glm::vec3& b, 
   pb.radius = radius;
   pb.box.add(glm::min(a, b) - glm::vec3(radius));
   pb.box.add(glm::max(a, b) + glm::vec3(radius));
-  for (size_t level = openMaps_.size(); level-- > 0;) {
+  size_t level = openMaps_.size();
+#if defined(__SSE2__)
+  // Uniformly scaled rigid maps, the common case, in registers: the same float operations as the
+  // loop below (SpaceMap::worldBounds, toWorld, Bounds::add, intersect), lane by lane. A level the
+  // vector path does not cover (another map, an empty or infinite box, a zero bound) and every
+  // level above it take the loop below.
+  if (level > 0 && openScale_[level - 1] >= 0.0f) {
+    using namespace simd;
+    __m128 pa = load3(a), pbv = load3(b);
+    __m128 boxMin = load3(pb.box.min), boxMax = load3(pb.box.max);
+    float r = radius;
+    // a point's capsule (a and b the same bits) stays one point: one toWorld per level.
+    const bool point = std::memcmp(&a, &b, sizeof a) == 0;
+    for (; level > 0; --level) {
+      const float s = openScale_[level - 1];
+      if (s < 0.0f || _mm_comigt_ss(boxMin, boxMax) || !finite3(boxMin, boxMax)) break;
+      const glm::vec4* m = openLanes_.data() + 4 * (level - 1);
+      const __m128 c0 = lanes(m[0]), c1 = lanes(m[1]), c2 = lanes(m[2]), o = lanes(m[3]);
+      __m128 lo, hi;
+      if (!affineWorldBox(c0, c1, c2, o, boxMin, boxMax, lo, hi)) break;
+      pa = affineToWorld(c0, c1, c2, o, pa);
+      pbv = point ? pa : affineToWorld(c0, c1, c2, o, pbv);
+      r *= s;
+      const __m128 rv = _mm_set1_ps(r);
+      __m128 capMin, capMax;
+      boxOfTwo(_mm_sub_ps(glmMin(pa, pbv), rv), _mm_add_ps(glmMax(pa, pbv), rv), capMin, capMax);
+      // intersect(box, capBox), capBox where that is empty.
+      const __m128 iMin = glmMax(lo, capMin), iMax = glmMin(hi, capMax);
+      if (_mm_comigt_ss(lo, hi) || _mm_comigt_ss(capMin, capMax) || any3(_mm_cmpgt_ps(iMin, iMax))) {
+        boxMin = capMin;
+        boxMax = capMax;
+      } else {
+        boxMin = iMin;
+        boxMax = iMax;
+      }
+    }
+    pb.a = vec3Of(pa);
+    pb.b = vec3Of(pbv);
+    pb.radius = r;
+    pb.box.min = vec3Of(boxMin);
+    pb.box.max = vec3Of(boxMax);
+  }
+#endif
+  while (level-- > 0) {
     const SpaceMap& m = maps[openMaps_[level]];
     Bounds box = m.worldBounds(pb.box);
     const float s = openScale_[level];
@@ -281,6 +330,8 @@ void FieldProgram::beginMap(const SpaceMap& m) {
   openBegins_.push_back(uint32_t(ops.size()));
   float scale;
   openScale_.push_back(m.kind == SpaceMapKind::Affine && uniformScaleRigid(m.forwardLinear, scale) ? scale : -1.0f);
+  for (int c = 0; c < 3; ++c) openLanes_.emplace_back(m.forwardLinear[c], 0.0f);
+  openLanes_.emplace_back(m.origin, 0.0f);
   maps.push_back(m);
   ops.push_back(op);
 }
@@ -293,6 +344,7 @@ void FieldProgram::endMap() {
   openMaps_.pop_back();
   openBegins_.pop_back();
   openScale_.pop_back();
+  openLanes_.resize(openLanes_.size() - 4);
   ops.push_back(op);
 }
 
@@ -313,6 +365,7 @@ void FieldProgram::reset() {
   openMaps_.clear();
   openBegins_.clear();
   openScale_.clear();
+  openLanes_.clear();
   outermostEnd_.clear();
   primsBefore_.clear();
   bounds_ = Bounds{};
@@ -327,12 +380,18 @@ void FieldProgram::finish() {
   static std::atomic<uint64_t> nextIdentity{1};
   identity_ = nextIdentity.fetch_add(1);
   foldWideOperators(ops);
-  // Empty values, subtree extents and stack depth by a symbolic run.
-  std::vector<float> vals;
-  std::vector<uint32_t> begins;
-  std::vector<uint32_t> mapBegins;
-  std::vector<Bounds> boxes;
-  std::vector<Bounds> reach;  // supports under each open map
+  // Empty values, subtree extents and stack depth by a symbolic run (in per-thread memory, kept:
+  // a program rebuilt every frame allocates nothing here once warm).
+  thread_local std::vector<float> vals;
+  thread_local std::vector<uint32_t> begins;
+  thread_local std::vector<uint32_t> mapBegins;
+  thread_local std::vector<Bounds> boxes;
+  thread_local std::vector<Bounds> reach;  // supports under each open map
+  vals.clear();
+  begins.clear();
+  mapBegins.clear();
+  boxes.clear();
+  reach.clear();
   mapReach_.assign(maps.size(), Bounds{});
   int depth = 0;
   maxStack_ = 0;

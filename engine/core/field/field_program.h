@@ -176,6 +176,9 @@ class FieldProgram {
   // While building, per open map: its scale when affine with a uniformly scaled rotation (a
   // primitive's capsule bound then maps to a capsule), else -1. Measured once per map, not per primitive.
   std::vector<float> openScale_;
+  // While building, per open map: forwardLinear's three columns then origin, lane 3 zero (loaded
+  // as four-float registers by worldBound's vector path).
+  std::vector<glm::vec4> openLanes_;
   std::vector<uint32_t> outermostEnd_;
   std::vector<uint32_t> primsBefore_;  // primitives in ops[0..i): global id of the first at or after op i
   Bounds bounds_;
