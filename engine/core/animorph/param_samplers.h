@@ -45,10 +45,15 @@ class ParamSamplers {
   struct PointList {
     uint32_t first = 0, count = 0;        // samplers in points_
     std::vector<ResampleWeight> toBlend;  // to the blended count (empty: no resampling)
+    // Every point constant: the list's values, as sampled and as resampled (toBlend), kept once.
+    bool fixed = false;
+    std::vector<glm::vec3> fixedPoints, fixedResampled;
   };
   glm::vec3 vec3At(const Slot& s, double t) const;
   glm::quat quatAt(const Slot& s, double t) const;
-  void pointsAt(const PointList& p, double t, bool resample, std::vector<glm::vec3>& out) const;
+  const std::vector<glm::vec3>& pointsAt(const PointList& p, double t, bool resample,
+                                         std::vector<glm::vec3>& out) const;
+  static void resampled(const PointList& p, const std::vector<glm::vec3>& at, std::vector<glm::vec3>& out);
 
   std::vector<Slot> slots_;
   std::vector<glm::vec4> constants_;
