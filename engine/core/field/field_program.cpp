@@ -169,54 +169,118 @@ void foldWideOperators(std::vector<FieldOp>& ops) {
 
 // ------------------------------------------------------------------ building
 
-PrimitiveBound FieldProgram::worldBound(const glm::vec3& a, const glm::vec3& b, float radius) const {
+namespace {
+
+// A primitive's capsule (a, b, radius) and box in its own space, where its world bound starts.
+PrimitiveBound localBound(const glm::vec3& a, const glm::vec3& b, float radius) {
   PrimitiveBound pb;
   pb.a = a;
   pb.b = b;
   pb.radius = radius;
   pb.box.add(glm::min(a, b) - glm::vec3(radius));
   pb.box.add(glm::max(a, b) + glm::vec3(radius));
-  size_t level = openMaps_.size();
+  return pb;
+}
+
 #if defined(__SSE2__)
-  // Uniformly scaled rigid maps, the common case, in registers: the same float operations as the
-  // loop below (SpaceMap::worldBounds, toWorld, Bounds::add, intersect), lane by lane. A level the
-  // vector path does not cover (another map, an empty or infinite box, a zero bound) and every
-  // level above it take the loop below.
-  if (level > 0 && openScale_[level - 1] >= 0.0f) {
-    using namespace simd;
-    __m128 pa = load3(a), pbv = load3(b);
-    __m128 boxMin = load3(pb.box.min), boxMax = load3(pb.box.max);
-    float r = radius;
-    // a point's capsule (a and b the same bits) stays one point: one toWorld per level.
-    const bool point = std::memcmp(&a, &b, sizeof a) == 0;
+// A primitive's bound in registers while it is carried up through the open maps.
+struct LaneBound {
+  __m128 a, b, boxMin, boxMax;
+  float r;
+  bool point;  // a and b the same bits: they stay so (one toWorld per level)
+};
+
+LaneBound laneBound(const PrimitiveBound& pb) {
+  return {simd::load3(pb.a), simd::load3(pb.b), simd::load3(pb.box.min), simd::load3(pb.box.max), pb.radius,
+          std::memcmp(&pb.a, &pb.b, sizeof pb.a) == 0};
+}
+
+void storeBound(const LaneBound& x, PrimitiveBound& pb) {
+  pb.a = simd::vec3Of(x.a);
+  pb.b = simd::vec3Of(x.b);
+  pb.radius = x.r;
+  pb.box.min = simd::vec3Of(x.boxMin);
+  pb.box.max = simd::vec3Of(x.boxMax);
+}
+
+// x carried through one affine map with a uniformly scaled rotation (scale s >= 0; m: its columns and
+// origin) into out, with the float operations of FieldProgram::finishBound's scalar loop lane by lane
+// (SpaceMap::worldBounds, toWorld, Bounds::add, intersect). False where that loop must decide (an
+// empty or infinite box, a zero bound): out is then unspecified.
+bool lift(const LaneBound& x, float s, const glm::vec4* m, LaneBound& out) {
+  using namespace simd;
+  if (_mm_comigt_ss(x.boxMin, x.boxMax) || !finite3(x.boxMin, x.boxMax)) return false;
+  const __m128 c0 = lanes(m[0]), c1 = lanes(m[1]), c2 = lanes(m[2]), o = lanes(m[3]);
+  __m128 lo, hi;
+  if (!affineWorldBox(c0, c1, c2, o, x.boxMin, x.boxMax, lo, hi)) return false;
+  out.point = x.point;
+  out.r = x.r * s;
+  const __m128 rv = _mm_set1_ps(out.r);
+  __m128 capMin, capMax;
+  out.a = affineToWorld(c0, c1, c2, o, x.a);
+  if (x.point) {  // glm::min(a, a) and glm::max(a, a) are a
+    out.b = out.a;
+    boxOfTwo(_mm_sub_ps(out.a, rv), _mm_add_ps(out.a, rv), capMin, capMax);
+  } else {
+    out.b = affineToWorld(c0, c1, c2, o, x.b);
+    boxOfTwo(_mm_sub_ps(glmMin(out.a, out.b), rv), _mm_add_ps(glmMax(out.a, out.b), rv), capMin, capMax);
+  }
+  // intersect(box, capBox), capBox where that is empty.
+  const __m128 iMin = glmMax(lo, capMin), iMax = glmMin(hi, capMax);
+  const bool empty = _mm_comigt_ss(lo, hi) || _mm_comigt_ss(capMin, capMax) || any3(_mm_cmpgt_ps(iMin, iMax));
+  out.boxMin = empty ? capMin : iMin;
+  out.boxMax = empty ? capMax : iMax;
+  return true;
+}
+#endif
+
+}  // namespace
+
+PrimitiveBound FieldProgram::worldBound(const glm::vec3& a, const glm::vec3& b, float radius) const {
+  PrimitiveBound pb = localBound(a, b, radius);
+  finishBound(pb, openMaps_.size());
+  return pb;
+}
+
+void FieldProgram::carryToWorld(PrimitiveBound* bounds, size_t n) const {
+  size_t i = 0;
+#if defined(__SSE2__)
+  // Two at a time through the maps they share: two independent chains of dependent operations
+  // keep the processor busy where one waits on each result.
+  for (; i + 1 < n; i += 2) {
+    size_t level = openMaps_.size();
+    LaneBound x = laneBound(bounds[i]), y = laneBound(bounds[i + 1]);
     for (; level > 0; --level) {
       const float s = openScale_[level - 1];
-      if (s < 0.0f || _mm_comigt_ss(boxMin, boxMax) || !finite3(boxMin, boxMax)) break;
       const glm::vec4* m = openLanes_.data() + 4 * (level - 1);
-      const __m128 c0 = lanes(m[0]), c1 = lanes(m[1]), c2 = lanes(m[2]), o = lanes(m[3]);
-      __m128 lo, hi;
-      if (!affineWorldBox(c0, c1, c2, o, boxMin, boxMax, lo, hi)) break;
-      pa = affineToWorld(c0, c1, c2, o, pa);
-      pbv = point ? pa : affineToWorld(c0, c1, c2, o, pbv);
-      r *= s;
-      const __m128 rv = _mm_set1_ps(r);
-      __m128 capMin, capMax;
-      boxOfTwo(_mm_sub_ps(glmMin(pa, pbv), rv), _mm_add_ps(glmMax(pa, pbv), rv), capMin, capMax);
-      // intersect(box, capBox), capBox where that is empty.
-      const __m128 iMin = glmMax(lo, capMin), iMax = glmMin(hi, capMax);
-      if (_mm_comigt_ss(lo, hi) || _mm_comigt_ss(capMin, capMax) || any3(_mm_cmpgt_ps(iMin, iMax))) {
-        boxMin = capMin;
-        boxMax = capMax;
-      } else {
-        boxMin = iMin;
-        boxMax = iMax;
-      }
+      LaneBound nx, ny;
+      if (s < 0.0f || !lift(x, s, m, nx) || !lift(y, s, m, ny)) break;
+      x = nx;
+      y = ny;
     }
-    pb.a = vec3Of(pa);
-    pb.b = vec3Of(pbv);
-    pb.radius = r;
-    pb.box.min = vec3Of(boxMin);
-    pb.box.max = vec3Of(boxMax);
+    storeBound(x, bounds[i]);
+    storeBound(y, bounds[i + 1]);
+    finishBound(bounds[i], level);
+    finishBound(bounds[i + 1], level);
+  }
+#endif
+  for (; i < n; ++i) finishBound(bounds[i], openMaps_.size());
+}
+
+void FieldProgram::finishBound(PrimitiveBound& pb, size_t level) const {
+#if defined(__SSE2__)
+  // Uniformly scaled rigid maps, the common case, in registers (lift). A level the vector path does
+  // not cover (another map, an empty or infinite box, a zero bound) and every level above it take
+  // the loop below.
+  if (level > 0 && openScale_[level - 1] >= 0.0f) {
+    LaneBound x = laneBound(pb);
+    for (; level > 0; --level) {
+      const float s = openScale_[level - 1];
+      LaneBound next;
+      if (s < 0.0f || !lift(x, s, openLanes_.data() + 4 * (level - 1), next)) break;
+      x = next;
+    }
+    storeBound(x, pb);
   }
 #endif
   while (level-- > 0) {
@@ -238,7 +302,6 @@ PrimitiveBound FieldProgram::worldBound(const glm::vec3& a, const glm::vec3& b, 
       pb.radius = 0.5f * box.diagonal();
     }
   }
-  return pb;
 }
 
 bool FieldProgram::pushPrims(PrimClass cls, uint32_t local, bool combineWithPrevious, bool combineMax,
@@ -264,17 +327,37 @@ bool FieldProgram::pushPrims(PrimClass cls, uint32_t local, bool combineWithPrev
   return true;
 }
 
-bool FieldProgram::addSkeletal(const SkeletalPrimitive& p, bool combineWithPrevious, bool combineMax) {
+PrimitiveBound FieldProgram::pushSkeletal(const SkeletalPrimitive& p) {
   glm::vec3 a, b;
   float r;
   Skeleton s = p.skeleton;
   s.curve = p.skeleton.kind == SkeletonKind::Curve ? curvePoints.data() + p.curveFirst : nullptr;
   skeletonEnclosingCapsule(s, a, b, r);
-  uint32_t local = uint32_t(skeletal.size());
   skeletal.push_back(p);
   skeletalReach.push_back({a, b, r + std::max(p.radius, 0.0f)});
-  return pushPrims(PrimClass::Skeletal, local, combineWithPrevious, combineMax,
-                   worldBound(a, b, r + std::max(p.radius, 0.0f)));
+  return localBound(a, b, r + std::max(p.radius, 0.0f));
+}
+
+bool FieldProgram::addSkeletal(const SkeletalPrimitive& p, bool combineWithPrevious, bool combineMax) {
+  const uint32_t local = uint32_t(skeletal.size());
+  PrimitiveBound bound = pushSkeletal(p);
+  carryToWorld(&bound, 1);
+  return pushPrims(PrimClass::Skeletal, local, combineWithPrevious, combineMax, bound);
+}
+
+bool FieldProgram::addSkeletalRun(const SkeletalPrimitive* p, size_t n, bool combineWithPrevious, bool combineMax) {
+  thread_local std::vector<PrimitiveBound> bounds;
+  bounds.clear();
+  const uint32_t local = uint32_t(skeletal.size());
+  for (size_t i = 0; i < n; ++i) bounds.push_back(pushSkeletal(p[i]));
+  carryToWorld(bounds.data(), n);
+  bool pushed = false;
+  for (size_t i = 0; i < n; ++i) {
+    const bool added =
+        pushPrims(PrimClass::Skeletal, local + uint32_t(i), combineWithPrevious || i > 0, combineMax, bounds[i]);
+    if (i == 0) pushed = added;
+  }
+  return pushed;
 }
 
 bool FieldProgram::addConvolution(const glm::vec3& a, const glm::vec3& b, float radius, float sharpness, float eps,
