@@ -1,8 +1,10 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <random>
+#include <vector>
 
 #include "blobtree/compile.h"
 #include "field/convolution_segment.h"
@@ -318,4 +320,24 @@ TEST_CASE("gradients of every node type equal central differences", "[field]") {
     // a finite-difference stencil straddles now and then.
     CHECK(agree >= checked * 97 / 100);
   }
+}
+
+TEST_CASE("curve positions alone equal evaluateCurve's positions bit for bit", "[field]") {
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<float> d(-3.0f, 3.0f);
+  std::uniform_real_distribution<float> param(-0.2f, 1.2f);
+  int mismatches = 0, checked = 0;
+  for (int n = 0; n <= 6; ++n) {
+    std::vector<glm::vec3> pts(static_cast<size_t>(n));
+    for (int trial = 0; trial < 50; ++trial) {
+      for (glm::vec3& p : pts) p = glm::vec3(d(rng), d(rng), d(rng));
+      for (float s : {0.0f, 1.0f, 0.5f, param(rng), param(rng), param(rng)}) {
+        const glm::vec3 got = curvePosition(pts, s), want = evaluateCurve(pts, s).position;
+        mismatches += std::memcmp(&got, &want, sizeof got) == 0 ? 0 : 1;
+        ++checked;
+      }
+    }
+  }
+  CHECK(checked == 7 * 50 * 6);
+  CHECK(mismatches == 0);
 }

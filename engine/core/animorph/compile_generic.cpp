@@ -2,6 +2,8 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstring>
+#include <initializer_list>
 #include <thread>
 
 #include <tbb/task_arena.h>
@@ -55,7 +57,10 @@ struct GenericProgramCompiler::Impl {
   std::vector<std::vector<glm::vec3>> lists;
   std::vector<std::vector<SpaceMap>> frames;
   std::vector<std::vector<std::array<glm::vec3, 3>>> triangles;
+  // Per meta-primitive: the words of the inputs its expansion was last computed from (empty: none).
+  std::vector<std::vector<uint32_t>> metaInputs;
   std::vector<int> needs;
+  std::vector<int8_t> paramSlots;  // compileParamSlot(type, p) at [type * CompileParam::Size + p], looked up once
   std::vector<float> sOfCurve;  // s(u) of each override curve, then of the global one (last)
   std::vector<float> splineCounts;  // a spline-of-nodes' count at this frame (the stack need reads it first)
   Timing timing;
@@ -116,7 +121,13 @@ struct GenericProgramCompiler::Impl {
     lists.resize(listCount);
     frames.resize(metaCount);
     triangles.resize(metaCount);
+    metaInputs.resize(metaCount);
     needs.resize(nodes.size());
+    constexpr size_t kParams = size_t(CompileParam::Size);
+    paramSlots.resize(allNodeTypes().size() * kParams);
+    for (size_t t = 0; t < allNodeTypes().size(); ++t)
+      for (size_t k = 0; k < kParams; ++k)
+        paramSlots[t * kParams + k] = int8_t(compileParamSlot(NodeType(t), CompileParam(k)));
     splineCounts.resize(nodes.size());
     chunkCount = uint32_t((nodes.size() + kChunk - 1) / kChunk);
     chunkState = std::make_unique<std::atomic<uint8_t>[]>(chunkCount);
@@ -184,22 +195,60 @@ struct GenericProgramCompiler::Impl {
         samplers.blend(p.slotsA + k, p.slotsB + k, tA, tB, s, out[k], nodeLists ? nodeLists[k] : noList);
     }
     if (type == NodeType::SplineOfNodes) {
-      splineOfNodesFrames(list(i, CompileParam::Points), value(i, CompileParam::Count).x,
-                          value(i, CompileParam::ScaleStart).x, value(i, CompileParam::ScaleEnd).x,
-                          frames[size_t(p.meta)]);
+      const std::vector<glm::vec3>& points = list(i, CompileParam::Points);
+      const float count = value(i, CompileParam::Count).x, scaleStart = value(i, CompileParam::ScaleStart).x,
+                  scaleEnd = value(i, CompileParam::ScaleEnd).x;
+      if (!sameMetaInputs(p.meta, s, type, {&points}, {count, scaleStart, scaleEnd}))
+        splineOfNodesFrames(points, count, scaleStart, scaleEnd, frames[size_t(p.meta)]);
     } else if (type == NodeType::CoonsPatch) {
-      thread_local MetaScratch scratch;
-      coonsPatchTriangles(list(i, CompileParam::Bottom), list(i, CompileParam::Top), list(i, CompileParam::Left),
-                          list(i, CompileParam::Right), value(i, CompileParam::Resolution).x, scratch,
-                          triangles[size_t(p.meta)]);
+      const std::vector<glm::vec3>&bottom = list(i, CompileParam::Bottom), &top = list(i, CompileParam::Top),
+      &left = list(i, CompileParam::Left), &right = list(i, CompileParam::Right);
+      const float resolution = value(i, CompileParam::Resolution).x;
+      if (!sameMetaInputs(p.meta, s, type, {&bottom, &top, &left, &right}, {resolution})) {
+        thread_local MetaScratch scratch;
+        coonsPatchTriangles(bottom, top, left, right, resolution, scratch, triangles[size_t(p.meta)]);
+      }
     }
   }
 
-  const glm::vec4& value(uint32_t i, CompileParam p) const {
-    return values[nodes[i].valueBase + uint32_t(compileParamSlot(types[i], p))];
+  // Whether a meta-primitive's inputs (its type, point lists and numbers) are bit for bit those its
+  // expansion was last computed from; when not, records them. An expansion is a function of these
+  // alone, so an unchanged one is kept as it is: the parts of C that stand still between frames
+  // (constant tracks outside the morph) are not expanded again. A node blending its two sides
+  // (0 < s < 1) has inputs that move with s: not compared, forgotten.
+  bool sameMetaInputs(int32_t meta, float s, NodeType type,
+                      std::initializer_list<const std::vector<glm::vec3>*> pointLists,
+                      std::initializer_list<float> numbers) {
+    if (s > 0.0f && s < 1.0f) {
+      metaInputs[size_t(meta)].clear();
+      return false;
+    }
+    thread_local std::vector<uint32_t> key;
+    key.clear();
+    key.push_back(uint32_t(type));
+    for (const std::vector<glm::vec3>* l : pointLists) {
+      key.push_back(uint32_t(l->size()));
+      const size_t at = key.size();
+      key.resize(at + 3 * l->size());
+      if (!l->empty()) std::memcpy(key.data() + at, l->data(), sizeof(glm::vec3) * l->size());
+    }
+    for (float x : numbers) {
+      uint32_t w;
+      std::memcpy(&w, &x, sizeof w);
+      key.push_back(w);
+    }
+    std::vector<uint32_t>& last = metaInputs[size_t(meta)];
+    if (last == key) return true;
+    last.assign(key.begin(), key.end());
+    return false;
   }
+
+  int slot(uint32_t i, CompileParam p) const {
+    return paramSlots[size_t(types[i]) * size_t(CompileParam::Size) + size_t(p)];
+  }
+  const glm::vec4& value(uint32_t i, CompileParam p) const { return values[nodes[i].valueBase + uint32_t(slot(i, p))]; }
   const std::vector<glm::vec3>& list(uint32_t i, CompileParam p) const {
-    return lists[size_t(nodes[i].listBase) + size_t(compileParamSlot(types[i], p))];
+    return lists[size_t(nodes[i].listBase) + size_t(slot(i, p))];
   }
 };
 

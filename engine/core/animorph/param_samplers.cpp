@@ -53,6 +53,17 @@ uint32_t ParamSamplers::add(const BlobNode& n, const std::vector<size_t>* blendC
       for (const Vec3Track& p : pts) points_.emplace_back(p);
       const size_t to = blendCounts && k < blendCounts->size() ? (*blendCounts)[k] : pts.size();
       if (to != pts.size()) list.toBlend = resampleWeights(pts.size(), to);
+      if (list.count > 0 && std::all_of(points_.begin() + list.first, points_.end(),
+                                        [](const TrackSampler<glm::vec3>& p) { return p.constant(); })) {
+        list.fixedAt = int32_t(fixedValues_.size());
+        for (uint32_t i = 0; i < list.count; ++i) fixedValues_.push_back(points_[list.first + i].sample(0.0));
+        if (!list.toBlend.empty()) {
+          std::vector<glm::vec3>& r = scratch().b;
+          resampled(list, fixedValues_.data() + list.fixedAt, r);
+          list.fixedResampledAt = int32_t(fixedValues_.size());
+          fixedValues_.insert(fixedValues_.end(), r.begin(), r.end());
+        }
+      }
       lists_.push_back(std::move(list));
     }
     slots_.push_back(s);
@@ -90,14 +101,20 @@ glm::quat ParamSamplers::quatAt(const Slot& s, double t) const {
 }
 
 // As param_blend.cpp's pointsAt: each point evaluated once, then lerp(p[i0], p[i1], w) when resampled.
-void ParamSamplers::pointsAt(const PointList& p, double t, bool resample, std::vector<glm::vec3>& out) const {
-  std::vector<glm::vec3>& at = scratch().at;
+const glm::vec3* ParamSamplers::pointsAt(const PointList& p, double t, bool resample, std::vector<glm::vec3>& out,
+                                         size_t& n) const {
+  const bool resampling = resample && !p.toBlend.empty();
+  n = resampling ? p.toBlend.size() : p.count;
+  // The same values, sampled and resampled once (a constant track's sample ignores t).
+  if (p.fixedAt >= 0) return fixedValues_.data() + (resampling ? p.fixedResampledAt : p.fixedAt);
+  std::vector<glm::vec3>& at = resampling ? scratch().at : out;
   at.resize(p.count);
   for (uint32_t i = 0; i < p.count; ++i) at[i] = points_[p.first + i].sample(t);
-  if (!resample || p.toBlend.empty()) {
-    out.assign(at.begin(), at.end());
-    return;
-  }
+  if (resampling) resampled(p, at.data(), out);
+  return out.data();
+}
+
+void ParamSamplers::resampled(const PointList& p, const glm::vec3* at, std::vector<glm::vec3>& out) {
   out.resize(p.toBlend.size());
   for (size_t k = 0; k < p.toBlend.size(); ++k) {
     const ResampleWeight& w = p.toBlend[k];
@@ -111,7 +128,12 @@ void ParamSamplers::constant(uint32_t slot, double t, glm::vec4& out, std::vecto
     case ParamKind::Float: out.x = floatAt(slot, t); break;
     case ParamKind::Vec3: out = glm::vec4(vec3At(s, t), 0.0f); break;
     case ParamKind::Quat: out = quatSlot(quatAt(s, t)); break;
-    case ParamKind::Vec3List: pointsAt(lists_[s.index], t, false, list); break;
+    case ParamKind::Vec3List: {
+      size_t n;
+      const glm::vec3* points = pointsAt(lists_[s.index], t, false, list, n);
+      if (points != list.data()) list.assign(points, points + n);
+      break;
+    }
   }
 }
 
@@ -125,10 +147,11 @@ void ParamSamplers::blend(uint32_t a, uint32_t b, double tA, double tB, float s,
     case ParamKind::Vec3: out = glm::vec4((1.0f - s) * vec3At(sa, tA) + s * vec3At(sb, tB), 0.0f); break;
     case ParamKind::Quat: out = quatSlot(glm::normalize(glm::slerp(quatAt(sa, tA), quatAt(sb, tB), s))); break;
     case ParamKind::Vec3List: {
-      std::vector<glm::vec3>& other = scratch().b;
-      pointsAt(lists_[sa.index], tA, true, list);
-      pointsAt(lists_[sb.index], tB, true, other);
-      for (size_t k = 0; k < list.size(); ++k) list[k] = (1.0f - s) * list[k] + s * other[k];
+      size_t na, nb;
+      const glm::vec3* pa = pointsAt(lists_[sa.index], tA, true, list, na);
+      const glm::vec3* pb = pointsAt(lists_[sb.index], tB, true, scratch().b, nb);
+      list.resize(na);  // (pa may be list's own data: same size, not moved)
+      for (size_t k = 0; k < na; ++k) list[k] = (1.0f - s) * pa[k] + s * pb[k];
       break;
     }
   }

@@ -45,10 +45,16 @@ class ParamSamplers {
   struct PointList {
     uint32_t first = 0, count = 0;        // samplers in points_
     std::vector<ResampleWeight> toBlend;  // to the blended count (empty: no resampling)
+    // Every point constant: the list's values, as sampled and as resampled (toBlend), kept once
+    // in fixedValues_ from these offsets (-1: not constant).
+    int32_t fixedAt = -1, fixedResampledAt = -1;
   };
   glm::vec3 vec3At(const Slot& s, double t) const;
   glm::quat quatAt(const Slot& s, double t) const;
-  void pointsAt(const PointList& p, double t, bool resample, std::vector<glm::vec3>& out) const;
+  // The points (n of them) in out, or in fixedValues_ when constant.
+  const glm::vec3* pointsAt(const PointList& p, double t, bool resample, std::vector<glm::vec3>& out,
+                            size_t& n) const;
+  static void resampled(const PointList& p, const glm::vec3* at, std::vector<glm::vec3>& out);
 
   std::vector<Slot> slots_;
   std::vector<glm::vec4> constants_;
@@ -57,6 +63,7 @@ class ParamSamplers {
   std::vector<TrackSampler<glm::quat>> quats_;
   std::vector<TrackSampler<glm::vec3>> points_;
   std::vector<PointList> lists_;
+  std::vector<glm::vec3> fixedValues_;  // constant lists' values, in the order the lists were added
 };
 
 }  // namespace animorph

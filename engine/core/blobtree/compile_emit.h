@@ -139,6 +139,7 @@ class FlatEmitter {
   // spline-of-nodes (a copy's child may itself be a spline-of-nodes).
   std::vector<std::array<glm::vec3, 3>> triangles;
   std::vector<glm::vec3> curve;
+  std::vector<SkeletalPrimitive> run;  // a Coons patch's triangles
   std::deque<std::vector<SpaceMap>> frameLevels;  // a deque: deeper levels added keep references valid
   size_t splineDepth = 0;
   std::deque<std::vector<size_t>> orderLists;  // operand orders, one per nesting level in use
@@ -309,15 +310,14 @@ class FlatEmitter {
     SkeletalPrimitive p;
     p.skeleton.kind = SkeletonKind::Triangle;
     potential(n, p);
-    bool pushed = false;
+    run.resize(tris.size(), p);
     for (size_t i = 0; i < tris.size(); ++i) {
-      p.skeleton.p0 = tris[i][0];
-      p.skeleton.p1 = tris[i][1];
-      p.skeleton.p2 = tris[i][2];
-      bool added = prog.addSkeletal(p, combine || i > 0, true);
-      if (i == 0) pushed = added;
+      run[i] = p;
+      run[i].skeleton.p0 = tris[i][0];
+      run[i].skeleton.p1 = tris[i][1];
+      run[i].skeleton.p2 = tris[i][2];
     }
-    return pushed;
+    return prog.addSkeletalRun(run.data(), run.size(), combine, true);
   }
 
   // Emits children[first..] combined by `code` (Sum or Max) as one operand. Under a union, Coons

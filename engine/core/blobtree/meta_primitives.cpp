@@ -70,19 +70,19 @@ void coonsPatchTriangles(const std::vector<glm::vec3>& bottom, const std::vector
                          const std::vector<glm::vec3>& left, const std::vector<glm::vec3>& right, float resolution,
                          MetaScratch& scratch, std::vector<std::array<glm::vec3, 3>>& tris) {
   int res = std::clamp(int(std::lround(resolution)), 1, 64);
-  glm::vec3 p00 = evaluateCurve(bottom, 0.0f).position, p10 = evaluateCurve(bottom, 1.0f).position;
-  glm::vec3 p01 = evaluateCurve(top, 0.0f).position, p11 = evaluateCurve(top, 1.0f).position;
   // The four boundary curves sampled once at the grid's parameters (not once per grid point).
   for (auto& samples : scratch.samples) samples.resize(size_t(res + 1));
   std::vector<glm::vec3>&atBottom = scratch.samples[0], &atTop = scratch.samples[1], &atLeft = scratch.samples[2],
   &atRight = scratch.samples[3];
   for (int i = 0; i <= res; ++i) {
     float w = float(i) / res;
-    atBottom[size_t(i)] = evaluateCurve(bottom, w).position;
-    atTop[size_t(i)] = evaluateCurve(top, w).position;
-    atLeft[size_t(i)] = evaluateCurve(left, w).position;
-    atRight[size_t(i)] = evaluateCurve(right, w).position;
+    atBottom[size_t(i)] = curvePosition(bottom, w);
+    atTop[size_t(i)] = curvePosition(top, w);
+    atLeft[size_t(i)] = curvePosition(left, w);
+    atRight[size_t(i)] = curvePosition(right, w);
   }
+  // The corners: the samples at 0 / res = 0 and res / res = 1 exactly.
+  const glm::vec3 p00 = atBottom[0], p10 = atBottom[size_t(res)], p01 = atTop[0], p11 = atTop[size_t(res)];
   auto surface = [&](int i, int j) {
     float u = float(i) / res, v = float(j) / res;
     glm::vec3 ruled = (1.0f - v) * atBottom[size_t(i)] + v * atTop[size_t(i)] + (1.0f - u) * atLeft[size_t(j)] +

@@ -9,10 +9,12 @@
 #include <atomic>
 #include <cassert>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "field/convolution_segment.h"
 #include "field/potential.h"
+#include "field/space_map_simd.h"
 
 namespace animorph {
 namespace {
@@ -112,9 +114,13 @@ void foldWideOperators(std::vector<FieldOp>& ops) {
   for (const FieldOp& op : ops) any |= foldsLeft(op.code) && op.count > K;
   if (!any) return;
   // Which op completes each operand: a push, or the EndMap closing a map around it.
-  std::vector<uint32_t> doneAt;
-  std::vector<int32_t> insertFrom(ops.size(), -1);  // insert a copy of ops[from] after this op
-  std::vector<uint32_t> finalCount(ops.size(), 0);
+  // Per-thread memory, kept: a program rebuilt every frame allocates nothing here once warm.
+  thread_local std::vector<uint32_t> doneAt;
+  thread_local std::vector<int32_t> insertFrom;  // insert a copy of ops[from] after this op
+  thread_local std::vector<uint32_t> finalCount;
+  doneAt.clear();
+  insertFrom.assign(ops.size(), -1);
+  finalCount.assign(ops.size(), 0);
   for (uint32_t i = 0; i < ops.size(); ++i) {
     const FieldOp& op = ops[i];
     switch (op.code) {
@@ -163,14 +169,121 @@ void foldWideOperators(std::vector<FieldOp>& ops) {
 
 // ------------------------------------------------------------------ building
 
-PrimitiveBound FieldProgram::worldBound(const glm::vec3& a, const glm::vec3& b, float radius) const {
+namespace {
+
+// A primitive's capsule (a, b, radius) and box in its own space, where its world bound starts.
+PrimitiveBound localBound(const glm::vec3& a, const glm::vec3& b, float radius) {
   PrimitiveBound pb;
   pb.a = a;
   pb.b = b;
   pb.radius = radius;
   pb.box.add(glm::min(a, b) - glm::vec3(radius));
   pb.box.add(glm::max(a, b) + glm::vec3(radius));
-  for (size_t level = openMaps_.size(); level-- > 0;) {
+  return pb;
+}
+
+#if defined(__SSE2__)
+// A primitive's bound in registers while it is carried up through the open maps.
+struct LaneBound {
+  __m128 a, b, boxMin, boxMax;
+  float r;
+  bool point;  // a and b the same bits: they stay so (one toWorld per level)
+};
+
+LaneBound laneBound(const PrimitiveBound& pb) {
+  return {simd::load3(pb.a), simd::load3(pb.b), simd::load3(pb.box.min), simd::load3(pb.box.max), pb.radius,
+          std::memcmp(&pb.a, &pb.b, sizeof pb.a) == 0};
+}
+
+void storeBound(const LaneBound& x, PrimitiveBound& pb) {
+  pb.a = simd::vec3Of(x.a);
+  pb.b = simd::vec3Of(x.b);
+  pb.radius = x.r;
+  pb.box.min = simd::vec3Of(x.boxMin);
+  pb.box.max = simd::vec3Of(x.boxMax);
+}
+
+// x carried through one affine map with a uniformly scaled rotation (scale s >= 0; m: its columns and
+// origin) into out, with the float operations of FieldProgram::finishBound's scalar loop lane by lane
+// (SpaceMap::worldBounds, toWorld, Bounds::add, intersect). False where that loop must decide (an
+// empty or infinite box, a zero bound): out is then unspecified.
+bool lift(const LaneBound& x, float s, const glm::vec4* m, LaneBound& out) {
+  using namespace simd;
+  if (_mm_comigt_ss(x.boxMin, x.boxMax) || !finite3(x.boxMin, x.boxMax)) return false;
+  const __m128 c0 = lanes(m[0]), c1 = lanes(m[1]), c2 = lanes(m[2]), o = lanes(m[3]);
+  __m128 lo, hi;
+  if (!affineWorldBox(c0, c1, c2, o, x.boxMin, x.boxMax, lo, hi)) return false;
+  out.point = x.point;
+  out.r = x.r * s;
+  const __m128 rv = _mm_set1_ps(out.r);
+  __m128 capMin, capMax;
+  out.a = affineToWorld(c0, c1, c2, o, x.a);
+  if (x.point) {  // glm::min(a, a) and glm::max(a, a) are a
+    out.b = out.a;
+    boxOfTwo(_mm_sub_ps(out.a, rv), _mm_add_ps(out.a, rv), capMin, capMax);
+  } else {
+    out.b = affineToWorld(c0, c1, c2, o, x.b);
+    boxOfTwo(_mm_sub_ps(glmMin(out.a, out.b), rv), _mm_add_ps(glmMax(out.a, out.b), rv), capMin, capMax);
+  }
+  // intersect(box, capBox), capBox where that is empty.
+  const __m128 iMin = glmMax(lo, capMin), iMax = glmMin(hi, capMax);
+  const bool empty = _mm_comigt_ss(lo, hi) || _mm_comigt_ss(capMin, capMax) || any3(_mm_cmpgt_ps(iMin, iMax));
+  out.boxMin = empty ? capMin : iMin;
+  out.boxMax = empty ? capMax : iMax;
+  return true;
+}
+#endif
+
+}  // namespace
+
+PrimitiveBound FieldProgram::worldBound(const glm::vec3& a, const glm::vec3& b, float radius) const {
+  PrimitiveBound pb = localBound(a, b, radius);
+  finishBound(pb, openMaps_.size());
+  return pb;
+}
+
+void FieldProgram::carryToWorld(PrimitiveBound* bounds, size_t n) const {
+  size_t i = 0;
+#if defined(__SSE2__)
+  // Two at a time through the maps they share: two independent chains of dependent operations
+  // keep the processor busy where one waits on each result.
+  for (; i + 1 < n; i += 2) {
+    size_t level = openMaps_.size();
+    LaneBound x = laneBound(bounds[i]), y = laneBound(bounds[i + 1]);
+    for (; level > 0; --level) {
+      const float s = openScale_[level - 1];
+      const glm::vec4* m = openLanes_.data() + 4 * (level - 1);
+      LaneBound nx, ny;
+      if (s < 0.0f || !lift(x, s, m, nx) || !lift(y, s, m, ny)) break;
+      x = nx;
+      y = ny;
+    }
+    storeBound(x, bounds[i]);
+    storeBound(y, bounds[i + 1]);
+    finishBound(bounds[i], level);
+    finishBound(bounds[i + 1], level);
+  }
+#endif
+  for (; i < n; ++i) finishBound(bounds[i], openMaps_.size());
+}
+
+void FieldProgram::finishBound(PrimitiveBound& pb, size_t level) const {
+#if defined(__SSE2__)
+  // Uniformly scaled rigid maps, the common case, in registers (lift). A level the vector path does
+  // not cover (another map, an empty or infinite box, a zero bound) and every level above it take
+  // the loop below.
+  if (level > 0 && openScale_[level - 1] >= 0.0f) {
+    LaneBound x = laneBound(pb);
+    for (; level > 0; --level) {
+      const float s = openScale_[level - 1];
+      LaneBound next;
+      if (s < 0.0f || !lift(x, s, openLanes_.data() + 4 * (level - 1), next)) break;
+      x = next;
+    }
+    storeBound(x, pb);
+  }
+#endif
+  while (level-- > 0) {
     const SpaceMap& m = maps[openMaps_[level]];
     Bounds box = m.worldBounds(pb.box);
     const float s = openScale_[level];
@@ -189,7 +302,6 @@ PrimitiveBound FieldProgram::worldBound(const glm::vec3& a, const glm::vec3& b, 
       pb.radius = 0.5f * box.diagonal();
     }
   }
-  return pb;
 }
 
 bool FieldProgram::pushPrims(PrimClass cls, uint32_t local, bool combineWithPrevious, bool combineMax,
@@ -215,17 +327,37 @@ bool FieldProgram::pushPrims(PrimClass cls, uint32_t local, bool combineWithPrev
   return true;
 }
 
-bool FieldProgram::addSkeletal(const SkeletalPrimitive& p, bool combineWithPrevious, bool combineMax) {
+PrimitiveBound FieldProgram::pushSkeletal(const SkeletalPrimitive& p) {
   glm::vec3 a, b;
   float r;
   Skeleton s = p.skeleton;
   s.curve = p.skeleton.kind == SkeletonKind::Curve ? curvePoints.data() + p.curveFirst : nullptr;
   skeletonEnclosingCapsule(s, a, b, r);
-  uint32_t local = uint32_t(skeletal.size());
   skeletal.push_back(p);
   skeletalReach.push_back({a, b, r + std::max(p.radius, 0.0f)});
-  return pushPrims(PrimClass::Skeletal, local, combineWithPrevious, combineMax,
-                   worldBound(a, b, r + std::max(p.radius, 0.0f)));
+  return localBound(a, b, r + std::max(p.radius, 0.0f));
+}
+
+bool FieldProgram::addSkeletal(const SkeletalPrimitive& p, bool combineWithPrevious, bool combineMax) {
+  const uint32_t local = uint32_t(skeletal.size());
+  PrimitiveBound bound = pushSkeletal(p);
+  carryToWorld(&bound, 1);
+  return pushPrims(PrimClass::Skeletal, local, combineWithPrevious, combineMax, bound);
+}
+
+bool FieldProgram::addSkeletalRun(const SkeletalPrimitive* p, size_t n, bool combineWithPrevious, bool combineMax) {
+  thread_local std::vector<PrimitiveBound> bounds;
+  bounds.clear();
+  const uint32_t local = uint32_t(skeletal.size());
+  for (size_t i = 0; i < n; ++i) bounds.push_back(pushSkeletal(p[i]));
+  carryToWorld(bounds.data(), n);
+  bool pushed = false;
+  for (size_t i = 0; i < n; ++i) {
+    const bool added =
+        pushPrims(PrimClass::Skeletal, local + uint32_t(i), combineWithPrevious || i > 0, combineMax, bounds[i]);
+    if (i == 0) pushed = added;
+  }
+  return pushed;
 }
 
 bool FieldProgram::addConvolution(const glm::vec3& a, const glm::vec3& b, float radius, float sharpness, float eps,
@@ -281,6 +413,8 @@ void FieldProgram::beginMap(const SpaceMap& m) {
   openBegins_.push_back(uint32_t(ops.size()));
   float scale;
   openScale_.push_back(m.kind == SpaceMapKind::Affine && uniformScaleRigid(m.forwardLinear, scale) ? scale : -1.0f);
+  for (int c = 0; c < 3; ++c) openLanes_.emplace_back(m.forwardLinear[c], 0.0f);
+  openLanes_.emplace_back(m.origin, 0.0f);
   maps.push_back(m);
   ops.push_back(op);
 }
@@ -293,6 +427,7 @@ void FieldProgram::endMap() {
   openMaps_.pop_back();
   openBegins_.pop_back();
   openScale_.pop_back();
+  openLanes_.resize(openLanes_.size() - 4);
   ops.push_back(op);
 }
 
@@ -313,6 +448,7 @@ void FieldProgram::reset() {
   openMaps_.clear();
   openBegins_.clear();
   openScale_.clear();
+  openLanes_.clear();
   outermostEnd_.clear();
   primsBefore_.clear();
   bounds_ = Bounds{};
@@ -327,12 +463,18 @@ void FieldProgram::finish() {
   static std::atomic<uint64_t> nextIdentity{1};
   identity_ = nextIdentity.fetch_add(1);
   foldWideOperators(ops);
-  // Empty values, subtree extents and stack depth by a symbolic run.
-  std::vector<float> vals;
-  std::vector<uint32_t> begins;
-  std::vector<uint32_t> mapBegins;
-  std::vector<Bounds> boxes;
-  std::vector<Bounds> reach;  // supports under each open map
+  // Empty values, subtree extents and stack depth by a symbolic run (in per-thread memory, kept:
+  // a program rebuilt every frame allocates nothing here once warm).
+  thread_local std::vector<float> vals;
+  thread_local std::vector<uint32_t> begins;
+  thread_local std::vector<uint32_t> mapBegins;
+  thread_local std::vector<Bounds> boxes;
+  thread_local std::vector<Bounds> reach;  // supports under each open map
+  vals.clear();
+  begins.clear();
+  mapBegins.clear();
+  boxes.clear();
+  reach.clear();
   mapReach_.assign(maps.size(), Bounds{});
   int depth = 0;
   maxStack_ = 0;

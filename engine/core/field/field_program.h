@@ -121,6 +121,10 @@ class FieldProgram {
   // Each add returns true when it pushed a new operand, false when the primitive
   // joined the previous Prims op (combineWithPrevious, same class and mode).
   bool addSkeletal(const SkeletalPrimitive& p, bool combineWithPrevious, bool combineMax);
+  // addSkeletal of p[0..n) in turn, the first joining the previous op when combineWithPrevious and the
+  // others the first (a Coons patch's triangles): the same program, their bounds computed together.
+  // Returns what addSkeletal of the first returns (false when n is 0).
+  bool addSkeletalRun(const SkeletalPrimitive* p, size_t n, bool combineWithPrevious, bool combineMax);
   // Convolution segment a -> b whose long-segment surface lies at `radius`
   // (weight from the radius rule with this program's threshold); contributions
   // under eps * T are cut.
@@ -171,11 +175,20 @@ class FieldProgram {
  private:
   bool pushPrims(PrimClass cls, uint32_t local, bool combineWithPrevious, bool combineMax, const PrimitiveBound& b);
   PrimitiveBound worldBound(const glm::vec3& a, const glm::vec3& b, float radius) const;
+  // Local bounds (a capsule and its box) carried out through the open maps to world space, in place.
+  void carryToWorld(PrimitiveBound* bounds, size_t n) const;
+  // One bound carried out through the open maps below `level` (those above it already applied).
+  void finishBound(PrimitiveBound& pb, size_t level) const;
+  // Records a skeletal primitive and its reach; returns its local bound.
+  PrimitiveBound pushSkeletal(const SkeletalPrimitive& p);
   std::vector<uint32_t> openMaps_;    // while building
   std::vector<uint32_t> openBegins_;  // while building: op index of each open BeginMap
   // While building, per open map: its scale when affine with a uniformly scaled rotation (a
   // primitive's capsule bound then maps to a capsule), else -1. Measured once per map, not per primitive.
   std::vector<float> openScale_;
+  // While building, per open map: forwardLinear's three columns then origin, lane 3 zero (loaded
+  // as four-float registers by worldBound's vector path).
+  std::vector<glm::vec4> openLanes_;
   std::vector<uint32_t> outermostEnd_;
   std::vector<uint32_t> primsBefore_;  // primitives in ops[0..i): global id of the first at or after op i
   Bounds bounds_;

@@ -4,31 +4,11 @@
 #include <cmath>
 #include <limits>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
+#include "field/space_map_simd.h"
 
 namespace animorph {
 
 namespace {
-
-#if defined(__SSE2__)
-// A vec3 in lanes 0-2 (lane 3 is whatever follows it in memory: vec3s of a SpaceMap, its mat3s'
-// columns, are followed by more of the map, and lane 3 is never stored).
-__m128 lanes(const glm::vec3& v) { return _mm_loadu_ps(&v.x); }
-void store3(__m128 v, glm::vec3& out) {
-  alignas(16) float f[4];
-  _mm_store_ps(f, v);
-  out = glm::vec3(f[0], f[1], f[2]);
-}
-// origin + m * c with glm's operations per component: origin + ((m[0] c.x + m[1] c.y) + m[2] c.z).
-__m128 affineToWorld(const glm::mat3& m, const glm::vec3& origin, const glm::vec3& c) {
-  const __m128 x = _mm_mul_ps(lanes(m[0]), _mm_set1_ps(c.x));
-  const __m128 y = _mm_mul_ps(lanes(m[1]), _mm_set1_ps(c.y));
-  const __m128 z = _mm_mul_ps(lanes(m[2]), _mm_set1_ps(c.z));
-  return _mm_add_ps(lanes(origin), _mm_add_ps(_mm_add_ps(x, y), z));
-}
-#endif
 
 // Rows e_x, e_y, e_z with e_z along axis and e_y as close to `up` as possible.
 glm::mat3 warpFrame(const glm::vec3& axis, const glm::vec3& up) {
@@ -188,9 +168,8 @@ glm::vec3 SpaceMap::toLocal(const glm::vec3& x, glm::mat3* J) const {
 glm::vec3 SpaceMap::toWorld(const glm::vec3& c) const {
   if (kind == SpaceMapKind::Affine) {
 #if defined(__SSE2__)
-    glm::vec3 w;
-    store3(affineToWorld(forwardLinear, origin, c), w);
-    return w;
+    return simd::vec3Of(simd::affineToWorld(simd::lanes(forwardLinear[0]), simd::lanes(forwardLinear[1]),
+                                            simd::lanes(forwardLinear[2]), simd::lanes(origin), simd::load3(c)));
 #else
     return origin + forwardLinear * c;
 #endif
@@ -238,21 +217,11 @@ Bounds SpaceMap::worldBounds(const Bounds& child) const {
     const glm::mat3& m = forwardLinear;
 #if defined(__SSE2__)
     {
-      // The same operations per lane: std::min(a, b) is b < a ? b : a, which is _mm_min_ps(b, a)
-      // (signed zeros and NaNs included), and std::max(a, b) is _mm_max_ps(b, a).
-      const __m128 c0 = lanes(m[0]), c1 = lanes(m[1]), c2 = lanes(m[2]);
-      const __m128 x0 = _mm_mul_ps(c0, _mm_set1_ps(child.min.x)), x1 = _mm_mul_ps(c0, _mm_set1_ps(child.max.x));
-      const __m128 y0 = _mm_mul_ps(c1, _mm_set1_ps(child.min.y)), y1 = _mm_mul_ps(c1, _mm_set1_ps(child.max.y));
-      const __m128 z0 = _mm_mul_ps(c2, _mm_set1_ps(child.min.z)), z1 = _mm_mul_ps(c2, _mm_set1_ps(child.max.z));
-      const __m128 o = lanes(origin);
-      const __m128 lo =
-          _mm_add_ps(o, _mm_add_ps(_mm_add_ps(_mm_min_ps(x1, x0), _mm_min_ps(y1, y0)), _mm_min_ps(z1, z0)));
-      const __m128 hi =
-          _mm_add_ps(o, _mm_add_ps(_mm_add_ps(_mm_max_ps(x1, x0), _mm_max_ps(y1, y0)), _mm_max_ps(z1, z0)));
-      const __m128 zero = _mm_setzero_ps();
-      if ((_mm_movemask_ps(_mm_or_ps(_mm_cmpeq_ps(lo, zero), _mm_cmpeq_ps(hi, zero))) & 7) == 0) {
-        store3(lo, out.min);
-        store3(hi, out.max);
+      __m128 lo, hi;
+      if (simd::affineWorldBox(simd::lanes(m[0]), simd::lanes(m[1]), simd::lanes(m[2]), simd::lanes(origin),
+                               simd::load3(child.min), simd::load3(child.max), lo, hi)) {
+        out.min = simd::vec3Of(lo);
+        out.max = simd::vec3Of(hi);
         return out;
       }
     }

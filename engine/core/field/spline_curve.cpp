@@ -7,20 +7,12 @@ namespace animorph {
 
 CurvePoint evaluateCurve(const glm::vec3* p, int n, float s) {
   if (n <= 1) return {n == 1 ? p[0] : glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
-  int spans = n - 1;
-  float x = std::clamp(s, 0.0f, 1.0f) * float(spans);
-  int i = std::min(int(x), spans - 1);
-  float u = x - float(i);
-  glm::vec3 p1 = p[i], p2 = p[i + 1];
-  glm::vec3 p0 = i > 0 ? p[i - 1] : 2.0f * p1 - p2;
-  glm::vec3 p3 = i + 2 < n ? p[i + 2] : 2.0f * p2 - p1;
-  glm::vec3 c1 = 0.5f * (p2 - p0);
-  glm::vec3 c2 = 0.5f * (2.0f * p0 - 5.0f * p1 + 4.0f * p2 - p3);
-  glm::vec3 c3 = 0.5f * (-p0 + 3.0f * p1 - 3.0f * p2 + p3);
+  const CurveSpan c = curveSpan(p, n, s);
+  const float u = c.u;
   CurvePoint r;
-  r.position = p1 + u * (c1 + u * (c2 + u * c3));
-  r.tangent = (c1 + u * (2.0f * c2 + 3.0f * u * c3)) * float(spans);
-  r.second = (2.0f * c2 + 6.0f * u * c3) * float(spans * spans);
+  r.position = c.position();
+  r.tangent = (c.c1 + u * (2.0f * c.c2 + 3.0f * u * c.c3)) * float(c.spans);
+  r.second = (2.0f * c.c2 + 6.0f * u * c.c3) * float(c.spans * c.spans);
   return r;
 }
 
