@@ -5,6 +5,7 @@
 // run-time dispatch. atan2 is a polynomial (Cephes atanf, ~1 ulp).
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 #include "field/field_program.h"
@@ -185,6 +186,226 @@ inline float segmentBoxGap2(const glm::vec3& a, const glm::vec3& b, const glm::v
   return glm::dot(gap, gap);
 }
 
+// A union (max) of triangle primitives sharing radius R, intensity I > 0 and an integer stiffness
+// (the wings' Coons patches): g is then non-increasing in the squared distance d2 as computed in
+// float (d2 / R^2, 1 - x and the multiply chain are each monotone), so a triangle whose distance
+// to a point is at least that of the point's best triangle so far gives a value <= the kept one
+// and cannot change it. Triangles are bounded by the disc (centroid, reach - R) in their plane,
+// with a margin far above float rounding, and visited nearest the points first: the largest value
+// does not depend on the order. With gradients, a second pass in the program's order finds the
+// first triangle reaching each point's largest value (the plain loop keeps its gradient), among
+// the triangles that may reach it. Every value and gradient is the plain loop's. False: not such
+// a union.
+struct TriangleUnion {
+  struct Candidate {
+    float near;  // lower bound of the distance from the points' box to the triangle
+    int k;
+  };
+  std::vector<Candidate> order;
+  std::vector<float> limit, slack;        // per point: distance bound a triangle must beat; test
+  std::vector<int> pass;                  // points passing the test
+  std::vector<glm::vec3> groupCentre, groupHalf;
+  std::vector<float> groupLimit;          // per group of points: the largest limit
+  float R = 0.0f, I = 0.0f, K = 0.0f, margin = 0.0f;
+};
+
+constexpr int kPointGroup = 16;  // points per group: a run's points are numbered along the grid
+
+// One pass over the candidates in `order`: each triangle is tested against the points whose
+// limit it may beat (by its disc bound), then evaluated there; `visit(j, d, d2, v, gf)` decides.
+// Returns after the first candidate no nearer than every limit when `sorted` (the rest are
+// farther still).
+template <typename Visit>
+void trianglePass(TriangleUnion& u, const FieldProgram& prog, const uint32_t* idx, const float* x, const float* y,
+                  const float* z, int n, bool sorted, Visit visit) {
+  const int groups = (n + kPointGroup - 1) / kPointGroup;
+  float* __restrict limit = u.limit.data();
+  float* __restrict slackBuffer = u.slack.data();
+  int* __restrict pass = u.pass.data();
+  for (int g = 0; g < groups; ++g) {
+    float m = 0.0f;
+    for (int j = g * kPointGroup; j < std::min(n, (g + 1) * kPointGroup); ++j) m = std::max(m, limit[j]);
+    u.groupLimit[size_t(g)] = m;
+  }
+  float farthest = *std::max_element(u.groupLimit.begin(), u.groupLimit.begin() + groups);
+  const float R = u.R, I = u.I, K = u.K, margin = u.margin;
+  for (const TriangleUnion::Candidate& cand : u.order) {
+    if (cand.near - margin >= farthest) {
+      if (sorted) break;
+      continue;
+    }
+    const SkeletalReach& bound = prog.skeletalReach[idx[cand.k]];
+    const Skeleton& s = prog.skeletal[idx[cand.k]].skeleton;
+    const glm::vec3 c = bound.a;
+    const float ball = std::max(0.0f, bound.reach - R);
+    const float reach2 = bound.reach * bound.reach;
+    // The triangle lies in the disc of radius `ball` about c in its plane (unit normal nrm; none
+    // for a degenerate triangle: the ball alone).
+    glm::vec3 nrm = glm::cross(s.p1 - s.p0, s.p2 - s.p0);
+    const float nl = glm::length(nrm);
+    nrm = nl > 0.0f && std::isfinite(nl) ? nrm / nl : glm::vec3(0.0f);
+    const float cx = c.x, cy = c.y, cz = c.z, nx = nrm.x, ny = nrm.y, nz = nrm.z;
+    bool changed = false;
+    for (int g = 0; g < groups; ++g) {
+      // Distance from the group's box to the triangle, at least: to its ball, and to its plane.
+      const glm::vec3 off = u.groupCentre[size_t(g)] - c, half = u.groupHalf[size_t(g)];
+      const glm::vec3 gap = glm::max(glm::abs(off) - half, glm::vec3(0.0f));
+      const float toBall = std::sqrt(glm::dot(gap, gap)) - ball;
+      const float toPlane = std::abs(glm::dot(off, nrm)) - glm::dot(half, glm::abs(nrm));
+      if (std::max(toBall, toPlane) - margin >= u.groupLimit[size_t(g)]) continue;
+      const int j0 = g * kPointGroup, j1 = std::min(n, j0 + kPointGroup);
+      // Per point, negative when the triangle may beat its limit: inside the plain loop's own
+      // test (the same float expression: the same points pass it) and the disc nearer than the
+      // limit. A loop the compiler vectorises, then a branch-free compaction.
+      for (int j = j0; j < j1; ++j) {
+        float ex = x[j] - cx, ey = y[j] - cy, ez = z[j] - cz;
+        float gap2 = ex * ex + ey * ey + ez * ez;
+        float h = ex * nx + ey * ny + ez * nz;
+        float s2 = std::max(gap2 - h * h, 0.0f);
+        float sd = std::sqrt(s2) - ball;
+        float side = 0.5f * (sd + std::fabs(sd));  // max(sd, 0), in a form that vectorises
+        float reachJ = limit[j] + margin;
+        float slack = h * h + side * side - reachJ * reachJ;
+        slackBuffer[j] = std::max(slack, gap2 - reach2);  // gap2 - reach2 < 0 exactly when gap2 < reach2
+      }
+      int inside = 0;
+      for (int j = j0; j < j1; ++j) {
+        pass[inside] = j;
+        inside += slackBuffer[j] < 0.0f ? 1 : 0;
+      }
+      bool groupChanged = false;
+      for (int w = 0; w < inside; ++w) {
+        const int j = pass[w];
+        glm::vec3 q(x[j], y[j], z[j]);
+        glm::vec3 d = q - closestOnTriangle(q, s.p0, s.p1, s.p2);
+        float d2 = glm::dot(d, d);
+        float gf;
+        float v = skeletalPotential(d2, R, I, K, gf);
+        groupChanged |= visit(j, d, d2, v, gf);
+      }
+      if (groupChanged) {
+        float m = 0.0f;
+        for (int j = j0; j < j1; ++j) m = std::max(m, limit[j]);
+        u.groupLimit[size_t(g)] = m;
+        changed = true;
+      }
+    }
+    if (changed) farthest = *std::max_element(u.groupLimit.begin(), u.groupLimit.begin() + groups);
+  }
+}
+
+bool triangleUnionLoop(const FieldProgram& prog, const uint32_t* idx, int count, const float* x, const float* y,
+                       const float* z, int n, const glm::vec3& boxLo, const glm::vec3& boxHi, float* f, float* gx,
+                       float* gy, float* gz) {
+  thread_local TriangleUnion u;
+  u.order.clear();
+  float ballMax = 0.0f;
+  for (int k = 0; k < count; ++k) {
+    const SkeletalReach& bound = prog.skeletalReach[idx[k]];
+    const float gap2 = segmentBoxGap2(bound.a, bound.b, boxLo, boxHi);
+    if (!std::isfinite(gap2) || bound.a != bound.b) return false;
+    if (gap2 >= bound.reach * bound.reach) continue;
+    const SkeletalPrimitive& p = prog.skeletal[idx[k]];
+    if (p.skeleton.kind != SkeletonKind::Triangle) return false;
+    if (u.order.empty()) {
+      u.R = p.radius;
+      u.I = p.intensity;
+      u.K = p.stiffness;
+      if (!(u.R > 0.0f) || !(u.I > 0.0f) || !(u.K >= 0.0f && u.K <= 8.0f && float(int(u.K)) == u.K)) return false;
+    } else if (p.radius != u.R || p.intensity != u.I || p.stiffness != u.K) {
+      return false;
+    }
+    const float ball = std::max(0.0f, bound.reach - u.R);
+    ballMax = std::max(ballMax, ball);
+    u.order.push_back({std::sqrt(gap2) - ball, k});
+  }
+  if (u.order.size() < 2) return false;
+  const float R = u.R, I = u.I, K = u.K;
+  // Float rounding of the distances is ~1e-7 of the coordinates' size; the margin is 100 times that.
+  const float extent = std::max({std::abs(boxLo.x), std::abs(boxLo.y), std::abs(boxLo.z), std::abs(boxHi.x),
+                                 std::abs(boxHi.y), std::abs(boxHi.z)});
+  u.margin = 1e-5f * (extent + R + ballMax);
+  if (u.limit.size() < size_t(n)) {
+    u.limit.resize(size_t(n));
+    u.slack.resize(size_t(n));
+    u.pass.resize(size_t(n));
+  }
+  const int groups = (n + kPointGroup - 1) / kPointGroup;
+  u.groupCentre.resize(size_t(groups));
+  u.groupHalf.resize(size_t(groups));
+  u.groupLimit.resize(size_t(groups));
+  for (int g = 0; g < groups; ++g) {
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (int j = g * kPointGroup; j < std::min(n, (g + 1) * kPointGroup); ++j) {
+      lo = glm::min(lo, glm::vec3(x[j], y[j], z[j]));
+      hi = glm::max(hi, glm::vec3(x[j], y[j], z[j]));
+    }
+    u.groupCentre[size_t(g)] = 0.5f * (lo + hi);
+    u.groupHalf[size_t(g)] = 0.5f * (hi - lo);
+  }
+  // Values: the limit is the distance of the best triangle so far (R: none reaches the point).
+  float* limit = u.limit.data();
+  for (int j = 0; j < n; ++j) limit[j] = R;
+  std::sort(u.order.begin(), u.order.end(), [](const TriangleUnion::Candidate& a, const TriangleUnion::Candidate& b) {
+    return a.near < b.near || (a.near == b.near && a.k < b.k);
+  });
+  trianglePass(u, prog, idx, x, y, z, n, true, [&](int j, const glm::vec3&, float d2, float v, float) {
+    if (!(v > f[j])) return false;
+    f[j] = v;
+    limit[j] = std::sqrt(d2);
+    return true;
+  });
+  if (!gx) return true;
+  // Gradients: the first triangle, in the program's order, whose value is the point's largest.
+  // Its squared distance is at most the largest float d2 with g(d2) = f (found by bisection on
+  // the bits: g is monotone), so the others lie beyond that distance plus the margin.
+  for (int j = 0; j < n; ++j) {
+    if (!(f[j] > 0.0f)) {
+      limit[j] = 0.0f;  // no triangle reaches the point: its gradient stays 0
+      continue;
+    }
+    float gf;
+    auto reaches = [&](uint32_t bits) {
+      float d2;
+      std::memcpy(&d2, &bits, 4);
+      return skeletalPotential(d2, R, I, K, gf) >= f[j];
+    };
+    uint32_t lo, hi;
+    const float loD2 = limit[j] * limit[j] * 0.9999995f, r2 = R * R;
+    std::memcpy(&lo, &loD2, 4);
+    std::memcpy(&hi, &r2, 4);
+    if (!reaches(lo)) {
+      lo = 0;  // g(0) = I >= f
+    } else {
+      // The plateau is mostly a few ulps wide: gallop up from the best d2, then bisect.
+      for (uint32_t step = 1; lo + step < hi && reaches(lo + step); step *= 2) lo += step;
+      for (uint32_t step = 1; lo + step < hi; step *= 2)
+        if (!reaches(lo + step)) {
+          hi = lo + step;
+          break;
+        }
+    }
+    while (hi - lo > 1) {  // g(lo) >= f > g(hi): non-negative floats order as their bits
+      const uint32_t mid = lo + (hi - lo) / 2;
+      (reaches(mid) ? lo : hi) = mid;
+    }
+    float plateau;
+    std::memcpy(&plateau, &lo, 4);
+    limit[j] = std::sqrt(plateau) * 1.0001f;
+  }
+  std::sort(u.order.begin(), u.order.end(),
+            [](const TriangleUnion::Candidate& a, const TriangleUnion::Candidate& b) { return a.k < b.k; });
+  trianglePass(u, prog, idx, x, y, z, n, false, [&](int j, const glm::vec3& d, float, float v, float gf) {
+    if (v != f[j]) return false;
+    gx[j] = gf * d.x;
+    gy[j] = gf * d.y;
+    gz[j] = gf * d.z;
+    limit[j] = 0.0f;  // found: later triangles pass no test of this point
+    return true;
+  });
+  return true;
+}
+
 template <bool kMax>
 void skeletalLoop(const FieldProgram& prog, const uint32_t* idx, int count, const float* x, const float* y,
                   const float* z, int n, const glm::vec3& boxLo, const glm::vec3& boxHi, float* f, float* gx,
@@ -302,7 +523,10 @@ void convolutionIntervalKernel(const ConvolutionData& c, const uint32_t* idx, in
 void skeletalKernel(const FieldProgram& prog, const uint32_t* idx, int count, bool combineMax, const float* x,
                     const float* y, const float* z, int n, const glm::vec3& boxLo, const glm::vec3& boxHi, float* f,
                     float* gx, float* gy, float* gz) {
-  if (combineMax) skeletalLoop<true>(prog, idx, count, x, y, z, n, boxLo, boxHi, f, gx, gy, gz);
+  if (combineMax) {
+    if (triangleUnionLoop(prog, idx, count, x, y, z, n, boxLo, boxHi, f, gx, gy, gz)) return;
+    skeletalLoop<true>(prog, idx, count, x, y, z, n, boxLo, boxHi, f, gx, gy, gz);
+  }
   else skeletalLoop<false>(prog, idx, count, x, y, z, n, boxLo, boxHi, f, gx, gy, gz);
 }
 
