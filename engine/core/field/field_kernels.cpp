@@ -197,63 +197,95 @@ inline float segmentBoxGap2(const glm::vec3& a, const glm::vec3& b, const glm::v
 // the triangles that may reach it. Every value and gradient is the plain loop's. False: not such
 // a union.
 struct TriangleUnion {
+  // The triangles reaching the points' box, structure of arrays: centroid, unit normal (0 for a
+  // degenerate triangle), radius of the disc about the centroid holding it, squared reach.
+  std::vector<float> cx, cy, cz, nx, ny, nz, ball, reach2;
+  std::vector<int> k;                  // index in the op's list
+  std::vector<float> near;             // per triangle: lower bound of its distance to one group
   struct Candidate {
-    float near;  // lower bound of the distance from the points' box to the triangle
-    int k;
+    float near;
+    int t;
   };
-  std::vector<Candidate> order;
-  std::vector<float> limit, slack;        // per point: distance bound a triangle must beat; test
-  std::vector<int> pass;                  // points passing the test
-  std::vector<glm::vec3> groupCentre, groupHalf;
-  std::vector<float> groupLimit;          // per group of points: the largest limit
+  std::vector<Candidate> list, sorted;  // one group's triangles, in visiting order
+  std::vector<float> limit, slack;     // per point: distance a triangle must beat; test
+  std::vector<int> pass;               // points passing the test
   float R = 0.0f, I = 0.0f, K = 0.0f, margin = 0.0f;
 };
 
 constexpr int kPointGroup = 16;  // points per group: a run's points are numbered along the grid
 
-// One pass over the candidates in `order`: each triangle is tested against the points whose
-// limit it may beat (by its disc bound), then evaluated there; `visit(j, d, d2, v, gf)` decides.
-// Returns after the first candidate no nearer than every limit when `sorted` (the rest are
-// farther still).
+// One pass over the points, a group of consecutive ones at a time: the group's triangles that may
+// come nearer than the largest of its points' limits (by the disc bounds, against the group's
+// box), nearest first when `nearFirst` (then up to the first no nearer than every limit: the rest
+// are farther still), else in the program's order; each is tested against the group's points by
+// the same bound, then evaluated where it may beat the limit: `visit(j, d, d2, v, gf)` decides
+// and returns true when it lowered limit[j].
 template <typename Visit>
 void trianglePass(TriangleUnion& u, const FieldProgram& prog, const uint32_t* idx, const float* x, const float* y,
-                  const float* z, int n, bool sorted, Visit visit) {
-  const int groups = (n + kPointGroup - 1) / kPointGroup;
+                  const float* z, int n, bool nearFirst, Visit visit) {
+  const int count = int(u.k.size());
   float* __restrict limit = u.limit.data();
   float* __restrict slackBuffer = u.slack.data();
+  float* __restrict nearBuffer = u.near.data();
   int* __restrict pass = u.pass.data();
-  for (int g = 0; g < groups; ++g) {
-    float m = 0.0f;
-    for (int j = g * kPointGroup; j < std::min(n, (g + 1) * kPointGroup); ++j) m = std::max(m, limit[j]);
-    u.groupLimit[size_t(g)] = m;
-  }
-  float farthest = *std::max_element(u.groupLimit.begin(), u.groupLimit.begin() + groups);
+  const float* __restrict cxs = u.cx.data();
+  const float* __restrict cys = u.cy.data();
+  const float* __restrict czs = u.cz.data();
+  const float* __restrict nxs = u.nx.data();
+  const float* __restrict nys = u.ny.data();
+  const float* __restrict nzs = u.nz.data();
+  const float* __restrict balls = u.ball.data();
   const float R = u.R, I = u.I, K = u.K, margin = u.margin;
-  for (const TriangleUnion::Candidate& cand : u.order) {
-    if (cand.near - margin >= farthest) {
-      if (sorted) break;
-      continue;
+  for (int j0 = 0; j0 < n; j0 += kPointGroup) {
+    const int j1 = std::min(n, j0 + kPointGroup);
+    float groupLimit = 0.0f;
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (int j = j0; j < j1; ++j) {
+      groupLimit = std::max(groupLimit, limit[j]);
+      lo = glm::min(lo, glm::vec3(x[j], y[j], z[j]));
+      hi = glm::max(hi, glm::vec3(x[j], y[j], z[j]));
     }
-    const SkeletalReach& bound = prog.skeletalReach[idx[cand.k]];
-    const Skeleton& s = prog.skeletal[idx[cand.k]].skeleton;
-    const glm::vec3 c = bound.a;
-    const float ball = std::max(0.0f, bound.reach - R);
-    const float reach2 = bound.reach * bound.reach;
-    // The triangle lies in the disc of radius `ball` about c in its plane (unit normal nrm; none
-    // for a degenerate triangle: the ball alone).
-    glm::vec3 nrm = glm::cross(s.p1 - s.p0, s.p2 - s.p0);
-    const float nl = glm::length(nrm);
-    nrm = nl > 0.0f && std::isfinite(nl) ? nrm / nl : glm::vec3(0.0f);
-    const float cx = c.x, cy = c.y, cz = c.z, nx = nrm.x, ny = nrm.y, nz = nrm.z;
-    bool changed = false;
-    for (int g = 0; g < groups; ++g) {
-      // Distance from the group's box to the triangle, at least: to its ball, and to its plane.
-      const glm::vec3 off = u.groupCentre[size_t(g)] - c, half = u.groupHalf[size_t(g)];
-      const glm::vec3 gap = glm::max(glm::abs(off) - half, glm::vec3(0.0f));
-      const float toBall = std::sqrt(glm::dot(gap, gap)) - ball;
-      const float toPlane = std::abs(glm::dot(off, nrm)) - glm::dot(half, glm::abs(nrm));
-      if (std::max(toBall, toPlane) - margin >= u.groupLimit[size_t(g)]) continue;
-      const int j0 = g * kPointGroup, j1 = std::min(n, j0 + kPointGroup);
+    if (!(groupLimit > 0.0f)) continue;
+    const float ox = 0.5f * (lo.x + hi.x), oy = 0.5f * (lo.y + hi.y), oz = 0.5f * (lo.z + hi.z);
+    const float hx = 0.5f * (hi.x - lo.x), hy = 0.5f * (hi.y - lo.y), hz = 0.5f * (hi.z - lo.z);
+    // Distance from the group's box to each triangle, at least: to its ball and to its plane
+    // (max(a, 0) and max(a, b) written with |.| so the loop vectorises; the margin covers their
+    // rounding).
+    for (int t = 0; t < count; ++t) {
+      float dx = std::fabs(ox - cxs[t]) - hx, dy = std::fabs(oy - cys[t]) - hy, dz = std::fabs(oz - czs[t]) - hz;
+      dx = 0.5f * (dx + std::fabs(dx));
+      dy = 0.5f * (dy + std::fabs(dy));
+      dz = 0.5f * (dz + std::fabs(dz));
+      float toBall = std::sqrt(dx * dx + dy * dy + dz * dz) - balls[t];
+      float toPlane = std::fabs((ox - cxs[t]) * nxs[t] + (oy - cys[t]) * nys[t] + (oz - czs[t]) * nzs[t]) -
+                      (hx * std::fabs(nxs[t]) + hy * std::fabs(nys[t]) + hz * std::fabs(nzs[t]));
+      nearBuffer[t] = 0.5f * (toBall + toPlane + std::fabs(toBall - toPlane));
+    }
+    u.list.clear();
+    float nearest = INFINITY;
+    for (int t = 0; t < count; ++t)
+      if (nearBuffer[t] - margin < groupLimit) {
+        u.list.push_back({nearBuffer[t], t});
+        nearest = std::min(nearest, nearBuffer[t]);
+      }
+    if (nearFirst && u.list.size() > 1) {
+      // Nearest first, roughly: a counting sort into bins of the bound (a full sort costs more
+      // than the order saves).
+      constexpr int kBins = 16;
+      int start[kBins + 1] = {};
+      const float scale = float(kBins) / std::max(groupLimit + margin - nearest, 1e-30f);
+      auto bin = [&](float near) { return std::clamp(int((near - nearest) * scale), 0, kBins - 1); };
+      for (const TriangleUnion::Candidate& c : u.list) ++start[bin(c.near) + 1];
+      for (int b = 0; b < kBins; ++b) start[b + 1] += start[b];
+      u.sorted.resize(u.list.size());
+      for (const TriangleUnion::Candidate& c : u.list) u.sorted[size_t(start[bin(c.near)]++)] = c;
+      u.list.swap(u.sorted);
+    }
+    for (const TriangleUnion::Candidate& cand : u.list) {
+      if (cand.near - margin >= groupLimit) continue;
+      const int t = cand.t;
+      const float cx = cxs[t], cy = cys[t], cz = czs[t], nx = nxs[t], ny = nys[t], nz = nzs[t], ball = balls[t];
+      const float reach2 = u.reach2[size_t(t)];
       // Per point, negative when the triangle may beat its limit: inside the plain loop's own
       // test (the same float expression: the same points pass it) and the disc nearer than the
       // limit. A loop the compiler vectorises, then a branch-free compaction.
@@ -273,7 +305,9 @@ void trianglePass(TriangleUnion& u, const FieldProgram& prog, const uint32_t* id
         pass[inside] = j;
         inside += slackBuffer[j] < 0.0f ? 1 : 0;
       }
-      bool groupChanged = false;
+      if (inside == 0) continue;
+      const Skeleton& s = prog.skeletal[idx[u.k[size_t(t)]]].skeleton;
+      bool changed = false;
       for (int w = 0; w < inside; ++w) {
         const int j = pass[w];
         glm::vec3 q(x[j], y[j], z[j]);
@@ -281,16 +315,13 @@ void trianglePass(TriangleUnion& u, const FieldProgram& prog, const uint32_t* id
         float d2 = glm::dot(d, d);
         float gf;
         float v = skeletalPotential(d2, R, I, K, gf);
-        groupChanged |= visit(j, d, d2, v, gf);
+        changed |= visit(j, d, d2, v, gf);
       }
-      if (groupChanged) {
-        float m = 0.0f;
-        for (int j = j0; j < j1; ++j) m = std::max(m, limit[j]);
-        u.groupLimit[size_t(g)] = m;
-        changed = true;
+      if (changed) {
+        groupLimit = 0.0f;
+        for (int j = j0; j < j1; ++j) groupLimit = std::max(groupLimit, limit[j]);
       }
     }
-    if (changed) farthest = *std::max_element(u.groupLimit.begin(), u.groupLimit.begin() + groups);
   }
 }
 
@@ -298,7 +329,8 @@ bool triangleUnionLoop(const FieldProgram& prog, const uint32_t* idx, int count,
                        const float* z, int n, const glm::vec3& boxLo, const glm::vec3& boxHi, float* f, float* gx,
                        float* gy, float* gz) {
   thread_local TriangleUnion u;
-  u.order.clear();
+  for (auto* v : {&u.cx, &u.cy, &u.cz, &u.nx, &u.ny, &u.nz, &u.ball, &u.reach2}) v->clear();
+  u.k.clear();
   float ballMax = 0.0f;
   for (int k = 0; k < count; ++k) {
     const SkeletalReach& bound = prog.skeletalReach[idx[k]];
@@ -307,7 +339,7 @@ bool triangleUnionLoop(const FieldProgram& prog, const uint32_t* idx, int count,
     if (gap2 >= bound.reach * bound.reach) continue;
     const SkeletalPrimitive& p = prog.skeletal[idx[k]];
     if (p.skeleton.kind != SkeletonKind::Triangle) return false;
-    if (u.order.empty()) {
+    if (u.k.empty()) {
       u.R = p.radius;
       u.I = p.intensity;
       u.K = p.stiffness;
@@ -315,11 +347,24 @@ bool triangleUnionLoop(const FieldProgram& prog, const uint32_t* idx, int count,
     } else if (p.radius != u.R || p.intensity != u.I || p.stiffness != u.K) {
       return false;
     }
+    const Skeleton& s = p.skeleton;
+    glm::vec3 nrm = glm::cross(s.p1 - s.p0, s.p2 - s.p0);
+    const float nl = glm::length(nrm);
+    nrm = nl > 0.0f && std::isfinite(nl) ? nrm / nl : glm::vec3(0.0f);
     const float ball = std::max(0.0f, bound.reach - u.R);
     ballMax = std::max(ballMax, ball);
-    u.order.push_back({std::sqrt(gap2) - ball, k});
+    u.cx.push_back(bound.a.x);
+    u.cy.push_back(bound.a.y);
+    u.cz.push_back(bound.a.z);
+    u.nx.push_back(nrm.x);
+    u.ny.push_back(nrm.y);
+    u.nz.push_back(nrm.z);
+    u.ball.push_back(ball);
+    u.reach2.push_back(bound.reach * bound.reach);
+    u.k.push_back(k);
   }
-  if (u.order.size() < 2) return false;
+  if (u.k.size() < 2) return false;
+  u.near.resize(u.k.size());
   const float R = u.R, I = u.I, K = u.K;
   // Float rounding of the distances is ~1e-7 of the coordinates' size; the margin is 100 times that.
   const float extent = std::max({std::abs(boxLo.x), std::abs(boxLo.y), std::abs(boxLo.z), std::abs(boxHi.x),
@@ -330,25 +375,9 @@ bool triangleUnionLoop(const FieldProgram& prog, const uint32_t* idx, int count,
     u.slack.resize(size_t(n));
     u.pass.resize(size_t(n));
   }
-  const int groups = (n + kPointGroup - 1) / kPointGroup;
-  u.groupCentre.resize(size_t(groups));
-  u.groupHalf.resize(size_t(groups));
-  u.groupLimit.resize(size_t(groups));
-  for (int g = 0; g < groups; ++g) {
-    glm::vec3 lo(INFINITY), hi(-INFINITY);
-    for (int j = g * kPointGroup; j < std::min(n, (g + 1) * kPointGroup); ++j) {
-      lo = glm::min(lo, glm::vec3(x[j], y[j], z[j]));
-      hi = glm::max(hi, glm::vec3(x[j], y[j], z[j]));
-    }
-    u.groupCentre[size_t(g)] = 0.5f * (lo + hi);
-    u.groupHalf[size_t(g)] = 0.5f * (hi - lo);
-  }
   // Values: the limit is the distance of the best triangle so far (R: none reaches the point).
   float* limit = u.limit.data();
   for (int j = 0; j < n; ++j) limit[j] = R;
-  std::sort(u.order.begin(), u.order.end(), [](const TriangleUnion::Candidate& a, const TriangleUnion::Candidate& b) {
-    return a.near < b.near || (a.near == b.near && a.k < b.k);
-  });
   trianglePass(u, prog, idx, x, y, z, n, true, [&](int j, const glm::vec3&, float d2, float v, float) {
     if (!(v > f[j])) return false;
     f[j] = v;
@@ -361,7 +390,7 @@ bool triangleUnionLoop(const FieldProgram& prog, const uint32_t* idx, int count,
   // the bits: g is monotone), so the others lie beyond that distance plus the margin.
   for (int j = 0; j < n; ++j) {
     if (!(f[j] > 0.0f)) {
-      limit[j] = 0.0f;  // no triangle reaches the point: its gradient stays 0
+      limit[j] = -u.margin;  // no triangle reaches the point: its gradient stays 0 (no test passes)
       continue;
     }
     float gf;
@@ -393,14 +422,12 @@ bool triangleUnionLoop(const FieldProgram& prog, const uint32_t* idx, int count,
     std::memcpy(&plateau, &lo, 4);
     limit[j] = std::sqrt(plateau) * 1.0001f;
   }
-  std::sort(u.order.begin(), u.order.end(),
-            [](const TriangleUnion::Candidate& a, const TriangleUnion::Candidate& b) { return a.k < b.k; });
   trianglePass(u, prog, idx, x, y, z, n, false, [&](int j, const glm::vec3& d, float, float v, float gf) {
     if (v != f[j]) return false;
     gx[j] = gf * d.x;
     gy[j] = gf * d.y;
     gz[j] = gf * d.z;
-    limit[j] = 0.0f;  // found: later triangles pass no test of this point
+    limit[j] = -u.margin;  // found: limit + margin is 0, and no later triangle passes the test
     return true;
   });
   return true;
