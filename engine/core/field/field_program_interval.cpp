@@ -154,9 +154,14 @@ Interval FieldProgram::interval(const ActiveProgram& prog, const glm::vec3& cent
           Interval v{0.0f, 0.0f};
           if (op.primClass == PrimClass::Skeletal) {
             const SkeletalPrimitive& p = skeletal[i];
-            Skeleton s = p.skeleton;
-            if (s.kind == SkeletonKind::Curve) s.curve = curvePoints.data() + p.curveFirst;
-            float d = glm::length(c - closestOnSkeleton(s, c));
+            // A point (most primitives: meta-primitives' instances) without the call and the copy.
+            glm::vec3 closest = p.skeleton.p0;
+            if (p.skeleton.kind != SkeletonKind::Point) {
+              Skeleton s = p.skeleton;
+              if (s.kind == SkeletonKind::Curve) s.curve = curvePoints.data() + p.curveFirst;
+              closest = closestOnSkeleton(s, c);
+            }
+            float d = glm::length(c - closest);
             float g0 = potentialAt(std::max(0.0f, d - rho), p.radius, p.intensity, p.stiffness);
             float g1 = potentialAt(d + rho, p.radius, p.intensity, p.stiffness);
             v = {std::min(g0, g1), std::max(g0, g1)};
@@ -177,7 +182,7 @@ Interval FieldProgram::interval(const ActiveProgram& prog, const glm::vec3& cent
         balls.push_back(glm::vec4(c, rho));
         const SpaceMap& m = maps[op.first];
         float stretch = m.localStretchBound(c, rho);
-        c = m.toLocal(c);
+        c = m.kind == SpaceMapKind::Affine ? m.linear * (c - m.origin) : m.toLocal(c);  // toLocal's own affine case
         rho = std::isinf(stretch) ? INFINITY : rho * stretch * 1.0001f;
         break;
       }
