@@ -122,6 +122,8 @@ bool triangleUnionInterval(const FieldProgram& P, const uint32_t* idx, uint32_t 
 Interval FieldProgram::interval(const ActiveProgram& prog, const glm::vec3& centre, float radius) const {
   thread_local std::vector<Interval> st;
   thread_local std::vector<glm::vec4> balls;
+  thread_local std::vector<float> affineStretch;  // per map of the program below (-1: not yet)
+  thread_local uint64_t affineStretchFor = 0;
   st.clear();
   balls.clear();
   glm::vec3 c = centre;
@@ -181,7 +183,19 @@ Interval FieldProgram::interval(const ActiveProgram& prog, const glm::vec3& cent
       case OpCode::BeginMap: {
         balls.push_back(glm::vec4(c, rho));
         const SpaceMap& m = maps[op.first];
-        float stretch = m.localStretchBound(c, rho);
+        float stretch;
+        if (m.kind == SpaceMapKind::Affine && identity_ != 0) {
+          // An affine map's bound does not depend on the ball: computed once per program and map.
+          if (affineStretchFor != identity_ || affineStretch.size() != maps.size()) {
+            affineStretch.assign(maps.size(), -1.0f);
+            affineStretchFor = identity_;
+          }
+          float& cached = affineStretch[op.first];
+          if (cached < 0.0f) cached = m.localStretchBound(c, rho);
+          stretch = cached;
+        } else {
+          stretch = m.localStretchBound(c, rho);
+        }
         c = m.kind == SpaceMapKind::Affine ? m.linear * (c - m.origin) : m.toLocal(c);  // toLocal's own affine case
         rho = std::isinf(stretch) ? INFINITY : rho * stretch * 1.0001f;
         break;
