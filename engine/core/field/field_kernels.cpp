@@ -216,10 +216,10 @@ constexpr int kPointGroup = 16;  // points per group: a run's points are numbere
 
 // One pass over the points, a group of consecutive ones at a time: the group's triangles that may
 // come nearer than the largest of its points' limits (by the disc bounds, against the group's
-// box), nearest first when `nearFirst` (then up to the first no nearer than every limit: the rest
-// are farther still), else in the program's order; each is tested against the group's points by
-// the same bound, then evaluated where it may beat the limit: `visit(j, d, d2, v, gf)` decides
-// and returns true when it lowered limit[j].
+// box), roughly nearest first when `nearFirst`, else in the program's order; each one still
+// nearer than that largest limit is tested against the group's points by the same bound, then
+// evaluated where it may beat the limit: `visit(j, d, d2, v, gf)` decides and returns true when
+// it lowered limit[j].
 template <typename Visit>
 void trianglePass(TriangleUnion& u, const FieldProgram& prog, const uint32_t* idx, const float* x, const float* y,
                   const float* z, int n, bool nearFirst, Visit visit) {
