@@ -5,6 +5,7 @@
 // run-time dispatch. atan2 is a polynomial (Cephes atanf, ~1 ulp).
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 #include "field/field_program.h"
@@ -185,6 +186,253 @@ inline float segmentBoxGap2(const glm::vec3& a, const glm::vec3& b, const glm::v
   return glm::dot(gap, gap);
 }
 
+// A union (max) of triangle primitives sharing radius R, intensity I > 0 and an integer stiffness
+// (the wings' Coons patches): g is then non-increasing in the squared distance d2 as computed in
+// float (d2 / R^2, 1 - x and the multiply chain are each monotone), so a triangle whose distance
+// to a point is at least that of the point's best triangle so far gives a value <= the kept one
+// and cannot change it. Triangles are bounded by the disc (centroid, reach - R) in their plane,
+// with a margin far above float rounding, and visited nearest the points first: the largest value
+// does not depend on the order. With gradients, a second pass in the program's order finds the
+// first triangle reaching each point's largest value (the plain loop keeps its gradient), among
+// the triangles that may reach it. Every value and gradient is the plain loop's. False: not such
+// a union.
+struct TriangleUnion {
+  // The triangles reaching the points' box, structure of arrays: centroid, unit normal (0 for a
+  // degenerate triangle), radius of the disc about the centroid holding it, squared reach.
+  std::vector<float> cx, cy, cz, nx, ny, nz, ball, reach2;
+  std::vector<int> k;                  // index in the op's list
+  std::vector<float> near;             // per triangle: lower bound of its distance to one group
+  struct Candidate {
+    float near;
+    int t;
+  };
+  std::vector<Candidate> list, sorted;  // one group's triangles, in visiting order
+  std::vector<float> limit, slack;     // per point: distance a triangle must beat; test
+  std::vector<int> pass;               // points passing the test
+  float R = 0.0f, I = 0.0f, K = 0.0f, margin = 0.0f;
+};
+
+constexpr int kPointGroup = 16;  // points per group: a run's points are numbered along the grid
+
+// One pass over the points, a group of consecutive ones at a time: the group's triangles that may
+// come nearer than the largest of its points' limits (by the disc bounds, against the group's
+// box), roughly nearest first when `nearFirst`, else in the program's order; each one still
+// nearer than that largest limit is tested against the group's points by the same bound, then
+// evaluated where it may beat the limit: `visit(j, d, d2, v, gf)` decides and returns true when
+// it lowered limit[j].
+template <typename Visit>
+void trianglePass(TriangleUnion& u, const FieldProgram& prog, const uint32_t* idx, const float* x, const float* y,
+                  const float* z, int n, bool nearFirst, Visit visit) {
+  const int count = int(u.k.size());
+  float* __restrict limit = u.limit.data();
+  float* __restrict slackBuffer = u.slack.data();
+  float* __restrict nearBuffer = u.near.data();
+  int* __restrict pass = u.pass.data();
+  const float* __restrict cxs = u.cx.data();
+  const float* __restrict cys = u.cy.data();
+  const float* __restrict czs = u.cz.data();
+  const float* __restrict nxs = u.nx.data();
+  const float* __restrict nys = u.ny.data();
+  const float* __restrict nzs = u.nz.data();
+  const float* __restrict balls = u.ball.data();
+  const float R = u.R, I = u.I, K = u.K, margin = u.margin;
+  for (int j0 = 0; j0 < n; j0 += kPointGroup) {
+    const int j1 = std::min(n, j0 + kPointGroup);
+    float groupLimit = 0.0f;
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (int j = j0; j < j1; ++j) {
+      groupLimit = std::max(groupLimit, limit[j]);
+      lo = glm::min(lo, glm::vec3(x[j], y[j], z[j]));
+      hi = glm::max(hi, glm::vec3(x[j], y[j], z[j]));
+    }
+    if (!(groupLimit > 0.0f)) continue;
+    const float ox = 0.5f * (lo.x + hi.x), oy = 0.5f * (lo.y + hi.y), oz = 0.5f * (lo.z + hi.z);
+    const float hx = 0.5f * (hi.x - lo.x), hy = 0.5f * (hi.y - lo.y), hz = 0.5f * (hi.z - lo.z);
+    // Distance from the group's box to each triangle, at least: to its ball and to its plane
+    // (max(a, 0) and max(a, b) written with |.| so the loop vectorises; the margin covers their
+    // rounding).
+    for (int t = 0; t < count; ++t) {
+      float dx = std::fabs(ox - cxs[t]) - hx, dy = std::fabs(oy - cys[t]) - hy, dz = std::fabs(oz - czs[t]) - hz;
+      dx = 0.5f * (dx + std::fabs(dx));
+      dy = 0.5f * (dy + std::fabs(dy));
+      dz = 0.5f * (dz + std::fabs(dz));
+      float toBall = std::sqrt(dx * dx + dy * dy + dz * dz) - balls[t];
+      float toPlane = std::fabs((ox - cxs[t]) * nxs[t] + (oy - cys[t]) * nys[t] + (oz - czs[t]) * nzs[t]) -
+                      (hx * std::fabs(nxs[t]) + hy * std::fabs(nys[t]) + hz * std::fabs(nzs[t]));
+      nearBuffer[t] = 0.5f * (toBall + toPlane + std::fabs(toBall - toPlane));
+    }
+    u.list.clear();
+    float nearest = INFINITY;
+    for (int t = 0; t < count; ++t)
+      if (nearBuffer[t] - margin < groupLimit) {
+        u.list.push_back({nearBuffer[t], t});
+        nearest = std::min(nearest, nearBuffer[t]);
+      }
+    if (nearFirst && u.list.size() > 1) {
+      // Nearest first, roughly: a counting sort into bins of the bound (a full sort costs more
+      // than the order saves).
+      constexpr int kBins = 16;
+      int start[kBins + 1] = {};
+      const float scale = float(kBins) / std::max(groupLimit + margin - nearest, 1e-30f);
+      auto bin = [&](float near) { return std::clamp(int((near - nearest) * scale), 0, kBins - 1); };
+      for (const TriangleUnion::Candidate& c : u.list) ++start[bin(c.near) + 1];
+      for (int b = 0; b < kBins; ++b) start[b + 1] += start[b];
+      u.sorted.resize(u.list.size());
+      for (const TriangleUnion::Candidate& c : u.list) u.sorted[size_t(start[bin(c.near)]++)] = c;
+      u.list.swap(u.sorted);
+    }
+    for (const TriangleUnion::Candidate& cand : u.list) {
+      if (cand.near - margin >= groupLimit) continue;
+      const int t = cand.t;
+      const float cx = cxs[t], cy = cys[t], cz = czs[t], nx = nxs[t], ny = nys[t], nz = nzs[t], ball = balls[t];
+      const float reach2 = u.reach2[size_t(t)];
+      // Per point, negative when the triangle may beat its limit: inside the plain loop's own
+      // test (the same float expression: the same points pass it) and the disc nearer than the
+      // limit. A loop the compiler vectorises, then a branch-free compaction.
+      for (int j = j0; j < j1; ++j) {
+        float ex = x[j] - cx, ey = y[j] - cy, ez = z[j] - cz;
+        float gap2 = ex * ex + ey * ey + ez * ez;
+        float h = ex * nx + ey * ny + ez * nz;
+        float s2 = std::max(gap2 - h * h, 0.0f);
+        float sd = std::sqrt(s2) - ball;
+        float side = 0.5f * (sd + std::fabs(sd));  // max(sd, 0), in a form that vectorises
+        float reachJ = limit[j] + margin;
+        float slack = h * h + side * side - reachJ * reachJ;
+        slackBuffer[j] = std::max(slack, gap2 - reach2);  // gap2 - reach2 < 0 exactly when gap2 < reach2
+      }
+      int inside = 0;
+      for (int j = j0; j < j1; ++j) {
+        pass[inside] = j;
+        inside += slackBuffer[j] < 0.0f ? 1 : 0;
+      }
+      if (inside == 0) continue;
+      const Skeleton& s = prog.skeletal[idx[u.k[size_t(t)]]].skeleton;
+      bool changed = false;
+      for (int w = 0; w < inside; ++w) {
+        const int j = pass[w];
+        glm::vec3 q(x[j], y[j], z[j]);
+        glm::vec3 d = q - closestOnTriangle(q, s.p0, s.p1, s.p2);
+        float d2 = glm::dot(d, d);
+        float gf;
+        float v = skeletalPotential(d2, R, I, K, gf);
+        changed |= visit(j, d, d2, v, gf);
+      }
+      if (changed) {
+        groupLimit = 0.0f;
+        for (int j = j0; j < j1; ++j) groupLimit = std::max(groupLimit, limit[j]);
+      }
+    }
+  }
+}
+
+bool triangleUnionLoop(const FieldProgram& prog, const uint32_t* idx, int count, const float* x, const float* y,
+                       const float* z, int n, const glm::vec3& boxLo, const glm::vec3& boxHi, float* f, float* gx,
+                       float* gy, float* gz) {
+  thread_local TriangleUnion u;
+  for (auto* v : {&u.cx, &u.cy, &u.cz, &u.nx, &u.ny, &u.nz, &u.ball, &u.reach2}) v->clear();
+  u.k.clear();
+  float ballMax = 0.0f;
+  for (int k = 0; k < count; ++k) {
+    const SkeletalReach& bound = prog.skeletalReach[idx[k]];
+    const float gap2 = segmentBoxGap2(bound.a, bound.b, boxLo, boxHi);
+    if (!std::isfinite(gap2) || bound.a != bound.b) return false;
+    if (gap2 >= bound.reach * bound.reach) continue;
+    const SkeletalPrimitive& p = prog.skeletal[idx[k]];
+    if (p.skeleton.kind != SkeletonKind::Triangle) return false;
+    if (u.k.empty()) {
+      u.R = p.radius;
+      u.I = p.intensity;
+      u.K = p.stiffness;
+      if (!(u.R > 0.0f) || !(u.I > 0.0f) || !(u.K >= 0.0f && u.K <= 8.0f && float(int(u.K)) == u.K)) return false;
+    } else if (p.radius != u.R || p.intensity != u.I || p.stiffness != u.K) {
+      return false;
+    }
+    const Skeleton& s = p.skeleton;
+    glm::vec3 nrm = glm::cross(s.p1 - s.p0, s.p2 - s.p0);
+    const float nl = glm::length(nrm);
+    nrm = nl > 0.0f && std::isfinite(nl) ? nrm / nl : glm::vec3(0.0f);
+    const float ball = std::max(0.0f, bound.reach - u.R);
+    ballMax = std::max(ballMax, ball);
+    u.cx.push_back(bound.a.x);
+    u.cy.push_back(bound.a.y);
+    u.cz.push_back(bound.a.z);
+    u.nx.push_back(nrm.x);
+    u.ny.push_back(nrm.y);
+    u.nz.push_back(nrm.z);
+    u.ball.push_back(ball);
+    u.reach2.push_back(bound.reach * bound.reach);
+    u.k.push_back(k);
+  }
+  if (u.k.size() < 2) return false;
+  u.near.resize(u.k.size());
+  const float R = u.R, I = u.I, K = u.K;
+  // Float rounding of the distances is ~1e-7 of the coordinates' size; the margin is 100 times that.
+  const float extent = std::max({std::abs(boxLo.x), std::abs(boxLo.y), std::abs(boxLo.z), std::abs(boxHi.x),
+                                 std::abs(boxHi.y), std::abs(boxHi.z)});
+  u.margin = 1e-5f * (extent + R + ballMax);
+  if (u.limit.size() < size_t(n)) {
+    u.limit.resize(size_t(n));
+    u.slack.resize(size_t(n));
+    u.pass.resize(size_t(n));
+  }
+  // Values: the limit is the distance of the best triangle so far (R: none reaches the point).
+  float* limit = u.limit.data();
+  for (int j = 0; j < n; ++j) limit[j] = R;
+  trianglePass(u, prog, idx, x, y, z, n, true, [&](int j, const glm::vec3&, float d2, float v, float) {
+    if (!(v > f[j])) return false;
+    f[j] = v;
+    limit[j] = std::sqrt(d2);
+    return true;
+  });
+  if (!gx) return true;
+  // Gradients: the first triangle, in the program's order, whose value is the point's largest.
+  // Its squared distance is at most the largest float d2 with g(d2) = f (found by bisection on
+  // the bits: g is monotone), so the others lie beyond that distance plus the margin.
+  for (int j = 0; j < n; ++j) {
+    if (!(f[j] > 0.0f)) {
+      limit[j] = -u.margin;  // no triangle reaches the point: its gradient stays 0 (no test passes)
+      continue;
+    }
+    float gf;
+    auto reaches = [&](uint32_t bits) {
+      float d2;
+      std::memcpy(&d2, &bits, 4);
+      return skeletalPotential(d2, R, I, K, gf) >= f[j];
+    };
+    uint32_t lo, hi;
+    const float loD2 = limit[j] * limit[j] * 0.9999995f, r2 = R * R;
+    std::memcpy(&lo, &loD2, 4);
+    std::memcpy(&hi, &r2, 4);
+    if (!reaches(lo)) {
+      lo = 0;  // g(0) = I >= f
+    } else {
+      // The plateau is mostly a few ulps wide: gallop up from the best d2, then bisect.
+      for (uint32_t step = 1; lo + step < hi && reaches(lo + step); step *= 2) lo += step;
+      for (uint32_t step = 1; lo + step < hi; step *= 2)
+        if (!reaches(lo + step)) {
+          hi = lo + step;
+          break;
+        }
+    }
+    while (hi - lo > 1) {  // g(lo) >= f > g(hi): non-negative floats order as their bits
+      const uint32_t mid = lo + (hi - lo) / 2;
+      (reaches(mid) ? lo : hi) = mid;
+    }
+    float plateau;
+    std::memcpy(&plateau, &lo, 4);
+    limit[j] = std::sqrt(plateau) * 1.0001f;
+  }
+  trianglePass(u, prog, idx, x, y, z, n, false, [&](int j, const glm::vec3& d, float, float v, float gf) {
+    if (v != f[j]) return false;
+    gx[j] = gf * d.x;
+    gy[j] = gf * d.y;
+    gz[j] = gf * d.z;
+    limit[j] = -u.margin;  // found: limit + margin is 0, and no later triangle passes the test
+    return true;
+  });
+  return true;
+}
+
 template <bool kMax>
 void skeletalLoop(const FieldProgram& prog, const uint32_t* idx, int count, const float* x, const float* y,
                   const float* z, int n, const glm::vec3& boxLo, const glm::vec3& boxHi, float* f, float* gx,
@@ -302,7 +550,10 @@ void convolutionIntervalKernel(const ConvolutionData& c, const uint32_t* idx, in
 void skeletalKernel(const FieldProgram& prog, const uint32_t* idx, int count, bool combineMax, const float* x,
                     const float* y, const float* z, int n, const glm::vec3& boxLo, const glm::vec3& boxHi, float* f,
                     float* gx, float* gy, float* gz) {
-  if (combineMax) skeletalLoop<true>(prog, idx, count, x, y, z, n, boxLo, boxHi, f, gx, gy, gz);
+  if (combineMax) {
+    if (triangleUnionLoop(prog, idx, count, x, y, z, n, boxLo, boxHi, f, gx, gy, gz)) return;
+    skeletalLoop<true>(prog, idx, count, x, y, z, n, boxLo, boxHi, f, gx, gy, gz);
+  }
   else skeletalLoop<false>(prog, idx, count, x, y, z, n, boxLo, boxHi, f, gx, gy, gz);
 }
 

@@ -17,21 +17,26 @@ namespace animorph {
 namespace {
 constexpr int kChunk = 1024;
 
-// The value of a map subtree made of one affine map over one point primitive (no gradients), at
-// every point of the run: the map loop's transform, then skeletalPotential's operations in its
-// order with t clamped at 0 instead of its early return, so the loop vectorises (in runChunk's
-// clones). The Prims op this replaces starts at 0 and adds v where d^2 < R^2 (a sum) or keeps the
-// larger (a union); 0 + v and max(0, v) here give the same values, and v is +-0 beyond R.
-template <int kPower, bool kMax>
-__attribute__((always_inline)) inline void mappedPointValues(const SpaceMap& m, const SkeletalPrimitive& p,
-                                                             const float* __restrict ix, const float* __restrict iy,
-                                                             const float* __restrict iz, int n, float* __restrict f) {
+// The value of a map subtree made of one affine map over one point primitive, at every point of
+// the run: the map loop's transform, then skeletalPotential's operations in its order.
+// Without gradients, t is clamped at 0 instead of its early return, so the loop vectorises (in
+// runChunk's clones). The Prims op this replaces starts at 0 and adds v where d^2 < R^2 (a sum)
+// or keeps the larger (a union); 0 + v and max(0, v) here give the same values, and v is +-0
+// beyond R. With gradients, the skeletal kernel adds v and gf * d to zeros (a sum: 0 + v) or keeps
+// them where v > 0 (a union), for the points within R (the others keep +0), and EndMap maps the
+// local gradient back by L^T, zeros included: the same operations, point by point.
+template <int kPower, bool kMax, bool kGrad>
+__attribute__((always_inline)) inline void mappedPointRun(const SpaceMap& m, const SkeletalPrimitive& p,
+                                                          const float* __restrict ix, const float* __restrict iy,
+                                                          const float* __restrict iz, int n, float* __restrict f,
+                                                          float* __restrict gx, float* __restrict gy,
+                                                          float* __restrict gz) {
   const glm::mat3 L = m.linear;
   const float l00 = L[0][0], l01 = L[0][1], l02 = L[0][2], l10 = L[1][0], l11 = L[1][1], l12 = L[1][2],
               l20 = L[2][0], l21 = L[2][1], l22 = L[2][2];
   const float o0 = m.origin.x, o1 = m.origin.y, o2 = m.origin.z;
   const float px = p.skeleton.p0.x, py = p.skeleton.p0.y, pz = p.skeleton.p0.z;
-  const float r2 = p.radius * p.radius, I = p.intensity;
+  const float r2 = p.radius * p.radius, I = p.intensity, K = p.stiffness;
   for (int i = 0; i < n; ++i) {
     float dx = ix[i] - o0, dy = iy[i] - o1, dz = iz[i] - o2;
     float qx = l00 * dx + l10 * dy + l20 * dz;
@@ -39,31 +44,68 @@ __attribute__((always_inline)) inline void mappedPointValues(const SpaceMap& m, 
     float qz = l02 * dx + l12 * dy + l22 * dz;
     float ex = qx - px, ey = qy - py, ez = qz - pz;
     float d2 = ex * ex + ey * ey + ez * ez;
-    float t = 1.0f - d2 / r2;
-    t = t > 0.0f ? t : 0.0f;  // beyond R (or NaN): v is +-0
-    float tk1 = 1.0f;         // powStiffness's multiply chain, written out
-    if constexpr (kPower >= 1) tk1 *= t;
-    if constexpr (kPower >= 2) tk1 *= t;
-    if constexpr (kPower >= 3) tk1 *= t;
-    float v = I * tk1 * t;
-    if constexpr (kMax) f[i] = v > 0.0f ? v : 0.0f;
-    else f[i] = 0.0f + v;
+    if constexpr (!kGrad) {
+      float t = 1.0f - d2 / r2;
+      t = t > 0.0f ? t : 0.0f;  // beyond R (or NaN): v is +-0
+      float tk1 = 1.0f;         // powStiffness's multiply chain, written out
+      if constexpr (kPower >= 1) tk1 *= t;
+      if constexpr (kPower >= 2) tk1 *= t;
+      if constexpr (kPower >= 3) tk1 *= t;
+      float v = I * tk1 * t;
+      if constexpr (kMax) f[i] = v > 0.0f ? v : 0.0f;
+      else f[i] = 0.0f + v;
+    } else {
+      bool within = d2 < r2;
+      float t = 1.0f - d2 / r2;
+      float tk1 = 1.0f;  // powStiffness's multiply chain, written out
+      if constexpr (kPower >= 1) tk1 *= t;
+      if constexpr (kPower >= 2) tk1 *= t;
+      if constexpr (kPower >= 3) tk1 *= t;
+      float gf = -2.0f * I * K / r2 * tk1;
+      float v = I * tk1 * t;
+      float fv, ax, ay, az;
+      if constexpr (kMax) {
+        bool keep = within && v > 0.0f;
+        fv = keep ? v : 0.0f;
+        ax = keep ? gf * ex : 0.0f;
+        ay = keep ? gf * ey : 0.0f;
+        az = keep ? gf * ez : 0.0f;
+      } else {
+        fv = within ? 0.0f + v : 0.0f;
+        ax = within ? 0.0f + gf * ex : 0.0f;
+        ay = within ? 0.0f + gf * ey : 0.0f;
+        az = within ? 0.0f + gf * ez : 0.0f;
+      }
+      f[i] = fv;
+      gx[i] = l00 * ax + l01 * ay + l02 * az;
+      gy[i] = l10 * ax + l11 * ay + l12 * az;
+      gz[i] = l20 * ax + l21 * ay + l22 * az;
+    }
   }
 }
 
-// mappedPointValues for a point primitive with R > 0 and an integer stiffness 1..4 (true); else
-// false (the ops run one by one).
-template <bool kMax>
-__attribute__((always_inline)) inline bool mappedPoint(const SpaceMap& m, const SkeletalPrimitive& p, const float* x,
-                                                       const float* y, const float* z, int n, float* f) {
-  if (p.skeleton.kind != SkeletonKind::Point || !(p.radius > 0.0f)) return false;
+// mappedPointRun (with gradients when gx is given) for a point primitive with R > 0 and an integer
+// stiffness 1..4 (true); else false (the ops run one by one).
+template <bool kMax, bool kGrad>
+__attribute__((always_inline)) inline bool mappedPointStiffness(const SpaceMap& m, const SkeletalPrimitive& p,
+                                                                const float* x, const float* y, const float* z,
+                                                                int n, float* f, float* gx, float* gy, float* gz) {
   const float K = p.stiffness;
-  if (K == 1.0f) mappedPointValues<0, kMax>(m, p, x, y, z, n, f);
-  else if (K == 2.0f) mappedPointValues<1, kMax>(m, p, x, y, z, n, f);
-  else if (K == 3.0f) mappedPointValues<2, kMax>(m, p, x, y, z, n, f);
-  else if (K == 4.0f) mappedPointValues<3, kMax>(m, p, x, y, z, n, f);
+  if (K == 1.0f) mappedPointRun<0, kMax, kGrad>(m, p, x, y, z, n, f, gx, gy, gz);
+  else if (K == 2.0f) mappedPointRun<1, kMax, kGrad>(m, p, x, y, z, n, f, gx, gy, gz);
+  else if (K == 3.0f) mappedPointRun<2, kMax, kGrad>(m, p, x, y, z, n, f, gx, gy, gz);
+  else if (K == 4.0f) mappedPointRun<3, kMax, kGrad>(m, p, x, y, z, n, f, gx, gy, gz);
   else return false;
   return true;
+}
+
+template <bool kMax>
+__attribute__((always_inline)) inline bool mappedPoint(const SpaceMap& m, const SkeletalPrimitive& p, const float* x,
+                                                       const float* y, const float* z, int n, float* f, float* gx,
+                                                       float* gy, float* gz) {
+  if (p.skeleton.kind != SkeletonKind::Point || !(p.radius > 0.0f)) return false;
+  return gx ? mappedPointStiffness<kMax, true>(m, p, x, y, z, n, f, gx, gy, gz)
+            : mappedPointStiffness<kMax, false>(m, p, x, y, z, n, f, gx, gy, gz);
 }
 }  // namespace
 
@@ -199,14 +241,18 @@ void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, con
       case OpCode::Const: pushConstant(op.emptyValue); break;
       case OpCode::BeginMap: {
         const SpaceMap& m = P.maps[op.first];
-        if (!grad && m.kind == SpaceMapKind::Affine && opIndex + 2 < A.ops.size()) {
+        if (m.kind == SpaceMapKind::Affine && opIndex + 2 < A.ops.size()) {
           // One affine map over one point primitive (a meta-primitive's instance): one loop.
           const FieldOp& prims = A.ops[opIndex + 1];
           if (prims.code == OpCode::Prims && prims.primClass == PrimClass::Skeletal && prims.count == 1 &&
               A.ops[opIndex + 2].code == OpCode::EndMap) {
             const SkeletalPrimitive& p = P.skeletal[A.indices[prims.first]];
-            const bool done = prims.combineMax ? mappedPoint<true>(m, p, cx[level], cy[level], cz[level], n, F(sp))
-                                               : mappedPoint<false>(m, p, cx[level], cy[level], cz[level], n, F(sp));
+            float* gx = grad ? GX(sp) : nullptr;
+            float* gy = grad ? GY(sp) : nullptr;
+            float* gz = grad ? GZ(sp) : nullptr;
+            const bool done =
+                prims.combineMax ? mappedPoint<true>(m, p, cx[level], cy[level], cz[level], n, F(sp), gx, gy, gz)
+                                 : mappedPoint<false>(m, p, cx[level], cy[level], cz[level], n, F(sp), gx, gy, gz);
             if (done) {
               zero[sp] = 0;
               ++sp;

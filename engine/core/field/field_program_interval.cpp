@@ -74,11 +74,56 @@ float potentialAt(float d, float R, float I, float k) {
   return skeletalPotential(d * d, R, I, k, gf);
 }
 
+// The interval of a union (max) of triangle primitives sharing radius R, intensity I > 0 and an
+// integer stiffness: each triangle gives [g(d + rho), g(max(0, d - rho))] for its distance d to
+// the centre, both non-increasing in d as computed in float, so the union's interval is the one of
+// the smallest d, and a triangle whose enclosing ball (centroid, reach - R) is no nearer than the
+// smallest d so far (with a margin far above float rounding) cannot change it. The same interval
+// as the plain loop, with the exact distance of only the triangles near the centre. False: not
+// such a union.
+bool triangleUnionInterval(const FieldProgram& P, const uint32_t* idx, uint32_t count, const glm::vec3& c, float rho,
+                           Interval& out) {
+  if (count < 2) return false;
+  const SkeletalPrimitive& first = P.skeletal[idx[0]];
+  const float R = first.radius, I = first.intensity, K = first.stiffness;
+  if (!(R > 0.0f) || !(I > 0.0f) || !(K >= 0.0f && K <= 8.0f && float(int(K)) == K)) return false;
+  thread_local std::vector<float> nearBound;
+  nearBound.resize(count);
+  float ballMax = 0.0f, nearest = INFINITY;
+  uint32_t nearestK = 0;
+  for (uint32_t k = 0; k < count; ++k) {
+    const SkeletalPrimitive& p = P.skeletal[idx[k]];
+    const SkeletalReach& bound = P.skeletalReach[idx[k]];
+    if (p.skeleton.kind != SkeletonKind::Triangle || p.radius != R || p.intensity != I || p.stiffness != K ||
+        bound.a != bound.b)
+      return false;
+    const float ball = std::max(0.0f, bound.reach - R);
+    ballMax = std::max(ballMax, ball);
+    nearBound[k] = glm::length(c - bound.a) - ball;
+    if (!std::isfinite(nearBound[k])) return false;
+    if (nearBound[k] < nearest) {
+      nearest = nearBound[k];
+      nearestK = k;
+    }
+  }
+  const float margin = 1e-5f * (std::max({std::abs(c.x), std::abs(c.y), std::abs(c.z)}) + R + ballMax);
+  auto distance = [&](uint32_t k) { return glm::length(c - closestOnSkeleton(P.skeletal[idx[k]].skeleton, c)); };
+  float d = distance(nearestK);  // the likely nearest first: the others then mostly fall to the ball test
+  for (uint32_t k = 0; k < count; ++k)
+    if (k != nearestK && nearBound[k] - margin < d) d = std::min(d, distance(k));
+  const float g0 = potentialAt(std::max(0.0f, d - rho), R, I, K);
+  const float g1 = potentialAt(d + rho, R, I, K);
+  out = {std::max(0.0f, std::min(g0, g1)), std::max(0.0f, std::max(g0, g1))};
+  return true;
+}
+
 }  // namespace
 
 Interval FieldProgram::interval(const ActiveProgram& prog, const glm::vec3& centre, float radius) const {
   thread_local std::vector<Interval> st;
   thread_local std::vector<glm::vec4> balls;
+  thread_local std::vector<float> affineStretch;  // per map of the program below (-1: not yet)
+  thread_local uint64_t affineStretchFor = 0;
   st.clear();
   balls.clear();
   glm::vec3 c = centre;
@@ -101,14 +146,24 @@ Interval FieldProgram::interval(const ActiveProgram& prog, const glm::vec3& cent
           st.push_back(acc);
           break;
         }
+        if (op.primClass == PrimClass::Skeletal && op.combineMax &&
+            triangleUnionInterval(*this, prog.indices.data() + op.first, op.count, c, rho, acc)) {
+          st.push_back(acc);
+          break;
+        }
         for (uint32_t k = 0; k < op.count; ++k) {
           uint32_t i = prog.indices[op.first + k];
           Interval v{0.0f, 0.0f};
           if (op.primClass == PrimClass::Skeletal) {
             const SkeletalPrimitive& p = skeletal[i];
-            Skeleton s = p.skeleton;
-            if (s.kind == SkeletonKind::Curve) s.curve = curvePoints.data() + p.curveFirst;
-            float d = glm::length(c - closestOnSkeleton(s, c));
+            // A point (most primitives: meta-primitives' instances) without the call and the copy.
+            glm::vec3 closest = p.skeleton.p0;
+            if (p.skeleton.kind != SkeletonKind::Point) {
+              Skeleton s = p.skeleton;
+              if (s.kind == SkeletonKind::Curve) s.curve = curvePoints.data() + p.curveFirst;
+              closest = closestOnSkeleton(s, c);
+            }
+            float d = glm::length(c - closest);
             float g0 = potentialAt(std::max(0.0f, d - rho), p.radius, p.intensity, p.stiffness);
             float g1 = potentialAt(d + rho, p.radius, p.intensity, p.stiffness);
             v = {std::min(g0, g1), std::max(g0, g1)};
@@ -128,8 +183,20 @@ Interval FieldProgram::interval(const ActiveProgram& prog, const glm::vec3& cent
       case OpCode::BeginMap: {
         balls.push_back(glm::vec4(c, rho));
         const SpaceMap& m = maps[op.first];
-        float stretch = m.localStretchBound(c, rho);
-        c = m.toLocal(c);
+        float stretch;
+        if (m.kind == SpaceMapKind::Affine && identity_ != 0) {
+          // An affine map's bound does not depend on the ball: computed once per program and map.
+          if (affineStretchFor != identity_ || affineStretch.size() != maps.size()) {
+            affineStretch.assign(maps.size(), -1.0f);
+            affineStretchFor = identity_;
+          }
+          float& cached = affineStretch[op.first];
+          if (cached < 0.0f) cached = m.localStretchBound(c, rho);
+          stretch = cached;
+        } else {
+          stretch = m.localStretchBound(c, rho);
+        }
+        c = m.kind == SpaceMapKind::Affine ? m.linear * (c - m.origin) : m.toLocal(c);  // toLocal's own affine case
         rho = std::isinf(stretch) ? INFINITY : rho * stretch * 1.0001f;
         break;
       }

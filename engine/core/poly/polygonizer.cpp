@@ -323,6 +323,39 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
     });
   }
 
+  // ---- middle level: pairs of blocks per axis (2x2x2 blocks, inside one superblock), each with
+  // its superblock's candidates whose box overlaps its box. A block's box lies inside its pair's
+  // (the same grid corners), so every primitive reaching the block is in that list and the block
+  // tests only those (the same list as testing the superblock's).
+  constexpr int kPair = 2;
+  int np2[3];
+  for (int a = 0; a < 3; ++a) np2[a] = (g.nb[a] + kPair - 1) / kPair;
+  const size_t nPairs = size_t(np2[0]) * np2[1] * np2[2];
+  std::vector<std::vector<uint32_t>> pairCandidates(s.culling ? nPairs : 0);
+  if (s.culling) {
+    arena.execute([&] {
+      tbb::parallel_for(size_t(0), nPairs, [&](size_t pi) {
+        int pidx[3] = {int(pi % size_t(np2[0])), int((pi / size_t(np2[0])) % size_t(np2[1])),
+                       int(pi / (size_t(np2[0]) * np2[1]))};
+        size_t si = size_t(pidx[0] * kPair / kSuper) +
+                    size_t(g.ns[0]) * (size_t(pidx[1] * kPair / kSuper) + size_t(g.ns[1]) * size_t(pidx[2] * kPair / kSuper));
+        if (superState[si] == SuperState::Culled || superReused[si]) return;
+        int c0[3], cnt[3];
+        for (int a = 0; a < 3; ++a) {
+          c0[a] = pidx[a] * kPair * kBlock;
+          cnt[a] = std::min(kPair * kBlock, g.n[a] - c0[a]);
+        }
+        const Bounds pb = regionBox(c0, cnt);
+        for (uint32_t p : superCandidates[si]) {
+          const Bounds& box = program.primitiveBounds[p].box;
+          if (!(box.min.x > pb.max.x || box.max.x < pb.min.x || box.min.y > pb.max.y || box.max.y < pb.min.y ||
+                box.min.z > pb.max.z || box.max.z < pb.min.z))
+            pairCandidates[pi].push_back(p);
+        }
+      });
+    });
+  }
+
   // ---- fine level: blocks
   // Outputs only for blocks that are evaluated (most are culled at high resolution).
   std::vector<std::unique_ptr<BlockOutput>> out(nBlocks);
@@ -359,7 +392,8 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
         return;
       }
       Bounds bb = regionBox(c0, cnt);
-      program.primitivesReaching(bb, sc.reaching, &superCandidates[si]);
+      const size_t pi = size_t(b[0] / kPair) + size_t(np2[0]) * (size_t(b[1] / kPair) + size_t(np2[1]) * size_t(b[2] / kPair));
+      program.primitivesReaching(bb, sc.reaching, &pairCandidates[pi]);
       program.specialise(sc.reaching, sc.active);
       Interval iv = program.interval(sc.active, bb.center(), 0.5f * bb.diagonal());
       if (oneSigned(iv, touchesBoundary(c0, cnt))) {
