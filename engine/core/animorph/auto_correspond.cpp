@@ -32,6 +32,9 @@ double kindCost(NodeType x, NodeType y) {
   // A spline of nodes is a chain of copies written short: a blend of them is nearly its kind.
   if ((x == NodeType::SplineOfNodes && y == NodeType::Blend) || (y == NodeType::SplineOfNodes && x == NodeType::Blend))
     return 0.25;
+  // Blend, union and hyper-blend bridge into each other (a hyper-blend in between).
+  auto bridged = [](NodeType t) { return t == NodeType::Blend || t == NodeType::Union || t == NodeType::HyperBlend; };
+  if (bridged(x) && bridged(y)) return 0.25;
   Family f = familyOf(x);
   return f == familyOf(y) && f != Family::Other ? 0.5 : 1.0;
 }
@@ -47,14 +50,24 @@ bool isOpenableGroup(const BlobNode& n) {
 // nodes), its kind and its primitive count.
 struct Shape {
   std::vector<NodeExtent> extents;
-  NodeType type = NodeType::Blend;
+  std::vector<NodeType> types;  // the kinds along its chain, bottom first: the closest pair of kinds counts
   float primitives = 0.0f;
 };
 
-Shape shapeOf(const MatchSide& s, const std::vector<int>& slots) {
+double kindCost(const Shape& x, const Shape& y) {
+  double best = 1.0;
+  for (NodeType a : x.types)
+    for (NodeType b : y.types) best = std::min(best, kindCost(a, b));
+  return best;
+}
+
+// The shape of one item (its chain's kinds, its bottom's extents), or of several merged (their
+// kinds, the first's chain).
+Shape shapeOf(const MatchSide& s, const std::vector<int>& slots, int chainTop = -1) {
   Shape r;
   r.extents.assign(size_t(s.samples()), NodeExtent{});
-  r.type = s.node(slots.front()).type;
+  r.types.push_back(s.node(slots.front()).type);
+  for (int c = chainTop; c >= 0 && c != slots.front(); c = s.children(c).front()) r.types.push_back(s.node(c).type);
   for (int slot : slots) {
     const NodeExtent* e = s.extents(slot);
     for (int k = 0; k < s.samples(); ++k) r.extents[size_t(k)].merge(e[k]);
@@ -93,7 +106,7 @@ struct Matcher {
       pos += glm::distance(oa, ob);
       size += glm::distance(xa.size() / A.scale(), yb.size() / B.scale());
     }
-    return st.kindWeight * kindCost(x.type, y.type) + st.positionWeight * pos / samples +
+    return st.kindWeight * kindCost(x, y) + st.positionWeight * pos / samples +
            st.sizeWeight * size / samples + st.hierarchyWeight * relativeDifference(x.primitives, y.primitives);
   }
 };
@@ -134,8 +147,8 @@ class Level {
 void Level::fillCosts() {
   sx_.clear();
   sy_.clear();
-  for (const ChainItem& x : xs_) sx_.push_back(shapeOf(m_.A, {x.bottom}));
-  for (const ChainItem& y : ys_) sy_.push_back(shapeOf(m_.B, {y.bottom}));
+  for (const ChainItem& x : xs_) sx_.push_back(shapeOf(m_.A, {x.bottom}, x.top));
+  for (const ChainItem& y : ys_) sy_.push_back(shapeOf(m_.B, {y.bottom}, y.top));
   c_.assign(xs_.size() * ys_.size(), 0.0);
   for (size_t r = 0; r < xs_.size(); ++r)
     for (size_t c = 0; c < ys_.size(); ++c) c_[r * ys_.size() + c] = m_.cost(sx_[r], pa_, sy_[c], pb_);
@@ -239,7 +252,7 @@ bool Level::trySplit(bool sideA, int one, std::vector<int> candidates, LevelMatc
     std::vector<int> slots;
     for (int c : set) slots.push_back(parts[size_t(c)].bottom);
     Shape merged = shapeOf(other, slots);
-    merged.type = self.type;      // the parts' own kinds were compared when they were filtered
+    merged.types = self.types;    // the parts' own kinds were compared when they were filtered
     merged.primitives = self.primitives;
     return sideA ? m_.cost(self, pa_, merged, pb_) : m_.cost(merged, pa_, self, pb_);
   };
