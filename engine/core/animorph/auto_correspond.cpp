@@ -311,7 +311,7 @@ std::vector<LevelMatch> Level::collect(const std::vector<int>& match, int* split
   // A pair whose x is better matched by y together with unpaired neighbours of y: a split.
   for (LevelMatch& lm : out) {
     const int r = lm.xs[0], c = lm.ys[0];
-    if (lm.cost <= 0.1 * m_.st.maxCost || !isSplitPart(m_.A.node(xs_[size_t(r)].bottom).type)) continue;
+    if (lm.cost <= 0.01 * m_.st.maxCost || !isSplitPart(m_.A.node(xs_[size_t(r)].bottom).type)) continue;
     for (int sideA = 1; sideA >= 0; --sideA) {
       const std::vector<ChainItem>& other = sideA ? ys_ : xs_;
       const std::vector<char>& otherUsed = sideA ? usedY : usedX;

@@ -82,7 +82,15 @@ void visitPreorder(const BlobNode& n, double t, const Affine& m, bool inRootChai
   for (const BlobNode& c : n.children) {
     const size_t slot = out.size();
     visitPreorder(c, t, inner, stillChain, out);
-    if (n.type != NodeType::SplineOfNodes) e.merge(out[slot]);
+    if (n.type != NodeType::SplineOfNodes) {
+      e.merge(out[slot]);
+    } else if (e.count > 0 && out[slot].count > 0) {
+      // The copies of the child along the spline: its box grows by the (largest) copy's.
+      const float scale = std::max(n.floatParam("scaleStart").evaluate(t), n.floatParam("scaleEnd").evaluate(t));
+      const glm::vec3 half = 0.5f * out[slot].size() * scale;  // the child is in the spline's space
+      e.lo -= half;
+      e.hi += half;
+    }
   }
   out[me] = e;
 }
