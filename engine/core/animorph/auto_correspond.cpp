@@ -322,6 +322,8 @@ std::vector<LevelMatch> Level::collect(const std::vector<int>& match, int* split
       LevelMatch split;
       if (candidates.size() < 2 || !trySplit(sideA != 0, sideA ? r : c, candidates, split) || split.cost > 0.5 * lm.cost)
         continue;
+      const std::vector<int>& parts = sideA ? split.ys : split.xs;
+      if (std::find(parts.begin(), parts.end(), sideA ? c : r) == parts.end()) continue;  // its partner stays in
       for (int o : (sideA ? split.ys : split.xs)) (sideA ? usedY : usedX)[size_t(o)] = 1;
       lm = split;
       ++*splits;
