@@ -7,10 +7,10 @@
 #include <random>
 #include <string>
 
-#include "animorph/auto_correspond.h"
-#include "animorph/generic_tree.h"
-#include "animorph/validate_correspondence.h"
-#include "blobtree/validate.h"
+#include "core/animorphosis/auto_correspond.h"
+#include "core/animorphosis/generic_tree.h"
+#include "core/animorphosis/validate_correspondence.h"
+#include "core/blobtree/validate.h"
 #include "demo/blob_creature.h"
 #include "demo/dino_dragon.h"
 #include "util/animorph_fixtures.h"

@@ -6,7 +6,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 
-#include "blobtree/meta_primitives.h"
+#include "core/blobtree/meta_primitives.h"
 
 namespace animorph::test {
 

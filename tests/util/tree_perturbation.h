@@ -8,8 +8,8 @@
 #include <unordered_map>
 #include <vector>
 
-#include "animorph/correspondence.h"
-#include "blobtree/blob_tree.h"
+#include "core/animorphosis/correspondence.h"
+#include "core/blobtree/blob_tree.h"
 
 namespace animorph::test {
 

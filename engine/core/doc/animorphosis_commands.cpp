@@ -1,10 +1,10 @@
-#include "doc/animorphosis_commands.h"
+#include "core/doc/animorphosis_commands.h"
 
 #include <algorithm>
 
-#include "animorph/tree_index.h"
-#include "animorph/validate_correspondence.h"
-#include "doc/animorphosis_project.h"
+#include "core/animorphosis/tree_index.h"
+#include "core/animorphosis/validate_correspondence.h"
+#include "core/project/animorphosis_project.h"
 
 namespace animorph {
 
