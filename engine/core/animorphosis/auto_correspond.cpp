@@ -248,9 +248,9 @@ std::vector<LevelMatch> Level::run(int* regrouped, int* splits) {
   fillCosts();
   std::vector<int> match = assign();
   double best = score(match);
-  const bool narrow = std::max(xs_.size(), ys_.size()) <= size_t(m_.st.hungarianLimit);
-  // Groups paired at a high cost or not at all may be regrouped children: try opening them up.
-  for (int round = 0; narrow && round < 4; ++round) {
+  // Groups paired at a high cost or not at all may be regrouped children: try opening them up
+  // (a group opened may hold another).
+  for (int round = 0; round < 16; ++round) {
     bool opened = false;
     for (int sideA = 0; sideA < 2 && !opened; ++sideA) {
       const size_t n = sideA ? xs_.size() : ys_.size();
@@ -262,7 +262,7 @@ std::vector<LevelMatch> Level::run(int* regrouped, int* splits) {
           for (size_t r = 0; r < xs_.size(); ++r)
             if (match[r] == int(i)) paired = pairCost(int(r), int(i));
         }
-        if (paired > 0.1 * m_.st.maxCost && tryOpen(sideA != 0, i, match, best)) opened = true;
+        if (paired > 0.02 * m_.st.maxCost && tryOpen(sideA != 0, i, match, best)) opened = true;
       }
     }
     if (!opened) break;
