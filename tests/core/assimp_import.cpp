@@ -352,3 +352,19 @@ TEST_CASE("assimp import: each test character's FBX poses like the glTF Blender 
   }
   CHECK(compared >= 10);
 }
+
+TEST_CASE("character import: glTF materials give the same base colour and texture fields as FBX's", "[assimp]") {
+  const std::string dir = "/usr/share/assimp/models/glTF2/";
+  if (!fs::exists(dir + "BoxTextured-glTF/BoxTextured.gltf")) ANIMORPH_SKIP("assimp-testmodels is not installed");
+  auto external = importCharacter(dir + "BoxTextured-glTF/BoxTextured.gltf");
+  REQUIRE(external.ok());
+  REQUIRE(external->materials.size() == 1);
+  CHECK(external->materials[0].baseColorTextureUri == "CesiumLogoFlat.png");
+  CHECK_FALSE(external->materials[0].baseColorTextureEmbedded);
+  REQUIRE(external->meshes.size() == 1);
+  CHECK(external->meshes[0].material == 0);
+  auto embedded = importCharacter(dir + "BoxTextured-glTF-Embedded/BoxTextured.gltf");
+  REQUIRE(embedded.ok());
+  CHECK(embedded->materials.at(0).baseColorTextureUri.empty());
+  CHECK(embedded->materials.at(0).baseColorTextureEmbedded);
+}
