@@ -309,7 +309,7 @@ TEST_CASE("declared sizes: a binary FBX's every record is walked and the test fi
 
 TEST_CASE("assimp import: each test character's FBX poses like the glTF Blender wrote from the same scene, "
           "within 1e-4 of the diagonal at 10 times",
-          "[assimp][characters]") {
+          "[.fbxtwins]") {
   const std::string dir = ANIMORPH_TEST_CHARACTERS;
   std::ifstream in(dir + "/manifest.json");
   if (!in) ANIMORPH_SKIP("the test characters are missing (" << dir << "/manifest.json; the fixture needs Blender)");

@@ -95,6 +95,7 @@ void EditorUI::startRefitJob(EditorContext& ctx) {
     if (dd.selection.actorId == actorId) dd.selection.segment = -1;
     // A poor fit is said loudly: the status bar names the bones.
     if ((*fitted)->report.poor) setStatus("Refit stand-in: POOR FIT: " + (*fitted)->report.problems.front(), true);
+    else if (!(*fitted)->report.repairs.empty()) setStatus("Refit stand-in: " + repairSummary((*fitted)->report));
   });
 }
 

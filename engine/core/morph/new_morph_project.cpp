@@ -83,7 +83,10 @@ Result<NewMorphProject> makeMorphProject(const Character& source, const std::str
       for (const auto& p : fit->report.problems) why += (why.empty() ? "" : "; ") + p;
       if (!s.acceptPoorFit)
         return Error{actor->assetPath + ": the automatic stand-in fits poorly: " + why +
-                     " (fit: " + fitSummary(fit->report) + ")"};
+                     " (fit: " + fitSummary(fit->report) + ")" +
+                     (fit->report.repairs.empty() ? "" : "; automatic " + repairSummary(fit->report)) +
+                     "; the automatic repairs could not fix it: check the skin weights of the bones named, or fit "
+                     "the stand-in by hand in the editor's Stand-in edit mode"};
       out.warnings.push_back(actor->id + ": POOR stand-in fit (accepted): " + why);
     }
     ActorMorph am;
@@ -92,6 +95,7 @@ Result<NewMorphProject> makeMorphProject(const Character& source, const std::str
     m.actors.push_back(std::move(am));
     out.messages.push_back(actor->id + ": stand-in of " + std::to_string(fit->report.segments) + " segments, fit " +
                            fitSummary(fit->report));
+    if (!fit->report.repairs.empty()) out.messages.push_back(actor->id + ": " + repairSummary(fit->report));
   }
   return out;
 }
