@@ -62,7 +62,8 @@ void drawOutlinerPanel(const LayoutRect& rect, Document& doc, AssetCache& assets
     ImGui::End();
     return;
   }
-  if (ImGui::SmallButton("+ Import glTF")) actions.push_back(Action::ImportGltf);
+  if (ImGui::SmallButton("+ Import")) actions.push_back(Action::ImportCharacter);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Import a character: glTF, FBX, Collada or OBJ");
   noteWidget("outliner/import");
   ImGui::SameLine();
   if (ImGui::SmallButton("+ BlobTree")) actions.push_back(Action::NewBlobActor);
@@ -72,7 +73,7 @@ void drawOutlinerPanel(const LayoutRect& rect, Document& doc, AssetCache& assets
 
   const Project& project = doc.project();
   if (project.actors.empty())
-    ImGui::TextWrapped("No actors. File > Import glTF... adds a character; Create > New BlobTree Actor an implicit "
+    ImGui::TextWrapped("No actors. File > Import Character... adds a character; Create > New BlobTree Actor an implicit "
                        "shape.");
   std::string deleteId;
   // Copy: a command executed below may reallocate project.actors.

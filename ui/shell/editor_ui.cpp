@@ -17,7 +17,7 @@
 #include "doc/standin_commands.h"
 #include "outliner/node_type_menu.h"
 #include "shell/help_windows.h"
-#include "io/gltf_import.h"
+#include "io/character_import.h"
 #include "shell/menu_bar.h"
 #include "shell/preferences_window.h"
 #include "shell/preview_controls.h"
@@ -83,13 +83,13 @@ void EditorUI::handleDrop(const std::vector<std::string>& paths, EditorContext& 
   }
   std::vector<std::string> refused;
   for (const std::string& p : paths) {
-    if (ext(p) == ".gltf" || ext(p) == ".glb") importGltf(p, ctx);
+    if (isCharacterPath(p)) importCharacter(p, ctx);
     else refused.push_back(fileName(p));
   }
   if (!refused.empty()) {
     std::string names;
     for (const std::string& n : refused) names += (names.empty() ? "" : ", ") + n;
-    setStatus("Cannot open " + names + ": drop an .animorph project or .gltf / .glb files", true);
+    setStatus("Cannot open " + names + ": drop an .animorph project or character files (.gltf, .glb, .fbx, .dae, .obj)", true);
   }
 }
 
@@ -285,7 +285,7 @@ void EditorUI::drawViewport(EditorContext& ctx) {
   if (st_.viewportMode != ViewportMode::Object)
     ImGui::TextColored(ImVec4(0.5f, 0.9f, 1.0f, 1.0f), "%s mode", viewportModeName(st_.viewportMode));
   if (d.project().actors.empty())
-    ImGui::TextDisabled("File > Import glTF... adds a character; Create > New BlobTree Actor an implicit shape.");
+    ImGui::TextDisabled("File > Import Character... adds a character (glTF, FBX, Collada, OBJ); Create > New BlobTree Actor an implicit shape.");
   ImGui::End();
   widgets_.set("viewport", {r.min, r.min + r.size});
 
