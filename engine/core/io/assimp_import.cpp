@@ -214,58 +214,10 @@ Status readNodes(Ctx& c) {
 // ---------------------------------------------------------------------------
 // Meshes and skins.
 
-Result<Mesh> readMesh(Ctx& c, unsigned index, int& skinOut) {
-  const aiMesh& am = *c.s.mMeshes[index];
-  const std::string name = label("mesh", index, am.mName);
-  Mesh mesh;
-  mesh.name = am.mName.length ? am.mName.C_Str() : "mesh " + std::to_string(index);
+// The mesh's skin: one per mesh with bones, its joints the nodes the bones name; the
+// influences packed as glTF's are (8 strongest, normalised). skinOut: the skin's index or -1.
+Status readSkin(Ctx& c, const aiMesh& am, const std::string& name, Mesh& mesh, int& skinOut) {
   const size_t nv = am.mNumVertices;
-  if (nv > 0 && !am.mVertices) return err(c, name, "has no positions");
-  mesh.positions.resize(nv);
-  for (size_t v = 0; v < nv; ++v) {
-    const aiVector3D& p = am.mVertices[v];
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-      return err(c, name, "position " + std::to_string(v) + " is not finite");
-    mesh.positions[v] = {p.x, p.y, p.z};
-  }
-  for (unsigned f = 0; f < am.mNumFaces; ++f) {
-    const aiFace& face = am.mFaces[f];
-    if (face.mNumIndices != 3) continue;  // points and lines (SortByPType drops them first)
-    for (unsigned k = 0; k < 3; ++k)
-      if (face.mIndices[k] >= nv)
-        return err(c, name, "face " + std::to_string(f) + ": index " + std::to_string(face.mIndices[k]) +
-                                " out of range (" + std::to_string(nv) + " vertices)");
-    mesh.indices.insert(mesh.indices.end(), face.mIndices, face.mIndices + 3);
-  }
-  bool normalsOk = am.mNormals != nullptr;
-  for (size_t v = 0; normalsOk && v < nv; ++v) {
-    const aiVector3D& n = am.mNormals[v];
-    normalsOk = std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z);
-  }
-  if (normalsOk) {
-    mesh.normals.resize(nv);
-    for (size_t v = 0; v < nv; ++v) {
-      const glm::vec3 n(am.mNormals[v].x, am.mNormals[v].y, am.mNormals[v].z);
-      const float len = glm::length(n);
-      mesh.normals[v] = len > 1e-20f ? n / len : glm::vec3(0, 1, 0);
-    }
-  } else {
-    mesh.normals = computeAreaWeightedNormals(mesh.positions, mesh.indices);
-    ++c.ch.report.normalsComputed;
-  }
-  if (am.mColors[0]) {
-    mesh.colors.resize(nv);
-    for (size_t v = 0; v < nv; ++v) {
-      const aiColor4D& col = am.mColors[0][v];
-      const glm::vec4 rgba(col.r, col.g, col.b, col.a);
-      mesh.colors[v] = glm::any(glm::isnan(rgba)) ? glm::vec4(1.0f) : glm::clamp(rgba, 0.0f, 1.0f);
-    }
-  }
-  if (am.mMaterialIndex < c.s.mNumMaterials) mesh.material = int(am.mMaterialIndex);
-  if (am.mNumAnimMeshes > 0)
-    c.ch.report.unsupported.push_back("blend shapes (" + name + ": " + std::to_string(am.mNumAnimMeshes) + ")");
-
-  // Skin: one per mesh with bones, its joints the nodes the bones name.
   std::vector<std::vector<Influence>> influences(am.mNumBones > 0 ? nv : 0);
   Skin skin;
   skin.name = mesh.name + " skin";
@@ -317,6 +269,61 @@ Result<Mesh> readMesh(Ctx& c, unsigned index, int& skinOut) {
     skinOut = int(c.ch.skins.size());
     c.ch.skins.push_back(std::move(skin));
   }
+  return {};
+}
+
+Result<Mesh> readMesh(Ctx& c, unsigned index, int& skinOut) {
+  const aiMesh& am = *c.s.mMeshes[index];
+  const std::string name = label("mesh", index, am.mName);
+  Mesh mesh;
+  mesh.name = am.mName.length ? am.mName.C_Str() : "mesh " + std::to_string(index);
+  const size_t nv = am.mNumVertices;
+  if (nv > 0 && !am.mVertices) return err(c, name, "has no positions");
+  mesh.positions.resize(nv);
+  for (size_t v = 0; v < nv; ++v) {
+    const aiVector3D& p = am.mVertices[v];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      return err(c, name, "position " + std::to_string(v) + " is not finite");
+    mesh.positions[v] = {p.x, p.y, p.z};
+  }
+  for (unsigned f = 0; f < am.mNumFaces; ++f) {
+    const aiFace& face = am.mFaces[f];
+    if (face.mNumIndices != 3) continue;  // points and lines (SortByPType drops them first)
+    for (unsigned k = 0; k < 3; ++k)
+      if (face.mIndices[k] >= nv)
+        return err(c, name, "face " + std::to_string(f) + ": index " + std::to_string(face.mIndices[k]) +
+                                " out of range (" + std::to_string(nv) + " vertices)");
+    mesh.indices.insert(mesh.indices.end(), face.mIndices, face.mIndices + 3);
+  }
+  bool normalsOk = am.mNormals != nullptr;
+  for (size_t v = 0; normalsOk && v < nv; ++v) {
+    const aiVector3D& n = am.mNormals[v];
+    normalsOk = std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z);
+  }
+  if (normalsOk) {
+    mesh.normals.resize(nv);
+    for (size_t v = 0; v < nv; ++v) {
+      const glm::vec3 n(am.mNormals[v].x, am.mNormals[v].y, am.mNormals[v].z);
+      const float len = glm::length(n);
+      mesh.normals[v] = len > 1e-20f ? n / len : glm::vec3(0, 1, 0);
+    }
+  } else {
+    mesh.normals = computeAreaWeightedNormals(mesh.positions, mesh.indices);
+    ++c.ch.report.normalsComputed;
+  }
+  if (am.mColors[0]) {
+    mesh.colors.resize(nv);
+    for (size_t v = 0; v < nv; ++v) {
+      const aiColor4D& col = am.mColors[0][v];
+      const glm::vec4 rgba(col.r, col.g, col.b, col.a);
+      mesh.colors[v] = glm::any(glm::isnan(rgba)) ? glm::vec4(1.0f) : glm::clamp(rgba, 0.0f, 1.0f);
+    }
+  }
+  if (am.mMaterialIndex < c.s.mNumMaterials) mesh.material = int(am.mMaterialIndex);
+  if (am.mNumAnimMeshes > 0)
+    c.ch.report.unsupported.push_back("blend shapes (" + name + ": " + std::to_string(am.mNumAnimMeshes) + ")");
+
+  if (auto st = readSkin(c, am, name, mesh, skinOut); !st) return Error{st.error()};
   if (mesh.indices.empty()) c.ch.report.warnings.push_back(name + ": no triangles");
   return mesh;
 }
