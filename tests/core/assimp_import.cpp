@@ -13,10 +13,10 @@
 #include <sstream>
 #include <unordered_map>
 
-#include "io/assimp_import.h"
-#include "io/character_import.h"
-#include "io/declared_size_check.h"
-#include "rig/skinning.h"
+#include "core/io/assimp_import.h"
+#include "core/io/character_import.h"
+#include "core/io/declared_size_check.h"
+#include "core/rig/skinning.h"
 #include "util/bounded_run.h"
 #include "util/temp_dir.h"
 #include "util/test_skip.h"

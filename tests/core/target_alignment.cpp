@@ -3,8 +3,8 @@
 #include <catch2/catch.hpp>
 
 #include "demo/creature.h"
-#include "morph/new_morph_project.h"
-#include "morph/target_alignment.h"
+#include "core/project/new_morph_project.h"
+#include "core/standin_morph/target_alignment.h"
 
 using namespace animorph;
 

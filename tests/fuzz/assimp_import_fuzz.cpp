@@ -12,8 +12,8 @@
 #include <string>
 
 #include "fuzz_check.h"
-#include "io/character_import.h"
-#include "rig/skinning.h"
+#include "core/io/character_import.h"
+#include "core/rig/skinning.h"
 
 namespace {
 

@@ -2,7 +2,7 @@
 // in one undo step with the morph.
 #include <catch2/catch.hpp>
 
-#include "inspector/morph_create.h"
+#include "ui/inspector/morph_create.h"
 #include "support/editor_fixture.h"
 
 using namespace animorph;

@@ -1,12 +1,12 @@
-#include "inspector/morph_create.h"
+#include "ui/inspector/morph_create.h"
 
 #include <imgui.h>
 
 #include <algorithm>
 #include <vector>
 
-#include "widgets/create_modal.h"
-#include "widgets/widget_rects.h"
+#include "ui/widgets/create_modal.h"
+#include "ui/widgets/widget_rects.h"
 
 namespace animorph {
 

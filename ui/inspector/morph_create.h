@@ -6,10 +6,10 @@
 #include <optional>
 #include <string>
 
-#include "doc/asset_cache.h"
-#include "doc/document.h"
-#include "doc/morph_create.h"
-#include "shell/status_bar.h"
+#include "core/project/asset_cache.h"
+#include "core/doc/document.h"
+#include "core/doc/morph_create.h"
+#include "ui/common/status_bar.h"
 
 namespace animorph {
 

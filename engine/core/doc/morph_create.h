@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "doc/asset_cache.h"
-#include "doc/command.h"
-#include "doc/project.h"
-#include "morph/target_alignment.h"
-#include "util/result.h"
+#include "core/project/asset_cache.h"
+#include "core/doc/command.h"
+#include "core/project/project.h"
+#include "core/standin_morph/target_alignment.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

@@ -2,7 +2,7 @@
 // includes assimp: it parses, this file checks every index and count before using it and
 // converts to the Character model (the glTF conventions: +Y up, node TRS, joint matrices
 // global(joint) * inverseBind, linear keys, quaternions (x, y, z, w)).
-#include "io/assimp_import.h"
+#include "core/io/assimp_import.h"
 
 #include <assimp/DefaultIOSystem.h>
 #include <assimp/Importer.hpp>
@@ -21,10 +21,10 @@
 #include <set>
 #include <sstream>
 
-#include "io/declared_size_check.h"
-#include "rig/mesh_normals.h"
-#include "rig/skin_influences.h"
-#include "util/atomic_file.h"
+#include "core/io/declared_size_check.h"
+#include "core/rig/mesh_normals.h"
+#include "core/rig/skin_influences.h"
+#include "core/util/atomic_file.h"
 
 namespace animorph {
 namespace {

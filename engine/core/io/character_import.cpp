@@ -1,11 +1,11 @@
-#include "io/character_import.h"
+#include "core/io/character_import.h"
 
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
 
-#include "io/assimp_import.h"
-#include "io/gltf_import.h"
+#include "core/io/assimp_import.h"
+#include "core/io/gltf_import.h"
 
 namespace animorph {
 

@@ -1,4 +1,4 @@
-#include "io/declared_size_check.h"
+#include "core/io/declared_size_check.h"
 
 #include <cstdint>
 #include <algorithm>

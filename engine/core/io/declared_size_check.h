@@ -7,7 +7,7 @@
 #include <cstddef>
 #include <string>
 
-#include "util/result.h"
+#include "core/util/result.h"
 
 namespace animorph {
 
