@@ -7,8 +7,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "gpu_fixture.h"
-#include "rig/skinning.h"
-#include "render/scene_renderer.h"
+#include "core/rig/skinning.h"
+#include "gpu/render/scene_renderer.h"
 #include "shared_constants.h"
 
 using namespace animorph;

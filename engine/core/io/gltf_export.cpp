@@ -1,8 +1,8 @@
-#include "io/gltf_export.h"
+#include "core/io/gltf_export.h"
 
-#include "util/atomic_file.h"
-#include "io/glb_writer.h"
-#include "rig/morph_targets.h"
+#include "core/util/atomic_file.h"
+#include "core/io/glb_writer.h"
+#include "core/rig/morph_targets.h"
 
 namespace animorph {
 namespace {

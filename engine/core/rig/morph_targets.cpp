@@ -1,4 +1,4 @@
-#include "rig/morph_targets.h"
+#include "core/rig/morph_targets.h"
 
 #include <algorithm>
 #include <cmath>

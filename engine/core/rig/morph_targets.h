@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "rig/character.h"
+#include "core/rig/character.h"
 
 namespace animorph {
 

@@ -1,7 +1,7 @@
-#include "rig/skinning.h"
+#include "core/rig/skinning.h"
 
-#include "rig/morph_targets.h"
-#include "rig/pose.h"
+#include "core/rig/morph_targets.h"
+#include "core/rig/pose.h"
 
 namespace animorph {
 

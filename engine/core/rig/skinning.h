@@ -3,7 +3,7 @@
 #include <span>
 #include <vector>
 
-#include "rig/character.h"
+#include "core/rig/character.h"
 
 namespace animorph {
 

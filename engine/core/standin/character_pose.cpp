@@ -1,7 +1,7 @@
-#include "standin/character_pose.h"
+#include "core/standin/character_pose.h"
 
-#include "rig/morph_targets.h"
-#include "rig/pose.h"
+#include "core/rig/morph_targets.h"
+#include "core/rig/pose.h"
 
 namespace animorph {
 

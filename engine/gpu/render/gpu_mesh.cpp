@@ -1,14 +1,14 @@
-#include "render/gpu_mesh.h"
+#include "gpu/render/gpu_mesh.h"
 
 #include <algorithm>
 #include <array>
 #include <cstring>
 #include <vector>
 
-#include "rig/mesh_normals.h"
-#include "rig/morph_targets.h"
+#include "core/rig/mesh_normals.h"
+#include "core/rig/morph_targets.h"
 #include "shared_constants.h"
-#include "vulkan/vk_check.h"
+#include "gpu/vulkan/vk_check.h"
 
 namespace animorph::gpu {
 

@@ -6,10 +6,10 @@
 // descriptor set of its own (set AM_MORPH_SET of the skinned vertex shaders).
 #include <memory>
 
-#include "vulkan/buffer.h"
-#include "vulkan/context.h"
-#include "math/bounds.h"
-#include "rig/character.h"
+#include "gpu/vulkan/buffer.h"
+#include "gpu/vulkan/context.h"
+#include "core/math/bounds.h"
+#include "core/rig/character.h"
 
 namespace animorph::gpu {
 
