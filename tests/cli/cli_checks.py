@@ -2,12 +2,17 @@
 """End-to-end checks of animorph-cli info / make-demo.
 
 usage: cli_checks.py MODE CLI [ARGS...]
-  info-json CLI FILE JOINTS CLIP DURATION   info --json on a glTF: counts, clip and report
-  info-bad CLI FILE                         info on a malformed file: non-zero exit, file named on stderr
+  info-json CLI FILE JOINTS CLIP DURATION   info --json on a glTF: counts, clip and report (exit 77: skipped
+                                            when FILE, a shared asset, is not there)
+  info-bad CLI FILE REASON [--absent]       info on a bad file: non-zero exit, stderr names the file and
+                                            REASON; the file must exist (exit 77: skipped when it does not,
+                                            so a malformed file never turns into a missing one) unless
+                                            --absent, where it must not
   make-demo CLI RESOURCES_DIR               make-demo into a temp dir, then info on what it wrote;
                                             the committed resources/demo must match the generator
-  new-info CLI ASSETS_DIR                   new creature -> gear, then info --json: markers, timeline;
-                                            new with a much larger source says it aligned the target
+  new-info CLI                              new creature -> gear, then info --json: markers, timeline
+  new-align CLI ASSETS_DIR                  new with a much larger source (tentacle.glb) says it aligned
+                                            the target (exit 77: skipped without the shared asset)
   fit CLI                                   fit the demo creature: report printed, stand-in file loads
   bake CLI                                  bake a few frames per stage: file names (demo_####.ply), binary PLY headers,
                                             same bytes for --jobs 1 and --jobs 2
@@ -73,7 +78,15 @@ def check_character_json(d, path):
         fail(f"{path}: no geometry: {d['vertices']} vertices, {d['triangles']} triangles")
 
 
+def skip(reason):
+    """Exits 77: ctest reports the test as skipped (SKIP_RETURN_CODE), not passed."""
+    print(f"SKIP: {reason}")
+    sys.exit(77)
+
+
 def mode_info_json(cli, path, joints, clip, duration):
+    if not os.path.isfile(path):
+        skip(f"{path} not present (a shared asset)")
     d = info_json(cli, path)
     check_character_json(d, path)
     if d["joints"] != int(joints):
@@ -90,12 +103,19 @@ def mode_info_json(cli, path, joints, clip, duration):
         fail(f"human summary of {path} is missing figures: {r.stdout}")
 
 
-def mode_info_bad(cli, path):
+def mode_info_bad(cli, path, reason, *flags):
+    absent = "--absent" in flags
+    if not absent and not os.path.isfile(path):
+        skip(f"{path} not present (Debian package assimp-testmodels): the malformed file is not checked")
+    if absent and os.path.exists(path):
+        fail(f"{path} exists: it cannot stand for a missing file")
     r = run(cli, "info", path)
     if r.returncode == 0:
-        fail(f"info {path} succeeded on a malformed file")
+        fail(f"info {path} succeeded on a bad file")
     if os.path.basename(path) not in r.stderr:
         fail(f"stderr does not name the file: {r.stderr!r}")
+    if reason not in r.stderr:
+        fail(f"stderr does not give the reason {reason!r}: {r.stderr!r}")
     if r.stdout.strip():
         fail(f"error output went to stdout: {r.stdout!r}")
     print(r.stderr.strip())
@@ -154,7 +174,7 @@ def make_demo_dir(cli, tmp):
     return out
 
 
-def mode_new_info(cli, assets):
+def mode_new_info(cli):
     with tempfile.TemporaryDirectory() as tmp:
         demo = make_demo_dir(cli, tmp)
         proj = os.path.join(tmp, "sub", "m.animorph")
@@ -173,16 +193,22 @@ def mode_new_info(cli, assets):
             fail(f"morph: {d['morph']}")
         if not all(a["loads"] for a in d["actors"]):
             fail(f"actors do not load from the project's directory: {d['actors']}")
-        # Very different sizes: the target is aligned to the source, and new says so.
-        tentacle = os.path.join(assets, "tentacle.glb")
-        if os.path.isfile(tentacle):
-            r = run(cli, "new", tentacle, os.path.join(demo, "gear.glb"), "-o", os.path.join(tmp, "t.animorph"))
-            if r.returncode != 0 or "aligned the target" not in r.stdout:
-                fail(f"new tentacle -> gear did not align: {r.returncode} {r.stdout} {r.stderr}")
         # Bad input: a missing file is named.
         r = run(cli, "new", os.path.join(tmp, "missing.glb"), os.path.join(demo, "gear.glb"), "-o", proj)
         if r.returncode == 0 or "missing.glb" not in r.stderr:
             fail(f"new with a missing file: {r.returncode} {r.stderr}")
+
+
+def mode_new_align(cli, assets):
+    """Very different sizes: the target is aligned to the source, and new says so."""
+    tentacle = os.path.join(assets, "tentacle.glb")
+    if not os.path.isfile(tentacle):
+        skip(f"{tentacle} not present (a shared asset)")
+    with tempfile.TemporaryDirectory() as tmp:
+        demo = make_demo_dir(cli, tmp)
+        r = run(cli, "new", tentacle, os.path.join(demo, "gear.glb"), "-o", os.path.join(tmp, "t.animorph"))
+        if r.returncode != 0 or "aligned the target" not in r.stdout:
+            fail(f"new tentacle -> gear did not align: {r.returncode} {r.stdout} {r.stderr}")
 
 
 def mode_fit(cli):
@@ -320,6 +346,7 @@ def main():
         fail(__doc__)
     mode, cli, args = sys.argv[1], sys.argv[2], sys.argv[3:]
     {"info-json": mode_info_json, "info-bad": mode_info_bad, "make-demo": mode_make_demo, "new-info": mode_new_info,
+     "new-align": mode_new_align,
      "fit": mode_fit, "bake": mode_bake, "gpu": mode_gpu, "real-rig": mode_real_rig}[mode](cli, *args)
     print("ok")
 
