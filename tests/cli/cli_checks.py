@@ -17,8 +17,10 @@ usage: cli_checks.py MODE CLI [ARGS...]
   bake CLI                                  bake a few frames per stage: file names (demo_####.ply), binary PLY headers,
                                             same bytes for --jobs 1 and --jobs 2
   gpu CLI RESOURCES_DIR                     bake --gpu: morph frames as the CPU's (triangle counts within
-                                            0.5 %), other stages byte-identical; with no Vulkan device
-                                            bake --gpu and polygonize --gpu exit 1 naming the reason
+                                            0.5 %, every vertex of either within GPU_SURFACE_DISTANCE
+                                            median edges of the other's surface), other stages
+                                            byte-identical; with no Vulkan device bake --gpu and
+                                            polygonize --gpu exit 1 naming the reason
 """
 import json
 import os
@@ -26,6 +28,14 @@ import shutil
 import subprocess
 import sys
 import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from mesh_distance import SurfaceGrid, farthest_vertex, median_edge_length, read_ply_mesh  # noqa: E402
+
+# bake --gpu's B->C frames against the CPU's: every vertex of either within this many median edge
+# lengths (about a grid cell) of the other's surface (measured on lavapipe: under 0.0001; a GPU mesh
+# shifted by a quarter cell, whose triangle counts all agree, is 0.24 off).
+GPU_SURFACE_DISTANCE = 0.05
 
 
 def run(cli, *args):
@@ -280,6 +290,21 @@ def mode_bake(cli):
             fail(f"bake with a reversed frame range: exit {r.returncode}")
 
 
+def check_same_surface(cpu_ply, gpu_ply):
+    """The two meshes are the same surface: every vertex of each lies within GPU_SURFACE_DISTANCE
+    median edge lengths of the other's triangles (both ways, so a missing or an extra piece fails)."""
+    cpu, gpu = read_ply_mesh(cpu_ply), read_ply_mesh(gpu_ply)
+    edge = median_edge_length(*cpu)
+    bound = GPU_SURFACE_DISTANCE * edge
+    far_gpu, at_gpu = farthest_vertex(gpu[0], SurfaceGrid(*cpu, edge), bound)
+    far_cpu, at_cpu = farthest_vertex(cpu[0], SurfaceGrid(*gpu, edge), bound)
+    print(f"{os.path.basename(gpu_ply)}: GPU vertices within {far_gpu / edge:.4f} edges of the CPU surface, "
+          f"CPU vertices within {far_cpu / edge:.4f} of the GPU's (median edge {edge:.4g}, bound {GPU_SURFACE_DISTANCE})")
+    if far_gpu > bound or far_cpu > bound:
+        fail(f"{os.path.basename(gpu_ply)}: bake --gpu is not the CPU's surface: a GPU vertex {far_gpu / edge:.3f} "
+             f"median edges from it (at {at_gpu}), a CPU vertex {far_cpu / edge:.3f} from the GPU's (at {at_cpu})")
+
+
 def mode_gpu(cli, resources):
     with tempfile.TemporaryDirectory() as tmp:
         demo = make_demo_dir(cli, tmp)
@@ -302,8 +327,10 @@ def mode_gpu(cli, resources):
                 with open(os.path.join(frames["cpu"], n), "rb") as f1, open(os.path.join(frames["gpu"], n), "rb") as f2:
                     if f1.read() != f2.read():
                         fail(f"{n} (before the morph) differs between bake and bake --gpu")
-            elif abs(gf - cf) > 0.005 * cf:
-                fail(f"{n}: bake --gpu made {gf} triangles, the CPU {cf}")
+            else:
+                if abs(gf - cf) > 0.005 * cf:
+                    fail(f"{n}: bake --gpu made {gf} triangles, the CPU {cf}")
+                check_same_surface(os.path.join(frames["cpu"], n), os.path.join(frames["gpu"], n))
         # No Vulkan device: explicit --gpu fails with the reason, no silent CPU fallback.
         env = dict(os.environ, VK_ICD_FILENAMES=os.path.join(tmp, "no-such-icd.json"))
         for args in (["bake", proj, "--frames", "48:48", "--res", "16", "-o", os.path.join(tmp, "none"), "--gpu"],
