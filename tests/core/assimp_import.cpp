@@ -290,8 +290,13 @@ TEST_CASE("character import: one entry point picks the importer by extension, in
   CHECK(characterFormatOf("scene.animorph") == CharacterFormat::Unknown);
   CHECK_FALSE(isCharacterPath("notes.txt"));
   CHECK(characterFileExtensions().size() == 5);
-  CHECK_THAT(outcome(importCharacter("notes.txt")),
-             Catch::Equals("notes.txt: not a character file of a known format (expected .gltf, .glb, .fbx, .dae or .obj)"));
+  TempDir tmp;
+  writeBytes(tmp.file("notes.txt"), "not a character");
+  CHECK_THAT(outcome(importCharacter(tmp.file("notes.txt"))),
+             Catch::Equals(tmp.file("notes.txt") +
+                           ": not a character file of a known format (expected .gltf, .glb, .fbx, .dae or .obj)"));
+  // Not a regular file: why, as reading it would say, before a byte is read.
+  CHECK_THAT(outcome(importCharacter("/dev/zero")), Catch::StartsWith("/dev/zero: is a character device"));
   const std::string glb = std::string(ANIMORPH_SOURCE_DIR) + "/resources/demo/gear.glb";
   auto gear = importCharacter(glb);
   REQUIRE(gear.ok());
