@@ -3,6 +3,7 @@
 #include "animorph/evaluate_generic.h"
 #include "doc/animorphosis_project.h"
 #include "doc/asset_cache.h"
+#include "morph/visible_surface.h"
 #include "poly/polygonizer.h"
 #include "util/job_progress.h"
 
@@ -37,6 +38,9 @@ Result<TriangleMesh> ProjectFrames::mesh(int frame, int resolution, const std::a
     auto fr = evaluateMorphFrame(*morph_, timeSec, fs);
     if (!fr) return Error{fr.error()};
     if (fr->cancelled || (cancel && cancel->load())) return jobCancelled();
+    // The collapse and expansion carry the stand-in core as a second closed shell inside the
+    // mesh: the file gets what is seen, the boundary of their union.
+    if (fr->coreTriangles > 0) return visibleSurface(*morph_, *fr);
     return std::move(fr->mesh);
   }
   PolygonizeSettings ps;
