@@ -11,14 +11,14 @@
 #include <cstdio>
 #include <random>
 
-#include "morph/mesh_distance.h"
-#include "morph/morph_continuity.h"
-#include "morph/standin_core.h"
-#include "morph/visible_surface.h"
-#include "poly/clip_mesh.h"
-#include "poly/inside_mesh.h"
-#include "poly/mesh_checks.h"
-#include "poly/union_volume.h"
+#include "core/standin_morph/mesh_distance.h"
+#include "core/standin_morph/morph_continuity.h"
+#include "core/scene/standin_core.h"
+#include "core/scene/visible_surface.h"
+#include "core/poly/clip_mesh.h"
+#include "core/poly/inside_mesh.h"
+#include "core/poly/mesh_checks.h"
+#include "core/poly/union_volume.h"
 #include "util/morph_fixtures.h"
 
 using namespace animorph;

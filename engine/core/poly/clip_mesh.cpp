@@ -1,4 +1,4 @@
-#include "poly/clip_mesh.h"
+#include "core/poly/clip_mesh.h"
 
 #include <cassert>
 #include <unordered_map>

@@ -6,7 +6,7 @@
 // part stays connected). Normals and colours are interpolated like the positions.
 #include <vector>
 
-#include "poly/mesh.h"
+#include "core/poly/mesh.h"
 
 namespace animorph {
 

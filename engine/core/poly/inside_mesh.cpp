@@ -1,4 +1,4 @@
-#include "poly/inside_mesh.h"
+#include "core/poly/inside_mesh.h"
 
 #include <algorithm>
 #include <cmath>

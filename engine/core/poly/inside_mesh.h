@@ -11,7 +11,7 @@
 
 #include <glm/glm.hpp>
 
-#include "poly/mesh.h"
+#include "core/poly/mesh.h"
 
 namespace animorph {
 
