@@ -3,6 +3,7 @@
 // as OpenVDB level sets (and optionally rendered PNG frames), frame by frame.
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cctype>
 #include <chrono>
@@ -471,6 +472,14 @@ int runBake(const std::vector<std::string>& args) {
                 "motion, bound %.0f): %s%s\n",
                 kMaxContinuityRatio, r.describe().c_str(),
                 ratioFirst == marks.a && ratioLast == marks.d ? " (A..D)" : " (the range's part of A..D)");
+    std::vector<std::pair<int, double>> largest = jumps.jumps();
+    std::sort(largest.begin(), largest.end(), [](const auto& x, const auto& y) { return x.second > y.second; });
+    std::printf("continuity ratio: the largest jumps:");
+    for (size_t i = 0; i < std::min<size_t>(5, largest.size()); ++i)
+      std::printf(" frame %d %.2fx,", largest[i].first,
+                  r.motion.hausdorff > 0.0 ? largest[i].second / r.motion.hausdorff : 0.0);
+    std::printf(" (stages: collapse %d..%d, morph %d..%d, expansion %d..%d)\n", marks.a, marks.b, marks.b, marks.c,
+                marks.c, marks.d);
   }
   if (coreFrames > 0)
     std::printf(keepInnerShell ? "note: %d collapse / expansion frames carry the stand-in core as a second closed shell "

@@ -6,8 +6,8 @@
 // default), space-time blending and skeleton correspondence (combined with
 // either; and without the transitions' stand-in core, the seam at C before it),
 // with what a B..C frame costs, all in the same run. Frames are measured as what is
-// seen: a collapse or expansion frame's visible surface (morph/visible_surface.h), so
-// the Hausdorff row is the continuity ratio (morph/morph_smoothness.h).
+// seen: a collapse or expansion frame's visible surface (core/scene/visible_surface.h), so
+// the Hausdorff row is the continuity ratio (core/scene/morph_smoothness.h).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>

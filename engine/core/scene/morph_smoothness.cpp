@@ -51,6 +51,7 @@ void FrameJumpMeter::add(int frame, TriangleMesh visible) {
   for (auto it = waiting_.find(next_); it != waiting_.end(); it = waiting_.find(next_)) {
     if (next_ > first_) {
       const double h = hausdorffDistance(previous_, it->second);
+      jumps_.push_back({next_, h});
       if (h > largest_ || (std::isinf(h) && !std::isinf(largest_))) {
         largest_ = h;
         largestFrame_ = next_;

@@ -9,6 +9,8 @@
 #include <map>
 #include <mutex>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/scene/morph_runtime.h"
 #include "core/poly/mesh.h"
@@ -39,6 +41,8 @@ class FrameJumpMeter {
   double largestJump() const { return largest_; }  // m
   int largestJumpFrame() const { return largestFrame_; }
   bool complete() const { return next_ > last_; }  // every frame was added
+  // Every measured pair: (the later frame, its jump in m), in frame order.
+  const std::vector<std::pair<int, double>>& jumps() const { return jumps_; }
 
  private:
   int first_, last_, next_;
@@ -47,6 +51,7 @@ class FrameJumpMeter {
   TriangleMesh previous_;
   double largest_ = 0.0;
   int largestFrame_ = 0;
+  std::vector<std::pair<int, double>> jumps_;
 };
 
 struct ContinuityRatio {
