@@ -6,7 +6,7 @@ visible surface; --keep-inner-shell keeps the stand-in core as a second shell (s
 
 usage: continuity_checks.py demo CLI DEMO_DIR
        continuity_checks.py tentacle-plate CLI SHARED_ASSETS_DIR
-       continuity_checks.py exported CLI CHARACTER_SCRIPT
+       continuity_checks.py exported CLI CHARACTERS_DIR CHARACTER_SCRIPT
 Exit 77 (skipped) when the pair's files or tools are missing."""
 import json
 import os
@@ -17,7 +17,8 @@ import sys
 import tempfile
 
 BOUND = 2.0
-RES = "32"  # the property holds at 32^3 (cells of 3-5 cm on these pairs), and CI runs on 2 cores
+RES = "32"  # the property holds at 32^3 on the demo and tentacle -> plate (cells of 3-5 cm), and CI runs on 2 cores
+EXPORTED_RES = "48"
 
 
 def fail(msg):
@@ -40,11 +41,11 @@ def markers(cli, work, project):
     return json.loads(run(cli, work, "info", "--json", project))["markers"]
 
 
-def ratio_of(cli, work, label, project, *extra):
-    """Bakes A..D at RES, returns (ratio, the report line, the bake's output)."""
+def ratio_of(cli, work, label, project, res=RES):
+    """Bakes A..D at res, returns (ratio, the report line, the bake's output)."""
     m = markers(cli, work, project)
-    out = run(cli, work, "bake", project, "--frames", f"{m['A']}:{m['D']}", "--res", RES, "--format", "none",
-              "--gltf", "x.glb", "--jobs", "2", *extra)
+    out = run(cli, work, "bake", project, "--frames", f"{m['A']}:{m['D']}", "--res", res, "--format", "none",
+              "--gltf", "x.glb", "--jobs", "2")
     line = next((l for l in out.splitlines() if l.startswith("continuity ratio")), None)
     if not line:
         fail(f"{label}: bake printed no continuity ratio\n{out}")
@@ -56,9 +57,9 @@ def ratio_of(cli, work, label, project, *extra):
     return float(g.group(1)), line, out
 
 
-def hold(cli, work, label, project):
-    r, line, _ = ratio_of(cli, work, label, project)
-    print(f"{label} at {RES}^3: {line}")
+def hold(cli, work, label, project, res=RES):
+    r, line, _ = ratio_of(cli, work, label, project, res)
+    print(f"{label} at {res}^3: {line}")
     if not r <= BOUND:
         fail(f"{label}: continuity ratio {r} over {BOUND}")
     print(f"ok: {label}: continuity ratio {r:.2f} <= {BOUND}")
@@ -97,26 +98,26 @@ def mode_tentacle_plate(cli, assets):
     shutil.rmtree(work, ignore_errors=True)
 
 
-def mode_exported(cli, script):
-    if not os.path.exists(script):
-        skip(f"{script} is not in this checkout: no characters made by a real exporter")
-    if not shutil.which("blender"):
-        skip("blender is not installed: no characters made by a real exporter")
+def mode_exported(cli, chars, script):
+    """humanoid_m.glb -> tentacle_m.glb of the test characters (made by Blender's exporter, the
+    'test characters' fixture; made here with the script when the fixture has not run)."""
+    pair = ("humanoid_m.glb", "tentacle_m.glb")
+    if not all(os.path.exists(os.path.join(chars, f)) for f in pair):
+        if not os.path.exists(script):
+            skip(f"{script} is not in this checkout: no characters made by a real exporter")
+        r = subprocess.run([sys.executable, script, chars], capture_output=True, text=True, timeout=900)
+        if r.returncode == 77:
+            skip(f"{script}: {r.stdout.strip()} {r.stderr.strip()}")
+        if r.returncode != 0:
+            fail(f"{script}: exit {r.returncode}\n{r.stdout}\n{r.stderr}")
     work = tempfile.mkdtemp(prefix="animorph-continuity-")
-    r = subprocess.run([sys.executable, script, work], capture_output=True, text=True, timeout=600)
-    if r.returncode == 77:
-        skip(f"{script}: {r.stdout.strip()} {r.stderr.strip()}")
-    if r.returncode != 0:
-        fail(f"{script}: exit {r.returncode}\n{r.stdout}\n{r.stderr}")
-    glbs = sorted(f for f in os.listdir(work) if f.endswith(".glb"))
-    if len(glbs) < 2:
-        fail(f"{script} made {glbs}: two characters needed")
-    a, b = glbs[0], glbs[1]
-    run(cli, work, "new", a, b, "-o", "ex.animorph")
-    hold(cli, work, f"{a} -> {b} (exported by Blender)", "ex.animorph")
+    run(cli, work, "new", *(os.path.join(chars, f) for f in pair), "-o", "ex.animorph")
+    # 48^3: at 32^3 the cells (6 cm on the 2 m tentacle) are wider than the tentacle's thin tip, whose
+    # stand-in the implicit stage then loses and the expansion's mesh brings back at C + 1.
+    hold(cli, work, f"{pair[0]} -> {pair[1]} (exported by Blender)", "ex.animorph", EXPORTED_RES)
     shutil.rmtree(work, ignore_errors=True)
 
 
 if __name__ == "__main__":
-    mode, cli, where = sys.argv[1], sys.argv[2], sys.argv[3]
-    {"demo": mode_demo, "tentacle-plate": mode_tentacle_plate, "exported": mode_exported}[mode](cli, where)
+    mode, cli = sys.argv[1], sys.argv[2]
+    {"demo": mode_demo, "tentacle-plate": mode_tentacle_plate, "exported": mode_exported}[mode](cli, *sys.argv[3:])

@@ -1,4 +1,4 @@
-// What a viewer sees of a frame with the stand-in core (morph/visible_surface.h) and the
+// What a viewer sees of a frame with the stand-in core (scene/visible_surface.h) and the
 // pieces it is cut with: points inside a closed mesh by winding along rays
 // (poly/inside_mesh.h), a mesh cut along a value's zero level (poly/clip_mesh.h). On the
 // demo: the visible surface encloses the union of the two shells, the mesh keeps nothing

@@ -25,7 +25,7 @@ class ProjectFrames {
 
   // Scene frame f as a mesh (world space for a morph, the trees' own space for an animorphosis),
   // polygonised at resolution cells; a collapse or expansion frame is its visible surface (the
-  // stand-in core inside the mesh cut away, morph/visible_surface.h). A cancel seen during the polygonisation comes back as
+  // stand-in core inside the mesh cut away, scene/visible_surface.h). A cancel seen during the polygonisation comes back as
   // jobCancelled() (util/job_progress.h).
   Result<TriangleMesh> mesh(int frame, int resolution, const std::atomic<bool>* cancel) const;
   // Frame f's implicit field as a level set; none for a skinned-mesh frame of a morph.

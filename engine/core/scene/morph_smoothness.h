@@ -1,7 +1,7 @@
 #pragma once
 // The continuity ratio of a morph (docs/morph.md, "Continuity"): the largest
 // frame-to-frame jump of the visible surface over A..D (the symmetric Hausdorff
-// distance between consecutive frames' visible surfaces, morph/visible_surface.h)
+// distance between consecutive frames' visible surfaces, scene/visible_surface.h)
 // divided by the characters' own largest per-frame motion over the same frames
 // (each side's skinned mesh alone, no morph). A frame an animator calls a pop jumps
 // far more than the characters move on their own; the bound held is 2.

@@ -1,13 +1,13 @@
 #pragma once
 // What a viewer sees of a morph frame (docs/morph.md, "Continuity"). During the
-// collapse and the expansion a frame is two closed shells (morph/standin_core.h):
+// collapse and the expansion a frame is two closed shells (scene/standin_core.h):
 // the transitioned mesh and the stand-in core inside it. The visible surface is
 // the boundary of their union: the mesh cut where it enters the core (the core's
 // field, exact) and the core cut where it enters the mesh (the signed distance to
 // the mesh at its vertices: the distance to the closest triangle, negative inside,
 // poly/inside_mesh.h). Frames with one shell are their own visible surface.
 // Exports write it (unless told to keep both shells), and the continuity ratio
-// (morph/morph_smoothness.h) measures it, so that the hidden core neither counts
+// (scene/morph_smoothness.h) measures it, so that the hidden core neither counts
 // as a jump nor hides a jump of what is seen.
 #include <cstddef>
 
