@@ -154,18 +154,24 @@ TEST_CASE("visible surface of the demo's transition frames: the union's boundary
     splitStandinCore(*fr, mesh, coreMesh);
     const double uni = unionVolume(fr->mesh, {0, fr->mesh.triangleCount() - fr->coreTriangles});
     INFO("frame " << f << ": " << seen.triangleCount() << " visible of " << fr->mesh.triangleCount()
-                  << " triangles; union " << uni << " m^3, visible surface encloses " << meshVolume(seen));
-    CHECK(seen.triangleCount() < fr->mesh.triangleCount());
+                  << " triangles; union " << uni << " m^3, visible surface encloses " << meshVolume(seen)
+                  << ", area " << meshArea(seen) << " m^2, cell " << fr->polygonize.cellSize);
     CHECK(st.meshTrianglesHidden + st.coreTrianglesHidden > 0);
-    CHECK(meshVolume(seen) == Approx(uni).epsilon(0.03));
-    // No visible vertex deep inside the core (the cut's vertices lie on its surface, to the
-    // linear interpolation along an edge), none deep inside the mesh.
+    // Where the shells run together (near B and C) the core is kept for both, up to a quarter of
+    // its cell inside the mesh (visible_surface.h): the volumes agree within that layer.
+    const double layer = 0.25 * double(fr->polygonize.cellSize) * meshArea(seen);
+    CHECK(std::abs(meshVolume(seen) - uni) <= 0.03 * uni + layer);
+    // No visible vertex deeper than a cell inside the core (the cut's vertices lie on its surface,
+    // to the interpolation along an edge; depth to first order), none more than half a cell inside
+    // the mesh.
     const float cell = fr->polygonize.cellSize;
     const std::vector<uint8_t> inMesh = pointsInsideMesh(seen.positions, mesh);
     const std::vector<float> toMesh = pointDistancesToMesh(seen.positions, mesh);
     size_t deepInCore = 0, deepInMesh = 0;
     for (size_t i = 0; i < seen.positions.size(); ++i) {
-      deepInCore += test::fieldAt(core->program, seen.positions[i]) > 0.05f;
+      glm::vec3 g;
+      const float v = test::fieldAt(core->program, seen.positions[i], &g);  // depth v / |grad v|
+      deepInCore += v > cell * std::max(1e-6f, glm::length(g));
       deepInMesh += inMesh[i] && toMesh[i] > 0.5f * cell;
     }
     CHECK(deepInCore == 0);
