@@ -155,11 +155,11 @@ TEST_CASE("visible surface of the demo's transition frames: the union's boundary
     const double uni = unionVolume(fr->mesh, {0, fr->mesh.triangleCount() - fr->coreTriangles});
     INFO("frame " << f << ": " << seen.triangleCount() << " visible of " << fr->mesh.triangleCount()
                   << " triangles; union " << uni << " m^3, visible surface encloses " << meshVolume(seen)
-                  << ", area " << meshArea(seen) << " m^2, cell " << fr->polygonize.cellSize);
+                  << ", area " << area(seen) << " m^2, cell " << fr->polygonize.cellSize);
     CHECK(st.meshTrianglesHidden + st.coreTrianglesHidden > 0);
     // Where the shells run together (near B and C) the core is kept for both, up to a quarter of
     // its cell inside the mesh (visible_surface.h): the volumes agree within that layer.
-    const double layer = 0.25 * double(fr->polygonize.cellSize) * meshArea(seen);
+    const double layer = 0.25 * double(fr->polygonize.cellSize) * area(seen);
     CHECK(std::abs(meshVolume(seen) - uni) <= 0.03 * uni + layer);
     // No visible vertex deeper than a cell inside the core (the cut's vertices lie on its surface,
     // to the interpolation along an edge; depth to first order), none more than half a cell inside
