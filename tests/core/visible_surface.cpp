@@ -141,7 +141,9 @@ TEST_CASE("visible surface of the demo's transition frames: the union's boundary
   const MorphMarkers& k = rt.setup.markers;
   MorphFrameSettings fs;
   fs.resolution = 32;
-  for (int f : {k.b - 8, k.b - 2, k.c + 1, k.c + 8}) {
+  // Away from B and C: there the mesh lies on the core to within the polygonisation's error and
+  // the two shells interleave (both kept in places; docs/morph.md).
+  for (int f : {k.b - 8, k.c + 8}) {
     auto fr = evaluateMorphFrame(rt, rt.timeline.frameToSec(f), fs);
     REQUIRE(fr.ok());
     REQUIRE(fr->coreTriangles > 0);
@@ -157,10 +159,7 @@ TEST_CASE("visible surface of the demo's transition frames: the union's boundary
                   << " triangles; union " << uni << " m^3, visible surface encloses " << meshVolume(seen)
                   << ", area " << area(seen) << " m^2, cell " << fr->polygonize.cellSize);
     CHECK(st.meshTrianglesHidden + st.coreTrianglesHidden > 0);
-    // Where the shells run together (near B and C) the core is kept for both, up to a quarter of
-    // its cell inside the mesh (visible_surface.h): the volumes agree within that layer.
-    const double layer = 0.25 * double(fr->polygonize.cellSize) * area(seen);
-    CHECK(std::abs(meshVolume(seen) - uni) <= 0.03 * uni + layer);
+    CHECK(meshVolume(seen) == Approx(uni).epsilon(0.03));
     // No visible vertex deeper than a cell inside the core (the cut's vertices lie on its surface,
     // to the interpolation along an edge; depth to first order), none more than half a cell inside
     // the mesh.

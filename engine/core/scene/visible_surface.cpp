@@ -32,9 +32,8 @@ TriangleMesh shellOf(const TriangleMesh& m, size_t first, size_t end) {
   return out;
 }
 
-// How far inside the core each vertex of mesh is (m, < 0 outside): the core's field (f - T)
-// over its gradient's length, the distance to its surface to first order.
-std::vector<float> depthInCore(const FieldProgram& core, const TriangleMesh& mesh) {
+// The core's field (f - T, > 0 inside the core) at every vertex of mesh.
+std::vector<float> coreFieldAt(const FieldProgram& core, const TriangleMesh& mesh) {
   std::vector<float> value(mesh.positions.size());
   ActiveProgram all;
   core.specialiseAll(all);
@@ -43,14 +42,12 @@ std::vector<float> depthInCore(const FieldProgram& core, const TriangleMesh& mes
   tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
     thread_local FieldEvaluator eval;
     const size_t first = c * kChunk, n = std::min(kChunk, value.size() - first);
-    std::vector<float> x(n), y(n), z(n), gx(n), gy(n), gz(n);
+    std::vector<float> x(n), y(n), z(n);
     for (size_t i = 0; i < n; ++i) {
       const glm::vec3& p = mesh.positions[first + i];
       x[i] = p.x, y[i] = p.y, z[i] = p.z;
     }
-    float* f = value.data() + first;
-    eval.evaluate(core, all, x.data(), y.data(), z.data(), int(n), f, gx.data(), gy.data(), gz.data());
-    for (size_t i = 0; i < n; ++i) f[i] /= std::max(1e-6f, glm::length(glm::vec3(gx[i], gy[i], gz[i])));
+    eval.evaluate(core, all, x.data(), y.data(), z.data(), int(n), value.data() + first);
   });
   return value;
 }
@@ -76,25 +73,18 @@ TriangleMesh visibleSurface(const MorphRuntime& rt, const MorphFrame& fr, Visibl
   }
   TriangleMesh mesh, core;
   splitStandinCore(fr, mesh, core);
-  // Where the two shells run together (the mesh lying on its stand-in near B and C, both to
-  // within the polygonisation's error), the core is kept and the mesh cut away, so that one
-  // layer is left, not two interleaved: the mesh shows where it is more than `overlap` outside
-  // the core, the core where it is less than `overlap` inside the mesh.
-  const float overlap = 0.25f * std::max(fr.polygonize.cellSize, 1e-6f);
-  // Signed distance of the core's vertices to the mesh: > 0 outside it, < 0 inside.
+  // Signed distance of the core's vertices to the mesh: > 0 outside it (kept), < 0 inside (cut away).
   const std::vector<float> dist = pointDistancesToMesh(core.positions, mesh);
   const std::vector<uint8_t> inside = pointsInsideMesh(core.positions, mesh);
   std::vector<float> coreValue(core.positions.size());
   for (size_t i = 0; i < coreValue.size(); ++i) {
     const float sd = inside[i] ? -dist[i] : dist[i];
-    coreValue[i] = -sd - overlap;  // kept where <= 0
+    coreValue[i] = -sd;
     st.coreOutside = std::max(st.coreOutside, double(sd));
   }
   st.coreVertices = core.positions.size();
-  std::vector<float> meshValue = depthInCore(field->program, mesh);
-  for (float& v : meshValue) v += overlap;  // kept where <= 0
   TriangleMesh out;
-  st.meshTrianglesHidden = appendClippedMesh(mesh, meshValue, out);
+  st.meshTrianglesHidden = appendClippedMesh(mesh, coreFieldAt(field->program, mesh), out);
   st.coreTrianglesHidden = appendClippedMesh(core, coreValue, out);
   if (stats) *stats = st;
   return out;

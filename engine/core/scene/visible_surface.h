@@ -5,10 +5,7 @@
 // the boundary of their union: the mesh cut where it enters the core (the core's
 // field, exact) and the core cut where it enters the mesh (the signed distance to
 // the mesh at its vertices: the distance to the closest triangle, negative inside,
-// poly/inside_mesh.h). Where the two run together (the mesh lying on its
-// stand-in near B and C) the core is kept and the mesh cut away: within a
-// quarter of the core's cell the mesh counts as inside it, the core as outside
-// the mesh. Frames with one shell are their own visible surface.
+// poly/inside_mesh.h). Frames with one shell are their own visible surface.
 // Exports write it (unless told to keep both shells), and the continuity ratio
 // (scene/morph_smoothness.h) measures it, so that the hidden core neither counts
 // as a jump nor hides a jump of what is seen.
