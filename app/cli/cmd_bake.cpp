@@ -3,6 +3,7 @@
 // as OpenVDB level sets (and optionally rendered PNG frames), frame by frame.
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cctype>
 #include <chrono>
@@ -38,6 +39,8 @@
 #include "gpu/frame/scene_from_frame.h"
 #include "gpu/render/scene_renderer.h"
 #include "core/camera/camera.h"
+#include "core/scene/morph_smoothness.h"
+#include "core/scene/visible_surface.h"
 
 namespace {
 
@@ -245,7 +248,7 @@ int runBake(const std::vector<std::string>& args) {
   std::string project, output, frames, name, gltf, vdb, mp4, size = "1280x720", format = "ply";
   int res = 48, jobs = 1;
   float coherence = 0.1f;  // an animorphosis' temporal coherence tolerance (cells); 0: off
-  bool png = false, gpu = false, burnIn = false;
+  bool png = false, gpu = false, burnIn = false, keepInnerShell = false;
   cli::MorphMethodOptions methods;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
@@ -275,6 +278,8 @@ int runBake(const std::vector<std::string>& args) {
       png = true;
     } else if (a == "--burn-in") {
       burnIn = true;
+    } else if (a == "--keep-inner-shell") {
+      keepInnerShell = true;
     } else if (a == "--gpu") {
       gpu = true;
     } else if (std::string err; cli::readMorphMethodOption(args, i, methods, err)) {
@@ -400,6 +405,11 @@ int runBake(const std::vector<std::string>& args) {
   std::vector<int> stageCount(5, 0);
   std::vector<FrameMeasure> measures(static_cast<size_t>(count));  // per frame, for the continuity report
   std::mutex stageMutex;
+  // The continuity ratio's frames: the range's part of A..D.
+  const MorphMarkers& marks = (*rt)->setup.markers;
+  const int ratioFirst = std::max(first, marks.a), ratioLast = std::min(last, marks.d);
+  FrameJumpMeter jumps(ratioFirst, ratioLast);
+  std::atomic<int> coreFrames{0};
   std::string error = bakeFrames(first, count, jobs, [&](int k) -> std::string {
     const int f = first + k;
     MorphFrameSettings fs;
@@ -415,6 +425,12 @@ int runBake(const std::vector<std::string>& args) {
       ++stageCount[size_t(fr->stage)];
     }
     measures[size_t(k)] = measureFrame(f, fr->mesh, nullptr, fr->coreTriangles);
+    // A collapse or expansion frame is two closed shells, the mesh and the stand-in core inside it:
+    // the file gets what is seen (their union's boundary) unless --keep-inner-shell.
+    TriangleMesh visible = fr->coreTriangles > 0 ? visibleSurface(**rt, *fr) : fr->mesh;
+    coreFrames += fr->coreTriangles > 0;
+    if (f >= ratioFirst && f <= ratioLast) jumps.add(f, visible);
+    if (!keepInnerShell) fr->mesh = std::move(visible);
     if (sink.wantsVolumes()) {
       auto band = morphFrameLevelSet(**rt, timeSec, res, fs.threads, nullptr);
       if (!band) return band.error();
@@ -445,6 +461,32 @@ int runBake(const std::vector<std::string>& args) {
     if (atInside >= 0) std::printf(", within B..C %.1f%% at frame %d", 100.0 * inside, atInside);
     std::printf("\n");
   }
+  if (ratioLast > ratioFirst) {  // the visible surface's largest jump against the characters' own motion
+    ContinuityRatio r;
+    r.first = ratioFirst;
+    r.last = ratioLast;
+    r.jump = jumps.largestJump();
+    r.jumpFrame = jumps.largestJumpFrame();
+    r.motion = charactersOwnMotion(**rt, ratioFirst, ratioLast, res);
+    std::printf("continuity ratio (largest frame-to-frame jump of the visible surface / the characters' own largest "
+                "motion, bound %.0f): %s%s\n",
+                kMaxContinuityRatio, r.describe().c_str(),
+                ratioFirst == marks.a && ratioLast == marks.d ? " (A..D)" : " (the range's part of A..D)");
+    std::vector<std::pair<int, double>> largest = jumps.jumps();
+    std::sort(largest.begin(), largest.end(), [](const auto& x, const auto& y) { return x.second > y.second; });
+    std::printf("continuity ratio: the largest jumps:");
+    for (size_t i = 0; i < std::min<size_t>(5, largest.size()); ++i)
+      std::printf(" frame %d %.2fx,", largest[i].first,
+                  r.motion.hausdorff > 0.0 ? largest[i].second / r.motion.hausdorff : 0.0);
+    std::printf(" (stages: collapse %d..%d, morph %d..%d, expansion %d..%d)\n", marks.a, marks.b, marks.b, marks.c,
+                marks.c, marks.d);
+  }
+  if (coreFrames > 0)
+    std::printf(keepInnerShell ? "note: %d collapse / expansion frames carry the stand-in core as a second closed shell "
+                                 "inside the mesh (--keep-inner-shell)\n"
+                               : "note: %d collapse / expansion frames written as their visible surface: the stand-in "
+                                 "core inside the mesh cut away (--keep-inner-shell keeps both shells)\n",
+                int(coreFrames));
   if (std::string e = sink.finish(); !e.empty()) return cli::fail("bake", e);
   if (gpuCtx && gpuCtx->validationEnabled() && gpuCtx->validationErrorCount() > 0) {
     std::fprintf(stderr, "animorph-cli bake: %u Vulkan validation error(s) in the GPU polygoniser\n",
@@ -461,6 +503,7 @@ ANIMORPH_CLI_COMMAND("bake", "bake a project's morph into mesh sequences, an ani
                      "usage: animorph-cli bake PROJECT.animorph --frames A:B --res N -o DIR [--format ply|obj|ply,obj|none]\n"
                      "                         [--obj] [--name NAME] [--gltf FILE.glb] [--vdb DIR] [--png] [--mp4 FILE.mp4 [--size WxH]\n"
                      "                         [--burn-in]] [--gpu] [--jobs J] [--coherence C] [--method M [--correspondence-blend B]]\n"
+                     "                         [--keep-inner-shell]\n"
                      "  Bakes every frame A..B: the source's skinned mesh before marker A, its\n"
                      "  collapse onto the stand-in A->B, the polygonised implicit morph B->C (N cells\n"
                      "  along the longest side), the target's expansion C->D and its skinned mesh\n"
@@ -505,10 +548,19 @@ ANIMORPH_CLI_COMMAND("bake", "bake a project's morph into mesh sequences, an ani
                      "  --method M   bake with another morph method than the project's: interpolation,\n"
                      "               space_time or skeleton_correspondence (--correspondence-blend B:\n"
                      "               interpolation or space_time, how it combines its two stand-ins)\n"
+                     "  --keep-inner-shell  collapse and expansion frames are the transitioned mesh with\n"
+                     "               the stand-in core inside it, two closed shells; by default a frame\n"
+                     "               is written as what is seen, the boundary of their union (the mesh\n"
+                     "               cut where it enters the core, the core cut where it enters the\n"
+                     "               mesh); this keeps both shells whole\n"
                      "  A progress bar is drawn when stdout is a terminal. Then a continuity report:\n"
                      "  frames that are empty or whose enclosed volume changes by more than 20% from\n"
                      "  the frame before (what shows as a pop); they do not change the exit status;\n"
-                     "  and the largest frame-to-frame volume change, over the frames and within B..C.\n"
+                     "  and the largest frame-to-frame volume change, over the frames and within B..C;\n"
+                     "  and the continuity ratio: the largest frame-to-frame jump (Hausdorff distance)\n"
+                     "  of the visible surface over the range's part of A..D, divided by the\n"
+                     "  characters' own largest per-frame motion over the same frames (at most 2 holds\n"
+                     "  no pop, docs/morph.md).\n"
                      "  Exit status: 0 on success, 1 when the project cannot be read or a frame fails,\n"
                      "  2 on bad arguments, 3 on Vulkan validation errors.\n",
                      runBake);

@@ -5,6 +5,7 @@
 #include "core/project/asset_cache.h"
 #include "core/poly/polygonizer.h"
 #include "core/util/job_progress.h"
+#include "core/scene/visible_surface.h"
 
 namespace animorph {
 
@@ -37,6 +38,9 @@ Result<TriangleMesh> ProjectFrames::mesh(int frame, int resolution, const std::a
     auto fr = evaluateMorphFrame(*morph_, timeSec, fs);
     if (!fr) return Error{fr.error()};
     if (fr->cancelled || (cancel && cancel->load())) return jobCancelled();
+    // The collapse and expansion carry the stand-in core as a second closed shell inside the
+    // mesh: the file gets what is seen, the boundary of their union.
+    if (fr->coreTriangles > 0) return visibleSurface(*morph_, *fr);
     return std::move(fr->mesh);
   }
   PolygonizeSettings ps;

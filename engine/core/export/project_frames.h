@@ -24,7 +24,8 @@ class ProjectFrames {
   static Result<ProjectFrames> prepare(const Project& p, const std::string& baseDir);
 
   // Scene frame f as a mesh (world space for a morph, the trees' own space for an animorphosis),
-  // polygonised at resolution cells. A cancel seen during the polygonisation comes back as
+  // polygonised at resolution cells; a collapse or expansion frame is its visible surface (the
+  // stand-in core inside the mesh cut away, scene/visible_surface.h). A cancel seen during the polygonisation comes back as
   // jobCancelled() (util/job_progress.h).
   Result<TriangleMesh> mesh(int frame, int resolution, const std::atomic<bool>* cancel) const;
   // Frame f's implicit field as a level set; none for a skinned-mesh frame of a morph.
