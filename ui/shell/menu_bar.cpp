@@ -35,7 +35,7 @@ void fileMenu(const Document& doc, const std::vector<std::string>& recentFiles, 
   m.item("Save", Action::Save);
   m.item("Save As...", Action::SaveAs);
   ImGui::Separator();
-  m.item("Import glTF...", Action::ImportGltf);
+  m.item("Import Character...", Action::ImportCharacter);
   m.item("Import Weights from Vertex Colour...", Action::ImportWeights, doc.project().morph.enabled());
   m.item("Save Screenshot...", Action::SaveScreenshot);
   // Export: the morph's frames as files, or a playblast movie of them.
