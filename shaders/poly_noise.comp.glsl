@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // Polygoniser pass "noise" (only when GpuPolygonizeSettings::noiseAmplitude != 0): moves every
 // vertex along its normal by amplitude * solidNoise(frequency * p), as the CPU's
-// displaceBySolidNoise (engine/core/morph/solid_noise.cpp: Perlin's improved noise, his
+// displaceBySolidNoise (engine/core/poly/solid_noise.cpp: Perlin's improved noise, his
 // permutation), after the normals pass, which took the normals at the undisplaced positions as
 // the CPU does. Four vertices per invocation over the whole vertex buffer, dispatched with the
 // normals pass's arguments. P.extra.y: amplitude (m); P.extra.z: frequency (1/m).

@@ -1,6 +1,6 @@
-#include "cli/chain_pair_options.h"
+#include "app/cli/chain_pair_options.h"
 
-#include "doc/chain_pair_commands.h"
+#include "core/doc/chain_pair_commands.h"
 
 namespace animorph::cli {
 namespace {

@@ -2,11 +2,11 @@
 // animorph-cli correspond's chain pair edits: --pair SRC=TGT (pair source chain
 // SRC with target chain TGT), --unpair SRC (leave SRC unmatched), --auto SRC
 // (SRC back to the automatic matching), --auto-all. Chains are named by their
-// first joint (morph/chain_pair.h).
+// first joint (standin_morph/chain_pair.h).
 #include <string>
 #include <vector>
 
-#include "morph/skeleton_correspondence.h"
+#include "core/standin_morph/skeleton_correspondence.h"
 
 namespace animorph::cli {
 

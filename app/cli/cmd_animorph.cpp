@@ -4,12 +4,12 @@
 #include <cstdlib>
 #include <cstdio>
 
-#include "blobtree/blob_tree_json.h"
-#include "blobtree/tree_edit.h"
-#include "cli/cli_command.h"
-#include "doc/animorphosis_commands.h"
-#include "doc/blobtree_commands.h"
-#include "doc/project_io.h"
+#include "core/blobtree/blob_tree_json.h"
+#include "core/blobtree/tree_edit.h"
+#include "app/cli/cli_command.h"
+#include "core/doc/animorphosis_commands.h"
+#include "core/doc/blobtree_commands.h"
+#include "core/project/project_io.h"
 
 namespace {
 

@@ -1,11 +1,11 @@
 // animorph-cli bake-keys P -o C.json: the key-frame animorphosis of a project as a BlobTree scene.
 #include <cstdio>
 
-#include "animorph/bake_keys.h"
-#include "blobtree/blob_tree_json.h"
-#include "cli/cli_command.h"
-#include "doc/animorphosis_project.h"
-#include "doc/project_io.h"
+#include "core/animorphosis/bake_keys.h"
+#include "core/blobtree/blob_tree_json.h"
+#include "app/cli/cli_command.h"
+#include "core/project/animorphosis_project.h"
+#include "core/project/project_io.h"
 
 namespace {
 

@@ -2,8 +2,8 @@
 #include <cstdio>
 #include <iostream>
 
-#include "cli/bench/bench.h"
-#include "cli/cli_command.h"
+#include "app/cli/bench/bench.h"
+#include "app/cli/cli_command.h"
 
 namespace animorph::bench {
 std::vector<BenchInfo>& benchRegistry() {

@@ -5,14 +5,14 @@
 #include <filesystem>
 #include <iostream>
 
-#include "cli/chain_pair_options.h"
-#include "morph/chain_matching.h"
-#include "animorph/correspondence_json.h"
-#include "animorph/tree_index.h"
-#include "cli/cli_command.h"
-#include "doc/animorphosis_project.h"
-#include "doc/project_io.h"
-#include "morph/morph_runtime.h"
+#include "app/cli/chain_pair_options.h"
+#include "core/standin_morph/chain_matching.h"
+#include "core/animorphosis/correspondence_json.h"
+#include "core/animorphosis/tree_index.h"
+#include "app/cli/cli_command.h"
+#include "core/project/animorphosis_project.h"
+#include "core/project/project_io.h"
+#include "core/scene/morph_runtime.h"
 
 namespace {
 

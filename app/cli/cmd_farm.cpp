@@ -1,6 +1,6 @@
 // animorph-cli farm slurm|assemble: a long bake split by frame range over a render farm (cli/farm.h).
-#include "cli/cli_command.h"
-#include "cli/farm/farm.h"
+#include "app/cli/cli_command.h"
+#include "app/cli/farm/farm.h"
 
 namespace {
 

@@ -5,11 +5,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli/cli_command.h"
-#include "util/atomic_file.h"
-#include "io/gltf_import.h"
-#include "standin/fit_standin.h"
-#include "standin/standin_json.h"
+#include "app/cli/cli_command.h"
+#include "core/util/atomic_file.h"
+#include "core/io/gltf_import.h"
+#include "core/standin/fit_standin.h"
+#include "core/standin/standin_json.h"
 
 namespace {
 

@@ -6,11 +6,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "blobtree/tree_edit.h"
-#include "cli/cli_command.h"
-#include "doc/project_io.h"
-#include "io/gltf_import.h"
-#include "standin/character_pose.h"
+#include "core/blobtree/tree_edit.h"
+#include "app/cli/cli_command.h"
+#include "core/project/project_io.h"
+#include "core/io/gltf_import.h"
+#include "core/standin/character_pose.h"
 
 namespace {
 

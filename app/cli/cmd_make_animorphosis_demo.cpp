@@ -9,13 +9,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "blobtree/blob_tree_json.h"
-#include "cli/cli_command.h"
-#include "cli/demo_files.h"
+#include "core/blobtree/blob_tree_json.h"
+#include "app/cli/cli_command.h"
+#include "app/cli/demo_files.h"
 #include "demo/animorphosis_demo.h"
 #include "demo/dino_dragon.h"
-#include "doc/animorphosis_project.h"
-#include "doc/project_io.h"
+#include "core/project/animorphosis_project.h"
+#include "core/project/project_io.h"
 
 namespace {
 

@@ -2,11 +2,11 @@
 #include <filesystem>
 #include <iostream>
 
-#include "blobtree/blob_tree_json.h"
-#include "blobtree/validate.h"
-#include "cli/cli_command.h"
-#include "doc/blobtree_commands.h"
-#include "doc/project_io.h"
+#include "core/blobtree/blob_tree_json.h"
+#include "core/blobtree/validate.h"
+#include "app/cli/cli_command.h"
+#include "core/doc/blobtree_commands.h"
+#include "core/project/project_io.h"
 #include "demo/blob_creature.h"
 
 namespace {

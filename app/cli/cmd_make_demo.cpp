@@ -3,14 +3,14 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "cli/cli_command.h"
+#include "app/cli/cli_command.h"
 #include "demo/creature.h"
 #include "demo/demo_morph.h"
 #include "demo/gear.h"
 #include "demo/rigged_figure.h"
-#include "doc/project_io.h"
-#include "io/gltf_export.h"
-#include "morph/new_morph_project.h"
+#include "core/project/project_io.h"
+#include "core/io/gltf_export.h"
+#include "core/project/new_morph_project.h"
 
 namespace {
 
@@ -44,7 +44,7 @@ int runMakeDemo(const std::vector<std::string>& args) {
     std::printf("wrote %s (%zu triangles, %zu joints)\n", path.c_str(), figure.totalTriangles(), figure.totalJoints());
   }
 
-  // The creature morphs into the gear (demo/demo_morph.h: skeleton correspondence).
+  // The creature morphs into the gear (demo_morph.h: skeleton correspondence).
   animorph::NewMorphSettings settings = animorph::demoMorphSettings();
   settings.acceptPoorFit = true;  // the demo is always written; a poor fit is printed as a warning
   auto made = animorph::makeMorphProject(creature, "creature.glb", gear, "gear.glb", settings);

@@ -7,10 +7,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli/cli_command.h"
-#include "cli/demo_files.h"
+#include "app/cli/cli_command.h"
+#include "app/cli/demo_files.h"
 #include "demo/statue.h"
-#include "doc/project_io.h"
+#include "core/project/project_io.h"
 
 namespace {
 

@@ -5,13 +5,13 @@
 #include <filesystem>
 #include <optional>
 
-#include "blobtree/blob_tree_json.h"
-#include "cli/cli_command.h"
-#include "cli/morph_method_option.h"
-#include "doc/morph_create.h"
-#include "doc/project_io.h"
-#include "io/gltf_import.h"
-#include "morph/new_morph_project.h"
+#include "core/blobtree/blob_tree_json.h"
+#include "app/cli/cli_command.h"
+#include "app/cli/morph_method_option.h"
+#include "core/doc/morph_create.h"
+#include "core/project/project_io.h"
+#include "core/io/gltf_import.h"
+#include "core/project/new_morph_project.h"
 
 namespace {
 

@@ -6,17 +6,17 @@
 #include <iostream>
 #include <thread>
 
-#include "animorph/evaluate_generic.h"
-#include "blobtree/blob_tree_json.h"
-#include "blobtree/compile.h"
-#include "cli/cli_command.h"
-#include "doc/animorphosis_project.h"
-#include "doc/project_io.h"
-#include "scene/scene_frame.h"
-#include "poly/mesh_io.h"
-#include "poly/polygonizer.h"
-#include "vulkan/context.h"
-#include "implicit/gpu_polygonizer.h"
+#include "core/animorphosis/evaluate_generic.h"
+#include "core/blobtree/blob_tree_json.h"
+#include "core/blobtree/compile.h"
+#include "app/cli/cli_command.h"
+#include "core/project/animorphosis_project.h"
+#include "core/project/project_io.h"
+#include "core/scene/scene_frame.h"
+#include "core/io/mesh_io.h"
+#include "core/poly/polygonizer.h"
+#include "gpu/vulkan/context.h"
+#include "gpu/polygonizer/gpu_polygonizer.h"
 
 namespace {
 

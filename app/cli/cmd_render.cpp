@@ -2,20 +2,20 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "cli/cli_command.h"
-#include "vulkan/context.h"
-#include "doc/document.h"
-#include "render/mesh_cache.h"
-#include "present/offscreen_target.h"
-#include "blobtree/compile.h"
-#include "poly/polygonizer.h"
-#include "scene/animorphosis_scene.h"
-#include "scene/mesh_character.h"
-#include "scene/morph_scene.h"
-#include "scene/scene_frame.h"
-#include "render/scene_from_frame.h"
-#include "render/scene_renderer.h"
-#include "view/camera.h"
+#include "app/cli/cli_command.h"
+#include "gpu/vulkan/context.h"
+#include "core/doc/document.h"
+#include "gpu/render/mesh_cache.h"
+#include "gpu/present/offscreen_target.h"
+#include "core/blobtree/compile.h"
+#include "core/poly/polygonizer.h"
+#include "core/scene/animorphosis_scene.h"
+#include "core/scene/mesh_character.h"
+#include "core/scene/morph_scene.h"
+#include "core/scene/scene_frame.h"
+#include "gpu/frame/scene_from_frame.h"
+#include "gpu/render/scene_renderer.h"
+#include "core/camera/camera.h"
 
 namespace {
 

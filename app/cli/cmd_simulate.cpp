@@ -6,12 +6,12 @@
 #include <filesystem>
 #include <map>
 
-#include "blobtree/compile.h"
-#include "cli/cli_command.h"
-#include "doc/asset_cache.h"
-#include "doc/particle_commands.h"
-#include "doc/project_io.h"
-#include "particles/convert_to_particles.h"
+#include "core/blobtree/compile.h"
+#include "app/cli/cli_command.h"
+#include "core/project/asset_cache.h"
+#include "core/doc/particle_commands.h"
+#include "core/project/project_io.h"
+#include "core/particles/convert_to_particles.h"
 
 namespace {
 

@@ -3,10 +3,10 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "cli/cli_command.h"
-#include "doc/project_io.h"
-#include "io/gltf_import.h"
-#include "paint/weights_from_colors.h"
+#include "app/cli/cli_command.h"
+#include "core/project/project_io.h"
+#include "core/io/gltf_import.h"
+#include "core/paint/weights_from_colors.h"
 
 namespace {
 

@@ -1,10 +1,10 @@
-#include "cli/demo_files.h"
+#include "app/cli/demo_files.h"
 
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 
-#include "cli/cli_command.h"
+#include "app/cli/cli_command.h"
 
 namespace animorph::cli {
 

@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "util/result.h"
+#include "core/util/result.h"
 
 namespace animorph::cli {
 

@@ -4,7 +4,7 @@
 #include <cstring>
 #include <iostream>
 
-#include "cli/cli_command.h"
+#include "app/cli/cli_command.h"
 
 namespace animorph::cli {
 

@@ -1,4 +1,4 @@
-#include "cli/morph_method_option.h"
+#include "app/cli/morph_method_option.h"
 
 namespace animorph::cli {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "doc/morph_setup.h"
+#include "core/project/morph_setup.h"
 
 namespace animorph::cli {
 

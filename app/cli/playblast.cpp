@@ -1,12 +1,12 @@
-#include "cli/playblast.h"
+#include "app/cli/playblast.h"
 
 #include <cstdio>
 
-#include "bake/frame_files.h"
-#include "cli/cli_command.h"
-#include "cli/progress_bar.h"
-#include "render/mesh_sequence_renderer.h"
-#include "render/playblast.h"
+#include "core/export/frame_files.h"
+#include "app/cli/cli_command.h"
+#include "app/cli/progress_bar.h"
+#include "gpu/frame/mesh_sequence_renderer.h"
+#include "gpu/frame/playblast.h"
 
 namespace animorph::cli {
 namespace fs = std::filesystem;

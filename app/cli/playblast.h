@@ -1,16 +1,16 @@
 #pragma once
 // Pictures of baked frames for animorph-cli bake (and its benchmark): PNG frames and the mp4
-// playblast, rendered offscreen with one camera framing every frame (render/playblast.h).
+// playblast, rendered offscreen with one camera framing every frame (frame/playblast.h).
 #include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <string>
 #include <vector>
 
-#include "bake/frame_stage.h"
-#include "doc/project.h"
-#include "poly/mesh.h"
-#include "present/rgba_image.h"
+#include "core/export/frame_stage.h"
+#include "core/project/project.h"
+#include "core/poly/mesh.h"
+#include "gpu/present/rgba_image.h"
 
 namespace animorph::cli {
 
@@ -20,7 +20,7 @@ struct PictureOptions {
   std::string mp4;  // empty: none
   uint32_t width = 1280, height = 720;
   bool burnIn = false;  // the frame number and stage drawn into the mp4's corner
-  std::vector<FrameStageSpan> stages;  // the stage labels burnt in (bake/frame_stage.h)
+  std::vector<FrameStageSpan> stages;  // the stage labels burnt in (export/frame_stage.h)
   double fps = 24.0;
 };
 

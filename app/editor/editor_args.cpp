@@ -1,4 +1,4 @@
-#include "editor_args.h"
+#include "app/editor/editor_args.h"
 
 #include <algorithm>
 #include <cstdio>

@@ -1,4 +1,4 @@
-#include "editor_automation.h"
+#include "app/editor/editor_automation.h"
 
 #include <algorithm>
 #include <cstdio>

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "anim/playback.h"
-#include "doc/document.h"
-#include "editor_args.h"
+#include "core/anim/playback.h"
+#include "core/doc/document.h"
+#include "app/editor/editor_args.h"
 
 namespace animorph {
 

@@ -1,12 +1,12 @@
-#include "editor_gpu.h"
+#include "app/editor/editor_gpu.h"
 
 #include <imgui.h>
 
 #include <algorithm>
 #include <cstdio>
 
-#include "present/rgba_image.h"
-#include "vulkan/vk_check.h"
+#include "gpu/present/rgba_image.h"
+#include "gpu/vulkan/vk_check.h"
 
 namespace animorph {
 

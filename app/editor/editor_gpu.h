@@ -5,17 +5,17 @@
 #include <memory>
 #include <string>
 
-#include "implicit/blob_preview_set.h"
-#include "doc/document.h"
-#include "vulkan/context.h"
-#include "implicit/implicit_preview.h"
-#include "present/imgui_vulkan.h"
-#include "render/mesh_cache.h"
-#include "render/scene_renderer.h"
-#include "render/standin_binding_cache.h"
-#include "present/swapchain.h"
-#include "view/camera.h"
-#include "viewport/viewport_input.h"
+#include "gpu/polygonizer/blob_preview_set.h"
+#include "core/doc/document.h"
+#include "gpu/vulkan/context.h"
+#include "gpu/polygonizer/implicit_preview.h"
+#include "gpu/present/imgui_vulkan.h"
+#include "gpu/render/mesh_cache.h"
+#include "gpu/render/scene_renderer.h"
+#include "gpu/render/standin_binding_cache.h"
+#include "gpu/present/swapchain.h"
+#include "core/camera/camera.h"
+#include "ui/viewport/viewport_input.h"
 
 struct GLFWwindow;
 

@@ -1,13 +1,13 @@
-#include "editor_window.h"
+#include "app/editor/editor_window.h"
 
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
 #include <cstdio>
 
-#include "shell/editor_ui.h"
-#include "poly/preview_polygonizer.h"
-#include "window_events.h"
+#include "ui/shell/editor_ui.h"
+#include "core/poly/preview_polygonizer.h"
+#include "app/editor/window_events.h"
 
 namespace animorph {
 

@@ -1,6 +1,6 @@
 #pragma once
 // The editor's window and ImGui context: opened before the Vulkan side, closed after it.
-#include "present/swapchain.h"
+#include "gpu/present/swapchain.h"
 
 struct GLFWwindow;
 

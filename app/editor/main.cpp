@@ -11,20 +11,20 @@
 #include <cstring>
 #include <string>
 
-#include "editor_args.h"
-#include "editor_automation.h"
-#include "editor_gpu.h"
-#include "shell/editor_ui.h"
-#include "editor_window.h"
-#include "frame_clock.h"
-#include "poly/preview_polygonizer.h"
-#include "render/playblast.h"
-#include "scene/scrub_pacing.h"
-#include "shell/redraw_policy.h"
-#include "ui_map.h"
-#include "viewport_frame.h"
-#include "vulkan/vk_check.h"
-#include "window_events.h"
+#include "app/editor/editor_args.h"
+#include "app/editor/editor_automation.h"
+#include "app/editor/editor_gpu.h"
+#include "ui/shell/editor_ui.h"
+#include "app/editor/editor_window.h"
+#include "app/editor/frame_clock.h"
+#include "core/poly/preview_polygonizer.h"
+#include "gpu/frame/playblast.h"
+#include "core/scene/scrub_pacing.h"
+#include "ui/shell/redraw_policy.h"
+#include "app/editor/ui_map.h"
+#include "app/editor/viewport_frame.h"
+#include "gpu/vulkan/vk_check.h"
+#include "app/editor/window_events.h"
 
 using namespace animorph;
 

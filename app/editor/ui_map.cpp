@@ -1,6 +1,6 @@
-#include "ui_map.h"
+#include "app/editor/ui_map.h"
 
-#include "util/atomic_file.h"
+#include "core/util/atomic_file.h"
 
 namespace animorph {
 

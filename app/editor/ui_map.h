@@ -5,8 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "doc/document.h"
-#include "shell/editor_ui.h"
+#include "core/doc/document.h"
+#include "ui/shell/editor_ui.h"
 
 namespace animorph {
 

@@ -1,21 +1,21 @@
-#include "viewport_frame.h"
+#include "app/editor/viewport_frame.h"
 
 #include <cstdio>
 #include <cstdlib>
 
-#include "paint/paint_mesh.h"
-#include "scene/animorphosis_scene.h"
-#include "scene/blob_pick.h"
-#include "scene/click_selection.h"
-#include "scene/morph_pick.h"
-#include "scene/morph_preview_source.h"
-#include "scene/pick.h"
-#include "scene/scene_frame.h"
-#include "scene/standin_guides.h"
-#include "render/particle_spheres.h"
-#include "render/scene_from_frame.h"
-#include "render/standin_overlay.h"
-#include "render/weight_overlay_scene.h"
+#include "core/paint/paint_mesh.h"
+#include "core/scene/animorphosis_scene.h"
+#include "editor/blob_pick.h"
+#include "editor/click_selection.h"
+#include "editor/morph_pick.h"
+#include "core/scene/morph_preview_source.h"
+#include "editor/pick.h"
+#include "core/scene/scene_frame.h"
+#include "core/scene/standin_guides.h"
+#include "gpu/render/particle_spheres.h"
+#include "gpu/frame/scene_from_frame.h"
+#include "gpu/render/standin_overlay.h"
+#include "gpu/render/weight_overlay_scene.h"
 
 namespace animorph {
 

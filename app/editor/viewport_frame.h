@@ -8,13 +8,13 @@
 #include <string>
 #include <vector>
 
-#include "editor_gpu.h"
-#include "shell/editor_ui.h"
-#include "scene/animorphosis_scene.h"
-#include "scene/morph_preparer.h"
-#include "scene/morph_scene.h"
-#include "scene/particle_view.h"
-#include "scene/scene_frame.h"
+#include "app/editor/editor_gpu.h"
+#include "ui/shell/editor_ui.h"
+#include "core/scene/animorphosis_scene.h"
+#include "editor/morph_preparer.h"
+#include "core/scene/morph_scene.h"
+#include "core/scene/particle_view.h"
+#include "core/scene/scene_frame.h"
 
 namespace animorph {
 
@@ -30,7 +30,7 @@ class ViewportFrame {
   explicit ViewportFrame(PreviewDevice initialDevice);
 
   // The morph runtime of the document (prepared off the UI thread once per revision, the previous
-  // one shown meanwhile: scene/morph_preparer.h; null without a morph, or while weight painting).
+  // one shown meanwhile: morph_preparer.h; null without a morph, or while weight painting).
   // Called before the UI draws, so the inspector and the status bar show this frame's morph, and
   // again after, should the UI have edited the document. settle: wait for the preparation (a
   // screenshot is pending).

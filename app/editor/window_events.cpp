@@ -1,4 +1,4 @@
-#include "window_events.h"
+#include "app/editor/window_events.h"
 
 #include <GLFW/glfw3.h>
 

@@ -1,4 +1,4 @@
-// Declarations shared by the polygoniser's compute shaders (engine/gpu/implicit/gpu_polygonizer.cpp):
+// Declarations shared by the polygoniser's compute shaders (engine/gpu/polygonizer/gpu_polygonizer.cpp):
 // per-frame parameters, the primitive/op pool, block data and helpers for the
 // block grid and edge numbering. Buffers a shader does not use are still
 // declared; the compiler drops them.
@@ -41,7 +41,7 @@ layout(constant_id = 1) const uint kAmKinds = AM_FEAT_ALL;
 #define AM_LACKS_SKEL(k) ((kAmKinds & AM_KIND_SKEL_BIT(k)) == 0u)
 #define AM_LACKS_COMBINE(m) ((kAmFeatures & AM_FEAT_COMBINE_BIT(m)) == 0u)
 
-// C++ mirror: PolyParams in engine/gpu/implicit/gpu_polygonizer.cpp (std140).
+// C++ mirror: PolyParams in engine/gpu/polygonizer/gpu_polygonizer.cpp (std140).
 layout(set = 0, binding = AM_PB_PARAMS, std430) readonly buffer PolyParams {
   vec4 gridOrigin;  // xyz: world position of grid corner (0,0,0); w: cell size h (m)
   uvec4 gridCells;  // xyz: cells per axis; w: workgroups a row of the fine passes' dispatch

@@ -1,5 +1,5 @@
 // The transition of a skinned mesh onto / from its stand-in (docs/design.md §4),
-// the GPU twin of engine/core/morph/transition.cpp (evaluateTransition,
+// the GPU twin of engine/core/standin_morph/transition.cpp (evaluateTransition,
 // transitionAlphas) and standin/project_onto_standin.cpp (re-projection):
 //   p' = sum_j w_j M_j lerp(p, p + dp, alpha),  n' = (model skin)^-T nlerp(n, n~, alpha)
 // with alpha from the easing table and the weight map, and above

@@ -3,11 +3,11 @@
 #include <functional>
 #include <random>
 
-#include "animorph/correspondence_json.h"
-#include "animorph/evaluate_generic.h"
-#include "animorph/generic_tree.h"
-#include "animorph/validate_correspondence.h"
-#include "blobtree/compile.h"
+#include "core/animorphosis/correspondence_json.h"
+#include "core/animorphosis/evaluate_generic.h"
+#include "core/animorphosis/generic_tree.h"
+#include "core/animorphosis/validate_correspondence.h"
+#include "core/blobtree/compile.h"
 #include "util/animorph_fixtures.h"
 #include "util/blob_builders.h"
 

@@ -5,10 +5,10 @@
 #include <numeric>
 #include <random>
 
-#include "animorph/assignment.h"
-#include "animorph/auto_correspond.h"
-#include "animorph/generic_tree.h"
-#include "animorph/validate_correspondence.h"
+#include "core/animorphosis/assignment.h"
+#include "core/animorphosis/auto_correspond.h"
+#include "core/animorphosis/generic_tree.h"
+#include "core/animorphosis/validate_correspondence.h"
 #include "demo/blob_creature.h"
 #include "util/animorph_fixtures.h"
 

@@ -7,11 +7,11 @@
 #include <random>
 #include <set>
 
-#include "animorph/bake_keys.h"
-#include "animorph/evaluate_generic.h"
-#include "animorph/generic_tree.h"
-#include "blobtree/compile.h"
-#include "blobtree/validate.h"
+#include "core/animorphosis/bake_keys.h"
+#include "core/animorphosis/evaluate_generic.h"
+#include "core/animorphosis/generic_tree.h"
+#include "core/blobtree/compile.h"
+#include "core/blobtree/validate.h"
 #include "util/animorph_fixtures.h"
 
 using namespace animorph;

@@ -5,18 +5,18 @@
 #include <random>
 #include <string>
 
-#include "animorph/auto_correspond.h"
-#include "animorph/evaluate_generic.h"
-#include "animorph/validate_correspondence.h"
-#include "blobtree/blob_tree_json.h"
-#include "blobtree/compile.h"
-#include "blobtree/tree_edit.h"
-#include "blobtree/validate.h"
+#include "core/animorphosis/auto_correspond.h"
+#include "core/animorphosis/evaluate_generic.h"
+#include "core/animorphosis/validate_correspondence.h"
+#include "core/blobtree/blob_tree_json.h"
+#include "core/blobtree/compile.h"
+#include "core/blobtree/tree_edit.h"
+#include "core/blobtree/validate.h"
 #include "demo/animorphosis_demo.h"
 #include "demo/dino_dragon.h"
-#include "doc/animorphosis_project.h"
-#include "doc/project_io.h"
-#include "poly/polygonizer.h"
+#include "core/project/animorphosis_project.h"
+#include "core/project/project_io.h"
+#include "core/poly/polygonizer.h"
 #include "util/animorph_fixtures.h"
 #include "util/mesh_checks.h"
 

@@ -1,9 +1,9 @@
 #include <catch2/catch.hpp>
 
-#include "animorph/evaluate_generic.h"
-#include "animorph/generic_tree.h"
-#include "blobtree/compile.h"
-#include "poly/polygonizer.h"
+#include "core/animorphosis/evaluate_generic.h"
+#include "core/animorphosis/generic_tree.h"
+#include "core/blobtree/compile.h"
+#include "core/poly/polygonizer.h"
 #include "util/animorph_fixtures.h"
 #include "util/mesh_checks.h"
 

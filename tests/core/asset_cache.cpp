@@ -4,8 +4,8 @@
 
 #include "demo/dense.h"
 #include "demo/gear.h"
-#include "doc/asset_cache.h"
-#include "io/gltf_export.h"
+#include "core/project/asset_cache.h"
+#include "core/io/gltf_export.h"
 #include "util/temp_dir.h"
 
 using namespace animorph;

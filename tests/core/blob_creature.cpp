@@ -1,11 +1,11 @@
 #include <catch2/catch.hpp>
 
-#include "blobtree/blob_tree_json.h"
-#include "blobtree/compile.h"
-#include "blobtree/validate.h"
+#include "core/blobtree/blob_tree_json.h"
+#include "core/blobtree/compile.h"
+#include "core/blobtree/validate.h"
 #include "demo/blob_creature.h"
-#include "poly/mesh_checks.h"
-#include "poly/polygonizer.h"
+#include "core/poly/mesh_checks.h"
+#include "core/poly/polygonizer.h"
 
 using namespace animorph;
 

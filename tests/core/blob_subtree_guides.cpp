@@ -5,7 +5,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "util/blob_builders.h"
-#include "scene/blob_guides.h"
+#include "core/scene/blob_guides.h"
 
 using namespace animorph;
 using namespace animorph::test;

@@ -4,9 +4,9 @@
 #include <fstream>
 #include <random>
 
-#include "blobtree/blob_tree_json.h"
-#include "blobtree/compile.h"
-#include "blobtree/validate.h"
+#include "core/blobtree/blob_tree_json.h"
+#include "core/blobtree/compile.h"
+#include "core/blobtree/validate.h"
 #include "util/blob_builders.h"
 #include "util/temp_dir.h"
 

@@ -4,12 +4,12 @@
 #include <functional>
 #include <random>
 
-#include "blobtree/compile.h"
-#include "blobtree/validate.h"
+#include "core/blobtree/compile.h"
+#include "core/blobtree/validate.h"
 #include "demo/blob_creature.h"
-#include "doc/actor_commands.h"
-#include "doc/blobtree_commands.h"
-#include "doc/document.h"
+#include "core/doc/actor_commands.h"
+#include "core/doc/blobtree_commands.h"
+#include "core/doc/document.h"
 #include "util/blob_builders.h"
 
 using namespace animorph;

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "view/camera.h"
+#include "core/camera/camera.h"
 
 using namespace animorph;
 

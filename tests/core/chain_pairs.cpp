@@ -1,4 +1,4 @@
-// Hand re-pairing of skeleton chains (morph/chain_pair.h, doc/chain_pair_commands.h):
+// Hand re-pairing of skeleton chains (standin_morph/chain_pair.h, doc/chain_pair_commands.h):
 // artist pairs are kept and the automatic assignment fills in the rest; an artist
 // pair involving a main root chain wins over the root rule; names that are not in
 // the rig are skipped with a warning naming the element; the pairs are saved
@@ -9,12 +9,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "doc/chain_pair_commands.h"
-#include "doc/document.h"
-#include "doc/morph_create.h"
-#include "doc/project_io.h"
-#include "morph/chain_matching.h"
-#include "morph/correspondence_morph.h"
+#include "core/doc/chain_pair_commands.h"
+#include "core/doc/document.h"
+#include "core/doc/morph_create.h"
+#include "core/project/project_io.h"
+#include "core/standin_morph/chain_matching.h"
+#include "core/standin_morph/correspondence_morph.h"
 #include "util/morph_fixtures.h"
 
 using namespace animorph;

@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "scene/click_selection.h"
+#include "editor/click_selection.h"
 
 using namespace animorph;
 

@@ -4,10 +4,10 @@
 #include <functional>
 #include <random>
 
-#include "animorph/compile_generic.h"
-#include "animorph/evaluate_generic.h"
+#include "core/animorphosis/compile_generic.h"
+#include "core/animorphosis/evaluate_generic.h"
 #include "demo/animorphosis_demo.h"
-#include "doc/animorphosis_project.h"
+#include "core/project/animorphosis_project.h"
 #include "util/animorph_fixtures.h"
 
 using namespace animorph;

@@ -5,8 +5,8 @@
 #include "demo/creature.h"
 #include "demo/dense.h"
 #include "demo/gear.h"
-#include "rig/pose.h"
-#include "rig/skinning.h"
+#include "core/rig/pose.h"
+#include "core/rig/skinning.h"
 #include "util/mesh_checks.h"
 
 using namespace animorph;

@@ -5,12 +5,12 @@
 #include <fstream>
 #include <thread>
 
-#include "bake/export_project.h"
-#include "bake/frame_files.h"
-#include "doc/project_io.h"
-#include "io/gltf_import.h"
+#include "core/export/export_project.h"
+#include "core/export/frame_files.h"
+#include "core/project/project_io.h"
+#include "core/io/gltf_import.h"
 #include "util/animorph_fixtures.h"
-#include "util/background_job.h"
+#include "core/util/background_job.h"
 #include "util/temp_dir.h"
 
 using namespace animorph;

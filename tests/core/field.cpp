@@ -6,13 +6,13 @@
 #include <random>
 #include <vector>
 
-#include "blobtree/compile.h"
-#include "field/convolution_segment.h"
-#include "field/field_program.h"
-#include "field/operators.h"
-#include "field/skeleton.h"
-#include "field/space_map.h"
-#include "field/spline_curve.h"
+#include "core/blobtree/compile.h"
+#include "core/field/convolution_segment.h"
+#include "core/field/field_program.h"
+#include "core/field/operators.h"
+#include "core/field/skeleton.h"
+#include "core/field/space_map.h"
+#include "core/field/spline_curve.h"
 #include "util/blob_builders.h"
 
 using namespace animorph;

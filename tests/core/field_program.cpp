@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <random>
 
-#include "blobtree/compile.h"
-#include "field/field_program.h"
+#include "core/blobtree/compile.h"
+#include "core/field/field_program.h"
 #include "util/blob_builders.h"
 #include "util/reference_field.h"
 

@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "bake/frame_chunks.h"
+#include "core/export/frame_chunks.h"
 
 using namespace animorph;
 

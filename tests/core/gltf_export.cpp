@@ -5,10 +5,10 @@
 #include "demo/creature.h"
 #include "demo/dense.h"
 #include "demo/gear.h"
-#include "io/gltf_export.h"
-#include "io/gltf_import.h"
-#include "rig/pose.h"
-#include "rig/skinning.h"
+#include "core/io/gltf_export.h"
+#include "core/io/gltf_import.h"
+#include "core/rig/pose.h"
+#include "core/rig/skinning.h"
 #include "util/temp_dir.h"
 
 using namespace animorph;

@@ -5,9 +5,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "io/gltf_import.h"
-#include "rig/pose.h"
-#include "rig/skinning.h"
+#include "core/io/gltf_import.h"
+#include "core/rig/pose.h"
+#include "core/rig/skinning.h"
 #include "util/mini_gltf.h"
 #include "util/temp_dir.h"
 

@@ -5,10 +5,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "util/atomic_file.h"
-#include "io/gltf_import.h"
-#include "io/gltf_sequence_export.h"
-#include "rig/pose.h"
+#include "core/util/atomic_file.h"
+#include "core/io/gltf_import.h"
+#include "core/io/gltf_sequence_export.h"
+#include "core/rig/pose.h"
 #include "util/temp_dir.h"
 
 using namespace animorph;

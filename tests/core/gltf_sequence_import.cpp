@@ -5,8 +5,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "io/gltf_sequence_export.h"
-#include "io/gltf_sequence_import.h"
+#include "core/io/gltf_sequence_export.h"
+#include "core/io/gltf_sequence_import.h"
 #include "util/temp_dir.h"
 
 using namespace animorph;

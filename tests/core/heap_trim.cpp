@@ -7,7 +7,7 @@
 #include <thread>
 #include <vector>
 
-#include "util/heap_trim.h"
+#include "core/util/heap_trim.h"
 
 using namespace animorph;
 

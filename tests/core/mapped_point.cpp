@@ -9,9 +9,9 @@
 
 #include <glm/gtc/quaternion.hpp>
 
-#include "field/field_program.h"
-#include "field/potential.h"
-#include "field/space_map.h"
+#include "core/field/field_program.h"
+#include "core/field/potential.h"
+#include "core/field/space_map.h"
 
 using namespace animorph;
 

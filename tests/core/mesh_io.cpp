@@ -6,11 +6,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "blobtree/compile.h"
-#include "util/atomic_file.h"
-#include "poly/mesh_checks.h"
-#include "poly/mesh_io.h"
-#include "poly/polygonizer.h"
+#include "core/blobtree/compile.h"
+#include "core/util/atomic_file.h"
+#include "core/poly/mesh_checks.h"
+#include "core/io/mesh_io.h"
+#include "core/poly/polygonizer.h"
 #include "util/blob_builders.h"
 #include "util/temp_dir.h"
 

@@ -5,14 +5,14 @@
 
 #include <nlohmann/json.hpp>
 
-#include "doc/base64.h"
-#include "doc/project_io.h"
-#include "field/operators.h"
-#include "morph/mesh_distance.h"
-#include "morph/morph_field.h"
-#include "morph/morph_runtime.h"
-#include "morph/solid_noise.h"
-#include "poly/mesh_checks.h"
+#include "core/util/base64.h"
+#include "core/project/project_io.h"
+#include "core/field/operators.h"
+#include "core/standin_morph/mesh_distance.h"
+#include "core/standin_morph/morph_field.h"
+#include "core/scene/morph_runtime.h"
+#include "core/poly/solid_noise.h"
+#include "core/poly/mesh_checks.h"
 #include "util/mesh_checks.h"
 #include "util/morph_fixtures.h"
 
@@ -204,7 +204,7 @@ TEST_CASE("morph: creature -> gear, every stage's mesh has the right topology", 
   for (int f : {(mk.a + mk.b) / 2, (mk.c + mk.d) / 2}) {
     const MorphFrame fr = frameAt(f);
     CHECK((fr.stage == MorphStage::Collapse || fr.stage == MorphStage::Expand));
-    // The character's mesh, then its stand-in core (morph/standin_core.h) as a second shell.
+    // The character's mesh, then its stand-in core (scene/standin_core.h) as a second shell.
     const Character& c = fr.stage == MorphStage::Collapse ? test::demoCreature() : test::demoGear();
     CHECK(fr.coreTriangles > 0);
     CHECK(fr.mesh.triangleCount() - fr.coreTriangles == c.totalTriangles());

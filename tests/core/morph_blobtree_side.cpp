@@ -5,14 +5,14 @@
 // last with the target's; markers A = B (C = D) on the BlobTree side.
 #include <catch2/catch.hpp>
 
-#include "blobtree/compile.h"
+#include "core/blobtree/compile.h"
 #include "demo/blob_creature.h"
-#include "doc/morph_create.h"
-#include "doc/document.h"
-#include "doc/project_io.h"
-#include "morph/morph_runtime.h"
-#include "poly/mesh_checks.h"
-#include "scene/morph_scene.h"
+#include "core/doc/morph_create.h"
+#include "core/doc/document.h"
+#include "core/project/project_io.h"
+#include "core/scene/morph_runtime.h"
+#include "core/poly/mesh_checks.h"
+#include "core/scene/morph_scene.h"
 #include "util/mesh_checks.h"
 #include "util/morph_fixtures.h"
 

@@ -4,10 +4,10 @@
 // frames and volume jumps, and only those.
 #include <catch2/catch.hpp>
 
-#include "morph/morph_continuity.h"
-#include "morph/morph_field.h"
-#include "poly/mesh_checks.h"
-#include "poly/polygonizer.h"
+#include "core/standin_morph/morph_continuity.h"
+#include "core/standin_morph/morph_field.h"
+#include "core/poly/mesh_checks.h"
+#include "core/poly/polygonizer.h"
 #include "util/morph_fixtures.h"
 
 using namespace animorph;

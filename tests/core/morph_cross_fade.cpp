@@ -6,9 +6,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "doc/project_io.h"
-#include "morph/transition_frame.h"
-#include "scene/morph_scene.h"
+#include "core/project/project_io.h"
+#include "core/scene/transition_frame.h"
+#include "core/scene/morph_scene.h"
 #include "util/morph_fixtures.h"
 
 using namespace animorph;
@@ -67,7 +67,7 @@ TEST_CASE("morph cross-fade: around B and C both shapes are drawn with complemen
   const MorphMarkers mk = p.morph.markers;
   AssetCache assets;
 
-  // Off: the collapsing mesh and its stand-in core (morph/standin_core.h), both opaque.
+  // Off: the collapsing mesh and its stand-in core (scene/standin_core.h), both opaque.
   auto rtOff = prepareMorph(p, demo.dir, assets);
   REQUIRE(rtOff.ok());
   MorphDraws off = drawsAt(*rtOff, p, demo.dir, mk.b - 1, false);

@@ -4,7 +4,7 @@
 // actors are picked as themselves); a ray that misses finds nothing.
 #include <catch2/catch.hpp>
 
-#include "scene/morph_pick.h"
+#include "editor/morph_pick.h"
 #include "util/morph_fixtures.h"
 
 using namespace animorph;

@@ -1,4 +1,4 @@
-// The editor's morph preparation off the UI thread (scene/morph_preparer.h): the first call
+// The editor's morph preparation off the UI thread (morph_preparer.h): the first call
 // starts a job and shows nothing of another document; a new revision keeps showing the previous
 // runtime until its job finishes; the result equals a synchronous prepareMorph; errors and
 // disabled morphs come back as such; the job's loaded characters end up in the caller's cache.
@@ -7,8 +7,8 @@
 #include <chrono>
 #include <thread>
 
-#include "morph/morph_runtime.h"
-#include "scene/morph_preparer.h"
+#include "core/scene/morph_runtime.h"
+#include "editor/morph_preparer.h"
 #include "util/morph_fixtures.h"
 
 using namespace animorph;

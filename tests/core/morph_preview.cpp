@@ -8,10 +8,10 @@
 #include <chrono>
 #include <thread>
 
-#include "morph/mesh_distance.h"
-#include "poly/mesh_checks.h"
-#include "poly/polygonizer.h"
-#include "scene/morph_preview_source.h"
+#include "core/standin_morph/mesh_distance.h"
+#include "core/poly/mesh_checks.h"
+#include "core/poly/polygonizer.h"
+#include "core/scene/morph_preview_source.h"
 #include "util/morph_fixtures.h"
 
 using namespace animorph;

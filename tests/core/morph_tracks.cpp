@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 
-#include "blobtree/tree_edit.h"
-#include "doc/morph_tracks.h"
+#include "core/blobtree/tree_edit.h"
+#include "core/doc/morph_tracks.h"
 
 using namespace animorph;
 

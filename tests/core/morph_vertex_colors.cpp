@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 
-#include "io/gltf_export.h"
-#include "morph/morph_runtime.h"
+#include "core/io/gltf_export.h"
+#include "core/scene/morph_runtime.h"
 #include "util/morph_fixtures.h"
 #include "util/temp_dir.h"
 

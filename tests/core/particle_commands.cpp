@@ -1,9 +1,9 @@
 #include <catch2/catch.hpp>
 
 #include "demo/statue.h"
-#include "doc/blobtree_commands.h"
-#include "doc/document.h"
-#include "doc/particle_commands.h"
+#include "core/doc/blobtree_commands.h"
+#include "core/doc/document.h"
+#include "core/doc/particle_commands.h"
 
 using namespace animorph;
 

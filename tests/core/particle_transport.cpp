@@ -6,9 +6,9 @@
 #include <random>
 #include <tuple>
 
-#include "blobtree/compile.h"
-#include "particles/particle_animorphosis.h"
-#include "particles/particle_transport.h"
+#include "core/blobtree/compile.h"
+#include "core/particles/particle_animorphosis.h"
+#include "core/particles/particle_transport.h"
 #include "util/blob_builders.h"
 
 using namespace animorph;

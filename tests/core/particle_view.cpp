@@ -4,7 +4,7 @@
 #include <algorithm>
 
 #include "demo/dino_dragon.h"
-#include "scene/particle_view.h"
+#include "core/scene/particle_view.h"
 #include "util/blob_builders.h"
 
 using namespace animorph;

@@ -2,10 +2,10 @@
 
 #include <cmath>
 
-#include "blobtree/compile.h"
-#include "particles/particle_system.h"
-#include "particles/particle_tree.h"
-#include "particles/trajectory_bake.h"
+#include "core/blobtree/compile.h"
+#include "core/particles/particle_system.h"
+#include "core/particles/particle_tree.h"
+#include "core/particles/trajectory_bake.h"
 
 using namespace animorph;
 

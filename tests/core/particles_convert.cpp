@@ -2,11 +2,11 @@
 
 #include <cmath>
 
-#include "blobtree/compile.h"
+#include "core/blobtree/compile.h"
 #include "demo/statue.h"
-#include "particles/convert_to_particles.h"
-#include "poly/mesh_checks.h"
-#include "poly/polygonizer.h"
+#include "core/particles/convert_to_particles.h"
+#include "core/poly/mesh_checks.h"
+#include "core/poly/polygonizer.h"
 #include "util/manifold_checks.h"
 
 using namespace animorph;

@@ -7,16 +7,16 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "blobtree/compile.h"
-#include "doc/actor_commands.h"
-#include "doc/document.h"
-#include "doc/particle_commands.h"
-#include "io/gltf_import.h"
-#include "particles/character_shape.h"
-#include "particles/mesh_inside.h"
-#include "poly/mesh_checks.h"
-#include "poly/polygonizer.h"
-#include "scene/scene_frame.h"
+#include "core/blobtree/compile.h"
+#include "core/doc/actor_commands.h"
+#include "core/doc/document.h"
+#include "core/doc/particle_commands.h"
+#include "core/io/gltf_import.h"
+#include "core/particles/character_shape.h"
+#include "core/particles/mesh_inside.h"
+#include "core/poly/mesh_checks.h"
+#include "core/poly/polygonizer.h"
+#include "core/scene/scene_frame.h"
 #include "util/manifold_checks.h"
 #include "util/morph_fixtures.h"
 

@@ -3,14 +3,14 @@
 #include <cmath>
 #include <unordered_map>
 
-#include "animorph/evaluate_generic.h"
-#include "blobtree/blob_tree_json.h"
-#include "blobtree/compile.h"
+#include "core/animorphosis/evaluate_generic.h"
+#include "core/blobtree/blob_tree_json.h"
+#include "core/blobtree/compile.h"
 #include "demo/statue.h"
-#include "doc/animorphosis_project.h"
-#include "doc/project_io.h"
-#include "poly/mesh_checks.h"
-#include "poly/polygonizer.h"
+#include "core/project/animorphosis_project.h"
+#include "core/project/project_io.h"
+#include "core/poly/mesh_checks.h"
+#include "core/poly/polygonizer.h"
 
 using namespace animorph;
 

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "anim/playback.h"
+#include "core/anim/playback.h"
 
 using namespace animorph;
 

@@ -7,9 +7,9 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "bake/frame_stage.h"
-#include "doc/project_io.h"
-#include "io/mp4_writer.h"
+#include "core/export/frame_stage.h"
+#include "core/project/project_io.h"
+#include "core/export/mp4_writer.h"
 #include "util/animorph_fixtures.h"
 #include "util/temp_dir.h"
 

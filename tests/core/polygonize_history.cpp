@@ -8,11 +8,11 @@
 #include <cmath>
 #include <random>
 
-#include "blobtree/compile.h"
-#include "poly/frame_sequence.h"
-#include "poly/mesh_checks.h"
-#include "poly/polygonizer.h"
-#include "poly/program_change.h"
+#include "core/blobtree/compile.h"
+#include "core/poly/frame_sequence.h"
+#include "core/poly/mesh_checks.h"
+#include "core/poly/polygonizer.h"
+#include "core/poly/program_change.h"
 #include "util/blob_builders.h"
 
 using namespace animorph;

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <vector>
 
-#include "blobtree/compile.h"
-#include "poly/marching_cubes_table.h"
-#include "poly/mesh_checks.h"
-#include "poly/polygonizer.h"
+#include "core/blobtree/compile.h"
+#include "core/poly/marching_cubes_table.h"
+#include "core/poly/mesh_checks.h"
+#include "core/poly/polygonizer.h"
 #include "util/blob_builders.h"
 #include "util/manifold_checks.h"
 #include "util/morph_fixtures.h"

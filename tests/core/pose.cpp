@@ -2,8 +2,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "rig/pose.h"
-#include "rig/skinning.h"
+#include "core/rig/pose.h"
+#include "core/rig/skinning.h"
 
 using namespace animorph;
 

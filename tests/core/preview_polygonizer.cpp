@@ -3,11 +3,11 @@
 #include <chrono>
 #include <thread>
 
-#include "blobtree/compile.h"
-#include "blobtree/tree_edit.h"
+#include "core/blobtree/compile.h"
+#include "core/blobtree/tree_edit.h"
 #include "demo/blob_creature.h"
-#include "poly/mesh_checks.h"
-#include "poly/preview_polygonizer.h"
+#include "core/poly/mesh_checks.h"
+#include "core/poly/preview_polygonizer.h"
 
 using namespace animorph;
 

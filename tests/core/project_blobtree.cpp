@@ -3,12 +3,12 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
-#include "blobtree/blob_tree_json.h"
+#include "core/blobtree/blob_tree_json.h"
 #include "demo/blob_creature.h"
-#include "doc/blobtree_commands.h"
-#include "doc/project_io.h"
-#include "scene/blob_guides.h"
-#include "scene/scene_frame.h"
+#include "core/doc/blobtree_commands.h"
+#include "core/project/project_io.h"
+#include "core/scene/blob_guides.h"
+#include "core/scene/scene_frame.h"
 
 using namespace animorph;
 

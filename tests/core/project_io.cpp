@@ -4,9 +4,9 @@
 #include <fstream>
 #include <sys/stat.h>
 
-#include "util/atomic_file.h"
-#include "doc/document.h"
-#include "doc/project_io.h"
+#include "core/util/atomic_file.h"
+#include "core/doc/document.h"
+#include "core/project/project_io.h"
 #include "util/temp_dir.h"
 
 using namespace animorph;

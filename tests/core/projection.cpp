@@ -1,9 +1,9 @@
 #include <catch2/catch.hpp>
 
-#include "morph/transition.h"
-#include "rig/pose.h"
-#include "standin/character_pose.h"
-#include "standin/fit_standin.h"
+#include "core/standin_morph/transition.h"
+#include "core/rig/pose.h"
+#include "core/standin/character_pose.h"
+#include "core/standin/fit_standin.h"
 #include "util/morph_fixtures.h"
 
 using namespace animorph;

@@ -18,16 +18,16 @@
 #include <random>
 #include <thread>
 
-#include "blobtree/blob_tree_json.h"
-#include "blobtree/tree_edit.h"
-#include "doc/actor_removal.h"
-#include "doc/asset_cache.h"
-#include "util/atomic_file.h"
-#include "doc/project_io.h"
-#include "io/gltf_import.h"
+#include "core/blobtree/blob_tree_json.h"
+#include "core/blobtree/tree_edit.h"
+#include "core/doc/actor_removal.h"
+#include "core/project/asset_cache.h"
+#include "core/util/atomic_file.h"
+#include "core/project/project_io.h"
+#include "core/io/gltf_import.h"
 #include "util/blob_builders.h"
 #include "util/bounded_run.h"
-#include "util/json_text.h"
+#include "core/util/json_text.h"
 #include "util/mini_gltf.h"
 #include "util/temp_dir.h"
 

@@ -1,8 +1,8 @@
 #include <catch2/catch.hpp>
 
 #include "demo/blob_creature.h"
-#include "poly/preview_polygonizer.h"
-#include "scene/scrub_pacing.h"
+#include "core/poly/preview_polygonizer.h"
+#include "core/scene/scrub_pacing.h"
 
 using namespace animorph;
 

@@ -1,4 +1,4 @@
-// Skeleton correspondence (morph/skeleton_correspondence.h, morph/correspondence_morph.h):
+// Skeleton correspondence (standin_morph/skeleton_correspondence.h, standin_morph/correspondence_morph.h):
 // chains split at branch joints and cover every segment; a rig matches itself chain for
 // chain; the in-between stand-ins start on the source and end on the target; and the
 // morph through B..C has no empty frame and a smaller largest frame-to-frame volume
@@ -10,11 +10,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "doc/project_io.h"
-#include "morph/chain_matching.h"
-#include "morph/correspondence_morph.h"
-#include "morph/morph_continuity.h"
-#include "rig/pose.h"
+#include "core/project/project_io.h"
+#include "core/standin_morph/chain_matching.h"
+#include "core/standin_morph/correspondence_morph.h"
+#include "core/standin_morph/morph_continuity.h"
+#include "core/rig/pose.h"
 #include "util/morph_fixtures.h"
 
 using namespace animorph;

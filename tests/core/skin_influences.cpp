@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "rig/skin_influences.h"
+#include "core/rig/skin_influences.h"
 
 using namespace animorph;
 

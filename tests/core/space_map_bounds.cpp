@@ -5,8 +5,8 @@
 #include <random>
 #include <vector>
 
-#include "field/field_program.h"
-#include "field/space_map.h"
+#include "core/field/field_program.h"
+#include "core/field/space_map.h"
 
 using namespace animorph;
 

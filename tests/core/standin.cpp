@@ -2,12 +2,12 @@
 
 #include <filesystem>
 
-#include "field/skeleton.h"
-#include "io/gltf_export.h"
-#include "io/gltf_import.h"
-#include "standin/character_pose.h"
-#include "standin/fit_standin.h"
-#include "standin/standin_json.h"
+#include "core/field/skeleton.h"
+#include "core/io/gltf_export.h"
+#include "core/io/gltf_import.h"
+#include "core/standin/character_pose.h"
+#include "core/standin/fit_standin.h"
+#include "core/standin/standin_json.h"
 #include "util/morph_fixtures.h"
 #include "util/temp_dir.h"
 

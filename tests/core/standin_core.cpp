@@ -1,4 +1,4 @@
-// The transitions' stand-in core (morph/standin_core.h) and the union volume it is
+// The transitions' stand-in core (scene/standin_core.h) and the union volume it is
 // measured with (poly/union_volume.h): the core is the morph's end field at C and its
 // start field at B, scaled down to nothing as the transitions run; with it the demo and
 // tentacle.glb -> plate.glb change volume continuously through A..D (no pop at C), under
@@ -7,10 +7,10 @@
 
 #include <cstdio>
 
-#include "morph/morph_continuity.h"
-#include "morph/standin_core.h"
-#include "poly/mesh_checks.h"
-#include "poly/union_volume.h"
+#include "core/standin_morph/morph_continuity.h"
+#include "core/scene/standin_core.h"
+#include "core/poly/mesh_checks.h"
+#include "core/poly/union_volume.h"
 #include "util/morph_fixtures.h"
 
 using namespace animorph;

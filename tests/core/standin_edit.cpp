@@ -1,14 +1,14 @@
 #include <catch2/catch.hpp>
 
-#include "doc/document.h"
-#include "doc/project_io.h"
-#include "doc/standin_commands.h"
-#include "rig/pose.h"
-#include "scene/scene_frame.h"
-#include "scene/standin_guides.h"
-#include "scene/standin_pick.h"
-#include "standin/character_pose.h"
-#include "standin/standin_edit.h"
+#include "core/doc/document.h"
+#include "core/project/project_io.h"
+#include "core/doc/standin_commands.h"
+#include "core/rig/pose.h"
+#include "core/scene/scene_frame.h"
+#include "core/scene/standin_guides.h"
+#include "editor/standin_pick.h"
+#include "core/standin/character_pose.h"
+#include "core/standin/standin_edit.h"
 #include "util/morph_fixtures.h"
 
 using namespace animorph;

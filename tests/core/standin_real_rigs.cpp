@@ -1,4 +1,4 @@
-// Stand-ins fitted to rigs built like production exports (demo/rigged_figure.h):
+// Stand-ins fitted to rigs built like production exports (rigged_figure.h):
 // helper-bone chains, node scales, a 60x scale, face and finger bones; the fit
 // report in world units, its components check, and the rest-pose bounds.
 #include <catch2/catch.hpp>
@@ -7,14 +7,14 @@
 
 #include "demo/creature.h"
 #include "demo/rigged_figure.h"
-#include "io/gltf_export.h"
-#include "io/gltf_import.h"
-#include "morph/mesh_distance.h"
-#include "morph/new_morph_project.h"
-#include "poly/polygonizer.h"
-#include "rig/skinning.h"
-#include "standin/character_pose.h"
-#include "standin/fit_standin.h"
+#include "core/io/gltf_export.h"
+#include "core/io/gltf_import.h"
+#include "core/standin_morph/mesh_distance.h"
+#include "core/project/new_morph_project.h"
+#include "core/poly/polygonizer.h"
+#include "core/rig/skinning.h"
+#include "core/standin/character_pose.h"
+#include "core/standin/fit_standin.h"
 #include "util/temp_dir.h"
 
 using namespace animorph;

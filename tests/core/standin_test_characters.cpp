@@ -13,10 +13,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/gltf_import.h"
-#include "standin/character_pose.h"
-#include "standin/fit_standin.h"
-#include "standin/repair_fit.h"
+#include "core/io/gltf_import.h"
+#include "core/standin/character_pose.h"
+#include "core/standin/fit_standin.h"
+#include "core/standin/repair_fit.h"
 #include "util/test_skip.h"
 
 using namespace animorph;

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "anim/track_json.h"
-#include "anim/track.h"
+#include "core/anim/track_json.h"
+#include "core/anim/track.h"
 
 using namespace animorph;
 using Catch::Matchers::Contains;

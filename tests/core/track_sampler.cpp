@@ -4,8 +4,8 @@
 #include <cstring>
 #include <random>
 
-#include "anim/track.h"
-#include "anim/track_sampler.h"
+#include "core/anim/track.h"
+#include "core/anim/track_sampler.h"
 
 using namespace animorph;
 

@@ -2,10 +2,10 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "morph/transition.h"
-#include "rig/pose.h"
-#include "rig/skinning.h"
-#include "standin/fit_standin.h"
+#include "core/standin_morph/transition.h"
+#include "core/rig/pose.h"
+#include "core/rig/skinning.h"
+#include "core/standin/fit_standin.h"
 #include "util/morph_fixtures.h"
 
 using namespace animorph;

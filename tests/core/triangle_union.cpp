@@ -7,9 +7,9 @@
 #include <random>
 #include <vector>
 
-#include "field/field_program.h"
-#include "field/potential.h"
-#include "field/skeleton.h"
+#include "core/field/field_program.h"
+#include "core/field/potential.h"
+#include "core/field/skeleton.h"
 
 using namespace animorph;
 

@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "doc/document.h"
+#include "core/doc/document.h"
 
 using namespace animorph;
 

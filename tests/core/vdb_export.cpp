@@ -1,5 +1,5 @@
 // OpenVDB level sets of the implicit frames (poly/level_set_sampler.h, io/vdb_export.h,
-// bake/frame_volume.h), read back with OpenVDB itself.
+// export/frame_volume.h), read back with OpenVDB itself.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -9,12 +9,12 @@
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Interpolation.h>
 
-#include "animorph/evaluate_generic.h"
-#include "bake/export_project.h"
-#include "bake/frame_volume.h"
-#include "doc/animorphosis_project.h"
-#include "doc/project_io.h"
-#include "io/vdb_export.h"
+#include "core/animorphosis/evaluate_generic.h"
+#include "core/export/export_project.h"
+#include "core/export/frame_volume.h"
+#include "core/project/animorphosis_project.h"
+#include "core/project/project_io.h"
+#include "core/io/vdb_export.h"
 #include "util/animorph_fixtures.h"
 #include "util/morph_fixtures.h"
 #include "util/temp_dir.h"

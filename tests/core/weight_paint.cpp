@@ -5,14 +5,14 @@
 #include <cmath>
 #include <numeric>
 
-#include "doc/document.h"
-#include "doc/weight_map_command.h"
-#include "io/gltf_export.h"
-#include "io/gltf_import.h"
-#include "paint/weight_brush.h"
-#include "paint/weights_from_colors.h"
-#include "rig/skinning.h"
-#include "scene/scene_frame.h"
+#include "core/doc/document.h"
+#include "core/doc/weight_map_command.h"
+#include "core/io/gltf_export.h"
+#include "core/io/gltf_import.h"
+#include "core/paint/weight_brush.h"
+#include "core/paint/weights_from_colors.h"
+#include "core/rig/skinning.h"
+#include "core/scene/scene_frame.h"
 #include "util/mini_gltf.h"
 #include "util/morph_fixtures.h"
 #include "util/temp_dir.h"

@@ -5,9 +5,9 @@
 #include <cstdint>
 #include <string>
 
-#include "blobtree/blob_tree_json.h"
-#include "blobtree/compile.h"
-#include "field/field_program.h"
+#include "core/blobtree/blob_tree_json.h"
+#include "core/blobtree/compile.h"
+#include "core/field/field_program.h"
 #include "fuzz_check.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -11,8 +11,8 @@
 #include <string>
 
 #include "fuzz_check.h"
-#include "io/gltf_import.h"
-#include "rig/skinning.h"
+#include "core/io/gltf_import.h"
+#include "core/rig/skinning.h"
 
 namespace {
 

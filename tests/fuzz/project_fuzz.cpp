@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <string>
 
-#include "doc/project_io.h"
+#include "core/project/project_io.h"
 #include "fuzz_check.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

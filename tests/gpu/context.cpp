@@ -3,12 +3,12 @@
 
 #include <cstdlib>
 
-#include "vulkan/buffer.h"
-#include "vulkan/device_select.h"
+#include "gpu/vulkan/buffer.h"
+#include "gpu/vulkan/device_select.h"
 #include "gpu_fixture.h"
-#include "render/gpu_mesh.h"
-#include "render/line_batch.h"
-#include "present/swapchain.h"
+#include "gpu/render/gpu_mesh.h"
+#include "gpu/render/line_batch.h"
+#include "gpu/present/swapchain.h"
 
 using namespace animorph;
 using namespace animorph::gpu;

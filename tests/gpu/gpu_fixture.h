@@ -3,12 +3,12 @@
 // validation on, and a small skinned test mesh.
 #include <memory>
 
-#include "vulkan/context.h"
-#include "rig/character.h"
-#include "present/offscreen_target.h"
-#include "present/rgba_image.h"
-#include "render/scene_renderer.h"
-#include "view/camera.h"
+#include "gpu/vulkan/context.h"
+#include "core/rig/character.h"
+#include "gpu/present/offscreen_target.h"
+#include "gpu/present/rgba_image.h"
+#include "gpu/render/scene_renderer.h"
+#include "core/camera/camera.h"
 
 namespace animorph::test {
 

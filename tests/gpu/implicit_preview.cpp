@@ -9,12 +9,12 @@
 #include <thread>
 
 #include "gpu_fixture.h"
-#include "implicit/gpu_polygonizer.h"
-#include "implicit/implicit_preview.h"
-#include "blobtree/blob_tree.h"
-#include "morph/mesh_distance.h"
-#include "poly/mesh_checks.h"
-#include "scene/morph_preview_source.h"
+#include "gpu/polygonizer/gpu_polygonizer.h"
+#include "gpu/polygonizer/implicit_preview.h"
+#include "core/blobtree/blob_tree.h"
+#include "core/standin_morph/mesh_distance.h"
+#include "core/poly/mesh_checks.h"
+#include "core/scene/morph_preview_source.h"
 #include "util/morph_fixtures.h"
 
 using namespace animorph;

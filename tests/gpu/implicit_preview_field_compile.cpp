@@ -10,8 +10,8 @@
 #include <thread>
 
 #include "gpu_fixture.h"
-#include "implicit/implicit_preview.h"
-#include "scene/morph_preview_source.h"
+#include "gpu/polygonizer/implicit_preview.h"
+#include "core/scene/morph_preview_source.h"
 #include "util/morph_fixtures.h"
 
 using namespace animorph;

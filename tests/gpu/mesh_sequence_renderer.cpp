@@ -3,7 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include "gpu_fixture.h"
-#include "render/mesh_sequence_renderer.h"
+#include "gpu/frame/mesh_sequence_renderer.h"
 
 using namespace animorph;
 using namespace animorph::gpu;

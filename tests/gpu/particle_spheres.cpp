@@ -4,8 +4,8 @@
 #include <catch2/catch.hpp>
 
 #include "gpu_fixture.h"
-#include "render/particle_spheres.h"
-#include "render/scene_renderer.h"
+#include "gpu/render/particle_spheres.h"
+#include "gpu/render/scene_renderer.h"
 
 using namespace animorph;
 using namespace animorph::gpu;

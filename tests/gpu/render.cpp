@@ -5,9 +5,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "gpu_fixture.h"
-#include "present/offscreen_target.h"
-#include "rig/skinning.h"
-#include "render/scene_renderer.h"
+#include "gpu/present/offscreen_target.h"
+#include "core/rig/skinning.h"
+#include "gpu/render/scene_renderer.h"
 
 using namespace animorph;
 using namespace animorph::gpu;

@@ -1,5 +1,5 @@
 // The vertex-shader transition (shaders/include/transition.glsl) against the
-// CPU transition (morph/transition.h) on lavapipe: positions through the
+// CPU transition (standin_morph/transition.h) on lavapipe: positions through the
 // compute twin of the shader for several u (0, mid, re-projected, 1), on the
 // demo creature / gear and a shared Blender asset, with and without a painted
 // weight map; the drawn image at alpha = 0 equals plain skinning's exactly;
@@ -10,15 +10,15 @@
 #include <filesystem>
 
 #include "gpu_fixture.h"
-#include "io/gltf_import.h"
-#include "morph/new_morph_project.h"
-#include "morph/transition_frame.h"
-#include "present/offscreen_target.h"
-#include "rig/pose.h"
-#include "scene/mesh_character.h"
-#include "scene/scene_frame.h"
-#include "render/scene_renderer.h"
-#include "transition/transition_evaluator.h"
+#include "core/io/gltf_import.h"
+#include "core/project/new_morph_project.h"
+#include "core/scene/transition_frame.h"
+#include "gpu/present/offscreen_target.h"
+#include "core/rig/pose.h"
+#include "core/scene/mesh_character.h"
+#include "core/scene/scene_frame.h"
+#include "gpu/render/scene_renderer.h"
+#include "gpu/transition/transition_evaluator.h"
 #include "util/morph_fixtures.h"
 
 using namespace animorph;

@@ -10,12 +10,12 @@
 #include <GLFW/glfw3.h>
 
 #include "demo/animorphosis_demo.h"
-#include "doc/animorphosis_project.h"
-#include "doc/blobtree_commands.h"
-#include "doc/project_io.h"
-#include "scene/animorphosis_scene.h"
-#include "anim/key_edit.h"
-#include "curves/curve_source.h"
+#include "core/project/animorphosis_project.h"
+#include "core/doc/blobtree_commands.h"
+#include "core/project/project_io.h"
+#include "core/scene/animorphosis_scene.h"
+#include "core/anim/key_edit.h"
+#include "ui/curves/curve_source.h"
 #include "support/editor_fixture.h"
 #include "util/animorph_fixtures.h"
 

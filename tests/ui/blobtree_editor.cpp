@@ -3,9 +3,9 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
-#include "blobtree/tree_edit.h"
-#include "curves/curve_editor_panel.h"
-#include "scene/selection_info.h"
+#include "core/blobtree/tree_edit.h"
+#include "ui/curves/curve_editor_panel.h"
+#include "editor/selection_info.h"
 #include "support/editor_fixture.h"
 
 using namespace animorph;

@@ -6,8 +6,8 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
-#include "doc/project_io.h"
-#include "widgets/file_browser.h"
+#include "core/project/project_io.h"
+#include "ui/widgets/file_browser.h"
 #include "support/editor_fixture.h"
 
 using namespace animorph;

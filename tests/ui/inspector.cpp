@@ -3,7 +3,7 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
-#include "inspector/inspector_panel.h"
+#include "ui/inspector/inspector_panel.h"
 #include "support/editor_fixture.h"
 
 using namespace animorph;

@@ -2,9 +2,9 @@
 
 #include <fstream>
 
-#include "shell/layout.h"
+#include "ui/common/layout.h"
 #include "support/editor_fixture.h"
-#include "shell/prefs.h"
+#include "ui/common/prefs.h"
 
 using namespace animorph;
 using namespace animorph::test;

@@ -6,7 +6,7 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
-#include "doc/document.h"
+#include "core/doc/document.h"
 #include "support/editor_fixture.h"
 
 using namespace animorph;

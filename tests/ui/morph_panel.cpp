@@ -4,7 +4,7 @@
 #include <GLFW/glfw3.h>
 
 #include "support/editor_fixture.h"
-#include "timeline/timeline_panel.h"
+#include "ui/timeline/timeline_panel.h"
 
 using namespace animorph;
 using namespace animorph::test;

@@ -6,11 +6,11 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
-#include "doc/morph_tracks.h"
-#include "morph/morph_runtime.h"
-#include "morph/transition.h"
-#include "poly/mesh_checks.h"
-#include "standin/fit_standin.h"
+#include "core/doc/morph_tracks.h"
+#include "core/scene/morph_runtime.h"
+#include "core/standin_morph/transition.h"
+#include "core/poly/mesh_checks.h"
+#include "core/standin/fit_standin.h"
 #include "support/editor_fixture.h"
 
 using namespace animorph;

@@ -5,7 +5,7 @@
 #include <chrono>
 #include <thread>
 
-#include "inspector/particles_panel.h"
+#include "ui/inspector/particles_panel.h"
 #include "support/editor_fixture.h"
 
 using namespace animorph;

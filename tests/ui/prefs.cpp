@@ -3,7 +3,7 @@
 #include <cstdlib>
 #include <fstream>
 
-#include "shell/prefs.h"
+#include "ui/common/prefs.h"
 #include "util/temp_dir.h"
 
 using namespace animorph;

@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "shell/redraw_policy.h"
+#include "ui/shell/redraw_policy.h"
 
 using namespace animorph;
 

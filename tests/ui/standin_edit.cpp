@@ -5,8 +5,8 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
-#include "standin/fit_standin.h"
-#include "viewport/standin_tool.h"
+#include "core/standin/fit_standin.h"
+#include "ui/viewport/standin_tool.h"
 #include "support/editor_fixture.h"
 
 using namespace animorph;

@@ -3,9 +3,9 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
-#include "scene/selection_info.h"
+#include "editor/selection_info.h"
 #include "support/editor_fixture.h"
-#include "timeline/timeline_panel.h"
+#include "ui/timeline/timeline_panel.h"
 
 using namespace animorph;
 using namespace animorph::test;

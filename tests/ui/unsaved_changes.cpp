@@ -6,7 +6,7 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
-#include "doc/project_io.h"
+#include "core/project/project_io.h"
 #include "support/editor_fixture.h"
 
 using namespace animorph;

@@ -7,7 +7,7 @@
 #include <imgui.h>
 
 #include "support/editor_fixture.h"
-#include "viewport/viewport_input.h"
+#include "ui/viewport/viewport_input.h"
 
 using namespace animorph;
 using namespace animorph::test;

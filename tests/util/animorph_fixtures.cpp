@@ -4,8 +4,8 @@
 
 #include <glm/gtc/quaternion.hpp>
 
-#include "doc/animorphosis_commands.h"
-#include "doc/blobtree_commands.h"
+#include "core/doc/animorphosis_commands.h"
+#include "core/doc/blobtree_commands.h"
 #include "util/blob_builders.h"
 
 namespace animorph::test {

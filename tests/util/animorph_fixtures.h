@@ -9,9 +9,9 @@
 #include <random>
 #include <unordered_map>
 
-#include "animorph/correspondence.h"
-#include "blobtree/blob_tree.h"
-#include "doc/project.h"
+#include "core/animorphosis/correspondence.h"
+#include "core/blobtree/blob_tree.h"
+#include "core/project/project.h"
 
 namespace animorph::test {
 

@@ -2,7 +2,7 @@
 // Small helpers to build BlobTrees in tests.
 #include <random>
 
-#include "blobtree/blob_tree.h"
+#include "core/blobtree/blob_tree.h"
 
 namespace animorph::test {
 

@@ -2,8 +2,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "poly/mesh_checks.h"
-#include "poly/polygonizer.h"
+#include "core/poly/mesh_checks.h"
+#include "core/poly/polygonizer.h"
 
 namespace animorph::test {
 

@@ -2,8 +2,8 @@
 // Catch2 checks that a polygonised mesh is a closed 2-manifold: no boundary,
 // non-manifold or misoriented edges, no non-manifold vertices, no degenerate
 // triangles. Shared by the CPU and GPU polygoniser tests.
-#include "field/field_program.h"
-#include "poly/mesh.h"
+#include "core/field/field_program.h"
+#include "core/poly/mesh.h"
 
 namespace animorph::test {
 

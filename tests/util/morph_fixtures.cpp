@@ -8,10 +8,10 @@
 #include "demo/creature.h"
 #include "demo/demo_morph.h"
 #include "demo/gear.h"
-#include "doc/project_io.h"
-#include "io/gltf_export.h"
-#include "io/gltf_import.h"
-#include "morph/new_morph_project.h"
+#include "core/project/project_io.h"
+#include "core/io/gltf_export.h"
+#include "core/io/gltf_import.h"
+#include "core/project/new_morph_project.h"
 
 namespace animorph::test {
 

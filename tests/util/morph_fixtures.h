@@ -5,9 +5,9 @@
 #include <memory>
 #include <string>
 
-#include "doc/project.h"
-#include "morph/morph_runtime.h"
-#include "rig/character.h"
+#include "core/project/project.h"
+#include "core/scene/morph_runtime.h"
+#include "core/rig/character.h"
 
 namespace animorph::test {
 
@@ -15,7 +15,7 @@ const Character& demoCreature();
 const Character& demoGear();
 
 // The demo morph: creature.glb -> gear.glb in a temporary directory (kept for
-// the whole test run), as make-demo builds it (demo/demo_morph.h).
+// the whole test run), as make-demo builds it (demo_morph.h).
 struct DemoMorph {
   std::string dir;
   std::string projectPath;

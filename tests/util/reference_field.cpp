@@ -4,12 +4,12 @@
 #include <cmath>
 #include <vector>
 
-#include "blobtree/meta_primitives.h"
-#include "field/convolution_segment.h"
-#include "field/operators.h"
-#include "field/potential.h"
-#include "field/skeleton.h"
-#include "field/space_map.h"
+#include "core/blobtree/meta_primitives.h"
+#include "core/field/convolution_segment.h"
+#include "core/field/operators.h"
+#include "core/field/potential.h"
+#include "core/field/skeleton.h"
+#include "core/field/space_map.h"
 
 namespace animorph::test {
 

@@ -4,7 +4,7 @@
 // formulas in double where they exist, chain rule through every map.
 #include <glm/glm.hpp>
 
-#include "blobtree/blob_tree.h"
+#include "core/blobtree/blob_tree.h"
 
 namespace animorph::test {
 

@@ -5,10 +5,10 @@
 
 #include <imgui.h>
 
-#include "animorphosis/animorphosis_panel.h"
-#include "widgets/create_modal.h"
-#include "doc/animorphosis_commands.h"
-#include "widgets/widget_rects.h"
+#include "ui/animorphosis/animorphosis_panel.h"
+#include "ui/widgets/create_modal.h"
+#include "core/doc/animorphosis_commands.h"
+#include "ui/widgets/widget_rects.h"
 
 namespace animorph {
 

@@ -8,14 +8,14 @@
 
 #include <imgui.h>
 
-#include "animorph/tree_index.h"
-#include "doc/animorphosis_commands.h"
-#include "doc/animorphosis_project.h"
-#include "animorphosis/animorphosis_panel.h"
-#include "widgets/tool_window.h"
-#include "widgets/view_zoom.h"
-#include "widgets/widget_rects.h"
-#include "shell/command_result.h"
+#include "core/animorphosis/tree_index.h"
+#include "core/doc/animorphosis_commands.h"
+#include "core/project/animorphosis_project.h"
+#include "ui/animorphosis/animorphosis_panel.h"
+#include "ui/widgets/tool_window.h"
+#include "ui/widgets/view_zoom.h"
+#include "ui/widgets/widget_rects.h"
+#include "ui/common/command_result.h"
 
 namespace animorph {
 

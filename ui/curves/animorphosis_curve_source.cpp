@@ -1,11 +1,11 @@
 // The curve editor's source for the animorphosis: the global s(u) and, when a
 // link with its own s(u) is selected in the correspondence editor, that one,
 // over the animorphosis' progress u (0..1).
-#include "curves/curve_source.h"
+#include "ui/curves/curve_source.h"
 
-#include "animorph/tree_index.h"
-#include "doc/animorphosis_commands.h"
-#include "doc/animorphosis_project.h"
+#include "core/animorphosis/tree_index.h"
+#include "core/doc/animorphosis_commands.h"
+#include "core/project/animorphosis_project.h"
 
 namespace animorph {
 

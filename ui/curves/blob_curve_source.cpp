@@ -1,10 +1,10 @@
 // The curve editor's source for a BlobTree node: its animated parameters
 // over the tree's time, shown in frames.
-#include "curves/curve_source.h"
+#include "ui/curves/curve_source.h"
 
-#include "inspector/blob_inspector.h"
-#include "blobtree/tree_edit.h"
-#include "doc/blobtree_commands.h"
+#include "ui/common/blob_time.h"
+#include "core/blobtree/tree_edit.h"
+#include "core/doc/blobtree_commands.h"
 
 namespace animorph {
 

@@ -1,4 +1,4 @@
-#include "curves/curve_editor_panel.h"
+#include "ui/curves/curve_editor_panel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,10 +6,10 @@
 
 #include <imgui.h>
 
-#include "curves/curve_source.h"
-#include "widgets/tool_window.h"
-#include "widgets/view_zoom.h"
-#include "widgets/widget_rects.h"
+#include "ui/curves/curve_source.h"
+#include "ui/widgets/tool_window.h"
+#include "ui/widgets/view_zoom.h"
+#include "ui/widgets/widget_rects.h"
 
 namespace animorph {
 

@@ -26,10 +26,10 @@
 
 #include <any>
 
-#include "anim/key_edit.h"
-#include "doc/document.h"
-#include "shell/layout.h"
-#include "shell/status_bar.h"
+#include "core/anim/key_edit.h"
+#include "core/doc/document.h"
+#include "ui/common/layout.h"
+#include "ui/common/status_bar.h"
 
 namespace animorph {
 

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "anim/key_edit.h"
-#include "doc/document.h"
+#include "core/anim/key_edit.h"
+#include "core/doc/document.h"
 
 namespace animorph {
 

@@ -1,9 +1,9 @@
 // The curve editor's source for the morph: easing (over a transition's
 // progress), blend w(u), noise amplitude and the keyed stand-in segment
 // tracks (over the morph's progress), all on a normalised x axis 0..1.
-#include "curves/curve_source.h"
+#include "ui/curves/curve_source.h"
 
-#include "doc/morph_tracks.h"
+#include "core/doc/morph_tracks.h"
 
 namespace animorph {
 

@@ -5,8 +5,8 @@
 // export as a background job when the user clicks Export.
 #include <string>
 
-#include "doc/document.h"
-#include "export/settings_dialog.h"
+#include "core/doc/document.h"
+#include "ui/export/settings_dialog.h"
 
 namespace animorph {
 

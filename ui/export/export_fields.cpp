@@ -1,9 +1,9 @@
-#include "export/export_fields.h"
+#include "ui/export/export_fields.h"
 
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
-#include "widgets/widget_rects.h"
+#include "ui/widgets/widget_rects.h"
 
 namespace animorph {
 

@@ -4,7 +4,7 @@
 // the output path with its Browse... button (PREFIX/output, /browse).
 #include <string>
 
-#include "doc/project.h"
+#include "core/project/project.h"
 
 namespace animorph {
 

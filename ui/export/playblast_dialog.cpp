@@ -1,15 +1,15 @@
-#include "export/playblast_dialog.h"
+#include "ui/export/playblast_dialog.h"
 
 #include <algorithm>
 #include <filesystem>
 
 #include <imgui.h>
 
-#include "bake/frame_files.h"
-#include "bake/playblast_job.h"
-#include "export/export_fields.h"
-#include "widgets/create_modal.h"
-#include "widgets/widget_rects.h"
+#include "core/export/frame_files.h"
+#include "core/export/playblast_job.h"
+#include "ui/export/export_fields.h"
+#include "ui/widgets/create_modal.h"
+#include "ui/widgets/widget_rects.h"
 
 namespace animorph {
 namespace fs = std::filesystem;

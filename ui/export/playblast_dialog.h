@@ -3,11 +3,11 @@
 // resolution, picture size, burn-in of the frame number and stage, the .mp4; Browse... opens the
 // in-app file browser) and starts it. It edits a copy of the project's last playblast settings;
 // EditorUI stores them in the project (one undoable step) and runs the playblast as a background
-// job (bake/playblast_job.h) when the user clicks Playblast.
+// job (export/playblast_job.h) when the user clicks Playblast.
 #include <string>
 
-#include "doc/document.h"
-#include "export/settings_dialog.h"
+#include "core/doc/document.h"
+#include "ui/export/settings_dialog.h"
 
 namespace animorph {
 

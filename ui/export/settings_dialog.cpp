@@ -1,6 +1,6 @@
-#include "export/settings_dialog.h"
+#include "ui/export/settings_dialog.h"
 
-#include "widgets/create_modal.h"
+#include "ui/widgets/create_modal.h"
 
 namespace animorph {
 

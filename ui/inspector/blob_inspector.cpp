@@ -1,4 +1,5 @@
-#include "inspector/blob_inspector.h"
+#include "ui/inspector/blob_inspector.h"
+#include "ui/common/blob_time.h"
 
 #include <cmath>
 #include <cstdio>
@@ -6,11 +7,11 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
-#include "blobtree/tree_edit.h"
-#include "doc/blobtree_commands.h"
-#include "math/euler.h"
-#include "scene/scene_frame.h"
-#include "widgets/widget_rects.h"
+#include "core/blobtree/tree_edit.h"
+#include "core/doc/blobtree_commands.h"
+#include "core/math/euler.h"
+#include "core/scene/scene_frame.h"
+#include "ui/widgets/widget_rects.h"
 
 namespace animorph {
 
@@ -93,10 +94,6 @@ bool keyButton(const char* id, bool keyedHere, bool animated) {
   return clicked;
 }
 
-double blobTreeTimeNow(const Document& doc, const Actor& actor) {
-  const Timeline& tl = doc.project().timeline;
-  return blobActorTimeSec(actor, tl.currentTimeSec());
-}
 
 void drawBlobNodeInspector(Document& doc, const std::string& actorId, int nodeId, BlobInspectorState& st,
                            DragMerge& drag, StatusMessage& status) {

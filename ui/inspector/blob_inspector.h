@@ -12,9 +12,10 @@
 
 #include <glm/glm.hpp>
 
-#include "doc/document.h"
-#include "widgets/drag_merge.h"
-#include "shell/status_bar.h"
+#include "core/doc/document.h"
+#include "ui/widgets/drag_merge.h"
+#include "ui/common/blob_time.h"
+#include "ui/common/status_bar.h"
 
 namespace animorph {
 
@@ -23,9 +24,6 @@ struct BlobInspectorState {
   int nameNode = -1;
   std::string nameActor;
 };
-
-// Tree time shown and keyed for the actor at the document's current frame.
-double blobTreeTimeNow(const Document& doc, const Actor& actor);
 
 // Draws the node's properties (inside the inspector window). Errors of refused
 // edits go to status.

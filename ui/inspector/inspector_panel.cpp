@@ -1,6 +1,8 @@
-#include "inspector/inspector_panel.h"
+#include "ui/inspector/inspector_panel.h"
 
-#include "inspector/morph_panel.h"
+#include "ui/common/panel_window.h"
+
+#include "ui/inspector/morph_panel.h"
 
 #include <cmath>
 #include <cstdio>
@@ -9,12 +11,12 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
-#include "doc/actor_commands.h"
-#include "timeline/actor_timing.h"
-#include "scene/selection_info.h"
-#include "standin/character_pose.h"
-#include "inspector/standin_inspector.h"
-#include "widgets/widget_rects.h"
+#include "core/doc/actor_commands.h"
+#include "ui/timeline/actor_timing.h"
+#include "editor/selection_info.h"
+#include "core/standin/character_pose.h"
+#include "ui/inspector/standin_inspector.h"
+#include "ui/widgets/widget_rects.h"
 
 namespace animorph {
 
@@ -65,16 +67,7 @@ void drawJoint(const Character& c, int node) {
 
 void drawInspectorPanel(const LayoutRect& rect, Document& doc, AssetCache& assets, InspectorState& st,
                         DragMerge& drag, StatusMessage& status, StandinToolState& standin) {
-  ImGui::SetNextWindowPos(ImVec2(rect.min.x, rect.min.y));
-  ImGui::SetNextWindowSize(ImVec2(rect.size.x, rect.size.y));
-  constexpr ImGuiWindowFlags kFlags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
-                                      ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings |
-                                      ImGuiWindowFlags_NoBringToFrontOnFocus;
-  ImGui::SetNextWindowBgAlpha(0.0f);  // the window is cleared to it (EditorUI::windowClearColor)
-  if (!ImGui::Begin("Inspector", nullptr, kFlags)) {
-    ImGui::End();
-    return;
-  }
+  if (!beginPanelWindow("Inspector", rect)) return;
   const Actor* found = doc.project().findActor(doc.selection.actorId);
   if (!found) {
     if (doc.project().morph.enabled()) drawMorphSettings(doc, assets, st.morph, drag, status);

@@ -8,14 +8,14 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "inspector/blob_inspector.h"
-#include "doc/asset_cache.h"
-#include "doc/document.h"
-#include "widgets/drag_merge.h"
-#include "shell/layout.h"
-#include "inspector/morph_panel.h"
-#include "inspector/particles_panel.h"
-#include "viewport/standin_tool.h"
+#include "ui/inspector/blob_inspector.h"
+#include "core/project/asset_cache.h"
+#include "core/doc/document.h"
+#include "ui/widgets/drag_merge.h"
+#include "ui/common/layout.h"
+#include "ui/inspector/morph_panel.h"
+#include "ui/inspector/particles_panel.h"
+#include "ui/viewport/standin_tool.h"
 
 namespace animorph {
 

@@ -5,10 +5,10 @@
 
 #include <algorithm>
 
-#include "doc/chain_pair_commands.h"
-#include "inspector/morph_sections.h"
-#include "morph/chain_matching.h"
-#include "widgets/widget_rects.h"
+#include "core/doc/chain_pair_commands.h"
+#include "ui/inspector/morph_sections.h"
+#include "core/standin_morph/chain_matching.h"
+#include "ui/widgets/widget_rects.h"
 
 namespace animorph {
 namespace {

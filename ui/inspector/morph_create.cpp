@@ -1,13 +1,13 @@
-#include "inspector/morph_create.h"
+#include "ui/inspector/morph_create.h"
 
 #include <imgui.h>
 
 #include <algorithm>
 #include <vector>
 
-#include "widgets/create_modal.h"
-#include "doc/morph_create.h"
-#include "widgets/widget_rects.h"
+#include "ui/widgets/create_modal.h"
+#include "core/doc/morph_create.h"
+#include "ui/widgets/widget_rects.h"
 
 namespace animorph {
 

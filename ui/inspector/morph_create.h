@@ -5,9 +5,9 @@
 // source / target pickers and swap.
 #include <string>
 
-#include "doc/asset_cache.h"
-#include "doc/document.h"
-#include "shell/status_bar.h"
+#include "core/project/asset_cache.h"
+#include "core/doc/document.h"
+#include "ui/common/status_bar.h"
 
 namespace animorph {
 

@@ -9,12 +9,12 @@
 
 #include <glm/glm.hpp>
 
-#include "doc/asset_cache.h"
-#include "doc/document.h"
-#include "widgets/drag_merge.h"
-#include "morph/morph_runtime.h"
-#include "scene/blob_guides.h"
-#include "shell/status_bar.h"
+#include "core/project/asset_cache.h"
+#include "core/doc/document.h"
+#include "ui/widgets/drag_merge.h"
+#include "core/scene/morph_runtime.h"
+#include "core/scene/blob_guides.h"
+#include "ui/common/status_bar.h"
 
 namespace animorph {
 
@@ -47,17 +47,5 @@ void drawChainMatching(Document& doc, MorphPanelState& st, const std::string& ke
 // Refused edits report to status.
 void drawMorphSettings(Document& doc, AssetCache& assets, MorphPanelState& st, DragMerge& drag,
                        StatusMessage& status);
-
-// Draws the markers A..D of the project's morph on a timeline ruler spanning
-// [x0, x1] pixels for frames [viewStart, viewEnd], from y0 to y1.
-void drawMorphMarkers(const Document& doc, float x0, float x1, float y0, float y1, double viewStart, double viewEnd);
-
-// The marker (0..3 = A..D) whose handle on such a ruler is under pos, or -1.
-int morphMarkerAt(const Document& doc, glm::vec2 pos, float x0, float x1, float y0, float y1, double viewStart,
-                  double viewEnd);
-
-// Moves marker index (0..3) to frame, kept between its neighbours and in the
-// timeline range; a command merged while a drag is open.
-void moveMorphMarker(Document& doc, int index, int frame);
 
 }  // namespace animorph

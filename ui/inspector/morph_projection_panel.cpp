@@ -6,8 +6,8 @@
 
 #include <imgui.h>
 
-#include "inspector/morph_sections.h"
-#include "widgets/widget_rects.h"
+#include "ui/inspector/morph_sections.h"
+#include "ui/widgets/widget_rects.h"
 
 namespace animorph {
 

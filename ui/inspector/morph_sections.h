@@ -1,10 +1,10 @@
 #pragma once
 // Sections of the morph panel (morph_panel.h), each in its own file.
-#include "doc/asset_cache.h"
-#include "doc/document.h"
-#include "widgets/drag_merge.h"
-#include "inspector/morph_panel.h"
-#include "shell/status_bar.h"
+#include "core/project/asset_cache.h"
+#include "core/doc/document.h"
+#include "ui/widgets/drag_merge.h"
+#include "ui/inspector/morph_panel.h"
+#include "ui/common/status_bar.h"
 
 namespace animorph {
 

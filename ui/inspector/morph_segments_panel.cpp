@@ -8,11 +8,11 @@
 
 #include <imgui.h>
 
-#include "inspector/blob_inspector.h"
-#include "doc/morph_tracks.h"
-#include "inspector/morph_sections.h"
-#include "scene/selection_info.h"
-#include "widgets/widget_rects.h"
+#include "ui/inspector/blob_inspector.h"
+#include "core/doc/morph_tracks.h"
+#include "ui/inspector/morph_sections.h"
+#include "editor/selection_info.h"
+#include "ui/widgets/widget_rects.h"
 
 namespace animorph {
 

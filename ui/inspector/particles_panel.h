@@ -11,9 +11,9 @@
 // command (doc/particle_commands.h).
 #include <string>
 
-#include "doc/document.h"
-#include "doc/particle_commands.h"
-#include "particles/particle_tree.h"
+#include "core/doc/document.h"
+#include "core/doc/particle_commands.h"
+#include "core/particles/particle_tree.h"
 
 namespace animorph {
 

@@ -1,17 +1,17 @@
-#include "inspector/standin_inspector.h"
+#include "ui/inspector/standin_inspector.h"
 
 #include <algorithm>
 #include <cstdio>
 
 #include <imgui.h>
 
-#include "shell/command_result.h"
-#include "doc/standin_commands.h"
-#include "scene/standin_guides.h"
-#include "standin/character_pose.h"
-#include "standin/fit_standin.h"
-#include "standin/standin_edit.h"
-#include "widgets/widget_rects.h"
+#include "ui/common/command_result.h"
+#include "core/doc/standin_commands.h"
+#include "core/scene/standin_guides.h"
+#include "core/standin/character_pose.h"
+#include "core/standin/fit_standin.h"
+#include "core/standin/standin_edit.h"
+#include "ui/widgets/widget_rects.h"
 
 namespace animorph {
 

@@ -6,11 +6,11 @@
 // and Refit all. Every edit is a command; a drag is one undo step.
 #include <string>
 
-#include "doc/document.h"
-#include "widgets/drag_merge.h"
-#include "rig/character.h"
-#include "viewport/standin_tool.h"
-#include "shell/status_bar.h"
+#include "core/doc/document.h"
+#include "ui/widgets/drag_merge.h"
+#include "core/rig/character.h"
+#include "ui/viewport/standin_tool.h"
+#include "ui/common/status_bar.h"
 
 namespace animorph {
 

@@ -1,15 +1,15 @@
-#include "outliner/blob_outliner.h"
+#include "ui/outliner/blob_outliner.h"
 
 #include <cstring>
 
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
-#include "doc/blobtree_commands.h"
-#include "outliner/node_type_menu.h"
-#include "shell/shortcuts.h"
-#include "widgets/widget_rects.h"
-#include "shell/command_result.h"
+#include "core/doc/blobtree_commands.h"
+#include "ui/outliner/node_type_menu.h"
+#include "ui/common/shortcuts.h"
+#include "ui/widgets/widget_rects.h"
+#include "ui/common/command_result.h"
 
 namespace animorph {
 

@@ -5,8 +5,8 @@
 // adds a child of any type, duplicates, renames or deletes.
 #include <string>
 
-#include "doc/document.h"
-#include "shell/status_bar.h"
+#include "core/doc/document.h"
+#include "ui/common/status_bar.h"
 
 namespace animorph {
 

@@ -1,12 +1,12 @@
-#include "outliner/node_type_menu.h"
+#include "ui/outliner/node_type_menu.h"
 
 #include <cstring>
 
 #include <imgui.h>
 
-#include "blobtree/tree_edit.h"
-#include "blobtree/validate.h"
-#include "widgets/widget_rects.h"
+#include "core/blobtree/tree_edit.h"
+#include "core/blobtree/validate.h"
+#include "ui/widgets/widget_rects.h"
 
 namespace animorph {
 

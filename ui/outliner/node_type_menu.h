@@ -5,8 +5,8 @@
 #include <optional>
 #include <string>
 
-#include "blobtree/blob_tree.h"
-#include "blobtree/node_type.h"
+#include "core/blobtree/blob_tree.h"
+#include "core/blobtree/node_type.h"
 
 namespace animorph {
 

@@ -1,11 +1,13 @@
-#include "outliner/outliner_panel.h"
+#include "ui/outliner/outliner_panel.h"
+
+#include "ui/common/panel_window.h"
 
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
-#include "doc/actor_commands.h"
-#include "scene/selection_info.h"
-#include "widgets/widget_rects.h"
+#include "core/doc/actor_commands.h"
+#include "editor/selection_info.h"
+#include "ui/widgets/widget_rects.h"
 
 namespace animorph {
 namespace {
@@ -52,16 +54,7 @@ void beginRename(OutlinerState& st, const Document& doc, const std::string& acto
 
 void drawOutlinerPanel(const LayoutRect& rect, Document& doc, AssetCache& assets, OutlinerState& st,
                        std::vector<Action>& actions, StatusMessage& status) {
-  ImGui::SetNextWindowPos(ImVec2(rect.min.x, rect.min.y));
-  ImGui::SetNextWindowSize(ImVec2(rect.size.x, rect.size.y));
-  constexpr ImGuiWindowFlags kFlags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
-                                      ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings |
-                                      ImGuiWindowFlags_NoBringToFrontOnFocus;
-  ImGui::SetNextWindowBgAlpha(0.0f);  // the window is cleared to it (EditorUI::windowClearColor)
-  if (!ImGui::Begin("Outliner", nullptr, kFlags)) {
-    ImGui::End();
-    return;
-  }
+  if (!beginPanelWindow("Outliner", rect)) return;
   if (ImGui::SmallButton("+ Import glTF")) actions.push_back(Action::ImportGltf);
   noteWidget("outliner/import");
   ImGui::SameLine();

@@ -6,12 +6,12 @@
 #include <string>
 #include <vector>
 
-#include "outliner/blob_outliner.h"
-#include "doc/asset_cache.h"
-#include "doc/document.h"
-#include "shell/layout.h"
-#include "shell/shortcuts.h"
-#include "shell/status_bar.h"
+#include "ui/outliner/blob_outliner.h"
+#include "core/project/asset_cache.h"
+#include "core/doc/document.h"
+#include "ui/common/layout.h"
+#include "ui/common/shortcuts.h"
+#include "ui/common/status_bar.h"
 
 namespace animorph {
 

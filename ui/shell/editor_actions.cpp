@@ -1,6 +1,6 @@
 // EditorUI's actions: what a menu item or a shortcut asks for (Action), carried out on the document
 // through commands.
-#include "shell/editor_ui.h"
+#include "ui/shell/editor_ui.h"
 
 #include <algorithm>
 #include <cctype>
@@ -10,19 +10,19 @@
 
 #include <imgui.h>
 
-#include "doc/actor_commands.h"
-#include "doc/blobtree_commands.h"
-#include "doc/standin_commands.h"
-#include "outliner/node_type_menu.h"
-#include "shell/help_windows.h"
-#include "io/gltf_import.h"
-#include "shell/menu_bar.h"
-#include "shell/preferences_window.h"
-#include "shell/preview_controls.h"
-#include "doc/project_commands.h"
-#include "scene/selection_info.h"
-#include "timeline/transport.h"
-#include "shell/command_result.h"
+#include "core/doc/actor_commands.h"
+#include "core/doc/blobtree_commands.h"
+#include "core/doc/standin_commands.h"
+#include "ui/outliner/node_type_menu.h"
+#include "ui/shell/help_windows.h"
+#include "core/io/gltf_import.h"
+#include "ui/shell/menu_bar.h"
+#include "ui/shell/preferences_window.h"
+#include "ui/shell/preview_controls.h"
+#include "core/doc/project_commands.h"
+#include "editor/selection_info.h"
+#include "ui/timeline/transport.h"
+#include "ui/common/command_result.h"
 
 namespace animorph {
 namespace fs = std::filesystem;

@@ -5,16 +5,16 @@
 #include <optional>
 #include <string>
 
-#include "bake/playblast_job.h"
-#include "doc/asset_cache.h"
-#include "doc/document.h"
-#include "math/bounds.h"
-#include "morph/morph_runtime.h"
-#include "scene/blob_guides.h"
-#include "view/camera.h"
-#include "shell/status_bar.h"
-#include "viewport/viewport_input.h"
-#include "viewport/weight_paint_tool.h"
+#include "core/export/playblast_job.h"
+#include "core/project/asset_cache.h"
+#include "core/doc/document.h"
+#include "core/math/bounds.h"
+#include "core/scene/morph_runtime.h"
+#include "core/scene/blob_guides.h"
+#include "core/camera/camera.h"
+#include "ui/common/status_bar.h"
+#include "ui/viewport/viewport_input.h"
+#include "ui/viewport/weight_paint_tool.h"
 
 namespace animorph {
 

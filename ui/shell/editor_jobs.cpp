@@ -11,15 +11,15 @@
 
 #include <imgui.h>
 
-#include "bake/export_project.h"
-#include "doc/actor_commands.h"
-#include "doc/animorphosis_bake_actor.h"
-#include "doc/particle_commands.h"
-#include "doc/standin_commands.h"
-#include "io/gltf_import.h"
-#include "shell/editor_ui.h"
-#include "shell/job_progress_panel.h"
-#include "standin/fit_standin.h"
+#include "core/export/export_project.h"
+#include "core/doc/actor_commands.h"
+#include "core/doc/animorphosis_bake_actor.h"
+#include "core/doc/particle_commands.h"
+#include "core/doc/standin_commands.h"
+#include "core/io/gltf_import.h"
+#include "ui/shell/editor_ui.h"
+#include "ui/shell/job_progress_panel.h"
+#include "core/standin/fit_standin.h"
 
 namespace animorph {
 namespace fs = std::filesystem;
@@ -314,7 +314,7 @@ void EditorUI::startPlayblast(EditorContext& ctx) {
     showError("Playblast: this editor was built without the GPU renderer that draws the frames.");
     return;
   }
-  // The job draws on a Vulkan device of its own (render/playblast.h): the editor's device and queue
+  // The job draws on a Vulkan device of its own (frame/playblast.h): the editor's device and queue
   // stay the UI thread's. It works on a copy of the project.
   auto report = std::make_shared<PlayblastReport>();
   startJob(

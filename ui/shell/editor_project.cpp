@@ -1,6 +1,6 @@
 // EditorUI's project life cycle: open, new, save, save as, quit, each guarded by the unsaved-changes
 // prompt, the file browser's results, and the prompts themselves.
-#include "shell/editor_ui.h"
+#include "ui/shell/editor_ui.h"
 
 #include <algorithm>
 #include <cctype>
@@ -10,18 +10,18 @@
 
 #include <imgui.h>
 
-#include "doc/actor_commands.h"
-#include "doc/blobtree_commands.h"
-#include "doc/standin_commands.h"
-#include "outliner/node_type_menu.h"
-#include "shell/help_windows.h"
-#include "io/gltf_import.h"
-#include "shell/menu_bar.h"
-#include "shell/preferences_window.h"
-#include "shell/preview_controls.h"
-#include "doc/project_commands.h"
-#include "scene/selection_info.h"
-#include "timeline/transport.h"
+#include "core/doc/actor_commands.h"
+#include "core/doc/blobtree_commands.h"
+#include "core/doc/standin_commands.h"
+#include "ui/outliner/node_type_menu.h"
+#include "ui/shell/help_windows.h"
+#include "core/io/gltf_import.h"
+#include "ui/shell/menu_bar.h"
+#include "ui/shell/preferences_window.h"
+#include "ui/shell/preview_controls.h"
+#include "core/doc/project_commands.h"
+#include "editor/selection_info.h"
+#include "ui/timeline/transport.h"
 
 namespace animorph {
 namespace fs = std::filesystem;

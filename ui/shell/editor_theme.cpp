@@ -1,5 +1,5 @@
 // EditorUI's look: the window's clear colour and the ImGui style.
-#include "shell/editor_ui.h"
+#include "ui/shell/editor_ui.h"
 
 #include <imgui.h>
 

@@ -19,11 +19,11 @@
 #include <string>
 #include <vector>
 
-#include "blobtree/node_type.h"
-#include "shell/editor_context.h"
-#include "shell/editor_state.h"
-#include "util/background_job.h"
-#include "widgets/widget_rects.h"
+#include "core/blobtree/node_type.h"
+#include "ui/shell/editor_context.h"
+#include "ui/shell/editor_state.h"
+#include "core/util/background_job.h"
+#include "ui/widgets/widget_rects.h"
 
 namespace animorph {
 

@@ -1,9 +1,9 @@
-#include "shell/help_windows.h"
+#include "ui/shell/help_windows.h"
 
 #include <imgui.h>
 
-#include "shell/shortcuts.h"
-#include "widgets/widget_rects.h"
+#include "ui/common/shortcuts.h"
+#include "ui/widgets/widget_rects.h"
 
 namespace animorph {
 

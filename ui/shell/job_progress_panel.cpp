@@ -1,11 +1,11 @@
-#include "shell/job_progress_panel.h"
+#include "ui/shell/job_progress_panel.h"
 
 #include <cmath>
 #include <cstdio>
 
 #include <imgui.h>
 
-#include "widgets/widget_rects.h"
+#include "ui/widgets/widget_rects.h"
 
 namespace animorph {
 

@@ -3,8 +3,8 @@
 // the job's name and stage, a progress bar, the estimated time left and a Cancel button (Esc
 // cancels too, EditorUI handles it). Drawn every frame while the job runs; the editor keeps
 // drawing and taking input meanwhile.
-#include "shell/layout.h"
-#include "util/background_job.h"
+#include "ui/common/layout.h"
+#include "core/util/background_job.h"
 
 namespace animorph {
 

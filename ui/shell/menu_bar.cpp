@@ -1,11 +1,11 @@
-#include "shell/menu_bar.h"
+#include "ui/shell/menu_bar.h"
 
 #include <filesystem>
 
 #include <imgui.h>
 
-#include "outliner/node_type_menu.h"
-#include "widgets/widget_rects.h"
+#include "ui/outliner/node_type_menu.h"
+#include "ui/widgets/widget_rects.h"
 
 namespace animorph {
 namespace {

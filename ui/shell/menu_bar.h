@@ -6,11 +6,11 @@
 #include <string>
 #include <vector>
 
-#include "blobtree/node_type.h"
-#include "doc/document.h"
-#include "shell/shortcuts.h"
-#include "viewport/viewport_mode.h"
-#include "viewport/weight_paint_tool.h"
+#include "core/blobtree/node_type.h"
+#include "core/doc/document.h"
+#include "ui/common/shortcuts.h"
+#include "ui/viewport/viewport_mode.h"
+#include "ui/viewport/weight_paint_tool.h"
 
 namespace animorph {
 

@@ -1,9 +1,9 @@
-#include "shell/preferences_window.h"
+#include "ui/shell/preferences_window.h"
 
 #include <imgui.h>
 
-#include "shell/preview_controls.h"
-#include "widgets/widget_rects.h"
+#include "ui/shell/preview_controls.h"
+#include "ui/widgets/widget_rects.h"
 
 namespace animorph {
 

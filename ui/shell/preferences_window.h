@@ -1,7 +1,7 @@
 #pragma once
 // Edit > Preferences window: camera controls, autosave interval, panel
 // sizes, recent files. Changes apply at once; the caller saves them.
-#include "shell/prefs.h"
+#include "ui/common/prefs.h"
 
 namespace animorph {
 

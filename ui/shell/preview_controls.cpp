@@ -1,11 +1,11 @@
-#include "shell/preview_controls.h"
+#include "ui/shell/preview_controls.h"
 
 #include <imgui.h>
 
 #include <cstdio>
 #include <string>
 
-#include "widgets/widget_rects.h"
+#include "ui/widgets/widget_rects.h"
 
 namespace animorph {
 

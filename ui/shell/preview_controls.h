@@ -3,7 +3,7 @@
 // where they are polygonised (Auto / GPU / CPU) and the interactive and refined
 // resolutions. Shown in Edit > Preferences and behind the viewport header's
 // "preview" button.
-#include "shell/prefs.h"
+#include "ui/common/prefs.h"
 
 namespace animorph {
 

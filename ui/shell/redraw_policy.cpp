@@ -1,4 +1,4 @@
-#include "shell/redraw_policy.h"
+#include "ui/shell/redraw_policy.h"
 
 namespace animorph {
 

@@ -1,8 +1,8 @@
-#include "timeline/actor_timing.h"
+#include "ui/timeline/actor_timing.h"
 
 #include <imgui.h>
 
-#include "widgets/widget_rects.h"
+#include "ui/widgets/widget_rects.h"
 
 namespace animorph {
 

@@ -4,8 +4,8 @@
 // a command; a drag is one undo step. The last widget drawn is the Loop box.
 #include <string>
 
-#include "doc/document.h"
-#include "widgets/drag_merge.h"
+#include "core/doc/document.h"
+#include "ui/widgets/drag_merge.h"
 
 namespace animorph {
 

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "animorphosis/animorphosis_panel.h"
-#include "doc/animorphosis_commands.h"
-#include "timeline/ruler_marker.h"
+#include "ui/timeline/animorphosis_markers.h"
+#include "core/doc/animorphosis_commands.h"
+#include "ui/timeline/ruler_marker.h"
 
 namespace animorph {
 

@@ -1,6 +1,6 @@
-#include "timeline/ruler_marker.h"
+#include "ui/timeline/ruler_marker.h"
 
-#include "widgets/widget_rects.h"
+#include "ui/widgets/widget_rects.h"
 
 namespace animorph {
 

@@ -1,7 +1,9 @@
-#include "timeline/timeline_panel.h"
+#include "ui/timeline/timeline_panel.h"
 
-#include "animorphosis/animorphosis_panel.h"
-#include "inspector/morph_panel.h"
+#include "ui/common/panel_window.h"
+
+#include "ui/timeline/animorphosis_markers.h"
+#include "ui/timeline/morph_markers.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,9 +11,9 @@
 
 #include <imgui.h>
 
-#include "doc/project_commands.h"
-#include "timeline/transport.h"
-#include "widgets/widget_rects.h"
+#include "core/doc/project_commands.h"
+#include "ui/timeline/transport.h"
+#include "ui/widgets/widget_rects.h"
 
 namespace animorph {
 
@@ -157,17 +159,9 @@ void labelBefore(const char* label) {
 
 void drawTimelinePanel(const LayoutRect& rect, Document& doc, Playback& playback, const std::vector<int>& keyFrames,
                        TimelineState& st, DragMerge& drag, std::vector<Action>& actions) {
-  ImGui::SetNextWindowPos(ImVec2(rect.min.x, rect.min.y));
-  ImGui::SetNextWindowSize(ImVec2(rect.size.x, rect.size.y));
-  constexpr ImGuiWindowFlags kFlags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
-                                      ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings |
-                                      ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoTitleBar |
-                                      ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse;
-  ImGui::SetNextWindowBgAlpha(0.0f);  // the window is cleared to it (EditorUI::windowClearColor)
-  if (!ImGui::Begin("Timeline", nullptr, kFlags)) {
-    ImGui::End();
+  if (!beginPanelWindow("Timeline", rect,
+                        ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse))
     return;
-  }
   const Timeline tl = doc.project().timeline;  // copy: commands below change it
 
   auto button = [&](const char* label, Action a, const char* key) {

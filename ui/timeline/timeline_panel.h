@@ -6,11 +6,11 @@
 // Wheel over the ruler zooms around the mouse; middle-drag pans.
 #include <vector>
 
-#include "anim/playback.h"
-#include "doc/document.h"
-#include "widgets/drag_merge.h"
-#include "shell/layout.h"
-#include "shell/shortcuts.h"
+#include "core/anim/playback.h"
+#include "core/doc/document.h"
+#include "ui/widgets/drag_merge.h"
+#include "ui/common/layout.h"
+#include "ui/common/shortcuts.h"
 
 namespace animorph {
 

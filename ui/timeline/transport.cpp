@@ -1,4 +1,4 @@
-#include "timeline/transport.h"
+#include "ui/timeline/transport.h"
 
 #include <algorithm>
 

@@ -1,8 +1,8 @@
 #pragma once
 // Moving the playhead: the timeline buttons, the ruler and the shortcuts all
 // go through these so the Playback clock and the Document's current frame agree.
-#include "anim/playback.h"
-#include "doc/document.h"
+#include "core/anim/playback.h"
+#include "core/doc/document.h"
 
 namespace animorph {
 

@@ -1,4 +1,4 @@
-#include "viewport/gizmo.h"
+#include "ui/viewport/gizmo.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,11 +6,11 @@
 
 #include <imgui.h>
 
-#include "inspector/blob_inspector.h"
-#include "shell/command_result.h"
-#include "doc/blobtree_commands.h"
-#include "scene/blob_guides.h"
-#include "widgets/widget_rects.h"
+#include "ui/common/blob_time.h"
+#include "ui/common/command_result.h"
+#include "core/doc/blobtree_commands.h"
+#include "core/scene/blob_guides.h"
+#include "ui/widgets/widget_rects.h"
 
 namespace animorph {
 

@@ -12,12 +12,12 @@
 
 #include <glm/glm.hpp>
 
-#include "blobtree/tree_edit.h"
-#include "doc/document.h"
-#include "shell/status_bar.h"
-#include "viewport/translate_arrows.h"
-#include "view/camera.h"
-#include "viewport/viewport_input.h"
+#include "core/blobtree/tree_edit.h"
+#include "core/doc/document.h"
+#include "ui/common/status_bar.h"
+#include "ui/viewport/translate_arrows.h"
+#include "core/camera/camera.h"
+#include "ui/viewport/viewport_input.h"
 
 struct ImDrawList;
 

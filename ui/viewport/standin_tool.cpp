@@ -1,4 +1,4 @@
-#include "viewport/standin_tool.h"
+#include "ui/viewport/standin_tool.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,10 +6,10 @@
 
 #include <imgui.h>
 
-#include "shell/command_result.h"
-#include "doc/standin_commands.h"
-#include "scene/standin_pick.h"
-#include "widgets/widget_rects.h"
+#include "ui/common/command_result.h"
+#include "core/doc/standin_commands.h"
+#include "editor/standin_pick.h"
+#include "ui/widgets/widget_rects.h"
 
 namespace animorph {
 

@@ -10,13 +10,13 @@
 
 #include <glm/glm.hpp>
 
-#include "doc/asset_cache.h"
-#include "doc/document.h"
-#include "scene/standin_guides.h"
-#include "shell/status_bar.h"
-#include "viewport/translate_arrows.h"
-#include "view/camera.h"
-#include "viewport/viewport_input.h"
+#include "core/project/asset_cache.h"
+#include "core/doc/document.h"
+#include "core/scene/standin_guides.h"
+#include "ui/common/status_bar.h"
+#include "ui/viewport/translate_arrows.h"
+#include "core/camera/camera.h"
+#include "ui/viewport/viewport_input.h"
 
 struct ImDrawList;
 

@@ -1,4 +1,4 @@
-#include "viewport/translate_arrows.h"
+#include "ui/viewport/translate_arrows.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include <imgui.h>
 
-#include "widgets/widget_rects.h"
+#include "ui/widgets/widget_rects.h"
 
 namespace animorph {
 

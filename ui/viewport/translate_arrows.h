@@ -5,8 +5,8 @@
 // button; a drag reports the world offset along its arrow since the press.
 #include <glm/glm.hpp>
 
-#include "view/camera.h"
-#include "viewport/viewport_input.h"
+#include "core/camera/camera.h"
+#include "ui/viewport/viewport_input.h"
 
 struct ImDrawList;
 

@@ -1,4 +1,4 @@
-#include "viewport/viewport_input.h"
+#include "ui/viewport/viewport_input.h"
 
 #include <imgui.h>
 

@@ -9,8 +9,8 @@
 
 #include <glm/glm.hpp>
 
-#include "view/camera.h"
-#include "shell/prefs.h"
+#include "core/camera/camera.h"
+#include "ui/common/prefs.h"
 
 struct ImGuiIO;
 

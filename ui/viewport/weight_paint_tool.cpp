@@ -1,4 +1,4 @@
-#include "viewport/weight_paint_tool.h"
+#include "ui/viewport/weight_paint_tool.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -8,11 +8,11 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
-#include "doc/weight_map_command.h"
-#include "scene/scene_frame.h"
-#include "scene/selection_info.h"
-#include "widgets/widget_rects.h"
-#include "shell/command_result.h"
+#include "core/doc/weight_map_command.h"
+#include "core/scene/scene_frame.h"
+#include "editor/selection_info.h"
+#include "ui/widgets/widget_rects.h"
+#include "ui/common/command_result.h"
 
 namespace animorph {
 namespace {

@@ -12,13 +12,13 @@
 
 #include <glm/glm.hpp>
 
-#include "doc/asset_cache.h"
-#include "doc/document.h"
-#include "shell/layout.h"
-#include "paint/weight_brush.h"
-#include "paint/weights_from_colors.h"
-#include "shell/status_bar.h"
-#include "viewport/viewport_input.h"
+#include "core/project/asset_cache.h"
+#include "core/doc/document.h"
+#include "ui/common/layout.h"
+#include "core/paint/weight_brush.h"
+#include "core/paint/weights_from_colors.h"
+#include "ui/common/status_bar.h"
+#include "ui/viewport/viewport_input.h"
 
 struct ImDrawList;
 

@@ -1,8 +1,8 @@
-#include "widgets/create_modal.h"
+#include "ui/widgets/create_modal.h"
 
 #include <imgui.h>
 
-#include "widgets/widget_rects.h"
+#include "ui/widgets/widget_rects.h"
 
 namespace animorph {
 

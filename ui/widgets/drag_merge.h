@@ -4,7 +4,7 @@
 // closes it when it is released. Commands pushed in between need a merge key.
 #include <imgui.h>
 
-#include "doc/document.h"
+#include "core/doc/document.h"
 
 namespace animorph {
 

@@ -1,4 +1,4 @@
-#include "widgets/file_browser.h"
+#include "ui/widgets/file_browser.h"
 
 #include <algorithm>
 #include <cctype>
@@ -8,7 +8,7 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
-#include "widgets/widget_rects.h"
+#include "ui/widgets/widget_rects.h"
 
 namespace animorph {
 namespace fs = std::filesystem;

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "util/result.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

@@ -1,6 +1,6 @@
-#include "widgets/tool_window.h"
+#include "ui/widgets/tool_window.h"
 
-#include "widgets/widget_rects.h"
+#include "ui/widgets/widget_rects.h"
 
 namespace animorph {
 

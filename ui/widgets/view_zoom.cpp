@@ -1,4 +1,4 @@
-#include "widgets/view_zoom.h"
+#include "ui/widgets/view_zoom.h"
 
 #include <cmath>
 

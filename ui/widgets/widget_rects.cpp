@@ -1,4 +1,4 @@
-#include "widgets/widget_rects.h"
+#include "ui/widgets/widget_rects.h"
 
 #include <imgui.h>
 

@@ -5,12 +5,12 @@
 #include <cstdio>
 #include <functional>
 
-#include "animorph/auto_correspond.h"
-#include "animorph/bake_keys.h"
-#include "animorph/evaluate_generic.h"
-#include "animorph/generic_tree.h"
-#include "blobtree/compile.h"
-#include "cli/bench/bench.h"
+#include "core/animorphosis/auto_correspond.h"
+#include "core/animorphosis/bake_keys.h"
+#include "core/animorphosis/evaluate_generic.h"
+#include "core/animorphosis/generic_tree.h"
+#include "core/blobtree/compile.h"
+#include "app/cli/bench/bench.h"
 #include "demo/blob_creature.h"
 
 namespace {

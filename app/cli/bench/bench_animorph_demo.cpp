@@ -11,16 +11,16 @@
 #include <memory>
 #include <string>
 
-#include "animorph/compile_generic.h"
-#include "animorph/evaluate_generic.h"
-#include "blobtree/compile.h"
-#include "cli/bench/bench.h"
+#include "core/animorphosis/compile_generic.h"
+#include "core/animorphosis/evaluate_generic.h"
+#include "core/blobtree/compile.h"
+#include "app/cli/bench/bench.h"
 #include "demo/animorphosis_demo.h"
-#include "doc/animorphosis_project.h"
-#include "poly/frame_sequence.h"
-#include "poly/polygonizer.h"
-#include "poly/preview_polygonizer.h"
-#include "scene/animorphosis_preview_source.h"
+#include "core/project/animorphosis_project.h"
+#include "core/poly/frame_sequence.h"
+#include "core/poly/polygonizer.h"
+#include "core/poly/preview_polygonizer.h"
+#include "core/scene/animorphosis_preview_source.h"
 
 namespace {
 
@@ -89,7 +89,7 @@ std::vector<Row> runDemoBench(const bench::Options& opt) {
   std::string sizes = std::to_string(dino.root.subtreeSize()) + " -> " + std::to_string(dragon.root.subtreeSize()) +
                       " nodes, C " + std::to_string(c->size());
 
-  // C(t) -> FieldProgram: compiled directly (animorph/compile_generic.h: a compiler kept for C),
+  // C(t) -> FieldProgram: compiled directly (animorphosis/compile_generic.h: a compiler kept for C),
   // and the same program through the BlobTree snapshot (the baseline, measured in the same run).
   GenericProgramCompiler compiler(*c);
   FieldProgram direct;

@@ -18,17 +18,17 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "cli/bench/bench.h"
-#include "cli/bench/bench_offscreen.h"
-#include "blobtree/compile.h"
-#include "doc/project_io.h"
-#include "implicit/blob_preview_set.h"
-#include "poly/preview_polygonizer.h"
-#include "render/mesh_cache.h"
-#include "render/scene_from_frame.h"
-#include "scene/animorphosis_scene.h"
-#include "scene/scene_frame.h"
-#include "scene/scrub_pacing.h"
+#include "app/cli/bench/bench.h"
+#include "app/cli/bench/bench_offscreen.h"
+#include "core/blobtree/compile.h"
+#include "core/project/project_io.h"
+#include "gpu/polygonizer/blob_preview_set.h"
+#include "core/poly/preview_polygonizer.h"
+#include "gpu/render/mesh_cache.h"
+#include "gpu/frame/scene_from_frame.h"
+#include "core/scene/animorphosis_scene.h"
+#include "core/scene/scene_frame.h"
+#include "core/scene/scrub_pacing.h"
 
 namespace {
 

@@ -10,12 +10,12 @@
 #include <chrono>
 #include <cstdio>
 
-#include "cli/bench/bench.h"
-#include "cli/bench/bench_demo_morph.h"
-#include "morph/morph_continuity.h"
-#include "io/gltf_import.h"
-#include "morph/morph_runtime.h"
-#include "morph/new_morph_project.h"
+#include "app/cli/bench/bench.h"
+#include "app/cli/bench/bench_demo_morph.h"
+#include "core/standin_morph/morph_continuity.h"
+#include "core/io/gltf_import.h"
+#include "core/scene/morph_runtime.h"
+#include "core/project/new_morph_project.h"
 
 namespace {
 

@@ -1,9 +1,9 @@
-#include "cli/bench/bench_demo_morph.h"
+#include "app/cli/bench/bench_demo_morph.h"
 
 #include "demo/creature.h"
 #include "demo/gear.h"
-#include "io/gltf_export.h"
-#include "morph/new_morph_project.h"
+#include "core/io/gltf_export.h"
+#include "core/project/new_morph_project.h"
 
 namespace animorph::bench {
 

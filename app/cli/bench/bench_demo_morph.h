@@ -6,8 +6,8 @@
 #include <optional>
 #include <string>
 
-#include "cli/bench/bench_scratch_dir.h"
-#include "doc/project.h"
+#include "app/cli/bench/bench_scratch_dir.h"
+#include "core/project/project.h"
 
 namespace animorph::bench {
 

@@ -1,9 +1,9 @@
-#include "cli/bench/bench_demo_project.h"
+#include "app/cli/bench/bench_demo_project.h"
 
 #include <cstdlib>
 
-#include "doc/asset_cache.h"
-#include "doc/project_io.h"
+#include "core/project/asset_cache.h"
+#include "core/project/project_io.h"
 
 namespace animorph::bench {
 

@@ -5,8 +5,8 @@
 #include <memory>
 #include <string>
 
-#include "doc/project.h"
-#include "morph/morph_runtime.h"
+#include "core/project/project.h"
+#include "core/scene/morph_runtime.h"
 
 namespace animorph::bench {
 

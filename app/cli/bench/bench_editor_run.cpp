@@ -1,4 +1,4 @@
-#include "cli/bench/bench_editor_run.h"
+#include "app/cli/bench/bench_editor_run.h"
 
 #include <sys/resource.h>
 #include <unistd.h>

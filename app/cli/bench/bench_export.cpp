@@ -7,15 +7,15 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "bake/frame_volume.h"
-#include "cli/bench/bench.h"
-#include "cli/bench/bench_demo_project.h"
-#include "cli/bench/bench_scratch_dir.h"
-#include "doc/project_io.h"
-#include "io/gltf_sequence_export.h"
-#include "io/vdb_export.h"
-#include "morph/morph_runtime.h"
-#include "poly/mesh_io.h"
+#include "core/export/frame_volume.h"
+#include "app/cli/bench/bench.h"
+#include "app/cli/bench/bench_demo_project.h"
+#include "app/cli/bench/bench_scratch_dir.h"
+#include "core/project/project_io.h"
+#include "core/io/gltf_sequence_export.h"
+#include "core/io/vdb_export.h"
+#include "core/scene/morph_runtime.h"
+#include "core/io/mesh_io.h"
 
 namespace {
 

@@ -9,10 +9,10 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "bake/frame_chunks.h"
-#include "cli/bench/bench.h"
-#include "cli/bench/bench_demo_project.h"
-#include "cli/bench/bench_scratch_dir.h"
+#include "core/export/frame_chunks.h"
+#include "app/cli/bench/bench.h"
+#include "app/cli/bench/bench_demo_project.h"
+#include "app/cli/bench/bench_scratch_dir.h"
 
 namespace {
 

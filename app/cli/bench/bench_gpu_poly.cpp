@@ -12,12 +12,12 @@
 
 #include <sys/resource.h>
 
-#include "blobtree/compile.h"
-#include "cli/bench/bench.h"
+#include "core/blobtree/compile.h"
+#include "app/cli/bench/bench.h"
 #include "demo/blob_creature.h"
-#include "poly/polygonizer.h"
-#include "vulkan/context.h"
-#include "implicit/gpu_polygonizer.h"
+#include "core/poly/polygonizer.h"
+#include "gpu/vulkan/context.h"
+#include "gpu/polygonizer/gpu_polygonizer.h"
 
 namespace {
 

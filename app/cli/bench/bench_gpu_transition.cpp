@@ -1,14 +1,14 @@
-#include "cli/bench/bench_gpu_transition.h"
+#include "app/cli/bench/bench_gpu_transition.h"
 
 #include <cstdio>
 #include <memory>
 
-#include "vulkan/context.h"
-#include "morph/transition_frame.h"
-#include "present/offscreen_target.h"
-#include "rig/pose.h"
-#include "render/scene_renderer.h"
-#include "transition/transition_evaluator.h"
+#include "gpu/vulkan/context.h"
+#include "core/scene/transition_frame.h"
+#include "gpu/present/offscreen_target.h"
+#include "core/rig/pose.h"
+#include "gpu/render/scene_renderer.h"
+#include "gpu/transition/transition_evaluator.h"
 
 namespace animorph::bench {
 

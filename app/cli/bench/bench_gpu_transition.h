@@ -2,10 +2,10 @@
 // `bench morph --gpu`: the vertex-shader transition beside plain skinning on the GPU.
 #include <vector>
 
-#include "cli/bench/bench.h"
-#include "morph/transition.h"
-#include "rig/character.h"
-#include "standin/standin.h"
+#include "app/cli/bench/bench.h"
+#include "core/standin_morph/transition.h"
+#include "core/rig/character.h"
+#include "core/standin/standin.h"
 
 namespace animorph::bench {
 

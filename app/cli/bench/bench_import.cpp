@@ -4,10 +4,10 @@
 #include <filesystem>
 #include <string>
 
-#include "cli/bench/bench.h"
+#include "app/cli/bench/bench.h"
 #include "demo/dense.h"
-#include "io/gltf_export.h"
-#include "io/gltf_import.h"
+#include "core/io/gltf_export.h"
+#include "core/io/gltf_import.h"
 
 namespace {
 

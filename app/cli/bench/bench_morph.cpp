@@ -4,15 +4,15 @@
 #include <chrono>
 #include <cstdio>
 
-#include "cli/bench/bench.h"
-#include "cli/bench/bench_demo_morph.h"
-#include "cli/bench/bench_gpu_transition.h"
+#include "app/cli/bench/bench.h"
+#include "app/cli/bench/bench_demo_morph.h"
+#include "app/cli/bench/bench_gpu_transition.h"
 #include "demo/dense.h"
-#include "morph/morph_runtime.h"
-#include "rig/pose.h"
-#include "rig/skinning.h"
+#include "core/scene/morph_runtime.h"
+#include "core/rig/pose.h"
+#include "core/rig/skinning.h"
 #include "demo/rigged_figure.h"
-#include "standin/fit_standin.h"
+#include "core/standin/fit_standin.h"
 
 namespace {
 

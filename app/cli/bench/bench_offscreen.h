@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "present/offscreen_target.h"
-#include "render/scene_renderer.h"
-#include "vulkan/context.h"
+#include "gpu/present/offscreen_target.h"
+#include "gpu/render/scene_renderer.h"
+#include "gpu/vulkan/context.h"
 
 namespace animorph::bench {
 

@@ -5,13 +5,13 @@
 #include <cstdio>
 #include <string>
 
-#include "blobtree/compile.h"
-#include "cli/bench/bench.h"
+#include "core/blobtree/compile.h"
+#include "app/cli/bench/bench.h"
 #include "demo/statue.h"
-#include "particles/convert_to_particles.h"
-#include "particles/mesh_inside.h"
-#include "particles/particle_tree.h"
-#include "poly/polygonizer.h"
+#include "core/particles/convert_to_particles.h"
+#include "core/particles/mesh_inside.h"
+#include "core/particles/particle_tree.h"
+#include "core/poly/polygonizer.h"
 
 namespace {
 

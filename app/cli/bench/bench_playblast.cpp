@@ -6,13 +6,13 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "bake/frame_stage.h"
-#include "cli/bench/bench.h"
-#include "cli/bench/bench_demo_project.h"
-#include "cli/bench/bench_scratch_dir.h"
-#include "cli/playblast.h"
-#include "doc/project_io.h"
-#include "morph/morph_runtime.h"
+#include "core/export/frame_stage.h"
+#include "app/cli/bench/bench.h"
+#include "app/cli/bench/bench_demo_project.h"
+#include "app/cli/bench/bench_scratch_dir.h"
+#include "app/cli/playblast.h"
+#include "core/project/project_io.h"
+#include "core/scene/morph_runtime.h"
 
 namespace {
 

@@ -7,9 +7,9 @@
 #include <random>
 #include <thread>
 
-#include "blobtree/compile.h"
-#include "cli/bench/bench.h"
-#include "poly/polygonizer.h"
+#include "core/blobtree/compile.h"
+#include "app/cli/bench/bench.h"
+#include "core/poly/polygonizer.h"
 
 namespace {
 

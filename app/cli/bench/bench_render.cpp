@@ -8,10 +8,10 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "cli/bench/bench.h"
-#include "vulkan/context.h"
-#include "present/offscreen_target.h"
-#include "render/scene_renderer.h"
+#include "app/cli/bench/bench.h"
+#include "gpu/vulkan/context.h"
+#include "gpu/present/offscreen_target.h"
+#include "gpu/render/scene_renderer.h"
 
 namespace {
 

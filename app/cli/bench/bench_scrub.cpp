@@ -13,15 +13,15 @@
 #include <filesystem>
 #include <map>
 
-#include "cli/bench/bench.h"
-#include "cli/bench/bench_offscreen.h"
-#include "doc/project_io.h"
-#include "scene/morph_preview_source.h"
-#include "scene/morph_scene.h"
-#include "scene/scene_frame.h"
-#include "implicit/implicit_preview.h"
-#include "render/mesh_cache.h"
-#include "render/scene_from_frame.h"
+#include "app/cli/bench/bench.h"
+#include "app/cli/bench/bench_offscreen.h"
+#include "core/project/project_io.h"
+#include "core/scene/morph_preview_source.h"
+#include "core/scene/morph_scene.h"
+#include "core/scene/scene_frame.h"
+#include "gpu/polygonizer/implicit_preview.h"
+#include "gpu/render/mesh_cache.h"
+#include "gpu/frame/scene_from_frame.h"
 
 namespace {
 

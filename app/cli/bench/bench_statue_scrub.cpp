@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <string>
 
-#include "cli/bench/bench.h"
-#include "cli/bench/bench_editor_run.h"
+#include "app/cli/bench/bench.h"
+#include "app/cli/bench/bench_editor_run.h"
 
 namespace {
 

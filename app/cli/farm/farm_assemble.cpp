@@ -4,14 +4,14 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "bake/frame_chunks.h"
-#include "bake/frame_files.h"
-#include "cli/cli_command.h"
-#include "cli/farm/farm.h"
-#include "cli/playblast.h"
-#include "doc/project_io.h"
-#include "io/gltf_sequence_export.h"
-#include "io/gltf_sequence_import.h"
+#include "core/export/frame_chunks.h"
+#include "core/export/frame_files.h"
+#include "app/cli/cli_command.h"
+#include "app/cli/farm/farm.h"
+#include "app/cli/playblast.h"
+#include "core/project/project_io.h"
+#include "core/io/gltf_sequence_export.h"
+#include "core/io/gltf_sequence_import.h"
 
 namespace animorph::cli {
 

@@ -2,8 +2,8 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "bake/frame_files.h"
-#include "cli/farm/farm.h"
+#include "core/export/frame_files.h"
+#include "app/cli/farm/farm.h"
 
 namespace animorph::cli {
 

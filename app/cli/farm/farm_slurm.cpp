@@ -6,12 +6,12 @@
 #include <filesystem>
 #include <fstream>
 
-#include "bake/frame_chunks.h"
-#include "bake/frame_files.h"
-#include "cli/cli_command.h"
-#include "cli/farm/farm.h"
-#include "doc/project_io.h"
-#include "util/result.h"
+#include "core/export/frame_chunks.h"
+#include "core/export/frame_files.h"
+#include "app/cli/cli_command.h"
+#include "app/cli/farm/farm.h"
+#include "core/project/project_io.h"
+#include "core/util/result.h"
 
 namespace animorph::cli {
 

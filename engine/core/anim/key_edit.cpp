@@ -1,11 +1,11 @@
-#include "anim/key_edit.h"
+#include "core/anim/key_edit.h"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
 
-#include "math/euler.h"
+#include "core/math/euler.h"
 
 namespace animorph {
 

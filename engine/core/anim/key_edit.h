@@ -13,8 +13,8 @@
 #include <variant>
 #include <vector>
 
-#include "anim/track.h"
-#include "util/result.h"
+#include "core/anim/track.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

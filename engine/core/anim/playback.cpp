@@ -1,4 +1,4 @@
-#include "anim/playback.h"
+#include "core/anim/playback.h"
 
 #include <algorithm>
 #include <cmath>

@@ -3,7 +3,7 @@
 // wall-clock time that passed, times the playback speed, and derives the
 // current frame from it (frames are dropped when a UI frame takes longer
 // than one timeline frame). Pure: no clock of its own, the caller passes dt.
-#include "anim/timeline.h"
+#include "core/anim/timeline.h"
 
 namespace animorph {
 

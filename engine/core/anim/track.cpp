@@ -1,9 +1,9 @@
-#include "anim/track.h"
+#include "core/anim/track.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "anim/track_segment.h"
+#include "core/anim/track_segment.h"
 
 namespace animorph {
 

@@ -14,7 +14,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "util/result.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

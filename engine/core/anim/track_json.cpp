@@ -1,9 +1,9 @@
-#include "anim/track_json.h"
+#include "core/anim/track_json.h"
 
 #include <cmath>
 #include <string>
 
-#include "util/json_text.h"
+#include "core/util/json_text.h"
 
 namespace animorph {
 

@@ -5,8 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "anim/track.h"
-#include "util/result.h"
+#include "core/anim/track.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

@@ -1,9 +1,9 @@
-#include "anim/track_sampler.h"
+#include "core/anim/track_sampler.h"
 
 #include <algorithm>
 #include <type_traits>
 
-#include "anim/track_segment.h"
+#include "core/anim/track_segment.h"
 
 namespace animorph {
 

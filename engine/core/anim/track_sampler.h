@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "anim/track.h"
+#include "core/anim/track.h"
 
 namespace animorph {
 

@@ -1,4 +1,4 @@
-#include "blobtree/blob_tree.h"
+#include "core/blobtree/blob_tree.h"
 
 #include <algorithm>
 #include <cassert>

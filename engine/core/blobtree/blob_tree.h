@@ -6,8 +6,8 @@
 #include <variant>
 #include <vector>
 
-#include "anim/track.h"
-#include "blobtree/node_type.h"
+#include "core/anim/track.h"
+#include "core/blobtree/node_type.h"
 
 namespace animorph {
 

@@ -1,11 +1,11 @@
-#include "blobtree/blob_tree_json.h"
+#include "core/blobtree/blob_tree_json.h"
 
 #include <limits>
 
-#include "anim/track_json.h"
-#include "blobtree/validate.h"
-#include "util/atomic_file.h"
-#include "util/json_text.h"
+#include "core/anim/track_json.h"
+#include "core/blobtree/validate.h"
+#include "core/util/atomic_file.h"
+#include "core/util/json_text.h"
 
 namespace animorph {
 

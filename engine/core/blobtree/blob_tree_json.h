@@ -8,8 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "blobtree/blob_tree.h"
-#include "util/result.h"
+#include "core/blobtree/blob_tree.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

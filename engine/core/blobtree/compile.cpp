@@ -1,9 +1,9 @@
-#include "blobtree/compile.h"
+#include "core/blobtree/compile.h"
 
 #include <unordered_map>
 
-#include "blobtree/compile_emit.h"
-#include "blobtree/meta_primitives.h"
+#include "core/blobtree/compile_emit.h"
+#include "core/blobtree/meta_primitives.h"
 
 namespace animorph {
 

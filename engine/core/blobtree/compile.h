@@ -1,7 +1,7 @@
 #pragma once
 // Instantiating a BlobTree at time t and flattening it into a FieldProgram.
-#include "blobtree/blob_tree.h"
-#include "field/field_program.h"
+#include "core/blobtree/blob_tree.h"
+#include "core/field/field_program.h"
 
 namespace animorph {
 

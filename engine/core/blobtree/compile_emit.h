@@ -1,7 +1,7 @@
 #pragma once
 // The flattening of a tree of BlobTree nodes into a FieldProgram, over any
 // source of node values (blobtree/compile.h: a BlobTree's tracks at a time;
-// animorph/compile_generic.h: the generic tree C's blended values). One
+// animorphosis/compile_generic.h: the generic tree C's blended values). One
 // emitter for both, so the two give the same program for the same values:
 // the same ops, primitives and floats in the same order.
 //
@@ -21,8 +21,8 @@
 #include <numeric>
 #include <vector>
 
-#include "blobtree/node_type.h"
-#include "field/field_program.h"
+#include "core/blobtree/node_type.h"
+#include "core/field/field_program.h"
 
 namespace animorph {
 

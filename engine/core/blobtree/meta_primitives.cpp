@@ -1,11 +1,11 @@
-#include "blobtree/meta_primitives.h"
+#include "core/blobtree/meta_primitives.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include <glm/gtx/quaternion.hpp>
 
-#include "field/spline_curve.h"
+#include "core/field/spline_curve.h"
 
 namespace animorph {
 

@@ -5,8 +5,8 @@
 #include <array>
 #include <vector>
 
-#include "blobtree/blob_tree.h"
-#include "field/space_map.h"
+#include "core/blobtree/blob_tree.h"
+#include "core/field/space_map.h"
 
 namespace animorph {
 

@@ -1,4 +1,4 @@
-#include "blobtree/node_type.h"
+#include "core/blobtree/node_type.h"
 
 namespace animorph {
 

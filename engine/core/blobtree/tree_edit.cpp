@@ -1,12 +1,12 @@
-#include "blobtree/tree_edit.h"
+#include "core/blobtree/tree_edit.h"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
 
-#include "blobtree/blob_tree_json.h"
-#include "blobtree/validate.h"
+#include "core/blobtree/blob_tree_json.h"
+#include "core/blobtree/validate.h"
 
 namespace animorph {
 
@@ -87,16 +87,6 @@ ConstTrackPtr findTrack(const BlobTree& tree, const ParamAddress& a) {
 }
 
 int channelCount(ParamKind kind) { return kind == ParamKind::Float ? 1 : 3; }
-
-bool paramKindAt(const BlobTree& tree, const ParamAddress& a, ParamKind& kind) {
-  ConstTrackPtr t = findTrack(tree, a);
-  if (std::holds_alternative<std::monostate>(t)) return false;
-  kind = std::holds_alternative<const FloatTrack*>(t)  ? ParamKind::Float
-         : std::holds_alternative<const QuatTrack*>(t) ? ParamKind::Quat
-                                                       : ParamKind::Vec3;
-  return true;
-}
-
 int keyCount(const BlobTree& tree, const ParamAddress& a) { return keyCount(findTrack(tree, a)); }
 
 bool keyAt(const BlobTree& tree, const KeyRef& k, double& timeSec, ParamSample& value) {

@@ -9,9 +9,9 @@
 #include <variant>
 #include <vector>
 
-#include "anim/key_edit.h"
-#include "blobtree/blob_tree.h"
-#include "util/result.h"
+#include "core/anim/key_edit.h"
+#include "core/blobtree/blob_tree.h"
+#include "core/util/result.h"
 
 namespace animorph {
 
@@ -21,8 +21,6 @@ ConstTrackPtr findTrack(const BlobTree& tree, const ParamAddress& a);
 
 // Scalar channels of a parameter kind: 1 (float) or 3 (vec3, list point, quat as Euler).
 int channelCount(ParamKind kind);
-// Kind of the parameter at address (Vec3List points read as Vec3); false when absent.
-bool paramKindAt(const BlobTree& tree, const ParamAddress& a, ParamKind& kind);
 // The tree's parameters as a TrackSet for the key edits of anim/key_edit.h
 // (errors name the node, float values keep their parameter's rule). The set
 // refers to tree: it must outlive the set's use.

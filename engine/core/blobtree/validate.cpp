@@ -1,4 +1,4 @@
-#include "blobtree/validate.h"
+#include "core/blobtree/validate.h"
 
 #include <algorithm>
 #include <cmath>

@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "blobtree/blob_tree.h"
-#include "util/result.h"
+#include "core/blobtree/blob_tree.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

@@ -1,4 +1,4 @@
-#include "doc/actor_commands.h"
+#include "core/doc/actor_commands.h"
 
 #include <algorithm>
 #include <cctype>

@@ -4,8 +4,8 @@
 #include <memory>
 #include <string>
 
-#include "doc/actor_removal.h"  // deleteActorCommand
-#include "doc/command.h"
+#include "core/doc/actor_removal.h"  // deleteActorCommand
+#include "core/doc/command.h"
 
 namespace animorph {
 

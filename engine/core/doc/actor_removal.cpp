@@ -1,4 +1,4 @@
-#include "doc/actor_removal.h"
+#include "core/doc/actor_removal.h"
 
 #include <algorithm>
 

@@ -3,7 +3,7 @@
 #include <memory>
 #include <string>
 
-#include "doc/command.h"
+#include "core/doc/command.h"
 
 namespace animorph {
 

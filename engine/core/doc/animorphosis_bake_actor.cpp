@@ -1,10 +1,10 @@
-#include "doc/animorphosis_bake_actor.h"
+#include "core/doc/animorphosis_bake_actor.h"
 
 #include <cstdio>
 
-#include "doc/actor_commands.h"
-#include "doc/animorphosis_project.h"
-#include "util/job_progress.h"
+#include "core/doc/actor_commands.h"
+#include "core/project/animorphosis_project.h"
+#include "core/util/job_progress.h"
 
 namespace animorph {
 

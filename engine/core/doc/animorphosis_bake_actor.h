@@ -1,6 +1,6 @@
 #pragma once
 // Animorphosis > Bake to Key-frame Actor (docs/animorphosis.md): the project's
-// animorphosis baked by bakeKeyframes (animorph/bake_keys.h) into a plain
+// animorphosis baked by bakeKeyframes (animorphosis/bake_keys.h) into a plain
 // key-framed BlobTree, held by a new BlobTree actor that can be edited further
 // like any other. The actor is named after the two trees ("Source -> Target
 // (keys)"), plays on the timeline's clock (offset 0, speed 1, no loop: the
@@ -11,9 +11,9 @@
 #include <memory>
 #include <string>
 
-#include "animorph/bake_keys.h"
-#include "doc/command.h"
-#include "util/result.h"
+#include "core/animorphosis/bake_keys.h"
+#include "core/doc/command.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

@@ -1,7 +1,7 @@
-#include "doc/animorphosis_commands.h"
+#include "core/doc/animorphosis_commands.h"
 
-#include "animorph/tree_index.h"
-#include "doc/animorphosis_project.h"
+#include "core/animorphosis/tree_index.h"
+#include "core/project/animorphosis_project.h"
 
 namespace animorph {
 

@@ -8,9 +8,9 @@
 #include <optional>
 #include <string>
 
-#include "animorph/auto_correspond.h"
-#include "doc/command.h"
-#include "util/result.h"
+#include "core/animorphosis/auto_correspond.h"
+#include "core/doc/command.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

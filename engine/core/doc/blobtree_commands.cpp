@@ -1,8 +1,8 @@
-#include "doc/blobtree_commands.h"
+#include "core/doc/blobtree_commands.h"
 
 #include <cctype>
 
-#include "blobtree/validate.h"
+#include "core/blobtree/validate.h"
 
 namespace animorph {
 

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "blobtree/tree_edit.h"
-#include "doc/command.h"
-#include "util/result.h"
+#include "core/blobtree/tree_edit.h"
+#include "core/doc/command.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

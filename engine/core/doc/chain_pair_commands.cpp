@@ -1,4 +1,4 @@
-#include "doc/chain_pair_commands.h"
+#include "core/doc/chain_pair_commands.h"
 
 #include <algorithm>
 

@@ -1,13 +1,13 @@
 #pragma once
 // Undoable edits of a morph's artist chain pairs (MorphSetup::chainPairs,
-// morph/chain_pair.h): pairing a source chain with a target chain or leaving
+// standin_morph/chain_pair.h): pairing a source chain with a target chain or leaving
 // it unmatched, resetting one chain or all of them to the automatic matching.
 // Each is one undo step over the whole list.
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "doc/command.h"
+#include "core/doc/command.h"
 
 namespace animorph {
 

@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-#include "doc/project.h"
+#include "core/project/project.h"
 
 namespace animorph {
 

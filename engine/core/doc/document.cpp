@@ -1,11 +1,11 @@
-#include "doc/document.h"
+#include "core/doc/document.h"
 
 #include <cstdlib>
 #include <algorithm>
 #include <filesystem>
 
-#include "util/atomic_file.h"
-#include "doc/project_io.h"
+#include "core/util/atomic_file.h"
+#include "core/project/project_io.h"
 
 namespace animorph {
 namespace fs = std::filesystem;

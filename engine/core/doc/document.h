@@ -6,11 +6,11 @@
 #include <memory>
 #include <string>
 
-#include "doc/command.h"
-#include "doc/project.h"
-#include "doc/undo_stack.h"
-#include "util/job_progress.h"
-#include "util/result.h"
+#include "core/doc/command.h"
+#include "core/project/project.h"
+#include "core/doc/undo_stack.h"
+#include "core/util/job_progress.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

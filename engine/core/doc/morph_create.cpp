@@ -1,10 +1,10 @@
-#include "doc/morph_create.h"
+#include "core/doc/morph_create.h"
 
 #include <algorithm>
 #include <filesystem>
 
-#include "doc/chain_pair_commands.h"
-#include "standin/fit_standin.h"
+#include "core/doc/chain_pair_commands.h"
+#include "core/standin/fit_standin.h"
 
 namespace animorph {
 

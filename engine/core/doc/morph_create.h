@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "doc/asset_cache.h"
-#include "doc/command.h"
-#include "doc/project.h"
-#include "util/result.h"
+#include "core/project/asset_cache.h"
+#include "core/doc/command.h"
+#include "core/project/project.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

@@ -1,9 +1,9 @@
-#include "doc/morph_tracks.h"
+#include "core/doc/morph_tracks.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "morph/transition.h"
+#include "core/standin_morph/transition.h"
 
 namespace animorph {
 

@@ -1,5 +1,5 @@
 #pragma once
-// The morph's animatable tracks (doc/morph_setup.h) as addressed tracks for
+// The morph's animatable tracks (project/morph_setup.h) as addressed tracks for
 // the key edits of anim/key_edit.h, and the undoable commands that edit them.
 // Addresses: node = kMorphTracksNode with param = MorphTrack (easing, blend,
 // noise amplitude); or node = MorphSlot (0 source, 1 target), point = the
@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "anim/key_edit.h"
-#include "doc/command.h"
-#include "doc/project.h"
-#include "util/result.h"
+#include "core/anim/key_edit.h"
+#include "core/doc/command.h"
+#include "core/project/project.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

@@ -1,12 +1,12 @@
-#include "doc/particle_commands.h"
+#include "core/doc/particle_commands.h"
 
-#include "blobtree/compile.h"
-#include "doc/animorphosis_project.h"
-#include "doc/blobtree_commands.h"
-#include "particles/character_shape.h"
-#include "particles/mesh_inside.h"
-#include "scene/scene_frame.h"
-#include "standin/fit_standin.h"
+#include "core/blobtree/compile.h"
+#include "core/project/animorphosis_project.h"
+#include "core/doc/blobtree_commands.h"
+#include "core/particles/character_shape.h"
+#include "core/particles/mesh_inside.h"
+#include "core/project/actor_time.h"
+#include "core/standin/fit_standin.h"
 
 namespace animorph {
 

@@ -7,13 +7,13 @@
 #include <memory>
 #include <string>
 
-#include "doc/command.h"
-#include "doc/project.h"
-#include "rig/character.h"
-#include "particles/convert_to_particles.h"
-#include "particles/particle_animorphosis.h"
-#include "particles/particle_transport.h"
-#include "particles/particle_tree.h"
+#include "core/doc/command.h"
+#include "core/project/project.h"
+#include "core/rig/character.h"
+#include "core/particles/convert_to_particles.h"
+#include "core/particles/particle_animorphosis.h"
+#include "core/particles/particle_transport.h"
+#include "core/particles/particle_tree.h"
 
 namespace animorph {
 

@@ -1,4 +1,4 @@
-#include "doc/standin_commands.h"
+#include "core/doc/standin_commands.h"
 
 #include <algorithm>
 #include <cmath>

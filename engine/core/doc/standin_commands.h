@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "doc/command.h"
-#include "util/result.h"
+#include "core/doc/command.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

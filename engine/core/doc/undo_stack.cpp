@@ -1,4 +1,4 @@
-#include "doc/undo_stack.h"
+#include "core/doc/undo_stack.h"
 
 namespace animorph {
 

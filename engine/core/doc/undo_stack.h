@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "doc/command.h"
+#include "core/doc/command.h"
 
 namespace animorph {
 

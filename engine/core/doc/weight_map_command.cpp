@@ -1,4 +1,4 @@
-#include "doc/weight_map_command.h"
+#include "core/doc/weight_map_command.h"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "field/convolution_segment.h"
+#include "core/field/convolution_segment.h"
 
 #include <algorithm>
 

@@ -33,11 +33,6 @@ R convolutionSegmentField(const glm::vec<3, R>& x, const glm::vec<3, R>& b, cons
   return F;
 }
 
-// Field of an infinite line at distance rho: pi / (2 S (1 + S^2 rho^2)^(3/2)).
-inline double convolutionLineField(double rho, double S) {
-  return M_PI / (2.0 * S * std::pow(1.0 + S * S * rho * rho, 1.5));
-}
-
 // Weight that puts the surface of a long segment at radius R for threshold T:
 // w = 2 S T (1 + S^2 R^2)^(3/2) / pi.
 inline double convolutionWeightForRadius(double radius, double S, double threshold) {

@@ -8,11 +8,11 @@
 #include <cstring>
 #include <vector>
 
-#include "field/field_program.h"
-#include "field/potential.h"
-#include "field/skeleton.h"
-#include "field/spline_curve.h"
-#include "field/field_program_detail.h"
+#include "core/field/field_program.h"
+#include "core/field/potential.h"
+#include "core/field/skeleton.h"
+#include "core/field/spline_curve.h"
+#include "core/field/field_program_detail.h"
 
 namespace animorph {
 

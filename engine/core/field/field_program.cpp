@@ -2,7 +2,7 @@
 // records, bounds). The other parts: field_program_specialise.cpp (a program cut down to a
 // region), field_program_interval.cpp (interval bounds over a region), field_program_evaluate.cpp
 // (batch evaluation of values and gradients).
-#include "field/field_program.h"
+#include "core/field/field_program.h"
 
 #include <algorithm>
 #include <functional>
@@ -12,9 +12,9 @@
 #include <cstring>
 #include <limits>
 
-#include "field/convolution_segment.h"
-#include "field/potential.h"
-#include "field/space_map_simd.h"
+#include "core/field/convolution_segment.h"
+#include "core/field/potential.h"
+#include "core/field/space_map_simd.h"
 
 namespace animorph {
 namespace {

@@ -13,10 +13,10 @@
 
 #include <glm/glm.hpp>
 
-#include "field/operators.h"
-#include "field/skeleton.h"
-#include "field/space_map.h"
-#include "math/bounds.h"
+#include "core/field/operators.h"
+#include "core/field/skeleton.h"
+#include "core/field/space_map.h"
+#include "core/math/bounds.h"
 
 namespace animorph {
 

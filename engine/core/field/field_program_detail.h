@@ -3,8 +3,8 @@
 // to a region, bounding the field over a region): internal to engine/core/field.
 #include <glm/glm.hpp>
 
-#include "field/convolution_segment.h"
-#include "math/bounds.h"
+#include "core/field/convolution_segment.h"
+#include "core/math/bounds.h"
 
 // Hot loops compiled for AVX-512, AVX2 and the baseline, chosen at run time. Where the file is
 // compiled with -ffp-contract=off (engine/core/CMakeLists.txt) every clone computes the same

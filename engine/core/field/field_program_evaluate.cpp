@@ -1,5 +1,5 @@
 // FieldProgram, part 4 of 4: batch evaluation of values and gradients.
-#include "field/field_program.h"
+#include "core/field/field_program.h"
 
 #include <algorithm>
 #include <functional>
@@ -8,9 +8,9 @@
 #include <cmath>
 #include <limits>
 
-#include "field/convolution_segment.h"
-#include "field/field_program_detail.h"
-#include "field/potential.h"
+#include "core/field/convolution_segment.h"
+#include "core/field/field_program_detail.h"
+#include "core/field/potential.h"
 
 namespace animorph {
 

@@ -1,6 +1,6 @@
 // FieldProgram, part 3 of 4: bounds of the field over a region (interval arithmetic), which let
 // the polygoniser skip regions of one sign.
-#include "field/field_program.h"
+#include "core/field/field_program.h"
 
 #include <algorithm>
 #include <functional>
@@ -9,9 +9,9 @@
 #include <cmath>
 #include <limits>
 
-#include "field/convolution_segment.h"
-#include "field/field_program_detail.h"
-#include "field/potential.h"
+#include "core/field/convolution_segment.h"
+#include "core/field/field_program_detail.h"
+#include "core/field/potential.h"
 
 namespace animorph {
 

@@ -1,6 +1,6 @@
 // FieldProgram, part 2 of 4: a program specialised to a region (the primitives and operators that
 // can matter there), as the polygoniser asks per block.
-#include "field/field_program.h"
+#include "core/field/field_program.h"
 
 #include <algorithm>
 #include <functional>
@@ -9,9 +9,9 @@
 #include <cmath>
 #include <limits>
 
-#include "field/convolution_segment.h"
-#include "field/field_program_detail.h"
-#include "field/potential.h"
+#include "core/field/convolution_segment.h"
+#include "core/field/field_program_detail.h"
+#include "core/field/potential.h"
 
 namespace animorph {
 

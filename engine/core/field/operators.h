@@ -15,7 +15,7 @@ namespace animorph {
 // monotone, h(0) = 0, h(T) = T (the surface p = T is kept at scale 1) and
 // bounded by K T, so that a remnant (1 - w) h(p1) >= T of a field fading out
 // of a morph shrinks to nothing at w = 1 - 1/K instead of lingering near its
-// skeleton until w = 1 (morph/morph_field.h). d receives dh/dp.
+// skeleton until w = 1 (standin_morph/morph_field.h). d receives dh/dp.
 inline float remapPotential(float p, float scale, float K, float T, float& d) {
   if (!(K > 1.0f)) {
     d = scale;

@@ -1,9 +1,9 @@
-#include "field/skeleton.h"
+#include "core/field/skeleton.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "field/spline_curve.h"
+#include "core/field/spline_curve.h"
 
 namespace animorph {
 

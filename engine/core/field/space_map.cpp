@@ -1,10 +1,10 @@
-#include "field/space_map.h"
+#include "core/field/space_map.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "field/space_map_simd.h"
+#include "core/field/space_map_simd.h"
 
 namespace animorph {
 

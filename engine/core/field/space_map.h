@@ -7,7 +7,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "math/bounds.h"
+#include "core/math/bounds.h"
 
 namespace animorph {
 

@@ -1,4 +1,4 @@
-#include "field/spline_curve.h"
+#include "core/field/spline_curve.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "io/glb_writer.h"
+#include "core/io/glb_writer.h"
 
 #include <algorithm>
 #include <limits>

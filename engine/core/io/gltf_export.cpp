@@ -1,7 +1,7 @@
-#include "io/gltf_export.h"
+#include "core/io/gltf_export.h"
 
-#include "util/atomic_file.h"
-#include "io/glb_writer.h"
+#include "core/util/atomic_file.h"
+#include "core/io/glb_writer.h"
 
 namespace animorph {
 namespace {

@@ -2,8 +2,8 @@
 // glTF 2.0 binary (.glb) export of a Character.
 #include <string>
 
-#include "rig/character.h"
-#include "util/result.h"
+#include "core/rig/character.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

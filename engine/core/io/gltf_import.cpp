@@ -2,7 +2,7 @@
 // with stb_image and the default file-system callbacks, so no configuration
 // macro is defined here). tinygltf parses JSON and loads buffers; every index,
 // bound and type is checked here before a byte is read.
-#include "io/gltf_import.h"
+#include "core/io/gltf_import.h"
 
 #include <tiny_gltf.h>
 
@@ -19,10 +19,10 @@
 #include <set>
 #include <sstream>
 
-#include "util/atomic_file.h"
-#include "io/gltf_schema_check.h"
-#include "rig/mesh_normals.h"
-#include "rig/skin_influences.h"
+#include "core/util/atomic_file.h"
+#include "core/io/gltf_schema_check.h"
+#include "core/rig/mesh_normals.h"
+#include "core/rig/skin_influences.h"
 
 namespace animorph {
 namespace {

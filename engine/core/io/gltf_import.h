@@ -3,8 +3,8 @@
 #include <cstddef>
 #include <string>
 
-#include "rig/character.h"
-#include "util/result.h"
+#include "core/rig/character.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

@@ -1,4 +1,4 @@
-#include "io/gltf_schema_check.h"
+#include "core/io/gltf_schema_check.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -6,7 +6,7 @@
 #include <iterator>
 #include <nlohmann/json.hpp>
 
-#include "util/json_text.h"
+#include "core/util/json_text.h"
 
 namespace animorph {
 namespace {

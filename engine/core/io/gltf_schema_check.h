@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "util/result.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

@@ -1,4 +1,4 @@
-#include "io/gltf_sequence_export.h"
+#include "core/io/gltf_sequence_export.h"
 
 #include <cstdio>
 #include <functional>
@@ -6,8 +6,8 @@
 #include <unordered_map>
 #include <vector>
 
-#include "util/atomic_file.h"
-#include "io/glb_writer.h"
+#include "core/util/atomic_file.h"
+#include "core/io/glb_writer.h"
 
 namespace animorph {
 

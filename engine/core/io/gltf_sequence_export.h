@@ -23,8 +23,8 @@
 #include <memory>
 #include <string>
 
-#include "poly/mesh.h"
-#include "util/result.h"
+#include "core/poly/mesh.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

@@ -1,11 +1,11 @@
-#include "io/gltf_sequence_import.h"
+#include "core/io/gltf_sequence_import.h"
 
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
 #include <cstdlib>
 
-#include "io/gltf_import.h"
+#include "core/io/gltf_import.h"
 
 namespace animorph {
 

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "poly/mesh.h"
-#include "util/result.h"
+#include "core/poly/mesh.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

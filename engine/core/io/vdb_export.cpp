@@ -1,8 +1,8 @@
 // The one translation unit that includes OpenVDB (its headers are heavy): built as the library
 // animorph_vdb (engine/core/CMakeLists.txt).
-#include "io/vdb_export.h"
+#include "core/io/vdb_export.h"
 
-#include "util/atomic_file.h"
+#include "core/util/atomic_file.h"
 
 #include <algorithm>
 #include <cmath>

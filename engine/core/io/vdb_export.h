@@ -4,8 +4,8 @@
 // OpenVDB types.
 #include <string>
 
-#include "poly/level_set_sampler.h"
-#include "util/result.h"
+#include "core/poly/level_set_sampler.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

@@ -1,4 +1,4 @@
-#include "math/euler.h"
+#include "core/math/euler.h"
 
 #include <glm/gtx/euler_angles.hpp>
 

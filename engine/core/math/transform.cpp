@@ -1,4 +1,4 @@
-#include "math/transform.h"
+#include "core/math/transform.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 

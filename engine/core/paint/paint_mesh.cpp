@@ -1,10 +1,10 @@
-#include "paint/paint_mesh.h"
+#include "core/paint/paint_mesh.h"
 
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
 
-#include "rig/skinning.h"
+#include "core/rig/skinning.h"
 
 namespace animorph {
 

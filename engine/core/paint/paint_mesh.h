@@ -9,7 +9,7 @@
 
 #include <glm/glm.hpp>
 
-#include "scene/scene_frame.h"
+#include "core/scene/scene_frame.h"
 
 namespace animorph {
 

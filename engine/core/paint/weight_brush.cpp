@@ -1,4 +1,4 @@
-#include "paint/weight_brush.h"
+#include "core/paint/weight_brush.h"
 
 #include <algorithm>
 #include <cmath>

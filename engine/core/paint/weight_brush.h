@@ -10,8 +10,8 @@
 
 #include <glm/glm.hpp>
 
-#include "paint/paint_mesh.h"
-#include "view/camera.h"
+#include "core/paint/paint_mesh.h"
+#include "core/camera/camera.h"
 
 namespace animorph {
 

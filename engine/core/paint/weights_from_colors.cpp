@@ -1,4 +1,4 @@
-#include "paint/weights_from_colors.h"
+#include "core/paint/weights_from_colors.h"
 
 #include <algorithm>
 #include <filesystem>

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "rig/character.h"
-#include "util/result.h"
+#include "core/rig/character.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

@@ -1,7 +1,7 @@
-#include "particles/character_shape.h"
+#include "core/particles/character_shape.h"
 
-#include "rig/pose.h"
-#include "standin/character_pose.h"
+#include "core/rig/pose.h"
+#include "core/standin/character_pose.h"
 
 namespace animorph {
 

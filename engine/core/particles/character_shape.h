@@ -4,10 +4,10 @@
 // character's transform): its stand-in compiled as the morph compiles a posed stand-in
 // (standin/standin.h standinProgram: convolution segments or capsules, f = sum - T), or its
 // skinned meshes, skinned on the CPU as the viewport shows them, as one triangle mesh.
-#include "rig/character.h"
-#include "standin/standin.h"
-#include "field/field_program.h"
-#include "poly/mesh.h"
+#include "core/rig/character.h"
+#include "core/standin/standin.h"
+#include "core/field/field_program.h"
+#include "core/poly/mesh.h"
 
 namespace animorph {
 

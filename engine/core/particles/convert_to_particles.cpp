@@ -1,4 +1,4 @@
-#include "particles/convert_to_particles.h"
+#include "core/particles/convert_to_particles.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "field/potential.h"
+#include "core/field/potential.h"
 
 namespace animorph {
 

@@ -17,9 +17,9 @@
 #include <functional>
 #include <vector>
 
-#include "blobtree/blob_tree.h"
-#include "field/field_program.h"
-#include "util/result.h"
+#include "core/blobtree/blob_tree.h"
+#include "core/field/field_program.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

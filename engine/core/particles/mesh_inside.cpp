@@ -1,4 +1,4 @@
-#include "particles/mesh_inside.h"
+#include "core/particles/mesh_inside.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +11,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
-#include "poly/mesh_checks.h"
+#include "core/poly/mesh_checks.h"
 
 namespace animorph {
 

@@ -13,9 +13,9 @@
 #include <cstddef>
 #include <vector>
 
-#include "math/bounds.h"
-#include "particles/convert_to_particles.h"
-#include "poly/mesh.h"
+#include "core/math/bounds.h"
+#include "core/particles/convert_to_particles.h"
+#include "core/poly/mesh.h"
 
 namespace animorph {
 

@@ -1,4 +1,4 @@
-#include "particles/particle_animorphosis.h"
+#include "core/particles/particle_animorphosis.h"
 
 namespace animorph {
 

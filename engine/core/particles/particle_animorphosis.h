@@ -10,9 +10,9 @@
 // at the end B at rest.
 #include <optional>
 
-#include "animorph/correspondence.h"
-#include "blobtree/blob_tree.h"
-#include "particles/particle_tree.h"
+#include "core/animorphosis/correspondence.h"
+#include "core/blobtree/blob_tree.h"
+#include "core/particles/particle_tree.h"
 
 namespace animorph {
 

@@ -1,4 +1,4 @@
-#include "particles/particle_system.h"
+#include "core/particles/particle_system.h"
 
 #include <cmath>
 #include <mutex>

@@ -12,7 +12,7 @@
 
 #include <glm/glm.hpp>
 
-#include "util/result.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

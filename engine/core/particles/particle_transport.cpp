@@ -1,6 +1,6 @@
-#include "particles/particle_transport.h"
+#include "core/particles/particle_transport.h"
 
-#include "particles/particle_tree.h"
+#include "core/particles/particle_tree.h"
 
 #include <algorithm>
 #include <cmath>

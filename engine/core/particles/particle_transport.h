@@ -12,10 +12,10 @@
 
 #include <glm/glm.hpp>
 
-#include "blobtree/blob_tree.h"
-#include "field/field_program.h"
-#include "particles/convert_to_particles.h"
-#include "util/result.h"
+#include "core/blobtree/blob_tree.h"
+#include "core/field/field_program.h"
+#include "core/particles/convert_to_particles.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

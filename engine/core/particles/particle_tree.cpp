@@ -1,4 +1,4 @@
-#include "particles/particle_tree.h"
+#include "core/particles/particle_tree.h"
 
 #include <algorithm>
 #include <cmath>

@@ -9,9 +9,9 @@
 // BlobTree; the other nodes are left as they are.
 #include <vector>
 
-#include "blobtree/blob_tree.h"
-#include "particles/particle_system.h"
-#include "particles/trajectory_bake.h"
+#include "core/blobtree/blob_tree.h"
+#include "core/particles/particle_system.h"
+#include "core/particles/trajectory_bake.h"
 
 namespace animorph {
 

@@ -1,4 +1,4 @@
-#include "particles/trajectory_bake.h"
+#include "core/particles/trajectory_bake.h"
 
 #include <algorithm>
 #include <cmath>

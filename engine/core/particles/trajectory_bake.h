@@ -10,7 +10,7 @@
 
 #include <glm/glm.hpp>
 
-#include "anim/track.h"
+#include "core/anim/track.h"
 
 namespace animorph {
 

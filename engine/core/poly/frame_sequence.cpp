@@ -1,4 +1,4 @@
-#include "poly/frame_sequence.h"
+#include "core/poly/frame_sequence.h"
 
 #include <chrono>
 #include <string>

@@ -7,7 +7,7 @@
 #include <atomic>
 #include <functional>
 
-#include "poly/polygonizer.h"
+#include "core/poly/polygonizer.h"
 
 namespace animorph {
 

@@ -1,4 +1,4 @@
-#include "poly/level_set_sampler.h"
+#include "core/poly/level_set_sampler.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "morph/solid_noise.h"
+#include "core/poly/solid_noise.h"
 
 namespace animorph {
 

@@ -11,9 +11,9 @@
 
 #include <glm/glm.hpp>
 
-#include "field/field_program.h"
-#include "poly/polygonizer.h"
-#include "util/result.h"
+#include "core/field/field_program.h"
+#include "core/poly/polygonizer.h"
+#include "core/util/result.h"
 
 namespace animorph {
 
@@ -25,7 +25,7 @@ struct LevelSetSettings {
   // Half-width of the band in voxels: voxels whose distance is below halfWidth * voxelSize are
   // stored (OpenVDB's tools expect 3; under 1 the zero crossing can lose its neighbours).
   float halfWidth = 3.0f;
-  // The solid-noise displacement the polygonised mesh gets (morph/solid_noise.h): the level set
+  // The solid-noise displacement the polygonised mesh gets (poly/solid_noise.h): the level set
   // is moved by the same amount (d - amplitude * noise(frequency * p)); 0: none.
   float noiseAmplitude = 0.0f;
   float noiseFrequency = 0.0f;

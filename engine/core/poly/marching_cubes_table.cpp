@@ -1,4 +1,4 @@
-#include "poly/marching_cubes_table.h"
+#include "core/poly/marching_cubes_table.h"
 
 #include <glm/glm.hpp>
 #include <vector>

@@ -1,4 +1,4 @@
-#include "poly/mesh_checks.h"
+#include "core/poly/mesh_checks.h"
 
 #include <algorithm>
 #include <numeric>
@@ -142,14 +142,4 @@ double meshVolume(const TriangleMesh& m) {
   }
   return v / 6.0;
 }
-
-double meshArea(const TriangleMesh& m) {
-  double s = 0.0;
-  for (size_t f = 0; f + 2 < m.indices.size(); f += 3) {
-    glm::dvec3 a(m.positions[m.indices[f]]), b(m.positions[m.indices[f + 1]]), c(m.positions[m.indices[f + 2]]);
-    s += 0.5 * glm::length(glm::cross(b - a, c - a));
-  }
-  return s;
-}
-
 }  // namespace animorph

@@ -3,7 +3,7 @@
 // orientation, Euler characteristic, connected components, volume, area.
 #include <cstddef>
 
-#include "poly/mesh.h"
+#include "core/poly/mesh.h"
 
 namespace animorph {
 
@@ -30,7 +30,5 @@ MeshTopology analyzeMesh(const TriangleMesh& mesh);
 
 // Signed volume enclosed (divergence theorem); positive when normals point outwards.
 double meshVolume(const TriangleMesh& mesh);
-
-double meshArea(const TriangleMesh& mesh);
 
 }  // namespace animorph

@@ -1,4 +1,4 @@
-#include "poly/polygonizer.h"
+#include "core/poly/polygonizer.h"
 
 #include <algorithm>
 #include <chrono>
@@ -13,8 +13,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "poly/marching_cubes_table.h"
-#include "poly/program_change.h"
+#include "core/poly/marching_cubes_table.h"
+#include "core/poly/program_change.h"
 
 namespace animorph {
 

@@ -8,10 +8,10 @@
 #include <memory>
 #include <optional>
 
-#include "field/field_program.h"
-#include "math/bounds.h"
-#include "poly/mesh.h"
-#include "util/result.h"
+#include "core/field/field_program.h"
+#include "core/math/bounds.h"
+#include "core/poly/mesh.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

@@ -1,12 +1,12 @@
-#include "poly/preview_polygonizer.h"
+#include "core/poly/preview_polygonizer.h"
 
 #include <algorithm>
 #include <chrono>
 #include <thread>
 
-#include "blobtree/compile.h"
-#include "blobtree/validate.h"
-#include "util/heap_trim.h"
+#include "core/blobtree/compile.h"
+#include "core/blobtree/validate.h"
+#include "core/util/heap_trim.h"
 
 namespace animorph {
 

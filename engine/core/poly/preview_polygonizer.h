@@ -17,8 +17,8 @@
 #include <string>
 #include <thread>
 
-#include "blobtree/blob_tree.h"
-#include "poly/polygonizer.h"
+#include "core/blobtree/blob_tree.h"
+#include "core/poly/polygonizer.h"
 
 namespace animorph {
 

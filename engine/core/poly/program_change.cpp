@@ -1,4 +1,4 @@
-#include "poly/program_change.h"
+#include "core/poly/program_change.h"
 
 #include <algorithm>
 #include <cmath>

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "field/field_program.h"
+#include "core/field/field_program.h"
 
 namespace animorph {
 

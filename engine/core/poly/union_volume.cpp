@@ -1,4 +1,4 @@
-#include "poly/union_volume.h"
+#include "core/poly/union_volume.h"
 
 #include <algorithm>
 #include <cmath>

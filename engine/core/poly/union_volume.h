@@ -1,6 +1,6 @@
 #pragma once
 // The volume of a union of closed triangle meshes that may overlap (the
-// transition mesh and the stand-in core drawn inside it, morph/standin_core.h):
+// transition mesh and the stand-in core drawn inside it, scene/standin_core.h):
 // the divergence theorem adds overlaps twice, so the union is measured along
 // rays instead. Rays run along +x through the centres of a columns x columns
 // grid over the meshes' y-z extent; along each ray every shell's winding number
@@ -10,7 +10,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "poly/mesh.h"
+#include "core/poly/mesh.h"
 
 namespace animorph {
 

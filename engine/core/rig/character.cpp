@@ -1,4 +1,4 @@
-#include "rig/character.h"
+#include "core/rig/character.h"
 
 #include <set>
 

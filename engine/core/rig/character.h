@@ -7,8 +7,8 @@
 
 #include <glm/glm.hpp>
 
-#include "math/bounds.h"
-#include "math/transform.h"
+#include "core/math/bounds.h"
+#include "core/math/transform.h"
 
 namespace animorph {
 

@@ -1,4 +1,4 @@
-#include "rig/mesh_normals.h"
+#include "core/rig/mesh_normals.h"
 
 namespace animorph {
 

@@ -1,4 +1,4 @@
-#include "rig/pose.h"
+#include "core/rig/pose.h"
 
 #include <algorithm>
 #include <cmath>

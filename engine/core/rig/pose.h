@@ -2,7 +2,7 @@
 // Evaluating a character at a time: clip sampling, node globals, joint matrices.
 #include <vector>
 
-#include "rig/character.h"
+#include "core/rig/character.h"
 
 namespace animorph {
 

@@ -1,9 +1,9 @@
-#include "rig/skin_influences.h"
+#include "core/rig/skin_influences.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "rig/character.h"
+#include "core/rig/character.h"
 
 namespace animorph {
 

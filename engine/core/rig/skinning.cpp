@@ -1,6 +1,6 @@
-#include "rig/skinning.h"
+#include "core/rig/skinning.h"
 
-#include "rig/pose.h"
+#include "core/rig/pose.h"
 
 namespace animorph {
 

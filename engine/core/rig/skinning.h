@@ -2,7 +2,7 @@
 // Linear blend skinning on the CPU (the vertex shader does the same on the GPU).
 #include <vector>
 
-#include "rig/character.h"
+#include "core/rig/character.h"
 
 namespace animorph {
 

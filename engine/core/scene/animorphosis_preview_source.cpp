@@ -1,4 +1,4 @@
-#include "scene/animorphosis_preview_source.h"
+#include "core/scene/animorphosis_preview_source.h"
 
 namespace animorph {
 

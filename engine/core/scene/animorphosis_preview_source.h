@@ -1,14 +1,14 @@
 #pragma once
 // The animorphosis' C(t) as a PreviewSource: compiled straight from the
-// generic tree (animorph/compile_generic.h) on the thread that polygonises it
+// generic tree (animorphosis/compile_generic.h) on the thread that polygonises it
 // -- the preview worker, or the GPU path's field() -- with no BlobTree
 // snapshot and no validation (C is built from validated trees; its program is
 // the snapshot's, bit for bit, so the preview's meshes are the same).
 #include <memory>
 #include <mutex>
 
-#include "animorph/compile_generic.h"
-#include "poly/preview_polygonizer.h"
+#include "core/animorphosis/compile_generic.h"
+#include "core/poly/preview_polygonizer.h"
 
 namespace animorph {
 

@@ -1,10 +1,10 @@
-#include "scene/animorphosis_scene.h"
+#include "core/scene/animorphosis_scene.h"
 
 #include <algorithm>
 #include <cstdio>
 
-#include "animorph/evaluate_generic.h"
-#include "doc/animorphosis_project.h"
+#include "core/animorphosis/evaluate_generic.h"
+#include "core/project/animorphosis_project.h"
 
 namespace animorph {
 

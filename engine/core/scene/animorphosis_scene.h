@@ -8,10 +8,10 @@
 #include <memory>
 #include <string>
 
-#include "animorph/generic_tree.h"
-#include "doc/project.h"
-#include "scene/animorphosis_preview_source.h"
-#include "scene/scene_frame.h"
+#include "core/animorphosis/generic_tree.h"
+#include "core/project/project.h"
+#include "core/scene/animorphosis_preview_source.h"
+#include "core/scene/scene_frame.h"
 
 namespace animorph {
 

@@ -1,11 +1,11 @@
-#include "scene/blob_guides.h"
+#include "core/scene/blob_guides.h"
 
 #include <algorithm>
 #include <cmath>
 #include <unordered_set>
 
-#include "blobtree/meta_primitives.h"
-#include "field/spline_curve.h"
+#include "core/blobtree/meta_primitives.h"
+#include "core/field/spline_curve.h"
 
 namespace animorph {
 

@@ -8,8 +8,8 @@
 
 #include <glm/glm.hpp>
 
-#include "blobtree/blob_tree.h"
-#include "field/space_map.h"
+#include "core/blobtree/blob_tree.h"
+#include "core/field/space_map.h"
 
 namespace animorph {
 

@@ -1,4 +1,4 @@
-#include "scene/mesh_character.h"
+#include "core/scene/mesh_character.h"
 
 namespace animorph {
 

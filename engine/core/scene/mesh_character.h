@@ -5,8 +5,8 @@
 #include <memory>
 #include <string>
 
-#include "poly/mesh.h"
-#include "rig/character.h"
+#include "core/poly/mesh.h"
+#include "core/rig/character.h"
 
 namespace animorph {
 

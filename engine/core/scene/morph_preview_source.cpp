@@ -1,6 +1,6 @@
-#include "scene/morph_preview_source.h"
+#include "core/scene/morph_preview_source.h"
 
-#include "morph/standin_core.h"
+#include "core/scene/standin_core.h"
 
 namespace animorph {
 

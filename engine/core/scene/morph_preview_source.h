@@ -4,8 +4,8 @@
 // GPU (one program: morphImplicitField) instead of on the UI thread.
 #include <memory>
 
-#include "morph/morph_runtime.h"
-#include "poly/preview_polygonizer.h"
+#include "core/scene/morph_runtime.h"
+#include "core/poly/preview_polygonizer.h"
 
 namespace animorph {
 
@@ -17,7 +17,7 @@ std::shared_ptr<const PreviewSource> morphPreviewSource(std::shared_ptr<const Mo
                                                         double progress = -1.0);
 
 // The stand-in core of the collapse (expand false) or the expansion at scene
-// time timeSec and transition progress u (morph/standin_core.h): empty when
+// time timeSec and transition progress u (scene/standin_core.h): empty when
 // it has melted away.
 std::shared_ptr<const PreviewSource> standinCorePreviewSource(std::shared_ptr<const MorphRuntime> rt, double timeSec,
                                                               bool expand, double u);

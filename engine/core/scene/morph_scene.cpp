@@ -1,12 +1,12 @@
-#include "scene/morph_scene.h"
+#include "core/scene/morph_scene.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "morph/standin_core.h"
-#include "morph/transition_frame.h"
-#include "rig/pose.h"
-#include "scene/mesh_character.h"
+#include "core/scene/standin_core.h"
+#include "core/scene/transition_frame.h"
+#include "core/rig/pose.h"
+#include "core/scene/mesh_character.h"
 
 namespace animorph {
 

@@ -5,9 +5,9 @@
 #include <memory>
 #include <string>
 
-#include "doc/project.h"
-#include "morph/morph_runtime.h"
-#include "scene/scene_frame.h"
+#include "core/project/project.h"
+#include "core/scene/morph_runtime.h"
+#include "core/scene/scene_frame.h"
 
 namespace animorph {
 
@@ -22,7 +22,7 @@ struct MorphSceneInfo {
   double implicitOpacity = 0.0;
   double implicitProgress = 0.0;
   // Collapse / expansion: the implicit surface is the transition's stand-in
-  // core (morph/standin_core.h) at transition progress implicitProgress, drawn
+  // core (scene/standin_core.h) at transition progress implicitProgress, drawn
   // opaque with the mesh (implicitOpacity 1).
   bool implicitCore = false;
 };

@@ -1,9 +1,9 @@
-#include "scene/particle_view.h"
+#include "core/scene/particle_view.h"
 
 #include <algorithm>
 #include <cstdio>
 
-#include "math/bounds.h"
+#include "core/math/bounds.h"
 
 namespace animorph {
 

@@ -22,9 +22,9 @@
 
 #include <glm/glm.hpp>
 
-#include "doc/project.h"
-#include "particles/particle_tree.h"
-#include "scene/scene_frame.h"
+#include "core/project/project.h"
+#include "core/particles/particle_tree.h"
+#include "core/scene/scene_frame.h"
 
 namespace animorph {
 

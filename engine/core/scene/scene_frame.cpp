@@ -1,12 +1,12 @@
-#include "scene/scene_frame.h"
+#include "core/scene/scene_frame.h"
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 
-#include "blobtree/tree_edit.h"
-#include "rig/pose.h"
-#include "rig/skinning.h"
+#include "core/blobtree/tree_edit.h"
+#include "core/rig/pose.h"
+#include "core/rig/skinning.h"
 
 namespace animorph {
 
@@ -25,20 +25,6 @@ const std::vector<BlobGuides>& LazyBlobGuides::get() const {
     }
   }
   return *built_;
-}
-
-double actorClipTimeSec(const Actor& actor, const AnimationClip& clip, double timeSec) {
-  return clipTime(clip, (timeSec - actor.timeOffsetSec) * actor.speed, actor.loop);
-}
-
-double blobActorTimeSec(const Actor& actor, double timeSec) {
-  double t = (timeSec - actor.timeOffsetSec) * actor.speed;
-  double end = animationEndSec(actor.blobTree);
-  if (actor.loop && end > 1e-6) {
-    t = std::fmod(t, end);
-    if (t < 0.0) t += end;
-  }
-  return t;
 }
 
 namespace {

@@ -10,11 +10,12 @@
 
 #include <glm/glm.hpp>
 
-#include "doc/asset_cache.h"
-#include "doc/project.h"
-#include "math/bounds.h"
-#include "rig/character.h"
-#include "scene/blob_guides.h"
+#include "core/project/actor_time.h"
+#include "core/project/asset_cache.h"
+#include "core/project/project.h"
+#include "core/math/bounds.h"
+#include "core/rig/character.h"
+#include "core/scene/blob_guides.h"
 
 namespace animorph {
 
@@ -123,13 +124,6 @@ struct SceneFrame {
   std::vector<glm::vec3> jointPositions;  // every skin joint, world space
   std::vector<std::string> errors;        // "actor 'x': <asset load error>"
 };
-
-// Clip time of actor at scene time timeSec: (t - offset) * speed, looped or clamped.
-double actorClipTimeSec(const Actor& actor, const AnimationClip& clip, double timeSec);
-
-// Tree time of a BlobTree actor at scene time timeSec: (t - offset) * speed,
-// wrapped into [0, last key] when the actor loops and its tree is animated.
-double blobActorTimeSec(const Actor& actor, double timeSec);
 
 // Evaluates every visible actor of project at timeSec. baseDir resolves the
 // actors' relative asset paths. Actors whose asset failed to load are

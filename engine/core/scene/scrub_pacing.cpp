@@ -1,4 +1,4 @@
-#include "scene/scrub_pacing.h"
+#include "core/scene/scrub_pacing.h"
 
 #include <algorithm>
 

@@ -1,13 +1,13 @@
-#include "scene/standin_guides.h"
+#include "core/scene/standin_guides.h"
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 
-#include "morph/morph_runtime.h"
-#include "rig/pose.h"
-#include "scene/scene_frame.h"
-#include "standin/standin.h"
+#include "core/scene/morph_runtime.h"
+#include "core/rig/pose.h"
+#include "core/scene/scene_frame.h"
+#include "core/standin/standin.h"
 
 namespace animorph {
 

@@ -8,9 +8,9 @@
 
 #include <glm/glm.hpp>
 
-#include "doc/asset_cache.h"
-#include "doc/project.h"
-#include "rig/character.h"
+#include "core/project/asset_cache.h"
+#include "core/project/project.h"
+#include "core/rig/character.h"
 
 namespace animorph {
 

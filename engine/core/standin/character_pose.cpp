@@ -1,6 +1,6 @@
-#include "standin/character_pose.h"
+#include "core/standin/character_pose.h"
 
-#include "rig/pose.h"
+#include "core/rig/pose.h"
 
 namespace animorph {
 

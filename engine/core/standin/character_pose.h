@@ -7,7 +7,7 @@
 
 #include <glm/glm.hpp>
 
-#include "rig/character.h"
+#include "core/rig/character.h"
 
 namespace animorph {
 

@@ -1,4 +1,4 @@
-#include "standin/fit_quality.h"
+#include "core/standin/fit_quality.h"
 
 #include <algorithm>
 #include <chrono>
@@ -7,8 +7,8 @@
 #include <numeric>
 #include <unordered_map>
 
-#include "field/skeleton.h"
-#include "poly/polygonizer.h"
+#include "core/field/skeleton.h"
+#include "core/poly/polygonizer.h"
 
 namespace animorph {
 

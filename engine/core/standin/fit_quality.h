@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "rig/character.h"
-#include "standin/character_pose.h"
-#include "standin/project_onto_standin.h"
-#include "standin/standin.h"
+#include "core/rig/character.h"
+#include "core/standin/character_pose.h"
+#include "core/standin/project_onto_standin.h"
+#include "core/standin/standin.h"
 
 namespace animorph {
 

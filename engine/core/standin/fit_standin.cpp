@@ -1,11 +1,11 @@
-#include "standin/fit_standin.h"
+#include "core/standin/fit_standin.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 
-#include "field/skeleton.h"
-#include "standin/character_pose.h"
+#include "core/field/skeleton.h"
+#include "core/standin/character_pose.h"
 
 namespace animorph {
 

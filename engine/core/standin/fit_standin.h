@@ -14,12 +14,12 @@
 #include <string>
 #include <vector>
 
-#include "rig/character.h"
-#include "standin/fit_quality.h"
-#include "standin/project_onto_standin.h"
-#include "standin/repair_fit.h"
-#include "standin/standin.h"
-#include "util/result.h"
+#include "core/rig/character.h"
+#include "core/standin/fit_quality.h"
+#include "core/standin/project_onto_standin.h"
+#include "core/standin/repair_fit.h"
+#include "core/standin/standin.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

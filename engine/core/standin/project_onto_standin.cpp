@@ -1,4 +1,4 @@
-#include "standin/project_onto_standin.h"
+#include "core/standin/project_onto_standin.h"
 
 #include <algorithm>
 #include <atomic>

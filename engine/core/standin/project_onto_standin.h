@@ -8,8 +8,8 @@
 
 #include <glm/glm.hpp>
 
-#include "field/field_program.h"
-#include "standin/standin.h"
+#include "core/field/field_program.h"
+#include "core/standin/standin.h"
 
 namespace animorph {
 

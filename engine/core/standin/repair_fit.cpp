@@ -1,4 +1,4 @@
-#include "standin/repair_fit.h"
+#include "core/standin/repair_fit.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <numeric>
 #include <string>
 
-#include "field/skeleton.h"
+#include "core/field/skeleton.h"
 
 namespace animorph {
 

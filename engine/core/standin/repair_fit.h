@@ -10,11 +10,11 @@
 #include <cstddef>
 #include <vector>
 
-#include "rig/character.h"
-#include "standin/character_pose.h"
-#include "standin/fit_quality.h"
-#include "standin/project_onto_standin.h"
-#include "standin/standin.h"
+#include "core/rig/character.h"
+#include "core/standin/character_pose.h"
+#include "core/standin/fit_quality.h"
+#include "core/standin/project_onto_standin.h"
+#include "core/standin/standin.h"
 
 namespace animorph {
 

@@ -1,11 +1,11 @@
-#include "standin/standin.h"
+#include "core/standin/standin.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "field/convolution_segment.h"
-#include "field/skeleton.h"
+#include "core/field/convolution_segment.h"
+#include "core/field/skeleton.h"
 
 namespace animorph {
 

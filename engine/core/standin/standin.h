@@ -8,7 +8,7 @@
 
 #include <glm/glm.hpp>
 
-#include "field/field_program.h"
+#include "core/field/field_program.h"
 
 namespace animorph {
 
@@ -17,7 +17,7 @@ namespace animorph {
 enum class StandinKind : uint8_t { Convolution, CapsuleUnion, CapsuleBlend };
 
 // Every stand-in field uses this threshold: f = p - T. Keeping it common makes
-// (1 - w) f1 + w f2 one program with weights scaled (morph/morph_field.h).
+// (1 - w) f1 + w f2 one program with weights scaled (standin_morph/morph_field.h).
 inline constexpr float kStandinThreshold = 1.0f;
 // Convolution contributions under this fraction of T are cut (field_program.h).
 inline constexpr float kStandinCutoffEpsilon = 1e-3f;

@@ -1,4 +1,4 @@
-#include "standin/standin_edit.h"
+#include "core/standin/standin_edit.h"
 
 #include <limits>
 #include <string>

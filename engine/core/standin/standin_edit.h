@@ -6,9 +6,9 @@
 
 #include <glm/glm.hpp>
 
-#include "standin/fit_standin.h"
-#include "standin/standin.h"
-#include "util/result.h"
+#include "core/standin/fit_standin.h"
+#include "core/standin/standin.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

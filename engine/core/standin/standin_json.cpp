@@ -1,10 +1,10 @@
-#include "standin/standin_json.h"
+#include "core/standin/standin_json.h"
 
 #include <cmath>
 #include <limits>
 
-#include "util/atomic_file.h"
-#include "util/json_text.h"
+#include "core/util/atomic_file.h"
+#include "core/util/json_text.h"
 
 namespace animorph {
 

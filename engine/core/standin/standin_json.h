@@ -5,8 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "standin/standin.h"
-#include "util/result.h"
+#include "core/standin/standin.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

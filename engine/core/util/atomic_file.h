@@ -6,8 +6,8 @@
 #include <string>
 #include <string_view>
 
-#include "util/job_progress.h"
-#include "util/result.h"
+#include "core/util/job_progress.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

@@ -1,4 +1,4 @@
-#include "util/background_job.h"
+#include "core/util/background_job.h"
 
 #include <exception>
 

@@ -12,8 +12,8 @@
 #include <string>
 #include <thread>
 
-#include "util/job_progress.h"
-#include "util/result.h"
+#include "core/util/job_progress.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

@@ -1,4 +1,4 @@
-#include "util/heap_trim.h"
+#include "core/util/heap_trim.h"
 
 #include <cstdlib>  // defines __GLIBC__ with the GNU C library
 

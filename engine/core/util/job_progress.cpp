@@ -1,4 +1,4 @@
-#include "util/job_progress.h"
+#include "core/util/job_progress.h"
 
 #include <algorithm>
 #include <cmath>

@@ -7,7 +7,7 @@
 #include <mutex>
 #include <string>
 
-#include "util/result.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

@@ -1,4 +1,4 @@
-#include "util/json_text.h"
+#include "core/util/json_text.h"
 
 #include <vector>
 

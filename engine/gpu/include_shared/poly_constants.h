@@ -1,4 +1,4 @@
-// Constants of the GPU polygoniser shared by engine/gpu/implicit/gpu_polygonizer.cpp,
+// Constants of the GPU polygoniser shared by engine/gpu/polygonizer/gpu_polygonizer.cpp,
 // gpu_field_program.cpp and shaders/poly_*.comp.glsl (docs/gpu-polygonizer.md).
 // Only preprocessor definitions, so GLSL and C++ read the same values.
 #ifndef ANIMORPH_POLY_CONSTANTS_H

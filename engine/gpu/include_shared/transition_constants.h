@@ -14,7 +14,7 @@
 #define AM_TRANSITION_SET 1
 #define AM_TRANSITION_BINDING_PARAMS 0
 
-// Limits of the parameter block (engine/core/morph/transition_frame.h).
+// Limits of the parameter block (engine/core/scene/transition_frame.h).
 #define AM_TRANSITION_MAX_SEGMENTS 64
 #define AM_TRANSITION_LUT_FLOATS 513  // kTransitionEasingIntervals + 1
 #define AM_TRANSITION_LUT_VEC4 129

@@ -1,4 +1,4 @@
-#include "present/imgui_vulkan.h"
+#include "gpu/present/imgui_vulkan.h"
 
 #include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
@@ -9,8 +9,8 @@
 #include <cstring>
 #include <vector>
 
-#include "vulkan/graphics_pipeline.h"
-#include "vulkan/vk_check.h"
+#include "gpu/vulkan/graphics_pipeline.h"
+#include "gpu/vulkan/vk_check.h"
 
 namespace animorph {
 namespace {

@@ -9,12 +9,12 @@
 #include <memory>
 #include <vector>
 
-#include "vulkan/buffer.h"
-#include "vulkan/context.h"
-#include "vulkan/image.h"
+#include "gpu/vulkan/buffer.h"
+#include "gpu/vulkan/context.h"
+#include "gpu/vulkan/image.h"
 #include "shared_constants.h"
-#include "present/swapchain.h"
-#include "util/result.h"
+#include "gpu/present/swapchain.h"
+#include "core/util/result.h"
 
 namespace animorph {
 

@@ -1,10 +1,10 @@
-#include "present/offscreen_target.h"
+#include "gpu/present/offscreen_target.h"
 
 #include <cstring>
 
-#include "vulkan/command_resources.h"
-#include "vulkan/render_pass.h"
-#include "vulkan/vk_check.h"
+#include "gpu/vulkan/command_resources.h"
+#include "gpu/vulkan/render_pass.h"
+#include "gpu/vulkan/vk_check.h"
 
 namespace animorph::gpu {
 

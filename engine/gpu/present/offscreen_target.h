@@ -5,10 +5,10 @@
 #include <functional>
 #include <memory>
 
-#include "vulkan/buffer.h"
-#include "vulkan/context.h"
-#include "vulkan/image.h"
-#include "present/rgba_image.h"
+#include "gpu/vulkan/buffer.h"
+#include "gpu/vulkan/context.h"
+#include "gpu/vulkan/image.h"
+#include "gpu/present/rgba_image.h"
 
 namespace animorph::gpu {
 

@@ -1,4 +1,4 @@
-#include "present/rgba_image.h"
+#include "gpu/present/rgba_image.h"
 
 #include <stb_image_write.h>  // implementation from Debian's libstb
 

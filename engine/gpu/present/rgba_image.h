@@ -6,7 +6,7 @@
 
 #include <glm/glm.hpp>
 
-#include "util/result.h"
+#include "core/util/result.h"
 
 namespace animorph::gpu {
 

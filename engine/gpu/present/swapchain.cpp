@@ -1,4 +1,4 @@
-#include "present/swapchain.h"
+#include "gpu/present/swapchain.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -9,9 +9,9 @@
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
 
-#include "vulkan/command_resources.h"
-#include "vulkan/render_pass.h"
-#include "vulkan/vk_check.h"
+#include "gpu/vulkan/command_resources.h"
+#include "gpu/vulkan/render_pass.h"
+#include "gpu/vulkan/vk_check.h"
 
 namespace animorph::gpu {
 
@@ -199,7 +199,6 @@ Status Swapchain::recreateHost(VkExtent2D size) {
   hostImported_ = ctx_.supportsHostMemoryImport() && !(env && std::string(env) == "copy");
   if (!hostImported_) presentPath_ = "MIT-SHM (host, copied)";
   extent_ = size;
-  ++generation_;
   minImageCount_ = 2;
   captureSupported_ = true;
   Result<Image> depth =
@@ -318,7 +317,6 @@ Status Swapchain::recreate(VkExtent2D size) {
     return vkError("vkCreateSwapchainKHR " + std::to_string(size.width) + "x" + std::to_string(size.height), r);
   }
   extent_ = size;
-  ++generation_;
 
   vkGetSwapchainImagesKHR(dev, swapchain_, &n, nullptr);
   images_.resize(n);

@@ -16,12 +16,12 @@
 
 #include <glm/glm.hpp>
 
-#include "vulkan/buffer.h"
-#include "vulkan/context.h"
-#include "vulkan/image.h"
-#include "present/rgba_image.h"
+#include "gpu/vulkan/buffer.h"
+#include "gpu/vulkan/context.h"
+#include "gpu/vulkan/image.h"
+#include "gpu/present/rgba_image.h"
 #include "shared_constants.h"
-#include "present/x11_shm_presenter.h"
+#include "gpu/present/x11_shm_presenter.h"
 
 namespace animorph::gpu {
 
@@ -74,12 +74,11 @@ class Swapchain {
 
   // Makes the next endFrame() copy its image to host memory (RGBA8); fetch it
   // with takeCapture() after that endFrame(). Needs TRANSFER_SRC support on the
-  // swapchain images (captureSupported()).
+  // swapchain images (without it the request is ignored).
   void requestCapture() { captureRequested_ = true; }
   // Puts the frames still waiting for the window into it now (host presentation puts a frame at
   // the next beginFrame; call this before waiting for events). No-op on the WSI path.
   Status flushPresentation();
-  bool captureSupported() const { return captureSupported_; }
   // The captured image, once; nullopt when none was taken since the last call.
   std::optional<RgbaImage> takeCapture();
 
@@ -90,8 +89,6 @@ class Swapchain {
   VkFormat colorFormat() const { return format_.format; }
   VkExtent2D extent() const { return extent_; }
   PresentMode presentMode() const { return presentMode_; }  // the one in use after fallback
-  // Times the swapchain was (re)created.
-  uint32_t generation() const { return generation_; }
   const std::string& lastError() const { return lastError_; }
   // How frames reach the window: "Vulkan WSI" or "MIT-SHM (host)", and why not MIT-SHM.
   const std::string& presentPath() const { return presentPath_; }
@@ -114,7 +111,6 @@ class Swapchain {
   PresentMode presentMode_ = PresentMode::Fifo;
   VkExtent2D extent_{0, 0};
   uint32_t minImageCount_ = 2;
-  uint32_t generation_ = 0;
   VkRenderPass renderPass_ = VK_NULL_HANDLE;
   std::vector<VkImage> images_;
   std::vector<VkImageView> views_;

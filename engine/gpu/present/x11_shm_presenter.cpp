@@ -1,4 +1,4 @@
-#include "present/x11_shm_presenter.h"
+#include "gpu/present/x11_shm_presenter.h"
 
 #if ANIMORPH_HAS_X11_SHM
 #include <sys/ipc.h>

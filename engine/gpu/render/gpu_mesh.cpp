@@ -1,11 +1,11 @@
-#include "render/gpu_mesh.h"
+#include "gpu/render/gpu_mesh.h"
 
 #include <algorithm>
 #include <array>
 #include <cstring>
 #include <vector>
 
-#include "rig/mesh_normals.h"
+#include "core/rig/mesh_normals.h"
 #include "shared_constants.h"
 
 namespace animorph::gpu {

@@ -4,10 +4,10 @@
 // the device cannot draw polygons as lines, an edge list for the wireframe.
 #include <memory>
 
-#include "vulkan/buffer.h"
-#include "vulkan/context.h"
-#include "math/bounds.h"
-#include "rig/character.h"
+#include "gpu/vulkan/buffer.h"
+#include "gpu/vulkan/context.h"
+#include "core/math/bounds.h"
+#include "core/rig/character.h"
 
 namespace animorph::gpu {
 

@@ -1,4 +1,4 @@
-#include "render/line_batch.h"
+#include "gpu/render/line_batch.h"
 
 #include <algorithm>
 

@@ -6,8 +6,8 @@
 
 #include <glm/glm.hpp>
 
-#include "math/bounds.h"
-#include "rig/character.h"
+#include "core/math/bounds.h"
+#include "core/rig/character.h"
 
 namespace animorph::gpu {
 

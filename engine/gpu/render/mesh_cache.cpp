@@ -1,4 +1,4 @@
-#include "render/mesh_cache.h"
+#include "gpu/render/mesh_cache.h"
 
 #include "shared_constants.h"
 

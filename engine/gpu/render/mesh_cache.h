@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "vulkan/context.h"
-#include "render/gpu_mesh.h"
-#include "rig/character.h"
+#include "gpu/vulkan/context.h"
+#include "gpu/render/gpu_mesh.h"
+#include "core/rig/character.h"
 
 namespace animorph::gpu {
 

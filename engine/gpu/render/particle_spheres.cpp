@@ -1,4 +1,4 @@
-#include "render/particle_spheres.h"
+#include "gpu/render/particle_spheres.h"
 
 #include <algorithm>
 #include <cmath>

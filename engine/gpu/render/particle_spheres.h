@@ -2,8 +2,8 @@
 // The particle view's drawing (scene/particle_view.h; docs/particles.md): a ParticleDraw (centres
 // and visible radii in its tree's space) as a ParticleSpheresDraw in the world, drawn by the scene
 // renderer as instanced, ray-cast spheres with true depth, shaded like the surface they stand for.
-#include "render/scene_renderer.h"
-#include "scene/particle_view.h"
+#include "gpu/render/scene_renderer.h"
+#include "core/scene/particle_view.h"
 
 namespace animorph::gpu {
 

@@ -1,4 +1,4 @@
-#include "render/scene_renderer.h"
+#include "gpu/render/scene_renderer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,13 +6,13 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "vulkan/buffer.h"
-#include "vulkan/graphics_pipeline.h"
-#include "vulkan/shader_module.h"
+#include "gpu/vulkan/buffer.h"
+#include "gpu/vulkan/graphics_pipeline.h"
+#include "gpu/vulkan/shader_module.h"
 #include "shared_constants.h"
 #include "transition_constants.h"
-#include "transition/transition_params.h"
-#include "vulkan/vk_check.h"
+#include "gpu/transition/transition_params.h"
+#include "gpu/vulkan/vk_check.h"
 
 namespace animorph::gpu {
 

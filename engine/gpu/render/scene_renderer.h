@@ -11,11 +11,11 @@
 
 #include <glm/glm.hpp>
 
-#include "vulkan/context.h"
-#include "render/gpu_mesh.h"
-#include "render/gpu_standin_binding.h"
-#include "render/line_batch.h"
-#include "view/camera.h"
+#include "gpu/vulkan/context.h"
+#include "gpu/render/gpu_mesh.h"
+#include "gpu/transition/gpu_standin_binding.h"
+#include "gpu/render/line_batch.h"
+#include "core/camera/camera.h"
 
 namespace animorph {
 struct TransitionFrame;

@@ -1,4 +1,4 @@
-#include "render/standin_binding_cache.h"
+#include "gpu/render/standin_binding_cache.h"
 
 #include "shared_constants.h"
 

@@ -7,9 +7,9 @@
 #include <memory>
 #include <string>
 
-#include "vulkan/context.h"
-#include "render/gpu_standin_binding.h"
-#include "morph/morph_runtime.h"
+#include "gpu/vulkan/context.h"
+#include "gpu/transition/gpu_standin_binding.h"
+#include "core/scene/morph_runtime.h"
 
 namespace animorph::gpu {
 

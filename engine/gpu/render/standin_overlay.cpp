@@ -1,4 +1,4 @@
-#include "render/standin_overlay.h"
+#include "gpu/render/standin_overlay.h"
 
 namespace animorph::gpu {
 

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "render/line_batch.h"
-#include "scene/standin_guides.h"
+#include "gpu/render/line_batch.h"
+#include "core/scene/standin_guides.h"
 
 namespace animorph::gpu {
 

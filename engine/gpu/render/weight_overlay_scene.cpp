@@ -1,4 +1,4 @@
-#include "render/weight_overlay_scene.h"
+#include "gpu/render/weight_overlay_scene.h"
 
 #include <algorithm>
 

@@ -4,9 +4,9 @@
 #include <string>
 #include <vector>
 
-#include "render/mesh_cache.h"
-#include "scene/scene_frame.h"
-#include "render/scene_renderer.h"
+#include "gpu/render/mesh_cache.h"
+#include "core/scene/scene_frame.h"
+#include "gpu/render/scene_renderer.h"
 
 namespace animorph::gpu {
 

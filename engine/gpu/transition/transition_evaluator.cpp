@@ -1,14 +1,14 @@
-#include "transition/transition_evaluator.h"
+#include "gpu/transition/transition_evaluator.h"
 
 #include <algorithm>
 #include <cstring>
 
-#include "rig/mesh_normals.h"
-#include "vulkan/shader_module.h"
+#include "core/rig/mesh_normals.h"
+#include "gpu/vulkan/shader_module.h"
 #include "shared_constants.h"
 #include "transition_constants.h"
-#include "transition/transition_params.h"
-#include "vulkan/vk_check.h"
+#include "gpu/transition/transition_params.h"
+#include "gpu/vulkan/vk_check.h"
 
 namespace animorph::gpu {
 

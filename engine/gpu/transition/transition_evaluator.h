@@ -2,7 +2,7 @@
 // The GPU transition (shaders/include/transition.glsl, the code transition.vert
 // runs) evaluated by a compute shader with the world positions and normals read
 // back: how the tests compare the shader with the CPU transition
-// (morph/transition.h evaluateTransition), and what `bench morph` times.
+// (standin_morph/transition.h evaluateTransition), and what `bench morph` times.
 // Not for the frame loop (it waits for the GPU).
 #include <memory>
 #include <span>
@@ -10,11 +10,11 @@
 
 #include <glm/glm.hpp>
 
-#include "vulkan/buffer.h"
-#include "vulkan/context.h"
-#include "render/gpu_standin_binding.h"
-#include "morph/transition_frame.h"
-#include "rig/character.h"
+#include "gpu/vulkan/buffer.h"
+#include "gpu/vulkan/context.h"
+#include "gpu/transition/gpu_standin_binding.h"
+#include "core/scene/transition_frame.h"
+#include "core/rig/character.h"
 
 namespace animorph::gpu {
 

@@ -1,4 +1,4 @@
-#include "transition/transition_params.h"
+#include "gpu/transition/transition_params.h"
 
 #include <algorithm>
 #include <cstring>

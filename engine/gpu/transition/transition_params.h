@@ -1,10 +1,10 @@
 #pragma once
 // The per-draw parameter block of the GPU transition (std430 mirror of
 // TransitionParams in shaders/include/transition.glsl), packed from the
-// CPU-side TransitionFrame (engine/core/morph/transition_frame.h).
+// CPU-side TransitionFrame (engine/core/scene/transition_frame.h).
 #include <glm/glm.hpp>
 
-#include "morph/transition_frame.h"
+#include "core/scene/transition_frame.h"
 #include "transition_constants.h"
 
 namespace animorph::gpu {

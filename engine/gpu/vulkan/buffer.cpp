@@ -1,9 +1,9 @@
-#include "vulkan/buffer.h"
+#include "gpu/vulkan/buffer.h"
 
 #include <cstdlib>
 #include <cstring>
 
-#include "vulkan/vk_check.h"
+#include "gpu/vulkan/vk_check.h"
 
 namespace animorph::gpu {
 

@@ -2,7 +2,7 @@
 // Vulkan buffers with their own memory (plain struct + free functions).
 #include <vulkan/vulkan.h>
 
-#include "vulkan/context.h"
+#include "gpu/vulkan/context.h"
 
 namespace animorph::gpu {
 

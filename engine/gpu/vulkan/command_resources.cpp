@@ -1,6 +1,6 @@
-#include "vulkan/command_resources.h"
+#include "gpu/vulkan/command_resources.h"
 
-#include "vulkan/vk_check.h"
+#include "gpu/vulkan/vk_check.h"
 
 namespace animorph::gpu {
 

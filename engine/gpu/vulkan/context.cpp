@@ -1,4 +1,4 @@
-#include "vulkan/context.h"
+#include "gpu/vulkan/context.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -8,10 +8,10 @@
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
 
-#include "vulkan/command_resources.h"
-#include "vulkan/device_select.h"
-#include "vulkan/driver_pin.h"
-#include "vulkan/vk_check.h"
+#include "gpu/vulkan/command_resources.h"
+#include "gpu/vulkan/device_select.h"
+#include "gpu/vulkan/driver_pin.h"
+#include "gpu/vulkan/vk_check.h"
 
 namespace animorph::gpu {
 

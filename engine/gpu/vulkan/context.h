@@ -10,8 +10,8 @@
 
 #include <vulkan/vulkan.h>
 
-#include "util/result.h"
-#include "vulkan/validation.h"
+#include "core/util/result.h"
+#include "gpu/vulkan/validation.h"
 
 struct GLFWwindow;
 
@@ -66,7 +66,6 @@ class Context {
 
   bool validationEnabled() const { return validationEnabled_; }
   uint32_t validationErrorCount() const { return counters_->errors.load(); }
-  uint32_t validationWarningCount() const { return counters_->warnings.load(); }
 
   // A descriptor pool for Dear ImGui's Vulkan backend (COMBINED_IMAGE_SAMPLER,
   // FREE_DESCRIPTOR_SET bit), owned by the context.

@@ -1,4 +1,4 @@
-#include "vulkan/device_select.h"
+#include "gpu/vulkan/device_select.h"
 
 #include <algorithm>
 #include <cctype>

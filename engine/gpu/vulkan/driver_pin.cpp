@@ -1,4 +1,4 @@
-#include "vulkan/driver_pin.h"
+#include "gpu/vulkan/driver_pin.h"
 
 #if defined(__SANITIZE_ADDRESS__)  // GCC
 #define ANIMORPH_ADDRESS_SANITIZER 1

@@ -1,9 +1,9 @@
-#include "vulkan/graphics_pipeline.h"
+#include "gpu/vulkan/graphics_pipeline.h"
 
 #include <string>
 
-#include "vulkan/shader_module.h"
-#include "vulkan/vk_check.h"
+#include "gpu/vulkan/shader_module.h"
+#include "gpu/vulkan/vk_check.h"
 
 namespace animorph::gpu {
 
@@ -35,7 +35,7 @@ Result<VkPipeline> createGraphicsPipeline(VkDevice device, VkRenderPass pass, Vk
   VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
   rs.polygonMode = d.polygonMode;
   rs.cullMode = d.cull;
-  // With the y-flipped projection (view/camera.h) this makes triangles that are
+  // With the y-flipped projection (camera/camera.h) this makes triangles that are
   // counter-clockwise as seen by the viewer front-facing, as glTF defines.
   rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
   rs.lineWidth = 1.0f;

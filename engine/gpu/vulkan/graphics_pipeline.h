@@ -7,7 +7,7 @@
 
 #include <vulkan/vulkan.h>
 
-#include "util/result.h"
+#include "core/util/result.h"
 
 namespace animorph::gpu {
 

@@ -1,6 +1,6 @@
-#include "vulkan/image.h"
+#include "gpu/vulkan/image.h"
 
-#include "vulkan/vk_check.h"
+#include "gpu/vulkan/vk_check.h"
 
 namespace animorph::gpu {
 

@@ -2,7 +2,7 @@
 // 2D images with their own memory and a view (plain struct + free functions).
 #include <vulkan/vulkan.h>
 
-#include "vulkan/context.h"
+#include "gpu/vulkan/context.h"
 
 namespace animorph::gpu {
 

@@ -1,6 +1,6 @@
-#include "vulkan/render_pass.h"
+#include "gpu/vulkan/render_pass.h"
 
-#include "vulkan/vk_check.h"
+#include "gpu/vulkan/vk_check.h"
 
 namespace animorph::gpu {
 

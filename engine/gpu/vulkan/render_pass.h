@@ -2,7 +2,7 @@
 // The one render pass shape every scene target uses: colour + depth, one subpass.
 #include <vulkan/vulkan.h>
 
-#include "util/result.h"
+#include "core/util/result.h"
 
 namespace animorph::gpu {
 

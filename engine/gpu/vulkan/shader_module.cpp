@@ -1,9 +1,9 @@
-#include "vulkan/shader_module.h"
+#include "gpu/vulkan/shader_module.h"
 
 #include <string>
 
-#include "vulkan/shader_blobs.h"
-#include "vulkan/vk_check.h"
+#include "gpu/vulkan/shader_blobs.h"
+#include "gpu/vulkan/vk_check.h"
 
 namespace animorph::gpu {
 

@@ -2,7 +2,7 @@
 // Shader modules from the embedded SPIR-V (shader_blobs.h).
 #include <vulkan/vulkan.h>
 
-#include "util/result.h"
+#include "core/util/result.h"
 
 namespace animorph::gpu {
 

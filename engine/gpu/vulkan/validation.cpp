@@ -1,4 +1,4 @@
-#include "vulkan/validation.h"
+#include "gpu/vulkan/validation.h"
 
 #include <cstdio>
 #include <cstdlib>

@@ -1,4 +1,4 @@
-#include "vulkan/vk_check.h"
+#include "gpu/vulkan/vk_check.h"
 
 #include <atomic>
 

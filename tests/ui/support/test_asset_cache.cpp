@@ -2,7 +2,7 @@
 // implementation of its own (see ../CMakeLists.txt). Characters are
 // registered by path (test_character.h); any other path fails to load with
 // a message, like a missing file would.
-#include "doc/asset_cache.h"
+#include "core/project/asset_cache.h"
 
 #include <filesystem>
 

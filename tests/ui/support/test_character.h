@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-#include "rig/character.h"
+#include "core/rig/character.h"
 
 namespace animorph::test {
 

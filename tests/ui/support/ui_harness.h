@@ -8,9 +8,9 @@
 
 #include <glm/glm.hpp>
 
-#include "doc/asset_cache.h"
-#include "doc/document.h"
-#include "shell/editor_ui.h"
+#include "core/project/asset_cache.h"
+#include "core/doc/document.h"
+#include "ui/shell/editor_ui.h"
 
 namespace animorph::test {
 

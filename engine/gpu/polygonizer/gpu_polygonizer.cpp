@@ -1,0 +1,874 @@
+#include "gpu/polygonizer/gpu_polygonizer.h"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <bit>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <tuple>
+
+#include "gpu/polygonizer/field_pipeline_cache.h"
+#include "gpu/polygonizer/gpu_field_program.h"
+#include "core/poly/solid_noise.h"
+#include "core/poly/marching_cubes_table.h"
+#include "poly_constants.h"
+#include "gpu/vulkan/command_resources.h"
+#include "gpu/vulkan/shader_module.h"
+#include "shared_constants.h"
+#include "gpu/vulkan/vk_check.h"
+
+namespace animorph::gpu {
+
+namespace {
+
+// std140 mirror of PolyParams in shaders/include/poly_common.glsl.
+struct PolyParams {
+  glm::vec4 gridOrigin;
+  glm::uvec4 gridCells;
+  glm::uvec4 gridBlocks;
+  glm::uvec4 progA;
+  glm::uvec4 progB;
+  glm::vec4 thresholds;
+  glm::uvec4 modes;
+  glm::vec4 morph0;
+  glm::vec4 morph1;
+  glm::uvec4 caps;
+  glm::vec4 extra;
+  glm::uvec4 superBlocks;
+};
+static_assert(sizeof(PolyParams) == 12 * 16);
+
+constexpr uint32_t kTableVec4 = 256 + 64;  // poly_table.glsl: the marching-cubes cases, then the noise permutation
+constexpr VkDeviceSize kVertexStride = GeneratedMeshDraw::kVertexStride;  // poly_emit_main.glsl: vec4 positions, normals
+constexpr uint32_t kTimestamps = 7;
+
+struct Grid {
+  glm::vec3 origin{0.0f};
+  float h = 1.0f;
+  uint32_t n[3] = {1, 1, 1};
+  uint32_t nb[3] = {1, 1, 1};
+  uint32_t blocks() const { return nb[0] * nb[1] * nb[2]; }
+  uint32_t superAxis(int a) const { return (nb[a] + AM_POLY_SUPER - 1) / AM_POLY_SUPER; }
+  uint32_t superBlocks() const { return superAxis(0) * superAxis(1) * superAxis(2); }
+};
+
+// The CPU polygoniser's grid rule (poly/polygonizer.cpp), so both meet on the same grid.
+Result<Grid> makeGrid(const GpuField& field, const GpuPolygonizeSettings& s) {
+  Grid g;
+  int res = s.resolution;
+  if (s.bounds) {
+    Bounds box = *s.bounds;
+    if (box.empty() || !std::isfinite(box.diagonal()) || box.diagonal() <= 0.0f)
+      return Error{"GPU polygoniser: the bounds override is empty or not finite"};
+    float L = std::max({box.size().x, box.size().y, box.size().z});
+    g.h = L / float(res);
+    for (int a = 0; a < 3; ++a) g.n[a] = uint32_t(std::max(1, int(std::lround(box.size()[a] / g.h))));
+    g.origin = box.center() - 0.5f * g.h * glm::vec3(float(g.n[0]), float(g.n[1]), float(g.n[2]));
+  } else {
+    Bounds box;
+    for (const FieldProgram* p : {field.a, field.b}) {
+      if (!p) continue;
+      if (p->unbounded())
+        return Error{"GPU polygoniser: the field is inside everywhere far from its primitives (unbounded); give bounds"};
+      Bounds t = p->tightBounds();
+      if (!t.empty()) box.add(t);
+    }
+    if (box.empty()) return g;  // n stays 1: an empty grid, nothing inside anywhere
+    if (field.b && field.method == MorphMethod::SpaceTime) {
+      glm::vec3 pad = 0.05f * box.size();
+      box.min -= pad;
+      box.max += pad;
+    }
+    float L = std::max({box.size().x, box.size().y, box.size().z, 1e-6f});
+    float margin = std::max(0.0f, s.marginCells);
+    float usable = float(res) - 2.0f * margin;
+    g.h = usable >= 1.0f ? L / usable : L / float(res);
+    for (int a = 0; a < 3; ++a)
+      g.n[a] = uint32_t(std::clamp(int(std::ceil(box.size()[a] / g.h + 2.0f * margin)), 1, res));
+    g.origin = box.center() - 0.5f * g.h * glm::vec3(float(g.n[0]), float(g.n[1]), float(g.n[2]));
+  }
+  for (int a = 0; a < 3; ++a) g.nb[a] = (g.n[a] + AM_POLY_BLOCK - 1) / AM_POLY_BLOCK;
+  return g;
+}
+
+VkDeviceSize roundCapacity(VkDeviceSize need) { return std::max<VkDeviceSize>(256, std::bit_ceil(need)); }
+
+void barrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkPipelineStageFlags dst, VkAccessFlags srcAccess,
+             VkAccessFlags dstAccess) {
+  VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  mb.srcAccessMask = srcAccess;
+  mb.dstAccessMask = dstAccess;
+  vkCmdPipelineBarrier(cmd, src, dst, 0, 1, &mb, 0, nullptr, 0, nullptr);
+}
+
+void computeToCompute(VkCommandBuffer cmd) {
+  barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
+          VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
+}
+
+// The smallest loop limit (GpuPolygonizer::loopLimit) of the devices polygonisers were created on
+// (0: none), for the static unsupported(): the editor has one device.
+std::atomic<uint64_t> gLoopLimit{0};
+
+// Why field's loops would outrun limit by the estimate (empty when not, or limit is 0).
+std::string loopBudgetReason(const GpuField& field, uint64_t limit) {
+  if (limit == 0 || !field.a) return {};
+  const uint64_t need = gpuLoopIterationEstimate(*field.a, field.b);
+  if (need + 64 < limit) return {};
+  // Short: the editor's status bar shows it.
+  return "the programs (" + std::to_string(field.a->primitiveCount() + (field.b ? field.b->primitiveCount() : 0)) +
+         " primitives, " + std::to_string(field.a->ops.size() + (field.b ? field.b->ops.size() : 0)) + " ops) need ~" +
+         std::to_string(need) + " shader loop iterations per invocation; llvmpipe stops a shader's loops after " +
+         std::to_string(limit);
+}
+
+// vkCmdUpdateBuffer in chunks of at most 64 KiB.
+void updateBuffer(VkCommandBuffer cmd, VkBuffer buffer, const void* data, VkDeviceSize bytes) {
+  const auto* p = static_cast<const uint8_t*>(data);
+  for (VkDeviceSize off = 0; off < bytes; off += 65536) {
+    VkDeviceSize n = std::min<VkDeviceSize>(65536, bytes - off);
+    vkCmdUpdateBuffer(cmd, buffer, off, n, p + off);
+  }
+}
+
+}  // namespace
+
+struct GpuPolygonizer::Impl {
+  Context& ctx;
+  VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  VkDescriptorPool descriptorPool = VK_NULL_HANDLE;
+  VkDescriptorSet set = VK_NULL_HANDLE;
+  // The field passes per variant, created on first use or prewarmed (field_pipeline_cache.h).
+  using VariantKey = FieldVariantKey;
+  FieldPipelineCache fieldCache{[this](const VariantKey& k) {
+    return createFieldPipelines(std::get<0>(k), std::get<1>(k), std::get<2>(k) != 0);
+  }};
+  VkPipeline scan = VK_NULL_HANDLE, scanSingle = VK_NULL_HANDLE, compact = VK_NULL_HANDLE, args = VK_NULL_HANDLE;
+  VkPipeline noise = VK_NULL_HANDLE;  // solid-noise displacement (poly_noise.comp)
+  VkCommandPool commandPool = VK_NULL_HANDLE;
+  VkCommandBuffer cmd = VK_NULL_HANDLE;
+  VkFence fence = VK_NULL_HANDLE;
+  VkQueryPool timestamps = VK_NULL_HANDLE;  // kTimestamps per frame of polygonize(); null when unsupported
+
+  Buffer params, pool, bounds, table, blockMask, blockFlag, blockPrefix, blockSlot, partials, control;
+  Buffer superFlag;
+  Buffer active, corners, edges, counts, offsets;  // per active-block slot
+  Buffer positions, normals, indices;
+  Buffer readback;  // host: AM_CTL_READBACK_UINTS per frame slot
+  uint32_t blockCapacity = 0, vertexCapacity = 0, triangleCapacity = 0;
+  bool setDirty = true;
+  bool uniformPoolAllowed = true;
+  std::array<uint64_t, kFramesInFlight + 1> slotSerial{};  // serial whose counters each readback slot holds
+  uint64_t syncSerial = 0;  // serials of polygonize(), far from the editor's
+  bool haveMesh = false;
+  // The counters of a record said its loops were cut (AM_OVERFLOW_LOOPS): the next record() fails
+  // with it too, even when recordFitted() took those counters, so the caller goes to the CPU rather
+  // than redoing a frame that cannot fit.
+  bool cutLoops = false;
+  GpuPolygonizeSettings lastSettings;
+  Grid lastGrid;
+
+  explicit Impl(Context& c) : ctx(c) { slotSerial.fill(UINT64_MAX); }
+  ~Impl();
+  Status init();
+  Result<VkPipeline> pipeline(const char* name, const VkSpecializationInfo* spec = nullptr);
+  // Creates a variant's pipelines (any thread: it touches only the device and the layout).
+  Result<FieldPipelines> createFieldPipelines(uint32_t features, uint32_t kinds, bool storage);
+  // The variant (specialisation constants, pool buffer kind) packed programs pk of field need under s.
+  VariantKey variantKey(const PackedFieldPrograms& pk, const GpuField& field, const GpuPolygonizeSettings& s) const;
+  static uint32_t combineMode(const GpuField& field) {
+    return !field.b ? AM_COMBINE_SINGLE
+                    : field.method == MorphMethod::Interpolation ? AM_COMBINE_INTERPOLATE : AM_COMBINE_SPACETIME;
+  }
+  Status ensure(Buffer& b, VkDeviceSize bytes, VkBufferUsageFlags usage);
+  Status ensureCapacities(uint32_t blocksWanted, uint32_t verticesWanted, uint32_t trianglesWanted);
+  void writeSet();
+  Status recordFrame(VkCommandBuffer cmd, uint32_t slot, const GpuField& field, const GpuPolygonizeSettings& s,
+                     GpuPolygonizeStats& stats, bool timed = false);
+};
+
+GpuPolygonizer::Impl::~Impl() {
+  VkDevice dev = ctx.device();
+  fieldCache.finishCompiling();  // let background compilations finish, then destroy what they made
+  vkDeviceWaitIdle(dev);
+  for (Buffer* b : {&params, &pool, &bounds, &table, &blockMask, &blockFlag, &blockPrefix, &blockSlot, &partials,
+                    &superFlag, &control, &active, &corners, &edges, &counts, &offsets, &positions, &normals, &indices, &readback})
+    destroyBuffer(dev, *b);
+  fieldCache.destroy(dev);
+  for (VkPipeline p : {scan, scanSingle, compact, args, noise})
+    if (p) vkDestroyPipeline(dev, p, nullptr);
+  if (fence) vkDestroyFence(dev, fence, nullptr);
+  if (timestamps) vkDestroyQueryPool(dev, timestamps, nullptr);
+  if (commandPool) vkDestroyCommandPool(dev, commandPool, nullptr);
+  if (descriptorPool) vkDestroyDescriptorPool(dev, descriptorPool, nullptr);
+  if (layout) vkDestroyPipelineLayout(dev, layout, nullptr);
+  if (setLayout) vkDestroyDescriptorSetLayout(dev, setLayout, nullptr);
+}
+
+Result<VkPipeline> GpuPolygonizer::Impl::pipeline(const char* name, const VkSpecializationInfo* spec) {
+  Result<VkShaderModule> module = createShaderModule(ctx.device(), name);
+  if (!module) return Error{module.error()};
+  VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, *module,
+              "main", spec};
+  ci.layout = layout;
+  VkPipeline p = VK_NULL_HANDLE;
+  VkResult r = vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &p);
+  vkDestroyShaderModule(ctx.device(), *module, nullptr);
+  if (r != VK_SUCCESS) return vkError(std::string("compute pipeline ") + name, r);
+  return p;
+}
+
+Status GpuPolygonizer::Impl::init() {
+  VkDevice dev = ctx.device();
+  std::array<VkDescriptorSetLayoutBinding, AM_PB_COUNT> b{};
+  for (uint32_t i = 0; i < AM_PB_COUNT; ++i) {
+    bool uniform = i == AM_PB_POOL_UBO;
+    b[i] = {i, uniform ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+            VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+  }
+  VkDescriptorSetLayoutCreateInfo sli{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  sli.bindingCount = AM_PB_COUNT;
+  sli.pBindings = b.data();
+  AM_VK_TRY(vkCreateDescriptorSetLayout(dev, &sli, nullptr, &setLayout), "vkCreateDescriptorSetLayout");
+  VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, 16};
+  VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  pli.setLayoutCount = 1;
+  pli.pSetLayouts = &setLayout;
+  pli.pushConstantRangeCount = 1;
+  pli.pPushConstantRanges = &push;
+  AM_VK_TRY(vkCreatePipelineLayout(dev, &pli, nullptr, &layout), "vkCreatePipelineLayout");
+  VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, AM_PB_COUNT}};
+  VkDescriptorPoolCreateInfo dpi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  dpi.maxSets = 1;
+  dpi.poolSizeCount = 2;
+  dpi.pPoolSizes = sizes;
+  AM_VK_TRY(vkCreateDescriptorPool(dev, &dpi, nullptr, &descriptorPool), "vkCreateDescriptorPool");
+  VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  ai.descriptorPool = descriptorPool;
+  ai.descriptorSetCount = 1;
+  ai.pSetLayouts = &setLayout;
+  AM_VK_TRY(vkAllocateDescriptorSets(dev, &ai, &set), "vkAllocateDescriptorSets");
+
+  struct Want {
+    VkPipeline* out;
+    const char* name;
+  } wants[] = {{&scan, "poly_scan.comp"},
+               {&scanSingle, "poly_scan_single.comp"},
+               {&compact, "poly_compact.comp"},
+               {&args, "poly_args.comp"},
+               {&noise, "poly_noise.comp"}};
+  for (const Want& w : wants) {
+    Result<VkPipeline> p = pipeline(w.name);
+    if (!p) return Error{p.error()};
+    *w.out = *p;
+  }
+
+  if (Status c = createCommandResources(dev, ctx.queueFamily(), 1, &commandPool, &cmd, &fence); !c) return Error{c.error()};
+  if (ctx.properties().limits.timestampComputeAndGraphics && ctx.properties().limits.timestampPeriod > 0.0f) {
+    VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+    qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
+    qi.queryCount = kTimestamps;
+    if (vkCreateQueryPool(dev, &qi, nullptr, &timestamps) != VK_SUCCESS) timestamps = VK_NULL_HANDLE;
+  }
+
+  // A uniform pool suits GPUs; lavapipe specialises shaders on uniform-buffer
+  // contents (recompiling as they change) and measured ~10% faster with storage.
+  uniformPoolAllowed = ctx.properties().limits.maxUniformBufferRange >= AM_POLY_UNIFORM_POOL_VEC4 * 16u &&
+                       ctx.deviceType() != VK_PHYSICAL_DEVICE_TYPE_CPU;
+  const VkBufferUsageFlags ssbo = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  Status s = ensure(params, sizeof(PolyParams), ssbo);
+  if (s) s = ensure(pool, AM_POLY_UNIFORM_POOL_VEC4 * 16, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | ssbo);
+  if (s) s = ensure(bounds, 4096, ssbo);
+  if (s) s = ensure(partials, AM_POLY_SCAN_MAX_GROUPS * 8, ssbo);
+  if (s) s = ensure(control, AM_CTL_UINTS * 4,
+                    ssbo | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+  if (s) s = ensure(blockMask, 4096, ssbo);
+  if (s) s = ensure(blockFlag, 4096, ssbo);
+  if (s) s = ensure(blockPrefix, 4096, ssbo);
+  if (s) s = ensure(blockSlot, 4096, ssbo);
+  if (s) s = ensure(superFlag, 4096, ssbo);
+  if (s) s = ensureCapacities(64, 4096, 8192);
+  if (!s) return s;
+  Result<Buffer> rb = createHostBuffer(ctx, (kFramesInFlight + 1) * AM_CTL_READBACK_UINTS * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+  if (!rb) return Error{"counter read-back buffer: " + rb.error()};
+  readback = *rb;
+  std::memset(readback.mapped, 0, readback.size);
+
+  // The marching-cubes table, once.
+  const MarchingCubesTable& mc = marchingCubesTable();
+  std::vector<glm::uvec4> tableData(kTableVec4, glm::uvec4(0u));
+  for (int c = 0; c < 256; ++c) {
+    for (int k = 0; k < 3 * mc.triangleCount[size_t(c)]; ++k) {
+      const int e = mc.triangles[size_t(c)][size_t(k)];
+      const uint32_t resolved = uint32_t(mc.edgeCorners[size_t(e)][0]) | uint32_t(mc.edgeAxis[size_t(e)]) << 3;
+      const int tri = k / 3, q = k % 3;
+      tableData[size_t(c)][tri / 2] |= resolved << (15 * (tri % 2) + 5 * q);
+    }
+    tableData[size_t(c)].w = uint32_t(mc.triangleCount[size_t(c)]);
+  }
+  // Then the solid noise's permutation, 256 uints (poly_noise.comp.glsl: in a buffer, a load a
+  // lookup; as a constant array in the shader lavapipe's compiler evaluated all 256 entries at
+  // every lookup, and the pass took ~170 ms at 96^3 instead of well under 1).
+  const uint8_t* perm = solidNoisePermutation();
+  for (int i = 0; i < 256; ++i) tableData[256 + size_t(i / 4)][i % 4] = perm[i];
+  Result<Buffer> tb = createDeviceBuffer(ctx, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, tableData.data(),
+                                         tableData.size() * sizeof(glm::uvec4));
+  if (!tb) return Error{"marching-cubes table: " + tb.error()};
+  table = *tb;
+  return Status::success();
+}
+
+GpuPolygonizer::Impl::VariantKey GpuPolygonizer::Impl::variantKey(const PackedFieldPrograms& pk, const GpuField& field,
+                                                                  const GpuPolygonizeSettings& s) const {
+  const bool fitsUniform = pk.pool.size() <= AM_POLY_UNIFORM_POOL_VEC4 &&
+                           ctx.properties().limits.maxUniformBufferRange >= AM_POLY_UNIFORM_POOL_VEC4 * 16u;
+  const bool storagePool = s.poolBuffer == GpuPolygonizeSettings::PoolBuffer::Storage || !fitsUniform ||
+                           (s.poolBuffer == GpuPolygonizeSettings::PoolBuffer::Auto && !uniformPoolAllowed);
+  const uint32_t features = s.specialise ? pk.features | AM_FEAT_COMBINE_BIT(combineMode(field)) : AM_FEAT_ALL;
+  const uint32_t kinds = s.specialise ? pk.kinds : AM_FEAT_ALL;
+  return {features, kinds, storagePool ? 1 : 0};
+}
+
+Result<FieldPipelines> GpuPolygonizer::Impl::createFieldPipelines(uint32_t features,
+                                                                                         uint32_t kinds, bool storage) {
+  const uint32_t values[2] = {features, kinds};
+  const VkSpecializationMapEntry entries[2] = {{0, 0, 4}, {1, 4, 4}};
+  VkSpecializationInfo spec{2, entries, sizeof values, values};
+  FieldPipelines v;
+  struct Want {
+    VkPipeline* out;
+    const char* name;
+  } wants[] = {{&v.blocks, storage ? "poly_blocks_ssbo.comp" : "poly_blocks.comp"},
+               {&v.cells, storage ? "poly_cells_ssbo.comp" : "poly_cells.comp"},
+               {&v.emit, storage ? "poly_emit_ssbo.comp" : "poly_emit.comp"},
+               {&v.normals, storage ? "poly_normals_ssbo.comp" : "poly_normals.comp"}};
+  for (const Want& w : wants) {
+    Result<VkPipeline> p = pipeline(w.name, &spec);
+    if (!p) {
+      for (VkPipeline made : {v.blocks, v.cells, v.emit, v.normals})
+        if (made) vkDestroyPipeline(ctx.device(), made, nullptr);
+      return Error{p.error()};
+    }
+    *w.out = *p;
+  }
+  return v;
+}
+
+Status GpuPolygonizer::Impl::ensure(Buffer& b, VkDeviceSize bytes, VkBufferUsageFlags usage) {
+  if (b.buffer && b.size >= bytes) return Status::success();
+  const VkDeviceSize limit = ctx.properties().limits.maxStorageBufferRange;
+  VkDeviceSize size = roundCapacity(bytes);
+  if ((usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) && size > limit) size = std::max(bytes, VkDeviceSize(limit));
+  if ((usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) && bytes > limit)
+    return Error{"GPU polygoniser: a buffer of " + std::to_string(bytes) + " bytes exceeds the device's storage-buffer limit of " +
+                 std::to_string(limit) + " bytes (lower the resolution)"};
+  if (b.buffer) {
+    vkDeviceWaitIdle(ctx.device());  // rare: only when a frame outgrows a buffer
+    destroyBuffer(ctx.device(), b);
+  }
+  Result<Buffer> nb = createBuffer(ctx, size, usage, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  if (!nb) return Error{"GPU polygoniser: " + nb.error()};
+  b = *nb;
+  setDirty = true;
+  return Status::success();
+}
+
+Status GpuPolygonizer::Impl::ensureCapacities(uint32_t blocksWanted, uint32_t verticesWanted, uint32_t trianglesWanted) {
+  const VkBufferUsageFlags ssbo = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  const VkBufferUsageFlags readable = ssbo | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+  blocksWanted = std::max(blocksWanted, 1u);
+  verticesWanted = std::max(verticesWanted, 3u);
+  trianglesWanted = std::max(trianglesWanted, 1u);
+  Status s = Status::success();
+  if (blocksWanted > blockCapacity) {
+    s = ensure(active, VkDeviceSize(blocksWanted) * 4, ssbo);
+    if (s) s = ensure(corners, VkDeviceSize(blocksWanted) * AM_POLY_BLOCK_CORNERS * 4, ssbo);
+    if (s) s = ensure(edges, VkDeviceSize(blocksWanted) * AM_POLY_EDGE_INFO * 4, ssbo);
+    if (s) s = ensure(counts, VkDeviceSize(blocksWanted) * 8, ssbo);
+    if (s) s = ensure(offsets, VkDeviceSize(blocksWanted) * 8, ssbo);
+    if (!s) return s;
+    blockCapacity = blocksWanted;
+  }
+  if (verticesWanted > vertexCapacity) {
+    s = ensure(positions, VkDeviceSize(verticesWanted) * kVertexStride, readable | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    if (s) s = ensure(normals, VkDeviceSize(verticesWanted) * kVertexStride, readable | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    if (!s) return s;
+    vertexCapacity = verticesWanted;
+  }
+  if (trianglesWanted > triangleCapacity) {
+    s = ensure(indices, VkDeviceSize(trianglesWanted) * 12, readable | VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    if (!s) return s;
+    triangleCapacity = trianglesWanted;
+  }
+  return s;
+}
+
+void GpuPolygonizer::Impl::writeSet() {
+  if (!setDirty) return;
+  std::array<VkDescriptorBufferInfo, AM_PB_COUNT> info{};
+  auto whole = [](const Buffer& b) { return VkDescriptorBufferInfo{b.buffer, 0, VK_WHOLE_SIZE}; };
+  info[AM_PB_PARAMS] = {params.buffer, 0, sizeof(PolyParams)};
+  const VkDeviceSize uboRange =
+      std::min<VkDeviceSize>(AM_POLY_UNIFORM_POOL_VEC4 * 16, ctx.properties().limits.maxUniformBufferRange);
+  info[AM_PB_POOL_UBO] = {pool.buffer, 0, uboRange};
+  info[AM_PB_POOL_SSBO] = whole(pool);
+  info[AM_PB_BOUNDS] = whole(bounds);
+  info[AM_PB_TABLE] = {table.buffer, 0, kTableVec4 * 16};
+  info[AM_PB_BLOCK_MASK] = whole(blockMask);
+  info[AM_PB_BLOCK_FLAG] = whole(blockFlag);
+  info[AM_PB_BLOCK_PREFIX] = whole(blockPrefix);
+  info[AM_PB_BLOCK_SLOT] = whole(blockSlot);
+  info[AM_PB_SUPER_FLAG] = whole(superFlag);
+  info[AM_PB_ACTIVE] = whole(active);
+  info[AM_PB_CORNERS] = whole(corners);
+  info[AM_PB_EDGES] = whole(edges);
+  info[AM_PB_COUNTS] = whole(counts);
+  info[AM_PB_OFFSETS] = whole(offsets);
+  info[AM_PB_PARTIALS] = whole(partials);
+  info[AM_PB_CONTROL] = whole(control);
+  info[AM_PB_POSITIONS] = whole(positions);
+  info[AM_PB_NORMALS] = whole(normals);
+  info[AM_PB_INDICES] = whole(indices);
+  std::array<VkWriteDescriptorSet, AM_PB_COUNT> w{};
+  for (uint32_t i = 0; i < AM_PB_COUNT; ++i) {
+    bool uniform = i == AM_PB_POOL_UBO;
+    w[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, set, i, 0, 1,
+            uniform ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nullptr, &info[i], nullptr};
+  }
+  vkUpdateDescriptorSets(ctx.device(), AM_PB_COUNT, w.data(), 0, nullptr);
+  setDirty = false;
+}
+
+Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, const GpuField& field,
+                                         const GpuPolygonizeSettings& s, GpuPolygonizeStats& stats, bool timed) {
+  if (!field.a) return Error{"GPU polygoniser: no field program"};
+  if (s.resolution < 2 || s.resolution > 512)
+    return Error{"GPU polygoniser: resolution " + std::to_string(s.resolution) + " is out of range (2..512)"};
+  Result<Grid> grid = makeGrid(field, s);
+  if (!grid) return Error{grid.error()};
+  Result<PackedFieldPrograms> packed = packFieldPrograms(*field.a, field.b);
+  if (!packed) return Error{"GPU polygoniser: " + packed.error()};
+  if (s.loopBudgetCheck)
+    if (std::string why = loopBudgetReason(field, loopLimit(ctx.properties())); !why.empty())
+      return Error{"GPU polygoniser: " + why};
+  const Grid& g = *grid;
+  const PackedFieldPrograms& pk = *packed;
+  const uint32_t nBlocks = g.blocks();
+  const uint32_t words = std::max(1u, (pk.primitiveTotal() + 31) / 32);
+  const VariantKey variant = variantKey(pk, field, s);
+  const bool storagePool = std::get<2>(variant) != 0;
+  const VkBufferUsageFlags ssbo = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+
+  Status st = ensure(pool, std::max<VkDeviceSize>(AM_POLY_UNIFORM_POOL_VEC4 * 16, pk.pool.size() * 16),
+                     VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | ssbo);
+  if (st) st = ensure(bounds, pk.bounds.size() * 16, ssbo);
+  const uint32_t nSuper = g.superBlocks();
+  if (st) st = ensure(blockMask, VkDeviceSize(nBlocks + nSuper) * words * 4, ssbo);
+  if (st) st = ensure(blockFlag, VkDeviceSize(nBlocks) * 8, ssbo);
+  if (st) st = ensure(blockPrefix, VkDeviceSize(nBlocks) * 8, ssbo);
+  if (st) st = ensure(blockSlot, VkDeviceSize(nBlocks) * 4, ssbo);
+  if (st) st = ensure(superFlag, VkDeviceSize(nSuper) * 4, ssbo);
+  if (!st) return st;
+  if (nBlocks > AM_POLY_SCAN_PER_GROUP * AM_POLY_SCAN_MAX_GROUPS)
+    return Error{"GPU polygoniser: " + std::to_string(nBlocks) + " blocks exceed the scan's limit"};
+  writeSet();
+
+  const float Tmax = std::max(pk.threshold[0], pk.programCount > 1 ? pk.threshold[1] : 0.0f);
+  PolyParams prm{};
+  prm.gridOrigin = glm::vec4(g.origin, g.h);
+  const uint32_t rowLimit = std::min<uint32_t>(AM_POLY_MAX_DISPATCH_X, ctx.properties().limits.maxComputeWorkGroupCount[0]);
+  prm.gridCells = glm::uvec4(g.n[0], g.n[1], g.n[2], s.dispatchRow ? std::min(s.dispatchRow, rowLimit) : rowLimit);
+  prm.gridBlocks = glm::uvec4(g.nb[0], g.nb[1], g.nb[2], nBlocks);
+  prm.progA = glm::uvec4(pk.opBegin[0], pk.opCount[0], pk.primBegin[0], pk.primCount[0]);
+  prm.progB = glm::uvec4(pk.opBegin[1], pk.opCount[1], pk.primBegin[1], pk.primCount[1]);
+  prm.thresholds = glm::vec4(pk.threshold[0], pk.threshold[1], 1e-3f * Tmax + 1e-7f, -1e-6f * Tmax);
+  const uint32_t combine = combineMode(field);
+  prm.modes = glm::uvec4(combine, words, s.culling ? 1u : 0u, blockCapacity);
+  prm.morph0 = glm::vec4(field.weight, field.morphTime, field.timeScale, field.a0);
+  const float normalStep = 0.05f * g.h;
+  prm.morph1 = glm::vec4(field.a1, field.a2, field.a3, normalStep);
+  prm.caps = glm::uvec4(vertexCapacity, triangleCapacity, pk.primitiveTotal(), 1u);
+  prm.extra = glm::vec4(2.0f * normalStep, s.noiseAmplitude, s.noiseFrequency, 0.0f);
+  prm.superBlocks = glm::uvec4(g.superAxis(0), g.superAxis(1), g.superAxis(2), nSuper);
+
+  stats.gridX = int(g.n[0]);
+  stats.gridY = int(g.n[1]);
+  stats.gridZ = int(g.n[2]);
+  stats.cellSize = g.h;
+  stats.blocksTotal = nBlocks;
+  stats.uniformPool = !storagePool;
+  stats.features = std::get<0>(variant);
+  stats.kinds = std::get<1>(variant);
+  Result<FieldPipelines> fp = fieldCache.get({stats.features, stats.kinds, storagePool ? 1 : 0});
+  if (!fp) return Error{fp.error()};
+  lastGrid = g;
+
+  timed = timed && timestamps != VK_NULL_HANDLE;
+  uint32_t stamp = 0;
+  auto timestamp = [&] {
+    if (timed) vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps, stamp++);
+  };
+  if (timed) vkCmdResetQueryPool(cb, timestamps, 0, kTimestamps);
+  timestamp();
+  // This frame's writes wait for the previous frame's readers (draw, copies) and writers.
+  barrier(cb,
+          VK_PIPELINE_STAGE_VERTEX_INPUT_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT |
+              VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+          VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+          VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
+          VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+  updateBuffer(cb, params.buffer, &prm, sizeof(prm));
+  updateBuffer(cb, pool.buffer, pk.pool.data(), pk.pool.size() * 16);
+  updateBuffer(cb, bounds.buffer, pk.bounds.data(), pk.bounds.size() * 16);
+  vkCmdFillBuffer(cb, control.buffer, 0, AM_CTL_UINTS * 4, 0);
+  vkCmdFillBuffer(cb, counts.buffer, 0, VkDeviceSize(blockCapacity) * 8, 0);
+  barrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+          VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_UNIFORM_READ_BIT);
+
+  timestamp();
+  vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
+  auto push = [&](uint32_t x, uint32_t y, uint32_t z) {
+    glm::uvec4 pc(x, y, z, 0u);
+    vkCmdPushConstants(cb, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, 16, &pc);
+  };
+  // A scan and what follows it (compaction and/or indirect arguments): one workgroup when the array
+  // is short enough (poly_scan_single.comp: one dispatch), else three scan phases and the helpers.
+  auto runScan = [&](uint32_t source, uint32_t n) {
+    if (s.singleWorkgroupScan && n <= AM_POLY_SCAN_SINGLE_MAX) {
+      vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, scanSingle);
+      push(0, source, n);
+      vkCmdDispatch(cb, 1, 1, 1);
+      computeToCompute(cb);
+      return;
+    }
+    uint32_t groups = std::max(1u, (n + AM_POLY_SCAN_PER_GROUP - 1) / AM_POLY_SCAN_PER_GROUP);
+    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, scan);
+    push(AM_SCAN_REDUCE, source, n);
+    vkCmdDispatch(cb, groups, 1, 1);
+    computeToCompute(cb);
+    push(AM_SCAN_PARTIALS, source, n);
+    vkCmdDispatch(cb, 1, 1, 1);
+    computeToCompute(cb);
+    push(AM_SCAN_DOWNSWEEP, source, n);
+    vkCmdDispatch(cb, groups, 1, 1);
+    computeToCompute(cb);
+    if (source == AM_SCAN_SOURCE_BLOCKS) {
+      vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, compact);
+      vkCmdDispatch(cb, (nBlocks + AM_POLY_WG_LINEAR - 1) / AM_POLY_WG_LINEAR, 1, 1);
+      computeToCompute(cb);
+    }
+    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, args);
+    push(source == AM_SCAN_SOURCE_BLOCKS ? AM_ARGS_AFTER_BLOCKS : AM_ARGS_AFTER_COUNTS, 0, 0);
+    vkCmdDispatch(cb, 1, 1, 1);
+    computeToCompute(cb);
+  };
+  const uint32_t linearGroups = (nBlocks + AM_POLY_WG_BLOCKS - 1) / AM_POLY_WG_BLOCKS;
+
+  // Coarse: superblock bounds, then per-block primitive lists and interval culling.
+  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, fp->blocks);
+  if (s.culling) {
+    push(AM_COARSE_SUPERBLOCKS, 0, 0);
+    vkCmdDispatch(cb, (nSuper + AM_POLY_WG_BLOCKS - 1) / AM_POLY_WG_BLOCKS, 1, 1);
+    computeToCompute(cb);
+  }
+  push(AM_COARSE_BLOCKS, 0, 0);
+  vkCmdDispatch(cb, linearGroups, 1, 1);
+  computeToCompute(cb);
+  timestamp();
+  // Active blocks -> slots, and the fine passes' dispatch.
+  runScan(AM_SCAN_SOURCE_BLOCKS, nBlocks);
+  timestamp();
+  // Fine: corner values, cell cases, vertex and triangle counts.
+  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, fp->cells);
+  vkCmdDispatchIndirect(cb, control.buffer, AM_CTL_DISPATCH * 4);
+  computeToCompute(cb);
+  timestamp();
+  // Per-slot offsets, the draw's and the normals pass's arguments.
+  runScan(AM_SCAN_SOURCE_COUNTS, blockCapacity);
+  timestamp();
+  // Vertices and triangles per block, then the normals of all vertices.
+  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, fp->emit);
+  vkCmdDispatchIndirect(cb, control.buffer, AM_CTL_DISPATCH * 4);
+  computeToCompute(cb);
+  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, fp->normals);
+  vkCmdDispatchIndirect(cb, control.buffer, AM_CTL_NORMALS * 4);
+  if (s.noiseAmplitude != 0.0f) {
+    // Solid noise along the normals just made (the CPU's displaceBySolidNoise).
+    computeToCompute(cb);
+    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, noise);
+    vkCmdDispatchIndirect(cb, control.buffer, AM_CTL_NORMALS * 4);
+  }
+  barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+          VK_PIPELINE_STAGE_VERTEX_INPUT_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+          VK_ACCESS_SHADER_WRITE_BIT,
+          VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_INDEX_READ_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT |
+              VK_ACCESS_TRANSFER_READ_BIT);
+  timestamp();
+  VkBufferCopy copy{0, VkDeviceSize(slot) * AM_CTL_READBACK_UINTS * 4, AM_CTL_READBACK_UINTS * 4};
+  vkCmdCopyBuffer(cb, control.buffer, readback.buffer, 1, &copy);
+  barrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+          VK_ACCESS_HOST_READ_BIT);
+  return Status::success();
+}
+
+namespace {
+// Blocks the buffers are first sized for, out of a grid's nb. A record reads its counters
+// kFramesInFlight records later, so a first record that overflows draws nothing for that long
+// (the preview would flash empty when it appears). Grids up to 4096 blocks (128^3) get room for
+// every block (the preview's bounds hug the shape: the demo morph has 283 of ~900 blocks active
+// at 128^3); larger ones a quarter, at least 4096 (~14 KiB a block with its vertices and triangles).
+uint32_t firstBlockCapacity(uint32_t nb) { return nb <= 4096u ? nb : std::max(4096u, nb / 4u); }
+
+// A frame whose shaders found their loops cut short (AM_OVERFLOW_LOOPS): nothing of it is drawn.
+constexpr const char* kCutLoops =
+    "GPU polygoniser: the device cut the shaders' loops short (llvmpipe stops a shader's loops after "
+    "65535 iterations): the program is too large for this device; polygonise it on the CPU";
+}  // namespace
+
+GpuPolygonizer::GpuPolygonizer(Context& ctx) : impl_(std::make_unique<Impl>(ctx)) {}
+GpuPolygonizer::~GpuPolygonizer() = default;
+
+std::string GpuPolygonizer::deviceShortfall(const VkPhysicalDeviceLimits& l) {
+  const uint32_t largestGroup = std::max({AM_POLY_WG_BLOCKS, AM_POLY_WG_CELLS, AM_POLY_WG_EMIT, AM_POLY_WG_NORMALS,
+                                          AM_POLY_WG_SCAN, AM_POLY_WG_LINEAR});
+  std::string why;
+  auto add = [&](const std::string& s) { why += (why.empty() ? "" : "; ") + s; };
+  if (l.maxComputeSharedMemorySize < AM_POLY_EMIT_SHARED_BYTES)
+    add("the device has " + std::to_string(l.maxComputeSharedMemorySize) + " bytes of compute shared memory, the emit pass needs " +
+        std::to_string(AM_POLY_EMIT_SHARED_BYTES));
+  if (l.maxComputeWorkGroupInvocations < largestGroup || l.maxComputeWorkGroupSize[0] < largestGroup)
+    add("the device runs at most " + std::to_string(std::min(l.maxComputeWorkGroupInvocations, l.maxComputeWorkGroupSize[0])) +
+        " invocations in a workgroup, the scan needs " + std::to_string(largestGroup));
+  return why;
+}
+
+Result<std::unique_ptr<GpuPolygonizer>> GpuPolygonizer::create(Context& ctx) {
+  if (std::string why = deviceShortfall(ctx.properties().limits); !why.empty()) return Error{"GPU polygoniser: " + why};
+  if (uint64_t limit = loopLimit(ctx.properties()); limit != 0) {
+    uint64_t seen = gLoopLimit.load();
+    while ((seen == 0 || limit < seen) && !gLoopLimit.compare_exchange_weak(seen, limit)) {
+    }
+  }
+  std::unique_ptr<GpuPolygonizer> p(new GpuPolygonizer(ctx));
+  Status s = p->impl_->init();
+  if (!s) return Error{"GPU polygoniser: " + s.error()};
+  return p;
+}
+
+uint64_t GpuPolygonizer::loopLimit(const VkPhysicalDeviceProperties& p) {
+  const bool llvmpipe = p.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU && std::strstr(p.deviceName, "llvmpipe") != nullptr;
+  return llvmpipe ? AM_POLY_LLVMPIPE_LOOP_LIMIT : 0;
+}
+
+std::string GpuPolygonizer::unsupported(const GpuField& field) {
+  if (!field.a) return "no field program";
+  if (field.b && field.method == MorphMethod::SkeletonCorrespondence)
+    return "skeleton correspondence combines stand-ins that move with w: polygonise its flattened program "
+           "(morphImplicitField) as a single field";
+  if (std::string why = gpuUnsupportedReason(*field.a); !why.empty()) return why;
+  if (field.b)
+    if (std::string why = gpuUnsupportedReason(*field.b); !why.empty()) return "target program: " + why;
+  return loopBudgetReason(field, gLoopLimit.load());
+}
+
+void GpuPolygonizer::prewarm(const GpuField& field, const GpuPolygonizeSettings& s) {
+  Impl& m = *impl_;
+  if (!field.a || !unsupported(field).empty()) return;
+  Result<PackedFieldPrograms> packed = packFieldPrograms(*field.a, field.b);
+  if (!packed) return;
+  const Impl::VariantKey key = m.variantKey(*packed, field, s);
+  m.fieldCache.prewarm(key);
+}
+
+bool GpuPolygonizer::ready(const GpuField& field, const GpuPolygonizeSettings& s) const {
+  const Impl& m = *impl_;
+  if (!field.a) return true;  // record() fails at once
+  Result<PackedFieldPrograms> packed = packFieldPrograms(*field.a, field.b);
+  if (!packed) return true;
+  const Impl::VariantKey key = m.variantKey(*packed, field, s);
+  return m.fieldCache.ready(key);
+}
+
+bool GpuPolygonizer::waitForCompilation(double timeoutSec) const {
+  return impl_->fieldCache.waitForCompilation(timeoutSec);
+}
+
+size_t GpuPolygonizer::variantCount() const { return impl_->fieldCache.size(); }
+
+Status GpuPolygonizer::absorbCounters(uint32_t slot) {
+  Impl& m = *impl_;
+  if (m.slotSerial[slot] == UINT64_MAX) return Status::success();  // none, or taken already
+  m.slotSerial[slot] = UINT64_MAX;
+  const auto* c = static_cast<const uint32_t*>(m.readback.mapped) + slot * AM_CTL_READBACK_UINTS;
+  stats_.blocksActive = c[AM_CTL_ACTIVE];
+  stats_.vertices = c[AM_CTL_VERTICES];
+  stats_.triangles = c[AM_CTL_TRIANGLES];
+  stats_.overflowed = c[AM_CTL_OVERFLOW] != 0;
+  if (c[AM_CTL_OVERFLOW] == 0) return Status::success();
+  if (c[AM_CTL_OVERFLOW] & AM_OVERFLOW_LOOPS) {  // redoing it would cut them again
+    m.cutLoops = true;
+    return Error{kCutLoops};
+  }
+  // That frame drew nothing; grow to what it needed (counts past a block overflow are
+  // partial, so those buffers double too) for the record that redoes it.
+  bool blocksShort = (c[AM_CTL_OVERFLOW] & AM_OVERFLOW_BLOCKS) != 0;
+  uint32_t vw = c[AM_CTL_VERTICES] + c[AM_CTL_VERTICES] / 4, tw = c[AM_CTL_TRIANGLES] + c[AM_CTL_TRIANGLES] / 4;
+  if (blocksShort) {
+    vw = std::max(vw, 2 * m.vertexCapacity);
+    tw = std::max(tw, 2 * m.triangleCapacity);
+  }
+  return m.ensureCapacities(c[AM_CTL_ACTIVE] + c[AM_CTL_ACTIVE] / 4, vw, tw);
+}
+
+Result<bool> GpuPolygonizer::recordFitted(uint64_t frameSerial) {
+  const uint32_t slot = uint32_t(frameSerial % kFramesInFlight);
+  if (impl_->slotSerial[slot] != frameSerial) return Error{"GPU polygoniser: the counters of that record are gone"};
+  if (Status g = absorbCounters(slot); !g) return Error{g.error()};
+  return !stats_.overflowed;
+}
+
+Status GpuPolygonizer::record(VkCommandBuffer cmd, uint64_t frameSerial, const GpuField& field,
+                              const GpuPolygonizeSettings& s) {
+  Impl& m = *impl_;
+  const uint32_t slot = uint32_t(frameSerial % kFramesInFlight);
+  // The counters of the frame that last used this slot (complete, by the caller's contract).
+  if (Status g = absorbCounters(slot); !g) return g;
+  if (m.cutLoops) {
+    m.cutLoops = false;
+    return Error{kCutLoops};
+  }
+  // First frames: size the buffers for the grid as polygonize() does.
+  if (Result<Grid> g = makeGrid(field, s); g) {
+    uint32_t blocks = firstBlockCapacity(g->blocks());
+    if (blocks > m.blockCapacity) {
+      Status e = m.ensureCapacities(blocks, blocks * 192, blocks * 384);
+      if (!e) return e;
+    }
+  }
+  m.slotSerial[slot] = frameSerial;
+  return m.recordFrame(cmd, slot, field, s, stats_);
+}
+
+GeneratedMeshDraw GpuPolygonizer::generatedMesh(const glm::vec4& color) const {
+  GeneratedMeshDraw d;
+  d.positions = impl_->positions.buffer;
+  d.normals = impl_->normals.buffer;
+  d.indices = impl_->indices.buffer;
+  d.indirect = impl_->control.buffer;
+  d.indirectOffset = AM_CTL_DRAW * 4;
+  d.color = color;
+  return d;
+}
+
+Result<GpuPolygonizeStats> GpuPolygonizer::polygonize(const GpuField& field, const GpuPolygonizeSettings& s) {
+  Impl& m = *impl_;
+  if (std::string why = unsupported(field); !why.empty() && (s.loopBudgetCheck || !field.a ||
+                                                             loopBudgetReason(field, gLoopLimit.load()).empty()))
+    return Error{"GPU polygoniser: " + why};
+  // Initial capacities for this grid (or the caller's, e.g. tiny ones in tests).
+  {
+    Result<Grid> g = makeGrid(field, s);
+    if (!g) return Error{g.error()};
+    uint32_t nb = g->blocks();
+    uint32_t blocks = s.initialBlockCapacity ? s.initialBlockCapacity : firstBlockCapacity(nb);
+    uint32_t verts = s.initialVertexCapacity ? s.initialVertexCapacity : blocks * 192;
+    uint32_t tris = s.initialTriangleCapacity ? s.initialTriangleCapacity : blocks * 384;
+    if (s.initialBlockCapacity || s.initialVertexCapacity || s.initialTriangleCapacity) {
+      // Start from exactly the requested sizes: drop larger buffers first.
+      m.ctx.waitIdle();
+      for (Buffer* b : {&m.active, &m.corners, &m.edges, &m.counts, &m.offsets, &m.positions, &m.normals, &m.indices})
+        destroyBuffer(m.ctx.device(), *b);
+      m.blockCapacity = m.vertexCapacity = m.triangleCapacity = 0;
+    }
+    Status e = m.ensureCapacities(blocks, verts, tris);
+    if (!e) return Error{e.error()};
+  }
+  const uint32_t slot = kFramesInFlight;  // the synchronous path's own read-back slot
+  GpuPolygonizeStats stats;
+  auto t0 = std::chrono::steady_clock::now();
+  for (int attempt = 0; attempt < 16; ++attempt) {
+    VkDevice dev = m.ctx.device();
+    AM_VK_TRY(vkResetCommandBuffer(m.cmd, 0), "vkResetCommandBuffer");
+    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    AM_VK_TRY(vkBeginCommandBuffer(m.cmd, &bi), "vkBeginCommandBuffer");
+    Status rec = m.recordFrame(m.cmd, slot, field, s, stats, true);
+    AM_VK_TRY(vkEndCommandBuffer(m.cmd), "vkEndCommandBuffer");
+    if (!rec) return Error{rec.error()};
+    if (attempt == 0) t0 = std::chrono::steady_clock::now();
+    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    si.commandBufferCount = 1;
+    si.pCommandBuffers = &m.cmd;
+    AM_VK_TRY(vkResetFences(dev, 1, &m.fence), "vkResetFences");
+    AM_VK_TRY(vkQueueSubmit(m.ctx.queue(), 1, &si, m.fence), "GPU polygoniser: vkQueueSubmit");
+    AM_VK_TRY(vkWaitForFences(dev, 1, &m.fence, VK_TRUE, UINT64_MAX), "GPU polygoniser: waiting for the GPU");
+    const auto* c = static_cast<const uint32_t*>(m.readback.mapped) + slot * AM_CTL_READBACK_UINTS;
+    stats.blocksActive = c[AM_CTL_ACTIVE];
+    stats.vertices = c[AM_CTL_VERTICES];
+    stats.triangles = c[AM_CTL_TRIANGLES];
+    uint32_t overflow = c[AM_CTL_OVERFLOW];
+    if (overflow & AM_OVERFLOW_LOOPS) return Error{kCutLoops};
+    if (overflow == 0) {
+      uint64_t ticks[kTimestamps] = {};
+      if (m.timestamps && vkGetQueryPoolResults(dev, m.timestamps, 0, kTimestamps, sizeof ticks, ticks, sizeof(uint64_t),
+                                                VK_QUERY_RESULT_64_BIT) == VK_SUCCESS) {
+        const double period = m.ctx.properties().limits.timestampPeriod * 1e-6;
+        for (uint32_t k = 0; k + 1 < kTimestamps; ++k) stats.passMs[k] = double(ticks[k + 1] - ticks[k]) * period;
+      }
+      stats.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      stats_ = stats;
+      m.haveMesh = true;
+      return stats;
+    }
+    ++stats.regrows;
+    Status g = Status::success();
+    if (overflow & AM_OVERFLOW_BLOCKS) {
+      // Counts beyond the processed blocks are unknown: grow those buffers too.
+      g = m.ensureCapacities(stats.blocksActive, std::max(m.vertexCapacity * 2, stats.vertices),
+                             std::max(m.triangleCapacity * 2, stats.triangles));
+    } else {
+      g = m.ensureCapacities(0, stats.vertices, stats.triangles);
+    }
+    if (!g) return Error{g.error()};
+  }
+  return Error{"GPU polygoniser: the mesh still overflowed its buffers after 16 attempts"};
+}
+
+Result<TriangleMesh> GpuPolygonizer::readBack() {
+  Impl& m = *impl_;
+  if (!m.haveMesh) return Error{"GPU polygoniser: nothing polygonised yet"};
+  const VkDeviceSize vbytes = VkDeviceSize(stats_.vertices) * kVertexStride, ibytes = VkDeviceSize(stats_.triangles) * 12;
+  TriangleMesh mesh;
+  if (stats_.triangles == 0) return mesh;
+  Result<Buffer> host = createHostBuffer(m.ctx, 2 * vbytes + ibytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+  if (!host) return Error{"GPU polygoniser read-back: " + host.error()};
+  Status s = m.ctx.submitImmediate([&](VkCommandBuffer cmd) {
+    VkBufferCopy p{0, 0, vbytes}, n{0, vbytes, vbytes}, i{0, 2 * vbytes, ibytes};
+    vkCmdCopyBuffer(cmd, m.positions.buffer, host->buffer, 1, &p);
+    vkCmdCopyBuffer(cmd, m.normals.buffer, host->buffer, 1, &n);
+    vkCmdCopyBuffer(cmd, m.indices.buffer, host->buffer, 1, &i);
+    barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+            VK_ACCESS_HOST_READ_BIT);
+  });
+  if (!s) {
+    destroyBuffer(m.ctx.device(), *host);
+    return Error{"GPU polygoniser read-back: " + s.error()};
+  }
+  const auto* bytes = static_cast<const uint8_t*>(host->mapped);
+  mesh.positions.resize(stats_.vertices);
+  mesh.normals.resize(stats_.vertices);
+  mesh.indices.resize(size_t(stats_.triangles) * 3);
+  for (size_t v = 0; v < stats_.vertices; ++v) {  // vec4 per vertex on the device
+    std::memcpy(&mesh.positions[v], bytes + v * kVertexStride, 12);
+    std::memcpy(&mesh.normals[v], bytes + vbytes + v * kVertexStride, 12);
+  }
+  std::memcpy(mesh.indices.data(), bytes + 2 * vbytes, ibytes);
+  destroyBuffer(m.ctx.device(), *host);
+  return mesh;
+}
+
+}  // namespace animorph::gpu

@@ -1,0 +1,207 @@
+#pragma once
+// GPU polygoniser (docs/design.md §6, docs/gpu-polygonizer.md): marching cubes of a
+// FieldProgram, or of the morph of two, in Vulkan compute, agreeing with the
+// CPU polygoniser (poly/polygonizer.h) on the same grid. Per frame: the
+// programs are uploaded as small buffers inside the command buffer; a coarse
+// pass lists per 8^3-cell block the primitives that reach it and culls blocks
+// whose field interval has one sign; the active blocks are compacted by a
+// prefix sum; the field is evaluated only there; vertices (one per crossing
+// edge, shared by the cells around it) and triangles are placed by prefix sums;
+// normals come from the field gradient. The outputs are vertex/index buffers
+// and a VkDrawIndexedIndirectCommand, so the editor draws with no CPU read-back.
+// When a frame outgrows the buffers the draw is empty, the counters say so, and
+// the next record() (or polygonize(), at once) grows them and redoes the frame:
+// nothing is ever truncated silently.
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <vulkan/vulkan.h>
+
+#include "gpu/vulkan/buffer.h"
+#include "gpu/vulkan/context.h"
+#include "core/field/field_program.h"
+#include "core/math/bounds.h"
+#include "core/standin_morph/morph_field.h"
+#include "core/poly/mesh.h"
+#include "gpu/render/scene_renderer.h"
+#include "core/util/result.h"
+
+namespace animorph::gpu {
+
+// The morph method is the core's (standin_morph/morph_field.h): Interpolation,
+// m = (1 - w) f1 + w f2, and SpaceTime (docs/design.md §5 and
+// include_shared/morph_field.h) combine two programs here;
+// SkeletonCorrespondence is not a combination of two fixed programs (its
+// stand-ins move with w): it reaches the GPU flattened into one program
+// (morphImplicitField, GpuField::single), and unsupported() says so for a pair.
+using animorph::MorphMethod;
+
+// What to polygonise: one program, or the morph of two ("evaluate two programs
+// and combine"; the formulas are in include_shared/morph_field.h, shared with C++).
+struct GpuField {
+  const FieldProgram* a = nullptr;  // required
+  const FieldProgram* b = nullptr;  // set: the morph of a and b
+  MorphMethod method = MorphMethod::Interpolation;
+  float weight = 0.5f;     // interpolation: w (0: a, 1: b)
+  float morphTime = 0.5f;  // space-time: t (0: a, 1: b)
+  float timeScale = 1.0f;  // space-time: scale of t against field values
+  float a0 = 1.0f, a1 = 1.0f, a2 = 1.0f, a3 = 1.0f;  // space-time: bounded-blending parameters
+
+  static GpuField single(const FieldProgram& p) { return {&p}; }
+  static GpuField interpolation(const FieldProgram& a, const FieldProgram& b, float w) {
+    GpuField f{&a, &b};
+    f.weight = w;
+    return f;
+  }
+  static GpuField spaceTime(const FieldProgram& a, const FieldProgram& b, float t, float timeScale = 1.0f,
+                            float a0 = 1.0f, float a1 = 1.0f, float a2 = 1.0f, float a3 = 1.0f) {
+    GpuField f{&a, &b, MorphMethod::SpaceTime};
+    f.morphTime = t;
+    f.timeScale = timeScale;
+    f.a0 = a0;
+    f.a1 = a1;
+    f.a2 = a2;
+    f.a3 = a3;
+    return f;
+  }
+};
+
+struct GpuPolygonizeSettings {
+  // Cells along the longest side of the grid bounds (cubic cells), 2..512.
+  // The cost follows the surface with culling, the volume without.
+  int resolution = 128;
+  // Grid bounds; default as the CPU polygoniser: the programs' interval-tightened
+  // bounds (the union for a morph; space-time blending adds 10%) grown by marginCells.
+  std::optional<Bounds> bounds;
+  float marginCells = 2.0f;
+  // Per-block primitive lists and interval culling. Off: every block is
+  // evaluated with every primitive (same mesh, slower).
+  bool culling = true;
+  // Where the shaders read the programs: Auto picks a uniform buffer on GPUs when
+  // the programs fit in 64 KiB, a storage buffer on CPU devices (lavapipe) or
+  // beyond. Same results either way; tests force each.
+  enum class PoolBuffer : uint8_t { Auto, Uniform, Storage };
+  PoolBuffer poolBuffer = PoolBuffer::Auto;
+  // Specialise the field shaders on what the programs use (op codes, primitive
+  // classes, skeleton and map kinds, combine mode): one pipeline variant per set,
+  // created on first use and kept. Off: the generic variant (same mesh; tests
+  // compare both). On lavapipe the generic interpreter runs every op's code at
+  // every op (no real branches), so specialising halves the fine passes.
+  bool specialise = true;
+  // Scans of at most AM_POLY_SCAN_SINGLE_MAX elements (grids up to 256^3) run in one
+  // workgroup, compaction and indirect arguments included: one dispatch instead of five
+  // after the coarse pass and four after the cells pass (on lavapipe each costs ~0.1 ms).
+  // Off: the multi-group scan that longer arrays use (same mesh; tests compare both).
+  bool singleWorkgroupScan = true;
+  // Solid-noise displacement of the vertices along their normals by amplitude (m) *
+  // solidNoise(frequency (1/m) * p), after polygonising: the CPU's displaceBySolidNoise
+  // (docs/design.md §5, the morph's noise track). 0: none (no pass).
+  float noiseAmplitude = 0.0f;
+  float noiseFrequency = 1.0f;
+  // Workgroups a row of the fine passes' dispatch (0: AM_POLY_MAX_DISPATCH_X, the least every
+  // device allows); the blocks past a row go on in the next. Tests narrow it to run that path.
+  uint32_t dispatchRow = 0;
+  // Refuse programs whose loops could run past the device's per-invocation loop limit (lavapipe:
+  // GpuPolygonizer::loopLimit). Tests turn it off to run the shaders' own detection of cut loops,
+  // which fails the polygonisation instead of drawing a wrong mesh.
+  bool loopBudgetCheck = true;
+  // Initial buffer capacities (0: automatic). They grow when a frame overflows.
+  uint32_t initialBlockCapacity = 0;
+  uint32_t initialVertexCapacity = 0;
+  uint32_t initialTriangleCapacity = 0;
+};
+
+struct GpuPolygonizeStats {
+  int gridX = 0, gridY = 0, gridZ = 0;  // cells per axis
+  float cellSize = 0.0f;
+  uint32_t blocksTotal = 0;   // 8^3-cell blocks of the grid
+  uint32_t blocksActive = 0;  // blocks the fine passes evaluated
+  uint32_t vertices = 0, triangles = 0;
+  uint32_t regrows = 0;       // polygonize(): frames redone after growing the buffers
+  bool overflowed = false;    // record(): the frame kFramesInFlight ago did not fit (it is redone now)
+  bool uniformPool = true;    // programs read from a uniform buffer (else storage)
+  uint32_t features = 0, kinds = 0;  // the pipeline variant (AM_FEAT_* / AM_KIND_*; all bits: generic)
+  double milliseconds = 0.0;  // polygonize(): wall time from submit to completion (all passes)
+  // polygonize(): GPU time per pass from timestamps (0 when the queue has none):
+  // uploads, coarse (lists + intervals), block compaction, corners + cells, vertex/triangle scan, emit.
+  double passMs[6] = {0, 0, 0, 0, 0, 0};
+};
+
+class GpuPolygonizer {
+ public:
+  // Pipelines, the marching-cubes table and small initial buffers. Errors: a device short of
+  // what the passes need (deviceShortfall), missing shaders, Vulkan failures (out of memory included).
+  static Result<std::unique_ptr<GpuPolygonizer>> create(Context& ctx);
+  // What a device with these limits lacks for the polygoniser's workgroups (shared memory,
+  // invocations), empty when it has enough.
+  static std::string deviceShortfall(const VkPhysicalDeviceLimits& limits);
+  ~GpuPolygonizer();
+  GpuPolygonizer(const GpuPolygonizer&) = delete;
+  GpuPolygonizer& operator=(const GpuPolygonizer&) = delete;
+
+  // Why the GPU cannot polygonise field (empty when it can). Callers use the CPU path otherwise.
+  // Besides the programs' own limits: once a polygoniser exists on a device that stops long shader
+  // loops (loopLimit), programs whose walk alone exceeds that limit (gpuLoopIterationEstimate) --
+  // BlobTrees of thousands of ops, such as the animorphosis demo's creatures, on lavapipe. A frame
+  // whose loops still run out (many primitives reaching a block) fails in polygonize() and record().
+  static std::string unsupported(const GpuField& field);
+  // Loop iterations after which the device stops every loop of a shader invocation, all loops
+  // together (0: no such limit). llvmpipe (lavapipe): AM_POLY_LLVMPIPE_LOOP_LIMIT.
+  static uint64_t loopLimit(const VkPhysicalDeviceProperties& properties);
+
+  // Records one polygonisation into cmd (outside any render pass), no CPU
+  // read-back: the editor's per-frame call, then draw generatedMesh(). frameSerial
+  // numbers the frame (as SceneRenderer::record); the counters of frame
+  // frameSerial - kFramesInFlight, which the caller guarantees has completed,
+  // are read here, and if that frame overflowed the buffers grow first (waiting
+  // for the device). Buffers may be replaced: take generatedMesh() after record().
+  // Errors: unsupported field, bad settings or bounds, an earlier record whose loops the device
+  // cut short (lavapipe's loop limiter: that frame drew nothing), Vulkan failures.
+  Status record(VkCommandBuffer cmd, uint64_t frameSerial, const GpuField& field, const GpuPolygonizeSettings& s);
+
+  // Starts compiling, on a background thread, the shader pipelines record() and polygonize() will
+  // need for fields like this one (same operators, primitive kinds and morph method), so that the
+  // first of them does not stall its frame: on lavapipe a field's four pipelines take about a
+  // second to compile, on the thread that creates them. A record() that needs them meanwhile
+  // waits for the compilation. No-op when they exist or are under way, or for an unsupported
+  // field; compilation errors surface in record().
+  void prewarm(const GpuField& field, const GpuPolygonizeSettings& s = {});
+  // True when record() of field would not wait for pipelines to compile (they exist, or a
+  // prewarm has finished them). Interactive callers prewarm and draw what they have meanwhile.
+  bool ready(const GpuField& field, const GpuPolygonizeSettings& s = {}) const;
+  // Waits up to timeoutSec for the pipelines being compiled in the background. Returns all done.
+  bool waitForCompilation(double timeoutSec) const;
+  // Pipeline variants made or being made (one per kind of field: operators, primitives, morph method).
+  size_t variantCount() const;
+
+  // Device buffers of the last recorded mesh for SceneRenderer (Scene::generatedMeshes).
+  GeneratedMeshDraw generatedMesh(const glm::vec4& color = {0.62f, 0.62f, 0.62f, 1.0f}) const;
+
+  // Synchronous polygonisation (CLI, tests, benchmarks): records, submits and
+  // waits; on overflow grows the buffers and redoes it until the mesh fits.
+  // Errors: as record(), device lost, a mesh beyond the device's buffer limits.
+  Result<GpuPolygonizeStats> polygonize(const GpuField& field, const GpuPolygonizeSettings& s);
+
+  // The mesh of the last polygonize() (positions, normals, indices) copied to
+  // host memory. Errors: nothing polygonised yet, Vulkan failures.
+  Result<TriangleMesh> readBack();
+
+  // Stats of the last polygonize(), or of the last record() whose counters were read.
+  const GpuPolygonizeStats& lastStats() const { return stats_; }
+  // Once the record of frameSerial has completed (the caller's fence): whether its mesh fitted the
+  // buffers. Its counters become lastStats(); if it overflowed the buffers grow now, for the record
+  // that redoes it (which then need not wait kFramesInFlight records to find out). Errors: the
+  // record's counters were taken already or overwritten; growing failed.
+  Result<bool> recordFitted(uint64_t frameSerial);
+
+ private:
+  Status absorbCounters(uint32_t slot);  // the counters of the record in a read-back slot, once
+  struct Impl;
+  explicit GpuPolygonizer(Context& ctx);
+  std::unique_ptr<Impl> impl_;
+  GpuPolygonizeStats stats_;
+};
+
+}  // namespace animorph::gpu

@@ -1,0 +1,141 @@
+#include "gpu/polygonizer/preview_field_compiler.h"
+
+#include <chrono>
+
+#include "gpu/polygonizer/gpu_polygonizer.h"
+
+namespace animorph::gpu {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+}
+
+bool samePreviewShape(const PreviewSource& a, const PreviewSource& b) { return &a == &b || a.sameAs(b); }
+
+bool CompiledPreviewField::matches(const PreviewSource& s, int res) const {
+  return source && resolution == res && samePreviewShape(*source, s);
+}
+
+PreviewFieldCompiler::PreviewFieldCompiler() : thread_([this] { run(); }) {}
+
+PreviewFieldCompiler::~PreviewFieldCompiler() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  thread_.join();
+}
+
+uint64_t PreviewFieldCompiler::request(std::shared_ptr<const PreviewSource> source, int resolution, double timeSec) {
+  if (!source) return 0;
+  uint64_t id = 0;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto same = [&](const std::shared_ptr<const PreviewSource>& s, int res) {
+      return s && res == resolution && samePreviewShape(*s, *source);
+    };
+    if (waiting_ && same(waiting_->source, waiting_->resolution)) return waiting_->id;
+    if (running_ && same(running_->source, running_->resolution)) return running_->id;
+    if (waiting_) ++counters_.superseded;
+    waiting_ = Request{++nextId_, std::move(source), resolution, timeSec};
+    id = nextId_;
+  }
+  wake_.notify_all();
+  return id;
+}
+
+void PreviewFieldCompiler::dropWaiting() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!waiting_) return;
+  waiting_.reset();
+  ++counters_.superseded;
+  if (!running_) done_.notify_all();
+}
+
+std::shared_ptr<const CompiledPreviewField> PreviewFieldCompiler::latest() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return latest_;
+}
+
+std::shared_ptr<const CompiledPreviewField> PreviewFieldCompiler::compile(const Request& r, bool onCompileThread) {
+  const auto t0 = Clock::now();
+  auto c = std::make_shared<CompiledPreviewField>();
+  c->onCompileThread = onCompileThread;
+  c->id = r.id;
+  c->source = r.source;
+  c->resolution = r.resolution;
+  c->timeSec = r.timeSec;
+  Result<PreviewField> field = r.source->field(r.resolution);
+  if (!field) {
+    c->error = field.error();
+  } else if (std::string why = GpuPolygonizer::unsupported(GpuField::single(field->program)); !why.empty()) {
+    c->error = std::move(why);
+  } else {
+    c->field = std::move(*field);
+  }
+  c->milliseconds = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  return c;
+}
+
+std::shared_ptr<const CompiledPreviewField> PreviewFieldCompiler::compileHere(
+    std::shared_ptr<const PreviewSource> source, int resolution, double timeSec) {
+  Request r{0, std::move(source), resolution, timeSec};
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    r.id = ++nextId_;
+  }
+  auto c = compile(r, false);
+  std::lock_guard<std::mutex> lock(mutex_);
+  ++counters_.onCallerThread;
+  counters_.callerThreadMs += c->milliseconds;
+  return c;
+}
+
+bool PreviewFieldCompiler::waitFor(uint64_t id, double timeoutSec) const {
+  std::unique_lock<std::mutex> lock(mutex_);
+  auto published = [&] { return latest_ && latest_->id >= id; };
+  // (a dropped request is never published: stop waiting once nothing is left to compile)
+  done_.wait_for(lock, std::chrono::duration<double>(timeoutSec), [&] { return published() || (!waiting_ && !running_); });
+  return published();
+}
+
+bool PreviewFieldCompiler::busy() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return waiting_ || running_;
+}
+
+bool PreviewFieldCompiler::waitIdle(double timeoutSec) const {
+  std::unique_lock<std::mutex> lock(mutex_);
+  return done_.wait_for(lock, std::chrono::duration<double>(timeoutSec), [&] { return !waiting_ && !running_; });
+}
+
+PreviewFieldCounters PreviewFieldCompiler::counters() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return counters_;
+}
+
+void PreviewFieldCompiler::run() {
+  for (;;) {
+    Request r;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      wake_.wait(lock, [&] { return stop_ || waiting_; });
+      if (stop_) return;
+      r = std::move(*waiting_);
+      waiting_.reset();
+      running_ = r;
+    }
+    std::shared_ptr<const CompiledPreviewField> c = compile(r, true);
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      running_.reset();
+      ++counters_.onCompileThread;
+      counters_.compileThreadMs += c->milliseconds;
+      latest_ = std::move(c);  // the thread's newest (a compileHere() since has a larger id: its caller keeps it)
+    }
+    done_.notify_all();
+  }
+}
+
+}  // namespace animorph::gpu
