@@ -188,37 +188,21 @@ StandinSegment toNodeSpace(const CharacterPose& pose, int node, const Part& p) {
   return seg;
 }
 
-// Re-places node's own segments on the vertices bound to it when that fits them much better:
-// along their principal axis or the bone's current axis, one segment or several side by side.
-// Returns the action line, empty when the current segments stay.
-std::string replaceNode(RepairState& st, Standin& s, int node) {
-  std::vector<glm::vec3> pts;
-  for (size_t i = 0; i < st.vertexNode.size(); ++i)
-    if (st.vertexNode[i] == node) pts.push_back(st.pose.positions[i]);
-  if (pts.size() < 16) return {};
-  const auto posed = poseStandin(s, st.pose.globals, glm::mat4(1.0f));
-  std::vector<Part> mine;
-  std::vector<float> others(pts.size(), INFINITY);
-  size_t own = 0;
-  glm::vec3 boneAxis(0.0f);
-  for (size_t k = 0; k < posed.size(); ++k) {
-    const PosedSegment& q = posed[k];
-    if (s.segments[k].node == node && !st.bridge[k]) {
-      mine.push_back({q.a, q.b, q.radius});
-      ++own;
-      if (glm::length(q.b - q.a) > glm::length(boneAxis)) boneAxis = q.b - q.a;
-      continue;
-    }
-    for (size_t i = 0; i < pts.size(); ++i) others[i] = std::min(others[i], capsuleDistance(pts[i], q.a, q.b, q.radius));
-  }
-  if (own == 0) return {};
-  const double before = unionError(pts, others, mine);
+struct PartSearch {
+  std::vector<Part> parts;
+  double error = INFINITY;
+};
+
+// The best segments for pts (mean |distance| with the surfaces of `others` counted): along their
+// principal axis or the bone's axis, one segment or up to maxParts side by side across the widest
+// direction; a part more must cut the error by 3 %.
+PartSearch bestParts(const RepairState& st, const std::vector<glm::vec3>& pts, const std::vector<float>& others,
+                     const glm::vec3& boneAxis, int maxParts) {
+  PartSearch best;
   glm::vec3 centre, axes[3];
   principalAxes(pts, centre, axes);
   std::vector<glm::vec3> directions{axes[0]};
   if (glm::length(boneAxis) > 0.0f) directions.push_back(glm::normalize(boneAxis));
-  std::vector<Part> best;
-  double bestError = before;
   for (const glm::vec3& u : directions) {
     // The widest direction across u, from the vertices' spread perpendicular to it.
     std::vector<glm::vec3> perp;
@@ -226,17 +210,80 @@ std::string replaceNode(RepairState& st, Standin& s, int node) {
     glm::vec3 pc, pa[3];
     principalAxes(perp, pc, pa);
     glm::vec3 e = pa[0] - u * glm::dot(pa[0], u);
-    if (glm::length(e) < 1e-6f) continue;
+    if (glm::length(e) < 1e-6f) e = axes[1];
     e = glm::normalize(e);
-    for (int n = 1; n <= st.settings.maxSideBySide; ++n) {
-      if (s.segments.size() - own + size_t(n) > st.settings.maxSegments) break;
+    for (int n = 1; n <= maxParts; ++n) {
       std::vector<Part> parts = partsAlong(pts, centre, u, e, n, st.radiusPercentile, st.minRadius);
       if (parts.empty()) continue;
       const double err = unionError(pts, others, parts);
-      if (err < bestError * 0.97) {  // a part more must earn its place
-        bestError = err;
-        best = std::move(parts);
-      }
+      if (err < best.error * 0.97) best = {std::move(parts), err};
+    }
+  }
+  return best;
+}
+
+// Re-places node's own segments on the vertices bound to it when that fits them much better:
+// along their principal axis or the bone's current axis, one segment or several side by side;
+// or, where the node owns small bones merged into it (a tail whose first joint sits in the
+// body), each of those gets a segment on its own vertices again, bound to it. Returns the
+// action line, empty when the current segments stay.
+std::string replaceNode(RepairState& st, Standin& s, int node) {
+  std::vector<glm::vec3> pts;
+  std::vector<int> bone;  // each vertex's dominant bone
+  for (size_t i = 0; i < st.vertexNode.size(); ++i)
+    if (st.vertexNode[i] == node) {
+      pts.push_back(st.pose.positions[i]);
+      bone.push_back(st.pose.dominantNode[i]);
+    }
+  if (pts.size() < 16) return {};
+  const auto posed = poseStandin(s, st.pose.globals, glm::mat4(1.0f));
+  std::vector<Part> mine;
+  std::vector<float> others(pts.size(), INFINITY);
+  glm::vec3 boneAxis(0.0f);
+  for (size_t k = 0; k < posed.size(); ++k) {
+    const PosedSegment& q = posed[k];
+    if (s.segments[k].node == node && !st.bridge[k]) {
+      mine.push_back({q.a, q.b, q.radius});
+      if (glm::length(q.b - q.a) > glm::length(boneAxis)) boneAxis = q.b - q.a;
+      continue;
+    }
+    for (size_t i = 0; i < pts.size(); ++i) others[i] = std::min(others[i], capsuleDistance(pts[i], q.a, q.b, q.radius));
+  }
+  if (mine.empty()) return {};
+  const size_t room = st.settings.maxSegments - std::min(st.settings.maxSegments, s.segments.size() - mine.size());
+  const double before = unionError(pts, others, mine);
+  // Candidate 1: every vertex of the node together.
+  std::vector<std::pair<int, Part>> best;
+  PartSearch all = bestParts(st, pts, others, boneAxis, std::min(st.settings.maxSideBySide, int(room)));
+  double bestError = all.error;
+  for (const Part& p : all.parts) best.push_back({node, p});
+  // Candidate 2: the node's own vertices, and each merged bone's own (a segment each).
+  std::vector<int> merged;
+  for (int b : bone)
+    if (b != node && std::find(merged.begin(), merged.end(), b) == merged.end()) merged.push_back(b);
+  if (!merged.empty() && merged.size() + 1 <= room) {
+    std::vector<std::pair<int, Part>> split;
+    std::vector<glm::vec3> own;
+    for (size_t i = 0; i < pts.size(); ++i)
+      if (bone[i] == node) own.push_back(pts[i]);
+    const int maxOwn = std::min(st.settings.maxSideBySide, int(room - merged.size()));
+    if (own.size() >= 16)
+      for (const Part& p : bestParts(st, own, std::vector<float>(own.size(), INFINITY), boneAxis, maxOwn).parts)
+        split.push_back({node, p});
+    for (int b : merged) {
+      std::vector<glm::vec3> theirs;
+      for (size_t i = 0; i < pts.size(); ++i)
+        if (bone[i] == b) theirs.push_back(pts[i]);
+      if (theirs.size() < 8) continue;
+      for (const Part& p : bestParts(st, theirs, std::vector<float>(theirs.size(), INFINITY), glm::vec3(0.0f), 1).parts)
+        split.push_back({b, p});
+    }
+    std::vector<Part> parts;
+    for (const auto& [n, p] : split) parts.push_back(p);
+    const double err = parts.empty() ? INFINITY : unionError(pts, others, parts);
+    if (err < bestError) {
+      bestError = err;
+      best = std::move(split);
     }
   }
   if (best.empty() || bestError > double(st.settings.replaceGain) * before) return {};
@@ -247,14 +294,19 @@ std::string replaceNode(RepairState& st, Standin& s, int node) {
       kept.push_back(s.segments[k]);
       keptBridge.push_back(st.bridge[k]);
     }
-  for (const Part& p : best) {
-    kept.push_back(toNodeSpace(st.pose, node, p));
+  std::string bones;
+  for (const auto& [n, p] : best) {
+    kept.push_back(toNodeSpace(st.pose, n, p));
     keptBridge.push_back(0);
+    if (n != node && bones.find("'" + boneName(st.c, n) + "'") == std::string::npos)
+      bones += (bones.empty() ? "'" : ", '") + boneName(st.c, n) + "'";
   }
   s.segments = std::move(kept);
   st.bridge = std::move(keptBridge);
+  const size_t onNode = size_t(std::count_if(best.begin(), best.end(), [&](const auto& q) { return q.first == node; }));
   return "re-placed '" + boneName(st.c, node) + "' on its " + std::to_string(pts.size()) + " vertices: " +
-         std::to_string(best.size()) + (best.size() > 1 ? " segments side by side" : " segment") +
+         std::to_string(onNode) + (onNode > 1 ? " segments side by side" : " segment") +
+         (bones.empty() ? std::string() : ", and a segment each on the vertices of " + bones) +
          fmt(" (their mean distance %.3g -> %.3g)", before, bestError);
 }
 
@@ -303,8 +355,9 @@ std::vector<std::string> bridgePieces(RepairState& st, Standin& s, const FitRepo
       closestBetweenSegments(posed[i].a, posed[i].b, posed[j].a, posed[j].b, l.p, l.q);
       const int ni = s.segments[i].node, nj = s.segments[j].node;
       const bool related = ni == nj || isAncestor(st.c, ni, nj) || isAncestor(st.c, nj, ni);
-      // Along the bone chain first: an unrelated bone is three times as far.
-      l.cost = glm::length(l.q - l.p) * (related ? 1.0f : 3.0f);
+      // Along the bone chain first (side-by-side parts of one bone before that): an unrelated
+      // bone is three times as far.
+      l.cost = glm::length(l.q - l.p) * (ni == nj ? 0.9f : related ? 1.0f : 3.0f);
       Link& b = best[size_t(pi * pieces + pj)];
       if (l.cost < b.cost) b = l;
     }
