@@ -1,4 +1,4 @@
-// animorph-cli fit CHARACTER.glb -o STANDIN.json: fits a stand-in and prints the fit error.
+// animorph-cli fit CHARACTER -o STANDIN.json: fits a stand-in and prints the fit error.
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -7,7 +7,7 @@
 
 #include "app/cli/cli_command.h"
 #include "core/util/atomic_file.h"
-#include "core/io/gltf_import.h"
+#include "core/io/character_import.h"
 #include "core/standin/fit_standin.h"
 #include "core/standin/standin_json.h"
 
@@ -107,8 +107,8 @@ int runFit(const std::vector<std::string>& args) {
       return cli::fail("fit", "only one CHARACTER is accepted", 2);
     }
   }
-  if (input.empty() || output.empty()) return cli::fail("fit", "usage: fit CHARACTER.glb -o STANDIN.json (see --help)", 2);
-  auto c = importGltf(input);
+  if (input.empty() || output.empty()) return cli::fail("fit", "usage: fit CHARACTER -o STANDIN.json (see --help)", 2);
+  auto c = importCharacter(input);
   if (!c) return cli::fail("fit", c.error());
   auto fit = fitStandin(*c, fs);
   if (!fit) return cli::fail("fit", fit.error());
@@ -143,8 +143,8 @@ int runFit(const std::vector<std::string>& args) {
 
 }  // namespace
 
-ANIMORPH_CLI_COMMAND("fit", "fit a stand-in to a glTF character and print the fit error",
-                     "usage: animorph-cli fit CHARACTER.glb -o STANDIN.json [--kind K] [--percentile P]\n"
+ANIMORPH_CLI_COMMAND("fit", "fit a stand-in to a character (glTF, FBX, Collada, OBJ) and print the fit error",
+                     "usage: animorph-cli fit CHARACTER -o STANDIN.json [--kind K] [--percentile P]\n"
                      "                        [--clip N --time T] [--no-repair] [--previous] [--json]\n"
                      "  Fits one segment per bone in world units (every node transform applied): joint ->\n"
                      "  child joint, through helper bones without vertices to the next joint with some;\n"

@@ -448,8 +448,11 @@ def export(path, fmt, fbx_scale_option):
                                   export_morph=True, export_morph_normal=True, export_nla_strips=False,
                                   export_force_sampling=True, export_def_bones=False, export_materials="NONE")
     elif fmt == "fbx":
+        # Every frame baked (simplify 0): FBX curves are Bezier, and importers that read their keys
+        # linearly (assimp) play a simplified curve's keys, not Blender's curve between them.
         bpy.ops.export_scene.fbx(filepath=path, apply_unit_scale=True, apply_scale_options=fbx_scale_option,
-                                 add_leaf_bones=True, bake_anim=True, bake_anim_use_nla_strips=False,
+                                 add_leaf_bones=True, bake_anim=True, bake_anim_simplify_factor=0.0,
+                                 bake_anim_use_nla_strips=False,
                                  bake_anim_use_all_actions=False, object_types={"ARMATURE", "MESH"})
     else:
         bpy.ops.wm.collada_export(filepath=path, include_armatures=True, include_shapekeys=True,

@@ -238,7 +238,7 @@ void EditorUI::openGltfAsNewProject(const std::string& path, EditorContext& /*ct
       });
 }
 
-void EditorUI::importGltf(const std::string& path, EditorContext& ctx) {
+void EditorUI::importCharacter(const std::string& path, EditorContext& ctx) {
   if (ctx.assets.contains(path)) {  // loaded already (another actor uses it): no job needed
     addImportedActor(path, ctx);
     return;

@@ -540,6 +540,7 @@ Result<Mesh> readMesh(const Ctx& c, int meshIndex) {
     }
     auto g = readPrimitive(c, meshIndex, p);
     if (!g) return Error{g.error()};
+    if (mesh.material < 0 && prim.material >= 0 && prim.material < int(c.m.materials.size())) mesh.material = prim.material;
     computed |= g->computedNormals;
     anySkinned |= !g->influences.empty();
     prims.push_back(std::move(*g));
@@ -865,6 +866,29 @@ Status checkSkinBindings(const Ctx& c, Character& ch) {
   return {};
 }
 
+// Base colour factor and texture of every material (Character::materials, by glTF index).
+void readMaterials(const Ctx& c, Character& ch) {
+  const auto& m = c.m;
+  for (size_t i = 0; i < m.materials.size(); ++i) {
+    const auto& gm = m.materials[i];
+    Material mat;
+    mat.name = gm.name.empty() ? "material " + std::to_string(i) : gm.name;
+    const auto& f = gm.pbrMetallicRoughness.baseColorFactor;
+    if (f.size() == 4 && std::all_of(f.begin(), f.end(), [](double v) { return std::isfinite(v); }))
+      mat.baseColorFactor = glm::clamp(glm::vec4(float(f[0]), float(f[1]), float(f[2]), float(f[3])), 0.0f, 1.0f);
+    const int tex = gm.pbrMetallicRoughness.baseColorTexture.index;
+    if (tex >= 0 && tex < int(m.textures.size())) {
+      const int src = m.textures[tex].source;
+      if (src >= 0 && src < int(m.images.size())) {
+        const std::string& uri = m.images[src].uri;
+        if (uri.empty() || uri.rfind("data:", 0) == 0) mat.baseColorTextureEmbedded = true;
+        else mat.baseColorTextureUri = uri;  // inside the file's folder: the file-system guard read it
+      }
+    }
+    ch.materials.push_back(std::move(mat));
+  }
+}
+
 void listUnsupportedFeatures(const Ctx& c) {
   const auto& m = c.m;
   for (const auto& e : m.extensionsUsed) c.report.unsupported.push_back("extension " + e);
@@ -990,6 +1014,7 @@ Result<Character> importImpl(const std::string& path) {
 
   Character ch;
   ch.sourcePath = path;
+  ch.format = "glTF";
   size_t inputBytes = data.size();
   for (const auto& b : model.buffers) inputBytes += b.data.size();
   Ctx c{file, model, ch.report};
@@ -1002,6 +1027,7 @@ Result<Character> importImpl(const std::string& path) {
     if (e != "KHR_materials_unlit" && e != "KHR_texture_transform")
       return err(c, "extensionsRequired", "requires " + e + ", which is not supported");
   listUnsupportedFeatures(c);
+  readMaterials(c, ch);
   if (auto s = readHierarchy(c, ch); !s) return Error{s.error()};
   for (int i = 0; i < static_cast<int>(model.meshes.size()); ++i) {
     auto mesh = readMesh(c, i);

@@ -1,6 +1,7 @@
 #pragma once
-// An imported character: node hierarchy, meshes, skins and animation clips,
-// as glTF describes them (engine/core/io/gltf_import.h fills it).
+// An imported character: node hierarchy, meshes, skins, animation clips and
+// materials, as glTF describes them (io/gltf_import.h fills it from glTF,
+// io/assimp_import.h from FBX, Collada and OBJ; io/character_import.h picks).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -35,6 +36,7 @@ struct Mesh {
   std::vector<glm::uvec4> joints0, joints1;
   std::vector<glm::vec4> weights0, weights1;
   std::vector<glm::vec4> colors;  // glTF COLOR_0 (RGBA, 0..1; RGB files get alpha 1); empty: none
+  int material = -1;              // index into Character::materials (its first primitive's), or -1
 
   size_t vertexCount() const { return positions.size(); }
   size_t triangleCount() const { return indices.size() / 3; }
@@ -68,6 +70,25 @@ struct AnimationClip {
   float durationSec = 0.0f;
 };
 
+// A surface's base colour, as the file gives it (glTF baseColorFactor / baseColorTexture,
+// FBX / Collada / OBJ diffuse colour and texture). Nothing draws it yet.
+struct Material {
+  std::string name;
+  glm::vec4 baseColorFactor{1.0f};  // linear RGBA, 0..1
+  // The base colour texture's file, relative to the character file's folder (never absolute,
+  // never outside that folder: such URIs are dropped with a warning); empty: none, or embedded.
+  std::string baseColorTextureUri;
+  bool baseColorTextureEmbedded = false;  // the texture is inside the file (not kept)
+};
+
+// The length unit of the file's scene units. Geometry stays in the file's units; morphs and
+// exports scale by metresPerUnit where two characters meet.
+struct LengthUnit {
+  double metresPerUnit = 1.0;
+  std::string name = "metres";  // "centimetres", "inches", "units of 0.5 m" ...
+  bool declared = true;         // false: the format says nothing (OBJ), metres assumed
+};
+
 // What the importer did that the user should know about.
 struct ImportReport {
   std::vector<std::string> warnings;     // recoverable problems, one line each
@@ -85,6 +106,9 @@ struct Character {
   std::vector<Mesh> meshes;
   std::vector<Skin> skins;
   std::vector<AnimationClip> clips;
+  std::vector<Material> materials;
+  LengthUnit unit;      // glTF: metres
+  std::string format;   // "glTF", "FBX", "Collada", "OBJ"
   ImportReport report;
 
   size_t totalVertices() const;
