@@ -227,7 +227,7 @@ PartSearch bestParts(const RepairState& st, const std::vector<glm::vec3>& pts, c
 // or, where the node owns small bones merged into it (a tail whose first joint sits in the
 // body), each of those gets a segment on its own vertices again, bound to it. Returns the
 // action line, empty when the current segments stay.
-std::string replaceNode(RepairState& st, Standin& s, int node) {
+std::string replaceNode(RepairState& st, Standin& s, int node, bool unmerge) {
   std::vector<glm::vec3> pts;
   std::vector<int> bone;  // each vertex's dominant bone
   for (size_t i = 0; i < st.vertexNode.size(); ++i)
@@ -261,7 +261,7 @@ std::string replaceNode(RepairState& st, Standin& s, int node) {
   std::vector<int> merged;
   for (int b : bone)
     if (b != node && std::find(merged.begin(), merged.end(), b) == merged.end()) merged.push_back(b);
-  if (!merged.empty() && merged.size() + 1 <= room) {
+  if (unmerge && !merged.empty() && merged.size() + 1 <= room) {
     std::vector<std::pair<int, Part>> split;
     std::vector<glm::vec3> own;
     for (size_t i = 0; i < pts.size(); ++i)
@@ -408,6 +408,54 @@ std::vector<std::string> bridgePieces(RepairState& st, Standin& s, const FitRepo
   return actions;
 }
 
+
+// Re-places node's segments (with its merged bones given back their own segments, else without),
+// bridging any piece that falls apart; kept when the measurement says it is better than r.
+bool tryReplace(RepairState& st, Standin& s, FitReport& r, int node, std::vector<std::string>& repairs) {
+  for (bool unmerge : {true, false}) {
+    Standin trial = s;
+    const std::vector<char> savedBridge = st.bridge;
+    const std::string action = replaceNode(st, trial, node, unmerge);
+    if (action.empty()) continue;
+    FitReport m = measureFitQuality(st.c, trial, st.pose, st.projection, st.quality);
+    std::vector<std::string> done{action};
+    if (excessPieces(m) > excessPieces(r)) {
+      // The re-placed segments left a piece apart (a tail's): bridge it before judging.
+      const auto bridges = bridgePieces(st, trial, m);
+      if (!bridges.empty()) {
+        m = measureFitQuality(st.c, trial, st.pose, st.projection, st.quality);
+        done.insert(done.end(), bridges.begin(), bridges.end());
+      }
+    }
+    if (better(m, r)) {
+      s = std::move(trial);
+      r = std::move(m);
+      repairs.insert(repairs.end(), done.begin(), done.end());
+      return true;
+    }
+    st.bridge = savedBridge;
+  }
+  return false;
+}
+
+// Bridges r's detached pieces; kept when the measurement says it is better.
+bool tryBridge(RepairState& st, Standin& s, FitReport& r, std::vector<std::string>& repairs) {
+  if (excessPieces(r) == 0) return false;
+  Standin trial = s;
+  const std::vector<char> saved = st.bridge;
+  const auto actions = bridgePieces(st, trial, r);
+  if (actions.empty()) return false;
+  FitReport m = measureFitQuality(st.c, trial, st.pose, st.projection, st.quality);
+  if (!better(m, r)) {
+    st.bridge = saved;
+    return false;
+  }
+  s = std::move(trial);
+  r = std::move(m);
+  repairs.insert(repairs.end(), actions.begin(), actions.end());
+  return true;
+}
+
 }  // namespace
 
 FitReport repairStandinFit(const Character& c, const CharacterPose& pose, const std::vector<int>& vertexNode,
@@ -418,12 +466,13 @@ FitReport repairStandinFit(const Character& c, const CharacterPose& pose, const 
   RepairState st{c, pose, vertexNode, projection, quality, radiusPercentile, settings,
                  float(1e-3 * std::max(1e-12, first.diagonal)), std::vector<char>(s.segments.size(), 0)};
   // A bridge thinner than about a cell of the components check would not count as one.
-  if (quality.topologyResolution > 0) st.minRadius = std::max(st.minRadius, float(0.6 * first.diagonal / quality.topologyResolution));
+  if (quality.topologyResolution > 0)
+    st.minRadius = std::max(st.minRadius, float(0.6 * first.diagonal / quality.topologyResolution));
   FitReport r = first;
   std::vector<std::string> repairs;
   for (int round = 0; round < settings.maxRounds && r.poor; ++round) {
     bool progress = false;
-    // Bones with many far vertices: re-place their segments, one bone at a time, each kept if better.
+    // Bones with many far vertices, worst first: re-place their segments one bone at a time.
     std::vector<std::pair<double, int>> worst;
     for (size_t k = 0; k < r.perSegment.size() && k < s.segments.size(); ++k) {
       const SegmentFitError& e = r.perSegment[k];
@@ -435,37 +484,10 @@ FitReport repairStandinFit(const Character& c, const CharacterPose& pose, const 
     for (const auto& [score, node] : worst) {
       if (std::find(tried.begin(), tried.end(), node) != tried.end()) continue;
       tried.push_back(node);
-      Standin trial = s;
-      const std::vector<char> savedBridge = st.bridge;
-      const std::string action = replaceNode(st, trial, node);
-      if (action.empty()) continue;
-      FitReport m = measureFitQuality(c, trial, pose, projection, quality);
-      if (better(m, r)) {
-        s = std::move(trial);
-        r = std::move(m);
-        repairs.push_back(action);
-        progress = true;
-      } else {
-        st.bridge = savedBridge;
-      }
+      progress = tryReplace(st, s, r, node, repairs) || progress;
     }
     // Pieces: bridge them along the bone chain.
-    if (excessPieces(r) > 0) {
-      Standin trial = s;
-      const std::vector<char> saved = st.bridge;
-      const auto actions = bridgePieces(st, trial, r);
-      if (!actions.empty()) {
-        FitReport m = measureFitQuality(c, trial, pose, projection, quality);
-        if (better(m, r)) {
-          s = std::move(trial);
-          r = std::move(m);
-          repairs.insert(repairs.end(), actions.begin(), actions.end());
-          progress = true;
-        } else {
-          st.bridge = saved;
-        }
-      }
-    }
+    progress = tryBridge(st, s, r, repairs) || progress;
     if (!progress) break;
   }
   if (repairs.empty()) return first;
