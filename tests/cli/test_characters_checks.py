@@ -85,16 +85,18 @@ def mode_fit(cli, folder, formats):
 
 def mode_new(cli, folder, formats):
     entries = {e["file"]: e for e in load(folder, formats)}
-    ext = formats[0]
-    pairs = [("humanoid_m", "quadruped_m"), ("quadruped_m", "tentacle_m"), ("tentacle_m", "flag_m"),
-             ("flag_m", "humanoid_m"), ("humanoid_cm", "tentacle_cm"), ("quadruped_cm", "flag_cm"),
-             ("humanoid_scaledroot", "quadruped_stretched"), ("tentacle_scaledroot", "humanoid_m")]
+    # Same-unit pairs, and FBX (centimetres) with glTF or FBX in metres: the units are aligned without a flag.
+    pairs = [("humanoid_m.glb", "quadruped_m.glb"), ("quadruped_m.glb", "tentacle_m.glb"),
+             ("tentacle_m.glb", "flag_m.glb"), ("flag_m.glb", "humanoid_m.glb"), ("humanoid_cm.glb", "tentacle_cm.glb"),
+             ("quadruped_cm.glb", "flag_cm.glb"), ("humanoid_scaledroot.glb", "quadruped_stretched.glb"),
+             ("tentacle_scaledroot.glb", "humanoid_m.glb"), ("humanoid_m.fbx", "quadruped_m.glb"),
+             ("quadruped_cm.fbx", "tentacle_m.fbx"), ("tentacle_scaledroot.fbx", "flag_m.fbx")]
     done = 0
     with tempfile.TemporaryDirectory() as tmp:
-        for a, b in pairs:
-            fa, fb = f"{a}.{ext}", f"{b}.{ext}"
+        for fa, fb in pairs:
             if fa not in entries or fb not in entries:
                 continue
+            a, b = fa.replace(".", "_"), fb.replace(".", "_")
             proj = os.path.join(tmp, f"{a}_{b}.animorph")
             r = run(cli, "new", os.path.join(folder, fa), os.path.join(folder, fb), "-o", proj)
             if r.returncode != 0 or not os.path.isfile(proj):
