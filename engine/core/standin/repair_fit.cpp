@@ -153,10 +153,11 @@ int excessPieces(const FitReport& r) {
   return r.standinComponents < 0 ? 0 : std::max(0, r.standinComponents - std::max(1, r.meshComponents));
 }
 
-// Whether measurement m is better than r: fewer excess pieces first, then fewer far vertices or a
-// smaller mean.
+// Whether measurement m is better than r: fewer excess pieces first; then, with no more vertices
+// the projection fails on, fewer far vertices or a smaller mean.
 bool better(const FitReport& m, const FitReport& r) {
   if (excessPieces(m) != excessPieces(r)) return excessPieces(m) < excessPieces(r);
+  if (m.projection.failures > r.projection.failures) return false;
   if (m.farShare < r.farShare - 1e-3) return true;
   return m.farShare <= r.farShare + 1e-3 && m.meanDistance < 0.97 * r.meanDistance;
 }
