@@ -469,6 +469,7 @@ FitReport repairStandinFit(const Character& c, const CharacterPose& pose, const 
   // A bridge thinner than about a cell of the components check would not count as one.
   if (quality.topologyResolution > 0)
     st.minRadius = std::max(st.minRadius, float(0.6 * first.diagonal / quality.topologyResolution));
+  const Standin original = s;
   FitReport r = first;
   std::vector<std::string> repairs;
   for (int round = 0; round < settings.maxRounds && r.poor; ++round) {
@@ -492,6 +493,15 @@ FitReport repairStandinFit(const Character& c, const CharacterPose& pose, const 
     if (!progress) break;
   }
   if (repairs.empty()) return first;
+  if (r.poor) {
+    // Not repairable: the first fit stays, as it was measured; the note says what was tried.
+    s = original;
+    FitReport out = first;
+    std::string tried;
+    for (const auto& a : repairs) tried += (tried.empty() ? "" : "; ") + a;
+    out.notes.push_back("automatic repair tried (" + tried + ") but the fit stays poor; the first fit is kept");
+    return out;
+  }
   r.repairs = std::move(repairs);
   r.beforeRepair = fitFigures(first);
   return r;
