@@ -3,7 +3,7 @@
 
   info       info and info --json on an FBX (format, unit, joints, clip), a Collada and an OBJ of
              assimp-testmodels; a truncated FBX fails (exit 1) naming the path as given
-  units      new with a centimetre character (Collada) as source and a metre one (glTF) as target,
+  units      new with a centimetre character (FBX) as source and a metre one (glTF) as target,
              without any flag: the factor 100 is printed and saved as the target's scale; the
              same two glTF files whose sizes differ 100x with no unit to explain it are refused
              unless --allow-rescale
@@ -71,14 +71,14 @@ def mode_info(cli, _chars):
 
 
 def mode_units(cli, chars):
-    cm_dae = os.path.join(chars, "humanoid_cm.dae")
+    cm_fbx = os.path.join(chars, "humanoid_cm.fbx")
     m_glb = os.path.join(chars, "humanoid_m.glb")
     cm_numbers_glb = os.path.join(chars, "humanoid_cm.glb")  # glTF says metres; Blender wrote centimetre numbers
-    need(cm_dae, m_glb, cm_numbers_glb)
+    need(cm_fbx, m_glb, cm_numbers_glb)
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "units.animorph")
         # The stand-in fits are another matter (docs/morph.md): accepted here, the units are what is checked.
-        r = run(cli, "new", cm_dae, m_glb, "-o", out, "--accept-poor-fit")
+        r = run(cli, "new", cm_fbx, m_glb, "-o", out, "--accept-poor-fit")
         check(r.returncode == 0, f"new centimetres -> metres succeeds without --allow-rescale: {r.stderr.strip()}")
         check("target in metres, scaled by 100 to the source's centimetres" in r.stdout,
               f"new says what it did with the units:\n{r.stdout}")

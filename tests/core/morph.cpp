@@ -327,6 +327,21 @@ TEST_CASE("morph: user-controlled segment tracks change the morph", "[morph]") {
   for (const auto& s : keyed.segments) CHECK(s.weightScale == 0.0f);
   const MorphOperand plain = posedOperand((*rt)->source, mid, -1.0);
   for (const auto& s : plain.segments) CHECK(s.weightScale == 1.0f);
+  // The weights reach the field: the mid-morph frame, with the creature's side gone, encloses much
+  // less than the same frame without the tracks.
+  auto untracked = prepareMorph(test::demoMorph().project, test::demoMorph().dir, assets);
+  REQUIRE(untracked.ok());
+  MorphFrameSettings fs;
+  fs.resolution = 32;
+  auto keyedFrame = evaluateMorphFrame(**rt, mid, fs);
+  auto plainFrame = evaluateMorphFrame(**untracked, mid, fs);
+  REQUIRE(keyedFrame.ok());
+  REQUIRE(plainFrame.ok());
+  REQUIRE(keyedFrame->stage == MorphStage::Morph);
+  const double keyedVolume = meshVolume(keyedFrame->mesh), plainVolume = meshVolume(plainFrame->mesh);
+  INFO("mid-morph volume with the tracks " << keyedVolume << ", without " << plainVolume);
+  CHECK(plainVolume > 0.0);
+  CHECK(keyedVolume < 0.5 * plainVolume);
 }
 
 TEST_CASE("prepareMorph keeps the bindings of actors an edit did not touch", "[morph]") {

@@ -1,6 +1,6 @@
 """Opening a character frames it, as F does, whatever its units, size and place: `animorph FILE`
 with an FBX thousands of units tall (assimp-testmodels' animation_with_skeleton.fbx, 7,000 cm
-across), a Collada in centimetres and a glTF 1,800 units tall standing 36 km from the origin
+across), a Blender FBX in centimetres and a glTF 1,800 units tall standing 36 km from the origin
 (a Blender glTF of the test characters under a root scaled 1000x and moved away). For each, the
 character's pixels -- the screenshot against the same view with the actor deleted -- touch no
 border of the viewport and cover at least 3 % of it, with a bounding box at least 30 % of the
@@ -26,8 +26,8 @@ characters = sys.argv[3] if len(sys.argv) > 3 else \
 models = "/usr/share/assimp/models"
 fbx = os.path.join(models, "FBX", "animation_with_skeleton.fbx")
 humanoid_glb = os.path.join(characters, "humanoid_m.glb")
-humanoid_dae = os.path.join(characters, "humanoid_cm.dae")
-for needed in (fbx, humanoid_glb, humanoid_dae):
+humanoid_cm = os.path.join(characters, "humanoid_cm.fbx")
+for needed in (fbx, humanoid_glb, humanoid_cm):
     if not os.path.exists(needed):
         print(f"SKIP: {needed} is missing (assimp-testmodels, or the test characters made with Blender)")
         sys.exit(77)
@@ -106,7 +106,7 @@ def check_framed(path, label, clip_seconds=None):
 
 far = far_and_tall(humanoid_glb, os.path.join(work, "far_giant.glb"), 1000.0, [30000.0, 2000.0, -20000.0])
 check_framed(fbx, "fbx_7000_units", clip_seconds=20 / 24)
-check_framed(shutil.copy(humanoid_dae, os.path.join(work, "humanoid_cm.dae")), "collada_centimetres")
+check_framed(shutil.copy(humanoid_cm, os.path.join(work, "humanoid_cm.fbx")), "fbx_centimetres", clip_seconds=39 / 24)
 check_framed(far, "glb_far_and_tall")
 shutil.rmtree(work, ignore_errors=True)
 print("open framed: all checks passed")
