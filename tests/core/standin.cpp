@@ -177,9 +177,12 @@ TEST_CASE("fit: a skin-less glTF is a rigid one-bone actor, an animation-less on
   REQUIRE(imported->skins.empty());
   auto fit = fitStandin(*imported);
   REQUIRE(fit.ok());
-  REQUIRE(fit->standin.segments.size() == 1);
+  // One segment along the vertices' principal axis; the repair of a poor first fit may re-place
+  // it as several side by side, all on the mesh's node.
+  REQUIRE(!fit->standin.segments.empty());
+  CHECK((fit->standin.segments.size() == 1 || !fit->report.repairs.empty()));
   const int meshNode = imported->meshNodes().at(0);
-  CHECK(fit->standin.segments[0].node == meshNode);
+  for (const auto& seg : fit->standin.segments) CHECK(seg.node == meshNode);
   CHECK(fit->report.notes.size() == 1);
   CHECK(fit->report.projection.failures == 0);
 }
