@@ -115,7 +115,7 @@ TEST_CASE("mesh checker: a fin on an edge makes it non-manifold (three triangles
   CHECK(w.boundaryOrNonManifoldEdges == 3);
 }
 
-TEST_CASE("mesh checker: one flipped face is misoriented on its three edges; all flipped is inside out",
+TEST_CASE("mesh checker: one flipped face is misoriented on its three edges, all flipped is inside out",
           "[mesh_checks]") {
   TriangleMesh flipped = tetrahedron();
   std::swap(flipped.indices[1], flipped.indices[2]);

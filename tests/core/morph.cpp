@@ -201,7 +201,9 @@ TEST_CASE("morph: creature -> gear, every stage's mesh has the right topology", 
     CHECK(fr.actorId == "gear");
     CHECK(weldedGenus(fr.mesh) == 5);
   }
-  for (int f : {(mk.a + mk.b) / 2, (mk.c + mk.d) / 2}) {
+  // The core grows over the last half of the collapse and melts over the first half of the
+  // expansion (kStandinCoreSpan): three quarters into the collapse, a quarter into the expansion.
+  for (int f : {mk.a + 3 * (mk.b - mk.a) / 4, mk.c + (mk.d - mk.c) / 4}) {
     const MorphFrame fr = frameAt(f);
     CHECK((fr.stage == MorphStage::Collapse || fr.stage == MorphStage::Expand));
     // The character's mesh, then its stand-in core (scene/standin_core.h) as a second shell.
