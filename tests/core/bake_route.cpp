@@ -131,6 +131,16 @@ TEST_CASE("bake route: a failing or cancelled bake leaves nothing at the outputs
   CHECK(progress.done() >= 3.0);  // the collapse frames before B were baked
   CHECK(filesUnder(tmp.path()).empty());
 
+  // Every frame baked, then the .glb's place is taken by a folder: named, and no frame file renamed
+  // into place either.
+  BakeSettings blocked = everyOutput(tmp.path(), 40, 42, 16);
+  fs::create_directories(blocked.outputs.gltf);
+  auto refused = bakeProject(walkerToFlyerFrames(), blocked, progress);
+  REQUIRE_FALSE(refused.ok());
+  CHECK(refused.error() == blocked.outputs.gltf + ": is a folder, cannot put the finished file there");
+  CHECK(filesUnder(tmp.path()).empty());
+  fs::remove_all(blocked.outputs.gltf);
+
   // Cancelled once two frames are done, frames baked two at a time.
   BakeSettings c = everyOutput(tmp.path(), 30, 200, 20);
   c.jobs = 2;
