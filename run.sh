@@ -17,17 +17,20 @@ ROOT=$PWD
 # ffmpeg: animorph-cli bake --mp4 encodes the playblast with it (and the test reads it with ffprobe).
 # libopenvdb-dev: the .vdb level sets (engine/core/io/vdb_export.cpp); its headers include Boost's
 # (libboost-dev), which it does not depend on.
+# libassimp-dev: FBX, Collada and OBJ characters (engine/core/io/assimp_import.cpp).
 BUILD_PACKAGES=(build-essential cmake ninja-build pkg-config
   libimgui-dev libglfw3-dev libglm-dev libvulkan-dev mesa-vulkan-drivers
   glslang-tools libtinygltf-dev nlohmann-json3-dev libstb-dev libtbb-dev
-  libx11-dev libxext-dev libxrandr-dev ffmpeg libopenvdb-dev libboost-dev)
+  libx11-dev libxext-dev libxrandr-dev ffmpeg libopenvdb-dev libboost-dev libassimp-dev)
 # nodejs, npm: the Khronos glTF-Validator (an npm package) checks the glTF files we write;
 # blender (with python3-numpy, which its glTF importer needs) imports them in the export test.
 # slurm-wlm (slurmctld, slurmd, the client commands) and munge: the farm test starts a one-node
 # Slurm cluster on localhost and bakes the demo on it (animorph-cli farm slurm).
 # libopenvdb-tools: vdb_print reads the .vdb files back in the export test.
+# assimp-utils: the `assimp` command writes the reference (pre-transformed) meshes the FBX /
+# Collada import tests compare against.
 TEST_PACKAGES=(catch2 vulkan-validationlayers xvfb xauth xdotool imagemagick
-  assimp-testmodels python3 nodejs blender python3-numpy slurm-wlm munge libopenvdb-tools)
+  assimp-testmodels assimp-utils python3 nodejs blender python3-numpy slurm-wlm munge libopenvdb-tools)
 # clang and its runtimes (libFuzzer, ASan, UBSan: libclang-rt-dev) build the fuzz targets
 # (tests/fuzz), which ./run.sh test runs too.
 FUZZ_PACKAGES=(clang libclang-rt-dev)

@@ -17,8 +17,12 @@ layout(location = 1) out vec3 outWorldNormal;
 void main() {
   vec4 wp;
   vec3 wn;
-  amTransitionVertex(inPosition, inNormal, inJoints0, inWeights0, inJoints1, inWeights1, inStandinOffset,
-                     inStandinNormal.xyz, wp, wn);
+  // Blend shapes: the morphed vertex at alpha = 0; the binding's offset is from
+  // the unmorphed one, so alpha = 1 still lands on the stand-in (morph/transition.cpp).
+  vec3 p = inPosition, n = inNormal;
+  amMorphVertex(uint(gl_VertexIndex), p, n);
+  vec4 dpm = vec4(inStandinOffset.xyz - (p - inPosition), inStandinOffset.w);
+  amTransitionVertex(p, n, inJoints0, inWeights0, inJoints1, inWeights1, dpm, inStandinNormal.xyz, wp, wn);
   outWorldPos = wp.xyz;
   outWorldNormal = wn;
   gl_Position = frame.viewProj * wp;

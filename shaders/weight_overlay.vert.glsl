@@ -12,10 +12,12 @@ layout(location = 1) out vec3 outWorldNormal;
 layout(location = 2) out float outPaintWeight;
 
 void main() {
+  vec3 p = inPosition, n = inNormal;
+  amMorphVertex(uint(gl_VertexIndex), p, n);
   mat4 world = pc.model * amSkinMatrix(inJoints0, inWeights0, inJoints1, inWeights1);
-  vec4 wp = world * vec4(inPosition, 1.0);
+  vec4 wp = world * vec4(p, 1.0);
   outWorldPos = wp.xyz;
-  outWorldNormal = transpose(inverse(mat3(world))) * inNormal;
+  outWorldNormal = transpose(inverse(mat3(world))) * n;
   outPaintWeight = inPaintWeight;
   gl_Position = frame.viewProj * wp;
 }

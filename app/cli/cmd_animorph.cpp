@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <cstdio>
 
+#include "core/animorphosis/tree_index.h"
 #include "core/blobtree/blob_tree_json.h"
 #include "core/blobtree/tree_edit.h"
 #include "app/cli/cli_command.h"
@@ -84,9 +85,20 @@ int runAnimorph(const std::vector<std::string>& args) {
   if (!cmd) return cli::fail("animorph", cmd.error());
   (*cmd)->apply(p);
   if (auto st = saveProject(p, output); !st) return cli::fail("animorph", st.error());
-  std::printf("wrote %s: %s -> %s over frames %g..%g at %g fps, %zu links%s\n", output.c_str(), inputs[0].c_str(),
-              inputs[1].c_str(), startFrame, endFrame, p.timeline.fps, p.animorphosis.graph.links.size(),
-              autoMap ? " (automatic)" : "");
+  const CorrespondenceGraph& g = p.animorphosis.graph;
+  std::printf("wrote %s: %s -> %s over frames %g..%g at %g fps, %zu links%s", output.c_str(), inputs[0].c_str(),
+              inputs[1].c_str(), startFrame, endFrame, p.timeline.fps, g.links.size(), autoMap ? " (automatic)" : "");
+  if (autoMap) std::printf(", %zu suggestions (not applied)", g.suggestions.size());
+  std::printf("\n");
+  const BlobTree& ta = p.actors[0].blobTree;
+  const BlobTree& tb = p.actors[1].blobTree;
+  auto name = [](const BlobTree& t, int id) {
+    const BlobNode* n = t.find(id);
+    return n ? nameOfNode(*n) : "node " + std::to_string(id);
+  };
+  for (const CorrespondenceLink& l : g.suggestions)
+    std::printf("  suggestion: %s -> %s, confidence %.2f\n", name(ta, l.nodeA).c_str(), name(tb, l.nodeB).c_str(),
+                double(l.confidence));
   return 0;
 }
 

@@ -144,9 +144,12 @@ int runCorrespond(const std::vector<std::string>& args) {
   auto c = projectGenericTree(*p);
   if (asJson) {
     nlohmann::json j = correspondenceToJson(m.graph);
-    for (auto& l : j["links"]) {
-      l["a_name"] = nodeName(a, l["a"].get<int>());
-      l["b_name"] = nodeName(b, l["b"].get<int>());
+    for (const char* list : {"links", "suggestions"}) {
+      if (!j.contains(list)) continue;
+      for (auto& l : j[list]) {
+        l["a_name"] = nodeName(a, l["a"].get<int>());
+        l["b_name"] = nodeName(b, l["b"].get<int>());
+      }
     }
     j["source"] = m.sourceActorId;
     j["target"] = m.targetActorId;
@@ -163,6 +166,13 @@ int runCorrespond(const std::vector<std::string>& args) {
   for (const auto& l : m.graph.links)
     std::printf("  %-32s -> %-32s confidence %.2f  %s%s\n", nodeName(a, l.nodeA).c_str(), nodeName(b, l.nodeB).c_str(),
                 double(l.confidence), l.artist ? "artist" : "automatic", l.sOverride ? "  s override" : "");
+  if (!m.graph.suggestions.empty())
+    std::printf("%zu suggestions (below the confidence threshold, not applied; accept them in the correspondence "
+                "editor):\n",
+                m.graph.suggestions.size());
+  for (const auto& l : m.graph.suggestions)
+    std::printf("  %-32s -> %-32s confidence %.2f  suggestion\n", nodeName(a, l.nodeA).c_str(),
+                nodeName(b, l.nodeB).c_str(), double(l.confidence));
   if (!c) return cli::fail("correspond", path + ": " + c.error());
   std::printf("generic tree: %zu nodes, %d split copies, %d null partners\n", c->size(), c->splitCopies,
               c->nullPartners);

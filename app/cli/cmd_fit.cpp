@@ -1,4 +1,4 @@
-// animorph-cli fit CHARACTER.glb -o STANDIN.json: fits a stand-in and prints the fit error.
+// animorph-cli fit CHARACTER -o STANDIN.json: fits a stand-in and prints the fit error.
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -7,7 +7,7 @@
 
 #include "app/cli/cli_command.h"
 #include "core/util/atomic_file.h"
-#include "core/io/gltf_import.h"
+#include "core/io/character_import.h"
 #include "core/standin/fit_standin.h"
 #include "core/standin/standin_json.h"
 
@@ -22,6 +22,13 @@ json segmentsJson(const FitReport& r) {
     a.push_back({{"bone", e.bone}, {"radius", e.radius}, {"vertices", e.vertices}, {"mean_distance", e.meanDistance},
                  {"max_distance", e.maxDistance}, {"far_share", e.farShare}});
   return a;
+}
+
+json figuresJson(const FitFigures& f) {
+  return {{"segments", f.segments},           {"mean_distance", f.meanDistance},
+          {"max_distance", f.maxDistance},     {"far_share", f.farShare},
+          {"standin_components", f.standinComponents}, {"mesh_components", f.meshComponents},
+          {"largest_gap", f.largestGap},       {"poor", f.poor}};
 }
 
 json reportJson(const FitReport& r) {
@@ -48,7 +55,9 @@ json reportJson(const FitReport& r) {
           {"poor", r.poor},
           {"problems", r.problems},
           {"poor_bones", r.poorBones},
-          {"segments_fit", segmentsJson(r)}};
+          {"segments_fit", segmentsJson(r)},
+          {"repairs", r.repairs},
+          {"before_repair", r.repairs.empty() ? json(nullptr) : figuresJson(r.beforeRepair)}};
 }
 
 int runFit(const std::vector<std::string>& args) {
@@ -85,6 +94,9 @@ int runFit(const std::vector<std::string>& args) {
     } else if (a == "--previous") {
       fs.bridgeHelpers = false;
       fs.mergeSmallBones = false;
+      fs.repair.enabled = false;
+    } else if (a == "--no-repair") {
+      fs.repair.enabled = false;
     } else if (a == "--json") {
       asJson = true;
     } else if (!a.empty() && a[0] == '-') {
@@ -95,8 +107,8 @@ int runFit(const std::vector<std::string>& args) {
       return cli::fail("fit", "only one CHARACTER is accepted", 2);
     }
   }
-  if (input.empty() || output.empty()) return cli::fail("fit", "usage: fit CHARACTER.glb -o STANDIN.json (see --help)", 2);
-  auto c = importGltf(input);
+  if (input.empty() || output.empty()) return cli::fail("fit", "usage: fit CHARACTER -o STANDIN.json (see --help)", 2);
+  auto c = importCharacter(input);
   if (!c) return cli::fail("fit", c.error());
   auto fit = fitStandin(*c, fs);
   if (!fit) return cli::fail("fit", fit.error());
@@ -120,6 +132,7 @@ int runFit(const std::vector<std::string>& args) {
   for (const auto& e : r.perSegment)
     std::printf("    %-24s r %-9.4g %6zu  %-9.4g %-9.4g %5.1f %%\n", e.bone.c_str(), double(e.radius), e.vertices,
                 e.meanDistance, e.maxDistance, 100.0 * e.farShare);
+  if (!r.repairs.empty()) std::printf("  %s\n", repairSummary(r).c_str());
   for (const auto& p : r.problems) std::printf("  POOR FIT: %s\n", p.c_str());
   std::printf("  projection: %zu vertices, %zu fallbacks, %zu failures; %.0f ms\n", r.projection.points,
               r.projection.fallbacks, r.projection.failures, r.milliseconds);
@@ -130,9 +143,9 @@ int runFit(const std::vector<std::string>& args) {
 
 }  // namespace
 
-ANIMORPH_CLI_COMMAND("fit", "fit a stand-in to a glTF character and print the fit error",
-                     "usage: animorph-cli fit CHARACTER.glb -o STANDIN.json [--kind K] [--percentile P]\n"
-                     "                        [--clip N --time T] [--previous] [--json]\n"
+ANIMORPH_CLI_COMMAND("fit", "fit a stand-in to a character (glTF, FBX, Collada, OBJ) and print the fit error",
+                     "usage: animorph-cli fit CHARACTER -o STANDIN.json [--kind K] [--percentile P]\n"
+                     "                        [--clip N --time T] [--no-repair] [--previous] [--json]\n"
                      "  Fits one segment per bone in world units (every node transform applied): joint ->\n"
                      "  child joint, through helper bones without vertices to the next joint with some;\n"
                      "  small bones inside their parent's body (face, finger tips) are merged into its\n"
@@ -140,8 +153,13 @@ ANIMORPH_CLI_COMMAND("fit", "fit a stand-in to a glTF character and print the fi
                      "  (default 0.65) of the distances of the vertices the segment fits.\n"
                      "  --kind convolution (default) | capsule_union | capsule_blend\n"
                      "  --clip N --time T  fit the pose at T seconds of clip N (default: rest pose)\n"
-                     "  --previous  the fitter without helper-bone bridging and small-bone merging (for\n"
-                     "            comparison): segments run to child joints even when these have no vertices\n"
+                     "  A poor first fit is repaired where it can be: a bone whose vertices lie far from\n"
+                     "  its segments gets them re-placed on those vertices (side by side across a wide\n"
+                     "  body), a stand-in in more pieces than the mesh gets its pieces bridged along the\n"
+                     "  bone chain; a 'repaired' line gives the figures before and after.\n"
+                     "  --no-repair  keep the first fit as it is\n"
+                     "  --previous  the fitter without helper-bone bridging, small-bone merging and repair\n"
+                     "            (for comparison): segments run to child joints even when these have no vertices\n"
                      "  Prints the fit in scene units and % of the bounding-box diagonal (mean and max\n"
                      "  vertex distance to the stand-in surface, share of vertices farther than 5 %,\n"
                      "  connected pieces of the polygonised stand-in against the mesh's), per segment,\n"

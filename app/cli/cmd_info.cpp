@@ -1,4 +1,6 @@
-// animorph-cli info FILE [--json]: summary of a glTF character or a project.
+// animorph-cli info FILE [--json]: summary of a character (glTF, FBX, Collada, OBJ) or a project.
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -9,7 +11,7 @@
 #include "core/blobtree/tree_edit.h"
 #include "app/cli/cli_command.h"
 #include "core/project/project_io.h"
-#include "core/io/gltf_import.h"
+#include "core/io/character_import.h"
 #include "core/standin/character_pose.h"
 
 namespace {
@@ -28,7 +30,11 @@ json characterJson(const std::string& path, const animorph::Character& c) {
   const animorph::Bounds b = animorph::poseBounds(c);
   json j;
   j["file"] = path;
-  j["format"] = "gltf";
+  std::string format = c.format.empty() ? "glTF" : c.format;
+  std::transform(format.begin(), format.end(), format.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
+  j["format"] = format;
+  j["unit"] = {{"name", c.unit.name}, {"metres_per_unit", c.unit.metresPerUnit}, {"declared", c.unit.declared}};
+  j["materials"] = c.materials.size();
   j["vertices"] = c.totalVertices();
   j["triangles"] = c.totalTriangles();
   j["joints"] = c.totalJoints();
@@ -50,12 +56,13 @@ json characterJson(const std::string& path, const animorph::Character& c) {
 }
 
 void printCharacter(const std::string& path, const animorph::Character& c) {
-  std::printf("%s: glTF character\n", path.c_str());
+  std::printf("%s: %s character, in %s (%.4g m per unit)\n", path.c_str(), c.format.empty() ? "glTF" : c.format.c_str(),
+              c.unit.name.c_str(), c.unit.metresPerUnit);
   std::printf("  %zu meshes, %zu vertices, %zu triangles\n", c.meshes.size(), c.totalVertices(), c.totalTriangles());
   std::printf("  %zu nodes, %zu skins, %zu joints\n", c.nodes.size(), c.skins.size(), c.totalJoints());
   const animorph::Bounds b = animorph::poseBounds(c);
   if (!b.empty())
-    std::printf("  bounds (%.4g, %.4g, %.4g) .. (%.4g, %.4g, %.4g), height %.4g (scene units, m in glTF; rest pose with "
+    std::printf("  bounds (%.4g, %.4g, %.4g) .. (%.4g, %.4g, %.4g), height %.4g (the file's units; rest pose with "
                 "every node transform)\n",
                 b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z, b.max.y - b.min.y);
   std::printf("  %zu animations\n", c.clips.size());
@@ -93,7 +100,7 @@ int infoProject(const std::string& path, bool asJson) {
       continue;
     }
     const std::string resolved = (dir / a.assetPath).lexically_normal().string();
-    auto c = animorph::importGltf(resolved);
+    auto c = animorph::importCharacter(resolved);
     json ja = {{"id", a.id}, {"name", a.name}, {"asset", a.assetPath}, {"loads", c.ok()}, {"clip", a.clip}};
     if (!c) ja["error"] = c.error();
     else {
@@ -160,7 +167,7 @@ int runInfo(const std::vector<std::string>& args) {
   }
   if (file.empty()) return animorph::cli::fail("info", "missing FILE (see animorph-cli info --help)", 2);
   if (fs::path(file).extension() == ".animorph") return infoProject(file, asJson);
-  auto c = animorph::importGltf(file);
+  auto c = animorph::importCharacter(file);
   if (!c) return animorph::cli::fail("info", c.error());
   if (asJson) std::cout << characterJson(file, *c).dump(2) << "\n";
   else printCharacter(file, *c);
@@ -169,9 +176,10 @@ int runInfo(const std::vector<std::string>& args) {
 
 }  // namespace
 
-ANIMORPH_CLI_COMMAND("info", "summary of a glTF character or an .animorph project",
+ANIMORPH_CLI_COMMAND("info", "summary of a character (glTF, FBX, Collada, OBJ) or an .animorph project",
                      "usage: animorph-cli info FILE [--json]\n"
-                     "  FILE.gltf / FILE.glb: meshes, vertices, triangles, skins, joints, animation clips\n"
+                     "  FILE.gltf / .glb / .fbx / .dae / .obj: the format and length unit, meshes,\n"
+                     "  vertices, triangles, skins, joints, animation clips\n"
                      "  with their durations, the bounds of the skinned rest pose in scene units (every\n"
                      "  node transform applied), and the import report (warnings, unsupported features,\n"
                      "  normalised weights).\n"

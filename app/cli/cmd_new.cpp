@@ -10,7 +10,7 @@
 #include "app/cli/morph_method_option.h"
 #include "core/doc/morph_create.h"
 #include "core/project/project_io.h"
-#include "core/io/gltf_import.h"
+#include "core/io/character_import.h"
 #include "core/project/new_morph_project.h"
 
 namespace {
@@ -27,10 +27,8 @@ std::string relativeTo(const std::string& path, const fs::path& projectDir) {
   return rel.generic_string();
 }
 
-bool isGltf(const std::string& path) {
-  const std::string ext = fs::path(path).extension().string();
-  return ext == ".glb" || ext == ".gltf";
-}
+// A character file (glTF, FBX, Collada, OBJ) rather than a BlobTree scene or a project's actor.
+bool isCharacter(const std::string& path) { return isCharacterPath(path); }
 
 // One side given on the command line: GLB/glTF, a BlobTree scene (.json) or
 // PROJECT.animorph:ACTOR. The actor (glTF paths relative to projectDir) and,
@@ -62,7 +60,7 @@ Result<Side> readSide(const std::string& arg, const fs::path& projectDir) {
   out.actor.id = fs::path(arg).stem().string();
   if (out.actor.id.empty()) out.actor.id = "actor";
   out.actor.name = out.actor.id;
-  if (isGltf(arg)) {
+  if (isCharacter(arg)) {
     out.actor.assetPath = relativeTo(arg, projectDir);
     return out;
   }
@@ -144,13 +142,13 @@ int runNew(const std::vector<std::string>& args) {
   if (inputs.size() != 2 || output.empty())
     return cli::fail("new", "usage: new SOURCE TARGET -o PROJECT.animorph (see --help)", 2);
   // Skeleton correspondence is the default when both sides have rigs (two glTF characters).
-  const bool rigs = isGltf(inputs[0]) && isGltf(inputs[1]);
+  const bool rigs = isCharacter(inputs[0]) && isCharacter(inputs[1]);
   if (!methods.method) methods.method = rigs ? MorphMethod::SkeletonCorrespondence : MorphMethod::Interpolation;
   s.method = *methods.method;
   if (!rigs) return newAnySides(inputs, output, s, methods);
-  auto src = importGltf(inputs[0]);
+  auto src = importCharacter(inputs[0]);
   if (!src) return cli::fail("new", src.error());
-  auto dst = importGltf(inputs[1]);
+  auto dst = importCharacter(inputs[1]);
   if (!dst) return cli::fail("new", dst.error());
   std::error_code ec;
   const fs::path dir = fs::absolute(fs::path(output), ec).parent_path();
@@ -174,15 +172,17 @@ int runNew(const std::vector<std::string>& args) {
 ANIMORPH_CLI_COMMAND("new", "a morph project from two characters or BlobTrees (automatic stand-ins, default timeline)",
                      "usage: animorph-cli new SOURCE TARGET -o PROJECT.animorph [--method M]\n"
                      "                        [--correspondence-blend B] [--allow-rescale] [--accept-poor-fit]\n"
-                     "  SOURCE, TARGET: a glTF character (.glb, .gltf), a BlobTree scene (.json) or\n"
+                     "  SOURCE, TARGET: a character (.glb, .gltf, .fbx, .dae, .obj), a BlobTree scene (.json) or\n"
                      "  PROJECT.animorph:ACTOR (an actor of another project, with its stand-in).\n"
                      "  A BlobTree side is its own stand-in: no collapse (A = B) or expansion (C = D).\n"
                      "  Writes a complete project: both characters as actors (asset paths relative to\n"
                      "  the project), a stand-in fitted to each, the markers A = 1 s, B = 2 s,\n"
                      "  C = 3.5 s, D = 4.5 s and a timeline of 6 s at 24 fps. When the characters\n"
                      "  differ a lot in size or position, the target is scaled and moved onto the\n"
-                     "  source's bounding box and the scale factor applied is printed; a factor over\n"
-                     "  10x (files in different units?) is refused unless --allow-rescale is given.\n"
+                     "  source's bounding box and the scale factor applied is printed; files in\n"
+                     "  different length units are scaled by their units first (said on a line), and\n"
+                     "  a further factor over 10x that no unit explains is refused unless\n"
+                     "  --allow-rescale is given.\n"
                      "  Each stand-in's fit is printed in scene units and % of the diagonal; a poor fit\n"
                      "  (stand-in in more pieces than the mesh, over 10 % of the vertices farther than\n"
                      "  5 % of the diagonal, or a mean over 4 %) is refused, naming the bones, unless\n"

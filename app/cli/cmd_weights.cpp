@@ -5,7 +5,7 @@
 
 #include "app/cli/cli_command.h"
 #include "core/project/project_io.h"
-#include "core/io/gltf_import.h"
+#include "core/io/character_import.h"
 #include "core/paint/weights_from_colors.h"
 
 namespace {
@@ -54,13 +54,13 @@ int runWeights(const std::vector<std::string>& args) {
     return (q.is_absolute() ? q : base / q).lexically_normal().string();
   };
   const std::string actorAsset = resolve(actor->assetPath);
-  auto own = importGltf(actorAsset);
+  auto own = importCharacter(actorAsset);
   if (!own) return cli::fail("weights", own.error());
   Character colours;
   if (gltf.empty()) {
     colours = std::move(*own);
   } else {
-    auto other = importGltf(gltf);
+    auto other = importCharacter(gltf);
     if (!other) return cli::fail("weights", other.error());
     if (other->totalVertices() != own->totalVertices())
       return cli::fail("weights", fs::path(gltf).filename().string() + ": " + std::to_string(other->totalVertices()) +

@@ -9,8 +9,9 @@ namespace {
 
 void usage() {
   std::printf(
-      "usage: animorph [PROJECT.animorph | CHARACTER.glb] [options]\n"
-      "  a .gltf/.glb file opens as a new untitled project with that character imported\n"
+      "usage: animorph [PROJECT.animorph | CHARACTER] [options]\n"
+      "  a character (.gltf, .glb, .fbx, .dae, .obj) opens as a new untitled project with it\n"
+      "  imported and framed\n"
       "  --screenshot FILE.png  render the whole editor window to FILE.png\n"
       "  --frame N              go to frame N first\n"
       "  --quit                 exit after the screenshot\n"

@@ -35,7 +35,8 @@ Result<std::unique_ptr<EditorGpu>> createEditorGpu(GLFWwindow* window, const gpu
 
 Result<std::string> recoverLostDevice(GLFWwindow* window, const gpu::SwapchainSettings& settings, Document& doc,
                                       double nowSec, std::unique_ptr<EditorGpu>& gpuSide) {
-  const bool autosaved = doc.autosaveIfDue(nowSec, 0.0);
+  // Written now, or by the periodic autosave since the last edit: either way the work is safe.
+  const bool autosaved = doc.autosaveIfDue(nowSec, 0.0) || doc.autosaveIsCurrent();
   std::fprintf(stderr, "animorph: the GPU device was lost; recreating the renderer%s\n",
                autosaved ? (" (work autosaved to " + doc.autosavePath() + ")").c_str() : "");
   gpuSide.reset();

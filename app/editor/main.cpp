@@ -2,7 +2,7 @@
 // (editor_gpu), the editor UI over the document, the viewport's frame (viewport_frame), the test
 // and bench switches (editor_automation), joined in one frame loop that draws on demand.
 //
-//   animorph [PROJECT | CHARACTER.glb] [--screenshot FILE.png --frame N --quit] [--size WxH] [--bench FRAMES]
+//   animorph [PROJECT | CHARACTER] [--screenshot FILE.png --frame N --quit] [--size WxH] [--bench FRAMES]
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 

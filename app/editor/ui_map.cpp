@@ -11,6 +11,9 @@ void writeUiMap(const std::string& path, const WidgetRects& rects, const EditorO
   j["project"] = doc.path();
   j["selected"] = doc.selection.actorId;
   j["current_frame"] = doc.project().timeline.currentFrame;
+  j["frame_start"] = doc.project().timeline.frameStart;
+  j["frame_end"] = doc.project().timeline.frameEnd;
+  j["fps"] = doc.project().timeline.fps;
   j["dirty"] = doc.dirty();
   j["viewport"] = {out.viewport.min.x, out.viewport.min.y, out.viewport.size.x, out.viewport.size.y};
   nlohmann::json w = nlohmann::json::object();

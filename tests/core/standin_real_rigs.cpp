@@ -46,6 +46,7 @@ FitSettings previousFitter() {
   FitSettings fs;
   fs.bridgeHelpers = false;
   fs.mergeSmallBones = false;
+  fs.repair.enabled = false;
   return fs;
 }
 

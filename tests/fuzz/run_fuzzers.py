@@ -20,7 +20,7 @@ import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-TARGETS = ["fuzz_gltf_json", "fuzz_gltf_glb", "fuzz_project", "fuzz_blobtree_scene"]
+TARGETS = ["fuzz_gltf_json", "fuzz_gltf_glb", "fuzz_fbx", "fuzz_collada", "fuzz_project", "fuzz_blobtree_scene"]
 # Inputs of up to 64 KiB: enough for every structure the loaders know (the seeds are
 # smaller), small enough to keep executions fast.
 MAX_LEN = 65536

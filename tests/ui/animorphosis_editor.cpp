@@ -8,8 +8,11 @@
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
+#include <imgui.h>
 
+#include "ui/animorphosis/animorphosis_panel.h"
 #include "demo/animorphosis_demo.h"
+#include "core/doc/animorphosis_commands.h"
 #include "core/project/animorphosis_project.h"
 #include "core/doc/blobtree_commands.h"
 #include "core/project/project_io.h"
@@ -514,4 +517,71 @@ TEST_CASE("Bake to Key-frame Actor on the demo: Cancel stops the bake part-way a
   CHECK(f.h.ui->state().status.text.find("cancelled") != std::string::npos);
   CHECK(f.h.doc().project().actors.size() == actors);
   CHECK(f.h.doc().revision() == revision);
+}
+
+namespace {
+
+// Vertices of the last frame's draw data in colour `col`.
+int verticesOfColor(ImU32 col) {
+  const ImDrawData* d = ImGui::GetDrawData();
+  int n = 0;
+  for (int i = 0; d && i < d->CmdListsCount; ++i)
+    for (const ImDrawVert& v : d->CmdLists[i]->VtxBuffer) n += v.col == col ? 1 : 0;
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("correspondence editor: suggestions are dashed violet wires; Accept applies one, Accept all the rest, "
+          "each undoable",
+          "[animorphosis_ui]") {
+  EditorFixture f({1600.0f, 1200.0f});
+  loadCreatures(f);
+  createThroughModal(f.h, /*autoMap=*/false);
+  dragLink(f.h, 12, 104);  // refused; nothing drawn
+  {
+    AnimorphosisSetup m = f.h.doc().project().animorphosis;
+    m.graph.suggestions.push_back({2, 102, {}, 0.3f, false});   // body -> body
+    m.graph.suggestions.push_back({9, 112, {}, 0.25f, false});  // tail -> tail
+    m.graph.suggestions.push_back({3, 106, {}, 0.1f, false});   // belly -> membraneL: breaks a rule once 2 -> 102 is in
+    f.h.doc().execute(setAnimorphosisCommand(f.h.doc().project(), m, "suggest"));
+  }
+  f.h.frames(2);
+  // Drawn apart from the links: each has its own widget and no link wire, in the suggestion colour.
+  REQUIRE(f.h.hasWidget("corr/suggestion/2-102"));
+  REQUIRE(f.h.hasWidget("corr/suggestion/9-112"));
+  CHECK_FALSE(f.h.hasWidget("corr/link/2-102"));
+  CHECK(graph(f.h).links.empty());
+  CHECK(verticesOfColor(ImU32(kSuggestionWireColor)) > 0);
+  const size_t steps = f.h.doc().history().index();
+
+  // Select one by clicking its wire, accept it: an artist link, no longer a suggestion.
+  f.h.clickWidget("corr/suggestion/2-102");
+  f.h.frames(1);
+  REQUIRE(f.h.ui->state().correspondence.selectedSuggestion);
+  REQUIRE(f.h.hasWidget("corr/accept"));
+  f.h.clickWidget("corr/accept");
+  f.h.frames(2);
+  REQUIRE(graph(f.h).find(2, 102) >= 0);
+  CHECK(graph(f.h).links[size_t(graph(f.h).find(2, 102))].artist);
+  CHECK(graph(f.h).findSuggestion(2, 102) < 0);
+  CHECK(f.h.hasWidget("corr/link/2-102"));
+  CHECK_FALSE(f.h.hasWidget("corr/suggestion/2-102"));
+  CHECK(f.h.doc().history().index() == steps + 1);
+
+  // Accept all: the tail is applied; belly -> membraneL would break the hierarchy and stays a suggestion.
+  f.h.clickWidget("corr/accept_all");
+  f.h.frames(2);
+  CHECK(graph(f.h).find(9, 112) >= 0);
+  CHECK(graph(f.h).find(3, 106) < 0);
+  CHECK(graph(f.h).findSuggestion(3, 106) >= 0);
+  CHECK(f.h.ui->state().status.text.find("stay suggestions") != std::string::npos);
+  CHECK(f.h.doc().history().index() == steps + 2);
+
+  f.h.tapKey(GLFW_KEY_Z, true);
+  f.h.tapKey(GLFW_KEY_Z, true);
+  f.h.frames(2);
+  CHECK(graph(f.h).links.empty());
+  CHECK(graph(f.h).suggestions.size() == 3);
+  CHECK(f.h.hasWidget("corr/suggestion/2-102"));
 }

@@ -81,12 +81,12 @@ TEST_CASE("double-click renames, Del deletes, the box toggles visibility: all un
   CHECK_FALSE(h.doc().dirty());
 }
 
-TEST_CASE("Import glTF adds an actor with a project-relative path, undoable", "[outliner]") {
+TEST_CASE("Import Character adds an actor with a project-relative path, undoable", "[outliner]") {
   EditorFixture f;
   f.loadHeroScene();
   auto& h = f.h;
   h.clickWidget("menu/File");
-  h.clickWidget("menu/Import glTF...");
+  h.clickWidget("menu/Import Character...");
   REQUIRE(h.ui->state().browser.isOpen());
   h.type(f.dir.file("hero.gltf"));
   h.tapKey(GLFW_KEY_ENTER);

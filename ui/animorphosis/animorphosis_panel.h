@@ -14,6 +14,10 @@
 //    animorphosis as a new key-framed BlobTree actor (Animorphosis menu too);
 //    Ghosts: the viewport also shows A(t) and B(t), translucent (saved in the
 //    project's animorphosis, undoable).
+//    Suggestions -- links auto-map found too uncertain to apply -- are dashed
+//    violet wires: click one to select it, then Accept (or double-click it, or
+//    right-click > Accept); Accept all applies every one that keeps the graph
+//    valid; each is one undo step.
 //    A node with k links shows "x k"; the top of an unlinked
 //    sub-tree says "shrinks" (source) or "grows" (target). A selected link can
 //    get its own s(u), which the curve editor then shows beside the global one.
@@ -49,11 +53,18 @@ struct CorrespondenceLinkRef {
   bool operator==(const CorrespondenceLinkRef&) const = default;
 };
 
+// Suggestions (links auto-map proposed below its confidence threshold, not applied) are drawn as
+// dashed wires in this colour (ImGui's packed ABGR: a light violet), apart from the applied links'
+// solid red-to-green (automatic, by confidence) and blue (artist) wires.
+inline constexpr unsigned kSuggestionWireColor = 0xE6FF8CC8u;
+
 struct CorrespondenceEditorState {
   bool visible = false;
   bool placeNext = true;  // position the window over the viewport next time it opens
   bool focused = false;   // the window had keyboard focus this frame (Del is its own then)
   std::optional<CorrespondenceLinkRef> selected;
+  // The selected suggestion (click its dashed wire; Accept, or a double-click, applies it).
+  std::optional<CorrespondenceLinkRef> selectedSuggestion;
   Selection hovered;  // the node whose row is under the mouse (the viewport highlights its skeleton); none: empty
   // Rows whose open state differs from the default (the top three levels open).
   std::set<int> toggledA, toggledB;

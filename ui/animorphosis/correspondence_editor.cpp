@@ -154,8 +154,9 @@ void autoMap(Document& doc, StatusMessage& status) {
   AutoCorrespondReport report;
   auto cmd = autoMapCommand(p, settings, &report);
   char buf[160];
-  std::snprintf(buf, sizeof buf, ": %d proposed (mean confidence %.2f), %d artist link%s kept", report.proposed,
-                report.meanConfidence, report.artistKept, report.artistKept == 1 ? "" : "s");
+  std::snprintf(buf, sizeof buf, ": %d proposed (mean confidence %.2f), %d suggested, %d artist link%s kept",
+                report.proposed, report.meanConfidence, report.suggested, report.artistKept,
+                report.artistKept == 1 ? "" : "s");
   runCommand(doc, std::move(cmd), status, buf);
 }
 
@@ -166,7 +167,9 @@ void drawToolbar(Document& doc, const BlobTree& a, const BlobTree& b, Correspond
   if (ImGui::Button("Auto-map")) autoMap(doc, status);
   noteWidget("corr/automap");
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Propose the automatic links again (kind, position, size, hierarchy); artist links are kept.");
+    ImGui::SetTooltip("Propose the automatic links again (kind, place and extent over the clip, across wrappers, "
+                      "regrouped parts and split segments); links it is unsure of become suggestions (dashed); "
+                      "artist links are kept.");
   ImGui::SameLine();
   if (ImGui::Button("Bake to key-frame actor")) st.bakeRequested = true;
   noteWidget("corr/bake_keys");
@@ -193,13 +196,45 @@ void drawToolbar(Document& doc, const BlobTree& a, const BlobTree& b, Correspond
   }
   noteWidget("corr/cut");
   ImGui::EndDisabled();
+  ImGui::SameLine();
+  const size_t suggestions = m.graph.suggestions.size();
+  ImGui::BeginDisabled(suggestions == 0);
+  const std::string acceptAll = "Accept all (" + std::to_string(suggestions) + ")";
+  if (ImGui::Button(acceptAll.c_str()) && suggestions > 0) {
+    int accepted = 0;
+    auto cmd = acceptAllSuggestionsCommand(doc.project(), &accepted);
+    const int left = int(suggestions) - accepted;
+    runCommand(doc, std::move(cmd), status,
+               left > 0 ? "; " + std::to_string(left) + " would break a rule of the graph and stay suggestions" : "");
+    st.selectedSuggestion.reset();
+  }
+  noteWidget("corr/accept_all");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Apply every suggestion (dashed wire) that keeps the graph valid, most confident first.");
+  ImGui::EndDisabled();
   // After an auto-map or a cut the graph is another one: look the selection up again.
   const int sel = st.selected ? m.graph.find(st.selected->nodeA, st.selected->nodeB) : -1;
   ImGui::SameLine();
   int artist = 0;
   for (const CorrespondenceLink& l : m.graph.links) artist += l.artist ? 1 : 0;
-  ImGui::TextDisabled("%zu link%s (%d artist)  |  %s -> %s", m.graph.links.size(), m.graph.links.size() == 1 ? "" : "s",
-                      artist, m.sourceActorId.c_str(), m.targetActorId.c_str());
+  ImGui::TextDisabled("%zu link%s (%d artist), %zu suggestion%s  |  %s -> %s", m.graph.links.size(),
+                      m.graph.links.size() == 1 ? "" : "s", artist, suggestions, suggestions == 1 ? "" : "s",
+                      m.sourceActorId.c_str(), m.targetActorId.c_str());
+  const int sug = st.selectedSuggestion ? m.graph.findSuggestion(st.selectedSuggestion->nodeA, st.selectedSuggestion->nodeB) : -1;
+  if (sel < 0 && sug >= 0) {
+    const CorrespondenceLink& l = m.graph.suggestions[size_t(sug)];
+    const BlobNode* na = a.find(l.nodeA);
+    const BlobNode* nb = b.find(l.nodeB);
+    ImGui::Text("%s -> %s  |  suggestion, confidence %.2f (not applied)", na ? nameOfNode(*na).c_str() : "?",
+                nb ? nameOfNode(*nb).c_str() : "?", l.confidence);
+    ImGui::SameLine();
+    if (ImGui::SmallButton("Accept")) {
+      runCommand(doc, acceptSuggestionCommand(doc.project(), l.nodeA, l.nodeB), status);
+      st.selectedSuggestion.reset();
+    }
+    noteWidget("corr/accept");
+    return;
+  }
   if (sel < 0) {
     ImGui::TextDisabled("Drag from a node onto a node of the other tree to link; click a wire to select it.");
     return;
@@ -272,6 +307,7 @@ void drawCorrespondenceEditor(const LayoutRect& area, Document& doc, Corresponde
     st.toggledA.clear();
     st.toggledB.clear();
     st.selected.reset();
+    st.selectedSuggestion.reset();
   }
   if (st.selected && m.graph.find(st.selected->nodeA, st.selected->nodeB) < 0) st.selected.reset();
   drawToolbar(doc, src->blobTree, dst->blobTree, st, status);
@@ -458,6 +494,27 @@ void drawCorrespondenceEditor(const LayoutRect& area, Document& doc, Corresponde
                    mid + glm::vec2(3.0f));
   }
 
+  // Suggestions: dashed violet wires, apart from the applied links (kSuggestionWireColor).
+  std::vector<Wire> suggestionWires;
+  for (size_t i = 0; i < setup.graph.suggestions.size(); ++i) {
+    const CorrespondenceLink& l = setup.graph.suggestions[i];
+    if (!ra.rowOf.count(l.nodeA) || !rb.rowOf.count(l.nodeB)) continue;
+    Wire w{int(i), socketA(l.nodeA), socketB(l.nodeB)};
+    if ((w.p0.y < clipTop && w.p3.y < clipTop) || (w.p0.y > clipBottom && w.p3.y > clipBottom)) continue;
+    suggestionWires.push_back(w);
+    const bool isSel = st.selectedSuggestion && st.selectedSuggestion->nodeA == l.nodeA &&
+                       st.selectedSuggestion->nodeB == l.nodeB;
+    const ImU32 col = isSel ? kSelectedColor : ImU32(kSuggestionWireColor);
+    for (int k = 0; k < kWireSamples; k += 2) {  // every other piece of the curve: a dashed wire
+      glm::vec2 p = w.at(float(k) / kWireSamples), q = w.at(float(k + 1) / kWireSamples);
+      dl->AddLine(ImVec2(p.x, p.y), ImVec2(q.x, q.y), col, isSel ? 2.5f : 1.5f);
+    }
+    const glm::vec2 mid = w.at(0.5f);
+    dl->AddCircle(ImVec2(mid.x, mid.y), 4.0f, col, 12, 1.5f);
+    noteWidgetRect("corr/suggestion/" + std::to_string(l.nodeA) + "-" + std::to_string(l.nodeB), mid - glm::vec2(3.0f),
+                   mid + glm::vec2(3.0f));
+  }
+
   // Dragging a new wire from a row; dropping it on a row of the other tree links them.
   if (st.dragSide >= 0) {
     const bool fromA = st.dragSide == 0;
@@ -497,16 +554,47 @@ void drawCorrespondenceEditor(const LayoutRect& area, Document& doc, Corresponde
     }
     return best;
   };
+  auto nearestSuggestion = [&]() -> int {
+    int best = -1;
+    float bestD = kPickPx;
+    for (const Wire& w : suggestionWires) {
+      float d = wireDistance(w, mouse);
+      if (d <= bestD) bestD = d, best = w.link;
+    }
+    return best;
+  };
   if (graphHovered && !rowHovered && st.dragSide < 0 && !io.KeyCtrl &&
       (ImGui::IsMouseClicked(0) || ImGui::IsMouseClicked(1))) {
     const int hit = nearestWire();
+    const int hitSuggestion = hit >= 0 ? -1 : nearestSuggestion();
     if (hit >= 0) {
       const CorrespondenceLink& l = setup.graph.links[size_t(hit)];
       st.selected = CorrespondenceLinkRef{l.nodeA, l.nodeB};
+      st.selectedSuggestion.reset();
       if (ImGui::IsMouseClicked(1)) ImGui::OpenPopup("##wire_menu");
+    } else if (hitSuggestion >= 0) {
+      const CorrespondenceLink& l = setup.graph.suggestions[size_t(hitSuggestion)];
+      st.selectedSuggestion = CorrespondenceLinkRef{l.nodeA, l.nodeB};
+      st.selected.reset();
+      if (ImGui::IsMouseDoubleClicked(0)) {
+        runCommand(doc, acceptSuggestionCommand(doc.project(), l.nodeA, l.nodeB), status);
+        st.selectedSuggestion.reset();
+      } else if (ImGui::IsMouseClicked(1)) {
+        ImGui::OpenPopup("##suggestion_menu");
+      }
     } else if (ImGui::IsMouseClicked(0)) {
       st.selected.reset();
+      st.selectedSuggestion.reset();
     }
+  }
+  if (ImGui::BeginPopup("##suggestion_menu")) {
+    if (st.selectedSuggestion && ImGui::MenuItem("Accept")) {
+      runCommand(doc, acceptSuggestionCommand(doc.project(), st.selectedSuggestion->nodeA, st.selectedSuggestion->nodeB),
+                 status);
+      st.selectedSuggestion.reset();
+    }
+    noteWidget("corr/menu/accept");
+    ImGui::EndPopup();
   }
   if (ImGui::BeginPopup("##wire_menu")) {
     if (st.selected) {

@@ -11,7 +11,7 @@ struct ImGuiIO;
 namespace animorph {
 
 enum class Action {
-  New, Open, Save, SaveAs, ImportGltf, SaveScreenshot, Export, Playblast, Quit,
+  New, Open, Save, SaveAs, ImportCharacter, SaveScreenshot, Export, Playblast, Quit,
   Undo, Redo, DeleteSelection, DuplicateSelection, NewBlobActor, ToggleCurveEditor,
   ToggleGrid, ToggleSkeleton, ToggleWireframe, ToggleAxes, ToggleStandins, ToggleStandinEdit, FrameSelection,
   PlayPause, StepBack, StepForward, GoToStart, GoToEnd,

@@ -6,7 +6,6 @@
 #include <vector>
 
 #include "ui/widgets/create_modal.h"
-#include "core/doc/morph_create.h"
 #include "ui/widgets/widget_rects.h"
 
 namespace animorph {
@@ -44,6 +43,31 @@ bool isTree(const Project& p, const std::string& id) {
   return a && a->kind == ActorKind::BlobTree;
 }
 
+// The target's alignment for the chosen sides, computed once per pair (it poses both characters).
+void refreshAlignment(Document& doc, AssetCache& assets, CreateMorphState& st) {
+  const std::string key = st.sourceActorId + "\n" + st.targetActorId;
+  if (key == st.alignedFor) return;
+  st.alignedFor = key;
+  st.alignment = proposeTargetAlignment(doc.project(), doc.baseDir(), assets, st.sourceActorId, st.targetActorId);
+  st.allowResize = false;
+}
+
+// What aligning would do, and the choices: align at all; allow a resize no unit explains.
+void drawAlignment(CreateMorphState& st) {
+  if (!st.alignment || !st.alignment->alignment.changes()) return;
+  const TargetAlignment& a = st.alignment->alignment;
+  if (!a.unitNote.empty()) ImGui::TextWrapped("Units: %s.", a.unitNote.c_str());
+  ImGui::Checkbox("Align the target to the source", &st.align);
+  noteWidget("morph/create/align");
+  ImGui::SameLine();
+  ImGui::TextDisabled("(scale x%.4g%s)", double(a.transform.scale.x), a.move ? ", onto the source's bounding box" : "");
+  if (st.align && a.needsConsent) {
+    ImGui::TextColored(ImVec4(1.0f, 0.6f, 0.3f, 1.0f), "%s.", a.sizeNote.c_str());
+    ImGui::Checkbox("Allow this resize (the files may be in units they do not declare)", &st.allowResize);
+    noteWidget("morph/create/allow_resize");
+  }
+}
+
 }  // namespace
 
 void openCreateMorph(const Document& doc, CreateMorphState& st) {
@@ -67,6 +91,8 @@ void openCreateMorph(const Document& doc, CreateMorphState& st) {
     for (int i = 0; i < 4; ++i) st.markers[i] = tl.frameStart + span * (i + 1) / 6;
   }
   st.error.clear();
+  st.align = true;
+  st.alignedFor.clear();
   st.openNext = true;
 }
 
@@ -93,6 +119,8 @@ void drawCreateMorphPopup(Document& doc, AssetCache& assets, CreateMorphState& s
     ImGui::TextDisabled("A BlobTree is its own stand-in: no %s%s%s (%s).", treeSource ? "collapse" : "",
                         treeSource && treeTarget ? " or " : "", treeTarget ? "expansion" : "",
                         treeSource && treeTarget ? "A = B, C = D" : treeSource ? "A = B" : "C = D");
+  refreshAlignment(doc, assets, st);
+  drawAlignment(st);
   const ModalChoice choice = createModalButtons(st.error, "morph/create");
   if (choice == ModalChoice::Cancel) close = true;
   if (choice == ModalChoice::Create) {
@@ -102,17 +130,24 @@ void drawCreateMorphPopup(Document& doc, AssetCache& assets, CreateMorphState& s
     c.method = static_cast<MorphMethod>(std::clamp(st.method, 0, 2));
     c.markers = {st.markers[0], st.markers[1], st.markers[2], st.markers[3]};
     std::vector<std::string> notes;
+    const bool aligning = st.align && st.alignment && st.alignment->alignment.changes();
     auto m = proposeMorph(p, doc.baseDir(), assets, c, &notes);
+    if (m && aligning && st.alignment->alignment.needsConsent && !st.allowResize)
+      m = Error{c.targetActorId + ": " + st.alignment->alignment.sizeNote +
+                ": tick 'Allow this resize', or untick 'Align the target to the source'"};
     if (!m) {
       st.error = m.error();
       status = {m.error(), true};
     } else {
       const std::string label = "Create morph " + c.sourceActorId + " -> " + c.targetActorId;
-      doc.execute(setMorphCommand(p, std::move(*m), label));
+      std::optional<Transform> placed;
+      if (aligning) placed = st.alignment->targetTransform;
+      doc.execute(createMorphCommand(p, std::move(*m), placed, label));
+      if (aligning && !st.alignment->alignment.unitNote.empty()) notes.push_back(st.alignment->alignment.unitNote);
       doc.selection = {};
-      status = {label + (notes.empty() ? std::string() : " (" + std::to_string(notes.size()) + " stand-in" +
-                                                                   (notes.size() == 1 ? "" : "s") + " fitted)"),
-                false};
+      std::string said;
+      for (const std::string& n : notes) said += (said.empty() ? " (" : "; ") + n;
+      status = {label + (said.empty() ? std::string() : said + ")"), false};
       close = true;
     }
   }

@@ -55,7 +55,8 @@ void beginRename(OutlinerState& st, const Document& doc, const std::string& acto
 void drawOutlinerPanel(const LayoutRect& rect, Document& doc, AssetCache& assets, OutlinerState& st,
                        std::vector<Action>& actions, StatusMessage& status) {
   if (!beginPanelWindow("Outliner", rect)) return;
-  if (ImGui::SmallButton("+ Import glTF")) actions.push_back(Action::ImportGltf);
+  if (ImGui::SmallButton("+ Import")) actions.push_back(Action::ImportCharacter);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Import a character: glTF, FBX, Collada or OBJ");
   noteWidget("outliner/import");
   ImGui::SameLine();
   if (ImGui::SmallButton("+ BlobTree")) actions.push_back(Action::NewBlobActor);
@@ -65,7 +66,7 @@ void drawOutlinerPanel(const LayoutRect& rect, Document& doc, AssetCache& assets
 
   const Project& project = doc.project();
   if (project.actors.empty())
-    ImGui::TextWrapped("No actors. File > Import glTF... adds a character; Create > New BlobTree Actor an implicit "
+    ImGui::TextWrapped("No actors. File > Import Character... adds a character; Create > New BlobTree Actor an implicit "
                        "shape.");
   std::string deleteId;
   // Copy: a command executed below may reallocate project.actors.

@@ -28,7 +28,13 @@ namespace animorph {
 namespace fs = std::filesystem;
 
 namespace {
-const std::vector<FileFilter> kGltfFilters = {{"glTF (*.gltf, *.glb)", {".gltf", ".glb"}}, {"All files", {}}};
+const std::vector<FileFilter> kCharacterFilters = {
+    {"Character (*.gltf, *.glb, *.fbx, *.dae, *.obj)", {".gltf", ".glb", ".fbx", ".dae", ".obj"}},
+    {"glTF (*.gltf, *.glb)", {".gltf", ".glb"}},
+    {"FBX (*.fbx)", {".fbx"}},
+    {"Collada (*.dae)", {".dae"}},
+    {"OBJ (*.obj)", {".obj"}},
+    {"All files", {}}};
 const std::vector<FileFilter> kPngFilters = {{"PNG image (*.png)", {".png"}}};
 }  // namespace
 
@@ -40,9 +46,9 @@ void EditorUI::dispatch(Action a, EditorContext& ctx) {
     case Action::Save: saveOrSaveAs(PendingKind::None, ctx); break;
     case Action::SaveAs: startSaveAs(PendingKind::None, ctx); break;
     case Action::Quit: guardUnsaved(PendingKind::Quit, {}, ctx); break;
-    case Action::ImportGltf:
-      st_.browser.open(FileBrowser::Mode::Open, "Import glTF", kGltfFilters, d.baseDir());
-      st_.browserPurpose = BrowserPurpose::ImportGltf;
+    case Action::ImportCharacter:
+      st_.browser.open(FileBrowser::Mode::Open, "Import Character", kCharacterFilters, d.baseDir());
+      st_.browserPurpose = BrowserPurpose::ImportCharacter;
       break;
     case Action::Export: openExportDialog(d, st_.exportDialog); break;
     case Action::Playblast: openPlayblastDialog(d, st_.playblastDialog); break;

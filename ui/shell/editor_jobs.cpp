@@ -95,6 +95,7 @@ void EditorUI::startRefitJob(EditorContext& ctx) {
     if (dd.selection.actorId == actorId) dd.selection.segment = -1;
     // A poor fit is said loudly: the status bar names the bones.
     if ((*fitted)->report.poor) setStatus("Refit stand-in: POOR FIT: " + (*fitted)->report.problems.front(), true);
+    else if (!(*fitted)->report.repairs.empty()) setStatus("Refit stand-in: " + repairSummary((*fitted)->report));
   });
 }
 
@@ -237,7 +238,7 @@ void EditorUI::openGltfAsNewProject(const std::string& path, EditorContext& /*ct
       });
 }
 
-void EditorUI::importGltf(const std::string& path, EditorContext& ctx) {
+void EditorUI::importCharacter(const std::string& path, EditorContext& ctx) {
   if (ctx.assets.contains(path)) {  // loaded already (another actor uses it): no job needed
     addImportedActor(path, ctx);
     return;

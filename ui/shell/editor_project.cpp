@@ -15,7 +15,7 @@
 #include "core/doc/standin_commands.h"
 #include "ui/outliner/node_type_menu.h"
 #include "ui/shell/help_windows.h"
-#include "core/io/gltf_import.h"
+#include "core/io/character_import.h"
 #include "ui/shell/menu_bar.h"
 #include "ui/shell/preferences_window.h"
 #include "ui/shell/preview_controls.h"
@@ -29,11 +29,12 @@ namespace fs = std::filesystem;
 namespace {
 const std::vector<FileFilter> kProjectFilters = {{"Animorph project (*.animorph)", {".animorph"}},
                                                  {"All files", {}}};
-// Open takes a glTF too: it becomes a new project with the character imported.
+// Open takes a character too: it becomes a new project with the character imported.
 const std::vector<FileFilter> kOpenFilters = {
-    {"Project or glTF (*.animorph, *.gltf, *.glb)", {".animorph", ".gltf", ".glb"}},
+    {"Project or character (*.animorph, *.gltf, *.glb, *.fbx, *.dae, *.obj)",
+     {".animorph", ".gltf", ".glb", ".fbx", ".dae", ".obj"}},
     {"Animorph project (*.animorph)", {".animorph"}},
-    {"glTF (*.gltf, *.glb)", {".gltf", ".glb"}},
+    {"Character (*.gltf, *.glb, *.fbx, *.dae, *.obj)", {".gltf", ".glb", ".fbx", ".dae", ".obj"}},
     {"All files", {}}};
 
 std::string fileName(const std::string& path) { return fs::path(path).filename().string(); }
@@ -72,7 +73,7 @@ void EditorUI::perform(PendingKind kind, const std::string& path, EditorContext&
 }
 
 void EditorUI::openProjectPath(const std::string& path, EditorContext& ctx) {
-  if (isGltfPath(path)) {
+  if (isCharacterPath(path)) {
     openGltfAsNewProject(path, ctx);
     return;
   }
@@ -157,7 +158,7 @@ void EditorUI::handleBrowserResult(const std::string& path, EditorContext& ctx) 
       perform(after, st_.pendingPath, ctx);
       break;
     }
-    case BrowserPurpose::ImportGltf: importGltf(path, ctx); break;
+    case BrowserPurpose::ImportCharacter: importCharacter(path, ctx); break;
     case BrowserPurpose::ExportOutput:  // back to the dialog with the path chosen
       st_.exportDialog.edit.output = path;
       st_.exportDialog.openNext = true;

@@ -30,7 +30,7 @@ namespace animorph {
 enum class PendingKind { None, New, Open, OpenPath, Quit };
 
 // What a running file dialog is for.
-enum class BrowserPurpose { None, OpenProject, SaveProjectAs, ImportGltf, Screenshot, ExportOutput,
+enum class BrowserPurpose { None, OpenProject, SaveProjectAs, ImportCharacter, Screenshot, ExportOutput,
                             PlayblastOutput };
 
 struct EditorState {

@@ -17,7 +17,7 @@
 #include "core/doc/standin_commands.h"
 #include "ui/outliner/node_type_menu.h"
 #include "ui/shell/help_windows.h"
-#include "core/io/gltf_import.h"
+#include "core/io/character_import.h"
 #include "ui/shell/menu_bar.h"
 #include "ui/shell/preferences_window.h"
 #include "ui/shell/preview_controls.h"
@@ -83,13 +83,13 @@ void EditorUI::handleDrop(const std::vector<std::string>& paths, EditorContext& 
   }
   std::vector<std::string> refused;
   for (const std::string& p : paths) {
-    if (ext(p) == ".gltf" || ext(p) == ".glb") importGltf(p, ctx);
+    if (isCharacterPath(p)) importCharacter(p, ctx);
     else refused.push_back(fileName(p));
   }
   if (!refused.empty()) {
     std::string names;
     for (const std::string& n : refused) names += (names.empty() ? "" : ", ") + n;
-    setStatus("Cannot open " + names + ": drop an .animorph project or .gltf / .glb files", true);
+    setStatus("Cannot open " + names + ": drop an .animorph project or character files (.gltf, .glb, .fbx, .dae, .obj)", true);
   }
 }
 
@@ -285,7 +285,7 @@ void EditorUI::drawViewport(EditorContext& ctx) {
   if (st_.viewportMode != ViewportMode::Object)
     ImGui::TextColored(ImVec4(0.5f, 0.9f, 1.0f, 1.0f), "%s mode", viewportModeName(st_.viewportMode));
   if (d.project().actors.empty())
-    ImGui::TextDisabled("File > Import glTF... adds a character; Create > New BlobTree Actor an implicit shape.");
+    ImGui::TextDisabled("File > Import Character... adds a character (glTF, FBX, Collada, OBJ); Create > New BlobTree Actor an implicit shape.");
   ImGui::End();
   widgets_.set("viewport", {r.min, r.min + r.size});
 

@@ -91,7 +91,7 @@ class EditorUI {
   void startSaveAs(PendingKind after, EditorContext& ctx);
   void handleBrowserResult(const std::string& path, EditorContext& ctx);
   // Loads the glTF off the UI thread, then adds it as an actor (one undoable step).
-  void importGltf(const std::string& path, EditorContext& ctx);
+  void importCharacter(const std::string& path, EditorContext& ctx);
   void addImportedActor(const std::string& path, EditorContext& ctx);
   // Runs work as the editor's background job; done runs on the UI thread with the work's status
   // (not for a cancelled job: the status bar says so). Refused, with a message, while another runs.

@@ -40,7 +40,7 @@ MenuResult drawMenuBar(const Document& doc, const std::vector<std::string>& rece
     item("Save", Action::Save);
     item("Save As...", Action::SaveAs);
     ImGui::Separator();
-    item("Import glTF...", Action::ImportGltf);
+    item("Import Character...", Action::ImportCharacter);
     item("Import Weights from Vertex Colour...", Action::ImportWeights, doc.project().morph.enabled());
     item("Save Screenshot...", Action::SaveScreenshot);
     // Export: the morph's frames as files, or a playblast movie of them.

@@ -12,6 +12,7 @@
 #include "core/blobtree/compile.h"
 #include "app/cli/bench/bench.h"
 #include "demo/blob_creature.h"
+#include "demo/dino_dragon.h"
 
 namespace {
 
@@ -60,6 +61,22 @@ std::vector<Row> runAnimorphBench(const bench::Options& opt) {
   double autoSec = secondsOf([&] { g = autoCorrespond(a, b, {}); });
   if (!g) return {{"auto-map failed: " + g.error(), 0.0, "", "", ""}};
   rows.push_back({"auto-map", autoSec * 1e3, "ms", "", sizes + ", " + std::to_string(g->links.size()) + " links"});
+  // The animorphosis demo's creatures (2,278 and 7,044 nodes): each other, and the dragon itself.
+  {
+    BlobTree dino = makeDinosaur(), dragon = makeDragon();
+    for (int self = 0; self < 2; ++self) {
+      const BlobTree& from = self ? dragon : dino;
+      Result<CorrespondenceGraph> d = Error{"not run"};
+      AutoCorrespondReport rep;
+      double sec = secondsOf([&] { d = autoCorrespond(from, dragon, {}, {}, &rep); });
+      if (!d) return {{"auto-map of the demo failed: " + d.error(), 0.0, "", "", ""}};
+      rows.push_back({self ? "auto-map, the demo's dragon -> itself" : "auto-map, the demo's dinosaur -> dragon",
+                      sec * 1e3, "ms", "",
+                      std::to_string(from.root.subtreeSize()) + " -> " + std::to_string(dragon.root.subtreeSize()) +
+                          " nodes, " + std::to_string(rep.proposed) + " links, " + std::to_string(rep.suggested) +
+                          " suggestions"});
+    }
+  }
 
   Result<GenericTree> c = Error{"not run"};
   double buildSec = secondsOf([&] { c = buildGenericTree(a, b, *g); });

@@ -52,6 +52,7 @@ std::vector<Row> benchMorph(const bench::Options& opt) {
   FitSettings before;
   before.bridgeHelpers = false;
   before.mergeSmallBones = false;
+  before.repair.enabled = false;
   before.quality.topologyResolution = 0;
   const double beforeMs = bench::medianMs(3, [&] { (void)fitStandin(dense, before); });
   FitResult full;

@@ -11,6 +11,12 @@ int CorrespondenceGraph::find(int nodeA, int nodeB) const {
   return -1;
 }
 
+int CorrespondenceGraph::findSuggestion(int nodeA, int nodeB) const {
+  for (size_t i = 0; i < suggestions.size(); ++i)
+    if (suggestions[i].nodeA == nodeA && suggestions[i].nodeB == nodeB) return int(i);
+  return -1;
+}
+
 std::vector<int> CorrespondenceGraph::linksOfA(int id) const {
   std::vector<int> r;
   for (size_t i = 0; i < links.size(); ++i)

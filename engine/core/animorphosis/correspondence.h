@@ -25,12 +25,18 @@ struct CorrespondenceLink {
 
 struct CorrespondenceGraph {
   std::vector<CorrespondenceLink> links;
+  // Links the automatic correspondence proposed below its confidence threshold:
+  // shown to the artist, not applied (buildGenericTree and the validation ignore
+  // them) until accepted (doc/animorphosis_commands.h).
+  std::vector<CorrespondenceLink> suggestions;
 
   // Index of the link nodeA -> nodeB, or -1.
   int find(int nodeA, int nodeB) const;
   // Indices of the links that touch node `id` of A (or of B).
   std::vector<int> linksOfA(int id) const;
   std::vector<int> linksOfB(int id) const;
+  // Index of the suggestion nodeA -> nodeB, or -1.
+  int findSuggestion(int nodeA, int nodeB) const;
   bool operator==(const CorrespondenceGraph&) const = default;
 };
 

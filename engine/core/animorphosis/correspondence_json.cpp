@@ -15,7 +15,13 @@ json correspondenceToJson(const CorrespondenceGraph& g) {
     if (l.sOverride) o["s"] = trackToJson(*l.sOverride);
     links.push_back(std::move(o));
   }
-  return json{{"links", std::move(links)}};
+  json out{{"links", std::move(links)}};
+  if (!g.suggestions.empty()) {
+    json sug = json::array();
+    for (const auto& l : g.suggestions) sug.push_back(json{{"a", l.nodeA}, {"b", l.nodeB}, {"confidence", l.confidence}});
+    out["suggestions"] = std::move(sug);
+  }
+  return out;
 }
 
 namespace {
@@ -27,6 +33,37 @@ Result<int> idField(const json& o, const char* key, const std::string& where) {
   int64_t v = it->get<int64_t>();
   if (v < INT32_MIN || v > INT32_MAX) return Error{where + ": \"" + key + "\" is out of range"};
   return int(v);
+}
+
+// The optional "suggestions": links with ids and a confidence only.
+Status suggestionsFromJson(const json& j, const std::string& source, CorrespondenceGraph& g) {
+  auto it = j.find("suggestions");
+  if (it == j.end()) return Status::success();
+  if (!it->is_array()) return Error{source + ": \"suggestions\" must be an array"};
+  if (it->size() > kMaxCorrespondenceLinks)
+    return Error{source + ": " + std::to_string(it->size()) + " suggestions, more than the limit of " +
+                 std::to_string(kMaxCorrespondenceLinks)};
+  for (size_t i = 0; i < it->size(); ++i) {
+    const json& o = (*it)[i];
+    std::string where = source + ": suggestion " + std::to_string(i);
+    if (!o.is_object()) return Error{where + " must be an object"};
+    auto a = idField(o, "a", where);
+    if (!a) return Error{a.error()};
+    auto b = idField(o, "b", where);
+    if (!b) return Error{b.error()};
+    CorrespondenceLink l;
+    l.nodeA = *a;
+    l.nodeB = *b;
+    l.artist = false;
+    l.confidence = 0.0f;
+    if (auto c = o.find("confidence"); c != o.end()) {
+      double v = c->is_number() ? c->get<double>() : -1.0;
+      if (!std::isfinite(v) || v < 0.0 || v > 1.0) return Error{where + ": \"confidence\" must be a number in [0, 1]"};
+      l.confidence = float(v);
+    }
+    g.suggestions.push_back(l);
+  }
+  return Status::success();
 }
 
 }  // namespace
@@ -72,6 +109,7 @@ Result<CorrespondenceGraph> correspondenceFromJson(const json& j, const std::str
     }
     g.links.push_back(std::move(l));
   }
+  if (Status s = suggestionsFromJson(j, source, g); !s) return Error{s.error()};
   return g;
 }
 

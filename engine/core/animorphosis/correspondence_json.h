@@ -1,6 +1,8 @@
 #pragma once
 // Correspondence graph JSON:
-//   {"links": [{"a": ID, "b": ID, "confidence": 0..1, "artist": bool, "s": TRACK}, ...]}
+//   {"links": [{"a": ID, "b": ID, "confidence": 0..1, "artist": bool, "s": TRACK}, ...],
+//    "suggestions": [{"a": ID, "b": ID, "confidence": 0..1}, ...]}
+// "suggestions" (proposed, not applied) is optional and written only when there are some.
 // "s" (the link's s(u) override, a float track) is optional; "confidence"
 // defaults to 1 and "artist" to true. Structure only: validateCorrespondence
 // checks the ids against the trees.

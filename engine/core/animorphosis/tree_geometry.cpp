@@ -73,7 +73,41 @@ NodeExtent visit(const BlobNode& n, double t, const Affine& m, std::unordered_ma
   return e;
 }
 
+void visitPreorder(const BlobNode& n, double t, const Affine& m, bool inRootChain, std::vector<NodeExtent>& out) {
+  const size_t me = out.size();
+  out.emplace_back(primitiveExtent(n, t, m));
+  const bool stillChain = inRootChain && isTransparentLink(n);
+  Affine inner = n.type == NodeType::Frame && !inRootChain ? frameOf(n, t, m) : m;
+  NodeExtent e = out[me];
+  for (const BlobNode& c : n.children) {
+    const size_t slot = out.size();
+    visitPreorder(c, t, inner, stillChain, out);
+    if (n.type != NodeType::SplineOfNodes) {
+      e.merge(out[slot]);
+    } else if (e.count > 0 && out[slot].count > 0) {
+      // The copies of the child along the spline: its box grows by the (largest) copy's.
+      const float scale = std::max(n.floatParam("scaleStart").evaluate(t), n.floatParam("scaleEnd").evaluate(t));
+      const glm::vec3 half = 0.5f * out[slot].size() * scale;  // the child is in the spline's space
+      e.lo -= half;
+      e.hi += half;
+    }
+  }
+  out[me] = e;
+}
+
 }  // namespace
+
+bool isTransparentLink(const BlobNode& n) {
+  if (n.children.size() != 1) return false;
+  return (n.type >= NodeType::Frame && n.type <= NodeType::Bend) || n.type == NodeType::Blend ||
+         n.type == NodeType::Union || n.type == NodeType::HyperBlend;
+}
+
+void extentsInsideRootChain(const BlobTree& tree, double timeSec, std::vector<NodeExtent>& out) {
+  out.clear();
+  out.reserve(tree.root.subtreeSize());
+  visitPreorder(tree.root, timeSec, Affine{}, true, out);
+}
 
 NodeExtent subtreeExtent(const BlobNode& n, double timeSec) { return visit(n, timeSec, Affine{}, nullptr); }
 

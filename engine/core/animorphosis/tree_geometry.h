@@ -5,6 +5,7 @@
 // grown by the radii. Used to place null partners and by the automatic
 // correspondence.
 #include <unordered_map>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -26,5 +27,16 @@ NodeExtent subtreeExtent(const BlobNode& n, double timeSec);
 
 // Extent of every node's sub-tree in world space, by node id.
 std::unordered_map<int, NodeExtent> worldExtents(const BlobTree& tree, double timeSec);
+
+// True for the nodes a chain of single children passes through unchanged for
+// matching: a frame, warp, blend, union or hyper-blend with exactly one child.
+bool isTransparentLink(const BlobNode& n);
+
+// Extent of every node's sub-tree in pre-order (TreeIndex::ids order), in the
+// space inside the tree's root chain: the frames of the root and of the
+// transparent nodes under it (isTransparentLink) are not applied, so a tree and
+// the same tree placed under a moved, rotated and scaled frame get the same
+// extents. `out` is resized to the node count.
+void extentsInsideRootChain(const BlobTree& tree, double timeSec, std::vector<NodeExtent>& out);
 
 }  // namespace animorph

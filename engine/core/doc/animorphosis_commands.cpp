@@ -1,6 +1,9 @@
 #include "core/doc/animorphosis_commands.h"
 
+#include <algorithm>
+
 #include "core/animorphosis/tree_index.h"
+#include "core/animorphosis/validate_correspondence.h"
 #include "core/project/animorphosis_project.h"
 
 namespace animorph {
@@ -68,6 +71,8 @@ Result<std::unique_ptr<Command>> addCorrespondenceLinkCommand(const Project& p, 
   } else {
     a.graph.links.push_back({nodeA, nodeB, {}, 1.0f, true});
   }
+  // Drawing a suggested link by hand accepts the suggestion.
+  if (int k = a.graph.findSuggestion(nodeA, nodeB); k >= 0) a.graph.suggestions.erase(a.graph.suggestions.begin() + k);
   return checked(p, std::move(a), "Link " + linkLabel(p, nodeA, nodeB));
 }
 
@@ -100,6 +105,42 @@ Result<std::unique_ptr<Command>> setAnimorphosisIntervalCommand(const Project& p
   a.startSec = startSec;
   a.endSec = endSec;
   return checked(p, std::move(a), "Animorphosis interval", std::move(mergeKey));
+}
+
+Result<std::unique_ptr<Command>> acceptSuggestionCommand(const Project& p, int nodeA, int nodeB) {
+  AnimorphosisSetup a = p.animorphosis;
+  int i = a.graph.findSuggestion(nodeA, nodeB);
+  if (i < 0) return Error{"animorphosis: there is no suggestion " + linkLabel(p, nodeA, nodeB)};
+  a.graph.suggestions.erase(a.graph.suggestions.begin() + i);
+  if (a.graph.find(nodeA, nodeB) < 0) a.graph.links.push_back({nodeA, nodeB, {}, 1.0f, true});
+  return checked(p, std::move(a), "Accept suggestion " + linkLabel(p, nodeA, nodeB));
+}
+
+Result<std::unique_ptr<Command>> acceptAllSuggestionsCommand(const Project& p, int* accepted) {
+  if (Status s = checkAnimorphosis(p); !s) return Error{s.error()};
+  AnimorphosisSetup a = p.animorphosis;
+  if (a.graph.suggestions.empty()) return Error{"animorphosis: there are no suggestions to accept"};
+  std::vector<CorrespondenceLink> pending = a.graph.suggestions;
+  std::stable_sort(pending.begin(), pending.end(),
+                   [](const auto& x, const auto& y) { return x.confidence > y.confidence; });
+  a.graph.suggestions.clear();
+  const BlobTree& ta = p.findActor(a.sourceActorId)->blobTree;
+  const BlobTree& tb = p.findActor(a.targetActorId)->blobTree;
+  int done = 0;
+  for (const CorrespondenceLink& l : pending) {
+    if (a.graph.find(l.nodeA, l.nodeB) >= 0) continue;
+    a.graph.links.push_back({l.nodeA, l.nodeB, {}, 1.0f, true});
+    if (validateCorrespondence(ta, tb, a.graph).ok()) {
+      ++done;
+    } else {
+      a.graph.links.pop_back();
+      a.graph.suggestions.push_back(l);
+    }
+  }
+  if (accepted) *accepted = done;
+  if (done == 0) return Error{"animorphosis: none of the " + std::to_string(pending.size()) +
+                              " suggestions can be accepted without breaking a rule of the graph"};
+  return checked(p, std::move(a), "Accept " + std::to_string(done) + " suggestion" + (done == 1 ? "" : "s"));
 }
 
 Result<std::unique_ptr<Command>> autoMapCommand(const Project& p, const AutoCorrespondSettings& settings,

@@ -34,6 +34,13 @@ Result<std::unique_ptr<Command>> setLinkSOverrideCommand(const Project& p, int n
 Result<std::unique_ptr<Command>> setGlobalSCommand(const Project& p, FloatTrack s, std::string mergeKey = {});
 Result<std::unique_ptr<Command>> setAnimorphosisIntervalCommand(const Project& p, double startSec, double endSec,
                                                                 std::string mergeKey = {});
+// Applies the suggestion nodeA -> nodeB (graph.suggestions) as an artist link: refused, naming the
+// nodes and the rule, when it breaks a rule of the graph or there is no such suggestion.
+Result<std::unique_ptr<Command>> acceptSuggestionCommand(const Project& p, int nodeA, int nodeB);
+// Applies every suggestion that keeps the graph valid, most confident first (one undo step); those
+// that would break a rule stay suggestions. `accepted` (optional) receives how many were applied.
+// Refused when there is no suggestion.
+Result<std::unique_ptr<Command>> acceptAllSuggestionsCommand(const Project& p, int* accepted = nullptr);
 // Replaces the automatic links by autoCorrespond's, keeping the artist's.
 Result<std::unique_ptr<Command>> autoMapCommand(const Project& p, const AutoCorrespondSettings& settings = {},
                                                 AutoCorrespondReport* report = nullptr);

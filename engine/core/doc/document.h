@@ -67,6 +67,8 @@ class Document {
   // intervalSec 0: now. Returns true if it wrote.
   static constexpr double kFirstAutosaveDelaySec = 5.0;
   bool autosaveIfDue(double nowSec, double intervalSec = 60.0);
+  // The unsaved changes are all in the autosave already (false when there are none).
+  bool autosaveIsCurrent() const { return dirty() && revision_ == autosavedRevision_; }
   // An autosave newer than path exists (offer to recover it).
   static bool hasNewerAutosave(const std::string& path);
   // Loads the autosave of path in place of path (the result is dirty and

@@ -65,6 +65,45 @@ Result<MorphSetup> proposeMorph(const Project& p, const std::string& baseDir, As
   return m;
 }
 
+std::optional<ActorAlignment> proposeTargetAlignment(const Project& p, const std::string& baseDir, AssetCache& assets,
+                                                     const std::string& sourceId, const std::string& targetId) {
+  namespace fs = std::filesystem;
+  const Actor* s = p.findActor(sourceId);
+  const Actor* t = p.findActor(targetId);
+  if (!s || !t || s == t || s->kind != ActorKind::Gltf || t->kind != ActorKind::Gltf) return std::nullopt;
+  auto load = [&](const Actor& a) {
+    const fs::path path(a.assetPath);
+    return assets.get((path.is_absolute() ? path : fs::path(baseDir) / path).lexically_normal().string()).character;
+  };
+  const auto sc = load(*s), tc = load(*t);
+  if (!sc || !tc) return std::nullopt;
+  ActorAlignment out;
+  out.alignment = alignTargetToSource(*sc, *tc);
+  // In the source actor's frame: the target goes where the source actor's transform puts the source.
+  out.targetTransform = decompose(s->transform.matrix() * out.alignment.transform.matrix());
+  return out;
+}
+
+std::unique_ptr<Command> createMorphCommand(const Project& p, MorphSetup after, const std::optional<Transform>& targetTransform,
+                                            std::string label) {
+  if (!targetTransform) return setMorphCommand(p, std::move(after), std::move(label));
+  const std::string targetId = after.targetActorId;
+  const Actor* t = p.findActor(targetId);
+  const Transform before = t ? t->transform : Transform{};
+  const MorphSetup morphBefore = p.morph;
+  const Transform placed = *targetTransform;
+  return std::make_unique<LambdaCommand>(
+      std::move(label),
+      [after, targetId, placed](Project& q) {
+        q.morph = after;
+        if (Actor* a = q.findActor(targetId)) a->transform = placed;
+      },
+      [morphBefore, targetId, before](Project& q) {
+        q.morph = morphBefore;
+        if (Actor* a = q.findActor(targetId)) a->transform = before;
+      });
+}
+
 std::unique_ptr<Command> setMorphCommand(const Project& p, MorphSetup after, std::string label) {
   return std::make_unique<SetValueCommand<MorphSetup>>(
       std::move(label), [](Project& q) { return &q.morph; }, p.morph, std::move(after));

@@ -5,12 +5,14 @@
 // project has for it, or gets one fitted; a BlobTree side is its own stand-in
 // (no transition: A = B on a BlobTree source, C = D on a BlobTree target).
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/project/asset_cache.h"
 #include "core/doc/command.h"
 #include "core/project/project.h"
+#include "core/standin_morph/target_alignment.h"
 #include "core/util/result.h"
 
 namespace animorph {
@@ -29,6 +31,22 @@ struct MorphChoice {
 // does not load, a stand-in that cannot be fitted.
 Result<MorphSetup> proposeMorph(const Project& p, const std::string& baseDir, AssetCache& assets,
                                 const MorphChoice& choice, std::vector<std::string>* messages = nullptr);
+
+// How Create > Morph... would align the target actor to the source actor (both glTF
+// characters that load): the alignment relative to the source's frame and the target actor's
+// transform with it applied (the source actor's transform composed in). nullopt when a side is
+// a BlobTree or does not load.
+struct ActorAlignment {
+  TargetAlignment alignment;
+  Transform targetTransform;
+};
+std::optional<ActorAlignment> proposeTargetAlignment(const Project& p, const std::string& baseDir, AssetCache& assets,
+                                                     const std::string& sourceId, const std::string& targetId);
+
+// Sets the project's morph and, when targetTransform is given, the target actor's transform:
+// one undo step.
+std::unique_ptr<Command> createMorphCommand(const Project& p, MorphSetup after, const std::optional<Transform>& targetTransform,
+                                            std::string label);
 
 // Markers collapsed where a side is a BlobTree (A onto B, D onto C).
 MorphMarkers collapseTreeMarkers(const Project& p, const MorphChoice& choice);

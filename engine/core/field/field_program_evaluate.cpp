@@ -136,8 +136,305 @@ void FieldEvaluator::evaluate(const FieldProgram& program, const ActiveProgram& 
   }
 }
 
+namespace {
+
+// runChunk's parts. Each is always inlined, so every clone of runChunk (ANIMORPH_KERNEL) compiles
+// them for its own instruction set: the same loops and operations in the same order as one body.
+#define ANIMORPH_KERNEL_PART __attribute__((always_inline)) inline
+
+// The operand stack over one chunk of n points: entry s holds the values, then (with gradients)
+// their x, y, z components, kChunk floats each. Entries known to be +0 everywhere (value and
+// gradient) are only flagged in zero[], not filled: a map subtree that reaches none of the points
+// pushes one, and a sum skips it (x + 0 is x), so a wide blend of many small mapped primitives
+// costs nothing for those away from the points.
+struct ChunkStack {
+  float* data;
+  uint8_t* zero;
+  int n;
+  bool grad;
+  float* F(int s) const { return data + size_t(s) * 4 * kChunk; }
+  float* GX(int s) const { return F(s) + kChunk; }
+  float* GY(int s) const { return F(s) + 2 * kChunk; }
+  float* GZ(int s) const { return F(s) + 3 * kChunk; }
+  void fill(int s, float value) const {
+    std::fill(F(s), F(s) + n, value);
+    if (grad) {
+      std::fill(GX(s), GX(s) + n, 0.0f);
+      std::fill(GY(s), GY(s) + n, 0.0f);
+      std::fill(GZ(s), GZ(s) + n, 0.0f);
+    }
+  }
+  void materialise(int s) const {
+    if (!zero[s]) return;
+    fill(s, 0.0f);
+    zero[s] = 0;
+  }
+};
+
+ANIMORPH_KERNEL_PART void pointsBox(const float* bx, const float* by, const float* bz, int n, glm::vec3& lo,
+                                    glm::vec3& hi) {
+  lo = glm::vec3(INFINITY);
+  hi = glm::vec3(-INFINITY);
+  for (int i = 0; i < n; ++i) {
+    lo = glm::min(lo, glm::vec3(bx[i], by[i], bz[i]));
+    hi = glm::max(hi, glm::vec3(bx[i], by[i], bz[i]));
+  }
+}
+
+// The points of one map level in the map's local space (the levels' coordinates never overlap:
+// the loops vectorise).
+ANIMORPH_KERNEL_PART void mapPoints(const SpaceMap& m, const float* __restrict ix, const float* __restrict iy,
+                                    const float* __restrict iz, int n, float* __restrict ox, float* __restrict oy,
+                                    float* __restrict oz) {
+  if (m.kind == SpaceMapKind::Affine) {
+    // The matrix in locals: read through a reference, the stores could alias it and every
+    // element would be loaded again per point (a scalar loop); copied, the loop vectorises.
+    const glm::mat3 L = m.linear;
+    const float l00 = L[0][0], l01 = L[0][1], l02 = L[0][2], l10 = L[1][0], l11 = L[1][1], l12 = L[1][2],
+                l20 = L[2][0], l21 = L[2][1], l22 = L[2][2];
+    const float o0 = m.origin.x, o1 = m.origin.y, o2 = m.origin.z;
+    for (int i = 0; i < n; ++i) {
+      float dx = ix[i] - o0, dy = iy[i] - o1, dz = iz[i] - o2;
+      ox[i] = l00 * dx + l10 * dy + l20 * dz;
+      oy[i] = l01 * dx + l11 * dy + l21 * dz;
+      oz[i] = l02 * dx + l12 * dy + l22 * dz;
+    }
+  } else {
+    for (int i = 0; i < n; ++i) {
+      glm::vec3 q = m.toLocal({ix[i], iy[i], iz[i]});
+      ox[i] = q.x;
+      oy[i] = q.y;
+      oz[i] = q.z;
+    }
+  }
+}
+
+// The image of the parent box's corners bounds the image of its points (an affine map).
+ANIMORPH_KERNEL_PART void affineBox(const SpaceMap& m, const glm::vec3& lo, const glm::vec3& hi, glm::vec3& outLo,
+                                    glm::vec3& outHi) {
+  glm::vec3 nlo(INFINITY), nhi(-INFINITY);
+  for (int c = 0; c < 8; ++c) {
+    glm::vec3 q((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
+    glm::vec3 r = m.linear * (q - m.origin);
+    nlo = glm::min(nlo, r);
+    nhi = glm::max(nhi, r);
+  }
+  const glm::vec3 pad = 1e-5f * (nhi - nlo) + 1e-6f * glm::max(glm::abs(nlo), glm::abs(nhi));  // rounding
+  outLo = nlo - pad;
+  outHi = nhi + pad;
+}
+
+// A local gradient mapped back to the parent level: grad_world = J^T grad_local.
+ANIMORPH_KERNEL_PART void pullBackGradient(const SpaceMap& m, const float* px, const float* py, const float* pz, int n,
+                                           float* gx, float* gy, float* gz) {
+  if (m.kind == SpaceMapKind::Affine) {
+    const glm::mat3 L = m.linear;  // J = L; grad_world = L^T grad_local (in locals, as in mapPoints)
+    const float l00 = L[0][0], l01 = L[0][1], l02 = L[0][2], l10 = L[1][0], l11 = L[1][1], l12 = L[1][2],
+                l20 = L[2][0], l21 = L[2][1], l22 = L[2][2];
+    for (int i = 0; i < n; ++i) {
+      float a = gx[i], b = gy[i], c = gz[i];
+      gx[i] = l00 * a + l01 * b + l02 * c;
+      gy[i] = l10 * a + l11 * b + l12 * c;
+      gz[i] = l20 * a + l21 * b + l22 * c;
+    }
+  } else {
+    for (int i = 0; i < n; ++i) {
+      glm::mat3 J;
+      m.toLocal({px[i], py[i], pz[i]}, &J);
+      glm::vec3 g = glm::transpose(J) * glm::vec3(gx[i], gy[i], gz[i]);
+      gx[i] = g.x;
+      gy[i] = g.y;
+      gz[i] = g.z;
+    }
+  }
+}
+
+// Sum of entries [base, base + cnt) into base. Zero operands add nothing: the first other operand
+// is copied (0 + a is a), the others added in their order, as the plain fold would.
+ANIMORPH_KERNEL_PART void sumOperands(const ChunkStack& S, int base, int cnt) {
+  const int n = S.n;
+  int k0 = 0;
+  while (k0 < cnt && S.zero[base + k0]) ++k0;
+  if (k0 == cnt) {
+    S.zero[base] = 1;
+    return;
+  }
+  float* f0 = S.F(base);
+  float* gx0 = S.GX(base);
+  float* gy0 = S.GY(base);
+  float* gz0 = S.GZ(base);
+  if (k0 > 0) {
+    std::copy(S.F(base + k0), S.F(base + k0) + n, f0);
+    if (S.grad) {
+      std::copy(S.GX(base + k0), S.GX(base + k0) + n, gx0);
+      std::copy(S.GY(base + k0), S.GY(base + k0) + n, gy0);
+      std::copy(S.GZ(base + k0), S.GZ(base + k0) + n, gz0);
+    }
+    S.zero[base] = 0;
+  }
+  for (int k = k0 + 1; k < cnt; ++k) {
+    if (S.zero[base + k]) continue;
+    const float* fk = S.F(base + k);
+    for (int i = 0; i < n; ++i) f0[i] += fk[i];
+    if (S.grad) {
+      const float* ax = S.GX(base + k);
+      const float* ay = S.GY(base + k);
+      const float* az = S.GZ(base + k);
+      for (int i = 0; i < n; ++i) {
+        gx0[i] += ax[i];
+        gy0[i] += ay[i];
+        gz0[i] += az[i];
+      }
+    }
+  }
+}
+
+// Union (max) or intersection (min) of entries [base, base + cnt); the gradient of the operand taken.
+ANIMORPH_KERNEL_PART void maxMinOperands(const ChunkStack& S, int base, int cnt, bool mx) {
+  const int n = S.n;
+  float* f0 = S.F(base);
+  float* gx0 = S.GX(base);
+  float* gy0 = S.GY(base);
+  float* gz0 = S.GZ(base);
+  for (int k = 1; k < cnt; ++k) {
+    const float* fk = S.F(base + k);
+    if (S.grad) {
+      const float* ax = S.GX(base + k);
+      const float* ay = S.GY(base + k);
+      const float* az = S.GZ(base + k);
+      for (int i = 0; i < n; ++i) {
+        bool take = mx ? fk[i] > f0[i] : fk[i] < f0[i];
+        if (take) {
+          f0[i] = fk[i];
+          gx0[i] = ax[i];
+          gy0[i] = ay[i];
+          gz0[i] = az[i];
+        }
+      }
+    } else {
+      for (int i = 0; i < n; ++i) f0[i] = mx ? std::max(f0[i], fk[i]) : std::min(f0[i], fk[i]);
+    }
+  }
+}
+
+ANIMORPH_KERNEL_PART void hyperBlendOperands(const ChunkStack& S, int base, int cnt, float q) {
+  float vals[64], d[64];
+  int m = std::min(cnt, 64);
+  for (int i = 0; i < S.n; ++i) {
+    for (int k = 0; k < m; ++k) vals[k] = S.F(base + k)[i];
+    float h = hyperBlend(vals, m, q, d);
+    if (S.grad) {
+      float sx = 0, sy = 0, sz = 0;
+      for (int k = 0; k < m; ++k) {
+        sx += d[k] * S.GX(base + k)[i];
+        sy += d[k] * S.GY(base + k)[i];
+        sz += d[k] * S.GZ(base + k)[i];
+      }
+      S.GX(base)[i] = sx;
+      S.GY(base)[i] = sy;
+      S.GZ(base)[i] = sz;
+    }
+    S.F(base)[i] = h;
+  }
+}
+
+ANIMORPH_KERNEL_PART void differenceOperands(const ChunkStack& S, int base, float T) {
+  float* f0 = S.F(base);
+  const float* f1 = S.F(base + 1);
+  for (int i = 0; i < S.n; ++i) {
+    float other = 2.0f * T - f1[i];
+    if (other < f0[i]) {
+      f0[i] = other;
+      if (S.grad) {
+        S.GX(base)[i] = -S.GX(base + 1)[i];
+        S.GY(base)[i] = -S.GY(base + 1)[i];
+        S.GZ(base)[i] = -S.GZ(base + 1)[i];
+      }
+    }
+  }
+}
+
+ANIMORPH_KERNEL_PART void rFunctionOperands(const ChunkStack& S, int base, float T, bool uni) {
+  float* f0 = S.F(base);
+  float* gx0 = S.GX(base);
+  float* gy0 = S.GY(base);
+  float* gz0 = S.GZ(base);
+  const float* f1 = S.F(base + 1);
+  for (int i = 0; i < S.n; ++i) {
+    float d1, d2;
+    float r = uni ? rUnion(f0[i] - T, f1[i] - T, d1, d2) : rIntersection(f0[i] - T, f1[i] - T, d1, d2);
+    f0[i] = T + r;
+    if (S.grad) {
+      gx0[i] = d1 * gx0[i] + d2 * S.GX(base + 1)[i];
+      gy0[i] = d1 * gy0[i] + d2 * S.GY(base + 1)[i];
+      gz0[i] = d1 * gz0[i] + d2 * S.GZ(base + 1)[i];
+    }
+  }
+}
+
+ANIMORPH_KERNEL_PART void boundedBlendOperands(const ChunkStack& S, int base, float T, const float* prm) {
+  BoundedBlendParams bp{prm[0], prm[1], prm[2], prm[3]};
+  float* f0 = S.F(base);
+  float* gx0 = S.GX(base);
+  float* gy0 = S.GY(base);
+  float* gz0 = S.GZ(base);
+  const float* f1 = S.F(base + 1);
+  const float* f2 = S.F(base + 2);
+  for (int i = 0; i < S.n; ++i) {
+    float d[3];
+    float r = boundedBlend(f0[i] - T, f1[i] - T, f2[i] - T, bp, d);
+    f0[i] = T + r;
+    if (S.grad) {
+      gx0[i] = d[0] * gx0[i] + d[1] * S.GX(base + 1)[i] + d[2] * S.GX(base + 2)[i];
+      gy0[i] = d[0] * gy0[i] + d[1] * S.GY(base + 1)[i] + d[2] * S.GY(base + 2)[i];
+      gz0[i] = d[0] * gz0[i] + d[1] * S.GZ(base + 1)[i] + d[2] * S.GZ(base + 2)[i];
+    }
+  }
+}
+
+ANIMORPH_KERNEL_PART void remapOperand(const ChunkStack& S, int base, float T, const float* prm) {
+  float* f0 = S.F(base);
+  float* gx0 = S.GX(base);
+  float* gy0 = S.GY(base);
+  float* gz0 = S.GZ(base);
+  for (int i = 0; i < S.n; ++i) {
+    float d;
+    f0[i] = remapPotential(f0[i], prm[0], prm[1], T, d);
+    if (S.grad) {
+      gx0[i] *= d;
+      gy0[i] *= d;
+      gz0[i] *= d;
+    }
+  }
+}
+
+// A combining op over the top op.count entries, leaving its result in the first of them.
+ANIMORPH_KERNEL_PART void combineOperands(const ChunkStack& S, const FieldOp& op, int base, const float* prm, float T) {
+  const int cnt = int(op.count);
+  if (op.code == OpCode::Sum) {
+    sumOperands(S, base, cnt);
+    return;
+  }
+  for (int k = 0; k < cnt; ++k) S.materialise(base + k);
+  switch (op.code) {
+    case OpCode::Max:
+    case OpCode::Min: maxMinOperands(S, base, cnt, op.code == OpCode::Max); break;
+    case OpCode::HyperBlend: hyperBlendOperands(S, base, cnt, prm[0]); break;
+    case OpCode::Difference: differenceOperands(S, base, T); break;
+    case OpCode::RUnion:
+    case OpCode::RIntersection: rFunctionOperands(S, base, T, op.code == OpCode::RUnion); break;
+    case OpCode::BoundedBlend: boundedBlendOperands(S, base, T, prm); break;
+    case OpCode::Remap: remapOperand(S, base, T, prm); break;
+    default: break;
+  }
+}
+
+}  // namespace
+
 // Cloned for wider vectors (its map, sum and fill loops run over the whole run of points); this
-// file does not contract products into FMAs, so each clone computes the same values.
+// file does not contract products into FMAs, so each clone computes the same values. An
+// interpreter over the active program's ops: the stack, the map levels and their boxes live here,
+// the ops' loops in the always-inlined parts above.
 ANIMORPH_KERNEL
 void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, const float* x, const float* y,
                               const float* z, int n, float* fOut, float* gxOut, float* gyOut, float* gzOut) {
@@ -155,41 +452,14 @@ void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, con
   // Box of the points at each map level (skeletal primitives are skipped against it).
   levelBoxes_.resize(size_t(P.maxMapDepth() + 1) * 2);
   glm::vec3* boxes = levelBoxes_.data();
-  auto pointsBox = [&](const float* bx, const float* by, const float* bz, glm::vec3& lo, glm::vec3& hi) {
-    lo = glm::vec3(INFINITY);
-    hi = glm::vec3(-INFINITY);
-    for (int i = 0; i < n; ++i) {
-      lo = glm::min(lo, glm::vec3(bx[i], by[i], bz[i]));
-      hi = glm::max(hi, glm::vec3(bx[i], by[i], bz[i]));
-    }
-  };
-  pointsBox(x, y, z, boxes[0], boxes[1]);
-  auto F = [&](int s) { return stack_.data() + size_t(s) * 4 * kChunk; };
-  auto GX = [&](int s) { return F(s) + kChunk; };
-  auto GY = [&](int s) { return F(s) + 2 * kChunk; };
-  auto GZ = [&](int s) { return F(s) + 3 * kChunk; };
-  // Stack entries known to be +0 everywhere (value and gradient) are only flagged, not filled: a
-  // map subtree that reaches none of the points pushes one, and a sum skips it (x + 0 is x), so a
-  // wide blend of many small mapped primitives costs nothing for those away from the points.
+  pointsBox(x, y, z, n, boxes[0], boxes[1]);
   thread_local std::vector<uint8_t> zeroSlots;
   zeroSlots.assign(size_t(std::max(1, P.maxStack())) + 1, 0);
-  uint8_t* zero = zeroSlots.data();
-  auto fillSlot = [&](int s, float value) {
-    std::fill(F(s), F(s) + n, value);
-    if (grad) {
-      std::fill(GX(s), GX(s) + n, 0.0f);
-      std::fill(GY(s), GY(s) + n, 0.0f);
-      std::fill(GZ(s), GZ(s) + n, 0.0f);
-    }
-  };
-  auto materialise = [&](int s) {
-    if (!zero[s]) return;
-    fillSlot(s, 0.0f);
-    zero[s] = 0;
-  };
+  const ChunkStack S{stack_.data(), zeroSlots.data(), n, grad};
+  uint8_t* zero = S.zero;
   auto pushConstant = [&](float value) {
     zero[sp] = value == 0.0f && !std::signbit(value);
-    if (!zero[sp]) fillSlot(sp, value);
+    if (!zero[sp]) S.fill(sp, value);
     ++sp;
   };
   const glm::vec3 worldLo = boxes[0], worldHi = boxes[1];
@@ -210,18 +480,13 @@ void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, con
     }
     switch (op.code) {
       case OpCode::Prims: {
-        float* f = F(sp);
+        S.fill(sp, 0.0f);
         zero[sp] = 0;
-        std::fill(f, f + n, 0.0f);
-        if (grad) {
-          std::fill(GX(sp), GX(sp) + n, 0.0f);
-          std::fill(GY(sp), GY(sp) + n, 0.0f);
-          std::fill(GZ(sp), GZ(sp) + n, 0.0f);
-        }
         const uint32_t* idx = A.indices.data() + op.first;
-        float* gx = grad ? GX(sp) : nullptr;
-        float* gy = grad ? GY(sp) : nullptr;
-        float* gz = grad ? GZ(sp) : nullptr;
+        float* f = S.F(sp);
+        float* gx = grad ? S.GX(sp) : nullptr;
+        float* gy = grad ? S.GY(sp) : nullptr;
+        float* gz = grad ? S.GZ(sp) : nullptr;
         switch (op.primClass) {
           case PrimClass::Convolution:
             convolutionKernel(P.convolution, idx, int(op.count), cx[level], cy[level], cz[level], n, f, gx, gy, gz);
@@ -247,12 +512,12 @@ void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, con
           if (prims.code == OpCode::Prims && prims.primClass == PrimClass::Skeletal && prims.count == 1 &&
               A.ops[opIndex + 2].code == OpCode::EndMap) {
             const SkeletalPrimitive& p = P.skeletal[A.indices[prims.first]];
-            float* gx = grad ? GX(sp) : nullptr;
-            float* gy = grad ? GY(sp) : nullptr;
-            float* gz = grad ? GZ(sp) : nullptr;
+            float* gx = grad ? S.GX(sp) : nullptr;
+            float* gy = grad ? S.GY(sp) : nullptr;
+            float* gz = grad ? S.GZ(sp) : nullptr;
             const bool done =
-                prims.combineMax ? mappedPoint<true>(m, p, cx[level], cy[level], cz[level], n, F(sp), gx, gy, gz)
-                                 : mappedPoint<false>(m, p, cx[level], cy[level], cz[level], n, F(sp), gx, gy, gz);
+                prims.combineMax ? mappedPoint<true>(m, p, cx[level], cy[level], cz[level], n, S.F(sp), gx, gy, gz)
+                                 : mappedPoint<false>(m, p, cx[level], cy[level], cz[level], n, S.F(sp), gx, gy, gz);
             if (done) {
               zero[sp] = 0;
               ++sp;
@@ -262,249 +527,37 @@ void FieldEvaluator::runChunk(const FieldProgram& P, const ActiveProgram& A, con
           }
         }
         float* out = coords_.data() + size_t(level + 1) * 3 * kChunk;
-        float* __restrict ox = out;  // the levels' coordinates never overlap: the loops vectorise
-        float* __restrict oy = out + kChunk;
-        float* __restrict oz = out + 2 * kChunk;
-        const float* __restrict ix = cx[level];
-        const float* __restrict iy = cy[level];
-        const float* __restrict iz = cz[level];
-        if (m.kind == SpaceMapKind::Affine) {
-          // The matrix in locals: read through a reference, the stores could alias it and every
-          // element would be loaded again per point (a scalar loop); copied, the loop vectorises.
-          const glm::mat3 L = m.linear;
-          const float l00 = L[0][0], l01 = L[0][1], l02 = L[0][2], l10 = L[1][0], l11 = L[1][1], l12 = L[1][2],
-                      l20 = L[2][0], l21 = L[2][1], l22 = L[2][2];
-          const float o0 = m.origin.x, o1 = m.origin.y, o2 = m.origin.z;
-          for (int i = 0; i < n; ++i) {
-            float dx = ix[i] - o0, dy = iy[i] - o1, dz = iz[i] - o2;
-            ox[i] = l00 * dx + l10 * dy + l20 * dz;
-            oy[i] = l01 * dx + l11 * dy + l21 * dz;
-            oz[i] = l02 * dx + l12 * dy + l22 * dz;
-          }
-        } else {
-          for (int i = 0; i < n; ++i) {
-            glm::vec3 q = m.toLocal({ix[i], iy[i], iz[i]});
-            ox[i] = q.x;
-            oy[i] = q.y;
-            oz[i] = q.z;
-          }
-        }
+        mapPoints(m, cx[level], cy[level], cz[level], n, out, out + kChunk, out + 2 * kChunk);
         ++level;
-        cx[level] = ox;
-        cy[level] = oy;
-        cz[level] = oz;
-        if (m.kind == SpaceMapKind::Affine) {
-          // The image of the parent box's corners bounds the image of its points.
-          const glm::vec3 lo = boxes[2 * level - 2], hi = boxes[2 * level - 1];
-          glm::vec3 nlo(INFINITY), nhi(-INFINITY);
-          for (int c = 0; c < 8; ++c) {
-            glm::vec3 q((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
-            glm::vec3 r = m.linear * (q - m.origin);
-            nlo = glm::min(nlo, r);
-            nhi = glm::max(nhi, r);
-          }
-          const glm::vec3 pad = 1e-5f * (nhi - nlo) + 1e-6f * glm::max(glm::abs(nlo), glm::abs(nhi));  // rounding
-          boxes[2 * level] = nlo - pad;
-          boxes[2 * level + 1] = nhi + pad;
-        } else {
-          pointsBox(ox, oy, oz, boxes[2 * level], boxes[2 * level + 1]);
-        }
+        cx[level] = out;
+        cy[level] = out + kChunk;
+        cz[level] = out + 2 * kChunk;
+        if (m.kind == SpaceMapKind::Affine)
+          affineBox(m, boxes[2 * level - 2], boxes[2 * level - 1], boxes[2 * level], boxes[2 * level + 1]);
+        else
+          pointsBox(cx[level], cy[level], cz[level], n, boxes[2 * level], boxes[2 * level + 1]);
         break;
       }
-      case OpCode::EndMap: {
-        const SpaceMap& m = P.maps[op.first];
+      case OpCode::EndMap:
         --level;
-        if (grad && !zero[sp - 1]) {  // a zero gradient stays zero
-          float* gx = GX(sp - 1);
-          float* gy = GY(sp - 1);
-          float* gz = GZ(sp - 1);
-          if (m.kind == SpaceMapKind::Affine) {
-            const glm::mat3 L = m.linear;  // J = L; grad_world = L^T grad_local (in locals, as above)
-            const float l00 = L[0][0], l01 = L[0][1], l02 = L[0][2], l10 = L[1][0], l11 = L[1][1], l12 = L[1][2],
-                        l20 = L[2][0], l21 = L[2][1], l22 = L[2][2];
-            for (int i = 0; i < n; ++i) {
-              float a = gx[i], b = gy[i], c = gz[i];
-              gx[i] = l00 * a + l01 * b + l02 * c;
-              gy[i] = l10 * a + l11 * b + l12 * c;
-              gz[i] = l20 * a + l21 * b + l22 * c;
-            }
-          } else {
-            for (int i = 0; i < n; ++i) {
-              glm::mat3 J;
-              m.toLocal({cx[level][i], cy[level][i], cz[level][i]}, &J);
-              glm::vec3 g = glm::transpose(J) * glm::vec3(gx[i], gy[i], gz[i]);
-              gx[i] = g.x;
-              gy[i] = g.y;
-              gz[i] = g.z;
-            }
-          }
-        }
+        if (grad && !zero[sp - 1])  // a zero gradient stays zero
+          pullBackGradient(P.maps[op.first], cx[level], cy[level], cz[level], n, S.GX(sp - 1), S.GY(sp - 1),
+                           S.GZ(sp - 1));
         break;
-      }
       default: {
-        int cnt = int(op.count);
-        int base = sp - cnt;
-        float* f0 = F(base);
-        float* gx0 = GX(base);
-        float* gy0 = GY(base);
-        float* gz0 = GZ(base);
-        const float* prm = P.params.data() + op.param;
-        if (op.code == OpCode::Sum) {
-          // Zero operands add nothing: the first other operand is copied (0 + a is a), the
-          // others added in their order, as the plain fold below would.
-          int k0 = 0;
-          while (k0 < cnt && zero[base + k0]) ++k0;
-          if (k0 == cnt) {
-            zero[base] = 1;
-            sp = base + 1;
-            break;
-          }
-          if (k0 > 0) {
-            std::copy(F(base + k0), F(base + k0) + n, f0);
-            if (grad) {
-              std::copy(GX(base + k0), GX(base + k0) + n, gx0);
-              std::copy(GY(base + k0), GY(base + k0) + n, gy0);
-              std::copy(GZ(base + k0), GZ(base + k0) + n, gz0);
-            }
-            zero[base] = 0;
-          }
-          for (int k = k0 + 1; k < cnt; ++k) {
-            if (zero[base + k]) continue;
-            const float* fk = F(base + k);
-            for (int i = 0; i < n; ++i) f0[i] += fk[i];
-            if (grad) {
-              const float* ax = GX(base + k);
-              const float* ay = GY(base + k);
-              const float* az = GZ(base + k);
-              for (int i = 0; i < n; ++i) {
-                gx0[i] += ax[i];
-                gy0[i] += ay[i];
-                gz0[i] += az[i];
-              }
-            }
-          }
-          sp = base + 1;
-          break;
-        }
-        for (int k = 0; k < cnt; ++k) materialise(base + k);
-        switch (op.code) {
-          case OpCode::Max:
-          case OpCode::Min: {
-            bool mx = op.code == OpCode::Max;
-            for (int k = 1; k < cnt; ++k) {
-              const float* fk = F(base + k);
-              if (grad) {
-                const float* ax = GX(base + k);
-                const float* ay = GY(base + k);
-                const float* az = GZ(base + k);
-                for (int i = 0; i < n; ++i) {
-                  bool take = mx ? fk[i] > f0[i] : fk[i] < f0[i];
-                  if (take) {
-                    f0[i] = fk[i];
-                    gx0[i] = ax[i];
-                    gy0[i] = ay[i];
-                    gz0[i] = az[i];
-                  }
-                }
-              } else {
-                for (int i = 0; i < n; ++i) f0[i] = mx ? std::max(f0[i], fk[i]) : std::min(f0[i], fk[i]);
-              }
-            }
-            break;
-          }
-          case OpCode::HyperBlend: {
-            float q = prm[0];
-            float vals[64], d[64];
-            int m = std::min(cnt, 64);
-            for (int i = 0; i < n; ++i) {
-              for (int k = 0; k < m; ++k) vals[k] = F(base + k)[i];
-              float h = hyperBlend(vals, m, q, d);
-              if (grad) {
-                float sx = 0, sy = 0, sz = 0;
-                for (int k = 0; k < m; ++k) {
-                  sx += d[k] * GX(base + k)[i];
-                  sy += d[k] * GY(base + k)[i];
-                  sz += d[k] * GZ(base + k)[i];
-                }
-                gx0[i] = sx;
-                gy0[i] = sy;
-                gz0[i] = sz;
-              }
-              f0[i] = h;
-            }
-            break;
-          }
-          case OpCode::Difference: {
-            const float* f1 = F(base + 1);
-            for (int i = 0; i < n; ++i) {
-              float other = 2.0f * T - f1[i];
-              if (other < f0[i]) {
-                f0[i] = other;
-                if (grad) {
-                  gx0[i] = -GX(base + 1)[i];
-                  gy0[i] = -GY(base + 1)[i];
-                  gz0[i] = -GZ(base + 1)[i];
-                }
-              }
-            }
-            break;
-          }
-          case OpCode::RUnion:
-          case OpCode::RIntersection: {
-            bool uni = op.code == OpCode::RUnion;
-            const float* f1 = F(base + 1);
-            for (int i = 0; i < n; ++i) {
-              float d1, d2;
-              float r = uni ? rUnion(f0[i] - T, f1[i] - T, d1, d2) : rIntersection(f0[i] - T, f1[i] - T, d1, d2);
-              f0[i] = T + r;
-              if (grad) {
-                gx0[i] = d1 * gx0[i] + d2 * GX(base + 1)[i];
-                gy0[i] = d1 * gy0[i] + d2 * GY(base + 1)[i];
-                gz0[i] = d1 * gz0[i] + d2 * GZ(base + 1)[i];
-              }
-            }
-            break;
-          }
-          case OpCode::BoundedBlend: {
-            BoundedBlendParams bp{prm[0], prm[1], prm[2], prm[3]};
-            const float* f1 = F(base + 1);
-            const float* f2 = F(base + 2);
-            for (int i = 0; i < n; ++i) {
-              float d[3];
-              float r = boundedBlend(f0[i] - T, f1[i] - T, f2[i] - T, bp, d);
-              f0[i] = T + r;
-              if (grad) {
-                gx0[i] = d[0] * gx0[i] + d[1] * GX(base + 1)[i] + d[2] * GX(base + 2)[i];
-                gy0[i] = d[0] * gy0[i] + d[1] * GY(base + 1)[i] + d[2] * GY(base + 2)[i];
-                gz0[i] = d[0] * gz0[i] + d[1] * GZ(base + 1)[i] + d[2] * GZ(base + 2)[i];
-              }
-            }
-            break;
-          }
-          case OpCode::Remap:
-            for (int i = 0; i < n; ++i) {
-              float d;
-              f0[i] = remapPotential(f0[i], prm[0], prm[1], T, d);
-              if (grad) {
-                gx0[i] *= d;
-                gy0[i] *= d;
-                gz0[i] *= d;
-              }
-            }
-            break;
-          default: break;
-        }
+        const int base = sp - int(op.count);
+        combineOperands(S, op, base, P.params.data() + op.param, T);
         sp = base + 1;
       }
     }
   }
-  materialise(0);
-  const float* f = F(0);
+  S.materialise(0);
+  const float* f = S.F(0);
   for (int i = 0; i < n; ++i) fOut[i] = f[i] - T;
   if (grad) {
-    std::copy(GX(0), GX(0) + n, gxOut);
-    std::copy(GY(0), GY(0) + n, gyOut);
-    std::copy(GZ(0), GZ(0) + n, gzOut);
+    std::copy(S.GX(0), S.GX(0) + n, gxOut);
+    std::copy(S.GY(0), S.GY(0) + n, gyOut);
+    std::copy(S.GZ(0), S.GZ(0) + n, gzOut);
   }
 }
 

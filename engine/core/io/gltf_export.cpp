@@ -2,6 +2,7 @@
 
 #include "core/util/atomic_file.h"
 #include "core/io/glb_writer.h"
+#include "core/rig/morph_targets.h"
 
 namespace animorph {
 namespace {
@@ -23,8 +24,26 @@ const char* pathName(ChannelPath p) {
     case ChannelPath::Translation: return "translation";
     case ChannelPath::Rotation: return "rotation";
     case ChannelPath::Scale: return "scale";
+    case ChannelPath::Weights: return "weights";
   }
   return "translation";
+}
+
+// The sampler of a Weights channel: one weight per morph target of the node's mesh per key.
+Result<json> weightSampler(const Character& c, const Channel& ch, const std::string& label, GlbWriter& w) {
+  const int mesh = c.nodes[size_t(ch.node)].mesh;
+  const size_t targets = mesh >= 0 && mesh < int(c.meshes.size()) ? c.meshes[size_t(mesh)].morphTargets.size() : 0;
+  if (targets == 0) return Error{label + ": animates weights of a node without a mesh with morph targets"};
+  if (size_t(ch.weightCount) != targets)
+    return Error{label + ": " + std::to_string(ch.weightCount) + " weights per key for " + std::to_string(targets) +
+                 " morph targets"};
+  const size_t perKey = (ch.interpolation == Interpolation::CubicSpline ? 3 : 1) * targets;
+  if (ch.weightValues.size() != perKey * ch.timesSec.size())
+    return Error{label + ": " + std::to_string(ch.weightValues.size()) + " weights for " +
+                 std::to_string(ch.timesSec.size()) + " keys"};
+  int in = w.floats(ch.timesSec.data(), ch.timesSec.size(), 1, "SCALAR", 0, true);
+  int out = w.floats(ch.weightValues.data(), ch.weightValues.size(), 1, "SCALAR", 0, false);
+  return json{{"input", in}, {"output", out}, {"interpolation", interpolationName(ch.interpolation)}};
 }
 
 }  // namespace
@@ -107,7 +126,25 @@ Result<std::string> exportGlbBytes(const Character& c) {
     }
     json prim = {{"attributes", attrs}, {"mode", 4}};
     if (!m.indices.empty()) prim["indices"] = w.indices(m.indices, nv);
-    meshes.push_back({{"name", m.name}, {"primitives", json::array({prim})}});
+    json jm = {{"name", m.name}};
+    if (!m.morphTargets.empty()) {
+      if (std::string bad = checkMorphTargets(m); !bad.empty()) return Error{label + ": " + bad};
+      json targets = json::array(), names = json::array();
+      for (const MorphTarget& mt : m.morphTargets) {
+        json t;
+        t["POSITION"] = w.floats(&mt.positionDeltas.data()->x, nv, 3, "VEC3", kArrayBuffer, true);
+        if (!mt.normalDeltas.empty()) t["NORMAL"] = w.floats(&mt.normalDeltas.data()->x, nv, 3, "VEC3", kArrayBuffer, false);
+        targets.push_back(t);
+        names.push_back(mt.name);
+      }
+      prim["targets"] = targets;
+      std::vector<float> weights(m.morphTargets.size(), 0.0f);
+      for (size_t t = 0; t < weights.size() && t < m.defaultMorphWeights.size(); ++t) weights[t] = m.defaultMorphWeights[t];
+      jm["weights"] = weights;
+      jm["extras"] = {{"targetNames", names}};  // the names Blender and three.js read
+    }
+    jm["primitives"] = json::array({prim});
+    meshes.push_back(jm);
   }
   if (!meshes.empty()) root["meshes"] = meshes;
 
@@ -138,6 +175,13 @@ Result<std::string> exportGlbBytes(const Character& c) {
       for (size_t i = 1; i < ch.timesSec.size(); ++i)
         if (!(ch.timesSec[i] > ch.timesSec[i - 1])) return Error{label + ": key times must increase (key " + std::to_string(i) + ")"};
       const size_t perKey = ch.interpolation == Interpolation::CubicSpline ? 3 : 1;
+      if (ch.path == ChannelPath::Weights) {
+        auto sampler = weightSampler(c, ch, label, w);
+        if (!sampler) return Error{sampler.error()};
+        samplers.push_back(*sampler);
+        channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", ch.node}, {"path", "weights"}}}});
+        continue;
+      }
       if (ch.values.size() != perKey * ch.timesSec.size())
         return Error{label + ": " + std::to_string(ch.values.size()) + " values for " + std::to_string(ch.timesSec.size()) + " keys"};
       const bool rot = ch.path == ChannelPath::Rotation;

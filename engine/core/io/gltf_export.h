@@ -8,9 +8,11 @@
 namespace animorph {
 
 // Serialises c as GLB bytes: nodes (TRS), meshes (POSITION, NORMAL, COLOR_0 when present, indices,
-// JOINTS_0/WEIGHTS_0 and _1 when used, for meshes drawn with a skin), skins
+// JOINTS_0/WEIGHTS_0 and _1 when used, for meshes drawn with a skin; morph
+// targets with POSITION and NORMAL deltas, their names in extras.targetNames and
+// the default weights), skins
 // with inverse bind matrices, animations with STEP/LINEAR/CUBICSPLINE
-// samplers, one scene of c.roots. Fails (naming the element) on data glTF
+// samplers (translation, rotation, scale, morph target weights), one scene of c.roots. Fails (naming the element) on data glTF
 // cannot hold: indices or joints out of range, key times that do not
 // increase, a value count that does not match the interpolation.
 Result<std::string> exportGlbBytes(const Character& c);

@@ -383,6 +383,8 @@ struct PrimitiveGeometry {
   std::vector<uint32_t> indices;
   std::vector<std::vector<Influence>> influences;  // empty when the primitive has no JOINTS_0
   std::vector<glm::vec4> colors;                   // COLOR_0; empty when the primitive has none
+  // Morph targets: POSITION deltas of each target (one per vertex), NORMAL deltas (empty: none).
+  std::vector<std::vector<glm::vec3>> targetPositions, targetNormals;
   bool computedNormals = false;
 };
 
@@ -416,6 +418,45 @@ const char* modeName(int mode) {
     case TINYGLTF_MODE_LINE_STRIP: return "LINE_STRIP";
     default: return "unknown mode";
   }
+}
+
+// One VEC3 float attribute of morph target t with vcount elements, or an error naming it.
+Status readTargetAttribute(const Ctx& c, int acc, const std::string& label, const char* what, size_t vcount,
+                           std::vector<glm::vec3>& out) {
+  std::vector<float> raw;
+  int comps = 0;
+  auto k = readAccessor(c, acc, {{TINYGLTF_TYPE_VEC3}, kFloatOnly, what}, raw, comps);
+  if (!k) return Error{k.error()};
+  if (*k != vcount)
+    return err(c, label, std::string(what) + " has " + std::to_string(*k) + " elements but POSITION has " +
+                             std::to_string(vcount));
+  if (auto s = checkFinite(c, acc, raw, 3, "delta"); !s) return s;
+  out.resize(vcount);
+  std::memcpy(out.data(), raw.data(), vcount * sizeof(glm::vec3));
+  return {};
+}
+
+// The morph targets of a primitive (POSITION and NORMAL deltas; TANGENT deltas are not used).
+Status readPrimitiveTargets(const Ctx& c, const tinygltf::Primitive& prim, const std::string& primLabel, size_t vcount,
+                            PrimitiveGeometry& g) {
+  for (size_t t = 0; t < prim.targets.size(); ++t) {
+    const std::string label = primLabel + " morph target " + std::to_string(t);
+    auto& pos = g.targetPositions.emplace_back();
+    auto& nrm = g.targetNormals.emplace_back();
+    const auto& attrs = prim.targets[t];
+    for (const auto& [name, acc] : attrs)
+      if (name != "POSITION" && name != "NORMAL" && name != "TANGENT")
+        return err(c, label, "attribute '" + name + "' cannot be a morph target (POSITION, NORMAL or TANGENT)");
+    if (auto it = attrs.find("POSITION"); it != attrs.end()) {
+      if (auto s = readTargetAttribute(c, it->second, label, "morph target POSITION", vcount, pos); !s) return s;
+    } else {
+      pos.assign(vcount, glm::vec3(0.0f));
+    }
+    if (auto it = attrs.find("NORMAL"); it != attrs.end())
+      if (auto s = readTargetAttribute(c, it->second, label, "morph target NORMAL", vcount, nrm); !s) return s;
+    if (attrs.count("TANGENT")) c.report.unsupported.push_back("morph target TANGENT deltas (" + label + ")");
+  }
+  return {};
 }
 
 // Reads one triangle primitive. Returns an empty geometry with a warning for
@@ -517,7 +558,99 @@ Result<PrimitiveGeometry> readPrimitive(const Ctx& c, int meshIndex, int primInd
       for (int k = 0; k < 4; ++k)
         if (weights[v * 4 + k] != 0.0f) g.influences[v].push_back({joints[v * 4 + k], weights[v * 4 + k]});
   }
+  if (auto s = readPrimitiveTargets(c, prim, label, vcount, g); !s) return Error{s.error()};
   return g;
+}
+
+// The primitives' morph targets concatenated as their vertices are (a primitive
+// with fewer targets gets zero deltas), their names (mesh.extras.targetNames) and
+// the mesh's default weights. The concatenated deltas are charged to the decoding
+// budget: a primitive with many targets beside a large one without cannot blow it up.
+Status concatenateMorphTargets(const Ctx& c, int meshIndex, const std::vector<PrimitiveGeometry>& prims, Mesh& mesh) {
+  const auto& gm = c.m.meshes[meshIndex];
+  size_t targets = 0;
+  bool anyNormals = false;
+  for (const auto& g : prims) {
+    if (targets && !g.targetPositions.empty() && g.targetPositions.size() != targets)
+      c.report.warnings.push_back(meshLabel(c.m, meshIndex) + ": primitives have different numbers of morph targets (" +
+                                  std::to_string(targets) + " and " + std::to_string(g.targetPositions.size()) +
+                                  "); missing ones move nothing");
+    targets = std::max(targets, g.targetPositions.size());
+    for (const auto& n : g.targetNormals) anyNormals |= !n.empty();
+  }
+  if (targets == 0) {
+    if (!gm.weights.empty())
+      c.report.warnings.push_back(meshLabel(c.m, meshIndex) + ": has weights but no morph targets; ignored");
+    return {};
+  }
+  const size_t n = mesh.vertexCount();
+  const size_t bytes = targets * n * sizeof(glm::vec3) * (anyNormals ? 2 : 1);
+  if (bytes > c.budget - c.spent)
+    return err(c, meshLabel(c.m, meshIndex), std::to_string(targets) + " morph targets over " + std::to_string(n) +
+                                                 " vertices would take " + std::to_string(bytes) +
+                                                 " bytes, more than the " + std::to_string(c.budget - c.spent) +
+                                                 " left of this file's decoding budget");
+  c.spent += bytes;
+  mesh.morphTargets.resize(targets);
+  const tinygltf::Value* names = gm.extras.Has("targetNames") ? &gm.extras.Get("targetNames") : nullptr;
+  for (size_t t = 0; t < targets; ++t) {
+    MorphTarget& mt = mesh.morphTargets[t];
+    mt.name = "target " + std::to_string(t);
+    if (names && names->IsArray() && t < names->ArrayLen() && names->Get(int(t)).IsString())
+      mt.name = names->Get(int(t)).Get<std::string>();
+    mt.positionDeltas.reserve(n);
+    if (anyNormals) mt.normalDeltas.reserve(n);
+    for (const auto& g : prims) {
+      const size_t pn = g.positions.size();
+      const bool has = t < g.targetPositions.size();
+      if (has) mt.positionDeltas.insert(mt.positionDeltas.end(), g.targetPositions[t].begin(), g.targetPositions[t].end());
+      else mt.positionDeltas.insert(mt.positionDeltas.end(), pn, glm::vec3(0.0f));
+      if (!anyNormals) continue;
+      if (has && !g.targetNormals[t].empty())
+        mt.normalDeltas.insert(mt.normalDeltas.end(), g.targetNormals[t].begin(), g.targetNormals[t].end());
+      else mt.normalDeltas.insert(mt.normalDeltas.end(), pn, glm::vec3(0.0f));
+    }
+  }
+  mesh.defaultMorphWeights.assign(targets, 0.0f);
+  if (!gm.weights.empty() && gm.weights.size() != targets)
+    return err(c, meshLabel(c.m, meshIndex), std::to_string(gm.weights.size()) + " weights for " +
+                                                 std::to_string(targets) + " morph targets");
+  for (size_t t = 0; t < gm.weights.size(); ++t) {
+    if (!std::isfinite(gm.weights[t])) return err(c, meshLabel(c.m, meshIndex), "weight " + std::to_string(t) + " is not finite");
+    mesh.defaultMorphWeights[t] = static_cast<float>(gm.weights[t]);
+  }
+  return {};
+}
+
+// A node's own weights (glTF node.weights) replace its mesh's defaults: the
+// Character keeps one set per mesh, so nodes that share a mesh with different
+// weights get a warning and the first node's weights.
+Status applyNodeMorphWeights(const Ctx& c, Character& ch) {
+  std::vector<int> setBy(ch.meshes.size(), -1);
+  for (size_t i = 0; i < ch.nodes.size(); ++i) {
+    const auto& w = c.m.nodes[i].weights;
+    const int mi = ch.nodes[i].mesh;
+    if (w.empty() || mi < 0) continue;
+    Mesh& mesh = ch.meshes[size_t(mi)];
+    if (w.size() != mesh.morphTargets.size())
+      return err(c, nodeLabel(c.m, int(i)), std::to_string(w.size()) + " weights for the " +
+                                                std::to_string(mesh.morphTargets.size()) + " morph targets of its mesh");
+    std::vector<float> wf(w.size());
+    for (size_t t = 0; t < w.size(); ++t) {
+      if (!std::isfinite(w[t])) return err(c, nodeLabel(c.m, int(i)), "weight " + std::to_string(t) + " is not finite");
+      wf[t] = static_cast<float>(w[t]);
+    }
+    if (setBy[size_t(mi)] >= 0) {
+      if (wf != mesh.defaultMorphWeights)
+        c.report.warnings.push_back(nodeLabel(c.m, int(i)) + ": its weights differ from those of " +
+                                    nodeLabel(c.m, setBy[size_t(mi)]) + ", which draws the same mesh; " +
+                                    "both show the latter's");
+      continue;
+    }
+    setBy[size_t(mi)] = int(i);
+    mesh.defaultMorphWeights = std::move(wf);
+  }
+  return {};
 }
 
 // Concatenates the triangle primitives of mesh meshIndex.
@@ -530,8 +663,6 @@ Result<Mesh> readMesh(const Ctx& c, int meshIndex) {
   std::vector<PrimitiveGeometry> prims;
   for (int p = 0; p < static_cast<int>(gm.primitives.size()); ++p) {
     const auto& prim = gm.primitives[p];
-    if (!prim.targets.empty())
-      c.report.unsupported.push_back("morph targets (" + meshLabel(c.m, meshIndex) + ")");
     if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
         prim.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
       c.report.unsupported.push_back(std::string(modeName(prim.mode)) + " primitive (" + meshLabel(c.m, meshIndex) +
@@ -540,6 +671,7 @@ Result<Mesh> readMesh(const Ctx& c, int meshIndex) {
     }
     auto g = readPrimitive(c, meshIndex, p);
     if (!g) return Error{g.error()};
+    if (mesh.material < 0 && prim.material >= 0 && prim.material < int(c.m.materials.size())) mesh.material = prim.material;
     computed |= g->computedNormals;
     anySkinned |= !g->influences.empty();
     prims.push_back(std::move(*g));
@@ -583,6 +715,7 @@ Result<Mesh> readMesh(const Ctx& c, int meshIndex) {
   if (computed) ++c.report.normalsComputed;
   if (mesh.indices.empty()) c.report.warnings.push_back(meshLabel(c.m, meshIndex) + ": no triangles");
   (void)anySkinned;
+  if (auto s = concatenateMorphTargets(c, meshIndex, prims, mesh); !s) return Error{s.error()};
   return mesh;
 }
 
@@ -744,6 +877,34 @@ Status readSkins(const Ctx& c, Character& ch) {
   return {};
 }
 
+// The keys of a "weights" channel (out.timesSec already read): one weight per
+// morph target of the node's mesh per key (three with CUBICSPLINE), into
+// out.weightValues. false (with a warning) when the node draws no mesh with targets.
+Result<bool> readWeightKeys(const Ctx& c, const Character& ch, int node, const tinygltf::AnimationSampler& gs,
+                            const std::string& chLabel, Channel& out) {
+  const int mi = ch.nodes[size_t(node)].mesh;
+  const size_t targets = mi < 0 ? 0 : ch.meshes[size_t(mi)].morphTargets.size();
+  if (targets == 0) {
+    c.report.warnings.push_back(chLabel + ": animates the weights of " + nodeLabel(c.m, node) +
+                                ", which draws no mesh with morph targets; skipped");
+    return false;
+  }
+  std::vector<float> vals;
+  int comps = 0;
+  auto nv = readAccessor(c, gs.output, {{TINYGLTF_TYPE_SCALAR}, kRotationTypes, "animation output (weights)"}, vals, comps);
+  if (!nv) return Error{nv.error()};
+  const size_t perKey = (out.interpolation == Interpolation::CubicSpline ? 3 : 1) * targets;
+  if (*nv != perKey * out.timesSec.size())
+    return err(c, accessorName(gs.output), std::to_string(*nv) + " weights for " + std::to_string(out.timesSec.size()) +
+                                               " keys of " + std::to_string(targets) + " morph targets (" +
+                                               gs.interpolation + " needs " +
+                                               std::to_string(perKey * out.timesSec.size()) + ")");
+  if (auto st = checkFinite(c, gs.output, vals, 1, "weight"); !st) return Error{st.error()};
+  out.weightValues = std::move(vals);
+  out.weightCount = static_cast<int>(targets);
+  return true;
+}
+
 Status readAnimations(const Ctx& c, Character& ch) {
   const auto& m = c.m;
   for (int a = 0; a < static_cast<int>(m.animations.size()); ++a) {
@@ -751,15 +912,14 @@ Status readAnimations(const Ctx& c, Character& ch) {
     const std::string label = "animation " + std::to_string(a) + (ga.name.empty() ? "" : " '" + ga.name + "'");
     AnimationClip clip;
     clip.name = ga.name.empty() ? "animation " + std::to_string(a) : ga.name;
-    bool morphWeights = false;
     for (int k = 0; k < static_cast<int>(ga.channels.size()); ++k) {
       const auto& gc = ga.channels[k];
       const std::string chLabel = label + " channel " + std::to_string(k);
-      if (gc.target_path == "weights") { morphWeights = true; continue; }
       Channel out;
       if (gc.target_path == "translation") out.path = ChannelPath::Translation;
       else if (gc.target_path == "rotation") out.path = ChannelPath::Rotation;
       else if (gc.target_path == "scale") out.path = ChannelPath::Scale;
+      else if (gc.target_path == "weights") out.path = ChannelPath::Weights;
       else {
         c.report.unsupported.push_back("animation path '" + gc.target_path + "' (" + label + ")");
         continue;
@@ -801,6 +961,14 @@ Status readAnimations(const Ctx& c, Character& ch) {
                                       " s repeats at key " + std::to_string(i));
           break;
         }
+      if (out.path == ChannelPath::Weights) {
+        auto w = readWeightKeys(c, ch, gc.target_node, gs, chLabel, out);
+        if (!w) return Error{w.error()};
+        if (!*w) continue;
+        clip.durationSec = std::max(clip.durationSec, out.timesSec.back());
+        clip.channels.push_back(std::move(out));
+        continue;
+      }
       const bool rotation = out.path == ChannelPath::Rotation;
       std::vector<float> vals;
       auto nv = readAccessor(c, gs.output,
@@ -820,7 +988,6 @@ Status readAnimations(const Ctx& c, Character& ch) {
       clip.durationSec = std::max(clip.durationSec, out.timesSec.back());
       clip.channels.push_back(std::move(out));
     }
-    if (morphWeights) c.report.unsupported.push_back("morph target weights animation (" + label + ")");
     ch.clips.push_back(std::move(clip));
   }
   return {};
@@ -865,6 +1032,29 @@ Status checkSkinBindings(const Ctx& c, Character& ch) {
   return {};
 }
 
+// Base colour factor and texture of every material (Character::materials, by glTF index).
+void readMaterials(const Ctx& c, Character& ch) {
+  const auto& m = c.m;
+  for (size_t i = 0; i < m.materials.size(); ++i) {
+    const auto& gm = m.materials[i];
+    Material mat;
+    mat.name = gm.name.empty() ? "material " + std::to_string(i) : gm.name;
+    const auto& f = gm.pbrMetallicRoughness.baseColorFactor;
+    if (f.size() == 4 && std::all_of(f.begin(), f.end(), [](double v) { return std::isfinite(v); }))
+      mat.baseColorFactor = glm::clamp(glm::vec4(float(f[0]), float(f[1]), float(f[2]), float(f[3])), 0.0f, 1.0f);
+    const int tex = gm.pbrMetallicRoughness.baseColorTexture.index;
+    if (tex >= 0 && tex < int(m.textures.size())) {
+      const int src = m.textures[tex].source;
+      if (src >= 0 && src < int(m.images.size())) {
+        const std::string& uri = m.images[src].uri;
+        if (uri.empty() || uri.rfind("data:", 0) == 0) mat.baseColorTextureEmbedded = true;
+        else mat.baseColorTextureUri = uri;  // inside the file's folder: the file-system guard read it
+      }
+    }
+    ch.materials.push_back(std::move(mat));
+  }
+}
+
 void listUnsupportedFeatures(const Ctx& c) {
   const auto& m = c.m;
   for (const auto& e : m.extensionsUsed) c.report.unsupported.push_back("extension " + e);
@@ -892,6 +1082,8 @@ std::vector<int> countAccessorUses(const tinygltf::Model& m) {
     for (const auto& prim : mesh.primitives) {
       use(prim.indices);
       for (const auto& [name, acc] : prim.attributes) use(acc);
+      for (const auto& target : prim.targets)
+        for (const auto& [name, acc] : target) use(acc);
     }
   for (const auto& skin : m.skins) use(skin.inverseBindMatrices);
   for (const auto& anim : m.animations)
@@ -990,6 +1182,7 @@ Result<Character> importImpl(const std::string& path) {
 
   Character ch;
   ch.sourcePath = path;
+  ch.format = "glTF";
   size_t inputBytes = data.size();
   for (const auto& b : model.buffers) inputBytes += b.data.size();
   Ctx c{file, model, ch.report};
@@ -1002,12 +1195,14 @@ Result<Character> importImpl(const std::string& path) {
     if (e != "KHR_materials_unlit" && e != "KHR_texture_transform")
       return err(c, "extensionsRequired", "requires " + e + ", which is not supported");
   listUnsupportedFeatures(c);
+  readMaterials(c, ch);
   if (auto s = readHierarchy(c, ch); !s) return Error{s.error()};
   for (int i = 0; i < static_cast<int>(model.meshes.size()); ++i) {
     auto mesh = readMesh(c, i);
     if (!mesh) return Error{mesh.error()};
     ch.meshes.push_back(std::move(*mesh));
   }
+  if (auto s = applyNodeMorphWeights(c, ch); !s) return Error{s.error()};
   if (auto s = readSkins(c, ch); !s) return Error{s.error()};
   if (auto s = checkSkinBindings(c, ch); !s) return Error{s.error()};
   if (auto s = readAnimations(c, ch); !s) return Error{s.error()};

@@ -17,7 +17,7 @@ PaintMesh paintMeshFromFrame(const SceneFrame& frame, const std::string& actorId
     if (d.actorId != actorId || !d.character) continue;
     character = d.character.get();
     const Mesh& mesh = d.character->meshes[d.meshIndex];
-    skinMesh(mesh, d.joints, pos, nrm);
+    skinMesh(mesh, d.joints, pos, nrm, d.morphWeights);
     const auto base = static_cast<uint32_t>(out.positions.size());
     const glm::mat3 normalM = glm::transpose(glm::inverse(glm::mat3(d.model)));
     for (size_t i = 0; i < pos.size(); ++i) {

@@ -214,63 +214,125 @@ Result<PolygonizeGrid> polygonizeGrid(const FieldProgram& program, const Polygon
   return g;
 }
 
-Result<PolygonizeResult> polygonize(const FieldProgram& program, const PolygonizeSettings& s) {
-  auto t0 = std::chrono::steady_clock::now();
-  PolygonizeResult result;
-  const float T = program.threshold;
+namespace {
 
-  // ---- grid
-  auto grid = polygonizeGrid(program, s);
-  if (!grid) return Error{grid.error()};
-  if (grid->empty) {
-    result.stats.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    return result;  // nothing inside anywhere
+constexpr int kPair = 2;  // blocks per pair side (the middle culling level)
+constexpr uint32_t kUnresolved = 0xffffffffu;
+
+// Sub-block (0..7) of a block-local cell.
+inline int subOf(int i, int j, int k) {
+  return (i >= kBlock / 2 ? 1 : 0) | (j >= kBlock / 2 ? 2 : 0) | (k >= kBlock / 2 ? 4 : 0);
+}
+
+// One block of one run: where it lies, which of its 4^3 sub-blocks may hold surface and the program
+// its corners and vertices are evaluated with.
+struct BlockJob {
+  size_t bi = 0;
+  int b[3] = {0, 0, 0};     // block index per axis
+  int c0[3] = {0, 0, 0};    // first cell per axis
+  int cnt[3] = {0, 0, 0};   // cells per axis (kBlock, or fewer at the grid's far side)
+  const ActiveProgram* prog = nullptr;
+  // Sub-blocks of 4^3 cells whose cells may hold surface (all of them without culling).
+  bool subLive[8] = {true, true, true, true, true, true, true, true};
+  bool perSub = false;      // each live sub-block has its own program (Scratch::subActive)
+  int subLo[8][3], subHi[8][3];  // corner ranges (inclusive) of each sub-block, block-local
+  int cx = 0, cy = 0, cz = 0;    // corners per axis (cells + 1)
+  float val(const Scratch& sc, int i, int j, int k) const { return sc.v[size_t((k * cy + j) * cx + i)]; }
+};
+
+// The state one polygonize() call shares between its stages and worker threads: the grid, the
+// culling levels' verdicts and candidate lists, the blocks' outputs, the counters of its stats.
+// Each stage is a member function; they run in the order polygonize() calls them.
+struct PolygonizeRun {
+  PolygonizeRun(const FieldProgram& program, const PolygonizeSettings& s, const PolygonizeGrid& grid)
+      : program(program), s(s), T(program.threshold), table(marchingCubesTable()) {
+    g.origin = grid.origin;
+    g.h = grid.cellSize;
+    for (int a = 0; a < 3; ++a) g.n[a] = grid.cells[a];
+    for (int a = 0; a < 3; ++a) {
+      g.nb[a] = (g.n[a] + kBlock - 1) / kBlock;
+      g.ns[a] = (g.nb[a] + kSuper - 1) / kSuper;
+    }
+    nBlocks = size_t(g.nb[0]) * g.nb[1] * g.nb[2];
+    nSupers = size_t(g.ns[0]) * g.ns[1] * g.ns[2];
+    margin = 1e-3f * T + 1e-7f;
   }
+
+  const FieldProgram& program;
+  const PolygonizeSettings& s;
+  const float T;
+  const MarchingCubesTable& table;
   Grid g;
-  g.origin = grid->origin;
-  g.h = grid->cellSize;
-  for (int a = 0; a < 3; ++a) g.n[a] = grid->cells[a];
-  for (int a = 0; a < 3; ++a) {
-    g.nb[a] = (g.n[a] + kBlock - 1) / kBlock;
-    g.ns[a] = (g.nb[a] + kSuper - 1) / kSuper;
-  }
-  PolygonizeStats& st = result.stats;
-  st.gridX = g.n[0];
-  st.gridY = g.n[1];
-  st.gridZ = g.n[2];
-  st.cellSize = g.h;
-  const size_t nBlocks = size_t(g.nb[0]) * g.nb[1] * g.nb[2];
-  const size_t nSupers = size_t(g.ns[0]) * g.ns[1] * g.ns[2];
-  st.blocksTotal = nBlocks;
+  size_t nBlocks = 0, nSupers = 0;
+  float margin = 0.0f;  // |f| within which an interval proves no sign
 
-  auto cornerPos = [&](int i, int j, int k) {
-    return g.origin + g.h * glm::vec3(float(i), float(j), float(k));
-  };
+  // Temporal coherence: the previous frame, when its grid and program structure match this one.
+  std::unique_ptr<PolygonizeHistory::State> previous;
+  std::vector<uint8_t> changed;      // per primitive, against the previous frame
+  float tolerance = 0.0f;
+  std::vector<float> changeBound;    // per primitive: how far its change can move the field
+  std::vector<BlockSummary> summary;
+  std::vector<uint8_t> superReused;  // superblocks whose primitives, this frame and the last, are all unchanged
+
+  ActiveProgram allPrims;
+  std::vector<SuperState> superState;
+  std::vector<std::vector<uint32_t>> superCandidates;
+  int np2[3] = {1, 1, 1};  // pairs per axis
+  size_t nPairs = 0;
+  std::vector<std::vector<uint32_t>> pairCandidates;
+
+  // Outputs only for blocks that are evaluated (most are culled at high resolution).
+  std::vector<std::unique_ptr<BlockOutput>> out;
+  std::atomic<size_t> culled{0}, evaluated{0}, cells{0}, points{0}, pairs{0}, done{0}, reused{0};
+
+  glm::vec3 cornerPos(int i, int j, int k) const { return g.origin + g.h * glm::vec3(float(i), float(j), float(k)); }
   // World box of the corners of cells [c0, c0 + count) per axis.
-  auto regionBox = [&](const int c0[3], const int count[3]) {
+  Bounds regionBox(const int c0[3], const int count[3]) const {
     Bounds b;
     b.add(cornerPos(c0[0], c0[1], c0[2]));
     b.add(cornerPos(c0[0] + count[0], c0[1] + count[1], c0[2] + count[2]));
     return b;
-  };
-  auto touchesBoundary = [&](const int c0[3], const int count[3]) {
+  }
+  bool touchesBoundary(const int c0[3], const int count[3]) const {
     for (int a = 0; a < 3; ++a)
       if (c0[a] == 0 || c0[a] + count[a] >= g.n[a]) return true;
     return false;
-  };
-  const float margin = 1e-3f * T + 1e-7f;
+  }
   // True when the interval proves one sign over the region (and the grid
   // boundary, forced outside, cannot create a surface there).
-  auto oneSigned = [&](const Interval& iv, bool boundary) {
+  bool oneSigned(const Interval& iv, bool boundary) const {
     if (iv.hi < -margin) return true;
     if (iv.lo > margin && !boundary) return true;
     return false;
-  };
+  }
+  bool onGridBoundary(int gi, int gj, int gk) const {
+    return gi == 0 || gj == 0 || gk == 0 || gi == g.n[0] || gj == g.n[1] || gk == g.n[2];
+  }
+  size_t superOfBlock(const int b[3]) const {
+    return size_t(b[0] / kSuper) + size_t(g.ns[0]) * (size_t(b[1] / kSuper) + size_t(g.ns[1]) * size_t(b[2] / kSuper));
+  }
 
-  // Temporal coherence: the previous frame, when its grid and program structure match this one.
-  std::unique_ptr<PolygonizeHistory::State> previous;
+  void takeHistory();
+  void cullSuperblocks(tbb::task_arena& arena, tbb::enumerable_thread_specific<Scratch>& scratch);
+  void listPairCandidates(tbb::task_arena& arena);
+  bool runBlocks(tbb::task_arena& arena, tbb::enumerable_thread_specific<Scratch>& scratch);
+  void processBlock(size_t bi, Scratch& sc);
+  bool cullOrReuseBlock(BlockJob& job, Scratch& sc);
+  bool reuseWithinTolerance(const BlockJob& job, Scratch& sc, size_t si, const Bounds& bb);
+  void specialiseSubBlocks(BlockJob& job, Scratch& sc);
+  void evaluateCorners(BlockJob& job, Scratch& sc);
+  void evaluateCornersPerSub(const BlockJob& job, Scratch& sc);
+  void evaluateCornersInRuns(const BlockJob& job, Scratch& sc, int np);
+  void summariseCorners(const BlockJob& job, const Scratch& sc);
+  void triangulateBlock(const BlockJob& job, Scratch& sc);
+  void gradientNormals(const BlockJob& job, Scratch& sc);
+  void stitch(tbb::task_arena& arena, TriangleMesh& mesh);
+  size_t addOrphanVertices(TriangleMesh& mesh);
+  void saveHistory();
+};
+
+void PolygonizeRun::takeHistory() {
   if (s.history) previous = std::move(PolygonizeHistoryAccess::state(*s.history));
-  std::vector<uint8_t> changed;
   if (previous && s.culling && previous->subBlockLists == s.subBlockLists && previous->origin == g.origin &&
       previous->h == g.h && previous->n[0] == g.n[0] && previous->n[1] == g.n[1] && previous->n[2] == g.n[2] &&
       previous->out.size() == nBlocks && previous->superCandidates.size() == nSupers &&
@@ -278,375 +340,83 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
     changed = changedPrimitives(program, previous->program);
   else
     previous.reset();
-  const float tolerance = std::max(0.0f, s.reuseToleranceCells);
-  std::vector<float> changeBound;  // per primitive: how far its change can move the field
+  tolerance = std::max(0.0f, s.reuseToleranceCells);
   if (previous && tolerance > 0.0f) changeBound = primitiveChangeBounds(program, previous->program);
-  std::vector<BlockSummary> summary(nBlocks);
-  // Superblocks whose primitives, this frame and the previous one, are all unchanged.
-  std::vector<uint8_t> superReused(nSupers, 0);
+  summary.resize(nBlocks);
+  superReused.assign(nSupers, 0);
+}
 
-  ActiveProgram allPrims;
-  program.specialiseAll(allPrims);
-  std::vector<uint32_t> noCandidates;
-
-  tbb::task_arena arena(s.threads > 0 ? s.threads : tbb::task_arena::automatic);
-  tbb::enumerable_thread_specific<Scratch> scratch;
-
-  // ---- coarse level: superblocks
-  std::vector<SuperState> superState(nSupers, SuperState::Partial);
-  std::vector<std::vector<uint32_t>> superCandidates(nSupers);
-  if (s.culling) {
-    arena.execute([&] {
-      tbb::parallel_for(size_t(0), nSupers, [&](size_t si) {
-        Scratch& sc = scratch.local();
-        int sidx[3] = {int(si % size_t(g.ns[0])), int((si / size_t(g.ns[0])) % size_t(g.ns[1])),
-                       int(si / (size_t(g.ns[0]) * g.ns[1]))};
-        int c0[3], cnt[3];
-        for (int a = 0; a < 3; ++a) {
-          c0[a] = sidx[a] * kSuper * kBlock;
-          cnt[a] = std::min(kSuper * kBlock, g.n[a] - c0[a]);
-        }
-        Bounds b = regionBox(c0, cnt);
-        program.primitivesReaching(b, superCandidates[si]);
-        if (previous) {
-          auto unchanged = [&](const std::vector<uint32_t>& list) {
-            for (uint32_t p : list)
-              if (changed[p]) return false;
-            return true;
-          };
-          superReused[si] = unchanged(superCandidates[si]) && unchanged(previous->superCandidates[si]);
-        }
-        program.specialise(superCandidates[si], sc.active);
-        Interval iv = program.interval(sc.active, b.center(), 0.5f * b.diagonal());
-        if (oneSigned(iv, touchesBoundary(c0, cnt))) superState[si] = SuperState::Culled;
-      });
+// Coarse level: superblocks whose interval proves one sign are culled; each keeps the primitives
+// reaching it.
+void PolygonizeRun::cullSuperblocks(tbb::task_arena& arena, tbb::enumerable_thread_specific<Scratch>& scratch) {
+  superState.assign(nSupers, SuperState::Partial);
+  superCandidates.resize(nSupers);
+  if (!s.culling) return;
+  arena.execute([&] {
+    tbb::parallel_for(size_t(0), nSupers, [&](size_t si) {
+      Scratch& sc = scratch.local();
+      int sidx[3] = {int(si % size_t(g.ns[0])), int((si / size_t(g.ns[0])) % size_t(g.ns[1])),
+                     int(si / (size_t(g.ns[0]) * g.ns[1]))};
+      int c0[3], cnt[3];
+      for (int a = 0; a < 3; ++a) {
+        c0[a] = sidx[a] * kSuper * kBlock;
+        cnt[a] = std::min(kSuper * kBlock, g.n[a] - c0[a]);
+      }
+      Bounds b = regionBox(c0, cnt);
+      program.primitivesReaching(b, superCandidates[si]);
+      if (previous) {
+        auto unchanged = [&](const std::vector<uint32_t>& list) {
+          for (uint32_t p : list)
+            if (changed[p]) return false;
+          return true;
+        };
+        superReused[si] = unchanged(superCandidates[si]) && unchanged(previous->superCandidates[si]);
+      }
+      program.specialise(superCandidates[si], sc.active);
+      Interval iv = program.interval(sc.active, b.center(), 0.5f * b.diagonal());
+      if (oneSigned(iv, touchesBoundary(c0, cnt))) superState[si] = SuperState::Culled;
     });
-  }
+  });
+}
 
-  // ---- middle level: pairs of blocks per axis (2x2x2 blocks, inside one superblock), each with
-  // its superblock's candidates whose box overlaps its box. A block's box lies inside its pair's
-  // (the same grid corners), so every primitive reaching the block is in that list and the block
-  // tests only those (the same list as testing the superblock's).
-  constexpr int kPair = 2;
-  int np2[3];
+// Middle level: pairs of blocks per axis (2x2x2 blocks, inside one superblock), each with its
+// superblock's candidates whose box overlaps its box. A block's box lies inside its pair's (the
+// same grid corners), so every primitive reaching the block is in that list and the block tests
+// only those (the same list as testing the superblock's).
+void PolygonizeRun::listPairCandidates(tbb::task_arena& arena) {
   for (int a = 0; a < 3; ++a) np2[a] = (g.nb[a] + kPair - 1) / kPair;
-  const size_t nPairs = size_t(np2[0]) * np2[1] * np2[2];
-  std::vector<std::vector<uint32_t>> pairCandidates(s.culling ? nPairs : 0);
-  if (s.culling) {
-    arena.execute([&] {
-      tbb::parallel_for(size_t(0), nPairs, [&](size_t pi) {
-        int pidx[3] = {int(pi % size_t(np2[0])), int((pi / size_t(np2[0])) % size_t(np2[1])),
-                       int(pi / (size_t(np2[0]) * np2[1]))};
-        size_t si = size_t(pidx[0] * kPair / kSuper) +
-                    size_t(g.ns[0]) * (size_t(pidx[1] * kPair / kSuper) + size_t(g.ns[1]) * size_t(pidx[2] * kPair / kSuper));
-        if (superState[si] == SuperState::Culled || superReused[si]) return;
-        int c0[3], cnt[3];
-        for (int a = 0; a < 3; ++a) {
-          c0[a] = pidx[a] * kPair * kBlock;
-          cnt[a] = std::min(kPair * kBlock, g.n[a] - c0[a]);
-        }
-        const Bounds pb = regionBox(c0, cnt);
-        for (uint32_t p : superCandidates[si]) {
-          const Bounds& box = program.primitiveBounds[p].box;
-          if (!(box.min.x > pb.max.x || box.max.x < pb.min.x || box.min.y > pb.max.y || box.max.y < pb.min.y ||
-                box.min.z > pb.max.z || box.max.z < pb.min.z))
-            pairCandidates[pi].push_back(p);
-        }
-      });
+  nPairs = size_t(np2[0]) * np2[1] * np2[2];
+  pairCandidates.resize(s.culling ? nPairs : 0);
+  if (!s.culling) return;
+  arena.execute([&] {
+    tbb::parallel_for(size_t(0), nPairs, [&](size_t pi) {
+      int pidx[3] = {int(pi % size_t(np2[0])), int((pi / size_t(np2[0])) % size_t(np2[1])),
+                     int(pi / (size_t(np2[0]) * np2[1]))};
+      size_t si = size_t(pidx[0] * kPair / kSuper) +
+                  size_t(g.ns[0]) * (size_t(pidx[1] * kPair / kSuper) + size_t(g.ns[1]) * size_t(pidx[2] * kPair / kSuper));
+      if (superState[si] == SuperState::Culled || superReused[si]) return;
+      int c0[3], cnt[3];
+      for (int a = 0; a < 3; ++a) {
+        c0[a] = pidx[a] * kPair * kBlock;
+        cnt[a] = std::min(kPair * kBlock, g.n[a] - c0[a]);
+      }
+      const Bounds pb = regionBox(c0, cnt);
+      for (uint32_t p : superCandidates[si]) {
+        const Bounds& box = program.primitiveBounds[p].box;
+        if (!(box.min.x > pb.max.x || box.max.x < pb.min.x || box.min.y > pb.max.y || box.max.y < pb.min.y ||
+              box.min.z > pb.max.z || box.max.z < pb.min.z))
+          pairCandidates[pi].push_back(p);
+      }
     });
-  }
+  });
+}
 
-  // ---- fine level: blocks
-  // Outputs only for blocks that are evaluated (most are culled at high resolution).
-  std::vector<std::unique_ptr<BlockOutput>> out(nBlocks);
-  std::atomic<size_t> culled{0}, evaluated{0}, cells{0}, points{0}, pairs{0}, done{0}, reused{0};
+// Fine level: every block, in parallel, with progress and cancel. Returns false when cancelled.
+bool PolygonizeRun::runBlocks(tbb::task_arena& arena, tbb::enumerable_thread_specific<Scratch>& scratch) {
+  out.resize(nBlocks);
   std::mutex progressMutex;
   size_t reported = 0;
-  const auto& table = marchingCubesTable();
   std::atomic<bool> cancelled{false};
-
-  auto processBlock = [&](size_t bi, Scratch& sc) {
-    int b[3] = {int(bi % size_t(g.nb[0])), int((bi / size_t(g.nb[0])) % size_t(g.nb[1])),
-                int(bi / (size_t(g.nb[0]) * g.nb[1]))};
-    int c0[3], cnt[3];
-    for (int a = 0; a < 3; ++a) {
-      c0[a] = b[a] * kBlock;
-      cnt[a] = std::min(kBlock, g.n[a] - c0[a]);
-    }
-    const ActiveProgram* prog = &allPrims;
-    // Sub-blocks of 4^3 cells whose cells may hold surface (all of them without culling).
-    bool subLive[8] = {true, true, true, true, true, true, true, true};
-    bool allLive = true;
-    if (s.culling) {
-      size_t si = size_t(b[0] / kSuper) + size_t(g.ns[0]) * (size_t(b[1] / kSuper) + size_t(g.ns[1]) * size_t(b[2] / kSuper));
-      if (superState[si] == SuperState::Culled) {
-        culled.fetch_add(1, std::memory_order_relaxed);
-        return;
-      }
-      if (superReused[si]) {
-        // Same primitives reaching it, same data: the previous frame's output (null: culled).
-        out[bi] = std::move(previous->out[bi]);
-        if (previous->summary.size() == nBlocks) summary[bi] = previous->summary[bi];
-        (out[bi] ? evaluated : culled).fetch_add(1, std::memory_order_relaxed);
-        reused.fetch_add(1, std::memory_order_relaxed);
-        return;
-      }
-      Bounds bb = regionBox(c0, cnt);
-      const size_t pi = size_t(b[0] / kPair) + size_t(np2[0]) * (size_t(b[1] / kPair) + size_t(np2[1]) * size_t(b[2] / kPair));
-      program.primitivesReaching(bb, sc.reaching, &pairCandidates[pi]);
-      program.specialise(sc.reaching, sc.active);
-      Interval iv = program.interval(sc.active, bb.center(), 0.5f * bb.diagonal());
-      if (oneSigned(iv, touchesBoundary(c0, cnt))) {
-        culled.fetch_add(1, std::memory_order_relaxed);
-        return;
-      }
-      prog = &sc.active;
-      for (int q = 0; q < 8; ++q) {
-        int s0[3], sn[3];
-        for (int a = 0; a < 3; ++a) {
-          int half = ((q >> a) & 1) * (kBlock / 2);
-          s0[a] = c0[a] + half;
-          sn[a] = std::min(kBlock / 2, cnt[a] - half);
-        }
-        if (sn[0] <= 0 || sn[1] <= 0 || sn[2] <= 0) {
-          subLive[q] = false;
-        } else {
-          Bounds sb = regionBox(s0, sn);
-          subLive[q] = !oneSigned(program.interval(sc.active, sb.center(), 0.5f * sb.diagonal()), touchesBoundary(s0, sn));
-        }
-        allLive &= subLive[q];
-      }
-      uint8_t liveMask = 0;
-      for (int q = 0; q < 8; ++q) liveMask |= uint8_t(subLive[q] ? 1 << q : 0);
-      if (!changeBound.empty() && previous->out[bi] && previous->summary[bi].valid &&
-          previous->summary[bi].subLive == liveMask) {
-        // Tolerance reuse: the field moved here by at most the sum of the change bounds of the
-        // primitives reaching the block in either frame (the others add exact zeros in both).
-        // This frame's primitives alone already too much: no need to ask the previous program.
-        double delta = previous->summary[bi].drift;
-        for (uint32_t p : sc.reaching) delta += double(changeBound[p]);
-        if (keepsBlock(previous->summary[bi], delta, tolerance, T)) {
-          previous->program.primitivesReaching(bb, sc.previousReaching, &previous->superCandidates[si]);
-          delta = previous->summary[bi].drift;
-          sc.merged.clear();
-          std::set_union(sc.reaching.begin(), sc.reaching.end(), sc.previousReaching.begin(),
-                         sc.previousReaching.end(), std::back_inserter(sc.merged));
-          for (uint32_t p : sc.merged) delta += double(changeBound[p]);
-        }
-        if (keepsBlock(previous->summary[bi], delta, tolerance, T)) {
-          out[bi] = std::move(previous->out[bi]);
-          summary[bi] = previous->summary[bi];
-          summary[bi].drift = float(delta);
-          evaluated.fetch_add(1, std::memory_order_relaxed);
-          reused.fetch_add(1, std::memory_order_relaxed);
-          return;
-        }
-      }
-      summary[bi].subLive = liveMask;
-    }
-    const bool perSub = s.culling && s.subBlockLists &&
-                        (s.subBlockListsForSkeletal ? prog->primitiveCount : unskippedCount(*prog)) > kSubSpecialise;
-    int subLo[8][3], subHi[8][3];  // corner ranges (inclusive) of each sub-block, block-local
-    for (int q = 0; q < 8; ++q)
-      for (int a = 0; a < 3; ++a) {
-        subLo[q][a] = ((q >> a) & 1) * (kBlock / 2);
-        subHi[q][a] = std::min(subLo[q][a] + kBlock / 2, cnt[a]);
-      }
-    if (perSub) {
-      for (int q = 0; q < 8; ++q) {
-        if (!subLive[q]) continue;
-        int s0[3], sn[3];
-        for (int a = 0; a < 3; ++a) {
-          s0[a] = c0[a] + subLo[q][a];
-          sn[a] = subHi[q][a] - subLo[q][a];
-        }
-        program.primitivesReaching(regionBox(s0, sn), sc.subReaching, &sc.reaching);
-        program.specialise(sc.subReaching, sc.subActive[q]);
-      }
-    }
-    evaluated.fetch_add(1, std::memory_order_relaxed);
-    // Corner values of the block's cells (its own corners plus the +1 layer);
-    // only the corners of live sub-blocks are evaluated.
-    const int cx = cnt[0] + 1, cy = cnt[1] + 1, cz = cnt[2] + 1;
-    const int np = cx * cy * cz;
-    auto subOf = [&](int i, int j, int k) {
-      return (i >= kBlock / 2 ? 1 : 0) | (j >= kBlock / 2 ? 2 : 0) | (k >= kBlock / 2 ? 4 : 0);
-    };
-    size_t liveCells = 0;
-    for (int k = 0; k < cnt[2]; ++k)
-      for (int j = 0; j < cnt[1]; ++j)
-        for (int i = 0; i < cnt[0]; ++i) liveCells += subLive[subOf(i, j, k)];
-    cells.fetch_add(liveCells, std::memory_order_relaxed);
-    sc.x.resize(size_t(np));
-    sc.y.resize(size_t(np));
-    sc.z.resize(size_t(np));
-    sc.v.assign(size_t(np), 0.0f);
-    if (perSub) {
-      // Each live sub-block's corners with its own program (shared faces twice, same values).
-      for (int q = 0; q < 8; ++q) {
-        if (!subLive[q]) continue;
-        int ne = 0;
-        for (int k = subLo[q][2]; k <= subHi[q][2]; ++k)
-          for (int j = subLo[q][1]; j <= subHi[q][1]; ++j)
-            for (int i = subLo[q][0]; i <= subHi[q][0]; ++i) {
-              glm::vec3 c = cornerPos(c0[0] + i, c0[1] + j, c0[2] + k);
-              sc.x[size_t(ne)] = c.x;
-              sc.y[size_t(ne)] = c.y;
-              sc.z[size_t(ne)] = c.z;
-              ++ne;
-            }
-        sc.e.resize(size_t(ne));
-        sc.evaluator.evaluate(program, sc.subActive[q], sc.x.data(), sc.y.data(), sc.z.data(), ne, sc.e.data());
-        points.fetch_add(size_t(ne), std::memory_order_relaxed);
-        pairs.fetch_add(size_t(ne) * sc.subActive[q].primitiveCount, std::memory_order_relaxed);
-        ne = 0;
-        for (int k = subLo[q][2]; k <= subHi[q][2]; ++k)
-          for (int j = subLo[q][1]; j <= subHi[q][1]; ++j)
-            for (int i = subLo[q][0]; i <= subHi[q][0]; ++i) sc.v[size_t((k * cy + j) * cx + i)] = sc.e[size_t(ne++)];
-      }
-    } else {
-      // Corners of live sub-blocks (each spans its cells plus the +1 layer), numbered sub-block
-      // by sub-block and evaluated one sub-block at a time: a compact run of points lets the
-      // evaluator skip the map subtrees and primitives that reach the block but not that part.
-      sc.slot.assign(size_t(np), -1);
-      int ne = 0;
-      int runStart[9];
-      for (int q = 0; q < 8; ++q) {
-        runStart[q] = ne;
-        if (!subLive[q]) continue;
-        for (int k = subLo[q][2]; k <= subHi[q][2]; ++k)
-          for (int j = subLo[q][1]; j <= subHi[q][1]; ++j)
-            for (int i = subLo[q][0]; i <= subHi[q][0]; ++i) {
-              int& slot = sc.slot[size_t((k * cy + j) * cx + i)];
-              if (slot >= 0) continue;
-              glm::vec3 c = cornerPos(c0[0] + i, c0[1] + j, c0[2] + k);
-              sc.x[size_t(ne)] = c.x;
-              sc.y[size_t(ne)] = c.y;
-              sc.z[size_t(ne)] = c.z;
-              slot = ne++;
-            }
-      }
-      runStart[8] = ne;
-      sc.e.resize(size_t(ne));
-      for (int q = 0; q < 8; ++q) {
-        const int first = runStart[q], count = runStart[q + 1] - runStart[q];
-        if (count > 0)
-          sc.evaluator.evaluate(program, *prog, sc.x.data() + first, sc.y.data() + first, sc.z.data() + first,
-                                count, sc.e.data() + first);
-      }
-      points.fetch_add(size_t(ne), std::memory_order_relaxed);
-      pairs.fetch_add(size_t(ne) * prog->primitiveCount, std::memory_order_relaxed);
-      for (int p = 0; p < np; ++p)
-        if (sc.slot[size_t(p)] >= 0) sc.v[size_t(p)] = sc.e[size_t(sc.slot[size_t(p)])];
-    }
-    // The grid boundary counts as outside, so a surface cut by it is closed.
-    for (int k = 0, p = 0; k < cz; ++k)
-      for (int j = 0; j < cy; ++j)
-        for (int i = 0; i < cx; ++i, ++p) {
-          int gi = c0[0] + i, gj = c0[1] + j, gk = c0[2] + k;
-          if (gi == 0 || gj == 0 || gk == 0 || gi == g.n[0] || gj == g.n[1] || gk == g.n[2])
-            sc.v[size_t(p)] = std::min(sc.v[size_t(p)], -1e-6f * T);
-        }
-    if (s.culling) {
-      // For tolerance reuse in the next frame: the smallest |f| over the evaluated corners (those of
-      // live sub-blocks) off the grid boundary (forced outside there in every frame).
-      float minAbs = std::numeric_limits<float>::infinity();
-      for (int q = 0; q < 8; ++q) {
-        if (!subLive[q]) continue;
-        for (int k = subLo[q][2]; k <= subHi[q][2]; ++k)
-          for (int j = subLo[q][1]; j <= subHi[q][1]; ++j)
-            for (int i = subLo[q][0]; i <= subHi[q][0]; ++i) {
-              int gi = c0[0] + i, gj = c0[1] + j, gk = c0[2] + k;
-              if (gi == 0 || gj == 0 || gk == 0 || gi == g.n[0] || gj == g.n[1] || gk == g.n[2]) continue;
-              minAbs = std::min(minAbs, std::abs(sc.v[size_t((k * cy + j) * cx + i)]));
-            }
-      }
-      summary[bi].minAbs = minAbs;
-      summary[bi].valid = true;
-    }
-    out[bi] = std::make_unique<BlockOutput>();
-    BlockOutput& o = *out[bi];
-    auto val = [&](int i, int j, int k) { return sc.v[size_t((k * cy + j) * cx + i)]; };
-    int cellSub = 0;  // sub-block of the cell being triangulated
-    auto edgeVertex = [&](int li, int lj, int lk, int axis) -> uint64_t {
-      int lj2 = lj + (axis == 1), li2 = li + (axis == 0), lk2 = lk + (axis == 2);
-      float f0 = val(li, lj, lk), f1 = val(li2, lj2, lk2);
-      float t = f0 / (f0 - f1);
-      t = std::clamp(t, kSnap, 1.0f - kSnap);
-      glm::vec3 p0 = cornerPos(c0[0] + li, c0[1] + lj, c0[2] + lk);
-      glm::vec3 p1 = cornerPos(c0[0] + li2, c0[1] + lj2, c0[2] + lk2);
-      glm::vec3 pos = p0 + t * (p1 - p0);
-      if (li < kBlock && lj < kBlock && lk < kBlock) {
-        if (o.ownedSlot.empty()) o.ownedSlot.assign(size_t(kBlock * kBlock * kBlock * 3), -1);
-        int32_t& slot = o.ownedSlot[size_t(((lk * kBlock + lj) * kBlock + li) * 3 + axis)];
-        if (slot < 0) {
-          summary[bi].minGap = std::min(summary[bi].minGap, std::abs(f0 - f1));
-          slot = int32_t(o.positions.size());
-          o.positions.push_back(pos);
-          sc.vertexSub.push_back(uint8_t(cellSub));
-          // Fallback normal: along the edge, from the inside corner to the outside one.
-          glm::vec3 dir = glm::normalize(p1 - p0);
-          o.normals.push_back(f0 >= 0.0f ? dir : -dir);
-        }
-        return uint64_t(slot);
-      }
-      o.externals.push_back({c0[0] + li, c0[1] + lj, c0[2] + lk, axis, pos});
-      return kExternal | uint64_t(o.externals.size() - 1);
-    };
-    sc.vertexSub.clear();
-    for (int k = 0; k < cnt[2]; ++k)
-      for (int j = 0; j < cnt[1]; ++j)
-        for (int i = 0; i < cnt[0]; ++i) {
-          cellSub = subOf(i, j, k);
-          int mask = 0;
-          for (int c = 0; c < 8; ++c)
-            if (val(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1)) >= 0.0f) mask |= 1 << c;
-          if (mask == 0 || mask == 255 || !subLive[subOf(i, j, k)]) continue;
-          const auto& tri = table.triangles[size_t(mask)];
-          for (int q = 0; tri[size_t(q)] != 255; ++q) {
-            int e = tri[size_t(q)];
-            int cA = table.edgeCorners[size_t(e)][0];
-            o.corners.push_back(edgeVertex(i + (cA & 1), j + ((cA >> 1) & 1), k + ((cA >> 2) & 1),
-                                           table.edgeAxis[size_t(e)]));
-          }
-        }
-    // Normals from the field gradient at the block's own vertices.
-    size_t nv = o.positions.size();
-    if (nv > 0) {
-      sc.x.resize(nv);
-      sc.y.resize(nv);
-      sc.z.resize(nv);
-      sc.v.resize(nv);
-      sc.gx.resize(nv);
-      sc.gy.resize(nv);
-      sc.gz.resize(nv);
-      // Each sub-block's vertices in one run (a vertex lies on an edge of its cell), with its own
-      // program, or the block's (the evaluator then skips the skeletal primitives missing the run).
-      for (int sq = 0; sq < 8; ++sq) {
-        sc.gather.clear();
-        for (size_t q = 0; q < nv; ++q)
-          if (sc.vertexSub[q] == sq) sc.gather.push_back(uint32_t(q));
-        if (sc.gather.empty()) continue;
-        size_t m = sc.gather.size();
-        for (size_t q = 0; q < m; ++q) {
-          const glm::vec3& pq = o.positions[sc.gather[q]];
-          sc.x[q] = pq.x;
-          sc.y[q] = pq.y;
-          sc.z[q] = pq.z;
-        }
-        const ActiveProgram& active = perSub ? sc.subActive[sq] : *prog;
-        sc.evaluator.evaluate(program, active, sc.x.data(), sc.y.data(), sc.z.data(), int(m), sc.v.data(),
-                              sc.gx.data(), sc.gy.data(), sc.gz.data());
-        for (size_t q = 0; q < m; ++q) {
-          glm::vec3& nq = o.normals[sc.gather[q]];
-          nq = outwardNormal(sc.gx[q], sc.gy[q], sc.gz[q], nq);
-        }
-        pairs.fetch_add(m * active.primitiveCount, std::memory_order_relaxed);
-      }
-      points.fetch_add(nv, std::memory_order_relaxed);
-    }
-  };
-
   const size_t reportEvery = std::max<size_t>(1, nBlocks / 100);
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, nBlocks, 4), [&](const tbb::blocked_range<size_t>& r) {
@@ -668,19 +438,342 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
       }
     });
   });
-  st.blocksCulled = culled.load();
-  st.blocksEvaluated = evaluated.load();
-  st.blocksReused = reused.load();
-  for (const auto& o : out) st.blocksWithSurface += o && !o->corners.empty() ? 1 : 0;
-  st.cellsVisited = cells.load();
-  if (cancelled.load() || (s.cancel && s.cancel->load())) {
-    result.cancelled = true;
-    result.stats.pointsEvaluated = points.load();
-    result.stats.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    return result;
+  return !(cancelled.load() || (s.cancel && s.cancel->load()));
+}
+
+void PolygonizeRun::processBlock(size_t bi, Scratch& sc) {
+  BlockJob job;
+  job.bi = bi;
+  job.b[0] = int(bi % size_t(g.nb[0]));
+  job.b[1] = int((bi / size_t(g.nb[0])) % size_t(g.nb[1]));
+  job.b[2] = int(bi / (size_t(g.nb[0]) * g.nb[1]));
+  for (int a = 0; a < 3; ++a) {
+    job.c0[a] = job.b[a] * kBlock;
+    job.cnt[a] = std::min(kBlock, g.n[a] - job.c0[a]);
+  }
+  job.prog = &allPrims;
+  if (s.culling && cullOrReuseBlock(job, sc)) return;
+  specialiseSubBlocks(job, sc);
+  evaluated.fetch_add(1, std::memory_order_relaxed);
+  evaluateCorners(job, sc);
+  if (s.culling) summariseCorners(job, sc);
+  triangulateBlock(job, sc);
+  gradientNormals(job, sc);
+}
+
+// Culling of one block: true when it is done (culled by its superblock or its own interval, or
+// its previous output kept). Otherwise leaves its specialised program and live sub-blocks in job.
+bool PolygonizeRun::cullOrReuseBlock(BlockJob& job, Scratch& sc) {
+  const size_t bi = job.bi;
+  const size_t si = superOfBlock(job.b);
+  if (superState[si] == SuperState::Culled) {
+    culled.fetch_add(1, std::memory_order_relaxed);
+    return true;
+  }
+  if (superReused[si]) {
+    // Same primitives reaching it, same data: the previous frame's output (null: culled).
+    out[bi] = std::move(previous->out[bi]);
+    if (previous->summary.size() == nBlocks) summary[bi] = previous->summary[bi];
+    (out[bi] ? evaluated : culled).fetch_add(1, std::memory_order_relaxed);
+    reused.fetch_add(1, std::memory_order_relaxed);
+    return true;
+  }
+  Bounds bb = regionBox(job.c0, job.cnt);
+  const size_t pi = size_t(job.b[0] / kPair) +
+                    size_t(np2[0]) * (size_t(job.b[1] / kPair) + size_t(np2[1]) * size_t(job.b[2] / kPair));
+  program.primitivesReaching(bb, sc.reaching, &pairCandidates[pi]);
+  program.specialise(sc.reaching, sc.active);
+  Interval iv = program.interval(sc.active, bb.center(), 0.5f * bb.diagonal());
+  if (oneSigned(iv, touchesBoundary(job.c0, job.cnt))) {
+    culled.fetch_add(1, std::memory_order_relaxed);
+    return true;
+  }
+  job.prog = &sc.active;
+  for (int q = 0; q < 8; ++q) {
+    int s0[3], sn[3];
+    for (int a = 0; a < 3; ++a) {
+      int half = ((q >> a) & 1) * (kBlock / 2);
+      s0[a] = job.c0[a] + half;
+      sn[a] = std::min(kBlock / 2, job.cnt[a] - half);
+    }
+    if (sn[0] <= 0 || sn[1] <= 0 || sn[2] <= 0) {
+      job.subLive[q] = false;
+    } else {
+      Bounds sb = regionBox(s0, sn);
+      job.subLive[q] =
+          !oneSigned(program.interval(sc.active, sb.center(), 0.5f * sb.diagonal()), touchesBoundary(s0, sn));
+    }
+  }
+  uint8_t liveMask = 0;
+  for (int q = 0; q < 8; ++q) liveMask |= uint8_t(job.subLive[q] ? 1 << q : 0);
+  if (!changeBound.empty() && previous->out[bi] && previous->summary[bi].valid &&
+      previous->summary[bi].subLive == liveMask && reuseWithinTolerance(job, sc, si, bb))
+    return true;
+  summary[bi].subLive = liveMask;
+  return false;
+}
+
+// Tolerance reuse: the field moved here by at most the sum of the change bounds of the primitives
+// reaching the block in either frame (the others add exact zeros in both). This frame's primitives
+// alone already too much: no need to ask the previous program. True when the block's previous
+// output is kept.
+bool PolygonizeRun::reuseWithinTolerance(const BlockJob& job, Scratch& sc, size_t si, const Bounds& bb) {
+  const size_t bi = job.bi;
+  double delta = previous->summary[bi].drift;
+  for (uint32_t p : sc.reaching) delta += double(changeBound[p]);
+  if (keepsBlock(previous->summary[bi], delta, tolerance, T)) {
+    previous->program.primitivesReaching(bb, sc.previousReaching, &previous->superCandidates[si]);
+    delta = previous->summary[bi].drift;
+    sc.merged.clear();
+    std::set_union(sc.reaching.begin(), sc.reaching.end(), sc.previousReaching.begin(), sc.previousReaching.end(),
+                   std::back_inserter(sc.merged));
+    for (uint32_t p : sc.merged) delta += double(changeBound[p]);
+  }
+  if (!keepsBlock(previous->summary[bi], delta, tolerance, T)) return false;
+  out[bi] = std::move(previous->out[bi]);
+  summary[bi] = previous->summary[bi];
+  summary[bi].drift = float(delta);
+  evaluated.fetch_add(1, std::memory_order_relaxed);
+  reused.fetch_add(1, std::memory_order_relaxed);
+  return true;
+}
+
+// The sub-blocks' corner ranges, and for a block reached by many primitives, a program per live
+// sub-block with only the primitives reaching it.
+void PolygonizeRun::specialiseSubBlocks(BlockJob& job, Scratch& sc) {
+  job.perSub = s.culling && s.subBlockLists &&
+               (s.subBlockListsForSkeletal ? job.prog->primitiveCount : unskippedCount(*job.prog)) > kSubSpecialise;
+  for (int q = 0; q < 8; ++q)
+    for (int a = 0; a < 3; ++a) {
+      job.subLo[q][a] = ((q >> a) & 1) * (kBlock / 2);
+      job.subHi[q][a] = std::min(job.subLo[q][a] + kBlock / 2, job.cnt[a]);
+    }
+  if (!job.perSub) return;
+  for (int q = 0; q < 8; ++q) {
+    if (!job.subLive[q]) continue;
+    int s0[3], sn[3];
+    for (int a = 0; a < 3; ++a) {
+      s0[a] = job.c0[a] + job.subLo[q][a];
+      sn[a] = job.subHi[q][a] - job.subLo[q][a];
+    }
+    program.primitivesReaching(regionBox(s0, sn), sc.subReaching, &sc.reaching);
+    program.specialise(sc.subReaching, sc.subActive[q]);
+  }
+}
+
+// Corner values of the block's cells (its own corners plus the +1 layer) into sc.v; only the
+// corners of live sub-blocks are evaluated. The grid boundary counts as outside, so a surface cut
+// by it is closed.
+void PolygonizeRun::evaluateCorners(BlockJob& job, Scratch& sc) {
+  job.cx = job.cnt[0] + 1;
+  job.cy = job.cnt[1] + 1;
+  job.cz = job.cnt[2] + 1;
+  const int np = job.cx * job.cy * job.cz;
+  size_t liveCells = 0;
+  for (int k = 0; k < job.cnt[2]; ++k)
+    for (int j = 0; j < job.cnt[1]; ++j)
+      for (int i = 0; i < job.cnt[0]; ++i) liveCells += job.subLive[subOf(i, j, k)];
+  cells.fetch_add(liveCells, std::memory_order_relaxed);
+  sc.x.resize(size_t(np));
+  sc.y.resize(size_t(np));
+  sc.z.resize(size_t(np));
+  sc.v.assign(size_t(np), 0.0f);
+  if (job.perSub) evaluateCornersPerSub(job, sc);
+  else evaluateCornersInRuns(job, sc, np);
+  for (int k = 0, p = 0; k < job.cz; ++k)
+    for (int j = 0; j < job.cy; ++j)
+      for (int i = 0; i < job.cx; ++i, ++p)
+        if (onGridBoundary(job.c0[0] + i, job.c0[1] + j, job.c0[2] + k))
+          sc.v[size_t(p)] = std::min(sc.v[size_t(p)], -1e-6f * T);
+}
+
+// Each live sub-block's corners with its own program (shared faces twice, same values).
+void PolygonizeRun::evaluateCornersPerSub(const BlockJob& job, Scratch& sc) {
+  const int cx = job.cx, cy = job.cy;
+  for (int q = 0; q < 8; ++q) {
+    if (!job.subLive[q]) continue;
+    const int* lo = job.subLo[q];
+    const int* hi = job.subHi[q];
+    int ne = 0;
+    for (int k = lo[2]; k <= hi[2]; ++k)
+      for (int j = lo[1]; j <= hi[1]; ++j)
+        for (int i = lo[0]; i <= hi[0]; ++i) {
+          glm::vec3 c = cornerPos(job.c0[0] + i, job.c0[1] + j, job.c0[2] + k);
+          sc.x[size_t(ne)] = c.x;
+          sc.y[size_t(ne)] = c.y;
+          sc.z[size_t(ne)] = c.z;
+          ++ne;
+        }
+    sc.e.resize(size_t(ne));
+    sc.evaluator.evaluate(program, sc.subActive[q], sc.x.data(), sc.y.data(), sc.z.data(), ne, sc.e.data());
+    points.fetch_add(size_t(ne), std::memory_order_relaxed);
+    pairs.fetch_add(size_t(ne) * sc.subActive[q].primitiveCount, std::memory_order_relaxed);
+    ne = 0;
+    for (int k = lo[2]; k <= hi[2]; ++k)
+      for (int j = lo[1]; j <= hi[1]; ++j)
+        for (int i = lo[0]; i <= hi[0]; ++i) sc.v[size_t((k * cy + j) * cx + i)] = sc.e[size_t(ne++)];
+  }
+}
+
+// Corners of live sub-blocks (each spans its cells plus the +1 layer), numbered sub-block by
+// sub-block and evaluated one sub-block at a time: a compact run of points lets the evaluator skip
+// the map subtrees and primitives that reach the block but not that part.
+void PolygonizeRun::evaluateCornersInRuns(const BlockJob& job, Scratch& sc, int np) {
+  const int cx = job.cx, cy = job.cy;
+  sc.slot.assign(size_t(np), -1);
+  int ne = 0;
+  int runStart[9];
+  for (int q = 0; q < 8; ++q) {
+    runStart[q] = ne;
+    if (!job.subLive[q]) continue;
+    for (int k = job.subLo[q][2]; k <= job.subHi[q][2]; ++k)
+      for (int j = job.subLo[q][1]; j <= job.subHi[q][1]; ++j)
+        for (int i = job.subLo[q][0]; i <= job.subHi[q][0]; ++i) {
+          int& slot = sc.slot[size_t((k * cy + j) * cx + i)];
+          if (slot >= 0) continue;
+          glm::vec3 c = cornerPos(job.c0[0] + i, job.c0[1] + j, job.c0[2] + k);
+          sc.x[size_t(ne)] = c.x;
+          sc.y[size_t(ne)] = c.y;
+          sc.z[size_t(ne)] = c.z;
+          slot = ne++;
+        }
+  }
+  runStart[8] = ne;
+  sc.e.resize(size_t(ne));
+  for (int q = 0; q < 8; ++q) {
+    const int first = runStart[q], count = runStart[q + 1] - runStart[q];
+    if (count > 0)
+      sc.evaluator.evaluate(program, *job.prog, sc.x.data() + first, sc.y.data() + first, sc.z.data() + first, count,
+                            sc.e.data() + first);
+  }
+  points.fetch_add(size_t(ne), std::memory_order_relaxed);
+  pairs.fetch_add(size_t(ne) * job.prog->primitiveCount, std::memory_order_relaxed);
+  for (int p = 0; p < np; ++p)
+    if (sc.slot[size_t(p)] >= 0) sc.v[size_t(p)] = sc.e[size_t(sc.slot[size_t(p)])];
+}
+
+// For tolerance reuse in the next frame: the smallest |f| over the evaluated corners (those of live
+// sub-blocks) off the grid boundary (forced outside there in every frame).
+void PolygonizeRun::summariseCorners(const BlockJob& job, const Scratch& sc) {
+  float minAbs = std::numeric_limits<float>::infinity();
+  for (int q = 0; q < 8; ++q) {
+    if (!job.subLive[q]) continue;
+    for (int k = job.subLo[q][2]; k <= job.subHi[q][2]; ++k)
+      for (int j = job.subLo[q][1]; j <= job.subHi[q][1]; ++j)
+        for (int i = job.subLo[q][0]; i <= job.subHi[q][0]; ++i) {
+          if (onGridBoundary(job.c0[0] + i, job.c0[1] + j, job.c0[2] + k)) continue;
+          minAbs = std::min(minAbs, std::abs(job.val(sc, i, j, k)));
+        }
+  }
+  summary[job.bi].minAbs = minAbs;
+  summary[job.bi].valid = true;
+}
+
+// Builds one block's BlockOutput: a vertex per crossed edge it owns (its own corners' +x, +y, +z
+// edges), the rest recorded as externals resolved by stitch().
+struct BlockMesher {
+  PolygonizeRun& run;
+  const BlockJob& job;
+  Scratch& sc;
+  BlockOutput& o;
+  BlockSummary& summary;
+
+  uint64_t edgeVertex(int li, int lj, int lk, int axis, int cellSub) {
+    int lj2 = lj + (axis == 1), li2 = li + (axis == 0), lk2 = lk + (axis == 2);
+    float f0 = job.val(sc, li, lj, lk), f1 = job.val(sc, li2, lj2, lk2);
+    float t = f0 / (f0 - f1);
+    t = std::clamp(t, kSnap, 1.0f - kSnap);
+    const int* c0 = job.c0;
+    glm::vec3 p0 = run.cornerPos(c0[0] + li, c0[1] + lj, c0[2] + lk);
+    glm::vec3 p1 = run.cornerPos(c0[0] + li2, c0[1] + lj2, c0[2] + lk2);
+    glm::vec3 pos = p0 + t * (p1 - p0);
+    if (li < kBlock && lj < kBlock && lk < kBlock) {
+      if (o.ownedSlot.empty()) o.ownedSlot.assign(size_t(kBlock * kBlock * kBlock * 3), -1);
+      int32_t& slot = o.ownedSlot[size_t(((lk * kBlock + lj) * kBlock + li) * 3 + axis)];
+      if (slot < 0) {
+        summary.minGap = std::min(summary.minGap, std::abs(f0 - f1));
+        slot = int32_t(o.positions.size());
+        o.positions.push_back(pos);
+        sc.vertexSub.push_back(uint8_t(cellSub));
+        // Fallback normal: along the edge, from the inside corner to the outside one.
+        glm::vec3 dir = glm::normalize(p1 - p0);
+        o.normals.push_back(f0 >= 0.0f ? dir : -dir);
+      }
+      return uint64_t(slot);
+    }
+    o.externals.push_back({c0[0] + li, c0[1] + lj, c0[2] + lk, axis, pos});
+    return kExternal | uint64_t(o.externals.size() - 1);
   }
 
-  // ---- stitch: global vertex numbering in block order, then resolve shared edges
+  void triangulate() {
+    const MarchingCubesTable& table = run.table;
+    sc.vertexSub.clear();
+    for (int k = 0; k < job.cnt[2]; ++k)
+      for (int j = 0; j < job.cnt[1]; ++j)
+        for (int i = 0; i < job.cnt[0]; ++i) {
+          const int cellSub = subOf(i, j, k);
+          int mask = 0;
+          for (int c = 0; c < 8; ++c)
+            if (job.val(sc, i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1)) >= 0.0f) mask |= 1 << c;
+          if (mask == 0 || mask == 255 || !job.subLive[cellSub]) continue;
+          const auto& tri = table.triangles[size_t(mask)];
+          for (int q = 0; tri[size_t(q)] != 255; ++q) {
+            int e = tri[size_t(q)];
+            int cA = table.edgeCorners[size_t(e)][0];
+            o.corners.push_back(edgeVertex(i + (cA & 1), j + ((cA >> 1) & 1), k + ((cA >> 2) & 1),
+                                           table.edgeAxis[size_t(e)], cellSub));
+          }
+        }
+  }
+};
+
+void PolygonizeRun::triangulateBlock(const BlockJob& job, Scratch& sc) {
+  out[job.bi] = std::make_unique<BlockOutput>();
+  BlockMesher mesher{*this, job, sc, *out[job.bi], summary[job.bi]};
+  mesher.triangulate();
+}
+
+// Normals from the field gradient at the block's own vertices.
+void PolygonizeRun::gradientNormals(const BlockJob& job, Scratch& sc) {
+  BlockOutput& o = *out[job.bi];
+  size_t nv = o.positions.size();
+  if (nv == 0) return;
+  sc.x.resize(nv);
+  sc.y.resize(nv);
+  sc.z.resize(nv);
+  sc.v.resize(nv);
+  sc.gx.resize(nv);
+  sc.gy.resize(nv);
+  sc.gz.resize(nv);
+  // Each sub-block's vertices in one run (a vertex lies on an edge of its cell), with its own
+  // program, or the block's (the evaluator then skips the skeletal primitives missing the run).
+  for (int sq = 0; sq < 8; ++sq) {
+    sc.gather.clear();
+    for (size_t q = 0; q < nv; ++q)
+      if (sc.vertexSub[q] == sq) sc.gather.push_back(uint32_t(q));
+    if (sc.gather.empty()) continue;
+    size_t m = sc.gather.size();
+    for (size_t q = 0; q < m; ++q) {
+      const glm::vec3& pq = o.positions[sc.gather[q]];
+      sc.x[q] = pq.x;
+      sc.y[q] = pq.y;
+      sc.z[q] = pq.z;
+    }
+    const ActiveProgram& active = job.perSub ? sc.subActive[sq] : *job.prog;
+    sc.evaluator.evaluate(program, active, sc.x.data(), sc.y.data(), sc.z.data(), int(m), sc.v.data(), sc.gx.data(),
+                          sc.gy.data(), sc.gz.data());
+    for (size_t q = 0; q < m; ++q) {
+      glm::vec3& nq = o.normals[sc.gather[q]];
+      nq = outwardNormal(sc.gx[q], sc.gy[q], sc.gz[q], nq);
+    }
+    pairs.fetch_add(m * active.primitiveCount, std::memory_order_relaxed);
+  }
+  points.fetch_add(nv, std::memory_order_relaxed);
+}
+
+// Global vertex numbering in block order, then each block's triangle corners resolved: its own
+// vertices, or shared edges' vertices owned by a neighbour (kUnresolved where the owner made none).
+void PolygonizeRun::stitch(tbb::task_arena& arena, TriangleMesh& mesh) {
   size_t nv = 0, ni = 0;
   for (auto& op : out) {
     if (!op) continue;
@@ -689,11 +782,9 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
     nv += op->positions.size();
     ni += op->corners.size();
   }
-  TriangleMesh& mesh = result.mesh;
   mesh.positions.resize(nv);
   mesh.normals.resize(nv);
   mesh.indices.resize(ni);
-  constexpr uint32_t kUnresolved = 0xffffffffu;
   arena.execute([&] {
     tbb::parallel_for(size_t(0), nBlocks, [&](size_t bi) {
       if (!out[bi]) return;
@@ -720,8 +811,11 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
       }
     });
   });
-  // Edges whose owner block made no vertex (only if an interval bound was too
-  // optimistic): make them here, once per edge, so the mesh stays watertight.
+}
+
+// Edges whose owner block made no vertex (only if an interval bound was too optimistic): made
+// here, once per edge, so the mesh stays watertight. Returns how many.
+size_t PolygonizeRun::addOrphanVertices(TriangleMesh& mesh) {
   std::unordered_map<uint64_t, uint32_t> orphans;
   FieldEvaluator evaluator;
   for (size_t bi = 0; bi < nBlocks; ++bi) {
@@ -730,8 +824,9 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
     for (size_t q = 0; q < o.corners.size(); ++q) {
       if (mesh.indices[o.indexOffset + q] != kUnresolved) continue;
       const ExternalVertex& ev = o.externals[size_t(o.corners[q] & ~kExternal)];
-      uint64_t key = ((uint64_t(ev.gk) * uint64_t(g.n[1] + 1) + uint64_t(ev.gj)) * uint64_t(g.n[0] + 1) + uint64_t(ev.gi)) * 3 +
-                     uint64_t(ev.axis);
+      uint64_t key =
+          ((uint64_t(ev.gk) * uint64_t(g.n[1] + 1) + uint64_t(ev.gj)) * uint64_t(g.n[0] + 1) + uint64_t(ev.gi)) * 3 +
+          uint64_t(ev.axis);
       auto it = orphans.find(key);
       if (it == orphans.end()) {
         glm::vec3 grad;
@@ -743,23 +838,72 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
       mesh.indices[o.indexOffset + q] = it->second;
     }
   }
-  st.orphanVertices = orphans.size();
-  if (s.history && s.culling) {
-    auto next = std::make_unique<PolygonizeHistory::State>();
-    next->origin = g.origin;
-    next->h = g.h;
-    for (int a = 0; a < 3; ++a) next->n[a] = g.n[a];
-    next->subBlockLists = s.subBlockLists;
-    next->program = program;
-    next->superCandidates = std::move(superCandidates);
-    next->out = std::move(out);
-    next->summary = std::move(summary);
-    PolygonizeHistoryAccess::state(*s.history) = std::move(next);
+  return orphans.size();
+}
+
+// The next frame's history: this grid, program, candidate lists and block outputs (moved out).
+void PolygonizeRun::saveHistory() {
+  if (!s.history || !s.culling) return;
+  auto next = std::make_unique<PolygonizeHistory::State>();
+  next->origin = g.origin;
+  next->h = g.h;
+  for (int a = 0; a < 3; ++a) next->n[a] = g.n[a];
+  next->subBlockLists = s.subBlockLists;
+  next->program = program;
+  next->superCandidates = std::move(superCandidates);
+  next->out = std::move(out);
+  next->summary = std::move(summary);
+  PolygonizeHistoryAccess::state(*s.history) = std::move(next);
+}
+
+double millisecondsSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+Result<PolygonizeResult> polygonize(const FieldProgram& program, const PolygonizeSettings& s) {
+  auto t0 = std::chrono::steady_clock::now();
+  PolygonizeResult result;
+  auto grid = polygonizeGrid(program, s);
+  if (!grid) return Error{grid.error()};
+  if (grid->empty) {
+    result.stats.milliseconds = millisecondsSince(t0);
+    return result;  // nothing inside anywhere
   }
-  st.pointsEvaluated = points.load() + orphans.size();
-  st.primitiveEvaluations = pairs.load();
+  PolygonizeRun run(program, s, *grid);
+  PolygonizeStats& st = result.stats;
+  st.gridX = run.g.n[0];
+  st.gridY = run.g.n[1];
+  st.gridZ = run.g.n[2];
+  st.cellSize = run.g.h;
+  st.blocksTotal = run.nBlocks;
+  run.takeHistory();
+  program.specialiseAll(run.allPrims);
+
+  tbb::task_arena arena(s.threads > 0 ? s.threads : tbb::task_arena::automatic);
+  tbb::enumerable_thread_specific<Scratch> scratch;
+  run.cullSuperblocks(arena, scratch);
+  run.listPairCandidates(arena);
+  const bool finished = run.runBlocks(arena, scratch);
+  st.blocksCulled = run.culled.load();
+  st.blocksEvaluated = run.evaluated.load();
+  st.blocksReused = run.reused.load();
+  for (const auto& o : run.out) st.blocksWithSurface += o && !o->corners.empty() ? 1 : 0;
+  st.cellsVisited = run.cells.load();
+  if (!finished) {
+    result.cancelled = true;
+    st.pointsEvaluated = run.points.load();
+    st.milliseconds = millisecondsSince(t0);
+    return result;
+  }
+  run.stitch(arena, result.mesh);
+  st.orphanVertices = run.addOrphanVertices(result.mesh);
+  run.saveHistory();
+  st.pointsEvaluated = run.points.load() + st.orphanVertices;
+  st.primitiveEvaluations = run.pairs.load();
   if (s.progress) s.progress(1.0f);
-  st.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  st.milliseconds = millisecondsSince(t0);
   return result;
 }
 

@@ -38,12 +38,18 @@ CorrespondenceGraph stillValidLinks(const Project& p) {
   const Actor* a = p.findActor(m.sourceActorId);
   const Actor* b = p.findActor(m.targetActorId);
   if (!a || !b) return {};
-  if (validateCorrespondence(a->blobTree, b->blobTree, m.graph).ok()) return m.graph;
   CorrespondenceGraph kept;
-  for (const auto& l : m.graph.links) {
-    kept.links.push_back(l);
-    if (!validateCorrespondence(a->blobTree, b->blobTree, kept).ok()) kept.links.pop_back();
+  if (validateCorrespondence(a->blobTree, b->blobTree, m.graph).ok()) {
+    kept.links = m.graph.links;
+  } else {
+    for (const auto& l : m.graph.links) {
+      kept.links.push_back(l);
+      if (!validateCorrespondence(a->blobTree, b->blobTree, kept).ok()) kept.links.pop_back();
+    }
   }
+  // Suggestions are checked when accepted; those whose nodes are gone are dropped.
+  for (const auto& l : m.graph.suggestions)
+    if (a->blobTree.find(l.nodeA) && b->blobTree.find(l.nodeB)) kept.suggestions.push_back(l);
   return kept;
 }
 

@@ -3,7 +3,7 @@
 #include <chrono>
 #include <filesystem>
 
-#include "core/io/gltf_import.h"
+#include "core/io/character_import.h"
 
 namespace animorph {
 namespace {
@@ -23,7 +23,7 @@ long long modificationTime(const std::string& path) {
 AssetCache::Entry AssetCache::load(const std::string& path) {
   AssetCache::Entry e;
   e.mtime = modificationTime(path);
-  auto c = importGltf(path);
+  auto c = importCharacter(path);
   if (c) e.character = std::make_shared<const Character>(std::move(*c));
   else e.error = c.error();
   return e;

@@ -1,5 +1,5 @@
 #pragma once
-// Characters loaded from the glTF files that a project's actors reference,
+// Characters loaded from the files (glTF, FBX, Collada, OBJ: io/character_import.h) that a project's actors reference,
 // keyed by absolute path. Loads once, reloads when the file changes on disk,
 // remembers failures (with their message) so the UI can show them.
 #include <map>

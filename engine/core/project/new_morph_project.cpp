@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "core/standin/character_pose.h"
+#include "core/standin_morph/target_alignment.h"
 
 namespace animorph {
 
@@ -42,32 +43,23 @@ Result<NewMorphProject> makeMorphProject(const Character& source, const std::str
   a.assetPath = sourceAsset;
   b.assetPath = targetAsset;
 
-  const Bounds sb = poseBounds(source), tb = poseBounds(target);
-  if (!sb.empty() && !tb.empty()) {
-    const double ds = sb.diagonal(), dt = std::max(1e-9f, tb.diagonal());
-    const double ratio = ds / dt;
-    const double offset = glm::length(sb.center() - tb.center());
-    if (ratio > s.alignScaleRatio || ratio < 1.0 / s.alignScaleRatio || offset > s.alignOffsetFraction * ds) {
-      // Same diagonal, same centre in x and z, same floor (min y).
-      const float k = float(ratio);
-      if (std::max(ratio, 1.0 / ratio) > s.maxRescaleWithoutConsent) {
-        const std::string what = fmt("aligning the target to the source needs a scale of %.4gx (the source's diagonal "
-                                     "is %.4g, the target's %.4g scene units)",
-                                     ratio, ds, dt);
-        if (!s.allowLargeRescale)
-          return Error{targetAsset + ": " + what + fmt(": more than %gx, probably different units; allow it "
-                                                       "explicitly or export both in the same units",
-                                                       s.maxRescaleWithoutConsent)};
-        out.warnings.push_back(targetAsset + ": " + what + " (allowed)");
-      }
-      out.scaleApplied = ratio;
-      b.transform.scale = glm::vec3(k);
-      const glm::vec3 tc = tb.center() * k, sc = sb.center();
-      b.transform.translation = glm::vec3(sc.x - tc.x, sb.min.y - tb.min.y * k, sc.z - tc.z);
-      out.aligned = true;
-      out.messages.push_back(fmt("aligned the target to the source: scale factor %.4gx applied, translation (%.3g, %.3g, %.3g)", k,
-                                 b.transform.translation.x, b.transform.translation.y, b.transform.translation.z));
-    }
+  AlignmentSettings as;
+  as.alignScaleRatio = s.alignScaleRatio;
+  as.alignOffsetFraction = s.alignOffsetFraction;
+  as.maxRescaleWithoutConsent = s.maxRescaleWithoutConsent;
+  const TargetAlignment al = alignTargetToSource(source, target, as);
+  if (!al.unitNote.empty()) out.messages.push_back(al.unitNote);
+  if (al.needsConsent) {
+    if (!s.allowLargeRescale) return Error{targetAsset + ": " + al.sizeNote + "; allow it explicitly or export both in the same units"};
+    out.warnings.push_back(targetAsset + ": " + al.sizeNote + " (allowed)");
+  }
+  if (al.changes()) {
+    b.transform = al.transform;
+    out.aligned = true;
+    out.scaleApplied = al.transform.scale.x;
+    const glm::vec3 t = al.transform.translation;
+    out.messages.push_back(fmt("aligned the target to the source: scale factor %.4gx applied, translation (%.3g, %.3g, %.3g)",
+                               out.scaleApplied, t.x, t.y, t.z));
   }
   p.actors = {a, b};
   p.timeline.fps = s.fps;
@@ -91,7 +83,10 @@ Result<NewMorphProject> makeMorphProject(const Character& source, const std::str
       for (const auto& p : fit->report.problems) why += (why.empty() ? "" : "; ") + p;
       if (!s.acceptPoorFit)
         return Error{actor->assetPath + ": the automatic stand-in fits poorly: " + why +
-                     " (fit: " + fitSummary(fit->report) + ")"};
+                     " (fit: " + fitSummary(fit->report) + ")" +
+                     (fit->report.repairs.empty() ? "" : "; automatic " + repairSummary(fit->report)) +
+                     "; the automatic repairs could not fix it: check the skin weights of the bones named, or fit "
+                     "the stand-in by hand in the editor's Stand-in edit mode"};
       out.warnings.push_back(actor->id + ": POOR stand-in fit (accepted): " + why);
     }
     ActorMorph am;
@@ -100,6 +95,7 @@ Result<NewMorphProject> makeMorphProject(const Character& source, const std::str
     m.actors.push_back(std::move(am));
     out.messages.push_back(actor->id + ": stand-in of " + std::to_string(fit->report.segments) + " segments, fit " +
                            fitSummary(fit->report));
+    if (!fit->report.repairs.empty()) out.messages.push_back(actor->id + ": " + repairSummary(fit->report));
   }
   return out;
 }

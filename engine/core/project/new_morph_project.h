@@ -1,8 +1,9 @@
 #pragma once
 // A complete morph project from two characters (what `animorph-cli new` and
 // the demo write): both actors, automatic stand-ins, a default timeline with
-// markers A..D, and the target aligned to the source when their bounding boxes
-// differ a lot in size or position.
+// markers A..D, and the target aligned to the source: scaled by the ratio of
+// their length units (Character::unit), then onto the source's bounding box
+// when they still differ a lot in size or position.
 #include <string>
 #include <vector>
 
@@ -23,8 +24,8 @@ struct NewMorphSettings {
   // are further apart than this fraction of the source's diagonal.
   double alignScaleRatio = 1.5;
   double alignOffsetFraction = 0.5;
-  // Aligning by a scale beyond this factor (either way) is refused unless
-  // allowLargeRescale: the files are probably in different units.
+  // Aligning by a scale beyond this factor (either way), after the units'
+  // ratio, is refused unless allowLargeRescale: no unit explains it.
   double maxRescaleWithoutConsent = 10.0;
   bool allowLargeRescale = false;
   // A poor stand-in fit (standin/fit_quality.h) is refused unless acceptPoorFit,
@@ -35,7 +36,7 @@ struct NewMorphSettings {
 struct NewMorphProject {
   Project project;
   bool aligned = false;
-  double scaleApplied = 1.0;  // uniform scale given to the target
+  double scaleApplied = 1.0;  // uniform scale given to the target (the units' ratio included)
   std::vector<std::string> warnings;  // poor fits (accepted), large rescales (allowed): say them loudly
   FitReport sourceFit, targetFit;
   std::vector<std::string> messages;  // one line each, for the user (alignment, fit notes)
@@ -45,7 +46,9 @@ struct NewMorphProject {
 // the project file). Actor ids come from the file names. Errors (named by
 // file): a stand-in could not be fitted, or fits poorly (naming the bones)
 // and acceptPoorFit is off; alignment needs a scale beyond
-// maxRescaleWithoutConsent and allowLargeRescale is off.
+// maxRescaleWithoutConsent that the units do not explain, and
+// allowLargeRescale is off. messages say what was done ("target in
+// centimetres, scaled by 0.01 to the source's metres").
 Result<NewMorphProject> makeMorphProject(const Character& source, const std::string& sourceAsset,
                                          const Character& target, const std::string& targetAsset,
                                          const NewMorphSettings& settings = {});

@@ -1,6 +1,7 @@
 #pragma once
-// An imported character: node hierarchy, meshes, skins and animation clips,
-// as glTF describes them (engine/core/io/gltf_import.h fills it).
+// An imported character: node hierarchy, meshes, skins, animation clips and
+// materials, as glTF describes them (io/gltf_import.h fills it from glTF,
+// io/assimp_import.h from FBX, Collada and OBJ; io/character_import.h picks).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -21,6 +22,15 @@ struct Node {
   int skin = -1;   // index into Character::skins, or -1
 };
 
+// One blend shape (a glTF morph target) of a Mesh: per-vertex offsets added to
+// the bind-space positions (and normals) before skinning, scaled by the target's
+// weight: p = p0 + sum_t w_t * positionDeltas_t, n = normalize(n0 + sum_t w_t * normalDeltas_t).
+struct MorphTarget {
+  std::string name;                       // glTF mesh.extras.targetNames[t], else "target t"
+  std::vector<glm::vec3> positionDeltas;  // one per vertex of the mesh
+  std::vector<glm::vec3> normalDeltas;    // one per vertex of the mesh; empty: the target moves no normal
+};
+
 // Triangle geometry of one glTF mesh (its triangle primitives concatenated).
 // Up to kMaxInfluences joint influences per vertex, in two sets of four
 // (JOINTS_0/WEIGHTS_0, JOINTS_1/WEIGHTS_1); weights sum to 1. A mesh
@@ -35,6 +45,14 @@ struct Mesh {
   std::vector<glm::uvec4> joints0, joints1;
   std::vector<glm::vec4> weights0, weights1;
   std::vector<glm::vec4> colors;  // glTF COLOR_0 (RGBA, 0..1; RGB files get alpha 1); empty: none
+  int material = -1;              // index into Character::materials (its first primitive's), or -1
+  // Blend shapes. A glTF mesh's primitives are concatenated, and so are their
+  // targets: target t holds primitive k's target t at primitive k's vertices
+  // (zero deltas where a primitive has fewer targets). defaultMorphWeights has
+  // one weight per target (glTF mesh.weights, else zeros): what the mesh shows
+  // when no animation drives its node's weights.
+  std::vector<MorphTarget> morphTargets;
+  std::vector<float> defaultMorphWeights;
 
   size_t vertexCount() const { return positions.size(); }
   size_t triangleCount() const { return indices.size() / 3; }
@@ -49,23 +67,51 @@ struct Skin {
 };
 
 enum class Interpolation { Step, Linear, CubicSpline };
-enum class ChannelPath { Translation, Rotation, Scale };
+// Weights: the morph target weights of the mesh the node draws (glTF "weights").
+enum class ChannelPath { Translation, Rotation, Scale, Weights };
 
 // One animated property of one node. For CubicSpline, values holds three
 // entries per key: in-tangent, value, out-tangent (glTF layout). Vectors are
 // stored in xyz, quaternions as (x, y, z, w).
+// A Weights channel leaves values empty and keeps its keys in weightValues,
+// weightCount (the number of morph targets of the node's mesh) floats per key:
+// Step/Linear: key k's weights at [k * weightCount, (k + 1) * weightCount);
+// CubicSpline: 3 * weightCount floats per key, as glTF orders them: the
+// in-tangents of every target, then the values, then the out-tangents
+// (a_1..a_T, v_1..v_T, b_1..b_T).
 struct Channel {
   int node = -1;
   ChannelPath path = ChannelPath::Translation;
   Interpolation interpolation = Interpolation::Linear;
   std::vector<float> timesSec;
   std::vector<glm::vec4> values;
+  std::vector<float> weightValues;  // Weights only (see above)
+  int weightCount = 0;              // Weights only: weights per key (morph targets of the node's mesh)
 };
 
 struct AnimationClip {
   std::string name;
   std::vector<Channel> channels;
   float durationSec = 0.0f;
+};
+
+// A surface's base colour, as the file gives it (glTF baseColorFactor / baseColorTexture,
+// FBX / Collada / OBJ diffuse colour and texture). Nothing draws it yet.
+struct Material {
+  std::string name;
+  glm::vec4 baseColorFactor{1.0f};  // linear RGBA, 0..1
+  // The base colour texture's file, relative to the character file's folder (never absolute,
+  // never outside that folder: such URIs are dropped with a warning); empty: none, or embedded.
+  std::string baseColorTextureUri;
+  bool baseColorTextureEmbedded = false;  // the texture is inside the file (not kept)
+};
+
+// The length unit of the file's scene units. Geometry stays in the file's units; morphs and
+// exports scale by metresPerUnit where two characters meet.
+struct LengthUnit {
+  double metresPerUnit = 1.0;
+  std::string name = "metres";  // "centimetres", "inches", "units of 0.5 m" ...
+  bool declared = true;         // false: the format says nothing (OBJ), metres assumed
 };
 
 // What the importer did that the user should know about.
@@ -85,6 +131,9 @@ struct Character {
   std::vector<Mesh> meshes;
   std::vector<Skin> skins;
   std::vector<AnimationClip> clips;
+  std::vector<Material> materials;
+  LengthUnit unit;      // glTF: metres
+  std::string format;   // "glTF", "FBX", "Collada", "OBJ"
   ImportReport report;
 
   size_t totalVertices() const;

@@ -43,7 +43,56 @@ glm::vec4 sampleChannel(const Channel& ch, float t) {
   return v;
 }
 
+// The weights of a Weights channel at t into out (out.size() targets; keys with
+// fewer weights leave the rest as they are).
+void sampleWeightChannel(const Channel& ch, float t, std::vector<float>& out) {
+  const auto& T = ch.timesSec;
+  const size_t w = static_cast<size_t>(std::max(ch.weightCount, 0));
+  const bool cubic = ch.interpolation == Interpolation::CubicSpline;
+  const size_t stride = cubic ? 3 * w : w;
+  if (w == 0 || ch.weightValues.size() < stride * T.size()) return;
+  const size_t m = std::min(w, out.size());
+  size_t i;
+  float u;
+  locate(T, t, i, u);
+  auto value = [&](size_t k, size_t target) { return ch.weightValues[k * stride + (cubic ? w : 0) + target]; };
+  if (i + 1 >= T.size() || ch.interpolation == Interpolation::Step || u == 0.0f) {
+    for (size_t k = 0; k < m; ++k) out[k] = value(i, k);
+    return;
+  }
+  if (ch.interpolation == Interpolation::Linear) {
+    for (size_t k = 0; k < m; ++k) out[k] = value(i, k) + (value(i + 1, k) - value(i, k)) * u;
+    return;
+  }
+  const float dt = T[i + 1] - T[i];
+  const float u2 = u * u, u3 = u2 * u;
+  for (size_t k = 0; k < m; ++k) {
+    const float p0 = value(i, k), m0 = ch.weightValues[i * stride + 2 * w + k] * dt;  // out-tangent of key i
+    const float p1 = value(i + 1, k), m1 = ch.weightValues[(i + 1) * stride + k] * dt;  // in-tangent of key i + 1
+    out[k] = (2 * u3 - 3 * u2 + 1) * p0 + (u3 - 2 * u2 + u) * m0 + (-2 * u3 + 3 * u2) * p1 + (u3 - u2) * m1;
+  }
+}
+
 }  // namespace
+
+std::vector<float> morphWeightsAt(const Character& c, int meshNode, const AnimationClip* clip, float timeSec) {
+  if (meshNode < 0 || meshNode >= static_cast<int>(c.nodes.size())) return {};
+  const int mesh = c.nodes[static_cast<size_t>(meshNode)].mesh;
+  if (mesh < 0 || mesh >= static_cast<int>(c.meshes.size())) return {};
+  const Mesh& m = c.meshes[static_cast<size_t>(mesh)];
+  std::vector<float> w(m.morphTargets.size(), 0.0f);
+  for (size_t k = 0; k < w.size() && k < m.defaultMorphWeights.size(); ++k) w[k] = m.defaultMorphWeights[k];
+  if (!clip || w.empty()) return w;
+  for (const auto& ch : clip->channels)
+    if (ch.path == ChannelPath::Weights && ch.node == meshNode && !ch.timesSec.empty()) sampleWeightChannel(ch, timeSec, w);
+  return w;
+}
+
+bool hasActiveMorph(std::span<const float> weights) {
+  for (float w : weights)
+    if (w != 0.0f) return true;
+  return false;
+}
 
 float clipTime(const AnimationClip& clip, double timeSec, bool loop) {
   double d = clip.durationSec;
@@ -62,12 +111,14 @@ std::vector<Transform> sampleLocalTransforms(const Character& c, const Animation
   if (!clip) return locals;
   for (const auto& ch : clip->channels) {
     if (ch.node < 0 || ch.node >= static_cast<int>(locals.size()) || ch.timesSec.empty()) continue;
+    if (ch.path == ChannelPath::Weights) continue;  // morphWeightsAt
     glm::vec4 v = sampleChannel(ch, timeSec);
     Transform& t = locals[ch.node];
     switch (ch.path) {
       case ChannelPath::Translation: t.translation = glm::vec3(v); break;
       case ChannelPath::Scale: t.scale = glm::vec3(v); break;
       case ChannelPath::Rotation: t.rotation = glm::normalize(glm::quat(v.w, v.x, v.y, v.z)); break;
+      case ChannelPath::Weights: break;
     }
   }
   return locals;

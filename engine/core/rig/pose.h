@@ -1,5 +1,6 @@
 #pragma once
 // Evaluating a character at a time: clip sampling, node globals, joint matrices.
+#include <span>
 #include <vector>
 
 #include "core/rig/character.h"
@@ -22,6 +23,15 @@ std::vector<glm::mat4> poseGlobals(const Character& c, const AnimationClip* clip
 // global(meshNode) * skinned position is in world space. A mesh without a
 // skin gets one identity matrix.
 std::vector<glm::mat4> jointMatrices(const Character& c, int meshNode, const std::vector<glm::mat4>& globals);
+
+// Morph target weights of the mesh drawn by meshNode at timeSec of clip: the
+// mesh's defaultMorphWeights, replaced by the clip's Weights channel of that node
+// where it has one (null clip: the defaults). One weight per morph target of the
+// mesh; empty when the node draws no mesh or the mesh has no targets.
+std::vector<float> morphWeightsAt(const Character& c, int meshNode, const AnimationClip* clip, float timeSec);
+
+// Whether any weight is non-zero (a mesh whose weights are all zero skips the blend-shape work).
+bool hasActiveMorph(std::span<const float> weights);
 
 // Clip time wrapped or clamped to [0, duration].
 float clipTime(const AnimationClip& clip, double timeSec, bool loop);

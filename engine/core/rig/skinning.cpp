@@ -1,12 +1,21 @@
 #include "core/rig/skinning.h"
 
+#include "core/rig/morph_targets.h"
 #include "core/rig/pose.h"
 
 namespace animorph {
 
 void skinMesh(const Mesh& mesh, const std::vector<glm::mat4>& jointMats, std::vector<glm::vec3>& outPositions,
-              std::vector<glm::vec3>& outNormals) {
+              std::vector<glm::vec3>& outNormals, std::span<const float> morphWeights) {
   const size_t n = mesh.vertexCount();
+  const glm::vec3* P = mesh.positions.data();
+  const glm::vec3* N = mesh.normals.data();
+  std::vector<glm::vec3> morphedP, morphedN;
+  if (!mesh.morphTargets.empty() && hasActiveMorph(morphWeights)) {
+    morphMesh(mesh, morphWeights, morphedP, morphedN);
+    P = morphedP.data();
+    N = morphedN.data();
+  }
   outPositions.resize(n);
   outNormals.resize(mesh.normals.size());
   const bool hasSecondSet = !mesh.joints1.empty();
@@ -23,12 +32,12 @@ void skinMesh(const Mesh& mesh, const std::vector<glm::mat4>& jointMats, std::ve
       accumulate(mesh.joints0[v], mesh.weights0[v]);
       if (hasSecondSet) accumulate(mesh.joints1[v], mesh.weights1[v]);
     }
-    outPositions[v] = glm::vec3(m * glm::vec4(mesh.positions[v], 1.0f));
+    outPositions[v] = glm::vec3(m * glm::vec4(P[v], 1.0f));
     if (v < mesh.normals.size()) {
       glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(m)));
-      glm::vec3 nrm = nm * mesh.normals[v];
+      glm::vec3 nrm = nm * N[v];
       float len = glm::length(nrm);
-      outNormals[v] = len > 0.0f ? nrm / len : mesh.normals[v];
+      outNormals[v] = len > 0.0f ? nrm / len : N[v];
     }
   }
 }
@@ -38,7 +47,7 @@ std::vector<glm::vec3> skinnedWorldPositions(const Character& c, const Animation
   std::vector<glm::vec3> out, pos, nrm;
   for (int node : c.meshNodes()) {
     const Mesh& mesh = c.meshes[c.nodes[node].mesh];
-    skinMesh(mesh, jointMatrices(c, node, globals), pos, nrm);
+    skinMesh(mesh, jointMatrices(c, node, globals), pos, nrm, morphWeightsAt(c, node, clip, timeSec));
     for (const auto& p : pos) out.push_back(glm::vec3(globals[node] * glm::vec4(p, 1.0f)));
   }
   return out;

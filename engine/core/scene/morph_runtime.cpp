@@ -105,6 +105,15 @@ std::vector<glm::mat4> actorGlobals(const MorphActorRuntime& a, double timeSec) 
   return poseGlobals(c, a.clip, t);
 }
 
+// The blend-shape weights of each mesh node of the actor at scene time timeSec (meshNodes() order).
+std::vector<std::vector<float>> actorMorphWeights(const MorphActorRuntime& a, double timeSec) {
+  const Character& c = *a.character;
+  const float t = a.clip ? float(actorClipTimeSec(a.actor, *a.clip, timeSec)) : 0.0f;
+  std::vector<std::vector<float>> out;
+  for (int node : c.meshNodes()) out.push_back(morphWeightsAt(c, node, a.clip, t));
+  return out;
+}
+
 // The actor's meshes (concatenated over meshNodes()) with the given vertices;
 // their vertex colours when every one of them has colours.
 TriangleMesh assemble(const Character& c, std::vector<glm::vec3>&& pos, std::vector<glm::vec3>&& nrm) {
@@ -134,6 +143,7 @@ TransitionStats transitionMesh(const MorphActorRuntime& a, double timeSec, const
   TransitionSettings ts;
   ts.threads = threads;
   ts.reprojectFrom = reprojectFrom;
+  ts.morphWeights = actorMorphWeights(a, timeSec);
   std::vector<glm::vec3> pos, nrm;
   TransitionStats st;
   bool anyHigh = false;

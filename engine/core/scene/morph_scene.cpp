@@ -31,6 +31,7 @@ void addGpuTransition(SceneFrame& frame, const std::shared_ptr<const MorphRuntim
     t.mesh.meshIndex = meshIndex;
     t.mesh.model = root * globals[size_t(node)];
     t.mesh.joints = jointMatrices(c, node, globals);
+    t.mesh.morphWeights = morphWeightsAt(c, node, a.clip, clipT);
     t.mesh.opacity = opacity;
     t.runtime = rt;
     t.targetActor = expand;

@@ -47,6 +47,7 @@ void addActor(SceneFrame& out, const Actor& actor, std::shared_ptr<const Charact
     d.meshIndex = c.nodes[node].mesh;
     d.model = actorM * globals[node];
     d.joints = jointMatrices(c, node, globals);
+    d.morphWeights = morphWeightsAt(c, node, clip, t);
     out.meshes.push_back(std::move(d));
   }
   // Skeleton overlay: every joint of every skin, linked to its parent when
@@ -105,7 +106,7 @@ Bounds posedBounds(const SceneFrame& frame, const std::string& actorId) {
   std::vector<glm::vec3> pos, nrm;
   for (const MeshDraw& d : frame.meshes) {
     if (!actorId.empty() && d.actorId != actorId) continue;
-    skinMesh(d.character->meshes[d.meshIndex], d.joints, pos, nrm);
+    skinMesh(d.character->meshes[d.meshIndex], d.joints, pos, nrm, d.morphWeights);
     for (const auto& p : pos) b.add(glm::vec3(d.model * glm::vec4(p, 1.0f)));
   }
   return b;

@@ -31,6 +31,7 @@ struct MeshDraw {
   int meshIndex = -1;  // index into character->meshes
   glm::mat4 model{1.0f};             // actor transform * global(meshNode)
   std::vector<glm::mat4> joints;     // skinning matrices (rig/pose.h jointMatrices)
+  std::vector<float> morphWeights;   // blend-shape weights (rig/pose.h morphWeightsAt); empty: none
   float opacity = 1.0f;              // < 1: cross-fade, drawn dithered (gpu::MeshDraw::opacity)
   bool complementDither = false;     // the complementary dither pattern
   // Base colour (sRGB); none: the renderer's default for imported meshes. A BlobTree surface

@@ -1,5 +1,6 @@
 #include "core/standin/character_pose.h"
 
+#include "core/rig/morph_targets.h"
 #include "core/rig/pose.h"
 
 namespace animorph {
@@ -38,12 +39,22 @@ CharacterPose poseCharacter(const Character& c, const AnimationClip* clip, float
     const auto joints = jointMatrices(c, node, out.globals);
     const glm::mat4 model = root * out.globals[size_t(node)];
     const Skin* skin = n.skin >= 0 ? &c.skins[size_t(n.skin)] : nullptr;
+    std::vector<glm::vec3> morphedP, morphedN;
+    const std::vector<float> weights = morphWeightsAt(c, node, clip, clipTimeSec);
+    const bool morphed = hasActiveMorph(weights);
+    if (morphed) {
+      morphMesh(mesh, weights, morphedP, morphedN);
+      if (out.morphOffsets.empty()) out.morphOffsets.assign(total, glm::vec3(0.0f));
+    }
+    const std::vector<glm::vec3>& P = morphed ? morphedP : mesh.positions;
+    const std::vector<glm::vec3>& N = morphed ? morphedN : mesh.normals;
     for (size_t v = 0; v < mesh.vertexCount(); ++v) {
       const size_t i = out.firstVertex[k] + v;
       const glm::mat4 w = model * vertexSkinMatrix(mesh, v, joints);
       out.vertexMatrices[i] = w;
-      out.positions[i] = glm::vec3(w * glm::vec4(mesh.positions[v], 1.0f));
-      glm::vec3 nrm = v < mesh.normals.size() ? mesh.normals[v] : glm::vec3(0, 1, 0);
+      out.positions[i] = glm::vec3(w * glm::vec4(P[v], 1.0f));
+      if (morphed) out.morphOffsets[i] = P[v] - mesh.positions[v];
+      glm::vec3 nrm = v < N.size() ? N[v] : glm::vec3(0, 1, 0);
       nrm = glm::transpose(glm::inverse(glm::mat3(w))) * nrm;
       const float len = glm::length(nrm);
       out.normals[i] = len > 0.0f ? nrm / len : glm::vec3(0, 1, 0);

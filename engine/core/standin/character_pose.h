@@ -19,12 +19,16 @@ struct CharacterPose {
   std::vector<glm::vec3> normals;         // posed, unit
   std::vector<glm::mat4> vertexMatrices;  // root * global(meshNode) * sum_j w_ij M_j: bind mesh space -> root space
   std::vector<int> dominantNode;          // node of the largest skin weight, or the mesh node when unskinned
+  // The blend shapes' bind-space offset of every vertex at this pose (rig/pose.h
+  // morphWeightsAt; positions include it); empty when no mesh has an active target.
+  std::vector<glm::vec3> morphOffsets;
 };
 
 // The blended skinning matrix of vertex v (same operations and order as rig/skinning.h skinMesh).
 glm::mat4 vertexSkinMatrix(const Mesh& mesh, size_t v, const std::vector<glm::mat4>& jointMats);
 
-// Poses every mesh of c at clipTimeSec of clip (null: rest pose), in root space.
+// Poses every mesh of c at clipTimeSec of clip (null: rest pose), in root space,
+// blend shapes included (the meshes' default weights when clip is null).
 CharacterPose poseCharacter(const Character& c, const AnimationClip* clip, float clipTimeSec, const glm::mat4& root);
 
 // Bounds of the posed vertices (clip null: the rest pose) in world units, with

@@ -181,6 +181,9 @@ FitReport measureFitQuality(const Character& c, const Standin& s, const Characte
   std::vector<size_t> pieceSize;
   if (settings.topologyResolution > 0 && !segs.empty())
     measureComponents(s, segs, settings.topologyResolution, r, segmentPiece, pieceSize);
+  r.segmentPiece = segmentPiece;
+  if (!pieceSize.empty())
+    r.mainPiece = int(std::max_element(pieceSize.begin(), pieceSize.end()) - pieceSize.begin());
 
   // Verdict, naming bones.
   auto addBone = [&](const std::string& b) {
@@ -229,6 +232,39 @@ std::string fitSummary(const FitReport& r) {
                   fmt("%.1f %% of vertices farther than %.0f %%", 100.0 * r.farShare, 100.0 * r.farFraction);
   if (r.standinComponents >= 0)
     s += fmt("; stand-in in %.0f piece(s), mesh in %.0f", r.standinComponents, r.meshComponents);
+  return s;
+}
+
+FitFigures fitFigures(const FitReport& r) {
+  FitFigures f;
+  f.segments = r.segments;
+  f.meanDistance = r.meanDistance;
+  f.maxDistance = r.maxDistance;
+  f.farShare = r.farShare;
+  f.standinComponents = r.standinComponents;
+  f.meshComponents = r.meshComponents;
+  f.largestGap = r.largestGap;
+  f.poor = r.poor;
+  return f;
+}
+
+std::string repairSummary(const FitReport& r) {
+  if (r.repairs.empty()) return {};
+  const double diag = std::max(1e-12, r.diagonal);
+  const FitFigures& b = r.beforeRepair;
+  std::string what;
+  for (const auto& a : r.repairs) what += (what.empty() ? "" : "; ") + a;
+  std::string s = "repaired (" + what + "): ";
+  if (b.standinComponents >= 0 && r.standinComponents >= 0)
+    s += fmt("stand-in %.0f -> %.0f piece(s) (mesh %.0f), largest gap %.3g (%.2f %%) -> ", b.standinComponents,
+             r.standinComponents, r.meshComponents, b.largestGap, 100.0 * b.largestGap / diag) +
+         fmt("%.3g (%.2f %%); ", r.largestGap, 100.0 * r.largestGap / diag);
+  s += fmt("far %.1f %% -> %.1f %%; ", 100.0 * b.farShare, 100.0 * r.farShare) +
+       fmt("mean %.3g (%.2f %%) -> %.3g (%.2f %%); ", b.meanDistance, 100.0 * b.meanDistance / diag, r.meanDistance,
+           100.0 * r.meanDistance / diag) +
+       fmt("max %.3g (%.2f %%) -> %.3g (%.2f %%); ", b.maxDistance, 100.0 * b.maxDistance / diag, r.maxDistance,
+           100.0 * r.maxDistance / diag) +
+       fmt("%.0f -> %.0f segments", double(b.segments), double(r.segments));
   return s;
 }
 

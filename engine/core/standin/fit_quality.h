@@ -41,6 +41,18 @@ struct SegmentFitError {
   double farShare = 0.0;   // share of its vertices farther than farFraction * diagonal
 };
 
+// The headline figures of a fit, kept from before an automatic repair (standin/repair_fit.h).
+struct FitFigures {
+  size_t segments = 0;
+  double meanDistance = 0.0;    // world units
+  double maxDistance = 0.0;
+  double farShare = 0.0;
+  int standinComponents = -1;
+  int meshComponents = -1;
+  double largestGap = 0.0;      // world units
+  bool poor = false;
+};
+
 struct FitReport {
   size_t segments = 0;
   size_t bonesOmitted = 0;      // rig nodes that dominate no vertex
@@ -57,13 +69,22 @@ struct FitReport {
   int meshComponents = -1;      // of the character's mesh, vertices welded by position
   double largestGap = 0.0;      // largest distance from a stand-in piece to the rest (world units; 0: one piece)
   std::vector<SegmentFitError> perSegment;
+  std::vector<int> segmentPiece; // polygonised piece nearest each segment's midpoint (empty: not measured)
+  int mainPiece = -1;            // the largest piece
   bool poor = false;
   std::vector<std::string> problems;   // one line each, naming bones
   std::vector<std::string> poorBones;  // bones whose segments fit worst or lie in detached pieces
   ProjectionStats projection;   // of the measurement
   double milliseconds = 0.0;    // fitting and measuring
   std::vector<std::string> notes;
+  // Automatic repair of a poor first fit (standin/repair_fit.h): what was done, one line each
+  // naming the bones, and the first fit's figures (beforeRepair is meaningful when repairs is not empty).
+  std::vector<std::string> repairs;
+  FitFigures beforeRepair;
 };
+
+// The headline figures of r.
+FitFigures fitFigures(const FitReport& r);
 
 // Measures s against the character at `pose` (standin/character_pose.h, root = identity).
 FitReport measureFitQuality(const Character& c, const Standin& s, const CharacterPose& pose,
@@ -77,5 +98,9 @@ int weldedComponents(const std::vector<glm::vec3>& positions, const std::vector<
 // One line: "mean 1.2 (0.8 %), max 9.1 (6.0 %) of a 151 diagonal; 0.3 % of vertices
 // farther than 5 %; stand-in 1 piece, mesh 1".
 std::string fitSummary(const FitReport& r);
+
+// One line, empty without repairs: "repaired (bridged 'tail3' to 'tail2'; ...): stand-in 2 -> 1
+// piece(s), largest gap 0.23 (8.11 %) -> 0; far 10.8 % -> 1.2 %; mean 0.012 (0.9 %) -> 0.009 (0.7 %)".
+std::string repairSummary(const FitReport& r);
 
 }  // namespace animorph

@@ -366,6 +366,13 @@ Result<FitResult> fitStandin(const Character& c, const FitSettings& settings) {
   result.report.segments = s.segments.size();
   if (settings.measure) {
     FitReport m = measureFitQuality(c, s, pose, settings.projection, settings.quality);
+    if (m.poor && settings.repair.enabled) {
+      std::vector<int> vertexNode(pose.positions.size(), -1);
+      for (size_t i = 0; i < vertexNode.size(); ++i) vertexNode[i] = owner[size_t(pose.dominantNode[i])];
+      m = repairStandinFit(c, pose, vertexNode, s, m, settings.projection, settings.quality,
+                           settings.radiusPercentile, settings.repair);
+      result.report.segments = s.segments.size();
+    }
     m.bonesOmitted = result.report.bonesOmitted;
     m.bonesMerged = result.report.bonesMerged;
     m.helperBridges = result.report.helperBridges;

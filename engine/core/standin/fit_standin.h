@@ -8,13 +8,16 @@
 // gives its vertices to its parent's segment instead of adding a blob. Each
 // radius is a robust percentile of the distances of the vertices the segment
 // fits. Runs on the rest pose or a frame of a clip; the report
-// (standin/fit_quality.h) says when the result is poor and which bones.
+// (standin/fit_quality.h) says when the result is poor and which bones; a poor
+// first fit is repaired where it can be (standin/repair_fit.h), before and after
+// in the report.
 #include <string>
 #include <vector>
 
 #include "core/rig/character.h"
 #include "core/standin/fit_quality.h"
 #include "core/standin/project_onto_standin.h"
+#include "core/standin/repair_fit.h"
 #include "core/standin/standin.h"
 #include "core/util/result.h"
 
@@ -41,6 +44,9 @@ struct FitSettings {
   bool measure = true;
   ProjectionSettings projection;
   FitQualitySettings quality;
+  // Where the measured first fit is poor, repair it (standin/repair_fit.h): re-place segments on
+  // the vertices bound to them, bridge detached pieces along the bone chain. Needs measure.
+  FitRepairSettings repair;
 };
 
 struct FitResult {

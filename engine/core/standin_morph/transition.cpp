@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "core/rig/morph_targets.h"
 #include "core/rig/pose.h"
 #include "core/standin/character_pose.h"
 
@@ -35,6 +36,7 @@ StandinBinding bindToStandin(const Character& c, const Standin& s, const Animati
       return;
     }
     b.offsets[i] = glm::inverse(w) * (projected[i] - pose.positions[i]);
+    if (!pose.morphOffsets.empty()) b.offsets[i] += pose.morphOffsets[i];  // from the unmorphed bind shape
     const glm::vec3 nb = glm::transpose(w) * nrm[i];  // normals map back by the transpose
     const float l = glm::length(nb);
     b.standinNormals[i] = l > 0.0f ? nb / l : glm::vec3(0, 1, 0);
@@ -92,14 +94,21 @@ TransitionStats evaluateTransition(const Character& c, const StandinBinding& bin
   const bool bound = binding.offsets.size() == total && binding.standinNormals.size() == total;
   tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
   size_t first = 0;
-  for (int node : meshNodes) {
+  std::vector<glm::vec3> morphedP, morphedN;
+  for (size_t mi = 0; mi < meshNodes.size(); ++mi) {
+    const int node = meshNodes[mi];
     const Mesh& mesh = c.meshes[size_t(c.nodes[size_t(node)].mesh)];
     const auto joints = jointMatrices(c, node, globals);
+    // Blend shapes: the morphed bind shape at alpha = 0, the binding's target (from the unmorphed one) at 1.
+    const bool morphed = mi < settings.morphWeights.size() && !mesh.morphTargets.empty() &&
+                         hasActiveMorph(settings.morphWeights[mi]);
+    if (morphed) morphMesh(mesh, settings.morphWeights[mi], morphedP, morphedN);
     const glm::mat4 model = root * globals[size_t(node)];
     const glm::mat3 modelNormal = glm::transpose(glm::inverse(glm::mat3(model)));
     const size_t n = mesh.vertexCount();
-    const glm::vec3* P = mesh.positions.data();
-    const glm::vec3* N = mesh.normals.size() == n ? mesh.normals.data() : nullptr;
+    const glm::vec3* P0 = mesh.positions.data();
+    const glm::vec3* P = morphed ? morphedP.data() : P0;
+    const glm::vec3* N = mesh.normals.size() == n ? (morphed ? morphedN.data() : mesh.normals.data()) : nullptr;
     const glm::vec3* dP = bound ? binding.offsets.data() + first : nullptr;
     const glm::vec3* nT = bound ? binding.standinNormals.data() + first : nullptr;
     const float* A = alpha.size() == total ? alpha.data() + first : nullptr;
@@ -140,7 +149,7 @@ TransitionStats evaluateTransition(const Character& c, const StandinBinding& bin
           glm::vec3 p = P[v];
           glm::vec3 nb = N ? N[v] : glm::vec3(0, 1, 0);
           if (dP && a != 0.0f) {
-            p = glm::mix(p, p + dP[v], a);
+            p = glm::mix(p, P0[v] + dP[v], a);
             // nlerp's normalisation is left to the final one (a linear map in between).
             const glm::vec3 nl = glm::mix(nb, nT[v], a);
             nb = glm::dot(nl, nl) > 1e-24f ? nl : nT[v];

@@ -27,7 +27,9 @@ struct StandinBinding {
 };
 
 // Projects every vertex of c, posed at clipTimeSec of clip (null: rest pose),
-// onto the stand-in posed the same way, and expresses the moves in bind space.
+// blend shapes included, onto the stand-in posed the same way, and expresses
+// the moves in bind space, from the unmorphed bind shape (offsets reach the
+// stand-in whatever the blend shapes do later).
 StandinBinding bindToStandin(const Character& c, const Standin& s, const AnimationClip* clip, float clipTimeSec,
                              const ProjectionSettings& settings);
 
@@ -37,6 +39,11 @@ struct TransitionSettings {
   float reprojectFrom = 0.75f;
   ProjectionSettings reprojection{12, 1e-5f, 0.5f, 0};
   int threads = 0;  // 0: all hardware threads
+  // Blend-shape weights of each mesh node (meshNodes() order; rig/pose.h
+  // morphWeightsAt); empty, or an empty entry: the mesh's bind shape. The
+  // morphed mesh is what alpha = 0 shows; it fades into the stand-in binding
+  // as alpha grows (the binding's offsets are from the unmorphed bind shape).
+  std::vector<std::vector<float>> morphWeights;
 };
 
 struct TransitionStats {

@@ -24,6 +24,7 @@ void buildScene(const SceneFrame& frame, const ViewOptions& view, const std::str
     md.mesh = gm;
     md.model = d.model;
     md.jointMatrices = d.joints;
+    md.morphWeights = d.morphWeights;
     md.selected = !selectedActorId.empty() && d.actorId == selectedActorId;
     md.opacity = d.opacity;
     md.complementDither = d.complementDither;
@@ -43,6 +44,7 @@ void buildScene(const SceneFrame& frame, const ViewOptions& view, const std::str
     td.draw.mesh = gm;
     td.draw.model = t.mesh.model;
     td.draw.jointMatrices = t.mesh.joints;
+    td.draw.morphWeights = t.mesh.morphWeights;
     td.draw.selected = !selectedActorId.empty() && t.mesh.actorId == selectedActorId;
     td.draw.opacity = t.mesh.opacity;
     td.draw.complementDither = t.mesh.complementDither;

@@ -20,6 +20,19 @@
 // Joint influences per vertex (two sets of four, glTF JOINTS_0/1, WEIGHTS_0/1).
 #define AM_MAX_INFLUENCES 8
 
+// Blend shapes (glTF morph targets) in the skinned vertex shaders
+// (shaders/include/morph_targets.glsl): each mesh with targets has its own
+// descriptor set AM_MORPH_SET holding its deltas (binding AM_MORPH_BINDING_DELTAS:
+// 6 floats per target and vertex, position then normal delta, target-major);
+// a mesh without targets is drawn with a one-element placeholder set. The
+// draw's active targets (non-zero weights) are (target index, weight) pairs in
+// the frame's joint buffer; at most AM_MAX_ACTIVE_MORPH_TARGETS per draw: a draw
+// with more keeps the ones of largest |weight| (the CPU path uses them all).
+#define AM_MORPH_SET 2
+#define AM_MORPH_BINDING_DELTAS 0
+#define AM_MORPH_DELTA_FLOATS 6
+#define AM_MAX_ACTIVE_MORPH_TARGETS 64
+
 // MeshPush.flags bits.
 #define AM_DRAW_SELECTED 1u   // tint and rim-light the mesh
 #define AM_DRAW_WIREFRAME 2u  // wireframe pass: flat colour, depth pulled toward the camera
@@ -37,6 +50,9 @@ inline constexpr uint32_t kVertexPaintWeight = AM_VERTEX_PAINT_WEIGHT;
 inline constexpr uint32_t kDrawSelected = AM_DRAW_SELECTED;
 inline constexpr uint32_t kDrawWireframe = AM_DRAW_WIREFRAME;
 inline constexpr uint32_t kFramesInFlight = AM_FRAMES_IN_FLIGHT;
+inline constexpr uint32_t kMorphSet = AM_MORPH_SET;
+inline constexpr uint32_t kMorphDeltaFloats = AM_MORPH_DELTA_FLOATS;
+inline constexpr uint32_t kMaxActiveMorphTargets = AM_MAX_ACTIVE_MORPH_TARGETS;
 }  // namespace animorph::gpu
 #endif
 

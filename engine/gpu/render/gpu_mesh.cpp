@@ -6,7 +6,9 @@
 #include <vector>
 
 #include "core/rig/mesh_normals.h"
+#include "core/rig/morph_targets.h"
 #include "shared_constants.h"
+#include "gpu/vulkan/vk_check.h"
 
 namespace animorph::gpu {
 
@@ -104,10 +106,71 @@ Result<std::unique_ptr<GpuMesh>> GpuMesh::upload(Context& ctx, const Mesh& mesh,
   gm->edgeIndexCount_ = static_cast<uint32_t>(edges.size());
   gm->bounds_ = mesh.bounds();
   gm->name_ = mesh.name;
+  if (!mesh.morphTargets.empty())
+    if (Status st = gm->uploadMorphTargets(ctx, mesh); !st) return Error{what + ": " + st.error()};
   return gm;
 }
 
-GpuMesh::~GpuMesh() { destroyBuffer(device_, buffer_); }
+Result<VkDescriptorSetLayout> createMorphSetLayout(VkDevice device) {
+  VkDescriptorSetLayoutBinding b{AM_MORPH_BINDING_DELTAS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+                                 VK_SHADER_STAGE_VERTEX_BIT, nullptr};
+  VkDescriptorSetLayoutCreateInfo ci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  ci.bindingCount = 1;
+  ci.pBindings = &b;
+  VkDescriptorSetLayout layout = VK_NULL_HANDLE;
+  AM_VK_TRY(vkCreateDescriptorSetLayout(device, &ci, nullptr, &layout), "vkCreateDescriptorSetLayout");
+  return layout;
+}
+
+// Deltas target-major (target t, vertex v at (t * n + v) * 6 floats: position, normal),
+// as many targets as one storage-buffer descriptor can address.
+Status GpuMesh::uploadMorphTargets(Context& ctx, const Mesh& mesh) {
+  if (std::string bad = checkMorphTargets(mesh); !bad.empty()) return Error{bad};
+  const size_t n = mesh.positions.size();
+  const VkDeviceSize perTarget = VkDeviceSize(n) * kMorphDeltaFloats * sizeof(float);
+  const VkDeviceSize range = ctx.properties().limits.maxStorageBufferRange;
+  const size_t fit = perTarget > 0 ? size_t(range / perTarget) : 0;
+  morphTargetCount_ = uint32_t(std::min<size_t>({mesh.morphTargets.size(), fit, 0xffffu}));
+  if (morphTargetCount_ == 0) return Status::success();
+  std::vector<float> deltas(size_t(morphTargetCount_) * n * kMorphDeltaFloats, 0.0f);
+  for (size_t t = 0; t < morphTargetCount_; ++t) {
+    const MorphTarget& mt = mesh.morphTargets[t];
+    float* out = deltas.data() + t * n * kMorphDeltaFloats;
+    for (size_t v = 0; v < n; ++v, out += kMorphDeltaFloats) {
+      out[0] = mt.positionDeltas[v].x, out[1] = mt.positionDeltas[v].y, out[2] = mt.positionDeltas[v].z;
+      if (!mt.normalDeltas.empty()) out[3] = mt.normalDeltas[v].x, out[4] = mt.normalDeltas[v].y, out[5] = mt.normalDeltas[v].z;
+    }
+  }
+  Result<Buffer> buf = createDeviceBuffer(ctx, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, deltas.data(), deltas.size() * sizeof(float));
+  if (!buf) return Error{"morph deltas: " + buf.error()};
+  morphBuffer_ = *buf;
+  Result<VkDescriptorSetLayout> layout = createMorphSetLayout(device_);
+  if (!layout) return Error{layout.error()};
+  morphLayout_ = *layout;
+  VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
+  VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  pi.maxSets = 1;
+  pi.poolSizeCount = 1;
+  pi.pPoolSizes = &size;
+  AM_VK_TRY(vkCreateDescriptorPool(device_, &pi, nullptr, &morphPool_), "vkCreateDescriptorPool");
+  VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  ai.descriptorPool = morphPool_;
+  ai.descriptorSetCount = 1;
+  ai.pSetLayouts = &morphLayout_;
+  AM_VK_TRY(vkAllocateDescriptorSets(device_, &ai, &morphSet_), "vkAllocateDescriptorSets");
+  VkDescriptorBufferInfo info{morphBuffer_.buffer, 0, VK_WHOLE_SIZE};
+  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, morphSet_, AM_MORPH_BINDING_DELTAS, 0, 1,
+                         VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nullptr, &info, nullptr};
+  vkUpdateDescriptorSets(device_, 1, &w, 0, nullptr);
+  return Status::success();
+}
+
+GpuMesh::~GpuMesh() {
+  if (morphPool_) vkDestroyDescriptorPool(device_, morphPool_, nullptr);  // frees morphSet_
+  if (morphLayout_) vkDestroyDescriptorSetLayout(device_, morphLayout_, nullptr);
+  destroyBuffer(device_, morphBuffer_);
+  destroyBuffer(device_, buffer_);
+}
 
 void GpuMesh::bindTriangles(VkCommandBuffer cmd) const {
   VkBuffer bufs[6] = {buffer_.buffer, buffer_.buffer, buffer_.buffer, buffer_.buffer, buffer_.buffer, buffer_.buffer};

@@ -2,6 +2,8 @@
 // A Mesh (rig/character.h) uploaded once to device memory: positions, normals,
 // two sets of 4 joint indices (u16) and weights, triangle indices, and, when
 // the device cannot draw polygons as lines, an edge list for the wireframe.
+// A mesh with blend shapes also gets its morph deltas as a storage buffer in a
+// descriptor set of its own (set AM_MORPH_SET of the skinned vertex shaders).
 #include <memory>
 
 #include "gpu/vulkan/buffer.h"
@@ -17,7 +19,8 @@ class GpuMesh {
   // a mesh without joints binds every vertex to joint 0. The edge list is built when
   // the device lacks fillModeNonSolid or withEdgeList is set. Errors name the mesh
   // and the problem: no vertices, an index out of range, attribute arrays of the
-  // wrong length, more than 65535 joints, Vulkan failures.
+  // wrong length, more than 65535 joints, morph targets whose deltas do not
+  // have one entry per vertex, Vulkan failures.
   static Result<std::unique_ptr<GpuMesh>> upload(Context& ctx, const Mesh& mesh, bool withEdgeList = false);
   ~GpuMesh();
   GpuMesh(const GpuMesh&) = delete;
@@ -29,6 +32,11 @@ class GpuMesh {
   void bindEdges(VkCommandBuffer cmd) const;
 
   uint32_t vertexCount() const { return vertexCount_; }
+  // Morph targets on the device: the mesh's, or the first ones whose deltas fit
+  // the device's maxStorageBufferRange (the rest are not drawn by the GPU).
+  uint32_t morphTargetCount() const { return morphTargetCount_; }
+  // The descriptor set of the deltas (layout: createMorphSetLayout); null without targets.
+  VkDescriptorSet morphSet() const { return morphSet_; }
   uint32_t indexCount() const { return indexCount_; }
   uint32_t edgeIndexCount() const { return edgeIndexCount_; }  // 2 per unique edge; 0 when not built
   const Bounds& bounds() const { return bounds_; }             // of the bind-pose positions
@@ -43,6 +51,16 @@ class GpuMesh {
   uint32_t vertexCount_ = 0, indexCount_ = 0, edgeIndexCount_ = 0;
   Bounds bounds_;
   std::string name_;
+  Buffer morphBuffer_;  // AM_MORPH_DELTA_FLOATS floats per target and vertex
+  VkDescriptorSetLayout morphLayout_ = VK_NULL_HANDLE;
+  VkDescriptorPool morphPool_ = VK_NULL_HANDLE;
+  VkDescriptorSet morphSet_ = VK_NULL_HANDLE;
+  uint32_t morphTargetCount_ = 0;
+  Status uploadMorphTargets(Context& ctx, const Mesh& mesh);
 };
+
+// The layout of set AM_MORPH_SET (one storage buffer, vertex stage): the
+// renderer's pipeline layouts and every GpuMesh's set use identical ones.
+Result<VkDescriptorSetLayout> createMorphSetLayout(VkDevice device);
 
 }  // namespace animorph::gpu

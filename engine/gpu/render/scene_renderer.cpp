@@ -40,8 +40,12 @@ struct MeshPush {
   uint32_t flags;
   float depthPull;
   glm::vec4 baseLinear;  // rgb: color.rgb in linear light (the shaders would take it per pixel)
+  uint32_t morphOffset;       // blend shapes: float index of the draw's (target, weight) pairs in the joint buffer
+  uint32_t morphCount;        // active targets; 0: none
+  uint32_t morphVertexCount;  // the mesh's vertices
+  uint32_t morphPad;
 };
-static_assert(sizeof(MeshPush) == 112);  // within the 128 bytes every device has
+static_assert(sizeof(MeshPush) == 128);  // the 128 bytes every device has (lavapipe's maxPushConstantsSize)
 
 // The colour's rgb in linear light, as the viewport shading uses it (gamma 2.2).
 glm::vec4 linearRgb(const glm::vec4& c) {
@@ -155,23 +159,27 @@ Status SceneRenderer::init(VkRenderPass renderPass, SceneRendererSettings settin
   sli.bindingCount = 2;
   sli.pBindings = b;
   AM_VK_TRY(vkCreateDescriptorSetLayout(dev, &sli, nullptr, &setLayout_), "vkCreateDescriptorSetLayout");
-  VkPushConstantRange push{kPushStages, 0, sizeof(MeshPush)};
-  VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  pli.setLayoutCount = 1;
-  pli.pSetLayouts = &setLayout_;
-  pli.pushConstantRangeCount = 1;
-  pli.pPushConstantRanges = &push;
-  AM_VK_TRY(vkCreatePipelineLayout(dev, &pli, nullptr, &layout_), "vkCreatePipelineLayout");
-
   // Set 1 of the transition pipelines: the per-draw TransitionParams.
   VkDescriptorSetLayoutBinding tb{AM_TRANSITION_BINDING_PARAMS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC, 1,
                                   VK_SHADER_STAGE_VERTEX_BIT, nullptr};
   sli.bindingCount = 1;
   sli.pBindings = &tb;
   AM_VK_TRY(vkCreateDescriptorSetLayout(dev, &sli, nullptr, &transitionSetLayout_), "vkCreateDescriptorSetLayout");
-  const VkDescriptorSetLayout transitionSets[2] = {setLayout_, transitionSetLayout_};
-  pli.setLayoutCount = 2;
-  pli.pSetLayouts = transitionSets;
+  // Set 2 (AM_MORPH_SET): a mesh's blend-shape deltas (render/gpu_mesh.h).
+  Result<VkDescriptorSetLayout> morphLayout = createMorphSetLayout(dev);
+  if (!morphLayout) return Error{morphLayout.error()};
+  morphSetLayout_ = *morphLayout;
+  // Both layouts hold all three sets, so they agree on every set and the push
+  // constants: sets bound through one stay bound for pipelines of the other.
+  VkPushConstantRange push{kPushStages, 0, sizeof(MeshPush)};
+  const VkDescriptorSetLayout sets[3] = {setLayout_, transitionSetLayout_, morphSetLayout_};
+  static_assert(AM_TRANSITION_SET == 1 && AM_MORPH_SET == 2, "set order of the pipeline layouts");
+  VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  pli.setLayoutCount = 3;
+  pli.pSetLayouts = sets;
+  pli.pushConstantRangeCount = 1;
+  pli.pPushConstantRanges = &push;
+  AM_VK_TRY(vkCreatePipelineLayout(dev, &pli, nullptr, &layout_), "vkCreatePipelineLayout");
   AM_VK_TRY(vkCreatePipelineLayout(dev, &pli, nullptr, &transitionLayout_), "vkCreatePipelineLayout");
   const VkDeviceSize storageAlign = std::max<VkDeviceSize>(ctx_.properties().limits.minStorageBufferOffsetAlignment, 16);
   transitionParamStride_ = (sizeof(TransitionParams) + storageAlign - 1) / storageAlign * storageAlign;
@@ -261,12 +269,64 @@ Status SceneRenderer::init(VkRenderPass renderPass, SceneRendererSettings settin
     generatedWirePipeline_ = *p;
   }
 
+  if (Status st = initMorphPlaceholder(); !st) return st;
   for (uint32_t i = 0; i < kFramesInFlight; ++i) {
     slots_.push_back(std::make_unique<Slot>());
     Status s = reserve(*slots_.back(), 0, 0);  // initial capacity: steady frames allocate nothing
     if (!s) return s;
   }
   return Status::success();
+}
+
+// The set bound for meshes without morph targets (their shader path never reads it).
+Status SceneRenderer::initMorphPlaceholder() {
+  const float zeros[kMorphDeltaFloats] = {};
+  Result<Buffer> buf = createDeviceBuffer(ctx_, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, zeros, sizeof zeros);
+  if (!buf) return Error{"morph placeholder: " + buf.error()};
+  morphPlaceholder_ = *buf;
+  VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  ai.descriptorPool = descriptorPool_;
+  ai.descriptorSetCount = 1;
+  ai.pSetLayouts = &morphSetLayout_;
+  AM_VK_TRY(vkAllocateDescriptorSets(ctx_.device(), &ai, &morphPlaceholderSet_), "vkAllocateDescriptorSets");
+  VkDescriptorBufferInfo info{morphPlaceholder_.buffer, 0, VK_WHOLE_SIZE};
+  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, morphPlaceholderSet_, AM_MORPH_BINDING_DELTAS,
+                         0, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nullptr, &info, nullptr};
+  vkUpdateDescriptorSets(ctx_.device(), 1, &w, 0, nullptr);
+  return Status::success();
+}
+
+// Appends a draw's active blend shapes to the joint data as (target, weight)
+// pairs, mat4-aligned (the shader reads the joint buffer as floats too): the
+// non-zero weights of targets the device holds, at most kMaxActiveMorphTargets
+// (those of largest |weight|), in target order as the CPU adds them.
+void SceneRenderer::addMorphWeights(const GpuMesh* mesh, std::span<const float> weights) {
+  DrawMorph dm;
+  const size_t targets = mesh ? std::min<size_t>(weights.size(), mesh->morphTargetCount()) : 0;
+  std::vector<std::pair<uint32_t, float>> active;
+  for (size_t t = 0; t < targets; ++t)
+    if (weights[t] != 0.0f && std::isfinite(weights[t])) active.push_back({uint32_t(t), weights[t]});
+  if (active.size() > kMaxActiveMorphTargets) {
+    std::nth_element(active.begin(), active.begin() + kMaxActiveMorphTargets, active.end(),
+                     [](const auto& a, const auto& b) { return std::abs(a.second) > std::abs(b.second); });
+    active.resize(kMaxActiveMorphTargets);
+    std::sort(active.begin(), active.end());
+  }
+  if (!active.empty()) {
+    dm.offset = static_cast<uint32_t>(jointScratch_.size() * 16);
+    dm.count = static_cast<uint32_t>(active.size());
+    std::vector<float> block((2 * active.size() + 15) / 16 * 16, 0.0f);
+    for (size_t i = 0; i < active.size(); ++i) {
+      std::memcpy(&block[2 * i], &active[i].first, sizeof(uint32_t));  // floatBitsToUint in the shader
+      block[2 * i + 1] = active[i].second;
+    }
+    for (size_t k = 0; k < block.size(); k += 16) {
+      glm::mat4 m;
+      std::memcpy(&m[0][0], &block[k], 16 * sizeof(float));
+      jointScratch_.push_back(m);
+    }
+  }
+  drawMorphs_.push_back(dm);
 }
 
 SceneRenderer::~SceneRenderer() {
@@ -287,6 +347,8 @@ SceneRenderer::~SceneRenderer() {
                        transitionWirePipeline_[0], transitionWirePipeline_[1], generatedWirePipeline_,
                        transitionDitherPipeline_[1], particlePipeline_})
     if (p) vkDestroyPipeline(dev, p, nullptr);
+  destroyBuffer(dev, morphPlaceholder_);
+  if (morphSetLayout_) vkDestroyDescriptorSetLayout(dev, morphSetLayout_, nullptr);
   if (layout_) vkDestroyPipelineLayout(dev, layout_, nullptr);
   if (transitionLayout_) vkDestroyPipelineLayout(dev, transitionLayout_, nullptr);
   if (transitionSetLayout_) vkDestroyDescriptorSetLayout(dev, transitionSetLayout_, nullptr);
@@ -396,10 +458,12 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
   jointScratch_.clear();
   std::vector<uint32_t>& jointOffsets = drawJointOffsets_;
   jointOffsets.clear();
+  drawMorphs_.clear();
   auto addJoints = [&](const MeshDraw& d) {
     jointOffsets.push_back(static_cast<uint32_t>(jointScratch_.size()));
     if (d.jointMatrices.empty()) jointScratch_.push_back(glm::mat4(1.0f));
     else jointScratch_.insert(jointScratch_.end(), d.jointMatrices.begin(), d.jointMatrices.end());
+    addMorphWeights(d.mesh, d.morphWeights);
   };
   for (const MeshDraw& d : scene.meshes) addJoints(d);
   weightScratch_.clear();
@@ -408,6 +472,7 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
     jointOffsets.push_back(static_cast<uint32_t>(jointScratch_.size()));
     if (d.jointMatrices.empty()) jointScratch_.push_back(glm::mat4(1.0f));
     else jointScratch_.insert(jointScratch_.end(), d.jointMatrices.begin(), d.jointMatrices.end());
+    addMorphWeights(d.mesh, d.morphWeights);
     weightOffsets.push_back(weightScratch_.size() * sizeof(float));
     if (d.mesh && d.weights.size() == d.mesh->vertexCount())
       weightScratch_.insert(weightScratch_.end(), d.weights.begin(), d.weights.end());
@@ -491,6 +556,21 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &slot.set, 1, &frameOffset);
   slot.setBound = true;
 
+  // Set 2: the mesh's blend-shape deltas, or the placeholder; rebound only when it changes.
+  VkDescriptorSet boundMorphSet = VK_NULL_HANDLE;
+  auto bindMorphSet = [&](const GpuMesh* mesh) {
+    VkDescriptorSet set = mesh && mesh->morphSet() ? mesh->morphSet() : morphPlaceholderSet_;
+    if (set == boundMorphSet) return;
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, kMorphSet, 1, &set, 0, nullptr);
+    boundMorphSet = set;
+  };
+  auto setMorph = [&](MeshPush& p, const GpuMesh* mesh, size_t i) {
+    const DrawMorph& dm = drawMorphs_[i];
+    p.morphOffset = jointBase * 16u + dm.offset;
+    p.morphCount = dm.count;
+    p.morphVertexCount = mesh ? mesh->vertexCount() : 0u;
+    bindMorphSet(mesh);
+  };
   auto pushMesh = [&](const MeshDraw& d, size_t i, uint32_t flags, const glm::vec4& color, float pull) {
     MeshPush p{};
     p.model = d.model;
@@ -500,6 +580,7 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
     p.jointCount = d.jointMatrices.empty() ? 1u : static_cast<uint32_t>(d.jointMatrices.size());
     p.flags = flags;
     p.depthPull = pull;
+    setMorph(p, d.mesh, i);
     vkCmdPushConstants(cmd, layout_, kPushStages, 0, sizeof(p), &p);
   };
 
@@ -589,6 +670,7 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
     p.color = glm::vec4(1.0f);
     p.jointOffset = jointBase + jointOffsets[scene.meshes.size() + k];
     p.jointCount = d.jointMatrices.empty() ? 1u : static_cast<uint32_t>(d.jointMatrices.size());
+    setMorph(p, d.mesh, scene.meshes.size() + k);
     vkCmdPushConstants(cmd, layout_, kPushStages, 0, sizeof(p), &p);
     d.mesh->bindTriangles(cmd);
     const VkDeviceSize offset = weightBase + weightOffsets[k];

@@ -34,6 +34,9 @@ struct MeshDraw {
   const GpuMesh* mesh = nullptr;
   glm::mat4 model{1.0f};                     // mesh node's world matrix
   std::span<const glm::mat4> jointMatrices;  // jointMatrices() of the node; empty: one identity
+  // Blend-shape weights, one per morph target of the mesh (rig/pose.h
+  // morphWeightsAt); empty or all zero: the bind shape. Copied while recording.
+  std::span<const float> morphWeights;
   glm::vec4 color{0.62f, 0.62f, 0.62f, 1.0f};  // base colour (sRGB)
   bool selected = false;
   // glTF material.doubleSided: also draw back faces. Single-sided meshes cull
@@ -86,6 +89,7 @@ struct WeightOverlayDraw {
   glm::mat4 model{1.0f};
   std::span<const glm::mat4> jointMatrices;
   std::span<const float> weights;
+  std::span<const float> morphWeights;  // as MeshDraw::morphWeights
 };
 
 // Particles drawn as spheres (the particle view while scrubbing, scene/particle_view.h): each a
@@ -163,6 +167,9 @@ class SceneRenderer {
   VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
   VkDescriptorPool descriptorPool_ = VK_NULL_HANDLE;
   VkPipelineLayout layout_ = VK_NULL_HANDLE;
+  VkDescriptorSetLayout morphSetLayout_ = VK_NULL_HANDLE;  // set AM_MORPH_SET (render/gpu_mesh.h)
+  Buffer morphPlaceholder_;                                // bound for meshes without morph targets
+  VkDescriptorSet morphPlaceholderSet_ = VK_NULL_HANDLE;
   VkPipeline meshPipeline_[2]{};  // [doubleSided]
   VkPipeline wirePipeline_[2]{};  // [doubleSided]
   VkPipeline generatedPipeline_ = VK_NULL_HANDLE;  // GeneratedMeshDraw: positions + normals, indirect
@@ -186,6 +193,13 @@ class SceneRenderer {
   std::vector<glm::mat4> jointScratch_;
   std::vector<LineVertex> lineScratch_;
   std::vector<uint32_t> drawJointOffsets_;  // per mesh draw, then per weight overlay
+  struct DrawMorph {
+    uint32_t offset = 0;  // float index of the (target, weight) pairs in this call's joint data
+    uint32_t count = 0;   // active targets; 0: none
+  };
+  std::vector<DrawMorph> drawMorphs_;  // indexed as drawJointOffsets_
+  Status initMorphPlaceholder();
+  void addMorphWeights(const GpuMesh* mesh, std::span<const float> weights);
   std::vector<float> weightScratch_;
 };
 

@@ -22,6 +22,7 @@ size_t addWeightOverlay(const SceneFrame& frame, const std::string& actorId, std
       w.mesh = gm;
       w.model = d.model;
       w.jointMatrices = d.joints;
+      w.morphWeights = d.morphWeights;
       w.weights = std::span<const float>(weights.data() + offset, n);
       scene.weightOverlays.push_back(w);
       ++added;

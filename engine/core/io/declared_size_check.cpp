@@ -1,0 +1,161 @@
+#include "core/io/declared_size_check.h"
+
+#include <cstdint>
+#include <algorithm>
+#include <cstring>
+#include <vector>
+
+namespace animorph {
+namespace {
+
+constexpr char kFbxMagic[] = "Kaydara FBX Binary  ";  // then \0 0x1a 0x00, then a u32 version
+constexpr size_t kFbxHeaderBytes = 27;
+
+size_t budgetFor(size_t fileBytes) { return kImportDecodeFactor * fileBytes + kImportDecodeAllowance; }
+
+std::string budgetText(size_t fileBytes) {
+  return "the decoding budget of " + std::to_string(budgetFor(fileBytes)) + " bytes (" +
+         std::to_string(kImportDecodeFactor) + " x the file's " + std::to_string(fileBytes) + " bytes + " +
+         std::to_string(kImportDecodeAllowance >> 20) + " MiB)";
+}
+
+// Little-endian reads, bounds-checked by the caller.
+uint64_t readLe(const std::string& b, size_t at, size_t width) {
+  uint64_t v = 0;
+  for (size_t i = 0; i < width; ++i) v |= uint64_t(static_cast<unsigned char>(b[at + i])) << (8 * i);
+  return v;
+}
+
+struct FbxWalk {
+  const std::string& file;
+  const std::string& b;
+  size_t decoded = 0;  // bytes all arrays together decode to
+
+  Error fail(size_t at, const std::string& record, const std::string& reason) const {
+    return Error{file + ": FBX record '" + record + "' at byte " + std::to_string(at) + ": " + reason};
+  }
+};
+
+// One property at p (advanced past it); arrays add their decoded size to w.decoded.
+Status fbxProperty(FbxWalk& w, size_t& p, size_t end, size_t recordAt, const std::string& record) {
+  const std::string& b = w.b;
+  if (p >= end) return w.fail(recordAt, record, "property list runs past the record's end");
+  const char type = b[p++];
+  auto need = [&](size_t n) { return end - p >= n; };
+  switch (type) {
+    case 'C': if (!need(1)) break; p += 1; return {};
+    case 'Y': if (!need(2)) break; p += 2; return {};
+    case 'I': case 'F': if (!need(4)) break; p += 4; return {};
+    case 'D': case 'L': if (!need(8)) break; p += 8; return {};
+    case 'S': case 'R': {
+      if (!need(4)) break;
+      const uint64_t len = readLe(b, p, 4);
+      p += 4;
+      if (!need(len)) break;
+      p += len;
+      return {};
+    }
+    case 'f': case 'i': case 'd': case 'l': case 'b': {
+      if (!need(12)) break;
+      const uint64_t count = readLe(b, p, 4), encoding = readLe(b, p + 4, 4), stored = readLe(b, p + 8, 4);
+      p += 12;
+      if (!need(stored)) break;
+      p += stored;
+      const uint64_t stride = (type == 'd' || type == 'l') ? 8 : (type == 'b' ? 1 : 4);
+      const uint64_t full = count * stride;
+      const std::string what = std::string("array of ") + std::to_string(count) + " '" + type + "' elements (" +
+                               std::to_string(full) + " bytes) stored in " + std::to_string(stored) + " bytes";
+      if (encoding == 0 && full != stored) return w.fail(recordAt, record, what + ": the sizes differ");
+      if (encoding == 1 && full > kZlibMaxExpansion * stored + 64)
+        return w.fail(recordAt, record, what + ": more than zlib can expand to");
+      if (encoding > 1)
+        return w.fail(recordAt, record, "array encoding " + std::to_string(encoding) + " is unknown (0 or 1)");
+      w.decoded += full;
+      if (w.decoded > budgetFor(b.size()))
+        return w.fail(recordAt, record, what + ": the arrays so far decode to " + std::to_string(w.decoded) +
+                                            " bytes, more than " + budgetText(b.size()));
+      return {};
+    }
+    default:
+      return w.fail(recordAt, record, std::string("unknown property type '") +
+                                          (type >= 0x20 && type < 0x7f ? std::string(1, type) : "?") + "'");
+  }
+  return w.fail(recordAt, record, std::string("property '") + type + "' runs past the record's end");
+}
+
+}  // namespace
+
+bool isFbxBinary(const std::string& bytes) {
+  return bytes.size() >= sizeof kFbxMagic - 1 && std::memcmp(bytes.data(), kFbxMagic, sizeof kFbxMagic - 1) == 0;
+}
+
+Status checkFbxBinaryDeclaredSizes(const std::string& file, const std::string& b) {
+  if (!isFbxBinary(b) || b.size() < kFbxHeaderBytes) return Error{file + ": not a binary FBX file (header too short)"};
+  const uint64_t version = readLe(b, 23, 4);
+  const size_t width = version >= 7500 ? 8 : 4;  // record header fields grew to 64 bits in FBX 7.5
+  const size_t headerBytes = 3 * width + 1;
+  FbxWalk w{file, b};
+  std::vector<size_t> open;  // end offsets of the records we are inside
+  size_t p = kFbxHeaderBytes;
+  while (p + headerBytes <= b.size()) {
+    while (!open.empty() && p >= open.back()) {
+      if (p > open.back()) return w.fail(p, "?", "a nested record runs past its parent's end");
+      open.pop_back();
+    }
+    const size_t at = p;
+    const uint64_t endOffset = readLe(b, p, width), props = readLe(b, p + width, width),
+                   propBytes = readLe(b, p + 2 * width, width);
+    const size_t nameLen = static_cast<unsigned char>(b[p + 3 * width]);
+    if (endOffset == 0) {  // the null record that closes a list
+      if (open.empty()) return {};  // end of the top-level list: the footer follows
+      p += headerBytes;
+      continue;
+    }
+    p += headerBytes;
+    if (nameLen > b.size() - p) return w.fail(at, "?", "name runs past the end of the file");
+    std::string name = b.substr(p, std::min<size_t>(nameLen, 40));
+    for (char& ch : name)
+      if (ch < 0x20 || ch > 0x7e) ch = '?';  // a broken file's name may be any bytes
+    p += nameLen;
+    const size_t limit = open.empty() ? b.size() : open.back();
+    if (endOffset <= at || endOffset > limit)
+      return w.fail(at, name, "ends at byte " + std::to_string(endOffset) + ", outside " +
+                                  (open.empty() ? "the file (" + std::to_string(b.size()) + " bytes)"
+                                                : "its parent (ends at " + std::to_string(limit) + ")"));
+    if (propBytes > endOffset - p) return w.fail(at, name, "its property list runs past its end");
+    const size_t propEnd = p + propBytes;
+    for (uint64_t i = 0; i < props; ++i)
+      if (auto s = fbxProperty(w, p, propEnd, at, name); !s) return s;
+    if (p != propEnd) return w.fail(at, name, "its properties do not fill its property list");
+    if (p < endOffset) open.push_back(endOffset);  // nested records follow
+    else p = endOffset;
+  }
+  return {};
+}
+
+Status checkTextDeclaredCounts(const std::string& file, const std::string& b, bool collada) {
+  size_t decoded = 0;
+  const std::string key = collada ? "count=\"" : "*";
+  for (size_t p = b.find(key); p != std::string::npos; p = b.find(key, p + 1)) {
+    size_t q = p + key.size();
+    uint64_t count = 0;
+    size_t digits = 0;
+    while (q < b.size() && b[q] >= '0' && b[q] <= '9' && digits < 20) {
+      count = count * 10 + uint64_t(b[q] - '0');
+      ++q;
+      ++digits;
+    }
+    if (digits == 0) continue;
+    if (!collada) {  // an ASCII FBX array: "*N {"
+      while (q < b.size() && (b[q] == ' ' || b[q] == '\t')) ++q;
+      if (q >= b.size() || b[q] != '{') continue;
+    }
+    if (digits >= 20 || count > budgetFor(b.size()) / 8 || (decoded += count * 8) > budgetFor(b.size()))
+      return Error{file + ": " + (collada ? "count" : "array") + " at byte " + std::to_string(p) + " declares " +
+                   b.substr(p + key.size(), digits) + " elements; the arrays so far need more than " +
+                   budgetText(b.size())};
+  }
+  return {};
+}
+
+}  // namespace animorph

@@ -1,0 +1,115 @@
+#!/usr/bin/env python3
+"""animorph-cli fit and new on the test characters (tests/tools/make_test_characters.py: Blender's
+FBX, Collada and glTF exports of automatically weighted rigs).
+
+usage: test_characters_checks.py fit|new CLI DIR FORMATS
+  fit: every file of DIR/manifest.json in FORMATS (comma-separated: glb,fbx,dae) gets a stand-in in
+       one piece, not poor, with its fit report (and a 'repaired' line with before/after figures
+       when the first fit was poor).
+  new: `new A B -o P.animorph` works without flags on pairs of characters in the same unit.
+Exit 77 (skipped) when DIR has no manifest (Blender missing).
+"""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+
+def fail(msg):
+    print("FAIL: " + msg)
+    sys.exit(1)
+
+
+def run(cli, *args):
+    return subprocess.run([cli, *args], capture_output=True, text=True, timeout=600)
+
+
+def load(folder, formats):
+    try:
+        with open(os.path.join(folder, "manifest.json")) as f:
+            manifest = json.load(f)
+    except OSError:
+        print(f"no test characters in {folder} (Blender missing?): skipped")
+        sys.exit(77)
+    return [e for e in manifest["files"] if e["format"] in formats]
+
+
+def mode_fit(cli, folder, formats):
+    entries = load(folder, formats)
+    if not entries:
+        fail(f"no test characters in the formats {formats}")
+    repaired = 0
+    with tempfile.TemporaryDirectory() as tmp:
+        for e in entries:
+            path = os.path.join(folder, e["file"])
+            out = os.path.join(tmp, e["file"] + ".json")
+            r = run(cli, "fit", path, "-o", out, "--json")
+            if r.returncode != 0:
+                fail(f"fit {e['file']}: exit {r.returncode}: {r.stderr}")
+            rep = json.loads(r.stdout)["report"]
+            what = (f"{e['file']}: pieces {rep['standin_components']} (mesh {rep['mesh_components']}), "
+                    f"far {100 * rep['far_share']:.1f} %, mean {100 * rep['mean_error']:.2f} %, "
+                    f"{rep['segments']} segments, repairs {rep['repairs']}, problems {rep['problems']}")
+            print(what)
+            if rep["standin_components"] != 1 or rep["largest_gap"] != 0:
+                fail("the stand-in is not one piece: " + what)
+            if rep["mesh_components"] != len(e["meshes"]):
+                fail(f"{len(e['meshes'])} meshes of one piece each, the report counts {rep['mesh_components']}")
+            if rep["poor"] or rep["problems"]:
+                fail("poor fit: " + what)
+            if not rep["segments_fit"] or len(rep["segments_fit"]) != rep["segments"]:
+                fail("no per-segment report: " + what)
+            if rep["repairs"]:
+                repaired += 1
+                before = rep["before_repair"]
+                if not before or not before["poor"] or before["far_share"] + 1e-9 < rep["far_share"]:
+                    fail(f"a repair without the first fit's figures, or one that made it worse: {before}")
+                text = run(cli, "fit", path, "-o", out)
+                if "repaired (" not in text.stdout or "->" not in text.stdout:
+                    fail(f"fit does not print the repair with before and after: {text.stdout}")
+            with open(out) as f:
+                if not json.load(f)["standin"].get("segments"):
+                    fail(f"{out}: no segments written")
+    print(f"{len(entries)} characters fitted in one piece, {repaired} repaired")
+
+
+def mode_new(cli, folder, formats):
+    entries = {e["file"]: e for e in load(folder, formats)}
+    ext = formats[0]
+    pairs = [("humanoid_m", "quadruped_m"), ("quadruped_m", "tentacle_m"), ("tentacle_m", "flag_m"),
+             ("flag_m", "humanoid_m"), ("humanoid_cm", "tentacle_cm"), ("quadruped_cm", "flag_cm"),
+             ("humanoid_scaledroot", "quadruped_stretched"), ("tentacle_scaledroot", "humanoid_m")]
+    done = 0
+    with tempfile.TemporaryDirectory() as tmp:
+        for a, b in pairs:
+            fa, fb = f"{a}.{ext}", f"{b}.{ext}"
+            if fa not in entries or fb not in entries:
+                continue
+            proj = os.path.join(tmp, f"{a}_{b}.animorph")
+            r = run(cli, "new", os.path.join(folder, fa), os.path.join(folder, fb), "-o", proj)
+            if r.returncode != 0 or not os.path.isfile(proj):
+                fail(f"new {fa} {fb} without flags: exit {r.returncode}: {r.stderr}")
+            if "POOR" in r.stdout + r.stderr:
+                fail(f"new {fa} {fb} accepted a poor fit: {r.stdout} {r.stderr}")
+            with open(proj) as f:
+                project = json.load(f)
+            standins = [am["standin"]["segments"] for am in project["morph"]["actors"]]
+            if len(standins) != 2 or not all(standins):
+                fail(f"new {fa} {fb}: the project lacks a stand-in per side")
+            print(f"new {fa} {fb}: ok ({r.stdout.strip().splitlines()[-1]})")
+            done += 1
+    if done < 4:
+        fail(f"only {done} pairs of the test characters were tried")
+
+
+def main():
+    if len(sys.argv) != 5:
+        fail(__doc__)
+    mode, cli, folder, formats = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4].split(",")
+    {"fit": mode_fit, "new": mode_new}[mode](cli, folder, formats)
+    print("ok")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,92 @@
+#!/usr/bin/env python3
+"""Writes the FBX and Collada fuzz targets' seed corpora (committed; rerun after changing this
+script): a tiny skinned, animated rig -- a box of 8 vertices on two bones, keyed over 6 frames,
+with a material -- as Blender exports it, and a few hand-broken variants.
+
+  corpus/fbx/      rig.fbx (Blender's binary FBX 7.4), rig_ascii.fbx (the same scene as ASCII FBX,
+                   written by the `assimp` command), rig_cut.fbx (truncated), rig_big_count.fbx
+                   (an array that claims 2^30 elements)
+  corpus/collada/  rig.dae (Blender's Collada), rig_cut.dae, rig_big_count.dae
+
+usage: make_assimp_seeds.py [--source DIR]   (runs Blender headless on itself; needs blender
+       and assimp-utils)
+"""
+import os
+import subprocess
+import sys
+import tempfile
+
+
+def in_blender(out_fbx, out_dae):
+    import bpy
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    scene.frame_start, scene.frame_end = 1, 6
+    bpy.ops.mesh.primitive_cube_add(size=1.0, location=(0, 0, 0.5))
+    box = bpy.context.object
+    box.scale = (0.3, 0.3, 1.0)
+    bpy.ops.object.transform_apply(scale=True)
+    mat = bpy.data.materials.new("seed_red")
+    mat.diffuse_color = (0.8, 0.1, 0.1, 1.0)
+    box.data.materials.append(mat)
+    bpy.ops.object.armature_add(location=(0, 0, 0))
+    arm = bpy.context.object
+    bpy.ops.object.mode_set(mode="EDIT")
+    lower = arm.data.edit_bones[0]
+    lower.name, lower.head, lower.tail = "lower", (0, 0, 0), (0, 0, 0.5)
+    upper = arm.data.edit_bones.new("upper")
+    upper.head, upper.tail, upper.parent = (0, 0, 0.5), (0, 0, 1.0), lower
+    bpy.ops.object.mode_set(mode="OBJECT")
+    box.select_set(True)
+    arm.select_set(True)
+    bpy.context.view_layer.objects.active = arm
+    bpy.ops.object.parent_set(type="ARMATURE_AUTO")
+    bpy.ops.object.mode_set(mode="POSE")
+    bone = arm.pose.bones["upper"]
+    bone.rotation_mode = "XYZ"
+    for frame, angle in ((1, 0.0), (6, 0.8)):
+        bone.rotation_euler = (angle, 0.0, 0.0)
+        bone.keyframe_insert("rotation_euler", frame=frame)
+    bpy.ops.object.mode_set(mode="OBJECT")
+    bpy.ops.export_scene.fbx(filepath=out_fbx, object_types={"ARMATURE", "MESH"}, bake_anim=True,
+                             bake_anim_simplify_factor=0.0, add_leaf_bones=False)
+    bpy.ops.wm.collada_export(filepath=out_dae, include_armatures=True, include_animations=True, triangulate=True)
+
+
+def broken(path, data, cut_to, marker, replacement):
+    with open(path.replace(".", "_cut.", 1), "wb") as f:
+        f.write(data[:cut_to])
+    at = data.find(marker)
+    if at < 0:
+        raise RuntimeError(f"{path}: no {marker!r} to patch")
+    with open(path.replace(".", "_big_count.", 1), "wb") as f:
+        f.write(data[:at] + replacement + data[at + len(replacement):])
+
+
+def main():
+    if "--" in sys.argv:  # inside Blender
+        in_blender(*sys.argv[sys.argv.index("--") + 1:])
+        return
+    source = sys.argv[sys.argv.index("--source") + 1] if "--source" in sys.argv else \
+        os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    corpus = os.path.join(source, "tests", "fuzz", "corpus")
+    fbx_dir, dae_dir = os.path.join(corpus, "fbx"), os.path.join(corpus, "collada")
+    os.makedirs(fbx_dir, exist_ok=True)
+    os.makedirs(dae_dir, exist_ok=True)
+    fbx, dae = os.path.join(fbx_dir, "rig.fbx"), os.path.join(dae_dir, "rig.dae")
+    subprocess.run(["blender", "-b", "--factory-startup", "--python-exit-code", "1", "-P", os.path.abspath(__file__),
+                    "--", fbx, dae], check=True,
+                   env={k: v for k, v in os.environ.items() if not k.startswith("PYTHON")})
+    with tempfile.TemporaryDirectory() as tmp:  # assimp writes a sidecar .mtl-free ASCII FBX
+        subprocess.run(["assimp", "export", fbx, os.path.join(fbx_dir, "rig_ascii.fbx"), "-ffbxa"],
+                       check=True, stdout=subprocess.DEVNULL, cwd=tmp)
+    data = open(fbx, "rb").read()
+    # 'Vertices' then the array type 'd' and its u32 count: claim 2^30 elements.
+    at = data.find(b"Vertices")
+    broken(fbx, data, len(data) // 2, data[at:at + 13], data[at:at + 9] + b"\x00\x00\x00\x40")
+    text = open(dae, "rb").read()
+    broken(dae, text, len(text) // 2, b'count="', b'count="4000000000')
+    print("seeds written to", corpus)
+
+
+main()

@@ -1,0 +1,77 @@
+// Create > Morph... aligns the target by its units (and asks before a resize no unit explains),
+// in one undo step with the morph.
+#include <catch2/catch.hpp>
+
+#include "ui/inspector/morph_create.h"
+#include "support/editor_fixture.h"
+
+using namespace animorph;
+using namespace animorph::test;
+
+namespace {
+
+// hero (the test character, metres) and "giant": the same rig as a file in centimetres would
+// hold it (roots scaled 100x), its unit declared or not.
+void loadHeroAndGiant(EditorFixture& f, bool declared) {
+  Character hero = f.loadHeroScene();
+  for (int r : hero.roots) hero.nodes[r].rest.scale *= 100.0f, hero.nodes[r].rest.translation *= 100.0f;
+  if (declared) hero.unit = {0.01, "centimetres", true};
+  const std::string asset = f.dir.file("giant.gltf");
+  registerCharacter(asset, hero);
+  Project p = f.h.doc().project();
+  Actor giant = p.actors[0];
+  giant.id = giant.name = "giant";
+  giant.assetPath = "giant.gltf";
+  p.actors.push_back(giant);
+  f.h.document->reset(p, f.dir.file("scene.animorph"));
+  f.h.frames(1);
+  openCreateMorph(f.h.doc(), f.h.ui->state().createMorph);
+  f.h.frames(3);
+}
+
+}  // namespace
+
+TEST_CASE("Create > Morph...: a centimetre target is scaled by its unit with the morph, one undo step", "[morph][units]") {
+  EditorFixture f;
+  loadHeroAndGiant(f, true);
+  auto& h = f.h;
+  REQUIRE(h.hasWidget("morph/create/align"));
+  CHECK_FALSE(h.hasWidget("morph/create/allow_resize"));
+  h.clickWidget("morph/create/create");
+  h.frames(2);
+  const Project& p = h.doc().project();
+  REQUIRE(p.morph.enabled());
+  CHECK(p.findActor("giant")->transform.scale.x == Approx(0.01f));
+  CHECK_THAT(h.ui->state().status.text, Catch::Contains("target in centimetres, scaled by 0.01 to the source's metres"));
+  CHECK(h.doc().history().size() == 1);
+  h.doc().undo();
+  CHECK_FALSE(h.doc().project().morph.enabled());
+  CHECK(h.doc().project().findActor("giant")->transform.scale.x == Approx(1.0f));
+}
+
+TEST_CASE("Create > Morph...: a 100x resize no unit explains needs the box ticked; unticking Align keeps the target",
+          "[morph][units]") {
+  EditorFixture f;
+  loadHeroAndGiant(f, false);
+  auto& h = f.h;
+  REQUIRE(h.hasWidget("morph/create/allow_resize"));
+  h.clickWidget("morph/create/create");
+  h.frames(2);
+  CHECK_FALSE(h.doc().project().morph.enabled());
+  CHECK_THAT(h.ui->state().createMorph.error, Catch::Contains("which no unit explains"));
+  h.clickWidget("morph/create/allow_resize");
+  h.clickWidget("morph/create/create");
+  h.frames(2);
+  REQUIRE(h.doc().project().morph.enabled());
+  CHECK(h.doc().project().findActor("giant")->transform.scale.x == Approx(0.01f).epsilon(1e-3));
+
+  h.doc().undo();
+  openCreateMorph(h.doc(), h.ui->state().createMorph);
+  h.frames(3);
+  h.clickWidget("morph/create/align");  // untick: the target stays as it is
+  CHECK_FALSE(h.hasWidget("morph/create/allow_resize"));
+  h.clickWidget("morph/create/create");
+  h.frames(2);
+  REQUIRE(h.doc().project().morph.enabled());
+  CHECK(h.doc().project().findActor("giant")->transform.scale.x == Approx(1.0f));
+}
