@@ -18,6 +18,7 @@
 #include "core/export/frame_stage.h"
 #include "core/export/project_frames.h"
 #include "core/project/project_io.h"
+#include "core/scene/morph_smoothness.h"
 
 namespace {
 
@@ -31,7 +32,7 @@ struct BakeArgs {
   std::string project, output, frames, name, gltf, vdb, mp4, size = "1280x720", format = "ply";
   int res = 48, jobs = 1;
   float coherence = 0.1f;  // an animorphosis' temporal coherence tolerance (cells); 0: off
-  bool png = false, gpu = false, burnIn = false;
+  bool png = false, gpu = false, burnIn = false, keepInnerShell = false;
   cli::MorphMethodOptions methods;
   // From the above:
   bool writePlys = false, writeObjs = false;
@@ -73,6 +74,8 @@ std::string readArgs(const std::vector<std::string>& args, BakeArgs& o) {
       o.png = true;
     } else if (a == "--burn-in") {
       o.burnIn = true;
+    } else if (a == "--keep-inner-shell") {
+      o.keepInnerShell = true;
     } else if (a == "--gpu") {
       o.gpu = true;
     } else if (std::string err; cli::readMorphMethodOption(args, i, o.methods, err)) {
@@ -139,6 +142,7 @@ BakeSettings bakeSettings(const BakeArgs& o, const std::string& prefix) {
   s.resolution = o.res;
   s.jobs = o.jobs;
   s.coherence = o.coherence;
+  s.keepInnerShell = o.keepInnerShell;
   s.outputs.prefix = prefix;
   s.outputs.dir = o.output;
   s.outputs.ply = o.writePlys;
@@ -158,6 +162,27 @@ std::string into(const BakeArgs& o) {
   return s;
 }
 
+// The continuity ratio's lines, and how the frames with a stand-in core were written.
+void printContinuityRatio(const BakeArgs& o, const BakeContinuity& c) {
+  if (c.ratio) {  // the visible surface's largest jump against the characters' own motion
+    const ContinuityRatio& r = *c.ratio;
+    std::printf("continuity ratio (largest frame-to-frame jump of the visible surface / the characters' own largest "
+                "motion, bound %.0f): %s%s\n",
+                kMaxContinuityRatio, r.describe().c_str(), c.ratioOverAtoD ? " (A..D)" : " (the range's part of A..D)");
+    std::printf("continuity ratio: the largest jumps:");
+    for (const auto& [frame, jump] : c.largestJumps)
+      std::printf(" frame %d %.2fx,", frame, r.motion.hausdorff > 0.0 ? jump / r.motion.hausdorff : 0.0);
+    const MorphMarkers& m = c.markers;
+    std::printf(" (stages: collapse %d..%d, morph %d..%d, expansion %d..%d)\n", m.a, m.b, m.b, m.c, m.c, m.d);
+  }
+  if (c.coreFrames > 0)
+    std::printf(o.keepInnerShell ? "note: %d collapse / expansion frames carry the stand-in core as a second closed "
+                                   "shell inside the mesh (--keep-inner-shell)\n"
+                                 : "note: %d collapse / expansion frames written as their visible surface: the "
+                                   "stand-in core inside the mesh cut away (--keep-inner-shell keeps both shells)\n",
+                c.coreFrames);
+}
+
 // A morph's summary line and its continuity report.
 void printMorphReport(const BakeArgs& o, const BakeReport& r) {
   const auto& n = r.stageFrames;
@@ -174,6 +199,7 @@ void printMorphReport(const BakeArgs& o, const BakeReport& r) {
   if (c.largestChangeInsideFrame >= 0)
     std::printf(", within B..C %.1f%% at frame %d", 100.0 * c.largestChangeInside, c.largestChangeInsideFrame);
   std::printf("\n");
+  printContinuityRatio(o, c);
 }
 
 // An animorphosis' summary line.
@@ -256,6 +282,7 @@ ANIMORPH_CLI_COMMAND("bake", "bake a project's morph into mesh sequences, an ani
                      "usage: animorph-cli bake PROJECT.animorph --frames A:B --res N -o DIR [--format ply|obj|ply,obj|none]\n"
                      "                         [--obj] [--name NAME] [--gltf FILE.glb] [--vdb DIR] [--png] [--mp4 FILE.mp4 [--size WxH]\n"
                      "                         [--burn-in]] [--gpu] [--jobs J] [--coherence C] [--method M [--correspondence-blend B]]\n"
+                     "                         [--keep-inner-shell]\n"
                      "  Bakes every frame A..B: the source's skinned mesh before marker A, its\n"
                      "  collapse onto the stand-in A->B, the polygonised implicit morph B->C (N cells\n"
                      "  along the longest side), the target's expansion C->D and its skinned mesh\n"
@@ -300,10 +327,19 @@ ANIMORPH_CLI_COMMAND("bake", "bake a project's morph into mesh sequences, an ani
                      "  --method M   bake with another morph method than the project's: interpolation,\n"
                      "               space_time or skeleton_correspondence (--correspondence-blend B:\n"
                      "               interpolation or space_time, how it combines its two stand-ins)\n"
+                     "  --keep-inner-shell  collapse and expansion frames are the transitioned mesh with\n"
+                     "               the stand-in core inside it, two closed shells; by default a frame\n"
+                     "               is written as what is seen, the boundary of their union (the mesh\n"
+                     "               cut where it enters the core, the core cut where it enters the\n"
+                     "               mesh); this keeps both shells whole\n"
                      "  A progress bar is drawn when stdout is a terminal. Then a continuity report:\n"
                      "  frames that are empty or whose enclosed volume changes by more than 20% from\n"
                      "  the frame before (what shows as a pop); they do not change the exit status;\n"
-                     "  and the largest frame-to-frame volume change, over the frames and within B..C.\n"
+                     "  and the largest frame-to-frame volume change, over the frames and within B..C;\n"
+                     "  and the continuity ratio: the largest frame-to-frame jump (Hausdorff distance)\n"
+                     "  of the visible surface over the range's part of A..D, divided by the\n"
+                     "  characters' own largest per-frame motion over the same frames (at most 2 holds\n"
+                     "  no pop, docs/morph.md).\n"
                      "  Exit status: 0 on success, 1 when the project cannot be read or a frame fails,\n"
                      "  2 on bad arguments, 3 on Vulkan validation errors.\n",
                      runBake);

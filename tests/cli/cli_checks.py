@@ -2,18 +2,25 @@
 """End-to-end checks of animorph-cli info / make-demo.
 
 usage: cli_checks.py MODE CLI [ARGS...]
-  info-json CLI FILE JOINTS CLIP DURATION   info --json on a glTF: counts, clip and report
-  info-bad CLI FILE                         info on a malformed file: non-zero exit, file named on stderr
+  info-json CLI FILE JOINTS CLIP DURATION   info --json on a glTF: counts, clip and report (exit 77: skipped
+                                            when FILE, a shared asset, is not there)
+  info-bad CLI FILE REASON [--absent]       info on a bad file: non-zero exit, stderr names the file and
+                                            REASON; the file must exist (exit 77: skipped when it does not,
+                                            so a malformed file never turns into a missing one) unless
+                                            --absent, where it must not
   make-demo CLI RESOURCES_DIR               make-demo into a temp dir, then info on what it wrote;
                                             the committed resources/demo must match the generator
-  new-info CLI ASSETS_DIR                   new creature -> gear, then info --json: markers, timeline;
-                                            new with a much larger source says it aligned the target
+  new-info CLI                              new creature -> gear, then info --json: markers, timeline
+  new-align CLI ASSETS_DIR                  new with a much larger source (tentacle.glb) says it aligned
+                                            the target (exit 77: skipped without the shared asset)
   fit CLI                                   fit the demo creature: report printed, stand-in file loads
   bake CLI                                  bake a few frames per stage: file names (demo_####.ply), binary PLY headers,
                                             same bytes for --jobs 1 and --jobs 2
   gpu CLI RESOURCES_DIR                     bake --gpu: morph frames as the CPU's (triangle counts within
-                                            0.5 %), other stages byte-identical; with no Vulkan device
-                                            bake --gpu and polygonize --gpu exit 1 naming the reason
+                                            0.5 %, every vertex of either within GPU_SURFACE_DISTANCE
+                                            median edges of the other's surface), other stages
+                                            byte-identical; with no Vulkan device bake --gpu and
+                                            polygonize --gpu exit 1 naming the reason
 """
 import json
 import os
@@ -21,6 +28,14 @@ import shutil
 import subprocess
 import sys
 import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from mesh_distance import SurfaceGrid, farthest_vertex, median_edge_length, read_ply_mesh  # noqa: E402
+
+# bake --gpu's B->C frames against the CPU's: every vertex of either within this many median edge
+# lengths (about a grid cell) of the other's surface (measured on lavapipe: under 0.0001; a GPU mesh
+# shifted by a quarter cell, whose triangle counts all agree, is 0.24 off).
+GPU_SURFACE_DISTANCE = 0.05
 
 
 def run(cli, *args):
@@ -73,7 +88,15 @@ def check_character_json(d, path):
         fail(f"{path}: no geometry: {d['vertices']} vertices, {d['triangles']} triangles")
 
 
+def skip(reason):
+    """Exits 77: ctest reports the test as skipped (SKIP_RETURN_CODE), not passed."""
+    print(f"SKIP: {reason}")
+    sys.exit(77)
+
+
 def mode_info_json(cli, path, joints, clip, duration):
+    if not os.path.isfile(path):
+        skip(f"{path} not present (a shared asset)")
     d = info_json(cli, path)
     check_character_json(d, path)
     if d["joints"] != int(joints):
@@ -90,12 +113,19 @@ def mode_info_json(cli, path, joints, clip, duration):
         fail(f"human summary of {path} is missing figures: {r.stdout}")
 
 
-def mode_info_bad(cli, path):
+def mode_info_bad(cli, path, reason, *flags):
+    absent = "--absent" in flags
+    if not absent and not os.path.isfile(path):
+        skip(f"{path} not present (Debian package assimp-testmodels): the malformed file is not checked")
+    if absent and os.path.exists(path):
+        fail(f"{path} exists: it cannot stand for a missing file")
     r = run(cli, "info", path)
     if r.returncode == 0:
-        fail(f"info {path} succeeded on a malformed file")
+        fail(f"info {path} succeeded on a bad file")
     if os.path.basename(path) not in r.stderr:
         fail(f"stderr does not name the file: {r.stderr!r}")
+    if reason not in r.stderr:
+        fail(f"stderr does not give the reason {reason!r}: {r.stderr!r}")
     if r.stdout.strip():
         fail(f"error output went to stdout: {r.stdout!r}")
     print(r.stderr.strip())
@@ -154,7 +184,7 @@ def make_demo_dir(cli, tmp):
     return out
 
 
-def mode_new_info(cli, assets):
+def mode_new_info(cli):
     with tempfile.TemporaryDirectory() as tmp:
         demo = make_demo_dir(cli, tmp)
         proj = os.path.join(tmp, "sub", "m.animorph")
@@ -173,16 +203,22 @@ def mode_new_info(cli, assets):
             fail(f"morph: {d['morph']}")
         if not all(a["loads"] for a in d["actors"]):
             fail(f"actors do not load from the project's directory: {d['actors']}")
-        # Very different sizes: the target is aligned to the source, and new says so.
-        tentacle = os.path.join(assets, "tentacle.glb")
-        if os.path.isfile(tentacle):
-            r = run(cli, "new", tentacle, os.path.join(demo, "gear.glb"), "-o", os.path.join(tmp, "t.animorph"))
-            if r.returncode != 0 or "aligned the target" not in r.stdout:
-                fail(f"new tentacle -> gear did not align: {r.returncode} {r.stdout} {r.stderr}")
         # Bad input: a missing file is named.
         r = run(cli, "new", os.path.join(tmp, "missing.glb"), os.path.join(demo, "gear.glb"), "-o", proj)
         if r.returncode == 0 or "missing.glb" not in r.stderr:
             fail(f"new with a missing file: {r.returncode} {r.stderr}")
+
+
+def mode_new_align(cli, assets):
+    """Very different sizes: the target is aligned to the source, and new says so."""
+    tentacle = os.path.join(assets, "tentacle.glb")
+    if not os.path.isfile(tentacle):
+        skip(f"{tentacle} not present (a shared asset)")
+    with tempfile.TemporaryDirectory() as tmp:
+        demo = make_demo_dir(cli, tmp)
+        r = run(cli, "new", tentacle, os.path.join(demo, "gear.glb"), "-o", os.path.join(tmp, "t.animorph"))
+        if r.returncode != 0 or "aligned the target" not in r.stdout:
+            fail(f"new tentacle -> gear did not align: {r.returncode} {r.stdout} {r.stderr}")
 
 
 def mode_fit(cli):
@@ -254,6 +290,21 @@ def mode_bake(cli):
             fail(f"bake with a reversed frame range: exit {r.returncode}")
 
 
+def check_same_surface(cpu_ply, gpu_ply):
+    """The two meshes are the same surface: every vertex of each lies within GPU_SURFACE_DISTANCE
+    median edge lengths of the other's triangles (both ways, so a missing or an extra piece fails)."""
+    cpu, gpu = read_ply_mesh(cpu_ply), read_ply_mesh(gpu_ply)
+    edge = median_edge_length(*cpu)
+    bound = GPU_SURFACE_DISTANCE * edge
+    far_gpu, at_gpu = farthest_vertex(gpu[0], SurfaceGrid(*cpu, edge), bound)
+    far_cpu, at_cpu = farthest_vertex(cpu[0], SurfaceGrid(*gpu, edge), bound)
+    print(f"{os.path.basename(gpu_ply)}: GPU vertices within {far_gpu / edge:.4f} edges of the CPU surface, "
+          f"CPU vertices within {far_cpu / edge:.4f} of the GPU's (median edge {edge:.4g}, bound {GPU_SURFACE_DISTANCE})")
+    if far_gpu > bound or far_cpu > bound:
+        fail(f"{os.path.basename(gpu_ply)}: bake --gpu is not the CPU's surface: a GPU vertex {far_gpu / edge:.3f} "
+             f"median edges from it (at {at_gpu}), a CPU vertex {far_cpu / edge:.3f} from the GPU's (at {at_cpu})")
+
+
 def mode_gpu(cli, resources):
     with tempfile.TemporaryDirectory() as tmp:
         demo = make_demo_dir(cli, tmp)
@@ -276,8 +327,10 @@ def mode_gpu(cli, resources):
                 with open(os.path.join(frames["cpu"], n), "rb") as f1, open(os.path.join(frames["gpu"], n), "rb") as f2:
                     if f1.read() != f2.read():
                         fail(f"{n} (before the morph) differs between bake and bake --gpu")
-            elif abs(gf - cf) > 0.005 * cf:
-                fail(f"{n}: bake --gpu made {gf} triangles, the CPU {cf}")
+            else:
+                if abs(gf - cf) > 0.005 * cf:
+                    fail(f"{n}: bake --gpu made {gf} triangles, the CPU {cf}")
+                check_same_surface(os.path.join(frames["cpu"], n), os.path.join(frames["gpu"], n))
         # No Vulkan device: explicit --gpu fails with the reason, no silent CPU fallback.
         env = dict(os.environ, VK_ICD_FILENAMES=os.path.join(tmp, "no-such-icd.json"))
         for args in (["bake", proj, "--frames", "48:48", "--res", "16", "-o", os.path.join(tmp, "none"), "--gpu"],
@@ -320,6 +373,7 @@ def main():
         fail(__doc__)
     mode, cli, args = sys.argv[1], sys.argv[2], sys.argv[3:]
     {"info-json": mode_info_json, "info-bad": mode_info_bad, "make-demo": mode_make_demo, "new-info": mode_new_info,
+     "new-align": mode_new_align,
      "fit": mode_fit, "bake": mode_bake, "gpu": mode_gpu, "real-rig": mode_real_rig}[mode](cli, *args)
     print("ok")
 

@@ -8,13 +8,15 @@ usage: vdb_checks.py MODE CLI PROJECT [ARGS...]
                              within the band, its active voxels' world box around the PLY's box of the
                              same frame by at most the band (plus a voxel); a --vdb path that is a
                              file and a range without an implicit frame fail naming the reason
+                             (exit 77: skipped when vdb_print, Debian's libopenvdb-tools, is not installed)
   blender CLI PROJECT SCRIPT Blender imports a .vdb as a volume object headless (SCRIPT runs inside
                              it): one grid 'surface', the volume's box around the PLY's box of the same
-                             frame (exit 77: skipped when blender is not installed)
+                             frame (exit 77: skipped when blender or vdb_print is not installed)
 """
 import json
 import os
 import re
+import shutil
 import struct
 import subprocess
 import sys
@@ -49,6 +51,13 @@ def ply_box(path):
         lo = [min(a, b) for a, b in zip(lo, xyz)]
         hi = [max(a, b) for a, b in zip(hi, xyz)]
     return lo, hi
+
+
+def vdb_print_or_skip():
+    """Exits 77 (ctest: skipped) when vdb_print, which reads the level sets back, is not installed."""
+    if not shutil.which("vdb_print"):
+        print("SKIP: vdb_print not installed (Debian package libopenvdb-tools; run.sh installs it)")
+        sys.exit(77)
 
 
 def vdb_print(path):
@@ -100,6 +109,7 @@ def check_level_set(path, ply):
 
 
 def mode_bake(cli, project):
+    vdb_print_or_skip()
     with tempfile.TemporaryDirectory() as tmp:
         ply_dir, vdb_dir = os.path.join(tmp, "ply"), os.path.join(tmp, "vdb")
         r = run(cli, "bake", project, "--frames", f"{FRAMES[0]}:{FRAMES[1]}", "--res", RES, "-o", ply_dir,
@@ -134,6 +144,7 @@ def mode_bake(cli, project):
 
 def mode_blender(cli, project, script):
     blender = blender_or_skip()
+    vdb_print_or_skip()
     with tempfile.TemporaryDirectory() as tmp:
         ply_dir, vdb_dir = os.path.join(tmp, "ply"), os.path.join(tmp, "vdb")
         r = run(cli, "bake", project, "--frames", "60:60", "--res", RES, "-o", ply_dir, "--vdb", vdb_dir)

@@ -290,8 +290,13 @@ TEST_CASE("character import: one entry point picks the importer by extension, in
   CHECK(characterFormatOf("scene.animorph") == CharacterFormat::Unknown);
   CHECK_FALSE(isCharacterPath("notes.txt"));
   CHECK(characterFileExtensions().size() == 5);
-  CHECK_THAT(outcome(importCharacter("notes.txt")),
-             Catch::Equals("notes.txt: not a character file of a known format (expected .gltf, .glb, .fbx, .dae or .obj)"));
+  TempDir tmp;
+  writeBytes(tmp.file("notes.txt"), "not a character");
+  CHECK_THAT(outcome(importCharacter(tmp.file("notes.txt"))),
+             Catch::Equals(tmp.file("notes.txt") +
+                           ": not a character file of a known format (expected .gltf, .glb, .fbx, .dae or .obj)"));
+  // Not a regular file: why, as reading it would say, before a byte is read.
+  CHECK_THAT(outcome(importCharacter("/dev/zero")), Catch::StartsWith("/dev/zero: is a character device"));
   const std::string glb = std::string(ANIMORPH_SOURCE_DIR) + "/resources/demo/gear.glb";
   auto gear = importCharacter(glb);
   REQUIRE(gear.ok());
@@ -335,6 +340,11 @@ TEST_CASE("assimp import: each test character's FBX poses like the glTF Blender 
     REQUIRE(gltf->clips.size() == 1);
     REQUIRE(fbx->totalVertices() == gltf->totalVertices());
     keepFourInfluences(*fbx);
+    // The FBX importer does not read blend shapes yet (docs/import.md): compare skeleton and skin
+    // alone, the glTF's blend shapes and their weight channels left out.
+    for (Mesh& m : gltf->meshes) m.morphTargets.clear(), m.defaultMorphWeights.clear();
+    for (AnimationClip& clip : gltf->clips)
+      std::erase_if(clip.channels, [](const Channel& ch) { return ch.path == ChannelPath::Weights; });
     // Both in metres: the FBX by its declared unit, Blender's glTF numbers by the scene's unit.
     const float fbxToMetres = float(fbx->unit.metresPerUnit);
     const float gltfToMetres = entry.at("scene_unit_scale").get<float>();

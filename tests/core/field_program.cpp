@@ -113,21 +113,40 @@ TEST_CASE("a program specialised to a region gives the same values there", "[fie
 }
 
 TEST_CASE("outside the program's bounds the field is outside", "[field_program]") {
+  // Half the points in a shell just outside the bounds (out to a quarter of the box's size, where
+  // a box that cut into the surface shows), half anywhere in [-2, 2]^3; every point outside the
+  // bounds is checked, and counted: the case must have looked at many, most of them near the box.
+  int bounded = 0, checked = 0, nearBox = 0;
   for (unsigned seed = 300; seed < 330; ++seed) {
     std::mt19937 rng(seed);
     int id = 1;
     BlobTree tree = treeOf(randomNode(rng, 3, id), 0.5f);
     FieldProgram p = compileFieldProgram(tree, 0.5);
     if (p.unbounded()) continue;
-    Bounds b = p.bounds();
+    ++bounded;
+    const Bounds b = p.bounds();
+    const glm::vec3 margin = 0.25f * b.size() + glm::vec3(0.01f);
     FieldEvaluator ev;
     for (int i = 0; i < 200; ++i) {
+      const bool shell = i % 2 == 0 && !b.empty();
       glm::vec3 x = randomIn(rng, 2.0f);
+      if (shell) {
+        const glm::vec3 u = 0.5f * (randomIn(rng, 1.0f) + glm::vec3(1.0f));  // in [0, 1]^3
+        x = b.min - margin + u * (b.size() + 2.0f * margin);
+      }
       bool in = !b.empty() && x.x >= b.min.x && x.y >= b.min.y && x.z >= b.min.z && x.x <= b.max.x &&
                 x.y <= b.max.y && x.z <= b.max.z;
-      if (!in) CHECK(ev.evaluatePoint(p, x) < 0.0f);
+      if (in) continue;
+      ++checked;
+      nearBox += shell;
+      INFO("seed " << seed << ", point " << x.x << " " << x.y << " " << x.z);
+      CHECK(ev.evaluatePoint(p, x) < 0.0f);
     }
   }
+  INFO(bounded << " bounded programs of 30, " << checked << " points checked, " << nearBox << " near the box");
+  CHECK(bounded >= 10);
+  CHECK(checked >= 100 * bounded);
+  CHECK(nearBox >= 50 * bounded);
 }
 
 TEST_CASE("primitives of one class under one operator share one op", "[field_program]") {

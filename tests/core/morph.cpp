@@ -201,7 +201,9 @@ TEST_CASE("morph: creature -> gear, every stage's mesh has the right topology", 
     CHECK(fr.actorId == "gear");
     CHECK(weldedGenus(fr.mesh) == 5);
   }
-  for (int f : {(mk.a + mk.b) / 2, (mk.c + mk.d) / 2}) {
+  // The core grows over the last half of the collapse and melts over the first half of the
+  // expansion (kStandinCoreSpan): three quarters into the collapse, a quarter into the expansion.
+  for (int f : {mk.a + 3 * (mk.b - mk.a) / 4, mk.c + (mk.d - mk.c) / 4}) {
     const MorphFrame fr = frameAt(f);
     CHECK((fr.stage == MorphStage::Collapse || fr.stage == MorphStage::Expand));
     // The character's mesh, then its stand-in core (scene/standin_core.h) as a second shell.
@@ -327,6 +329,21 @@ TEST_CASE("morph: user-controlled segment tracks change the morph", "[morph]") {
   for (const auto& s : keyed.segments) CHECK(s.weightScale == 0.0f);
   const MorphOperand plain = posedOperand((*rt)->source, mid, -1.0);
   for (const auto& s : plain.segments) CHECK(s.weightScale == 1.0f);
+  // The weights reach the field: the mid-morph frame, with the creature's side gone, encloses much
+  // less than the same frame without the tracks.
+  auto untracked = prepareMorph(test::demoMorph().project, test::demoMorph().dir, assets);
+  REQUIRE(untracked.ok());
+  MorphFrameSettings fs;
+  fs.resolution = 32;
+  auto keyedFrame = evaluateMorphFrame(**rt, mid, fs);
+  auto plainFrame = evaluateMorphFrame(**untracked, mid, fs);
+  REQUIRE(keyedFrame.ok());
+  REQUIRE(plainFrame.ok());
+  REQUIRE(keyedFrame->stage == MorphStage::Morph);
+  const double keyedVolume = meshVolume(keyedFrame->mesh), plainVolume = meshVolume(plainFrame->mesh);
+  INFO("mid-morph volume with the tracks " << keyedVolume << ", without " << plainVolume);
+  CHECK(plainVolume > 0.0);
+  CHECK(keyedVolume < 0.5 * plainVolume);
 }
 
 TEST_CASE("prepareMorph keeps the bindings of actors an edit did not touch", "[morph]") {

@@ -111,7 +111,9 @@ TEST_CASE("morph scene: GPU transitions replace the CPU mesh, one draw per mesh 
   const test::DemoMorph& demo = test::demoMorph();
   const Project& p = demo.project;
   const MorphMarkers mk = p.morph.markers;
-  MorphDraws gpu = drawsAt(demo.runtime, p, demo.dir, (mk.a + mk.b) / 2, true);
+  // Three quarters into the collapse: the core grows over its last half (kStandinCoreSpan).
+  const int frame = mk.a + 3 * (mk.b - mk.a) / 4;
+  MorphDraws gpu = drawsAt(demo.runtime, p, demo.dir, frame, true);
   CHECK(gpu.meshes.size() == 1);  // the stand-in core (a CPU mesh here: implicitStage)
   const Character& c = *demo.runtime->source.character;
   REQUIRE(gpu.transitions.size() == c.meshNodes().size());
@@ -125,7 +127,7 @@ TEST_CASE("morph scene: GPU transitions replace the CPU mesh, one draw per mesh 
     CHECK(t.frame->uniformAlpha < 1.0f);
   }
   CHECK(first == demo.runtime->source.vertexCount);
-  MorphDraws cpu = drawsAt(demo.runtime, p, demo.dir, (mk.a + mk.b) / 2, false);
+  MorphDraws cpu = drawsAt(demo.runtime, p, demo.dir, frame, false);
   CHECK(cpu.transitions.empty());
   CHECK(cpu.meshes.size() == 2);  // the collapsing mesh and the core
 }

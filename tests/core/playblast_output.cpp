@@ -12,6 +12,7 @@
 #include "core/export/mp4_writer.h"
 #include "util/animorph_fixtures.h"
 #include "util/temp_dir.h"
+#include "util/test_skip.h"
 
 using namespace animorph;
 using namespace animorph::test;
@@ -123,8 +124,7 @@ TEST_CASE("playblast burn-in: one drawtext per stage, enabled on its frames, num
 TEST_CASE("Mp4Writer: frames piped to ffmpeg become an mp4 of that size and count, renamed into place",
           "[playblast]") {
   if (!haveFfmpeg()) {
-    WARN("ffmpeg or ffprobe not installed (run.sh installs them): the mp4 is not checked");
-    return;
+    ANIMORPH_SKIP("ffmpeg or ffprobe not installed (run.sh installs them): the mp4 is not checked");
   }
   TempDir dir;
   Mp4Options o = smallMp4(dir, "blast.mp4");
@@ -151,8 +151,7 @@ TEST_CASE("Mp4Writer: frames piped to ffmpeg become an mp4 of that size and coun
 
 TEST_CASE("Mp4Writer: a writer dropped before finish (a cancelled playblast) leaves no file", "[playblast]") {
   if (!haveFfmpeg()) {
-    WARN("ffmpeg not installed: not checked");
-    return;
+    ANIMORPH_SKIP("ffmpeg not installed: not checked");
   }
   TempDir dir;
   Mp4Options o = smallMp4(dir, "cancelled.mp4");

@@ -10,6 +10,7 @@
 #include "core/standin/standin_json.h"
 #include "util/morph_fixtures.h"
 #include "util/temp_dir.h"
+#include "util/test_skip.h"
 
 using namespace animorph;
 
@@ -48,13 +49,11 @@ TEST_CASE("fit: the demo creature gets one segment per bone and fits closely", "
 }
 
 TEST_CASE("fit: the shared Blender characters fit within the stated bounds", "[standin]") {
+  const std::string dir = ANIMORPH_SHARED_ASSETS;
+  for (const char* name : {"tentacle.glb", "plate.glb"})
+    if (!std::filesystem::exists(dir + "/" + name)) ANIMORPH_SKIP(dir << "/" << name << " not present");
   for (const char* name : {"tentacle.glb", "plate.glb"}) {
-    const std::string path = std::string(ANIMORPH_SHARED_ASSETS) + "/" + name;
-    if (!std::filesystem::exists(path)) {
-      WARN(path << " not present: skipped");
-      continue;
-    }
-    auto c = importGltf(path);
+    auto c = importGltf(dir + "/" + name);
     REQUIRE(c.ok());
     auto fit = fitStandin(*c);
     REQUIRE(fit.ok());
@@ -178,9 +177,12 @@ TEST_CASE("fit: a skin-less glTF is a rigid one-bone actor, an animation-less on
   REQUIRE(imported->skins.empty());
   auto fit = fitStandin(*imported);
   REQUIRE(fit.ok());
-  REQUIRE(fit->standin.segments.size() == 1);
+  // One segment along the vertices' principal axis; the repair of a poor first fit may re-place
+  // it as several side by side, all on the mesh's node.
+  REQUIRE(!fit->standin.segments.empty());
+  CHECK((fit->standin.segments.size() == 1 || !fit->report.repairs.empty()));
   const int meshNode = imported->meshNodes().at(0);
-  CHECK(fit->standin.segments[0].node == meshNode);
+  for (const auto& seg : fit->standin.segments) CHECK(seg.node == meshNode);
   CHECK(fit->report.notes.size() == 1);
   CHECK(fit->report.projection.failures == 0);
 }

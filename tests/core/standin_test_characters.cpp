@@ -13,7 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/io/gltf_import.h"
+#include "core/io/character_import.h"
 #include "core/standin/character_pose.h"
 #include "core/standin/fit_standin.h"
 #include "core/standin/repair_fit.h"
@@ -25,7 +25,7 @@ namespace {
 
 const std::filesystem::path kDir = ANIMORPH_TEST_CHARACTERS;
 
-// The manifest's entries whose files this build can import (glTF today).
+// The manifest's entries whose files this build can import (glTF, FBX, Collada).
 std::vector<nlohmann::json> importableCharacters() {
   std::ifstream in(kDir / "manifest.json");
   if (!in) return {};
@@ -33,7 +33,7 @@ std::vector<nlohmann::json> importableCharacters() {
   std::vector<nlohmann::json> out;
   if (manifest.is_discarded()) return out;
   for (const auto& e : manifest["files"])
-    if (isGltfPath(e["file"].get<std::string>())) out.push_back(e);
+    if (characterFormatOf(e["file"].get<std::string>()) != CharacterFormat::Unknown) out.push_back(e);
   return out;
 }
 
@@ -43,11 +43,18 @@ TEST_CASE("fit: every test character (Blender exports) gets a one-piece stand-in
           "[.testchars][standin]") {
   const auto entries = importableCharacters();
   if (entries.empty()) ANIMORPH_SKIP("no test characters in " << kDir.string() << " (Blender missing?)");
-  size_t repaired = 0;
+  size_t repaired = 0, fitted = 0;
   for (const auto& e : entries) {
     const std::string file = (kDir / e["file"].get<std::string>()).string();
-    auto c = importGltf(file);
+    auto c = importCharacter(file);
+    // Blender's Collada files with shape keys are refused by assimp 5.2.5 ("Unable to resolve
+    // library reference"): a limit of the importer, listed here, not a stand-in failure.
+    if (!c.ok() && e["format"] == "dae") {
+      WARN("not read: " << c.error());
+      continue;
+    }
     REQUIRE(c.ok());
+    ++fitted;
     auto fit = fitStandin(*c);
     REQUIRE(fit.ok());
     const FitReport& r = fit->report;
@@ -70,14 +77,15 @@ TEST_CASE("fit: every test character (Blender exports) gets a one-piece stand-in
     }
   }
   // Repairs are not free: the report says how many characters needed one.
-  std::cout << "test characters: " << entries.size() << " fitted, " << repaired << " repaired\n";
+  CHECK(fitted >= 20);  // every glTF and FBX file of the set
+  std::cout << "test characters: " << fitted << " of " << entries.size() << " fitted, " << repaired << " repaired\n";
 }
 
 TEST_CASE("fit repair: the wide-bodied quadruped's spine is re-placed side by side, before and after reported",
           "[.testchars][standin]") {
   const std::string file = (kDir / "quadruped_m.glb").string();
   if (!std::filesystem::exists(file)) ANIMORPH_SKIP("no " << file << " (Blender missing?)");
-  auto c = importGltf(file);
+  auto c = importCharacter(file);
   REQUIRE(c.ok());
   FitSettings first;
   first.repair.enabled = false;
@@ -110,7 +118,7 @@ TEST_CASE("fit repair: a tentacle whose middle segments are removed is bridged b
           "[.testchars][standin]") {
   const std::string file = (kDir / "tentacle_m.glb").string();
   if (!std::filesystem::exists(file)) ANIMORPH_SKIP("no " << file << " (Blender missing?)");
-  auto c = importGltf(file);
+  auto c = importCharacter(file);
   REQUIRE(c.ok());
   auto fit = fitStandin(*c);
   REQUIRE(fit.ok());

@@ -36,7 +36,7 @@ TEST_CASE("target alignment: a centimetre target is scaled by its unit alone, an
   CHECK(unitsOnly(back).scale.y == Approx(100.0f));
 }
 
-TEST_CASE("new: units explain a 100x size difference; the same difference with no unit is refused", "[morph][units]") {
+TEST_CASE("new: units explain a 100x size difference, the same difference with no unit is refused", "[morph][units]") {
   const Character metres = makeCreatureCharacter();
   NewMorphSettings s;
   s.acceptPoorFit = true;  // the fit is not what this test is about

@@ -31,6 +31,19 @@ def corpus_name(target):
     return target[len("fuzz_"):]
 
 
+def run_corpus_once(exe, target):
+    """Each seed of the target's corpus run once (no mutation); True when none fails."""
+    folder = os.path.join(HERE, "corpus", corpus_name(target))
+    files = sorted(os.path.join(folder, f) for f in os.listdir(folder)) if os.path.isdir(folder) else []
+    out = subprocess.run([exe, *LIMITS, *files], capture_output=True, text=True) if files else None
+    if out is not None and out.returncode != 0:
+        print(out.stderr[-6000:])
+        print(f"{target}: FAILED on a seed of its corpus (above)")
+        return False
+    print(f"{target}: {len(files)} corpus seeds run once: ok")
+    return True
+
+
 def run_regressions(exe, target):
     folder = os.path.join(HERE, "regressions", corpus_name(target))
     files = sorted(os.path.join(folder, f) for f in os.listdir(folder)) if os.path.isdir(folder) else []
@@ -77,6 +90,8 @@ def main():
     ap.add_argument("--build", required=True, help="the fuzz build folder (ANIMORPH_FUZZ=ON)")
     ap.add_argument("--seconds", type=int, default=int(os.environ.get("ANIMORPH_FUZZ_SECONDS", "20")))
     ap.add_argument("--target", action="append", choices=TARGETS)
+    ap.add_argument("--corpus-only", action="store_true",
+                    help="run the regression files and each seed of the corpus once, without fuzzing")
     a = ap.parse_args()
     ok = True
     for target in a.target or TARGETS:
@@ -86,7 +101,10 @@ def main():
             return 2
         passed, count = run_regressions(exe, target)
         print(f"{target}: {count} regression files: {'ok' if passed else 'FAILED'}")
-        ok = passed and fuzz(exe, target, a.build, a.seconds) and ok
+        if a.corpus_only:
+            ok = passed and run_corpus_once(exe, target) and ok
+        else:
+            ok = passed and fuzz(exe, target, a.build, a.seconds) and ok
     return 0 if ok else 1
 
 

@@ -232,6 +232,18 @@ def pixel(png, x, y):
     return tuple(int(v) for v in out.stdout.split())
 
 
+def scene_region(ui_map):
+    """(x, y, w, h) of the viewport below its overlay line (camera scheme, frame number, preview
+    button: text that changes with the frame): there only the 3D scene is drawn, so pixels that
+    differ there are the scene's, not the frame number's."""
+    vx, vy, vw, vh = ui_map["viewport"]
+    top = vy + 30
+    button = ui_map.get("widgets", {}).get("viewport/preview_button")
+    if button:
+        top = max(top, button[3] + 4)
+    return vx, top, vw, vy + vh - top
+
+
 def differing_pixels(png_a, png_b, x, y, w, h, fuzz="3%"):
     """Number of pixels of a region that differ between two screenshots."""
     crop = f"{int(w)}x{int(h)}+{int(x)}+{int(y)}"

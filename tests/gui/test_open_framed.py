@@ -2,8 +2,8 @@
 with an FBX thousands of units tall (assimp-testmodels' animation_with_skeleton.fbx, 7,000 cm
 across), a Blender FBX in centimetres and a glTF 1,800 units tall standing 36 km from the origin
 (a Blender glTF of the test characters under a root scaled 1000x and moved away). For each, the
-character's pixels -- the screenshot against the same view with the actor deleted -- touch no
-border of the viewport and cover at least 3 % of it, with a bounding box at least 30 % of the
+character's pixels -- the screenshot against the same view with the actor hidden -- touch no
+border of the viewport and cover at least 0.5 % of it, with a bounding box at least 40 % of the
 viewport's height or width; the timeline spans the character's clip.
 
 usage: test_open_framed.py EDITOR_BIN DEMO_DIR [TEST_CHARACTERS_DIR]
@@ -74,6 +74,7 @@ def character_mask(shot, empty, vx, vy, vw, vh, inset=3):
 
 def check_framed(path, label, clip_seconds=None):
     name = os.path.basename(path)
+    os.makedirs(os.path.join(work, label))
     ed = g.Editor(editor_bin, path, workdir=os.path.join(work, label)).start()
     try:
         m = ed.wait_until(lambda m: name in m.get("status", "") and m.get("selected", "") != "",
@@ -84,17 +85,19 @@ def check_framed(path, label, clip_seconds=None):
             g.check(abs(end - clip_seconds * fps) <= 1.5,
                     f"{label}: the timeline spans the clip ({end} frames at {fps} fps for {clip_seconds} s)")
         shot = ed.screenshot(os.path.join(work, label + ".png"))
-        ed.key("Delete")
-        ed.wait_until(lambda m: m.get("selected", "x") == "", f"{label}: the actor is deleted")
+        # The same view without the character: its outliner eye hides it (the camera stays).
+        ed.click_widget(f"outliner/{m['selected']}/visible")
         empty = ed.screenshot(os.path.join(work, label + "_empty.png"))
         count, box, border, (w, h) = character_mask(shot, empty, vx, vy, vw, vh)
         share = count / float(w * h)
         print(f"{label}: {count} character pixels ({100 * share:.1f} % of the viewport {w}x{h}), box {box}, "
               f"{border} on the border")
         g.check(border == 0, f"{label}: the character touches no border of the viewport ({border} pixels do)")
-        g.check(share >= 0.03, f"{label}: the character covers at least 3 % of the viewport ({100 * share:.1f} %)")
-        g.check(box[3] >= 0.3 * h or box[2] >= 0.3 * w,
-                f"{label}: its bounding box spans 30 % of the viewport's height or width ({box})")
+        # Framed, not a speck: a thin character (animation_with_skeleton.fbx is a long tube) covers
+        # little area, so the share is of pixels and of the viewport's width or height its box spans.
+        g.check(share >= 0.005, f"{label}: the character covers at least 0.5 % of the viewport ({100 * share:.1f} %)")
+        g.check(box[3] >= 0.4 * h or box[2] >= 0.4 * w,
+                f"{label}: its bounding box spans 40 % of the viewport's height or width ({box} in {w}x{h})")
         ed.key("ctrl+q")
         ed.widget("prompt/dont_save")
         ed.click_widget("prompt/dont_save", wait=False)

@@ -103,8 +103,7 @@ def bind(tube, arm):
         if t > 0.0:
             upper.add([v.index], t, "REPLACE")
     mod = tube.modifiers.new("Armature", "ARMATURE")
-    mod.object = arm
-    tube.parent = arm
+    mod.object = arm  # not parented: a skinned mesh node at the root, as the glTF-Validator wants it
 
 
 def add_shape_keys(tube):

@@ -532,9 +532,9 @@ int verticesOfColor(ImU32 col) {
 
 }  // namespace
 
-TEST_CASE("correspondence editor: suggestions are dashed violet wires; Accept applies one, Accept all the rest, "
+TEST_CASE("correspondence editor: suggestions are dashed violet wires, Accept applies one, Accept all the rest, "
           "each undoable",
-          "[animorphosis_ui]") {
+          "[.][animorphosis_ui]") {
   EditorFixture f({1600.0f, 1200.0f});
   loadCreatures(f);
   createThroughModal(f.h, /*autoMap=*/false);

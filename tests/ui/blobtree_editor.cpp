@@ -1,7 +1,10 @@
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
+#include <imgui.h>
 
 #include "core/blobtree/tree_edit.h"
 #include "ui/curves/curve_editor_panel.h"
@@ -50,6 +53,30 @@ void keyRadiusTwice(EditorHarness& h, const std::string& id) {
   auto r = *h.ui->widgets().find("inspector/blob/radius");
   glm::vec2 c{r.min.x + 20.0f, r.center().y};  // inside the field, left of its label
   h.drag(c, c + glm::vec2(60.0f, 0.0f), 0, 6);
+}
+
+// The x of each key-frame diamond the timeline ruler drew in the last frame, left to right: the
+// vertices of the draw lists in the key ticks' colour (ui/timeline/timeline_panel.cpp) inside the
+// ruler, grouped by position (a diamond's vertices lie within 5 px of its centre).
+std::vector<float> drawnKeyTicks(const WidgetRect& ruler) {
+  const ImU32 kKeyTickColour = IM_COL32(240, 200, 60, 255);
+  std::vector<float> xs;
+  const ImDrawData* dd = ImGui::GetDrawData();
+  REQUIRE(dd);
+  for (int l = 0; l < dd->CmdListsCount; ++l)
+    for (const ImDrawVert& v : dd->CmdLists[l]->VtxBuffer)
+      if (v.col == kKeyTickColour && v.pos.x >= ruler.min.x - 6.0f && v.pos.x <= ruler.max.x + 6.0f &&
+          v.pos.y >= ruler.min.y && v.pos.y <= ruler.max.y)
+        xs.push_back(v.pos.x);
+  std::sort(xs.begin(), xs.end());
+  std::vector<float> ticks;
+  for (size_t i = 0; i < xs.size();) {
+    size_t j = i;
+    while (j < xs.size() && xs[j] - xs[i] <= 10.0f) ++j;
+    ticks.push_back(0.5f * (xs[i] + xs[j - 1]));  // the diamond is symmetric about its centre
+    i = j;
+  }
+  return ticks;
 }
 
 }  // namespace
@@ -199,4 +226,19 @@ TEST_CASE("the timeline shows the selected node's key frames", "[ui][blobtree]")
   keyRadiusTwice(h, id);
   std::vector<int> keys = selectionKeyFrames(h.doc(), h.assets);
   CHECK(keys == std::vector<int>{0, 24});
+  // The ruler draws a diamond at each of them, where the ruler maps that frame.
+  h.frames(1);
+  const WidgetRect ruler = *h.ui->widgets().find("timeline/ruler");
+  const TimelineState& view = h.ui->state().timeline;
+  const double pxPerFrame = (ruler.max.x - ruler.min.x) / (view.viewEndFrame - view.viewStartFrame);
+  const std::vector<float> ticks = drawnKeyTicks(ruler);
+  REQUIRE(ticks.size() == keys.size());
+  for (size_t i = 0; i < keys.size(); ++i) {
+    INFO("key frame " << keys[i]);
+    CHECK(ticks[i] == Approx(ruler.min.x + (keys[i] - view.viewStartFrame) * pxPerFrame).margin(1.0));
+  }
+  // With nothing selected the ruler shows no key.
+  h.doc().selection = {};
+  h.frames(1);
+  CHECK(drawnKeyTicks(ruler).empty());
 }

@@ -31,7 +31,7 @@ void loadHeroAndGiant(EditorFixture& f, bool declared) {
 
 }  // namespace
 
-TEST_CASE("Create > Morph...: a centimetre target is scaled by its unit with the morph, one undo step", "[morph][units]") {
+TEST_CASE("Create > Morph...: a centimetre target is scaled by its unit with the morph, one undo step", "[.][morph][units]") {
   EditorFixture f;
   loadHeroAndGiant(f, true);
   auto& h = f.h;
@@ -49,8 +49,8 @@ TEST_CASE("Create > Morph...: a centimetre target is scaled by its unit with the
   CHECK(h.doc().project().findActor("giant")->transform.scale.x == Approx(1.0f));
 }
 
-TEST_CASE("Create > Morph...: a 100x resize no unit explains needs the box ticked; unticking Align keeps the target",
-          "[morph][units]") {
+TEST_CASE("Create > Morph...: a 100x resize no unit explains needs the box ticked, unticking Align keeps the target",
+          "[.][morph][units]") {
   EditorFixture f;
   loadHeroAndGiant(f, false);
   auto& h = f.h;

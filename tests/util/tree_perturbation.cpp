@@ -226,7 +226,10 @@ bool Perturber::splineToChain() {
     Vec3Track c;
     c.clearKeys();
     size_t ti = 0;
-    for (double t : times) c.setKey(t, at[ti++][std::min(i, at[ti - 1].size() - 1)]);
+    for (double t : times) {
+      const std::vector<glm::vec3>& row = at[ti++];
+      c.setKey(t, row[std::min(i, row.size() - 1)]);
+    }
     copy.vec3Param("center") = c;
     copy.floatParam("radius") = FloatTrack(radius * scales[std::min(i, scales.size() - 1)]);
     chain.children.push_back(std::move(copy));

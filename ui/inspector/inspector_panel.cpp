@@ -63,43 +63,23 @@ void drawJoint(const Character& c, int node) {
   }
 }
 
-}  // namespace
-
-void drawInspectorPanel(const LayoutRect& rect, Document& doc, AssetCache& assets, InspectorState& st,
-                        DragMerge& drag, StatusMessage& status, StandinToolState& standin) {
-  if (!beginPanelWindow("Inspector", rect)) return;
-  const Actor* found = doc.project().findActor(doc.selection.actorId);
-  if (!found) {
-    if (doc.project().morph.enabled()) drawMorphSettings(doc, assets, st.morph, drag, status);
-    else ImGui::TextDisabled("Nothing selected.");
-    ImGui::End();
-    return;
+// A joint (or other node) of a glTF actor: its transform and, for a rig joint, its stand-in button.
+void drawCharacterNode(Document& doc, const Actor& actor, const Character* c, StandinToolState& standin,
+                       StatusMessage& status) {
+  ImGui::Text("Actor: %s", actor.name.c_str());
+  ImGui::Separator();
+  if (c && doc.selection.node < static_cast<int>(c->nodes.size())) {
+    drawJoint(*c, doc.selection.node);
+    if (rigNodes(*c)[size_t(doc.selection.node)])
+      drawJointStandinButton(doc, *c, actor.id, doc.selection.node, standin, status);
+  } else {
+    ImGui::TextDisabled("The node is not in the loaded asset.");
   }
-  const Actor actor = *found;  // copy: commands below change the project
-  const std::string id = actor.id;
-  const Character* c = actorCharacter(doc, assets, actor);
+}
 
-  if (doc.selection.node >= 0 && actor.kind == ActorKind::BlobTree) {
-    drawBlobNodeInspector(doc, id, doc.selection.node, st.blob, drag, status);
-    ImGui::End();
-    return;
-  }
-  if (doc.selection.node >= 0) {
-    ImGui::Text("Actor: %s", actor.name.c_str());
-    ImGui::Separator();
-    if (c && doc.selection.node < static_cast<int>(c->nodes.size())) {
-      drawJoint(*c, doc.selection.node);
-      if (rigNodes(*c)[size_t(doc.selection.node)])
-        drawJointStandinButton(doc, *c, id, doc.selection.node, standin, status);
-    } else {
-      ImGui::TextDisabled("The node is not in the loaded asset.");
-    }
-    ImGui::End();
-    return;
-  }
-
-  ImGui::PushItemWidth(-90.0f);
-  // Name: committed on Enter or when the field loses focus.
+// Name: committed on Enter or when the field loses focus.
+void drawActorName(Document& doc, const Actor& actor, InspectorState& st) {
+  const std::string& id = actor.id;
   if (st.nameActorId != id || !ImGui::IsAnyItemActive()) {
     if (st.nameActorId != id || st.nameBuffer != actor.name) st.nameBuffer = actor.name;
     st.nameActorId = id;
@@ -108,15 +88,11 @@ void drawInspectorPanel(const LayoutRect& rect, Document& doc, AssetCache& asset
   noteWidget("inspector/name");
   if (ImGui::IsItemDeactivatedAfterEdit())
     if (auto cmd = renameActorCommand(doc.project(), id, st.nameBuffer)) doc.execute(std::move(cmd));
+}
 
-  if (actor.kind == ActorKind::BlobTree) drawBlobActorInspector(doc, id, drag, status);
-  else readOnlyRow("Asset", actor.assetPath.empty() ? std::string("(none)") : actor.assetPath);
-  if (!actor.assetPath.empty() && !c) {
-    const AssetCache::Entry& e = assets.get(doc.resolveAsset(actor.assetPath));
-    ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.35f, 1.0f), "%s", e.error.c_str());
-  }
-
-  // Clip.
+// The glTF actor's clip: a combo of the character's clips ("-" / "(no animation)" without).
+void drawActorClip(Document& doc, const Actor& actor, const Character* c) {
+  const std::string& id = actor.id;
   if (c && !c->clips.empty()) {
     auto clipLabel = [&](int i) {
       char buf[256];
@@ -137,16 +113,12 @@ void drawInspectorPanel(const LayoutRect& rect, Document& doc, AssetCache& asset
   } else if (actor.kind == ActorKind::Gltf) {
     readOnlyRow("Clip", c ? "(no animation)" : "-");
   }
+}
 
-  // Timing.
-  drawActorTiming(doc, actor, drag, "inspector");
-  ImGui::SameLine();
-  bool visible = actor.visible;
-  if (ImGui::Checkbox("Visible", &visible))
-    doc.execute(setActorField(doc.project(), id, &Actor::visible, visible,
-                              std::string(visible ? "Show " : "Hide ") + actor.name));
-
-  // Transform.
+// Translate, rotate (Euler degrees, kept while the rotation is the one they were made from) and
+// scale; each drag merges into one command.
+void drawActorTransform(Document& doc, const Actor& actor, InspectorState& st, DragMerge& drag) {
+  const std::string& id = actor.id;
   ImGui::Separator();
   ImGui::TextUnformatted("Transform");
   Transform tr = actor.transform;
@@ -189,6 +161,52 @@ void drawInspectorPanel(const LayoutRect& rect, Document& doc, AssetCache& asset
     doc.execute(setActorField(doc.project(), id, &Actor::transform, next, "Scale " + actor.name, id + "/scale"));
   }
   drag.end(doc);
+}
+
+}  // namespace
+
+void drawInspectorPanel(const LayoutRect& rect, Document& doc, AssetCache& assets, InspectorState& st,
+                        DragMerge& drag, StatusMessage& status, StandinToolState& standin) {
+  if (!beginPanelWindow("Inspector", rect)) return;
+  const Actor* found = doc.project().findActor(doc.selection.actorId);
+  if (!found) {
+    if (doc.project().morph.enabled()) drawMorphSettings(doc, assets, st.morph, drag, status);
+    else ImGui::TextDisabled("Nothing selected.");
+    ImGui::End();
+    return;
+  }
+  const Actor actor = *found;  // copy: commands below change the project
+  const std::string id = actor.id;
+  const Character* c = actorCharacter(doc, assets, actor);
+
+  if (doc.selection.node >= 0 && actor.kind == ActorKind::BlobTree) {
+    drawBlobNodeInspector(doc, id, doc.selection.node, st.blob, drag, status);
+    ImGui::End();
+    return;
+  }
+  if (doc.selection.node >= 0) {
+    drawCharacterNode(doc, actor, c, standin, status);
+    ImGui::End();
+    return;
+  }
+
+  ImGui::PushItemWidth(-90.0f);
+  drawActorName(doc, actor, st);
+  if (actor.kind == ActorKind::BlobTree) drawBlobActorInspector(doc, id, drag, status);
+  else readOnlyRow("Asset", actor.assetPath.empty() ? std::string("(none)") : actor.assetPath);
+  if (!actor.assetPath.empty() && !c) {
+    const AssetCache::Entry& e = assets.get(doc.resolveAsset(actor.assetPath));
+    ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.35f, 1.0f), "%s", e.error.c_str());
+  }
+  drawActorClip(doc, actor, c);
+  // Timing.
+  drawActorTiming(doc, actor, drag, "inspector");
+  ImGui::SameLine();
+  bool visible = actor.visible;
+  if (ImGui::Checkbox("Visible", &visible))
+    doc.execute(setActorField(doc.project(), id, &Actor::visible, visible,
+                              std::string(visible ? "Show " : "Hide ") + actor.name));
+  drawActorTransform(doc, actor, st, drag);
   ImGui::PopItemWidth();
 
   drawParticlesSection(doc, id, st.particles);

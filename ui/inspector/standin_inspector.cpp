@@ -77,31 +77,23 @@ void drawJointStandinButton(Document& doc, const Character& c, const std::string
   noteWidget("inspector/standin/add_on_joint");
 }
 
-void drawStandinInspector(Document& doc, const Character& c, const std::string& actorId, StandinToolState& st,
-                          DragMerge& drag, StatusMessage& status) {
-  const ActorMorph* found = doc.project().morph.findActor(actorId);
-  if (!found) return;
-  const Standin standin = found->standin;  // copy: commands below change the project
-  ImGui::Separator();
-  if (!ImGui::CollapsingHeader("Stand-in", ImGuiTreeNodeFlags_DefaultOpen)) return;
-  noteWidget("inspector/standin");
-  ImGui::TextDisabled("%zu segments (%s)", standin.segments.size(), standinKindName(standin.kind));
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("View > Stand-in Edit Mode (E) edits them in the viewport");
-  int sel = selectedStandinSegment(doc);
-  if (doc.selection.actorId != actorId) sel = -1;
+namespace {
 
-  // Radii are shown in scene units (the joint's and the actor's scales applied,
-  // as the viewport draws them); segment ends stay in the joint's space.
-  const Actor* poseActor = doc.project().findActor(actorId);
-  const std::vector<glm::mat4> globals =
-      poseActor ? actorPoseGlobals(*poseActor, c, documentTimeSec(doc)) : std::vector<glm::mat4>{};
-  auto sceneScale = [&](int node) {
-    if (!poseActor || node < 0 || node >= int(globals.size())) return 1.0f;
-    const float k = radiusScale(poseActor->transform.matrix() * globals[size_t(node)]);
+// Radii are shown in scene units (the joint's and the actor's scales applied, as the viewport
+// draws them); segment ends stay in the joint's space.
+struct SceneScale {
+  const Actor* actor = nullptr;
+  std::vector<glm::mat4> globals;  // the actor's pose at the document's time
+  float operator()(int node) const {
+    if (!actor || node < 0 || node >= int(globals.size())) return 1.0f;
+    const float k = radiusScale(actor->transform.matrix() * globals[size_t(node)]);
     return k > 0.0f ? k : 1.0f;
-  };
+  }
+};
 
-  // The list: index, joint, radius.
+// The list: index, joint, radius; a click selects a segment. Returns the selected one (-1: none).
+int drawSegmentList(Document& doc, const Character& c, const std::string& actorId, const Standin& standin,
+                    const SceneScale& sceneScale, int sel, StandinToolState& st) {
   const float rows = float(std::min<size_t>(standin.segments.size(), 8));
   if (ImGui::BeginChild("##standin_segments", ImVec2(0.0f, ImGui::GetTextLineHeightWithSpacing() * (rows + 0.5f)),
                         true)) {
@@ -123,8 +115,12 @@ void drawStandinInspector(Document& doc, const Character& c, const std::string& 
     }
   }
   ImGui::EndChild();
+  return sel;
+}
 
-  // Structure edits.
+// Structure edits: Add, Duplicate, Delete, Refit (the selected segment) and Refit all (a job).
+void drawSegmentButtons(Document& doc, const Character& c, const std::string& actorId, const Standin& standin, int sel,
+                        StandinToolState& st, StatusMessage& status) {
   const int addNode = sel >= 0 ? standin.segments[size_t(sel)].node
                                : (standin.segments.empty() ? -1 : standin.segments.front().node);
   if (ImGui::Button("Add") && addNode >= 0)
@@ -155,13 +151,11 @@ void drawStandinInspector(Document& doc, const Character& c, const std::string& 
   // The whole fit (and its report) takes up to a second on a large character: a background job.
   if (ImGui::Button("Refit all")) st.refitAllRequest = actorId;
   noteWidget("inspector/standin/refit_all");
+}
 
-  if (sel < 0 || sel >= int(doc.project().morph.findActor(actorId)->standin.segments.size())) return;
-  const StandinSegment seg = doc.project().morph.findActor(actorId)->standin.segments[size_t(sel)];
-  const std::string key = actorId + "/" + std::to_string(sel);
-  ImGui::PushItemWidth(-90.0f);
-
-  // Rebind: the segment keeps its place at the current frame.
+// Rebind: the segment keeps its place at the current frame.
+void drawSegmentJoint(Document& doc, const Character& c, const std::string& actorId, int sel,
+                      const StandinSegment& seg, StatusMessage& status) {
   if (ImGui::BeginCombo("Joint", nodeName(c, seg.node).c_str())) {
     const auto rig = rigNodes(c);
     for (int n = 0; n < int(rig.size()); ++n) {
@@ -179,8 +173,12 @@ void drawStandinInspector(Document& doc, const Character& c, const std::string& 
     ImGui::EndCombo();
   }
   noteWidget("inspector/standin/joint");
+}
 
-  const float scale = sceneScale(seg.node);
+// The selected segment's radius (scene units) and ends (the joint's space); each drag one command.
+void drawSegmentShape(Document& doc, const std::string& actorId, int sel, const StandinSegment& seg, float scale,
+                      DragMerge& drag, StatusMessage& status) {
+  const std::string key = actorId + "/" + std::to_string(sel);
   float radius = seg.radius * scale;
   bool changed = ImGui::DragFloat("Radius", &radius, 0.001f * scale, 1e-4f * scale, 100.0f * scale, "%.4g m (scene)");
   noteWidget("inspector/standin/radius");
@@ -209,6 +207,34 @@ void drawStandinInspector(Document& doc, const Character& c, const std::string& 
     }
     drag.end(doc);
   }
+}
+
+}  // namespace
+
+void drawStandinInspector(Document& doc, const Character& c, const std::string& actorId, StandinToolState& st,
+                          DragMerge& drag, StatusMessage& status) {
+  const ActorMorph* found = doc.project().morph.findActor(actorId);
+  if (!found) return;
+  const Standin standin = found->standin;  // copy: commands below change the project
+  ImGui::Separator();
+  if (!ImGui::CollapsingHeader("Stand-in", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  noteWidget("inspector/standin");
+  ImGui::TextDisabled("%zu segments (%s)", standin.segments.size(), standinKindName(standin.kind));
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("View > Stand-in Edit Mode (E) edits them in the viewport");
+  int sel = selectedStandinSegment(doc);
+  if (doc.selection.actorId != actorId) sel = -1;
+  SceneScale sceneScale;
+  sceneScale.actor = doc.project().findActor(actorId);
+  if (sceneScale.actor) sceneScale.globals = actorPoseGlobals(*sceneScale.actor, c, documentTimeSec(doc));
+
+  sel = drawSegmentList(doc, c, actorId, standin, sceneScale, sel, st);
+  drawSegmentButtons(doc, c, actorId, standin, sel, st, status);
+  if (sel < 0 || sel >= int(doc.project().morph.findActor(actorId)->standin.segments.size())) return;
+  const StandinSegment seg = doc.project().morph.findActor(actorId)->standin.segments[size_t(sel)];
+  ImGui::PushItemWidth(-90.0f);
+  drawSegmentJoint(doc, c, actorId, sel, seg, status);
+  const float scale = sceneScale(seg.node);
+  drawSegmentShape(doc, actorId, sel, seg, scale, drag, status);
   ImGui::PushTextWrapPos(0.0f);
   ImGui::TextDisabled("Ends in the joint's space; radius in scene units (x%.4g of the joint's).", double(scale));
   ImGui::PopTextWrapPos();

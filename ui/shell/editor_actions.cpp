@@ -38,6 +38,78 @@ const std::vector<FileFilter> kCharacterFilters = {
 const std::vector<FileFilter> kPngFilters = {{"PNG image (*.png)", {".png"}}};
 }  // namespace
 
+// Delete: the selected stand-in segment (stand-in edit mode), BlobTree node, or actor.
+void EditorUI::deleteSelection(EditorContext& ctx) {
+  Document& d = doc(ctx);
+  if (st_.viewportMode == ViewportMode::StandinEdit) {
+    int seg = selectedStandinSegment(d);
+    if (seg >= 0) {
+      auto cmd = deleteStandinSegmentCommand(d.project(), d.selection.actorId, seg);
+      if (cmd) {
+        setStatus((*cmd)->label());
+        d.execute(std::move(*cmd));
+        d.selection.segment = -1;
+      } else {
+        setStatus(cmd.error(), true);
+      }
+      return;
+    }
+  }
+  if (d.selection.actorId.empty()) return;
+  const Actor* sel = d.project().findActor(d.selection.actorId);
+  if (sel && sel->kind == ActorKind::BlobTree && d.selection.node >= 0) {
+    auto cmd = deleteBlobNodeCommand(d.project(), d.selection.actorId, d.selection.node);
+    if (executeOrReport(d, std::move(cmd), st_.status, /*announce=*/true)) d.selection.node = -1;
+    return;
+  }
+  if (d.selection.node >= 0) {
+    setStatus("Select the actor itself to delete it");
+    return;
+  }
+  if (auto cmd = deleteActorCommand(d.project(), d.selection.actorId)) {
+    setStatus(cmd->label());
+    d.execute(std::move(cmd));
+    d.selection = {};
+  }
+}
+
+// Duplicate: the selected BlobTree node, the copy selected.
+void EditorUI::duplicateSelection(EditorContext& ctx) {
+  Document& d = doc(ctx);
+  const Actor* sel = d.project().findActor(d.selection.actorId);
+  if (!sel || sel->kind != ActorKind::BlobTree || d.selection.node < 0) {
+    setStatus("Select a BlobTree node to duplicate it");
+    return;
+  }
+  int copy = -1;
+  auto cmd = duplicateBlobNodeCommand(d.project(), d.selection.actorId, d.selection.node, &copy);
+  if (executeOrReport(d, std::move(cmd), st_.status, /*announce=*/true)) d.selection.node = copy;
+}
+
+// Create > New BlobTree Actor: added, selected and framed.
+void EditorUI::addBlobActor(EditorContext& ctx) {
+  Document& d = doc(ctx);
+  Actor a = makeBlobTreeActor(d.project(), "Blob");
+  a.loop = false;  // keys set past the last one must not wrap around while animating
+  std::string id = a.id;
+  setStatus("Added BlobTree actor " + a.name);
+  d.execute(addActorCommand(std::move(a)));
+  d.selection = {id, -1};
+  frameSelection(ctx);
+}
+
+// Stand-in edit mode on or off (one viewport mode at a time).
+void EditorUI::toggleStandinEdit(EditorContext& ctx) {
+  Document& d = doc(ctx);
+  st_.viewportMode = st_.viewportMode == ViewportMode::StandinEdit ? ViewportMode::Object : ViewportMode::StandinEdit;
+  // One viewport mode at a time: entering stand-in editing leaves Weight Paint.
+  if (st_.viewportMode == ViewportMode::StandinEdit && st_.paint.active) toggleWeightPaint(d, st_.paint, st_.status);
+  if (st_.viewportMode == ViewportMode::StandinEdit && !d.project().morph.enabled())
+    setStatus("Stand-in edit mode: the project has no morph, so no stand-ins to edit");
+  else
+    setStatus(std::string(viewportModeName(st_.viewportMode)) + " mode");
+}
+
 void EditorUI::dispatch(Action a, EditorContext& ctx) {
   Document& d = doc(ctx);
   switch (a) {
@@ -67,60 +139,9 @@ void EditorUI::dispatch(Action a, EditorContext& ctx) {
       if (d.redo()) setStatus("Redid " + label);
       break;
     }
-    case Action::DeleteSelection: {
-      if (st_.viewportMode == ViewportMode::StandinEdit) {
-        int seg = selectedStandinSegment(d);
-        if (seg >= 0) {
-          auto cmd = deleteStandinSegmentCommand(d.project(), d.selection.actorId, seg);
-          if (cmd) {
-            setStatus((*cmd)->label());
-            d.execute(std::move(*cmd));
-            d.selection.segment = -1;
-          } else {
-            setStatus(cmd.error(), true);
-          }
-          break;
-        }
-      }
-      if (d.selection.actorId.empty()) break;
-      const Actor* sel = d.project().findActor(d.selection.actorId);
-      if (sel && sel->kind == ActorKind::BlobTree && d.selection.node >= 0) {
-        auto cmd = deleteBlobNodeCommand(d.project(), d.selection.actorId, d.selection.node);
-        if (executeOrReport(d, std::move(cmd), st_.status, /*announce=*/true)) d.selection.node = -1;
-        break;
-      }
-      if (d.selection.node >= 0) {
-        setStatus("Select the actor itself to delete it");
-        break;
-      }
-      if (auto cmd = deleteActorCommand(d.project(), d.selection.actorId)) {
-        setStatus(cmd->label());
-        d.execute(std::move(cmd));
-        d.selection = {};
-      }
-      break;
-    }
-    case Action::DuplicateSelection: {
-      const Actor* sel = d.project().findActor(d.selection.actorId);
-      if (!sel || sel->kind != ActorKind::BlobTree || d.selection.node < 0) {
-        setStatus("Select a BlobTree node to duplicate it");
-        break;
-      }
-      int copy = -1;
-      auto cmd = duplicateBlobNodeCommand(d.project(), d.selection.actorId, d.selection.node, &copy);
-      if (executeOrReport(d, std::move(cmd), st_.status, /*announce=*/true)) d.selection.node = copy;
-      break;
-    }
-    case Action::NewBlobActor: {
-      Actor a = makeBlobTreeActor(d.project(), "Blob");
-      a.loop = false;  // keys set past the last one must not wrap around while animating
-      std::string id = a.id;
-      setStatus("Added BlobTree actor " + a.name);
-      d.execute(addActorCommand(std::move(a)));
-      d.selection = {id, -1};
-      frameSelection(ctx);
-      break;
-    }
+    case Action::DeleteSelection: deleteSelection(ctx); break;
+    case Action::DuplicateSelection: duplicateSelection(ctx); break;
+    case Action::NewBlobActor: addBlobActor(ctx); break;
     case Action::ToggleCurveEditor: st_.curveEditor.visible = !st_.curveEditor.visible; break;
     case Action::ToggleCorrespondenceEditor: st_.correspondence.visible = !st_.correspondence.visible; break;
     case Action::CreateAnimorphosis: openCreateAnimorphosis(d, st_.createAnimorphosis); break;
@@ -143,15 +164,7 @@ void EditorUI::dispatch(Action a, EditorContext& ctx) {
       d.execute(setViewOption(d.project(), &ViewOptions::showStandins, !d.project().view.showStandins,
                               "Toggle stand-ins"));
       break;
-    case Action::ToggleStandinEdit:
-      st_.viewportMode = st_.viewportMode == ViewportMode::StandinEdit ? ViewportMode::Object : ViewportMode::StandinEdit;
-      // One viewport mode at a time: entering stand-in editing leaves Weight Paint.
-      if (st_.viewportMode == ViewportMode::StandinEdit && st_.paint.active) toggleWeightPaint(d, st_.paint, st_.status);
-      if (st_.viewportMode == ViewportMode::StandinEdit && !d.project().morph.enabled())
-        setStatus("Stand-in edit mode: the project has no morph, so no stand-ins to edit");
-      else
-        setStatus(std::string(viewportModeName(st_.viewportMode)) + " mode");
-      break;
+    case Action::ToggleStandinEdit: toggleStandinEdit(ctx); break;
     case Action::FrameSelection: frameSelection(ctx); break;
     case Action::PlayPause: togglePlayback(d, st_.playback); break;
     case Action::StepBack: stepFrames(d, st_.playback, -1); break;

@@ -115,48 +115,28 @@ Document& EditorUI::doc(EditorContext& ctx) {
   return *ctx.document;
 }
 
-void EditorUI::draw(EditorContext& ctx) {
-  widgets_.clear();
-  setActiveWidgetRects(&widgets_);
-  out_.pick.reset();
-  out_.screenshotPath.reset();
-  out_.documentReplaced = false;
-  ImGuiIO& io = ImGui::GetIO();
-  nowSec_ = ctx.nowSec;
-  if (st_.status.setSec < 0.0 && !st_.status.text.empty()) st_.status.setSec = nowSec_;  // set by a panel
-  pollJob(ctx);  // a finished job's result first: this frame shows it
-
-  // Housekeeping: autosave, asset reload, playback.
-  {
-    Document& d = doc(ctx);
-    if (st_.prefs.autosaveIntervalSec > 0.0 && d.autosaveIfDue(ctx.nowSec, st_.prefs.autosaveIntervalSec) &&
-        (st_.status.text.empty() || ctx.nowSec - st_.status.setSec >= kStatusHoldSec))
-      setStatus("Autosaved to " + d.autosavePath());  // saved all the same; a recent report stays
-    if (ctx.nowSec - st_.lastAssetRefreshSec >= 1.0 || st_.lastAssetRefreshSec < 0.0) {
-      st_.lastAssetRefreshSec = ctx.nowSec;
-      if (int n = ctx.assets.refresh(); n > 0) setStatus("Reloaded " + std::to_string(n) + " changed asset(s)");
-    }
-    const Timeline& tl = d.project().timeline;
-    if (st_.playback.playing()) {
-      d.setCurrentFrame(st_.playback.advance(ctx.dtSec, tl));
-    } else if (st_.playback.frame(tl) != std::clamp(tl.currentFrame, tl.frameStart, std::max(tl.frameStart, tl.frameEnd))) {
-      st_.playback.seekFrame(tl.currentFrame, tl);
-    }
+// Autosave, asset reload and playback, before anything is drawn.
+void EditorUI::housekeeping(EditorContext& ctx) {
+  Document& d = doc(ctx);
+  if (st_.prefs.autosaveIntervalSec > 0.0 && d.autosaveIfDue(ctx.nowSec, st_.prefs.autosaveIntervalSec) &&
+      (st_.status.text.empty() || ctx.nowSec - st_.status.setSec >= kStatusHoldSec))
+    setStatus("Autosaved to " + d.autosavePath());  // saved all the same; a recent report stays
+  if (ctx.nowSec - st_.lastAssetRefreshSec >= 1.0 || st_.lastAssetRefreshSec < 0.0) {
+    st_.lastAssetRefreshSec = ctx.nowSec;
+    if (int n = ctx.assets.refresh(); n > 0) setStatus("Reloaded " + std::to_string(n) + " changed asset(s)");
   }
-
-  std::vector<Action> actions;
-  for (auto& [kind, path] : external_) guardUnsaved(kind, path, ctx);
-  external_.clear();
-  if (!dropped_.empty()) {
-    std::vector<std::string> drop = std::move(dropped_);
-    dropped_.clear();
-    handleDrop(drop, ctx);
+  const Timeline& tl = d.project().timeline;
+  if (st_.playback.playing()) {
+    d.setCurrentFrame(st_.playback.advance(ctx.dtSec, tl));
+  } else if (st_.playback.frame(tl) != std::clamp(tl.currentFrame, tl.frameStart, std::max(tl.frameStart, tl.frameEnd))) {
+    st_.playback.seekFrame(tl.currentFrame, tl);
   }
+}
 
-  // Menu bar, then the panels laid out below it.
-  MenuResult menu = drawMenuBar(doc(ctx), st_.prefs.recentFiles, st_.menuBarHeight, st_.curveEditor.visible, st_.paint,
-                                st_.viewportMode, st_.correspondence.visible, st_.demoProjects);
-  actions.insert(actions.end(), menu.actions.begin(), menu.actions.end());
+// The panels laid out below the menu bar (its height from the last frame), the viewport and the
+// editors over it; their actions go to actions.
+void EditorUI::drawPanels(EditorContext& ctx, std::vector<Action>& actions) {
+  const ImGuiIO& io = ImGui::GetIO();
   float statusHeight = ImGui::GetFrameHeight();
   LayoutSizes sizes{st_.prefs.outlinerWidth, st_.prefs.inspectorWidth, st_.prefs.timelineHeight};
   glm::vec2 display(io.DisplaySize.x, io.DisplaySize.y);
@@ -184,23 +164,22 @@ void EditorUI::draw(EditorContext& ctx) {
   drawCurveEditorPanel(st_.layout.viewport, doc(ctx), st_.curveEditor, st_.status);
   drawWeightPaintPanel(st_.layout.viewport, doc(ctx), ctx.assets, st_.paint, st_.status);
   drawSplitters();
+}
 
-  // Keyboard shortcuts: not while typing, not while a menu or dialog is open.
-  // Del and F belong to the curve editor or the correspondence editor while it has the focus.
-  if (!ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel)) {
-    std::vector<Action> keys = pollShortcuts(io);
-    for (Action a : keys)
-      if ((!st_.curveEditor.focused || (a != Action::DeleteSelection && a != Action::FrameSelection)) &&
-          !(st_.paint.active && a == Action::FrameSelection) &&  // F sets the brush radius while painting
-          !(st_.correspondence.focused && (a == Action::DeleteSelection || a == Action::FrameSelection)))
-        actions.push_back(a);
-  }
-  if (menu.addNodeType) addNodeToSelection(*menu.addNodeType, ctx);
+// Keyboard shortcuts: not while typing, not while a menu or dialog is open. Del and F belong to
+// the curve editor or the correspondence editor while it has the focus.
+void EditorUI::collectShortcuts(std::vector<Action>& actions) {
+  if (ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel)) return;
+  std::vector<Action> keys = pollShortcuts(ImGui::GetIO());
+  for (Action a : keys)
+    if ((!st_.curveEditor.focused || (a != Action::DeleteSelection && a != Action::FrameSelection)) &&
+        !(st_.paint.active && a == Action::FrameSelection) &&  // F sets the brush radius while painting
+        !(st_.correspondence.focused && (a == Action::DeleteSelection || a == Action::FrameSelection)))
+      actions.push_back(a);
+}
 
-  if (!menu.openPath.empty()) guardUnsaved(PendingKind::OpenPath, menu.openPath, ctx);
-  for (Action a : actions) dispatch(a, ctx);
-
-  drawPrompts(ctx);
+// The export and playblast dialogs: Browse opens the file browser for their output, Start runs them.
+void EditorUI::drawOutputDialogs(EditorContext& ctx) {
   switch (drawExportDialog(doc(ctx), st_.exportDialog)) {
     case SettingsDialogChoice::Browse: {
       const bool gltf = st_.exportDialog.edit.format == ExportFormat::GltfAnimated;
@@ -229,6 +208,39 @@ void EditorUI::draw(EditorContext& ctx) {
     case SettingsDialogChoice::Cancel:
     case SettingsDialogChoice::None: break;
   }
+}
+
+void EditorUI::draw(EditorContext& ctx) {
+  widgets_.clear();
+  setActiveWidgetRects(&widgets_);
+  out_.pick.reset();
+  out_.screenshotPath.reset();
+  out_.documentReplaced = false;
+  nowSec_ = ctx.nowSec;
+  if (st_.status.setSec < 0.0 && !st_.status.text.empty()) st_.status.setSec = nowSec_;  // set by a panel
+  pollJob(ctx);  // a finished job's result first: this frame shows it
+  housekeeping(ctx);
+
+  std::vector<Action> actions;
+  for (auto& [kind, path] : external_) guardUnsaved(kind, path, ctx);
+  external_.clear();
+  if (!dropped_.empty()) {
+    std::vector<std::string> drop = std::move(dropped_);
+    dropped_.clear();
+    handleDrop(drop, ctx);
+  }
+  // Menu bar, then the panels laid out below it.
+  MenuResult menu = drawMenuBar(doc(ctx), st_.prefs.recentFiles, st_.menuBarHeight, st_.curveEditor.visible, st_.paint,
+                                st_.viewportMode, st_.correspondence.visible, st_.demoProjects);
+  actions.insert(actions.end(), menu.actions.begin(), menu.actions.end());
+  drawPanels(ctx, actions);
+  collectShortcuts(actions);
+  if (menu.addNodeType) addNodeToSelection(*menu.addNodeType, ctx);
+  if (!menu.openPath.empty()) guardUnsaved(PendingKind::OpenPath, menu.openPath, ctx);
+  for (Action a : actions) dispatch(a, ctx);
+
+  drawPrompts(ctx);
+  drawOutputDialogs(ctx);
   if (!st_.standinTool.refitAllRequest.empty()) startRefitJob(ctx);
   if (st_.correspondence.bakeRequested) {
     st_.correspondence.bakeRequested = false;

@@ -115,6 +115,18 @@ class EditorUI {
   void handleDrop(const std::vector<std::string>& paths, EditorContext& ctx);
   void frameSelection(EditorContext& ctx);
   void addNodeToSelection(NodeType type, EditorContext& ctx);
+  // dispatch()'s longer actions: delete, duplicate, Create > New BlobTree Actor, stand-in edit mode.
+  void deleteSelection(EditorContext& ctx);
+  void duplicateSelection(EditorContext& ctx);
+  void addBlobActor(EditorContext& ctx);
+  void toggleStandinEdit(EditorContext& ctx);
+  // draw()'s steps: autosave / asset reload / playback; the panels and editors (their actions
+  // into actions); the keyboard shortcuts the focused editor does not take; the export and
+  // playblast dialogs.
+  void housekeeping(EditorContext& ctx);
+  void drawPanels(EditorContext& ctx, std::vector<Action>& actions);
+  void collectShortcuts(std::vector<Action>& actions);
+  void drawOutputDialogs(EditorContext& ctx);
   void drawSplitters();
   void drawViewport(EditorContext& ctx);
   void drawPrompts(EditorContext& ctx);

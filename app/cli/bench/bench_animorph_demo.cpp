@@ -74,24 +74,43 @@ long polygonizeOnce(const FieldProgram& program, int resolution, bool listsForSk
   return r ? long(r->mesh.triangleCount()) : -1;
 }
 
-std::vector<Row> runDemoBench(const bench::Options& opt) {
-  auto p = makeAnimorphosisDemoProject();
-  if (!p) return {{"demo project failed: " + p.error(), 0.0, "", "", ""}};
-  auto c = projectGenericTree(*p);
-  if (!c) return {{"demo generic tree failed: " + c.error(), 0.0, "", "", ""}};
-  const BlobTree& dino = p->actors[0].blobTree;
-  const BlobTree& dragon = p->actors[1].blobTree;
-  AnimorphosisTiming timing = animorphosisTiming(*p);
+// One run of the demo bench: the demo project, its generic tree C(t) and timing, and the rows so
+// far. Each group of rows is one member function; runDemoBench calls them in the table's order.
+struct DemoBench {
+  DemoBench(const bench::Options& options, const Project& project, const GenericTree& tree)
+      : opt(options), c(tree), dino(project.actors[0].blobTree), dragon(project.actors[1].blobTree),
+        timing(animorphosisTiming(project)), n(double(tree.size())), repeats(options.quick ? 2 : 9),
+        res(options.quick ? 48 : 128), compiler(tree) {}
+  const bench::Options& opt;
+  const GenericTree& c;
+  const BlobTree& dino;
+  const BlobTree& dragon;
+  const AnimorphosisTiming timing;
   const double mid = 0.5 * (kDemoMorphStartSec + kDemoMorphEndSec);
-  const double n = double(c->size());
-  const int repeats = opt.quick ? 2 : 9;
+  const double n;     // nodes of C
+  const int repeats;  // of each flatten measurement
+  const int res;      // of the polygonisations and bakes
+  GenericProgramCompiler compiler;  // C(t) -> FieldProgram directly (animorphosis/compile_generic.h)
+  BlobTree kept;                    // the snapshot the baselines update in place
   std::vector<Row> rows;
-  std::string sizes = std::to_string(dino.root.subtreeSize()) + " -> " + std::to_string(dragon.root.subtreeSize()) +
-                      " nodes, C " + std::to_string(c->size());
 
+  void flattenRows();
+  void scrubFlattenRows();
+  void polygoniseRows();
+  void bakeRows();
+  // Consecutive frames (1/24 s apart) of `frame` on one grid: full sweeps, temporal coherence
+  // (exact, then within kToleranceCells), the meshes compared.
+  void coherenceRows(const std::string& what, const std::function<FieldProgram(int)>& frame);
+  void allCoherenceRows();
+  void previewScrubRows();
+  void sequenceBakeRows();
+};
+
+void DemoBench::flattenRows() {
+  std::string sizes = std::to_string(dino.root.subtreeSize()) + " -> " + std::to_string(dragon.root.subtreeSize()) +
+                      " nodes, C " + std::to_string(c.size());
   // C(t) -> FieldProgram: compiled directly (animorphosis/compile_generic.h: a compiler kept for C),
   // and the same program through the BlobTree snapshot (the baseline, measured in the same run).
-  GenericProgramCompiler compiler(*c);
   FieldProgram direct;
   double flat = bench::medianMs(repeats, [&] {
     FieldProgram fresh;  // a new program each time, as compileGeneric returns one
@@ -104,18 +123,17 @@ std::vector<Row> runDemoBench(const bench::Options& opt) {
       compiler.compile(timing, mid, fresh);
     }
   }) / repeats;
-  double flatBase = bench::medianMs(repeats, [&] { (void)compileGeneric(*c, timing, mid); });
+  double flatBase = bench::medianMs(repeats, [&] { (void)compileGeneric(c, timing, mid); });
   rows.push_back({"instantiate + flatten C(t)", n / (flat * 1e-3), "nodes/s", ">= 1,000,000",
                   ms(flat) + " per frame, compiled directly (processor time " + ms(flatCpu) + "); " + sizes + " -> " +
                       std::to_string(direct.primitiveCount()) + " primitives, " + std::to_string(direct.ops.size()) +
                       " ops"});
   rows.push_back({"  (baseline: snapshot + flatten)", n / (flatBase * 1e-3), "nodes/s", "", ms(flatBase) + " per frame"});
   // Each stage of the snapshot path alone: C(t) written into a kept snapshot, then that snapshot flattened.
-  BlobTree kept;
   double t = kDemoMorphStartSec;
   double inst = bench::medianMs(repeats, [&] {
     t += 0.02;
-    updateGenericSnapshot(*c, timing, t, kept);
+    updateGenericSnapshot(c, timing, t, kept);
   });
   rows.push_back({"  stage (baseline): instantiate C(t) into the kept snapshot", n / (inst * 1e-3), "nodes/s", "",
                   ms(inst)});
@@ -124,12 +142,15 @@ std::vector<Row> runDemoBench(const bench::Options& opt) {
   rows.push_back({"  stage (baseline): flatten the snapshot", n / (flatOnly * 1e-3), "nodes/s", "",
                   ms(flatOnly) + ", " + std::to_string(flatProgram.primitiveCount()) + " primitives, " +
                       std::to_string(flatProgram.ops.size()) + " ops"});
-  // Scrubbing: consecutive times into one kept program, directly (each stage timed inside the
-  // compile) and through the snapshot updated in place.
+}
+
+// Scrubbing: consecutive times into one kept program, directly (each stage timed inside the
+// compile) and through the snapshot updated in place.
+void DemoBench::scrubFlattenRows() {
+  double t = kDemoMorphStartSec;
   FieldProgram keptProgram;
   GenericProgramCompiler::Timing stages;
   int stageFrames = 0;
-  t = kDemoMorphStartSec;
   auto scrubDirectFrame = [&] {
     t += 0.02;
     compiler.compile(timing, t, keptProgram);
@@ -155,7 +176,7 @@ std::vector<Row> runDemoBench(const bench::Options& opt) {
   t = kDemoMorphStartSec;
   auto scrubKeptFrame = [&] {
     t += 0.02;
-    updateGenericSnapshot(*c, timing, t, kept);
+    updateGenericSnapshot(c, timing, t, kept);
     compileFieldProgram(kept, 0.0, keptProgram);
   };
   double scrubKept = bench::medianMs(repeats, scrubKeptFrame);
@@ -169,10 +190,11 @@ std::vector<Row> runDemoBench(const bench::Options& opt) {
   double base = bench::medianMs(repeats, [&] { (void)compileFieldProgram(dragon, 0.5); });
   rows.push_back({"flatten the dragon alone (baseline)", double(dragon.root.subtreeSize()) / (base * 1e-3),
                   "nodes/s", "", ms(base) + " per frame"});
+}
 
-  const int res = opt.quick ? 48 : 128;
-  FieldProgram dragonProgram = compileFieldProgram(dragon, 0.5);
+void DemoBench::polygoniseRows() {
   long tris = 0;
+  FieldProgram dragonProgram = compileFieldProgram(dragon, 0.5);
   double poly = bench::medianMs(opt.quick ? 1 : 3, [&] { tris = polygonizeOnce(dragonProgram, res); });
   double polyCpu = cpuMs([&] { (void)polygonizeOnce(dragonProgram, res); });
   rows.push_back({"polygonise the dragon at " + std::to_string(res) + "^3 (CPU)", poly, "ms", "<= 60 ms",
@@ -188,7 +210,9 @@ std::vector<Row> runDemoBench(const bench::Options& opt) {
   rows.push_back({"polygonise the dinosaur at " + std::to_string(res) + "^3 (CPU, baseline)", polyDino, "ms", "",
                   std::to_string(tris) + " triangles, " + std::to_string(dinoProgram.primitiveCount()) +
                       " primitives; processor time " + ms(polyDinoCpu) + " (all threads)"});
+}
 
+void DemoBench::bakeRows() {
   // A bake: frames spread over the interval, each instantiated, flattened and polygonised.
   const int frames = opt.quick ? 2 : 8;
   long bakeTris = 0;
@@ -197,7 +221,7 @@ std::vector<Row> runDemoBench(const bench::Options& opt) {
     bakeTris = 0;
     for (int f = 0; f < frames; ++f) {
       double tf = kDemoMorphStartSec + (kDemoMorphEndSec - kDemoMorphStartSec) * (f + 0.5) / frames;
-      bakeTris += polygonizeOnce(compileGeneric(*c, timing, tf), res);
+      bakeTris += polygonizeOnce(compileGeneric(c, timing, tf), res);
     }
   });
   double bakeCpu = 0.5e3 * double(std::clock() - bakeClock) / CLOCKS_PER_SEC;  // two runs: warm-up and timed
@@ -211,92 +235,95 @@ std::vector<Row> runDemoBench(const bench::Options& opt) {
   });
   rows.push_back({"bake " + std::to_string(frames) + " frames of the dragon alone (baseline)", bakeDragon / frames,
                   "ms/frame", "", ms(bakeDragon) + " in all, spread over its loop"});
+}
 
-  // Temporal coherence: consecutive frames (1/24 s apart) on one grid, full sweeps against a
-  // PolygonizeHistory, exact and with the 0.1-cell tolerance; the meshes are compared.
+void DemoBench::coherenceRows(const std::string& what, const std::function<FieldProgram(int)>& frame) {
   const int run = opt.quick ? 3 : 6;
-  auto coherence = [&](const std::string& what, const std::function<FieldProgram(int)>& frame) {
-    std::vector<FieldProgram> programs;
-    Bounds box;
-    for (int f = 0; f < run; ++f) {
-      programs.push_back(frame(f));
-      box.add(programs.back().bounds());
-    }
-    PolygonizeSettings ps;
-    ps.resolution = res;
-    ps.bounds = box;
-    std::vector<TriangleMesh> full(static_cast<size_t>(run)), coherent(static_cast<size_t>(run));
-    double fullMs = bench::medianMs(0, [&] {
-      for (int f = 0; f < run; ++f)
-        if (auto r = polygonize(programs[size_t(f)], ps)) full[size_t(f)] = std::move(r->mesh);
-    });
-    // The frames in order with one history; the blocks reused and evaluated over all of them.
-    auto withHistory = [&](float tolerance, std::vector<TriangleMesh>& meshes, size_t& reused, size_t& blocks) {
-      return bench::medianMs(0, [&] {
-        PolygonizeHistory history;
-        PolygonizeSettings hs = ps;
-        hs.history = &history;
-        hs.reuseToleranceCells = tolerance;
-        reused = blocks = 0;
-        for (int f = 0; f < run; ++f)
-          if (auto r = polygonize(programs[size_t(f)], hs)) {
-            meshes[size_t(f)] = std::move(r->mesh);
-            reused += r->stats.blocksReused;
-            blocks += r->stats.blocksEvaluated;
-          }
-      });
-    };
-    size_t reused = 0, blocks = 0, reusedTol = 0, blocksTol = 0;
-    double coherentMs = withHistory(0.0f, coherent, reused, blocks);
-    bool same = true;
+  std::vector<FieldProgram> programs;
+  Bounds box;
+  for (int f = 0; f < run; ++f) {
+    programs.push_back(frame(f));
+    box.add(programs.back().bounds());
+  }
+  PolygonizeSettings ps;
+  ps.resolution = res;
+  ps.bounds = box;
+  std::vector<TriangleMesh> full(static_cast<size_t>(run)), coherent(static_cast<size_t>(run));
+  double fullMs = bench::medianMs(0, [&] {
     for (int f = 0; f < run; ++f)
-      same &= full[size_t(f)].positions == coherent[size_t(f)].positions &&
-              full[size_t(f)].normals == coherent[size_t(f)].normals &&
-              full[size_t(f)].indices == coherent[size_t(f)].indices;
-    std::vector<TriangleMesh> tolerant(static_cast<size_t>(run));
-    double tolerantMs = withHistory(kToleranceCells, tolerant, reusedTol, blocksTol);
-    // The tolerant meshes have the full sweeps' triangles; how far their vertices are, in cells.
-    bool sameTriangles = true;
-    double deviation = 0.0;
-    for (int f = 0; f < run; ++f) {
-      const TriangleMesh &a = full[size_t(f)], &b = tolerant[size_t(f)];
-      sameTriangles &= a.indices == b.indices && a.positions.size() == b.positions.size();
-      for (size_t i = 0; i < a.positions.size() && i < b.positions.size(); ++i)
-        deviation = std::max(deviation, double(glm::length(a.positions[i] - b.positions[i])));
-    }
-    auto grid = polygonizeGrid(programs[0], ps);
-    const double cell = grid ? double(grid->cellSize) : 1.0;
-    char dev[96];
-    std::snprintf(dev, sizeof dev, "largest vertex deviation from the full sweeps %.4f cell", deviation / cell);
-    std::string head = std::to_string(run) + " consecutive frames " + what + " at " + std::to_string(res) + "^3";
-    rows.push_back({head + ", full sweeps (baseline)", fullMs / run, "ms/frame", "", ms(fullMs) + " in all"});
-    rows.push_back({head + ", temporal coherence", coherentMs / run, "ms/frame", "",
-                    ms(coherentMs) + " in all; " + std::to_string(reused) + " blocks reused (culled ones too), " +
-                        std::to_string(blocks) + " evaluated; meshes " + (same ? "identical" : "DIFFER")});
-    rows.push_back({head + ", coherence within 0.1 cell", tolerantMs / run, "ms/frame", "",
-                    ms(tolerantMs) + " in all; " + std::to_string(reusedTol) + " blocks reused (culled ones too), " +
-                        std::to_string(blocksTol) + " evaluated; triangles " + (sameTriangles ? "identical" : "DIFFER") + ", " + dev});
+      if (auto r = polygonize(programs[size_t(f)], ps)) full[size_t(f)] = std::move(r->mesh);
+  });
+  // The frames in order with one history; the blocks reused and evaluated over all of them.
+  auto withHistory = [&](float tolerance, std::vector<TriangleMesh>& meshes, size_t& reused, size_t& blocks) {
+    return bench::medianMs(0, [&] {
+      PolygonizeHistory history;
+      PolygonizeSettings hs = ps;
+      hs.history = &history;
+      hs.reuseToleranceCells = tolerance;
+      reused = blocks = 0;
+      for (int f = 0; f < run; ++f)
+        if (auto r = polygonize(programs[size_t(f)], hs)) {
+          meshes[size_t(f)] = std::move(r->mesh);
+          reused += r->stats.blocksReused;
+          blocks += r->stats.blocksEvaluated;
+        }
+    });
   };
+  size_t reused = 0, blocks = 0, reusedTol = 0, blocksTol = 0;
+  double coherentMs = withHistory(0.0f, coherent, reused, blocks);
+  bool same = true;
+  for (int f = 0; f < run; ++f)
+    same &= full[size_t(f)].positions == coherent[size_t(f)].positions &&
+            full[size_t(f)].normals == coherent[size_t(f)].normals &&
+            full[size_t(f)].indices == coherent[size_t(f)].indices;
+  std::vector<TriangleMesh> tolerant(static_cast<size_t>(run));
+  double tolerantMs = withHistory(kToleranceCells, tolerant, reusedTol, blocksTol);
+  // The tolerant meshes have the full sweeps' triangles; how far their vertices are, in cells.
+  bool sameTriangles = true;
+  double deviation = 0.0;
+  for (int f = 0; f < run; ++f) {
+    const TriangleMesh &a = full[size_t(f)], &b = tolerant[size_t(f)];
+    sameTriangles &= a.indices == b.indices && a.positions.size() == b.positions.size();
+    for (size_t i = 0; i < a.positions.size() && i < b.positions.size(); ++i)
+      deviation = std::max(deviation, double(glm::length(a.positions[i] - b.positions[i])));
+  }
+  auto grid = polygonizeGrid(programs[0], ps);
+  const double cell = grid ? double(grid->cellSize) : 1.0;
+  char dev[96];
+  std::snprintf(dev, sizeof dev, "largest vertex deviation from the full sweeps %.4f cell", deviation / cell);
+  std::string head = std::to_string(run) + " consecutive frames " + what + " at " + std::to_string(res) + "^3";
+  rows.push_back({head + ", full sweeps (baseline)", fullMs / run, "ms/frame", "", ms(fullMs) + " in all"});
+  rows.push_back({head + ", temporal coherence", coherentMs / run, "ms/frame", "",
+                  ms(coherentMs) + " in all; " + std::to_string(reused) + " blocks reused (culled ones too), " +
+                      std::to_string(blocks) + " evaluated; meshes " + (same ? "identical" : "DIFFER")});
+  rows.push_back({head + ", coherence within 0.1 cell", tolerantMs / run, "ms/frame", "",
+                  ms(tolerantMs) + " in all; " + std::to_string(reusedTol) + " blocks reused (culled ones too), " +
+                      std::to_string(blocksTol) + " evaluated; triangles " + (sameTriangles ? "identical" : "DIFFER") + ", " + dev});
+}
+
+void DemoBench::allCoherenceRows() {
   auto generic = [&](double firstSec) {
-    return [&, firstSec](int f) { return compileGeneric(*c, timing, firstSec + f / 24.0); };
+    return [&, firstSec](int f) { return compileGeneric(c, timing, firstSec + f / 24.0); };
   };
-  coherence("of A before the morph", generic(kDemoMorphStartSec - 1.0));
-  coherence("of C(t) in the morph", generic(mid));
-  coherence("of B after the morph", generic(kDemoMorphEndSec + 0.5));
+  coherenceRows("of A before the morph", generic(kDemoMorphStartSec - 1.0));
+  coherenceRows("of C(t) in the morph", generic(mid));
+  coherenceRows("of B after the morph", generic(kDemoMorphEndSec + 0.5));
   // Only a part moves: the dragon with every track held at t = 0 but its wings' (flapping), and the
   // dinosaur with every track held but its tail's.
   const BlobTree wingsOnly = holdAllBut(dragon, "wing", 0.0), tailOnly = holdAllBut(dino, "tail", 0.0);
-  coherence("of the dragon, wings flapping, body held",
-            [&](int f) { return compileFieldProgram(wingsOnly, 0.5 + f / 24.0); });
-  coherence("of the dinosaur, tail moving, body held",
-            [&](int f) { return compileFieldProgram(tailOnly, 0.5 + f / 24.0); });
+  coherenceRows("of the dragon, wings flapping, body held",
+                [&](int f) { return compileFieldProgram(wingsOnly, 0.5 + f / 24.0); });
+  coherenceRows("of the dinosaur, tail moving, body held",
+                [&](int f) { return compileFieldProgram(tailOnly, 0.5 + f / 24.0); });
+}
 
+void DemoBench::previewScrubRows() {
   // Scrubbing C(t) on the CPU as the editor's preview worker does (poly/preview_polygonizer.h): each
   // frame's source (scene/animorphosis_preview_source.h) compiling C(t) directly and polygonising it
   // at 96^3, consecutive frames 1/24 s apart, with the worker's history (its grid kept while the
   // shape fits, 0.1 cell) against none.
   const int scrubFrames = opt.quick ? 3 : 12, scrubRes = opt.quick ? 48 : 96;
-  auto shared = std::make_shared<SharedGenericCompiler>(std::make_shared<const GenericTree>(*c));
+  auto shared = std::make_shared<SharedGenericCompiler>(std::make_shared<const GenericTree>(c));
   auto scrubbing = [&](bool coherent, size_t& reusedOut, int resolution) {
     PolygonizeHistory history;
     reusedOut = 0;
@@ -327,13 +354,15 @@ std::vector<Row> runDemoBench(const bench::Options& opt) {
     rows.push_back({"scrub C(t) at " + std::to_string(coarse) + "^3 on the CPU (preview worker), with its history",
                     1e3 / coarseMs, "fps", "", ms(coarseMs) + " per frame (a coarser grid than the editor's 96^3)"});
   }
+}
 
+void DemoBench::sequenceBakeRows() {
   // A bake with temporal coherence (poly/frame_sequence.h: one grid, 0.1 cell) against frames on
   // their own grids, consecutive frames of C(t) from the middle of the morph.
   const int bakeRun = opt.quick ? 3 : 12;
   std::vector<long> ownTris(size_t(bakeRun), 0);
   double ownMs = bench::medianMs(0, [&] {
-    for (int f = 0; f < bakeRun; ++f) ownTris[size_t(f)] = polygonizeOnce(compileGeneric(*c, timing, mid + f / 24.0), res);
+    for (int f = 0; f < bakeRun; ++f) ownTris[size_t(f)] = polygonizeOnce(compileGeneric(c, timing, mid + f / 24.0), res);
   });
   size_t seqReused = 0, seqBlocks = 0;
   long seqTris = 0;
@@ -344,7 +373,7 @@ std::vector<Row> runDemoBench(const bench::Options& opt) {
     fs.reuseToleranceCells = kToleranceCells;
     seqTris = 0;
     auto st = polygonizeFrameSequence(
-        bakeRun, [&](int f) { return compileGeneric(*c, timing, mid + f / 24.0); },
+        bakeRun, [&](int f) { return compileGeneric(c, timing, mid + f / 24.0); },
         [&](int, PolygonizeResult&& r) -> Status {
           seqTris += long(r.mesh.triangleCount());
           return {};
@@ -366,7 +395,22 @@ std::vector<Row> runDemoBench(const bench::Options& opt) {
                   ms(seqMs) + " in all (with the grid pass), " + std::to_string(seqTris / bakeRun) +
                       " triangles per frame on one " + seqGrid + " grid; " + std::to_string(seqReused) +
                       " blocks reused (culled ones too), " + std::to_string(seqBlocks) + " evaluated"});
-  return rows;
+}
+
+std::vector<Row> runDemoBench(const bench::Options& opt) {
+  auto p = makeAnimorphosisDemoProject();
+  if (!p) return {{"demo project failed: " + p.error(), 0.0, "", "", ""}};
+  auto c = projectGenericTree(*p);
+  if (!c) return {{"demo generic tree failed: " + c.error(), 0.0, "", "", ""}};
+  DemoBench b(opt, *p, *c);
+  b.flattenRows();
+  b.scrubFlattenRows();
+  b.polygoniseRows();
+  b.bakeRows();
+  b.allCoherenceRows();
+  b.previewScrubRows();
+  b.sequenceBakeRows();
+  return std::move(b.rows);
 }
 
 }  // namespace

@@ -39,6 +39,9 @@ double kindCost(NodeType x, NodeType y) {
   return f == familyOf(y) && f != Family::Other ? 0.5 : 1.0;
 }
 
+// Columns costed per row on levels wider than the Hungarian method's limit.
+constexpr int kWideCandidates = 12;
+
 bool isSplitPart(NodeType t) { return familyOf(t) == Family::Primitive; }
 
 // A group whose children the matcher may take one by one (regrouped children).
@@ -121,7 +124,9 @@ struct LevelMatch {
 class Level {
  public:
   Level(const Matcher& m, int pa, int pb, std::vector<ChainItem> xs, std::vector<ChainItem> ys)
-      : m_(m), pa_(pa), pb_(pb), xs_(std::move(xs)), ys_(std::move(ys)) {}
+      : m_(m), pa_(pa), pb_(pb), xs_(std::move(xs)), ys_(std::move(ys)) {
+    parentScale_ = std::clamp(double(glm::length(m.A.extents(pa)[0].size())) / m.A.scale(), 0.01, 1.0);
+  }
 
   // Matches the items; opens groups that match better as their parts; proposes splits.
   std::vector<LevelMatch> run(int* regrouped, int* splits);
@@ -134,6 +139,7 @@ class Level {
   double score(const std::vector<int>& match) const;
   bool tryOpen(bool sideA, size_t item, std::vector<int>& match, double& best);
   std::vector<LevelMatch> collect(const std::vector<int>& match, int* splits) const;
+  double regretOf(const std::vector<int>& rowOf, int r, int c) const;
   bool trySplit(bool sideA, int one, std::vector<int> candidates, LevelMatch& out) const;
   double pairCost(int x, int y) const { return c_[size_t(x) * ys_.size() + size_t(y)]; }
 
@@ -142,6 +148,7 @@ class Level {
   std::vector<ChainItem> xs_, ys_;
   std::vector<Shape> sx_, sy_;
   std::vector<double> c_;
+  double parentScale_ = 1.0;  // the parent's size in units of its tree's
 };
 
 void Level::fillCosts() {
@@ -149,9 +156,29 @@ void Level::fillCosts() {
   sy_.clear();
   for (const ChainItem& x : xs_) sx_.push_back(shapeOf(m_.A, {x.bottom}, x.top));
   for (const ChainItem& y : ys_) sy_.push_back(shapeOf(m_.B, {y.bottom}, y.top));
-  c_.assign(xs_.size() * ys_.size(), 0.0);
-  for (size_t r = 0; r < xs_.size(); ++r)
-    for (size_t c = 0; c < ys_.size(); ++c) c_[r * ys_.size() + c] = m_.cost(sx_[r], pa_, sy_[c], pb_);
+  const size_t cols = ys_.size();
+  if (std::max(xs_.size(), cols) <= size_t(m_.st.hungarianLimit)) {
+    c_.assign(xs_.size() * cols, 0.0);
+    for (size_t r = 0; r < xs_.size(); ++r)
+      for (size_t c = 0; c < cols; ++c) c_[r * cols + c] = m_.cost(sx_[r], pa_, sy_[c], pb_);
+    return;
+  }
+  // A wide level (a union of thousands of patches): each row is costed against its nearest columns
+  // only (by offset from the parents at the first sample); the others stay above maxCost.
+  const double unreachable = 2.0 * m_.st.maxCost;
+  c_.assign(xs_.size() * cols, unreachable);
+  const glm::vec3 pa = m_.A.extents(pa_)[0].centroid(), pb = m_.B.extents(pb_)[0].centroid();
+  std::vector<glm::vec3> ob(cols);
+  for (size_t c = 0; c < cols; ++c) ob[c] = (sy_[c].extents[0].centroid() - pb) / m_.B.scale();
+  std::vector<std::pair<float, int>> near(cols);
+  const size_t keep = std::min(cols, size_t(kWideCandidates));
+  for (size_t r = 0; r < xs_.size(); ++r) {
+    const glm::vec3 oa = (sx_[r].extents[0].centroid() - pa) / m_.A.scale();
+    for (size_t c = 0; c < cols; ++c) near[c] = {glm::distance(oa, ob[c]), int(c)};
+    std::nth_element(near.begin(), near.begin() + long(keep) - 1, near.end());
+    for (size_t k = 0; k < keep; ++k)
+      c_[r * cols + size_t(near[k].second)] = m_.cost(sx_[r], pa_, sy_[size_t(near[k].second)], pb_);
+  }
 }
 
 std::vector<int> Level::assign() const {
@@ -163,12 +190,14 @@ std::vector<int> Level::assign() const {
   for (size_t i = 0; i < c_.size(); ++i) capped[i] = std::min(cap, c_[i]);
   if (std::max(rows, cols) <= m_.st.hungarianLimit) return minCostAssignment(capped, rows, cols);
   // Greedy, cheapest pair first: with distinct positions the nearest pairs are the right ones.
-  std::vector<size_t> order(capped.size());
-  std::iota(order.begin(), order.end(), size_t(0));
-  std::sort(order.begin(), order.end(), [&](size_t i, size_t j) { return capped[i] < capped[j]; });
+  // Only pairs that could be linked take part (fillCosts costed each row's nearest columns).
+  std::vector<std::pair<double, size_t>> order;
+  for (size_t i = 0; i < capped.size(); ++i)
+    if (capped[i] < cap) order.push_back({capped[i], i});
+  std::sort(order.begin(), order.end());
   std::vector<int> match(size_t(rows), -1);
   std::vector<char> taken(size_t(cols), 0);
-  for (size_t k : order) {
+  for (const auto& [cost, k] : order) {
     int r = int(k / size_t(cols)), c = int(k % size_t(cols));
     if (match[size_t(r)] < 0 && !taken[size_t(c)]) match[size_t(r)] = c, taken[size_t(c)] = 1;
   }
@@ -219,9 +248,9 @@ std::vector<LevelMatch> Level::run(int* regrouped, int* splits) {
   fillCosts();
   std::vector<int> match = assign();
   double best = score(match);
-  const bool narrow = std::max(xs_.size(), ys_.size()) <= size_t(m_.st.hungarianLimit);
-  // Groups paired at a high cost or not at all may be regrouped children: try opening them up.
-  for (int round = 0; narrow && round < 4; ++round) {
+  // Groups paired at a high cost or not at all may be regrouped children: try opening them up
+  // (a group opened may hold another).
+  for (int round = 0; round < 16; ++round) {
     bool opened = false;
     for (int sideA = 0; sideA < 2 && !opened; ++sideA) {
       const size_t n = sideA ? xs_.size() : ys_.size();
@@ -233,7 +262,7 @@ std::vector<LevelMatch> Level::run(int* regrouped, int* splits) {
           for (size_t r = 0; r < xs_.size(); ++r)
             if (match[r] == int(i)) paired = pairCost(int(r), int(i));
         }
-        if (paired > 0.1 * m_.st.maxCost && tryOpen(sideA != 0, i, match, best)) opened = true;
+        if (paired > 0.02 * m_.st.maxCost && tryOpen(sideA != 0, i, match, best)) opened = true;
       }
     }
     if (!opened) break;
@@ -282,24 +311,52 @@ bool Level::trySplit(bool sideA, int one, std::vector<int> candidates, LevelMatc
   return true;
 }
 
+// How much dearer the level would be without the pair (r, c), rowOf giving each column's row in
+// the assignment: r taking another column (free, or traded with that column's row), c taking a
+// free row with r unpaired, or both unpaired; the least of these. Unpaired items cost maxCost.
+double Level::regretOf(const std::vector<int>& rowOf, int r, int c) const {
+  const double cap = m_.st.maxCost, k = pairCost(r, c);
+  auto cost = [&](int x, int y) { return std::min(pairCost(x, y), cap); };
+  double best = 2.0 * cap - k;  // both unpaired
+  // On a wide level only r's reachable columns are tried (reading the matrix by columns would
+  // miss the cache at every step).
+  const bool wide = std::max(xs_.size(), ys_.size()) > size_t(m_.st.hungarianLimit);
+  for (size_t o = 0; o < ys_.size(); ++o) {
+    if (int(o) == c || (wide && pairCost(r, int(o)) >= cap)) continue;
+    const int r2 = rowOf[o];
+    if (r2 >= 0)
+      best = std::min(best, cost(r, int(o)) + cost(r2, c) - k - cost(r2, int(o)));  // r and r2 trade
+    else
+      best = std::min(best, cost(r, int(o)) - k);  // r takes the free o, c goes unpaired
+  }
+  if (wide) return std::max(0.0, best);
+  std::vector<char> paired(xs_.size(), 0);
+  for (int x : rowOf)
+    if (x >= 0) paired[size_t(x)] = 1;
+  for (size_t o = 0; o < xs_.size(); ++o)
+    if (!paired[o]) best = std::min(best, cost(int(o), c) - k);  // a free row takes c, r goes unpaired
+  return std::max(0.0, best);
+}
+
 // The assignment's pairs with their confidence, then splits among what stayed unpaired.
 std::vector<LevelMatch> Level::collect(const std::vector<int>& match, int* splits) const {
   const size_t rows = xs_.size(), cols = ys_.size();
   std::vector<LevelMatch> out;
   std::vector<char> usedX(rows, 0), usedY(cols, 0);
+  std::vector<int> rowOf(cols, -1);
+  for (size_t i = 0; i < rows; ++i)
+    if (match[i] >= 0 && pairCost(int(i), match[i]) <= m_.st.maxCost) rowOf[size_t(match[i])] = int(i);
   for (size_t r = 0; r < rows; ++r) {
     const int c = match[r];
     if (c < 0) continue;
     const double k = pairCost(int(r), c);
     if (k > m_.st.maxCost) continue;
-    // How close the next candidate came, for this row and this column.
-    double second = m_.st.maxCost;
-    for (size_t o = 0; o < cols; ++o)
-      if (int(o) != c) second = std::min(second, pairCost(int(r), int(o)));
-    for (size_t o = 0; o < rows; ++o)
-      if (o != r) second = std::min(second, pairCost(int(o), c));
-    // Against the pair's own cost: a close second to a good pair matters, to a poor pair less so.
-    const double distinct = std::clamp((second - k) / (0.25 * k + m_.st.marginScale), 0.0, 1.0);
+    // How much the next best assignment without this pair would cost more, against the pair's own
+    // cost (a close alternative to a good pair matters, to a poor pair less so) and in units of the
+    // parent's size (fibres 5 mm apart in an arm 30 cm long are as distinct as limbs 10 cm apart in
+    // a body of a metre).
+    const double regret = regretOf(rowOf, int(r), c);
+    const double distinct = std::clamp(regret / (0.25 * k + m_.st.marginScale * parentScale_), 0.0, 1.0);
     LevelMatch lm;
     lm.xs = {int(r)};
     lm.ys = {c};

@@ -32,8 +32,8 @@ struct AutoCorrespondSettings {
   double hierarchyWeight = 0.25; // cost of the relative difference of the sub-trees' primitive counts
   double maxCost = 1.5;          // pairs costing more stay unlinked (null partners)
   double splitMaxCost = 0.3;     // a split (one part to two or three) costing more is not proposed
-  double marginScale = 0.02;     // confidence: the next candidate's extra cost against (cost / 4 + this)
-  double suggestBelow = 0.4;     // links less confident than this are suggestions, not applied
+  double marginScale = 0.02;     // confidence: the next candidate's extra cost against (cost / 4 + this * the parent's size)
+  double suggestBelow = 0.25;    // links less confident than this are suggestions, not applied
   int hungarianLimit = 300;      // wider levels use a greedy cheapest-pair-first assignment
 };
 

@@ -46,6 +46,8 @@ Status bakeFramesApart(const ProjectFrames& frames, const BakeSettings& s, BakeS
   fs.threads = s.jobs > 1 ? 1 : 0;
   fs.cancel = progress.cancelFlag();
   fs.implicitStage = s.implicitStage;
+  fs.keepInnerShell = s.keepInnerShell;
+  fs.measure = meter != nullptr;
   const bool meshes = sink.wantsMeshes() || meter;
   return runFrameLoop(s.first, count, s.jobs, progress, [&](int k) -> Status {
     const int f = s.first + k;
@@ -53,7 +55,7 @@ Status bakeFramesApart(const ProjectFrames& frames, const BakeSettings& s, BakeS
       auto baked = frames.frame(f, fs);
       if (!baked) return Error{baked.error()};
       stages.add(baked->stage, baked->mesh.triangleCount());
-      if (meter) meter->add(k, baked->mesh, baked->coreTriangles);
+      if (meter) meter->add(k, *baked);
       if (Status st = sink.addMesh(k, std::move(baked->mesh)); !st) return st;
     } else {
       stages.add(frames.stageAt(f), 0);
@@ -138,7 +140,7 @@ Result<BakeReport> bakeProject(const ProjectFrames& frames, const BakeSettings& 
   if (report.animorphosis) report.animorphosisNodes = frames.animorphosis()->size();
   std::unique_ptr<BakeContinuityMeter> meter;
   if (frames.morph() && s.measureContinuity)
-    meter = std::make_unique<BakeContinuityMeter>(*frames.morph(), s.first, count);
+    meter = std::make_unique<BakeContinuityMeter>(*frames.morph(), s.first, count, s.resolution);
   StageCounter stages;
   Status baked = report.animorphosis && s.coherence > 0.0f
                      ? bakeAnimorphosisSequence(frames, s, sink, stages, report, progress)
@@ -146,8 +148,8 @@ Result<BakeReport> bakeProject(const ProjectFrames& frames, const BakeSettings& 
   if (!baked) return isJobCancelled(baked) ? jobCancelled() : Error{baked.error()};
   if (progress.cancelled()) return jobCancelled();
   stages.into(report);
-  if (meter) report.continuity = meter->summary();
   report.frameSeconds = secondsSince(t0);
+  if (meter) report.continuity = meter->summary();  // the characters' own motion measured here
   if (Status st = sink.finish(report); !st) return Error{st.error()};
   report.seconds = secondsSince(t0);
   return report;

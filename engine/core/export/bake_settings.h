@@ -35,8 +35,13 @@ struct BakeSettings {
   // of a full polygonisation's; 0: every frame on its own grid. 0..0.5. A morph ignores it.
   float coherence = 0.0f;
   BakeOutputs outputs;
-  // A morph: measure every frame's volume for the continuity report (export/bake_continuity.h).
-  // Needs the meshes, so it costs a mesh per frame even when only volumes are written.
+  // A morph's collapse and expansion frames are two closed shells, the transitioned mesh and the
+  // stand-in core inside it: by default a frame is written as what is seen, the boundary of their
+  // union (scene/visible_surface.h); true keeps both shells (animorph-cli bake --keep-inner-shell).
+  bool keepInnerShell = false;
+  // A morph: measure every frame for the continuity report (export/bake_continuity.h): its volume,
+  // and the continuity ratio over the range's part of A..D. Needs the meshes, so it costs a mesh
+  // per frame even when only volumes are written.
   bool measureContinuity = false;
   // A morph's B->C frames on another polygoniser (project_frames.h); empty: the CPU's.
   ImplicitStagePolygonizer implicitStage;

@@ -4,6 +4,7 @@
 #include "core/project/animorphosis_project.h"
 #include "core/project/asset_cache.h"
 #include "core/poly/polygonizer.h"
+#include "core/scene/visible_surface.h"
 #include "core/util/job_progress.h"
 
 namespace animorph {
@@ -54,9 +55,15 @@ Result<BakedFrame> ProjectFrames::frame(int frame, const FrameBakeSettings& s) c
     }();
     if (!fr) return Error{fr.error()};
     if (fr->cancelled || cancelled()) return jobCancelled();
-    out.mesh = std::move(fr->mesh);
     out.stage = fr->stage;
     out.coreTriangles = fr->coreTriangles;
+    if (s.measure) out.measure = measureFrame(frame, fr->mesh, nullptr, fr->coreTriangles);
+    if (fr->coreTriangles == 0) out.mesh = std::move(fr->mesh);
+    else if (!s.keepInnerShell) out.mesh = visibleSurface(*morph_, *fr);
+    else {
+      if (s.measure) out.visible = visibleSurface(*morph_, *fr);
+      out.mesh = std::move(fr->mesh);
+    }
     return out;
   }
   PolygonizeSettings ps;

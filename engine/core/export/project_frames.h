@@ -16,6 +16,7 @@
 #include "core/project/project.h"
 #include "core/scene/morph_runtime.h"
 #include "core/poly/mesh.h"
+#include "core/standin_morph/morph_continuity.h"
 #include "core/util/result.h"
 
 namespace animorph {
@@ -30,9 +31,18 @@ using ImplicitStagePolygonizer =
 
 // One baked frame: its mesh and, for a morph, its stage and stand-in core.
 struct BakedFrame {
-  TriangleMesh mesh;                   // world space (a morph), the trees' own space (an animorphosis)
+  // World space (a morph), the trees' own space (an animorphosis). A collapse or expansion frame
+  // is its visible surface (scene/visible_surface.h), or with FrameBakeSettings::keepInnerShell
+  // both closed shells, the stand-in core the last coreTriangles triangles.
+  TriangleMesh mesh;
   MorphStage stage = MorphStage::Morph;  // an animorphosis' frames count as Morph
-  size_t coreTriangles = 0;            // the last triangles of mesh that are the stand-in core (0: none)
+  size_t coreTriangles = 0;  // the stand-in core's triangles in the evaluated frame (0: it has none)
+  // With FrameBakeSettings::measure, a morph's frame: the evaluated frame's measure (its volume the
+  // union of both shells', standin_morph/morph_continuity.h), and its visible surface where mesh
+  // is not it (keepInnerShell and a core).
+  FrameMeasure measure;
+  std::optional<TriangleMesh> visible;
+  const TriangleMesh& visibleMesh() const { return visible ? *visible : mesh; }
 };
 
 // How one frame is baked.
@@ -41,6 +51,10 @@ struct FrameBakeSettings {
   int threads = 0;      // polygoniser threads; 0: all
   const std::atomic<bool>* cancel = nullptr;  // polled inside the polygonisation; may be null
   ImplicitStagePolygonizer implicitStage;      // a morph's B->C frames; empty: the CPU's
+  // A collapse or expansion frame is two closed shells, the transitioned mesh and the stand-in
+  // core inside it: false writes what is seen (the boundary of their union), true keeps both.
+  bool keepInnerShell = false;
+  bool measure = false;  // fill BakedFrame::measure and ::visible (the bake's continuity report)
 };
 
 class ProjectFrames {
@@ -58,7 +72,8 @@ class ProjectFrames {
   const GenericTree* animorphosis() const { return generic_.get(); }
   const Timeline& timeline() const { return timeline_; }
 
-  // Scene frame f baked as s says. A cancel seen during the polygonisation comes back as
+  // Scene frame f baked as s says (a collapse or expansion frame as its visible surface unless
+  // s.keepInnerShell). A cancel seen during the polygonisation comes back as
   // jobCancelled() (util/job_progress.h); other errors name the reason (not the frame).
   Result<BakedFrame> frame(int frame, const FrameBakeSettings& s) const;
   // The stage of frame f without baking it (an animorphosis: Morph).

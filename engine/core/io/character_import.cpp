@@ -6,6 +6,7 @@
 
 #include "core/io/assimp_import.h"
 #include "core/io/gltf_import.h"
+#include "core/util/atomic_file.h"
 
 namespace animorph {
 
@@ -55,6 +56,11 @@ Result<Character> importCharacter(const std::string& path) {
     case CharacterFormat::Obj: return importAssimp(path);
     case CharacterFormat::Unknown: break;
   }
+  // A path that is not a regular file gets readFile's reason ("is a character device", "no such
+  // file"); it refuses such files before reading a byte.
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    if (auto r = readFile(path); !r) return Error{r.error()};
   return Error{path + ": not a character file of a known format (expected " + extensionList() + ")"};
 }
 

@@ -25,8 +25,9 @@ bool isCharacterPath(const std::string& path);
 const std::vector<std::string>& characterFileExtensions();
 
 // Imports the character at path with the importer of its format; sets Character::format.
-// Errors name the path as given, the element and the reason; a path of no known format is
-// refused with the extensions that are.
+// Errors name the path as given, the element and the reason; a regular file of no known format
+// is refused with the extensions that are, anything else (a device, a FIFO, a folder, a missing
+// file) with why it is not a file.
 Result<Character> importCharacter(const std::string& path);
 
 }  // namespace animorph

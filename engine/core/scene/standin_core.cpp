@@ -15,7 +15,9 @@ float coreBound(const MorphSetup& m) {
 }  // namespace
 
 float standinCoreScale(const MorphSetup& setup, bool expand, double u) {
-  const float uc = float(std::clamp(u, 0.0, 1.0));
+  // The core lasts the part of the transition next to the implicit stage: its own progress v.
+  const double v = expand ? u / kStandinCoreSpan : 1.0 - (1.0 - u) / kStandinCoreSpan;
+  const float uc = float(std::clamp(v, 0.0, 1.0));
   float e = std::clamp(setup.easing.evaluate(uc), 0.0f, 1.0f);
   if (uc <= 0.0f) e = 0.0f;
   if (uc >= 1.0f) e = 1.0f;

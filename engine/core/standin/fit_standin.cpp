@@ -376,7 +376,7 @@ Result<FitResult> fitStandin(const Character& c, const FitSettings& settings) {
     m.bonesOmitted = result.report.bonesOmitted;
     m.bonesMerged = result.report.bonesMerged;
     m.helperBridges = result.report.helperBridges;
-    m.notes = std::move(result.report.notes);
+    m.notes.insert(m.notes.begin(), result.report.notes.begin(), result.report.notes.end());
     result.report = std::move(m);
   } else {
     result.report.diagonal = diag;

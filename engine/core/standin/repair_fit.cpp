@@ -153,10 +153,11 @@ int excessPieces(const FitReport& r) {
   return r.standinComponents < 0 ? 0 : std::max(0, r.standinComponents - std::max(1, r.meshComponents));
 }
 
-// Whether measurement m is better than r: fewer excess pieces first, then fewer far vertices or a
-// smaller mean.
+// Whether measurement m is better than r: fewer excess pieces first; then, with no more vertices
+// the projection fails on, fewer far vertices or a smaller mean.
 bool better(const FitReport& m, const FitReport& r) {
   if (excessPieces(m) != excessPieces(r)) return excessPieces(m) < excessPieces(r);
+  if (m.projection.failures > r.projection.failures) return false;
   if (m.farShare < r.farShare - 1e-3) return true;
   return m.farShare <= r.farShare + 1e-3 && m.meanDistance < 0.97 * r.meanDistance;
 }
@@ -188,37 +189,21 @@ StandinSegment toNodeSpace(const CharacterPose& pose, int node, const Part& p) {
   return seg;
 }
 
-// Re-places node's own segments on the vertices bound to it when that fits them much better:
-// along their principal axis or the bone's current axis, one segment or several side by side.
-// Returns the action line, empty when the current segments stay.
-std::string replaceNode(RepairState& st, Standin& s, int node) {
-  std::vector<glm::vec3> pts;
-  for (size_t i = 0; i < st.vertexNode.size(); ++i)
-    if (st.vertexNode[i] == node) pts.push_back(st.pose.positions[i]);
-  if (pts.size() < 16) return {};
-  const auto posed = poseStandin(s, st.pose.globals, glm::mat4(1.0f));
-  std::vector<Part> mine;
-  std::vector<float> others(pts.size(), INFINITY);
-  size_t own = 0;
-  glm::vec3 boneAxis(0.0f);
-  for (size_t k = 0; k < posed.size(); ++k) {
-    const PosedSegment& q = posed[k];
-    if (s.segments[k].node == node && !st.bridge[k]) {
-      mine.push_back({q.a, q.b, q.radius});
-      ++own;
-      if (glm::length(q.b - q.a) > glm::length(boneAxis)) boneAxis = q.b - q.a;
-      continue;
-    }
-    for (size_t i = 0; i < pts.size(); ++i) others[i] = std::min(others[i], capsuleDistance(pts[i], q.a, q.b, q.radius));
-  }
-  if (own == 0) return {};
-  const double before = unionError(pts, others, mine);
+struct PartSearch {
+  std::vector<Part> parts;
+  double error = INFINITY;
+};
+
+// The best segments for pts (mean |distance| with the surfaces of `others` counted): along their
+// principal axis or the bone's axis, one segment or up to maxParts side by side across the widest
+// direction; a part more must cut the error by 3 %.
+PartSearch bestParts(const RepairState& st, const std::vector<glm::vec3>& pts, const std::vector<float>& others,
+                     const glm::vec3& boneAxis, int maxParts) {
+  PartSearch best;
   glm::vec3 centre, axes[3];
   principalAxes(pts, centre, axes);
   std::vector<glm::vec3> directions{axes[0]};
   if (glm::length(boneAxis) > 0.0f) directions.push_back(glm::normalize(boneAxis));
-  std::vector<Part> best;
-  double bestError = before;
   for (const glm::vec3& u : directions) {
     // The widest direction across u, from the vertices' spread perpendicular to it.
     std::vector<glm::vec3> perp;
@@ -226,17 +211,80 @@ std::string replaceNode(RepairState& st, Standin& s, int node) {
     glm::vec3 pc, pa[3];
     principalAxes(perp, pc, pa);
     glm::vec3 e = pa[0] - u * glm::dot(pa[0], u);
-    if (glm::length(e) < 1e-6f) continue;
+    if (glm::length(e) < 1e-6f) e = axes[1];
     e = glm::normalize(e);
-    for (int n = 1; n <= st.settings.maxSideBySide; ++n) {
-      if (s.segments.size() - own + size_t(n) > st.settings.maxSegments) break;
+    for (int n = 1; n <= maxParts; ++n) {
       std::vector<Part> parts = partsAlong(pts, centre, u, e, n, st.radiusPercentile, st.minRadius);
       if (parts.empty()) continue;
       const double err = unionError(pts, others, parts);
-      if (err < bestError * 0.97) {  // a part more must earn its place
-        bestError = err;
-        best = std::move(parts);
-      }
+      if (err < best.error * 0.97) best = {std::move(parts), err};
+    }
+  }
+  return best;
+}
+
+// Re-places node's own segments on the vertices bound to it when that fits them much better:
+// along their principal axis or the bone's current axis, one segment or several side by side;
+// or, where the node owns small bones merged into it (a tail whose first joint sits in the
+// body), each of those gets a segment on its own vertices again, bound to it. Returns the
+// action line, empty when the current segments stay.
+std::string replaceNode(RepairState& st, Standin& s, int node, bool unmerge) {
+  std::vector<glm::vec3> pts;
+  std::vector<int> bone;  // each vertex's dominant bone
+  for (size_t i = 0; i < st.vertexNode.size(); ++i)
+    if (st.vertexNode[i] == node) {
+      pts.push_back(st.pose.positions[i]);
+      bone.push_back(st.pose.dominantNode[i]);
+    }
+  if (pts.size() < 16) return {};
+  const auto posed = poseStandin(s, st.pose.globals, glm::mat4(1.0f));
+  std::vector<Part> mine;
+  std::vector<float> others(pts.size(), INFINITY);
+  glm::vec3 boneAxis(0.0f);
+  for (size_t k = 0; k < posed.size(); ++k) {
+    const PosedSegment& q = posed[k];
+    if (s.segments[k].node == node && !st.bridge[k]) {
+      mine.push_back({q.a, q.b, q.radius});
+      if (glm::length(q.b - q.a) > glm::length(boneAxis)) boneAxis = q.b - q.a;
+      continue;
+    }
+    for (size_t i = 0; i < pts.size(); ++i) others[i] = std::min(others[i], capsuleDistance(pts[i], q.a, q.b, q.radius));
+  }
+  if (mine.empty()) return {};
+  const size_t room = st.settings.maxSegments - std::min(st.settings.maxSegments, s.segments.size() - mine.size());
+  const double before = unionError(pts, others, mine);
+  // Candidate 1: every vertex of the node together.
+  std::vector<std::pair<int, Part>> best;
+  PartSearch all = bestParts(st, pts, others, boneAxis, std::min(st.settings.maxSideBySide, int(room)));
+  double bestError = all.error;
+  for (const Part& p : all.parts) best.push_back({node, p});
+  // Candidate 2: the node's own vertices, and each merged bone's own (a segment each).
+  std::vector<int> merged;
+  for (int b : bone)
+    if (b != node && std::find(merged.begin(), merged.end(), b) == merged.end()) merged.push_back(b);
+  if (unmerge && !merged.empty() && merged.size() + 1 <= room) {
+    std::vector<std::pair<int, Part>> split;
+    std::vector<glm::vec3> own;
+    for (size_t i = 0; i < pts.size(); ++i)
+      if (bone[i] == node) own.push_back(pts[i]);
+    const int maxOwn = std::min(st.settings.maxSideBySide, int(room - merged.size()));
+    if (own.size() >= 16)
+      for (const Part& p : bestParts(st, own, std::vector<float>(own.size(), INFINITY), boneAxis, maxOwn).parts)
+        split.push_back({node, p});
+    for (int b : merged) {
+      std::vector<glm::vec3> theirs;
+      for (size_t i = 0; i < pts.size(); ++i)
+        if (bone[i] == b) theirs.push_back(pts[i]);
+      if (theirs.size() < 8) continue;
+      for (const Part& p : bestParts(st, theirs, std::vector<float>(theirs.size(), INFINITY), glm::vec3(0.0f), 1).parts)
+        split.push_back({b, p});
+    }
+    std::vector<Part> parts;
+    for (const auto& [n, p] : split) parts.push_back(p);
+    const double err = parts.empty() ? INFINITY : unionError(pts, others, parts);
+    if (err < bestError) {
+      bestError = err;
+      best = std::move(split);
     }
   }
   if (best.empty() || bestError > double(st.settings.replaceGain) * before) return {};
@@ -247,14 +295,19 @@ std::string replaceNode(RepairState& st, Standin& s, int node) {
       kept.push_back(s.segments[k]);
       keptBridge.push_back(st.bridge[k]);
     }
-  for (const Part& p : best) {
-    kept.push_back(toNodeSpace(st.pose, node, p));
+  std::string bones;
+  for (const auto& [n, p] : best) {
+    kept.push_back(toNodeSpace(st.pose, n, p));
     keptBridge.push_back(0);
+    if (n != node && bones.find("'" + boneName(st.c, n) + "'") == std::string::npos)
+      bones += (bones.empty() ? "'" : ", '") + boneName(st.c, n) + "'";
   }
   s.segments = std::move(kept);
   st.bridge = std::move(keptBridge);
+  const size_t onNode = size_t(std::count_if(best.begin(), best.end(), [&](const auto& q) { return q.first == node; }));
   return "re-placed '" + boneName(st.c, node) + "' on its " + std::to_string(pts.size()) + " vertices: " +
-         std::to_string(best.size()) + (best.size() > 1 ? " segments side by side" : " segment") +
+         std::to_string(onNode) + (onNode > 1 ? " segments side by side" : " segment") +
+         (bones.empty() ? std::string() : ", and a segment each on the vertices of " + bones) +
          fmt(" (their mean distance %.3g -> %.3g)", before, bestError);
 }
 
@@ -303,8 +356,9 @@ std::vector<std::string> bridgePieces(RepairState& st, Standin& s, const FitRepo
       closestBetweenSegments(posed[i].a, posed[i].b, posed[j].a, posed[j].b, l.p, l.q);
       const int ni = s.segments[i].node, nj = s.segments[j].node;
       const bool related = ni == nj || isAncestor(st.c, ni, nj) || isAncestor(st.c, nj, ni);
-      // Along the bone chain first: an unrelated bone is three times as far.
-      l.cost = glm::length(l.q - l.p) * (related ? 1.0f : 3.0f);
+      // Along the bone chain first (side-by-side parts of one bone before that): an unrelated
+      // bone is three times as far.
+      l.cost = glm::length(l.q - l.p) * (ni == nj ? 0.9f : related ? 1.0f : 3.0f);
       Link& b = best[size_t(pi * pieces + pj)];
       if (l.cost < b.cost) b = l;
     }
@@ -355,6 +409,54 @@ std::vector<std::string> bridgePieces(RepairState& st, Standin& s, const FitRepo
   return actions;
 }
 
+
+// Re-places node's segments (with its merged bones given back their own segments, else without),
+// bridging any piece that falls apart; kept when the measurement says it is better than r.
+bool tryReplace(RepairState& st, Standin& s, FitReport& r, int node, std::vector<std::string>& repairs) {
+  for (bool unmerge : {true, false}) {
+    Standin trial = s;
+    const std::vector<char> savedBridge = st.bridge;
+    const std::string action = replaceNode(st, trial, node, unmerge);
+    if (action.empty()) continue;
+    FitReport m = measureFitQuality(st.c, trial, st.pose, st.projection, st.quality);
+    std::vector<std::string> done{action};
+    if (excessPieces(m) > excessPieces(r)) {
+      // The re-placed segments left a piece apart (a tail's): bridge it before judging.
+      const auto bridges = bridgePieces(st, trial, m);
+      if (!bridges.empty()) {
+        m = measureFitQuality(st.c, trial, st.pose, st.projection, st.quality);
+        done.insert(done.end(), bridges.begin(), bridges.end());
+      }
+    }
+    if (better(m, r)) {
+      s = std::move(trial);
+      r = std::move(m);
+      repairs.insert(repairs.end(), done.begin(), done.end());
+      return true;
+    }
+    st.bridge = savedBridge;
+  }
+  return false;
+}
+
+// Bridges r's detached pieces; kept when the measurement says it is better.
+bool tryBridge(RepairState& st, Standin& s, FitReport& r, std::vector<std::string>& repairs) {
+  if (excessPieces(r) == 0) return false;
+  Standin trial = s;
+  const std::vector<char> saved = st.bridge;
+  const auto actions = bridgePieces(st, trial, r);
+  if (actions.empty()) return false;
+  FitReport m = measureFitQuality(st.c, trial, st.pose, st.projection, st.quality);
+  if (!better(m, r)) {
+    st.bridge = saved;
+    return false;
+  }
+  s = std::move(trial);
+  r = std::move(m);
+  repairs.insert(repairs.end(), actions.begin(), actions.end());
+  return true;
+}
+
 }  // namespace
 
 FitReport repairStandinFit(const Character& c, const CharacterPose& pose, const std::vector<int>& vertexNode,
@@ -365,12 +467,14 @@ FitReport repairStandinFit(const Character& c, const CharacterPose& pose, const 
   RepairState st{c, pose, vertexNode, projection, quality, radiusPercentile, settings,
                  float(1e-3 * std::max(1e-12, first.diagonal)), std::vector<char>(s.segments.size(), 0)};
   // A bridge thinner than about a cell of the components check would not count as one.
-  if (quality.topologyResolution > 0) st.minRadius = std::max(st.minRadius, float(0.6 * first.diagonal / quality.topologyResolution));
+  if (quality.topologyResolution > 0)
+    st.minRadius = std::max(st.minRadius, float(0.6 * first.diagonal / quality.topologyResolution));
+  const Standin original = s;
   FitReport r = first;
   std::vector<std::string> repairs;
   for (int round = 0; round < settings.maxRounds && r.poor; ++round) {
     bool progress = false;
-    // Bones with many far vertices: re-place their segments, one bone at a time, each kept if better.
+    // Bones with many far vertices, worst first: re-place their segments one bone at a time.
     std::vector<std::pair<double, int>> worst;
     for (size_t k = 0; k < r.perSegment.size() && k < s.segments.size(); ++k) {
       const SegmentFitError& e = r.perSegment[k];
@@ -382,40 +486,22 @@ FitReport repairStandinFit(const Character& c, const CharacterPose& pose, const 
     for (const auto& [score, node] : worst) {
       if (std::find(tried.begin(), tried.end(), node) != tried.end()) continue;
       tried.push_back(node);
-      Standin trial = s;
-      const std::vector<char> savedBridge = st.bridge;
-      const std::string action = replaceNode(st, trial, node);
-      if (action.empty()) continue;
-      FitReport m = measureFitQuality(c, trial, pose, projection, quality);
-      if (better(m, r)) {
-        s = std::move(trial);
-        r = std::move(m);
-        repairs.push_back(action);
-        progress = true;
-      } else {
-        st.bridge = savedBridge;
-      }
+      progress = tryReplace(st, s, r, node, repairs) || progress;
     }
     // Pieces: bridge them along the bone chain.
-    if (excessPieces(r) > 0) {
-      Standin trial = s;
-      const std::vector<char> saved = st.bridge;
-      const auto actions = bridgePieces(st, trial, r);
-      if (!actions.empty()) {
-        FitReport m = measureFitQuality(c, trial, pose, projection, quality);
-        if (better(m, r)) {
-          s = std::move(trial);
-          r = std::move(m);
-          repairs.insert(repairs.end(), actions.begin(), actions.end());
-          progress = true;
-        } else {
-          st.bridge = saved;
-        }
-      }
-    }
+    progress = tryBridge(st, s, r, repairs) || progress;
     if (!progress) break;
   }
   if (repairs.empty()) return first;
+  if (r.poor) {
+    // Not repairable: the first fit stays, as it was measured; the note says what was tried.
+    s = original;
+    FitReport out = first;
+    std::string tried;
+    for (const auto& a : repairs) tried += (tried.empty() ? "" : "; ") + a;
+    out.notes.push_back("automatic repair tried (" + tried + ") but the fit stays poor; the first fit is kept");
+    return out;
+  }
   r.repairs = std::move(repairs);
   r.beforeRepair = fitFigures(first);
   return r;

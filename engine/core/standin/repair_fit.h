@@ -36,9 +36,10 @@ struct FitRepairSettings {
 // Repairs s, fitted to c at `pose` (the pose the fit was made on, root = identity), where
 // `first` (its measurement with `quality`) says it is poor. vertexNode[i] is the node whose
 // segments fit vertex i of the pose (-1: none). Returns the final report: first's figures in
-// beforeRepair, each kept repair in repairs (empty when nothing helped: then s and the report are
-// the first fit's). Never fails; with settings.enabled false or a fit that is not poor it returns
-// `first` unchanged.
+// beforeRepair, each kept repair in repairs. When nothing helped, or the repaired fit is still
+// poor, s and the report are the first fit's (the latter with a note of what was tried): a
+// stand-in is either repaired into a fit that is not poor or left as it was. Never fails; with
+// settings.enabled false or a fit that is not poor it returns `first` unchanged.
 FitReport repairStandinFit(const Character& c, const CharacterPose& pose, const std::vector<int>& vertexNode,
                            Standin& s, const FitReport& first, const ProjectionSettings& projection,
                            const FitQualitySettings& quality, float radiusPercentile,

@@ -14,12 +14,20 @@ namespace animorph {
 PointMeshDistances pointsToMeshDistance(const std::vector<glm::vec3>& points, const TriangleMesh& mesh) {
   PointMeshDistances r;
   r.points = points.size();
-  const size_t nt = mesh.triangleCount();
   if (points.empty()) return r;
-  if (nt == 0) {
-    r.maxDistance = r.meanDistance = std::numeric_limits<double>::infinity();
-    return r;
+  const std::vector<float> dist = pointDistancesToMesh(points, mesh);
+  double sum = 0.0;
+  for (float d : dist) {
+    sum += double(d);
+    r.maxDistance = std::max(r.maxDistance, double(d));
   }
+  r.meanDistance = sum / double(dist.size());
+  return r;
+}
+
+std::vector<float> pointDistancesToMesh(const std::vector<glm::vec3>& points, const TriangleMesh& mesh) {
+  const size_t nt = mesh.triangleCount();
+  if (nt == 0) return std::vector<float>(points.size(), std::numeric_limits<float>::infinity());
   Bounds box;
   for (const auto& p : mesh.positions) box.add(p);
   // About two triangles per cell on average over the surface.
@@ -43,7 +51,7 @@ PointMeshDistances pointsToMeshDistance(const std::vector<glm::vec3>& points, co
         for (int x = lo.x; x <= hi.x; ++x) buckets[at(x, y, z)].push_back(uint32_t(t));
   }
   const float minCs = std::min(cs.x, std::min(cs.y, cs.z));
-  std::vector<double> dist(points.size());
+  std::vector<float> dist(points.size());
   tbb::parallel_for(size_t(0), points.size(), [&](size_t i) {
     const glm::vec3 p = points[i];
     // Distance from p to the grid box (points may lie outside it).
@@ -70,13 +78,7 @@ PointMeshDistances pointsToMeshDistance(const std::vector<glm::vec3>& points, co
     }
     dist[i] = best;
   });
-  double sum = 0.0;
-  for (double d : dist) {
-    sum += d;
-    r.maxDistance = std::max(r.maxDistance, d);
-  }
-  r.meanDistance = sum / double(dist.size());
-  return r;
+  return dist;
 }
 
 }  // namespace animorph

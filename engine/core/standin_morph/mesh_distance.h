@@ -20,4 +20,7 @@ struct PointMeshDistances {
 // mesh gives infinite distances.
 PointMeshDistances pointsToMeshDistance(const std::vector<glm::vec3>& points, const TriangleMesh& mesh);
 
+// The same, one distance per point (infinite ones for an empty mesh).
+std::vector<float> pointDistancesToMesh(const std::vector<glm::vec3>& points, const TriangleMesh& mesh);
+
 }  // namespace animorph

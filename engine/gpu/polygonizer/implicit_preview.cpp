@@ -226,28 +226,18 @@ void ImplicitPreview::fieldTaken(const std::shared_ptr<const CompiledPreviewFiel
   if (ready_ == field) ready_.reset();
 }
 
-bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& source, double timeSec,
-                                const ImplicitPreviewSettings& s) {
-  if (!poly_) {
-    if (Status st = initGpu(); !st) {
-      gpuFailure_ = "GPU preview unavailable: " + st.error();
-      return false;
-    }
-  }
-  pollGpu();
-  if (!gpuFailure_.empty()) return false;
-  // A shape whose field failed or that the GPU cannot express: the CPU worker draws it (fieldFallback_ says why).
-  if (fieldFailed_ && samePreviewShape(*fieldFailed_, *source)) return false;
-  fieldFailed_.reset();
-  fieldFallback_.clear();
+ImplicitPreview::GpuAsk ImplicitPreview::askGpu(const std::shared_ptr<const PreviewSource>& source,
+                                                const ImplicitPreviewSettings& s) {
+  GpuAsk ask;
   // The frame before asked for this shape too (it was recorded, or it waited: pacing, pipelines, its field).
   // (sameAs may walk whole trees: C(t) snapshots all have tree time 0, so two are compared node by
   // node up to the first difference)
-  const bool repeated = lastAsked_ && samePreviewShape(*lastAsked_, *source);
-  const bool sameShape = gpuSource_ && (gpuSource_ == lastAsked_ ? repeated : samePreviewShape(*gpuSource_, *source));
+  ask.repeated = lastAsked_ && samePreviewShape(*lastAsked_, *source);
+  ask.sameShape = gpuSource_ && (gpuSource_ == lastAsked_ ? ask.repeated : samePreviewShape(*gpuSource_, *source));
   lastAsked_ = source;
-  const double now = nowSec(), frameSec = now - lastUpdateAt_;
-  if (!repeated) {
+  const double now = nowSec();
+  ask.frameSec = now - lastUpdateAt_;
+  if (!ask.repeated) {
     previousShapeLasted_ = now - shapeSince_;
     shapeSince_ = now;
   }
@@ -257,110 +247,84 @@ bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& sour
   // (the frame shares the CPU and the queue with it; dragging the morph's noise frequency: 22-28
   // fps without the hold, 24-32 with it). A shape that lasted (a step, a project opened) is
   // refined at once, and on a GPU always (a refined record takes a few milliseconds there).
-  refineHeld_ = ctx_.deviceType() == VK_PHYSICAL_DEVICE_TYPE_CPU && repeated && !s.settle && previousShapeLasted_ < kInteractionSec && now - shapeSince_ < kRefineDelaySec;
-  const int res = (repeated || s.settle) && !refineHeld_ ? s.refinedResolution : s.interactiveResolution;
+  refineHeld_ = ctx_.deviceType() == VK_PHYSICAL_DEVICE_TYPE_CPU && ask.repeated && !s.settle &&
+                previousShapeLasted_ < kInteractionSec && now - shapeSince_ < kRefineDelaySec;
+  ask.res = (ask.repeated || s.settle) && !refineHeld_ ? s.refinedResolution : s.interactiveResolution;
   lastUpdateAt_ = now;
-  const bool recordedLast = lastUpdateRecorded_;
+  ask.recordedLast = lastUpdateRecorded_;
   lastUpdateRecorded_ = false;
   deferred_ = false;
   fieldPending_ = false;
-  if (sameShape && res == gpuResolution_ && settled_) {  // quiet; a field compiled for another shape is not wanted
-    ready_.reset();
-    if (compiler_) compiler_->dropWaiting();
-    return true;
-  }
-  // Frame pacing: after a frame over the 30 fps budget that recorded a new shape, this frame
-  // draws the last mesh and the new shape waits (its field compiles meanwhile off this thread;
-  // the next frame asks for it again and records it).
-  constexpr double kFrameBudgetSec = 1.0 / 30.0;
-  if (s.paceGpu && !repeated && !s.settle && gpuDrawable_ && recordedLast && frameSec > kFrameBudgetSec) {
-    deferred_ = true;
-    if (compiler_ && !(lastFieldMs_ >= 0.0 && lastFieldMs_ < kCompileHereMs)) compiler_->request(source, res, timeSec);
-    return true;
-  }
-  std::shared_ptr<const CompiledPreviewField> field;
-  // The shape just recorded, again: that record drew it. Once it has completed, its counters say
-  // whether it fitted (then the preview goes quiet); until then nothing new is recorded.
-  if (sameShape && res == gpuResolution_ && recordsOfShape_ > 0 && !s.settle) {
-    const uint64_t last = serial_ - 1;
-    const uint32_t lastSlot = uint32_t(last % kFramesInFlight);
-    if (pending_[lastSlot]) {
-      const VkResult r = vkGetFenceStatus(ctx_.device(), fences_[lastSlot]);
-      if (r == VK_NOT_READY) return true;  // busy() (pending) asks for the frames that look again
-      pollGpu();
-      if (!gpuFailure_.empty()) return false;
-    }
-    Result<bool> fitted = poly_->recordFitted(last);
-    if (fitted && *fitted) {
-      settled_ = true;
-      return true;
-    }
-    // It overflowed (the buffers grew) or its counters are gone: record the shape again.
-  }
-  if (sameShape && res == gpuResolution_ && recordedField_) field = recordedField_;
+  return ask;
+}
 
-  // The field of this shape, or of the newest shape compiled since the last record: compiled off
-  // this thread (PreviewFieldCompiler) unless it is cheap or a screenshot needs it now. While it
-  // compiles the viewport keeps the last mesh.
-  if (!field) field = takeField(source, res, timeSec, s.settle);
+std::optional<bool> ImplicitPreview::lastRecordSettles() {
+  const uint64_t last = serial_ - 1;
+  const uint32_t lastSlot = uint32_t(last % kFramesInFlight);
+  if (pending_[lastSlot]) {
+    const VkResult r = vkGetFenceStatus(ctx_.device(), fences_[lastSlot]);
+    if (r == VK_NOT_READY) return true;  // busy() (pending) asks for the frames that look again
+    pollGpu();
+    if (!gpuFailure_.empty()) return false;
+  }
+  Result<bool> fitted = poly_->recordFitted(last);
+  if (fitted && *fitted) {
+    settled_ = true;
+    return true;
+  }
+  // It overflowed (the buffers grew) or its counters are gone: record the shape again.
+  return std::nullopt;
+}
+
+std::optional<bool> ImplicitPreview::unusableField(const std::shared_ptr<const CompiledPreviewField>& field,
+                                                   const std::shared_ptr<const PreviewSource>& source) {
   if (!field) {
     fieldPending_ = true;
     return true;
   }
-  if (!field->error.empty()) {
-    fieldTaken(field);
-    if (samePreviewShape(*field->source, *source)) {
-      fieldFallback_ = field->error;
-      fieldFailed_ = source;
+  if (field->error.empty()) return std::nullopt;
+  fieldTaken(field);
+  if (samePreviewShape(*field->source, *source)) {
+    fieldFallback_ = field->error;
+    fieldFailed_ = source;
+    return false;
+  }
+  fieldPending_ = true;  // an older shape's: this one is on its way
+  return true;
+}
+
+bool ImplicitPreview::polygonizeNow(const GpuField& gf, const GpuPolygonizeSettings& gs,
+                                    const std::shared_ptr<const CompiledPreviewField>& field,
+                                    const std::shared_ptr<const PreviewSource>& source, int res, double timeSec) {
+  VkDevice dev = ctx_.device();
+  for (uint32_t i = 0; i < kFramesInFlight; ++i)
+    if (pending_[i] && vkWaitForFences(dev, 1, &fences_[i], VK_TRUE, UINT64_MAX) != VK_SUCCESS) {
+      gpuFailure_ = "GPU preview: waiting for the GPU failed";
       return false;
     }
-    fieldPending_ = true;  // an older shape's: this one is on its way
-    return true;
+  pollGpu();
+  Result<GpuPolygonizeStats> done = poly_->polygonize(gf, gs);
+  if (!done) {
+    gpuFailure_ = "GPU preview: " + done.error();
+    return false;
   }
-  const GpuField gf = GpuField::single(field->field->program);
-  GpuPolygonizeSettings gs;
-  gs.resolution = field->resolution;
-  gs.bounds = field->field->bounds;
-  gs.noiseAmplitude = field->field->noiseAmplitude;
-  gs.noiseFrequency = field->field->noiseFrequency;
-  // A kind of shape whose pipelines are not compiled yet: compile them in the background while the
-  // CPU worker draws it (update(); the frame would otherwise stall ~1 s on lavapipe); retried every frame.
-  // A screenshot (settle) waits for them instead: it must show this shape.
-  compiling_ = !s.settle && !poly_->ready(gf, gs);
-  if (compiling_) {
-    poly_->prewarm(gf, gs);
-    deferred_ = true;
-    return true;
-  }
+  gpuShownMs_ = done->milliseconds;
+  gpuShownRes_ = res;
+  gpuDrawnTime_ = timeSec;
+  gpuSource_ = source;
+  gpuResolution_ = res;
+  recordedField_ = field;
+  fieldTaken(field);
+  settled_ = true;
+  gpuDrawable_ = true;
+  return true;
+}
+
+bool ImplicitPreview::submitRecord(const GpuField& gf, const GpuPolygonizeSettings& gs,
+                                   const std::shared_ptr<const CompiledPreviewField>& field,
+                                   const std::shared_ptr<const PreviewSource>& source, int res) {
   const bool sameRecord = gpuSource_ && gpuResolution_ == field->resolution && samePreviewShape(*gpuSource_, *field->source);
   VkDevice dev = ctx_.device();
-  if (s.settle) {
-    // A screenshot: the whole shape in this frame. A record reads its counters frames later, so
-    // the first record of a shape that outgrows the buffers would draw nothing; the synchronous
-    // polygonisation grows them and redoes it until the mesh fits (after this preview's own
-    // records, which use the same buffers).
-    for (uint32_t i = 0; i < kFramesInFlight; ++i)
-      if (pending_[i] && vkWaitForFences(dev, 1, &fences_[i], VK_TRUE, UINT64_MAX) != VK_SUCCESS) {
-        gpuFailure_ = "GPU preview: waiting for the GPU failed";
-        return false;
-      }
-    pollGpu();
-    Result<GpuPolygonizeStats> done = poly_->polygonize(gf, gs);
-    if (!done) {
-      gpuFailure_ = "GPU preview: " + done.error();
-      return false;
-    }
-    gpuShownMs_ = done->milliseconds;
-    gpuShownRes_ = res;
-    gpuDrawnTime_ = timeSec;
-    gpuSource_ = source;
-    gpuResolution_ = res;
-    recordedField_ = field;
-    fieldTaken(field);
-    settled_ = true;
-    gpuDrawable_ = true;
-    return true;
-  }
   const uint32_t slot = uint32_t(serial_ % kFramesInFlight);
   // The record kFramesInFlight ago used this slot; GpuPolygonizer::record reads its counters. While
   // the GPU is still on it this frame draws the last mesh and the next one records (the field
@@ -407,7 +371,7 @@ bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& sour
   lastUpdateRecorded_ = true;
   ++serial_;
   ++recordsOfShape_;
-  // Normally the next frame settles it (recordFitted, above). Records that overflowed again are
+  // Normally the next frame settles it (lastRecordSettles). Records that overflowed again are
   // also read kFramesInFlight records later inside record(): once those of a record of this shape
   // show it fitted, the records since fit too.
   settled_ = recordsOfShape_ > int(kFramesInFlight) && !poly_->lastStats().overflowed;
@@ -419,6 +383,70 @@ bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& sour
   fieldPending_ = !field->matches(*source, res);
   gpuDrawable_ = true;
   return true;
+}
+
+bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& source, double timeSec,
+                                const ImplicitPreviewSettings& s) {
+  if (!poly_) {
+    if (Status st = initGpu(); !st) {
+      gpuFailure_ = "GPU preview unavailable: " + st.error();
+      return false;
+    }
+  }
+  pollGpu();
+  if (!gpuFailure_.empty()) return false;
+  // A shape whose field failed or that the GPU cannot express: the CPU worker draws it (fieldFallback_ says why).
+  if (fieldFailed_ && samePreviewShape(*fieldFailed_, *source)) return false;
+  fieldFailed_.reset();
+  fieldFallback_.clear();
+  const GpuAsk ask = askGpu(source, s);
+  const int res = ask.res;
+  if (ask.sameShape && res == gpuResolution_ && settled_) {  // quiet; a field compiled for another shape is not wanted
+    ready_.reset();
+    if (compiler_) compiler_->dropWaiting();
+    return true;
+  }
+  // Frame pacing: after a frame over the 30 fps budget that recorded a new shape, this frame
+  // draws the last mesh and the new shape waits (its field compiles meanwhile off this thread;
+  // the next frame asks for it again and records it).
+  constexpr double kFrameBudgetSec = 1.0 / 30.0;
+  if (s.paceGpu && !ask.repeated && !s.settle && gpuDrawable_ && ask.recordedLast && ask.frameSec > kFrameBudgetSec) {
+    deferred_ = true;
+    if (compiler_ && !(lastFieldMs_ >= 0.0 && lastFieldMs_ < kCompileHereMs)) compiler_->request(source, res, timeSec);
+    return true;
+  }
+  // The shape just recorded, again: that record drew it. Once it has completed, its counters say
+  // whether it fitted (then the preview goes quiet); until then nothing new is recorded.
+  if (ask.sameShape && res == gpuResolution_ && recordsOfShape_ > 0 && !s.settle)
+    if (std::optional<bool> decided = lastRecordSettles()) return *decided;
+  std::shared_ptr<const CompiledPreviewField> field;
+  if (ask.sameShape && res == gpuResolution_ && recordedField_) field = recordedField_;
+  // The field of this shape, or of the newest shape compiled since the last record: compiled off
+  // this thread (PreviewFieldCompiler) unless it is cheap or a screenshot needs it now. While it
+  // compiles the viewport keeps the last mesh.
+  if (!field) field = takeField(source, res, timeSec, s.settle);
+  if (std::optional<bool> decided = unusableField(field, source)) return *decided;
+  const GpuField gf = GpuField::single(field->field->program);
+  GpuPolygonizeSettings gs;
+  gs.resolution = field->resolution;
+  gs.bounds = field->field->bounds;
+  gs.noiseAmplitude = field->field->noiseAmplitude;
+  gs.noiseFrequency = field->field->noiseFrequency;
+  // A kind of shape whose pipelines are not compiled yet: compile them in the background while the
+  // CPU worker draws it (update(); the frame would otherwise stall ~1 s on lavapipe); retried every frame.
+  // A screenshot (settle) waits for them instead: it must show this shape.
+  compiling_ = !s.settle && !poly_->ready(gf, gs);
+  if (compiling_) {
+    poly_->prewarm(gf, gs);
+    deferred_ = true;
+    return true;
+  }
+  // A screenshot: the whole shape in this frame. A record reads its counters frames later, so the
+  // first record of a shape that outgrows the buffers would draw nothing; the synchronous
+  // polygonisation grows them and redoes it until the mesh fits (after this preview's own
+  // records, which use the same buffers).
+  if (s.settle) return polygonizeNow(gf, gs, field, source, res, timeSec);
+  return submitRecord(gf, gs, field, source, res);
 }
 
 void ImplicitPreview::draw(Scene& scene, const glm::mat4& model, const glm::vec4& color, bool selected) const {

@@ -33,6 +33,7 @@
 // GPU cannot express moves only that shape. The viewport always shows the
 // newest finished mesh.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,8 @@
 namespace animorph::gpu {
 
 class GpuPolygonizer;
+struct GpuField;
+struct GpuPolygonizeSettings;
 
 struct ImplicitPreviewSettings {
   int interactiveResolution = 96;  // while the shape changes (scrubbing, playing, editing)
@@ -135,6 +138,35 @@ class ImplicitPreview {
   void updateCpu(std::shared_ptr<const PreviewSource> source, double timeSec, const ImplicitPreviewSettings& s);
   // Returns false (and sets gpuFailure_ or fieldFallback_) when the GPU cannot take this shape.
   bool updateGpu(const std::shared_ptr<const PreviewSource>& source, double timeSec, const ImplicitPreviewSettings& s);
+  // updateGpu's steps. What one call asks for: whether the frame before asked for this shape
+  // too, whether it is the shape recorded last, and the resolution to show it at.
+  struct GpuAsk {
+    bool repeated = false;
+    bool sameShape = false;
+    int res = 0;
+    double frameSec = 0.0;      // wall time since the last updateGpu
+    bool recordedLast = false;  // the last updateGpu recorded a polygonisation
+  };
+  // Notes the shape against the ones asked for before (repeats, the refinement hold, the pacing
+  // clock) and resets the per-call flags.
+  GpuAsk askGpu(const std::shared_ptr<const PreviewSource>& source, const ImplicitPreviewSettings& s);
+  // The shape just recorded, asked for again: true while its record runs or once it fitted
+  // (settled_), false when the GPU failed; nullopt: record it again (it overflowed).
+  std::optional<bool> lastRecordSettles();
+  // A field not compiled yet (true: the last mesh stays), or one that failed (false for this shape:
+  // the CPU worker draws it; true for an older shape's); nullopt when field can be recorded.
+  std::optional<bool> unusableField(const std::shared_ptr<const CompiledPreviewField>& field,
+                                    const std::shared_ptr<const PreviewSource>& source);
+  // A screenshot (settle): waits for this preview's records, then polygonises synchronously until
+  // the mesh fits. Returns false when the GPU failed (gpuFailure_ says why).
+  bool polygonizeNow(const GpuField& gf, const GpuPolygonizeSettings& gs,
+                     const std::shared_ptr<const CompiledPreviewField>& field,
+                     const std::shared_ptr<const PreviewSource>& source, int res, double timeSec);
+  // Records the polygonisation into this frame's slot and submits it (defers while the GPU still
+  // holds the slot). Returns false when the GPU failed (gpuFailure_ says why).
+  bool submitRecord(const GpuField& gf, const GpuPolygonizeSettings& gs,
+                    const std::shared_ptr<const CompiledPreviewField>& field,
+                    const std::shared_ptr<const PreviewSource>& source, int res);
   // The field to record for source at res: this shape's if compiled, else the newest compiled
   // since the last record (an older shape's), else null (its compile is under way). settle: this
   // shape's, compiled now.
