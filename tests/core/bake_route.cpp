@@ -1,7 +1,8 @@
 // The one bake route (export/bake_route.h) that animorph-cli bake, File > Export..., the playblast
 // and the farm's chunks take: files the same for any number of parallel frames, staged (nothing
 // left by a failing or cancelled bake), the plugged-in polygoniser of the morph's B->C stage, the
-// report's stages, continuity and coherence, bad settings named.
+// report's stages, continuity (the continuity ratio too) and coherence, collapse and expansion frames
+// as their visible surface unless keepInnerShell, bad settings named.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -17,6 +18,7 @@
 #include "core/export/bake_route.h"
 #include "core/export/export_project.h"
 #include "core/export/frame_files.h"
+#include "core/scene/visible_surface.h"
 #include "core/util/background_job.h"
 #include "util/animorph_fixtures.h"
 #include "util/morph_fixtures.h"
@@ -257,6 +259,62 @@ TEST_CASE("bake route: the report counts stages and triangles, measures continui
   CHECK(c->coherence->gridCells[0] > 0);
   CHECK(c->stageFrames[size_t(MorphStage::Morph)] == 7);
   for (const auto& m : c->meshes) CHECK(m.triangleCount() > 100);
+}
+
+TEST_CASE("bake route: expansion frames as their visible surface unless keepInnerShell, the continuity ratio measured",
+          "[bake][export][continuity]") {
+  const MorphRuntime& rt = *demoMorph().runtime;
+  const MorphMarkers& mk = rt.setup.markers;
+  BakeSettings s;  // the first expansion frames: the stand-in core is still inside the mesh
+  s.first = mk.c + 1;
+  s.last = mk.c + 3;
+  s.resolution = 16;
+  s.measureContinuity = true;
+  s.outputs.keepMeshes = true;
+  JobProgress progress;
+  auto visible = bakeProject(demoMorphFrames(), s, progress);
+  INFO(visible.error());
+  REQUIRE(visible.ok());
+  s.keepInnerShell = true;
+  auto kept = bakeProject(demoMorphFrames(), s, progress);
+  INFO(kept.error());
+  REQUIRE(kept.ok());
+  for (int f = s.first; f <= s.last; ++f) {
+    INFO("frame " << f);
+    const size_t k = size_t(f - s.first);
+    MorphFrameSettings fs;
+    fs.resolution = s.resolution;
+    auto fr = evaluateMorphFrame(rt, demoMorph().project.timeline.frameToSec(f), fs);
+    REQUIRE(fr.ok());
+    REQUIRE(fr->coreTriangles > 0);
+    const TriangleMesh seen = visibleSurface(rt, *fr);
+    REQUIRE(seen.positions != fr->mesh.positions);  // something was cut, so the two modes differ
+    CHECK(visible->meshes[k].positions == seen.positions);
+    CHECK(visible->meshes[k].indices == seen.indices);
+    CHECK(kept->meshes[k].positions == fr->mesh.positions);
+    CHECK(kept->meshes[k].indices == fr->mesh.indices);
+    // The volume measured is both shells' union in either mode.
+    const double volume = measureFrame(f, fr->mesh, nullptr, fr->coreTriangles).volume;
+    CHECK(visible->continuity->frames[k].volume == volume);
+    CHECK(kept->continuity->frames[k].volume == volume);
+  }
+  for (const auto* r : {&*visible, &*kept}) {
+    REQUIRE(r->continuity);
+    const BakeContinuity& c = *r->continuity;
+    CHECK(c.coreFrames == 3);
+    REQUIRE(c.ratio);
+    CHECK(c.ratio->first == s.first);
+    CHECK(c.ratio->last == s.last);
+    CHECK_FALSE(c.ratioOverAtoD);  // only the range's part of A..D
+    REQUIRE(c.largestJumps.size() == 2);  // the pairs (C+1, C+2) and (C+2, C+3)
+    CHECK(c.largestJumps[0].second >= c.largestJumps[1].second);
+    CHECK(c.ratio->jump == c.largestJumps[0].second);
+    CHECK(c.ratio->jumpFrame == c.largestJumps[0].first);
+    CHECK(c.ratio->jump > 0.0);
+    CHECK(c.ratio->motion.hausdorff > 0.0);
+  }
+  // Both modes measure the visible surface: the same jumps whichever shells were written.
+  CHECK(visible->continuity->largestJumps == kept->continuity->largestJumps);
 }
 
 TEST_CASE("bake route: bad settings are named before anything is baked or written", "[bake]") {
