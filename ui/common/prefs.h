@@ -34,7 +34,7 @@ struct Preferences {
   int previewCoarseResolution = 96;
   PreviewDevice previewDevice = PreviewDevice::Auto;
   // BlobTrees of many point primitives (particles) drawn as spheres while scrubbing or playing,
-  // their surface polygonised once the time holds still (scene/particle_view.h).
+  // their surface polygonised once the time holds still (editor/particle_view.h).
   bool particleView = true;
   bool operator==(const Preferences&) const = default;
 };
