@@ -48,6 +48,20 @@ struct Candidate {
   float radius = 0.0f;
 };
 
+// Each vertex belongs to its closest segment (its distance and itself added to it).
+void assignToClosestSegment(const std::vector<glm::vec3>& pts, std::vector<Candidate>& mine) {
+  for (const auto& p : pts) {
+    size_t best = 0;
+    float bd = INFINITY;
+    for (size_t k = 0; k < mine.size(); ++k) {
+      const float d = glm::length(p - closestOnSegment(p, mine[k].a, mine[k].b));
+      if (d < bd) { bd = d; best = k; }
+    }
+    mine[best].dist.push_back(bd);
+    mine[best].pts.push_back(p);
+  }
+}
+
 // A bone whose vertices spread much wider one way than the other across it (a
 // plate, a fin, a disc) gets several parallel segments spanning the wide
 // direction instead of one round tube: one tube cannot fit a flat shape.
@@ -92,16 +106,7 @@ void splitFlat(Candidate& cd, float minLen, std::vector<Candidate>& out) {
     c.shrinkB = cd.shrinkB;
     parts.push_back(std::move(c));
   }
-  for (const auto& p : cd.pts) {
-    size_t best = 0;
-    float bd = INFINITY;
-    for (size_t k = 0; k < parts.size(); ++k) {
-      const float d = glm::length(p - closestOnSegment(p, parts[k].a, parts[k].b));
-      if (d < bd) { bd = d; best = k; }
-    }
-    parts[best].dist.push_back(bd);
-    parts[best].pts.push_back(p);
-  }
+  assignToClosestSegment(cd.pts, parts);
   for (auto& c : parts)
     if (!c.dist.empty()) out.push_back(std::move(c));
 }
@@ -314,19 +319,6 @@ void leafSegment(const FitContext& x, int j, const std::vector<glm::vec3>& pts, 
                          "': no child bone; segment along its vertices' principal axis");
 }
 
-// Each vertex belongs to its closest segment of this bone.
-void assignToClosestSegment(const std::vector<glm::vec3>& pts, std::vector<Candidate>& mine) {
-  for (const auto& p : pts) {
-    size_t best = 0;
-    float bd = INFINITY;
-    for (size_t k = 0; k < mine.size(); ++k) {
-      const float d = glm::length(p - closestOnSegment(p, mine[k].a, mine[k].b));
-      if (d < bd) { bd = d; best = k; }
-    }
-    mine[best].dist.push_back(bd);
-    mine[best].pts.push_back(p);
-  }
-}
 
 // The segments of active joint j fitted to its vertices pts (its own and those of the bones merged
 // into it), with their radii, appended to cands.
