@@ -39,144 +39,186 @@ bool parseNumber(const std::string& s, double& out) {
   }
 }
 
-int polygonizeCommand(const std::vector<std::string>& args) {
-  using animorph::cli::fail;
-  const char* me = "polygonize";
+using animorph::cli::fail;
+constexpr const char* kMe = "polygonize";
+
+struct PolyArgs {
   std::string scene, output, actorId;
   double timeSec = 0.0, res = 128, threads = 0;
   bool cull = true, gpu = false, animorphosis = false;
+};
+
+// Reads the options into a; returns 0, or the exit code after printing the reason.
+int parsePolyArgs(const std::vector<std::string>& args, PolyArgs& a) {
+  const char* me = kMe;
   for (size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
+    const std::string& arg = args[i];
     auto value = [&](double& v) {
       if (i + 1 >= args.size() || !parseNumber(args[i + 1], v)) return false;
       ++i;
       return true;
     };
-    if (a == "--time") {
-      if (!value(timeSec)) return fail(me, "--time needs a number of seconds", 2);
-    } else if (a == "--res") {
-      if (!value(res) || res < 2 || res > 2048 || res != std::floor(res))
+    if (arg == "--time") {
+      if (!value(a.timeSec)) return fail(me, "--time needs a number of seconds", 2);
+    } else if (arg == "--res") {
+      if (!value(a.res) || a.res < 2 || a.res > 2048 || a.res != std::floor(a.res))
         return fail(me, "--res needs an integer from 2 to 2048", 2);
-    } else if (a == "--threads") {
-      if (!value(threads) || threads < 0) return fail(me, "--threads needs a non-negative integer", 2);
-    } else if (a == "--actor") {
+    } else if (arg == "--threads") {
+      if (!value(a.threads) || a.threads < 0) return fail(me, "--threads needs a non-negative integer", 2);
+    } else if (arg == "--actor") {
       if (i + 1 >= args.size()) return fail(me, "--actor needs an actor id", 2);
-      actorId = args[++i];
-    } else if (a == "--animorphosis") {
-      animorphosis = true;
-    } else if (a == "--no-cull") {
-      cull = false;
-    } else if (a == "--gpu") {
-      gpu = true;
-    } else if (a == "-o" || a == "--output") {
+      a.actorId = args[++i];
+    } else if (arg == "--animorphosis") {
+      a.animorphosis = true;
+    } else if (arg == "--no-cull") {
+      a.cull = false;
+    } else if (arg == "--gpu") {
+      a.gpu = true;
+    } else if (arg == "-o" || arg == "--output") {
       if (i + 1 >= args.size()) return fail(me, "-o needs an output file (.obj, .ply or .glb)", 2);
-      output = args[++i];
-    } else if (!a.empty() && a[0] == '-') {
-      return fail(me, "unknown option " + a, 2);
-    } else if (scene.empty()) {
-      scene = a;
+      a.output = args[++i];
+    } else if (!arg.empty() && arg[0] == '-') {
+      return fail(me, "unknown option " + arg, 2);
+    } else if (a.scene.empty()) {
+      a.scene = arg;
     } else {
-      return fail(me, "unexpected argument " + a, 2);
+      return fail(me, "unexpected argument " + arg, 2);
     }
   }
-  if (scene.empty()) return fail(me, "missing SCENE (see --help)", 2);
-  if (output.empty()) return fail(me, "missing -o MESH.{obj,ply,glb}", 2);
-  std::string ext = output.size() >= 4 ? output.substr(output.size() - 4) : "";
+  if (a.scene.empty()) return fail(me, "missing SCENE (see --help)", 2);
+  if (a.output.empty()) return fail(me, "missing -o MESH.{obj,ply,glb}", 2);
+  std::string ext = a.output.size() >= 4 ? a.output.substr(a.output.size() - 4) : "";
   if (ext != ".obj" && ext != ".ply" && ext != ".glb")
-    return fail(me, output + ": unknown mesh format (use .obj, .ply or .glb)", 2);
+    return fail(me, a.output + ": unknown mesh format (use .obj, .ply or .glb)", 2);
+  return 0;
+}
 
-  // A project: one of its BlobTree actors (--actor, or the only one), at the
-  // actor's tree time for scene time --time, in world space. Else a scene file
-  // (or a project with a top-level "blobtree" key).
+// The tree to polygonise, its time and its placement in the world.
+struct PolyTree {
   animorph::Result<animorph::BlobTree> tree = animorph::Error{""};
-  double treeTimeSec = timeSec;
-  glm::mat4 model(1.0f);
-  std::string what = scene;
+  double treeTimeSec = 0.0;
+  glm::mat4 model{1.0f};
+  std::string what;  // the scene (and actor or animorphosis) for messages
+};
+
+// The project's BlobTree actor --actor names (or its only one), or the exit code after the reason.
+int pickBlobActor(const PolyArgs& a, const animorph::Project& project, const animorph::Actor*& actor) {
+  const char* me = kMe;
+  std::vector<const animorph::Actor*> blobs;
+  for (const auto& act : project.actors)
+    if (act.kind == animorph::ActorKind::BlobTree) blobs.push_back(&act);
+  if (!a.actorId.empty()) {
+    actor = project.findActor(a.actorId);
+    if (!actor) return fail(me, a.scene + ": no actor '" + a.actorId + "'");
+    if (actor->kind != animorph::ActorKind::BlobTree)
+      return fail(me, a.scene + ": actor '" + a.actorId + "' is a glTF character, not a BlobTree");
+  } else if (blobs.size() == 1) {
+    actor = blobs.front();
+  } else {
+    std::string ids;
+    for (const auto* b : blobs) ids += (ids.empty() ? "" : ", ") + b->id;
+    return fail(me, a.scene + ": several BlobTree actors (" + ids + "): choose one with --actor ID", 2);
+  }
+  return 0;
+}
+
+// A project: one of its BlobTree actors (--actor, or the only one), at the actor's tree time for
+// scene time --time, in world space; or its animorphosis. Else a scene file (or a project with a
+// top-level "blobtree" key). Returns 0, or the exit code after printing the reason.
+int loadPolyTree(const PolyArgs& a, PolyTree& t) {
+  const char* me = kMe;
+  const std::string& scene = a.scene;
+  t.treeTimeSec = a.timeSec;
+  t.what = scene;
   bool isProject = scene.size() > 9 && scene.substr(scene.size() - 9) == ".animorph";
   auto project = isProject ? animorph::loadProject(scene) : animorph::Result<animorph::Project>(animorph::Error{""});
   if (isProject && !project) return fail(me, project.error());
-  std::vector<const animorph::Actor*> blobs;
+  bool hasBlobs = false;
   if (isProject)
-    for (const auto& a : project->actors)
-      if (a.kind == animorph::ActorKind::BlobTree) blobs.push_back(&a);
-  if (animorphosis) {
+    for (const auto& act : project->actors) hasBlobs |= act.kind == animorph::ActorKind::BlobTree;
+  if (a.animorphosis) {
     // The project's animorphosis C(t): source before its interval, target after it, in the trees' space.
     if (!isProject) return fail(me, "--animorphosis applies to .animorph projects only", 2);
-    if (!actorId.empty()) return fail(me, "--animorphosis and --actor exclude each other", 2);
+    if (!a.actorId.empty()) return fail(me, "--animorphosis and --actor exclude each other", 2);
     auto c = animorph::projectGenericTree(*project);
     if (!c) return fail(me, scene + ": " + c.error());
-    tree = animorph::instantiateGeneric(*c, animorph::animorphosisTiming(*project), timeSec);
-    treeTimeSec = 0.0;
-    what = scene + " animorphosis";
-  } else if (isProject && (!actorId.empty() || !blobs.empty())) {
+    t.tree = animorph::instantiateGeneric(*c, animorph::animorphosisTiming(*project), a.timeSec);
+    t.treeTimeSec = 0.0;
+    t.what = scene + " animorphosis";
+  } else if (isProject && (!a.actorId.empty() || hasBlobs)) {
     const animorph::Actor* actor = nullptr;
-    if (!actorId.empty()) {
-      actor = project->findActor(actorId);
-      if (!actor) return fail(me, scene + ": no actor '" + actorId + "'");
-      if (actor->kind != animorph::ActorKind::BlobTree)
-        return fail(me, scene + ": actor '" + actorId + "' is a glTF character, not a BlobTree");
-    } else if (blobs.size() == 1) {
-      actor = blobs.front();
-    } else {
-      std::string ids;
-      for (const auto* b : blobs) ids += (ids.empty() ? "" : ", ") + b->id;
-      return fail(me, scene + ": several BlobTree actors (" + ids + "): choose one with --actor ID", 2);
-    }
-    tree = actor->blobTree;
-    treeTimeSec = animorph::blobActorTimeSec(*actor, timeSec);
-    model = actor->transform.matrix();
-    what = scene + " actor '" + actor->id + "'";
+    if (int rc = pickBlobActor(a, *project, actor)) return rc;
+    t.tree = actor->blobTree;
+    t.treeTimeSec = animorph::blobActorTimeSec(*actor, a.timeSec);
+    t.model = actor->transform.matrix();
+    t.what = scene + " actor '" + actor->id + "'";
   } else {
-    if (!actorId.empty()) return fail(me, "--actor applies to .animorph projects only", 2);
-    tree = animorph::loadBlobTreeScene(scene);
-    if (!tree) return fail(me, tree.error());
+    if (!a.actorId.empty()) return fail(me, "--actor applies to .animorph projects only", 2);
+    t.tree = animorph::loadBlobTreeScene(scene);
+    if (!t.tree) return fail(me, t.tree.error());
   }
-  animorph::FieldProgram program = animorph::compileFieldProgram(*tree, treeTimeSec);
-  if (gpu) {
-    namespace g = animorph::gpu;
-    auto field = g::GpuField::single(program);
-    if (std::string why = g::GpuPolygonizer::unsupported(field); !why.empty())
-      return fail(me, what + ": --gpu: the GPU polygoniser cannot evaluate this scene: " + why +
-                          " (run without --gpu for the CPU)");
-    auto ctx = g::Context::create(g::ContextSettings{});
-    if (!ctx) return fail(me, "--gpu: no usable Vulkan device: " + ctx.error() + " (run without --gpu for the CPU)");
-    auto poly = g::GpuPolygonizer::create(**ctx);
-    if (!poly) return fail(me, "--gpu: " + poly.error());
-    g::GpuPolygonizeSettings gs;
-    gs.resolution = int(res);
-    gs.culling = cull;
-    auto stats = (*poly)->polygonize(field, gs);
-    if (!stats) return fail(me, what + ": " + stats.error());
-    auto mesh = (*poly)->readBack();
-    if (!mesh) return fail(me, scene + ": " + mesh.error());
-    toWorld(*mesh, model);
-    if (auto s = animorph::writeMesh(*mesh, output); !s) return fail(me, s.error());
-    std::printf("%s at t = %g s: %zu triangles, %zu vertices in %.1f ms (GPU: %s)\n", what.c_str(), timeSec,
-                mesh->triangleCount(), mesh->positions.size(), stats->milliseconds, (*ctx)->deviceName().c_str());
-    std::printf("  grid %d x %d x %d (cell %.4g m), %zu primitives, blocks %u evaluated / %u culled of %u -> %s\n",
-                stats->gridX, stats->gridY, stats->gridZ, stats->cellSize, program.primitiveCount(),
-                stats->blocksActive, stats->blocksTotal - stats->blocksActive, stats->blocksTotal, output.c_str());
-    if ((*ctx)->validationEnabled() && (*ctx)->validationErrorCount() > 0)
-      return fail(me, std::to_string((*ctx)->validationErrorCount()) + " Vulkan validation error(s)", 3);
-    return 0;
-  }
+  return 0;
+}
+
+// --gpu: the Vulkan compute polygoniser; no fallback to the CPU.
+int polygonizeOnGpu(const PolyArgs& a, const PolyTree& t, const animorph::FieldProgram& program) {
+  const char* me = kMe;
+  namespace g = animorph::gpu;
+  auto field = g::GpuField::single(program);
+  if (std::string why = g::GpuPolygonizer::unsupported(field); !why.empty())
+    return fail(me, t.what + ": --gpu: the GPU polygoniser cannot evaluate this scene: " + why +
+                        " (run without --gpu for the CPU)");
+  auto ctx = g::Context::create(g::ContextSettings{});
+  if (!ctx) return fail(me, "--gpu: no usable Vulkan device: " + ctx.error() + " (run without --gpu for the CPU)");
+  auto poly = g::GpuPolygonizer::create(**ctx);
+  if (!poly) return fail(me, "--gpu: " + poly.error());
+  g::GpuPolygonizeSettings gs;
+  gs.resolution = int(a.res);
+  gs.culling = a.cull;
+  auto stats = (*poly)->polygonize(field, gs);
+  if (!stats) return fail(me, t.what + ": " + stats.error());
+  auto mesh = (*poly)->readBack();
+  if (!mesh) return fail(me, a.scene + ": " + mesh.error());
+  toWorld(*mesh, t.model);
+  if (auto s = animorph::writeMesh(*mesh, a.output); !s) return fail(me, s.error());
+  std::printf("%s at t = %g s: %zu triangles, %zu vertices in %.1f ms (GPU: %s)\n", t.what.c_str(), a.timeSec,
+              mesh->triangleCount(), mesh->positions.size(), stats->milliseconds, (*ctx)->deviceName().c_str());
+  std::printf("  grid %d x %d x %d (cell %.4g m), %zu primitives, blocks %u evaluated / %u culled of %u -> %s\n",
+              stats->gridX, stats->gridY, stats->gridZ, stats->cellSize, program.primitiveCount(),
+              stats->blocksActive, stats->blocksTotal - stats->blocksActive, stats->blocksTotal, a.output.c_str());
+  if ((*ctx)->validationEnabled() && (*ctx)->validationErrorCount() > 0)
+    return fail(me, std::to_string((*ctx)->validationErrorCount()) + " Vulkan validation error(s)", 3);
+  return 0;
+}
+
+int polygonizeOnCpu(const PolyArgs& a, const PolyTree& t, const animorph::FieldProgram& program) {
+  const char* me = kMe;
   animorph::PolygonizeSettings settings;
-  settings.resolution = int(res);
-  settings.culling = cull;
-  settings.threads = int(threads);
+  settings.resolution = int(a.res);
+  settings.culling = a.cull;
+  settings.threads = int(a.threads);
   auto result = animorph::polygonize(program, settings);
-  if (!result) return fail(me, what + ": " + result.error());
-  toWorld(result->mesh, model);
-  if (auto s = animorph::writeMesh(result->mesh, output); !s) return fail(me, s.error());
+  if (!result) return fail(me, t.what + ": " + result.error());
+  toWorld(result->mesh, t.model);
+  if (auto s = animorph::writeMesh(result->mesh, a.output); !s) return fail(me, s.error());
   const auto& st = result->stats;
-  std::printf("%s at t = %g s: %zu triangles, %zu vertices in %.1f ms\n", what.c_str(), timeSec,
+  std::printf("%s at t = %g s: %zu triangles, %zu vertices in %.1f ms\n", t.what.c_str(), a.timeSec,
               result->mesh.triangleCount(), result->mesh.positions.size(), st.milliseconds);
   std::printf("  grid %d x %d x %d (cell %.4g m), %zu primitives, blocks %zu evaluated / %zu culled of %zu -> %s\n",
               st.gridX, st.gridY, st.gridZ, st.cellSize, program.primitiveCount(), st.blocksEvaluated, st.blocksCulled,
-              st.blocksTotal, output.c_str());
+              st.blocksTotal, a.output.c_str());
   std::printf("  %zu field evaluations, %.1f primitives reaching each on average\n", st.pointsEvaluated,
               st.pointsEvaluated ? double(st.primitiveEvaluations) / double(st.pointsEvaluated) : 0.0);
   return 0;
+}
+
+int polygonizeCommand(const std::vector<std::string>& args) {
+  PolyArgs a;
+  if (int rc = parsePolyArgs(args, a)) return rc;
+  PolyTree t;
+  if (int rc = loadPolyTree(a, t)) return rc;
+  animorph::FieldProgram program = animorph::compileFieldProgram(*t.tree, t.treeTimeSec);
+  return a.gpu ? polygonizeOnGpu(a, t, program) : polygonizeOnCpu(a, t, program);
 }
 
 }  // namespace

@@ -28,76 +28,90 @@ struct Bone {
   bool draws = true;
 };
 
-}  // namespace
-
-Character makeRiggedFigure(const RiggedFigureOptions& o) {
+// Adds bones: a drawn one (a body capsule from joint to tail) or a helper (no vertices).
+struct BoneList {
   std::vector<Bone> bones;
-  auto add = [&](const std::string& name, int parent, glm::vec3 joint, glm::vec3 tail, float radius) {
+  int add(const std::string& name, int parent, glm::vec3 joint, glm::vec3 tail, float radius) {
     bones.push_back({name, parent, joint, false, 1.0f, joint, tail, radius, true});
     return int(bones.size()) - 1;
-  };
-  auto helper = [&](const std::string& name, int parent, glm::vec3 joint) {
+  }
+  int helper(const std::string& name, int parent, glm::vec3 joint) {
     bones.push_back({name, parent, joint, true, 1.0f, joint, joint, 0.0f, false});
     return int(bones.size()) - 1;
-  };
-  const bool h = o.helperBones;
-  const int hips = add("Hips", -1, {0, 1.0f, 0}, {0, 1.12f, 0}, 0.14f);
-  if (h) helper("IK_pole_target", hips, {0.5f, 1.0f, -0.6f});
-  int spine = hips;
-  if (h) spine = helper("SpineTwist1", spine, {0, 1.12f, 0});
-  if (h) spine = helper("SpineTwist2", spine, {0, 1.22f, 0});
-  const int chest = add("Chest", spine, {0, 1.3f, 0}, {0, 1.45f, 0}, 0.15f);
-  if (o.chestScale) bones[size_t(chest)].scale = 1.5f;
-  // Hips' body reaches the chest even when twist bones stand between.
-  bones[size_t(hips)].b = {0, 1.3f, 0};
-  const int neck = add("Neck", chest, {0, 1.52f, 0}, {0, 1.58f, 0}, 0.05f);
-  const int head = add("Head", neck, {0, 1.58f, 0}, {0, 1.72f, 0}, 0.1f);
-  if (h) helper("HeadTop_End", head, {0, 1.85f, 0});
+  }
+};
+
+// The head's face bones: weighted, not drawn.
+void addFaceBones(BoneList& l, int head) {
   const char* face[] = {"Jaw", "Eye_L", "Eye_R", "Brow_L", "Brow_R", "Cheek_L", "Cheek_R", "Nose", "Lip_U", "Lip_D"};
   const glm::vec3 facePos[] = {{0, 1.6f, 0.07f},     {0.035f, 1.68f, 0.085f}, {-0.035f, 1.68f, 0.085f},
                                {0.035f, 1.72f, 0.08f}, {-0.035f, 1.72f, 0.08f}, {0.06f, 1.64f, 0.07f},
                                {-0.06f, 1.64f, 0.07f}, {0, 1.66f, 0.1f},        {0, 1.62f, 0.095f},
                                {0, 1.6f, 0.09f}};
   for (int k = 0; k < 10; ++k) {
-    const int f = add(face[k], head, facePos[k], facePos[k], 0.03f);
-    bones[size_t(f)].draws = false;
+    const int f = l.add(face[k], head, facePos[k], facePos[k], 0.03f);
+    l.bones[size_t(f)].draws = false;
   }
-  for (int side = -1; side <= 1; side += 2) {
-    const std::string s = side < 0 ? "_R" : "_L";
-    const float x = float(side);
-    const int shoulder = add("Shoulder" + s, chest, {0.06f * x, 1.45f, 0}, {0.18f * x, 1.45f, 0}, 0.06f);
-    int arm = add("UpperArm" + s, shoulder, {0.18f * x, 1.45f, 0}, {0.45f * x, 1.45f, 0}, 0.05f);
-    const int upper = arm;
-    if (h) arm = helper("UpperArmTwist" + s, arm, {0.32f * x, 1.45f, 0});
-    int fore = add("ForeArm" + s, arm, {0.45f * x, 1.45f, 0}, {0.7f * x, 1.45f, 0}, 0.04f);
-    (void)upper;
-    if (h) fore = helper("ForeArmTwist" + s, fore, {0.58f * x, 1.45f, 0});
-    const int hand = add("Hand" + s, fore, {0.7f * x, 1.45f, 0}, {0.78f * x, 1.45f, 0}, 0.035f);
-    for (int f = 0; f < 4; ++f) {
-      const float z = -0.052f + 0.035f * float(f);
-      int prev = hand;
-      float x0 = 0.79f;
-      for (int k = 1; k <= 3; ++k) {
-        const float x1 = x0 + 0.03f;
-        prev = add("Finger" + std::to_string(f + 1) + "_" + std::to_string(k) + s, prev, {x0 * x, 1.45f, z},
-                   {x1 * x, 1.45f, z}, 0.012f);
-        x0 = x1;
-      }
-      if (h) helper("Finger" + std::to_string(f + 1) + "_End" + s, prev, {x0 * x, 1.45f, z});
-    }
-    const int up = add("UpLeg" + s, hips, {0.1f * x, 0.95f, 0}, {0.1f * x, 0.5f, 0}, 0.07f);
-    const int leg = add("Leg" + s, up, {0.1f * x, 0.5f, 0}, {0.1f * x, 0.08f, 0}, 0.055f);
-    const int foot = add("Foot" + s, leg, {0.1f * x, 0.08f, 0}, {0.1f * x, 0.04f, 0.12f}, 0.045f);
-    const int toe = add("Toe" + s, foot, {0.1f * x, 0.04f, 0.12f}, {0.1f * x, 0.04f, 0.2f}, 0.035f);
-    if (h) helper("Toe_End" + s, toe, {0.1f * x, 0.04f, 0.22f});
-  }
+}
 
-  // The body: one union of capsules, polygonised (figure space).
+// One side's (x = -1: right, 1: left) shoulder, arm, hand with four three-bone fingers, and leg.
+void addLimbs(BoneList& l, int chest, int hips, int side, bool h) {
+  const std::string s = side < 0 ? "_R" : "_L";
+  const float x = float(side);
+  const int shoulder = l.add("Shoulder" + s, chest, {0.06f * x, 1.45f, 0}, {0.18f * x, 1.45f, 0}, 0.06f);
+  int arm = l.add("UpperArm" + s, shoulder, {0.18f * x, 1.45f, 0}, {0.45f * x, 1.45f, 0}, 0.05f);
+  if (h) arm = l.helper("UpperArmTwist" + s, arm, {0.32f * x, 1.45f, 0});
+  int fore = l.add("ForeArm" + s, arm, {0.45f * x, 1.45f, 0}, {0.7f * x, 1.45f, 0}, 0.04f);
+  if (h) fore = l.helper("ForeArmTwist" + s, fore, {0.58f * x, 1.45f, 0});
+  const int hand = l.add("Hand" + s, fore, {0.7f * x, 1.45f, 0}, {0.78f * x, 1.45f, 0}, 0.035f);
+  for (int f = 0; f < 4; ++f) {
+    const float z = -0.052f + 0.035f * float(f);
+    int prev = hand;
+    float x0 = 0.79f;
+    for (int k = 1; k <= 3; ++k) {
+      const float x1 = x0 + 0.03f;
+      prev = l.add("Finger" + std::to_string(f + 1) + "_" + std::to_string(k) + s, prev, {x0 * x, 1.45f, z},
+                   {x1 * x, 1.45f, z}, 0.012f);
+      x0 = x1;
+    }
+    if (h) l.helper("Finger" + std::to_string(f + 1) + "_End" + s, prev, {x0 * x, 1.45f, z});
+  }
+  const int up = l.add("UpLeg" + s, hips, {0.1f * x, 0.95f, 0}, {0.1f * x, 0.5f, 0}, 0.07f);
+  const int leg = l.add("Leg" + s, up, {0.1f * x, 0.5f, 0}, {0.1f * x, 0.08f, 0}, 0.055f);
+  const int foot = l.add("Foot" + s, leg, {0.1f * x, 0.08f, 0}, {0.1f * x, 0.04f, 0.12f}, 0.045f);
+  const int toe = l.add("Toe" + s, foot, {0.1f * x, 0.04f, 0.12f}, {0.1f * x, 0.04f, 0.2f}, 0.035f);
+  if (h) l.helper("Toe_End" + s, toe, {0.1f * x, 0.04f, 0.22f});
+}
+
+// The figure's bones in figure space (metres, Y up, 1.8 tall), helpers where the options ask.
+std::vector<Bone> figureBones(const RiggedFigureOptions& o) {
+  BoneList l;
+  const bool h = o.helperBones;
+  const int hips = l.add("Hips", -1, {0, 1.0f, 0}, {0, 1.12f, 0}, 0.14f);
+  if (h) l.helper("IK_pole_target", hips, {0.5f, 1.0f, -0.6f});
+  int spine = hips;
+  if (h) spine = l.helper("SpineTwist1", spine, {0, 1.12f, 0});
+  if (h) spine = l.helper("SpineTwist2", spine, {0, 1.22f, 0});
+  const int chest = l.add("Chest", spine, {0, 1.3f, 0}, {0, 1.45f, 0}, 0.15f);
+  if (o.chestScale) l.bones[size_t(chest)].scale = 1.5f;
+  // Hips' body reaches the chest even when twist bones stand between.
+  l.bones[size_t(hips)].b = {0, 1.3f, 0};
+  const int neck = l.add("Neck", chest, {0, 1.52f, 0}, {0, 1.58f, 0}, 0.05f);
+  const int head = l.add("Head", neck, {0, 1.58f, 0}, {0, 1.72f, 0}, 0.1f);
+  if (h) l.helper("HeadTop_End", head, {0, 1.85f, 0});
+  addFaceBones(l, head);
+  for (int side = -1; side <= 1; side += 2) addLimbs(l, chest, hips, side, h);
+  return std::move(l.bones);
+}
+
+// The body: one union of the drawn bones' capsules, polygonised (figure space), skinned to the two
+// bones whose capsules' surfaces are nearest each vertex.
+Mesh figureBody(const std::vector<Bone>& bones, int resolution) {
   std::vector<PosedSegment> body;
   for (const Bone& b : bones)
     if (b.draws && b.radius > 0.0f) body.push_back({b.a, b.b, b.radius, 1.0f});
   PolygonizeSettings ps;
-  ps.resolution = o.resolution;
+  ps.resolution = resolution;
   ps.bounds = posedStandinBounds(body, 0.02f);
   auto poly = polygonize(standinProgram(StandinKind::CapsuleUnion, 1.0f, body), ps);
   Mesh mesh;
@@ -107,8 +121,6 @@ Character makeRiggedFigure(const RiggedFigureOptions& o) {
     mesh.normals = poly->mesh.normals;
     mesh.indices = poly->mesh.indices;
   }
-
-  // Skin weights: the two bones whose capsules' surfaces are nearest.
   const size_t nb = bones.size();
   mesh.joints0.resize(mesh.positions.size());
   mesh.weights0.resize(mesh.positions.size());
@@ -128,7 +140,15 @@ Character makeRiggedFigure(const RiggedFigureOptions& o) {
     w[d[1].second] = w1;
     topFourInfluences(w, mesh.joints0[v], mesh.weights0[v]);
   }
+  return mesh;
+}
 
+}  // namespace
+
+Character makeRiggedFigure(const RiggedFigureOptions& o) {
+  const std::vector<Bone> bones = figureBones(o);
+  Mesh mesh = figureBody(bones, o.resolution);
+  const size_t nb = bones.size();
   // Nodes: Armature (turned 90° about X, scale 0.01) -> bones; world = k * figure.
   const float k = o.height / 1.85f;
   Character c;

@@ -104,6 +104,165 @@ Bounds unitCube() {
   return b;
 }
 
+namespace g = animorph::gpu;
+
+// The grid sizes to measure: 64 (quick) or 64, 128, 256; ANIMORPH_BENCH_GPU_RES (e.g. "128")
+// picks some while tuning.
+std::vector<int> gpuBenchSizes(const animorph::bench::Options& opt) {
+  std::vector<int> sizes = opt.quick ? std::vector<int>{64} : std::vector<int>{64, 128, 256};
+  if (const char* only = std::getenv("ANIMORPH_BENCH_GPU_RES")) {  // e.g. "128": one size while tuning
+    sizes.clear();
+    for (const char* c = only; *c;) {
+      char* end = nullptr;
+      long v = std::strtol(c, &end, 10);
+      if (end == c) break;
+      if (v == 64 || v == 128 || v == 256) sizes.push_back(int(v));
+      c = *end ? end + 1 : end;
+    }
+  }
+  return sizes;
+}
+
+struct GpuTimes {
+  g::GpuPolygonizeStats culled, dense;  // culled: each pass's median over the culled runs
+  double ms = 0.0, cpuMs = 0.0, denseMs = 0.0;  // median wall, mean process CPU, dense median wall
+  std::string error;
+};
+
+GpuTimes timeGpu(g::GpuPolygonizer& poly, const g::GpuField& field, int res, int reps, bool withDense) {
+  GpuTimes t;
+  g::GpuPolygonizeSettings gs;
+  gs.resolution = res;
+  gs.bounds = unitCube();
+  std::vector<std::array<double, 6>> culledPasses;  // per run, for medians per pass
+  auto runGpu = [&](bool cull, g::GpuPolygonizeStats& out) {
+    gs.culling = cull;
+    auto r = poly.polygonize(field, gs);
+    if (r) out = *r;
+    else t.error = r.error();
+    if (r && cull) culledPasses.push_back({r->passMs[0], r->passMs[1], r->passMs[2], r->passMs[3], r->passMs[4], r->passMs[5]});
+  };
+  // medianMs warms up first (pipelines compile lazily on lavapipe, buffers grow).
+  t.ms = animorph::bench::medianMs(reps, [&] { runGpu(true, t.culled); });
+  // Process CPU time of one culled run (lavapipe's worker threads included): on a
+  // loaded machine the wall time includes waiting for a core, this does not.
+  t.cpuMs = processCpuMs([&] {
+              for (int k = 0; k < reps; ++k) runGpu(true, t.culled);
+            }) / reps;
+  // Median of each pass over the culled runs (timestamps of one run are noisy on a loaded machine).
+  for (int k = 0; k < 6; ++k) {
+    std::vector<double> v;
+    for (const auto& p : culledPasses) v.push_back(p[size_t(k)]);
+    std::sort(v.begin(), v.end());
+    if (!v.empty()) t.culled.passMs[k] = v[v.size() / 2];
+  }
+  t.denseMs = withDense ? animorph::bench::medianMs(res >= 256 ? 1 : 3, [&] { runGpu(false, t.dense); }) : 0.0;
+  return t;
+}
+
+struct CpuTimes {
+  PolygonizeResult culled, dense;
+  double ms = 0.0, cpuMs = 0.0, denseMs = 0.0;
+};
+
+CpuTimes timeCpu(const FieldProgram& merged, int res, int reps, bool withDense) {
+  CpuTimes t;
+  PolygonizeSettings cs;
+  cs.resolution = res;
+  cs.bounds = unitCube();
+  cs.threads = 2;
+  t.ms = animorph::bench::medianMs(reps, [&] {
+    cs.culling = true;
+    if (auto r = polygonize(merged, cs)) t.culled = std::move(*r);
+  });
+  t.cpuMs = processCpuMs([&] {
+              cs.culling = true;
+              for (int k = 0; k < reps; ++k)
+                if (auto r = polygonize(merged, cs)) t.culled = std::move(*r);
+            }) / reps;
+  t.denseMs = !withDense ? 0.0 : animorph::bench::medianMs(res >= 256 ? 1 : 3, [&] {
+    cs.culling = false;
+    if (auto r = polygonize(merged, cs)) t.dense = std::move(*r);
+  });
+  return t;
+}
+
+// The rows of one size: GPU and CPU, culled and dense, and how they compare.
+void sizeRows(const std::string& tag, const char* target, const GpuTimes& gpu, const CpuTimes& cpu, bool withDense,
+              std::vector<Row>& rows) {
+  const g::GpuPolygonizeStats& gpuCulled = gpu.culled;
+  const g::GpuPolygonizeStats& gpuDense = gpu.dense;
+  const double msGpu = gpu.ms, msCpu = cpu.ms;
+  char note[200];
+  std::snprintf(note, sizeof note, "%u tris, %u/%u blocks evaluated, load %s", gpuCulled.triangles,
+                gpuCulled.blocksActive, gpuCulled.blocksTotal, loadAverage().c_str());
+  rows.push_back({tag + " GPU culled", msGpu, "ms", target, note});
+  std::snprintf(note, sizeof note, "medians: upload %.2f, coarse %.2f, compact %.2f, field+cells %.2f, scan %.2f, emit %.2f ms",
+                gpuCulled.passMs[0], gpuCulled.passMs[1], gpuCulled.passMs[2], gpuCulled.passMs[3],
+                gpuCulled.passMs[4], gpuCulled.passMs[5]);
+  double gpuSum = 0.0;
+  for (double x : gpuCulled.passMs) gpuSum += x;
+  rows.push_back({tag + " GPU culled, GPU time", gpuSum, "ms", "", note});
+  rows.push_back({tag + " GPU culled, CPU time", gpu.cpuMs, "ms", "", "mean per run, all threads (lavapipe runs on the CPU): less load-dependent"});
+  if (withDense) {
+    std::snprintf(note, sizeof note, "%u tris; passes %.2f %.2f %.2f %.2f %.2f %.2f ms", gpuDense.triangles,
+                  gpuDense.passMs[0], gpuDense.passMs[1], gpuDense.passMs[2], gpuDense.passMs[3], gpuDense.passMs[4],
+                  gpuDense.passMs[5]);
+    rows.push_back({tag + " GPU dense", gpu.denseMs, "ms", "", note});
+    rows.push_back({tag + " GPU dense/culled", gpu.denseMs / msGpu, "ratio", "", ""});
+  }
+  rows.push_back({tag + " GPU triangles/s", gpuCulled.triangles / (msGpu * 1e-3), "tris/s", "", ""});
+  const PolygonizeResult& cpuCulled = cpu.culled;
+  std::snprintf(note, sizeof note, "%zu tris, %zu/%zu blocks evaluated, %zu cells, %zu points, %zu pairs, 2 threads",
+                cpuCulled.mesh.triangleCount(), cpuCulled.stats.blocksEvaluated, cpuCulled.stats.blocksTotal,
+                cpuCulled.stats.cellsVisited, cpuCulled.stats.pointsEvaluated, cpuCulled.stats.primitiveEvaluations);
+  rows.push_back({tag + " CPU culled", msCpu, "ms", "", note});
+  rows.push_back({tag + " CPU culled, CPU time", cpu.cpuMs, "ms", "", "mean per run, both threads"});
+  if (withDense) {
+    rows.push_back({tag + " CPU dense", cpu.denseMs, "ms", "", std::to_string(cpu.dense.mesh.triangleCount()) + " tris"});
+    rows.push_back({tag + " CPU dense/culled", cpu.denseMs / msCpu, "ratio", "", ""});
+  }
+  rows.push_back({tag + " CPU triangles/s", cpuCulled.mesh.triangleCount() / (msCpu * 1e-3), "tris/s", "", ""});
+  rows.push_back({tag + " GPU / CPU time", msGpu / msCpu, "ratio", "", "culled, same field and grid"});
+  double triDiff = std::abs(double(gpuCulled.triangles) - double(cpuCulled.mesh.triangleCount())) /
+                   std::max<double>(1.0, double(cpuCulled.mesh.triangleCount()));
+  rows.push_back({tag + " GPU vs CPU triangle difference", 100.0 * triDiff, "%", "<= 0.5 %", ""});
+}
+
+// The demo BlobTree creature (frames, so affine maps: the point path, not line groups), at the
+// editor's scrubbing resolution: GPU and CPU side by side.
+void blobCreatureRows(g::GpuPolygonizer& poly, std::vector<Row>& rows) {
+  FieldProgram creature = compileFieldProgram(makeBlobCreature(), 0.5);
+  const int res = 96, reps = 5;
+  g::GpuPolygonizeSettings gs;
+  gs.resolution = res;
+  g::GpuPolygonizeStats st;
+  std::string error;
+  double msGpu = animorph::bench::medianMs(reps, [&] {
+    auto r = poly.polygonize(g::GpuField::single(creature), gs);
+    if (r) st = *r;
+    else error = r.error();
+  });
+  PolygonizeSettings cs;
+  cs.resolution = res;
+  cs.threads = 2;
+  PolygonizeResult cpu;
+  double msCpu = animorph::bench::medianMs(reps, [&] {
+    if (auto r = polygonize(creature, cs)) cpu = std::move(*r);
+  });
+  const std::string tag = "blob creature 96^3";
+  if (!error.empty()) {
+    rows.push_back({tag + " GPU failed", 0, "", "", error});
+    return;
+  }
+  char note[200];
+  std::snprintf(note, sizeof note, "%u tris, %u/%u blocks evaluated; cells %.2f, emit %.2f ms", st.triangles,
+                st.blocksActive, st.blocksTotal, st.passMs[3], st.passMs[5]);
+  rows.push_back({tag + " GPU culled", msGpu, "ms", "", note});
+  rows.push_back({tag + " CPU culled", msCpu, "ms", "", std::to_string(cpu.mesh.triangleCount()) + " tris, 2 threads"});
+  rows.push_back({tag + " GPU / CPU time", msGpu / msCpu, "ratio", "", "the BlobTree preview's backends"});
+}
+
 std::vector<Row> runGpuPoly(const animorph::bench::Options& opt) {
   std::vector<Row> rows;
   bool wanted = opt.gpu;
@@ -112,7 +271,6 @@ std::vector<Row> runGpuPoly(const animorph::bench::Options& opt) {
     rows.push_back({"skipped", 0, "", "", "run `bench gpu` or pass --gpu"});
     return rows;
   }
-  namespace g = animorph::gpu;
   const unsigned seedA = 1u, seedB = 2u;
   const float w = 0.5f;
   FieldProgram a = standIn(seedA), b = standIn(seedB);
@@ -129,140 +287,20 @@ std::vector<Row> runGpuPoly(const animorph::bench::Options& opt) {
   }
   rows.push_back({"device", 0, "", "", (*ctx)->deviceName() + "; load average " + loadAverage() + " at start"});
   const g::GpuField field = g::GpuField::interpolation(a, b, w);
-  std::vector<int> sizes = opt.quick ? std::vector<int>{64} : std::vector<int>{64, 128, 256};
-  if (const char* only = std::getenv("ANIMORPH_BENCH_GPU_RES")) {  // e.g. "128": one size while tuning
-    sizes.clear();
-    for (const char* c = only; *c;) {
-      char* end = nullptr;
-      long v = std::strtol(c, &end, 10);
-      if (end == c) break;
-      if (v == 64 || v == 128 || v == 256) sizes.push_back(int(v));
-      c = *end ? end + 1 : end;
-    }
-  }
   const bool withDense = !std::getenv("ANIMORPH_BENCH_GPU_NO_DENSE");
-  for (size_t si = 0; si < sizes.size(); ++si) {
-    const int res = sizes[si];
+  for (const int res : gpuBenchSizes(opt)) {
     const char* target = res == 64 ? "<= 5 ms" : res == 128 ? "<= 30 ms" : "<= 200 ms";
     const int reps = res >= 256 ? 3 : (res >= 128 ? 5 : 9);
     const std::string tag = "40 segs morph " + std::to_string(res) + "^3";
-    g::GpuPolygonizeSettings gs;
-    gs.resolution = res;
-    gs.bounds = unitCube();
-    g::GpuPolygonizeStats gpuCulled, gpuDense;
-    std::string error;
-    std::vector<std::array<double, 6>> culledPasses;  // per run, for medians per pass
-    auto runGpu = [&](bool cull, g::GpuPolygonizeStats& out) {
-      gs.culling = cull;
-      auto r = (*poly)->polygonize(field, gs);
-      if (r) out = *r;
-      else error = r.error();
-      if (r && cull) culledPasses.push_back({r->passMs[0], r->passMs[1], r->passMs[2], r->passMs[3], r->passMs[4], r->passMs[5]});
-    };
-    // medianMs warms up first (pipelines compile lazily on lavapipe, buffers grow).
-    double msGpu = animorph::bench::medianMs(reps, [&] { runGpu(true, gpuCulled); });
-    // Process CPU time of one culled run (lavapipe's worker threads included): on a
-    // loaded machine the wall time includes waiting for a core, this does not.
-    const double cpuMsGpu = processCpuMs([&] {
-                              for (int k = 0; k < reps; ++k) runGpu(true, gpuCulled);
-                            }) / reps;
-    // Median of each pass over the culled runs (timestamps of one run are noisy on a loaded machine).
-    for (int k = 0; k < 6; ++k) {
-      std::vector<double> v;
-      for (const auto& p : culledPasses) v.push_back(p[size_t(k)]);
-      std::sort(v.begin(), v.end());
-      if (!v.empty()) gpuCulled.passMs[k] = v[v.size() / 2];
-    }
-    double msGpuDense = withDense ? animorph::bench::medianMs(res >= 256 ? 1 : 3, [&] { runGpu(false, gpuDense); }) : 0.0;
-    if (!error.empty()) {
-      rows.push_back({tag + " GPU failed", 0, "", "", error});
+    const GpuTimes gpu = timeGpu(**poly, field, res, reps, withDense);
+    if (!gpu.error.empty()) {
+      rows.push_back({tag + " GPU failed", 0, "", "", gpu.error});
       continue;
     }
-    PolygonizeSettings cs;
-    cs.resolution = res;
-    cs.bounds = unitCube();
-    cs.threads = 2;
-    PolygonizeResult cpuCulled, cpuDense;
-    double msCpu = animorph::bench::medianMs(reps, [&] {
-      cs.culling = true;
-      if (auto r = polygonize(merged, cs)) cpuCulled = std::move(*r);
-    });
-    const double cpuMsCpu = processCpuMs([&] {
-                              cs.culling = true;
-                              for (int k = 0; k < reps; ++k)
-                                if (auto r = polygonize(merged, cs)) cpuCulled = std::move(*r);
-                            }) / reps;
-    double msCpuDense = !withDense ? 0.0 : animorph::bench::medianMs(res >= 256 ? 1 : 3, [&] {
-      cs.culling = false;
-      if (auto r = polygonize(merged, cs)) cpuDense = std::move(*r);
-    });
-    char note[200];
-    std::snprintf(note, sizeof note, "%u tris, %u/%u blocks evaluated, load %s", gpuCulled.triangles,
-                  gpuCulled.blocksActive, gpuCulled.blocksTotal, loadAverage().c_str());
-    rows.push_back({tag + " GPU culled", msGpu, "ms", target, note});
-    std::snprintf(note, sizeof note, "medians: upload %.2f, coarse %.2f, compact %.2f, field+cells %.2f, scan %.2f, emit %.2f ms",
-                  gpuCulled.passMs[0], gpuCulled.passMs[1], gpuCulled.passMs[2], gpuCulled.passMs[3],
-                  gpuCulled.passMs[4], gpuCulled.passMs[5]);
-    double gpuSum = 0.0;
-    for (double x : gpuCulled.passMs) gpuSum += x;
-    rows.push_back({tag + " GPU culled, GPU time", gpuSum, "ms", "", note});
-    rows.push_back({tag + " GPU culled, CPU time", cpuMsGpu, "ms", "", "mean per run, all threads (lavapipe runs on the CPU): less load-dependent"});
-    if (withDense) {
-    std::snprintf(note, sizeof note, "%u tris; passes %.2f %.2f %.2f %.2f %.2f %.2f ms", gpuDense.triangles,
-                  gpuDense.passMs[0], gpuDense.passMs[1], gpuDense.passMs[2], gpuDense.passMs[3], gpuDense.passMs[4],
-                  gpuDense.passMs[5]);
-    rows.push_back({tag + " GPU dense", msGpuDense, "ms", "", note});
-    rows.push_back({tag + " GPU dense/culled", msGpuDense / msGpu, "ratio", "", ""});
-    }
-    rows.push_back({tag + " GPU triangles/s", gpuCulled.triangles / (msGpu * 1e-3), "tris/s", "", ""});
-    std::snprintf(note, sizeof note, "%zu tris, %zu/%zu blocks evaluated, %zu cells, %zu points, %zu pairs, 2 threads",
-                  cpuCulled.mesh.triangleCount(), cpuCulled.stats.blocksEvaluated, cpuCulled.stats.blocksTotal,
-                  cpuCulled.stats.cellsVisited, cpuCulled.stats.pointsEvaluated, cpuCulled.stats.primitiveEvaluations);
-    rows.push_back({tag + " CPU culled", msCpu, "ms", "", note});
-    rows.push_back({tag + " CPU culled, CPU time", cpuMsCpu, "ms", "", "mean per run, both threads"});
-    if (withDense) {
-      rows.push_back({tag + " CPU dense", msCpuDense, "ms", "", std::to_string(cpuDense.mesh.triangleCount()) + " tris"});
-      rows.push_back({tag + " CPU dense/culled", msCpuDense / msCpu, "ratio", "", ""});
-    }
-    rows.push_back({tag + " CPU triangles/s", cpuCulled.mesh.triangleCount() / (msCpu * 1e-3), "tris/s", "", ""});
-    rows.push_back({tag + " GPU / CPU time", msGpu / msCpu, "ratio", "", "culled, same field and grid"});
-    double triDiff = std::abs(double(gpuCulled.triangles) - double(cpuCulled.mesh.triangleCount())) /
-                     std::max<double>(1.0, double(cpuCulled.mesh.triangleCount()));
-    rows.push_back({tag + " GPU vs CPU triangle difference", 100.0 * triDiff, "%", "<= 0.5 %", ""});
+    const CpuTimes cpu = timeCpu(merged, res, reps, withDense);
+    sizeRows(tag, target, gpu, cpu, withDense, rows);
   }
-  // The demo BlobTree creature (frames, so affine maps: the point path, not line groups), at the
-  // editor's scrubbing resolution: GPU and CPU side by side.
-  {
-    FieldProgram creature = compileFieldProgram(makeBlobCreature(), 0.5);
-    const int res = 96, reps = 5;
-    g::GpuPolygonizeSettings gs;
-    gs.resolution = res;
-    g::GpuPolygonizeStats st;
-    std::string error;
-    double msGpu = animorph::bench::medianMs(reps, [&] {
-      auto r = (*poly)->polygonize(g::GpuField::single(creature), gs);
-      if (r) st = *r;
-      else error = r.error();
-    });
-    PolygonizeSettings cs;
-    cs.resolution = res;
-    cs.threads = 2;
-    PolygonizeResult cpu;
-    double msCpu = animorph::bench::medianMs(reps, [&] {
-      if (auto r = polygonize(creature, cs)) cpu = std::move(*r);
-    });
-    const std::string tag = "blob creature 96^3";
-    if (!error.empty()) {
-      rows.push_back({tag + " GPU failed", 0, "", "", error});
-    } else {
-      char note[200];
-      std::snprintf(note, sizeof note, "%u tris, %u/%u blocks evaluated; cells %.2f, emit %.2f ms", st.triangles,
-                    st.blocksActive, st.blocksTotal, st.passMs[3], st.passMs[5]);
-      rows.push_back({tag + " GPU culled", msGpu, "ms", "", note});
-      rows.push_back({tag + " CPU culled", msCpu, "ms", "", std::to_string(cpu.mesh.triangleCount()) + " tris, 2 threads"});
-      rows.push_back({tag + " GPU / CPU time", msGpu / msCpu, "ratio", "", "the BlobTree preview's backends"});
-    }
-  }
+  blobCreatureRows(**poly, rows);
   return rows;
 }
 

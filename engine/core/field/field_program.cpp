@@ -459,6 +459,50 @@ void FieldProgram::reset() {
   identity_ = 0;
 }
 
+namespace {
+
+// Where the field of a combining op over n operands (whose supports are boxes[0..n)) can reach the
+// threshold: the intersection for Min and RIntersection, the first operand's for Difference, else
+// the union (infinite when one is).
+Bounds combinedBox(OpCode code, const Bounds* boxes, uint32_t n) {
+  Bounds box;
+  switch (code) {
+    case OpCode::Min:
+    case OpCode::RIntersection:
+      box = boxes[0];
+      for (uint32_t k = 1; k < n; ++k) {
+        const Bounds& o = boxes[k];
+        if (isInfinite(box)) box = o;
+        else if (!isInfinite(o)) box = intersect(box, o);
+      }
+      break;
+    case OpCode::Difference: box = boxes[0]; break;
+    default:
+      for (uint32_t k = 0; k < n; ++k) {
+        if (isInfinite(boxes[k])) box = infiniteBounds();
+        if (!isInfinite(box)) box.add(boxes[k]);
+      }
+  }
+  return box;
+}
+
+// outermostEnd[i]: the last op of the outermost subtree beginning at op i; primsBefore[i]: the
+// primitives in ops[0..i) (global id of the first at or after op i).
+void indexSubtrees(const std::vector<FieldOp>& ops, std::vector<uint32_t>& outermostEnd,
+                   std::vector<uint32_t>& primsBefore) {
+  outermostEnd.assign(ops.size(), 0);
+  for (uint32_t i = 0; i < ops.size(); ++i) outermostEnd[i] = i;
+  for (uint32_t j = 0; j < ops.size(); ++j) {
+    uint32_t b = ops[j].subtreeBegin;
+    outermostEnd[b] = std::max(outermostEnd[b], j);
+  }
+  primsBefore.assign(ops.size() + 1, 0);
+  for (uint32_t i = 0; i < ops.size(); ++i)
+    primsBefore[i + 1] = primsBefore[i] + (ops[i].code == OpCode::Prims ? ops[i].count : 0);
+}
+
+}  // namespace
+
 void FieldProgram::finish() {
   static std::atomic<uint64_t> nextIdentity{1};
   identity_ = nextIdentity.fetch_add(1);
@@ -525,25 +569,7 @@ void FieldProgram::finish() {
         size_t base = vals.size() - n;
         float v = applyScalar(op.code, vals.data() + base, n, params.data() + op.param, T);
         uint32_t b0 = begins[base];
-        Bounds box;
-        switch (op.code) {
-          case OpCode::Min:
-          case OpCode::RIntersection:
-            box = boxes[base];
-            for (uint32_t k = 1; k < n; ++k) {
-              const Bounds& o = boxes[base + k];
-              if (isInfinite(box)) box = o;
-              else if (!isInfinite(o)) box = intersect(box, o);
-            }
-            break;
-          case OpCode::Difference: box = boxes[base]; break;
-          default:
-            for (uint32_t k = 0; k < n; ++k) {
-              if (isInfinite(boxes[base + k])) box = infiniteBounds();
-              if (!isInfinite(box)) box.add(boxes[base + k]);
-            }
-        }
-        if (v >= T) box = infiniteBounds();
+        Bounds box = v >= T ? infiniteBounds() : combinedBox(op.code, boxes.data() + base, n);
         vals.resize(base + 1);
         begins.resize(base + 1);
         boxes.resize(base + 1);
@@ -556,15 +582,7 @@ void FieldProgram::finish() {
     }
     maxStack_ = std::max(maxStack_, int(vals.size()));
   }
-  outermostEnd_.assign(ops.size(), 0);
-  for (uint32_t i = 0; i < ops.size(); ++i) outermostEnd_[i] = i;
-  for (uint32_t j = 0; j < ops.size(); ++j) {
-    uint32_t b = ops[j].subtreeBegin;
-    outermostEnd_[b] = std::max(outermostEnd_[b], j);
-  }
-  primsBefore_.assign(ops.size() + 1, 0);
-  for (uint32_t i = 0; i < ops.size(); ++i)
-    primsBefore_[i + 1] = primsBefore_[i] + (ops[i].code == OpCode::Prims ? ops[i].count : 0);
+  indexSubtrees(ops, outermostEnd_, primsBefore_);
   if (vals.size() != 1) {
     // Empty or malformed program: evaluates to "outside" everywhere.
     ops.clear();

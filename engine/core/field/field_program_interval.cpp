@@ -117,13 +117,144 @@ bool triangleUnionInterval(const FieldProgram& P, const uint32_t* idx, uint32_t 
   return true;
 }
 
+// The interval of one Prims op's primitives over the ball (c, rho), combined by sum or max.
+inline Interval primsInterval(const FieldProgram& P, const ActiveProgram& prog, const FieldOp& op, glm::vec3 c,
+                              float rho) {
+  Interval acc{0.0f, 0.0f};
+  if (op.primClass == PrimClass::Convolution) {
+    thread_local std::vector<float> los, his;
+    los.resize(op.count);
+    his.resize(op.count);
+    convolutionIntervalKernel(P.convolution, prog.indices.data() + op.first, int(op.count), c, rho, los.data(),
+                              his.data());
+    for (uint32_t k = 0; k < op.count; ++k) {
+      acc.lo += los[k];
+      acc.hi += his[k];
+    }
+    return acc;
+  }
+  if (op.primClass == PrimClass::Skeletal && op.combineMax &&
+      triangleUnionInterval(P, prog.indices.data() + op.first, op.count, c, rho, acc))
+    return acc;
+  const float T = P.threshold;
+  for (uint32_t k = 0; k < op.count; ++k) {
+    uint32_t i = prog.indices[op.first + k];
+    Interval v{0.0f, 0.0f};
+    if (op.primClass == PrimClass::Skeletal) {
+      const SkeletalPrimitive& p = P.skeletal[i];
+      // A point (most primitives: meta-primitives' instances) without the call and the copy.
+      glm::vec3 closest = p.skeleton.p0;
+      if (p.skeleton.kind != SkeletonKind::Point) {
+        Skeleton s = p.skeleton;
+        if (s.kind == SkeletonKind::Curve) s.curve = P.curvePoints.data() + p.curveFirst;
+        closest = closestOnSkeleton(s, c);
+      }
+      float d = glm::length(c - closest);
+      float g0 = potentialAt(std::max(0.0f, d - rho), p.radius, p.intensity, p.stiffness);
+      float g1 = potentialAt(d + rho, p.radius, p.intensity, p.stiffness);
+      v = {std::min(g0, g1), std::max(g0, g1)};
+    } else {
+      const CapsulePrimitive& cp = P.capsules[i];
+      float d = distToSegment(c, cp.a, cp.b);
+      auto pot = [&](float dd) { return cp.radius > 0.0f ? T * std::max(0.0f, 2.0f - dd / cp.radius) : 0.0f; };
+      v = {pot(d + rho), pot(std::max(0.0f, d - rho))};
+    }
+    if (op.combineMax) acc = {std::max(acc.lo, v.lo), std::max(acc.hi, v.hi)};
+    else acc = {acc.lo + v.lo, acc.hi + v.hi};
+  }
+  return acc;
+}
+
+// A BeginMap op: the ball (c, rho) into the map's local space (the radius grown by the map's
+// stretch bound over the ball; an affine map's bound is cached per program and map).
+inline void enterMapBall(const FieldProgram& P, const FieldOp& op, glm::vec3& c, float& rho) {
+  thread_local std::vector<float> affineStretch;  // per map of the program below (-1: not yet)
+  thread_local uint64_t affineStretchFor = 0;
+  const SpaceMap& m = P.maps[op.first];
+  float stretch;
+  if (m.kind == SpaceMapKind::Affine && P.identity() != 0) {
+    // An affine map's bound does not depend on the ball: computed once per program and map.
+    if (affineStretchFor != P.identity() || affineStretch.size() != P.maps.size()) {
+      affineStretch.assign(P.maps.size(), -1.0f);
+      affineStretchFor = P.identity();
+    }
+    float& cached = affineStretch[op.first];
+    if (cached < 0.0f) cached = m.localStretchBound(c, rho);
+    stretch = cached;
+  } else {
+    stretch = m.localStretchBound(c, rho);
+  }
+  c = m.kind == SpaceMapKind::Affine ? m.linear * (c - m.origin) : m.toLocal(c);  // toLocal's own affine case
+  rho = std::isinf(stretch) ? INFINITY : rho * stretch * 1.0001f;
+}
+
+// A combining op (Sum, Max, Min, blends, Difference, Remap) over the intervals of its n operands
+// st[base..base+n): the interval of its result (NaN ends widened to infinity).
+inline Interval combineIntervals(const FieldOp& op, const float* prm, float T, const std::vector<Interval>& st,
+                                 size_t base) {
+  const uint32_t n = op.count;
+  Interval r;
+  switch (op.code) {
+    case OpCode::Sum:
+      r = {0.0f, 0.0f};
+      for (uint32_t k = 0; k < n; ++k) r = {r.lo + st[base + k].lo, r.hi + st[base + k].hi};
+      break;
+    case OpCode::Max:
+      r = st[base];
+      for (uint32_t k = 1; k < n; ++k) r = {std::max(r.lo, st[base + k].lo), std::max(r.hi, st[base + k].hi)};
+      break;
+    case OpCode::Min:
+      r = st[base];
+      for (uint32_t k = 1; k < n; ++k) r = {std::min(r.lo, st[base + k].lo), std::min(r.hi, st[base + k].hi)};
+      break;
+    case OpCode::HyperBlend: {
+      float los[64], his[64], d[64];
+      uint32_t m = std::min<uint32_t>(n, 64);
+      for (uint32_t k = 0; k < m; ++k) {
+        los[k] = std::max(0.0f, st[base + k].lo);
+        his[k] = std::max(0.0f, st[base + k].hi);
+      }
+      r = {hyperBlend(los, int(m), prm[0], d), hyperBlend(his, int(m), prm[0], d)};
+      break;
+    }
+    case OpCode::Difference:
+      r = {std::min(st[base].lo, 2.0f * T - st[base + 1].hi), std::min(st[base].hi, 2.0f * T - st[base + 1].lo)};
+      break;
+    case OpCode::RUnion:
+    case OpCode::RIntersection: {
+      float d1, d2;
+      auto f = [&](float a, float b) {
+        return op.code == OpCode::RUnion ? rUnion(a - T, b - T, d1, d2) : rIntersection(a - T, b - T, d1, d2);
+      };
+      r = {T + f(st[base].lo, st[base + 1].lo), T + f(st[base].hi, st[base + 1].hi)};
+      break;
+    }
+    case OpCode::BoundedBlend: {
+      float d1, d2;
+      float a0 = prm[0];
+      r = {T + rUnion(st[base].lo - T, st[base + 1].lo - T, d1, d2) + std::min(0.0f, a0),
+           T + rUnion(st[base].hi - T, st[base + 1].hi - T, d1, d2) + std::max(0.0f, a0)};
+      break;
+    }
+    case OpCode::Remap: {  // monotone in p; a negative scale swaps the ends
+      float d;
+      const float a = remapPotential(st[base].lo, prm[0], prm[1], T, d);
+      const float b = remapPotential(st[base].hi, prm[0], prm[1], T, d);
+      r = {std::min(a, b), std::max(a, b)};
+      break;
+    }
+    default: r = {-INFINITY, INFINITY};
+  }
+  if (std::isnan(r.lo)) r.lo = -INFINITY;
+  if (std::isnan(r.hi)) r.hi = INFINITY;
+  return r;
+}
+
 }  // namespace
 
 Interval FieldProgram::interval(const ActiveProgram& prog, const glm::vec3& centre, float radius) const {
   thread_local std::vector<Interval> st;
   thread_local std::vector<glm::vec4> balls;
-  thread_local std::vector<float> affineStretch;  // per map of the program below (-1: not yet)
-  thread_local uint64_t affineStretchFor = 0;
   st.clear();
   balls.clear();
   glm::vec3 c = centre;
@@ -131,75 +262,12 @@ Interval FieldProgram::interval(const ActiveProgram& prog, const glm::vec3& cent
   const float T = threshold;
   for (const FieldOp& op : prog.ops) {
     switch (op.code) {
-      case OpCode::Prims: {
-        Interval acc{0.0f, 0.0f};
-        if (op.primClass == PrimClass::Convolution) {
-          thread_local std::vector<float> los, his;
-          los.resize(op.count);
-          his.resize(op.count);
-          convolutionIntervalKernel(convolution, prog.indices.data() + op.first, int(op.count), c, rho, los.data(),
-                                    his.data());
-          for (uint32_t k = 0; k < op.count; ++k) {
-            acc.lo += los[k];
-            acc.hi += his[k];
-          }
-          st.push_back(acc);
-          break;
-        }
-        if (op.primClass == PrimClass::Skeletal && op.combineMax &&
-            triangleUnionInterval(*this, prog.indices.data() + op.first, op.count, c, rho, acc)) {
-          st.push_back(acc);
-          break;
-        }
-        for (uint32_t k = 0; k < op.count; ++k) {
-          uint32_t i = prog.indices[op.first + k];
-          Interval v{0.0f, 0.0f};
-          if (op.primClass == PrimClass::Skeletal) {
-            const SkeletalPrimitive& p = skeletal[i];
-            // A point (most primitives: meta-primitives' instances) without the call and the copy.
-            glm::vec3 closest = p.skeleton.p0;
-            if (p.skeleton.kind != SkeletonKind::Point) {
-              Skeleton s = p.skeleton;
-              if (s.kind == SkeletonKind::Curve) s.curve = curvePoints.data() + p.curveFirst;
-              closest = closestOnSkeleton(s, c);
-            }
-            float d = glm::length(c - closest);
-            float g0 = potentialAt(std::max(0.0f, d - rho), p.radius, p.intensity, p.stiffness);
-            float g1 = potentialAt(d + rho, p.radius, p.intensity, p.stiffness);
-            v = {std::min(g0, g1), std::max(g0, g1)};
-          } else {
-            const CapsulePrimitive& cp = capsules[i];
-            float d = distToSegment(c, cp.a, cp.b);
-            auto pot = [&](float dd) { return cp.radius > 0.0f ? T * std::max(0.0f, 2.0f - dd / cp.radius) : 0.0f; };
-            v = {pot(d + rho), pot(std::max(0.0f, d - rho))};
-          }
-          if (op.combineMax) acc = {std::max(acc.lo, v.lo), std::max(acc.hi, v.hi)};
-          else acc = {acc.lo + v.lo, acc.hi + v.hi};
-        }
-        st.push_back(acc);
-        break;
-      }
+      case OpCode::Prims: st.push_back(primsInterval(*this, prog, op, c, rho)); break;
       case OpCode::Const: st.push_back({op.emptyValue, op.emptyValue}); break;
-      case OpCode::BeginMap: {
+      case OpCode::BeginMap:
         balls.push_back(glm::vec4(c, rho));
-        const SpaceMap& m = maps[op.first];
-        float stretch;
-        if (m.kind == SpaceMapKind::Affine && identity_ != 0) {
-          // An affine map's bound does not depend on the ball: computed once per program and map.
-          if (affineStretchFor != identity_ || affineStretch.size() != maps.size()) {
-            affineStretch.assign(maps.size(), -1.0f);
-            affineStretchFor = identity_;
-          }
-          float& cached = affineStretch[op.first];
-          if (cached < 0.0f) cached = m.localStretchBound(c, rho);
-          stretch = cached;
-        } else {
-          stretch = m.localStretchBound(c, rho);
-        }
-        c = m.kind == SpaceMapKind::Affine ? m.linear * (c - m.origin) : m.toLocal(c);  // toLocal's own affine case
-        rho = std::isinf(stretch) ? INFINITY : rho * stretch * 1.0001f;
+        enterMapBall(*this, op, c, rho);
         break;
-      }
       case OpCode::EndMap: {
         c = glm::vec3(balls.back());
         rho = balls.back().w;
@@ -207,63 +275,8 @@ Interval FieldProgram::interval(const ActiveProgram& prog, const glm::vec3& cent
         break;
       }
       default: {
-        uint32_t n = op.count;
-        size_t base = st.size() - n;
-        const float* prm = params.data() + op.param;
-        Interval r;
-        switch (op.code) {
-          case OpCode::Sum:
-            r = {0.0f, 0.0f};
-            for (uint32_t k = 0; k < n; ++k) r = {r.lo + st[base + k].lo, r.hi + st[base + k].hi};
-            break;
-          case OpCode::Max:
-            r = st[base];
-            for (uint32_t k = 1; k < n; ++k) r = {std::max(r.lo, st[base + k].lo), std::max(r.hi, st[base + k].hi)};
-            break;
-          case OpCode::Min:
-            r = st[base];
-            for (uint32_t k = 1; k < n; ++k) r = {std::min(r.lo, st[base + k].lo), std::min(r.hi, st[base + k].hi)};
-            break;
-          case OpCode::HyperBlend: {
-            float los[64], his[64], d[64];
-            uint32_t m = std::min<uint32_t>(n, 64);
-            for (uint32_t k = 0; k < m; ++k) {
-              los[k] = std::max(0.0f, st[base + k].lo);
-              his[k] = std::max(0.0f, st[base + k].hi);
-            }
-            r = {hyperBlend(los, int(m), prm[0], d), hyperBlend(his, int(m), prm[0], d)};
-            break;
-          }
-          case OpCode::Difference:
-            r = {std::min(st[base].lo, 2.0f * T - st[base + 1].hi), std::min(st[base].hi, 2.0f * T - st[base + 1].lo)};
-            break;
-          case OpCode::RUnion:
-          case OpCode::RIntersection: {
-            float d1, d2;
-            auto f = [&](float a, float b) {
-              return op.code == OpCode::RUnion ? rUnion(a - T, b - T, d1, d2) : rIntersection(a - T, b - T, d1, d2);
-            };
-            r = {T + f(st[base].lo, st[base + 1].lo), T + f(st[base].hi, st[base + 1].hi)};
-            break;
-          }
-          case OpCode::BoundedBlend: {
-            float d1, d2;
-            float a0 = prm[0];
-            r = {T + rUnion(st[base].lo - T, st[base + 1].lo - T, d1, d2) + std::min(0.0f, a0),
-                 T + rUnion(st[base].hi - T, st[base + 1].hi - T, d1, d2) + std::max(0.0f, a0)};
-            break;
-          }
-          case OpCode::Remap: {  // monotone in p; a negative scale swaps the ends
-            float d;
-            const float a = remapPotential(st[base].lo, prm[0], prm[1], T, d);
-            const float b = remapPotential(st[base].hi, prm[0], prm[1], T, d);
-            r = {std::min(a, b), std::max(a, b)};
-            break;
-          }
-          default: r = {-INFINITY, INFINITY};
-        }
-        if (std::isnan(r.lo)) r.lo = -INFINITY;
-        if (std::isnan(r.hi)) r.hi = INFINITY;
+        const size_t base = st.size() - op.count;
+        const Interval r = combineIntervals(op, params.data() + op.param, T, st, base);
         st.resize(base + 1);
         st[base] = r;
       }

@@ -46,16 +46,9 @@ Result<json> weightSampler(const Character& c, const Channel& ch, const std::str
   return json{{"input", in}, {"output", out}, {"interpolation", interpolationName(ch.interpolation)}};
 }
 
-}  // namespace
-
-Result<std::string> exportGlbBytes(const Character& c) {
+// The nodes (checked against the meshes and skins); skinOfMesh[m]: the skin of a node drawing mesh m.
+Result<json> nodesJson(const Character& c, std::vector<int>& skinOfMesh) {
   const int nodeCount = static_cast<int>(c.nodes.size());
-  GlbWriter w;
-  json root;
-  root["asset"] = {{"version", "2.0"}, {"generator", "Animorph"}};
-
-  // Meshes drawn by a skinned node carry joints and weights.
-  std::vector<int> skinOfMesh(c.meshes.size(), -1);
   json nodes = json::array();
   for (int i = 0; i < nodeCount; ++i) {
     const Node& n = c.nodes[i];
@@ -78,76 +71,88 @@ Result<std::string> exportGlbBytes(const Character& c) {
     }
     nodes.push_back(jn);
   }
-  root["nodes"] = nodes;
-  root["scene"] = 0;
-  root["scenes"] = json::array({{{"nodes", c.roots}}});
+  return nodes;
+}
 
-  json meshes = json::array();
-  for (size_t mi = 0; mi < c.meshes.size(); ++mi) {
-    const Mesh& m = c.meshes[mi];
-    const std::string label = "mesh " + std::to_string(mi) + " '" + m.name + "'";
-    const size_t nv = m.vertexCount();
-    if (nv == 0) return Error{label + ": has no vertices (glTF accessors cannot be empty)"};
-    if (m.normals.size() != nv) return Error{label + ": " + std::to_string(m.normals.size()) + " normals for " + std::to_string(nv) + " vertices"};
-    for (uint32_t i : m.indices)
-      if (i >= nv) return Error{label + ": index " + std::to_string(i) + " out of range (" + std::to_string(nv) + " vertices)"};
-    json attrs;
-    attrs["POSITION"] = w.floats(&m.positions.data()->x, nv, 3, "VEC3", kArrayBuffer, true);
-    attrs["NORMAL"] = w.normals(m.normals);
-    if (!m.colors.empty()) {
-      if (m.colors.size() != nv) return Error{label + ": " + std::to_string(m.colors.size()) + " colours for " + std::to_string(nv) + " vertices"};
-      attrs["COLOR_0"] = w.floats(&m.colors.data()->x, nv, 4, "VEC4", kArrayBuffer, false);
-    }
-    const int skin = skinOfMesh[mi];
-    if (skin >= 0 && nv > 0) {
-      const size_t jointCount = c.skins[skin].joints.size();
-      if (m.joints0.size() != nv || m.weights0.size() != nv) return Error{label + ": joints0/weights0 do not match the vertex count"};
-      const bool second = !m.joints1.empty();
-      if (second && (m.joints1.size() != nv || m.weights1.size() != nv))
-        return Error{label + ": joints1/weights1 do not match the vertex count"};
-      for (size_t v = 0; v < nv; ++v)
-        for (int k = 0; k < 4; ++k)
-          if ((m.weights0[v][k] > 0.0f && m.joints0[v][k] >= jointCount) ||
-              (second && m.weights1[v][k] > 0.0f && m.joints1[v][k] >= jointCount))
-            return Error{label + ": vertex " + std::to_string(v) + " uses a joint outside skin " + std::to_string(skin)};
-      // Slots with zero weight point at joint 0 (validators flag anything else).
-      auto clean = [](std::vector<glm::uvec4> j, const std::vector<glm::vec4>& wts) {
-        for (size_t v = 0; v < j.size(); ++v)
-          for (int k = 0; k < 4; ++k)
-            if (!(wts[v][k] > 0.0f)) j[v][k] = 0;
-        return j;
-      };
-      attrs["JOINTS_0"] = w.joints(clean(m.joints0, m.weights0));
-      attrs["WEIGHTS_0"] = w.floats(&m.weights0.data()->x, nv, 4, "VEC4", kArrayBuffer, false);
-      if (second) {
-        attrs["JOINTS_1"] = w.joints(clean(m.joints1, m.weights1));
-        attrs["WEIGHTS_1"] = w.floats(&m.weights1.data()->x, nv, 4, "VEC4", kArrayBuffer, false);
-      }
-    }
-    json prim = {{"attributes", attrs}, {"mode", 4}};
-    if (!m.indices.empty()) prim["indices"] = w.indices(m.indices, nv);
-    json jm = {{"name", m.name}};
-    if (!m.morphTargets.empty()) {
-      if (std::string bad = checkMorphTargets(m); !bad.empty()) return Error{label + ": " + bad};
-      json targets = json::array(), names = json::array();
-      for (const MorphTarget& mt : m.morphTargets) {
-        json t;
-        t["POSITION"] = w.floats(&mt.positionDeltas.data()->x, nv, 3, "VEC3", kArrayBuffer, true);
-        if (!mt.normalDeltas.empty()) t["NORMAL"] = w.floats(&mt.normalDeltas.data()->x, nv, 3, "VEC3", kArrayBuffer, false);
-        targets.push_back(t);
-        names.push_back(mt.name);
-      }
-      prim["targets"] = targets;
-      std::vector<float> weights(m.morphTargets.size(), 0.0f);
-      for (size_t t = 0; t < weights.size() && t < m.defaultMorphWeights.size(); ++t) weights[t] = m.defaultMorphWeights[t];
-      jm["weights"] = weights;
-      jm["extras"] = {{"targetNames", names}};  // the names Blender and three.js read
-    }
-    jm["primitives"] = json::array({prim});
-    meshes.push_back(jm);
+// JOINTS_n / WEIGHTS_n of a mesh drawn by a node with skin (checked against its joints).
+Status addSkinAttributes(const Character& c, const Mesh& m, int skin, const std::string& label, GlbWriter& w,
+                         json& attrs) {
+  const size_t nv = m.vertexCount();
+  const size_t jointCount = c.skins[skin].joints.size();
+  if (m.joints0.size() != nv || m.weights0.size() != nv) return Error{label + ": joints0/weights0 do not match the vertex count"};
+  const bool second = !m.joints1.empty();
+  if (second && (m.joints1.size() != nv || m.weights1.size() != nv))
+    return Error{label + ": joints1/weights1 do not match the vertex count"};
+  for (size_t v = 0; v < nv; ++v)
+    for (int k = 0; k < 4; ++k)
+      if ((m.weights0[v][k] > 0.0f && m.joints0[v][k] >= jointCount) ||
+          (second && m.weights1[v][k] > 0.0f && m.joints1[v][k] >= jointCount))
+        return Error{label + ": vertex " + std::to_string(v) + " uses a joint outside skin " + std::to_string(skin)};
+  // Slots with zero weight point at joint 0 (validators flag anything else).
+  auto clean = [](std::vector<glm::uvec4> j, const std::vector<glm::vec4>& wts) {
+    for (size_t v = 0; v < j.size(); ++v)
+      for (int k = 0; k < 4; ++k)
+        if (!(wts[v][k] > 0.0f)) j[v][k] = 0;
+    return j;
+  };
+  attrs["JOINTS_0"] = w.joints(clean(m.joints0, m.weights0));
+  attrs["WEIGHTS_0"] = w.floats(&m.weights0.data()->x, nv, 4, "VEC4", kArrayBuffer, false);
+  if (second) {
+    attrs["JOINTS_1"] = w.joints(clean(m.joints1, m.weights1));
+    attrs["WEIGHTS_1"] = w.floats(&m.weights1.data()->x, nv, 4, "VEC4", kArrayBuffer, false);
   }
-  if (!meshes.empty()) root["meshes"] = meshes;
+  return Status::success();
+}
 
+// A mesh's morph targets on its primitive, their default weights and names on the mesh.
+Status addMorphTargets(const Mesh& m, const std::string& label, GlbWriter& w, json& prim, json& jm) {
+  if (std::string bad = checkMorphTargets(m); !bad.empty()) return Error{label + ": " + bad};
+  const size_t nv = m.vertexCount();
+  json targets = json::array(), names = json::array();
+  for (const MorphTarget& mt : m.morphTargets) {
+    json t;
+    t["POSITION"] = w.floats(&mt.positionDeltas.data()->x, nv, 3, "VEC3", kArrayBuffer, true);
+    if (!mt.normalDeltas.empty()) t["NORMAL"] = w.floats(&mt.normalDeltas.data()->x, nv, 3, "VEC3", kArrayBuffer, false);
+    targets.push_back(t);
+    names.push_back(mt.name);
+  }
+  prim["targets"] = targets;
+  std::vector<float> weights(m.morphTargets.size(), 0.0f);
+  for (size_t t = 0; t < weights.size() && t < m.defaultMorphWeights.size(); ++t) weights[t] = m.defaultMorphWeights[t];
+  jm["weights"] = weights;
+  jm["extras"] = {{"targetNames", names}};  // the names Blender and three.js read
+  return Status::success();
+}
+
+// Mesh mi as one triangle primitive (skinned when skin >= 0), its arrays into w.
+Result<json> meshJson(const Character& c, size_t mi, int skin, GlbWriter& w) {
+  const Mesh& m = c.meshes[mi];
+  const std::string label = "mesh " + std::to_string(mi) + " '" + m.name + "'";
+  const size_t nv = m.vertexCount();
+  if (nv == 0) return Error{label + ": has no vertices (glTF accessors cannot be empty)"};
+  if (m.normals.size() != nv) return Error{label + ": " + std::to_string(m.normals.size()) + " normals for " + std::to_string(nv) + " vertices"};
+  for (uint32_t i : m.indices)
+    if (i >= nv) return Error{label + ": index " + std::to_string(i) + " out of range (" + std::to_string(nv) + " vertices)"};
+  json attrs;
+  attrs["POSITION"] = w.floats(&m.positions.data()->x, nv, 3, "VEC3", kArrayBuffer, true);
+  attrs["NORMAL"] = w.normals(m.normals);
+  if (!m.colors.empty()) {
+    if (m.colors.size() != nv) return Error{label + ": " + std::to_string(m.colors.size()) + " colours for " + std::to_string(nv) + " vertices"};
+    attrs["COLOR_0"] = w.floats(&m.colors.data()->x, nv, 4, "VEC4", kArrayBuffer, false);
+  }
+  if (skin >= 0 && nv > 0)
+    if (Status st = addSkinAttributes(c, m, skin, label, w, attrs); !st) return Error{st.error()};
+  json prim = {{"attributes", attrs}, {"mode", 4}};
+  if (!m.indices.empty()) prim["indices"] = w.indices(m.indices, nv);
+  json jm = {{"name", m.name}};
+  if (!m.morphTargets.empty())
+    if (Status st = addMorphTargets(m, label, w, prim, jm); !st) return Error{st.error()};
+  jm["primitives"] = json::array({prim});
+  return jm;
+}
+
+Result<json> skinsJson(const Character& c, GlbWriter& w) {
+  const int nodeCount = static_cast<int>(c.nodes.size());
   json skins = json::array();
   for (size_t si = 0; si < c.skins.size(); ++si) {
     const Skin& s = c.skins[si];
@@ -160,43 +165,74 @@ Result<std::string> exportGlbBytes(const Character& c) {
     if (s.skeletonRoot >= 0) js["skeleton"] = s.skeletonRoot;
     skins.push_back(js);
   }
-  if (!skins.empty()) root["skins"] = skins;
+  return skins;
+}
 
-  json anims = json::array();
-  for (size_t ai = 0; ai < c.clips.size(); ++ai) {
-    const AnimationClip& clip = c.clips[ai];
-    if (clip.channels.empty()) continue;  // glTF requires at least one channel
-    json channels = json::array(), samplers = json::array();
-    for (size_t k = 0; k < clip.channels.size(); ++k) {
-      const Channel& ch = clip.channels[k];
-      const std::string label = "animation '" + clip.name + "' channel " + std::to_string(k);
-      if (ch.node < 0 || ch.node >= nodeCount) return Error{label + ": target node does not exist"};
-      if (ch.timesSec.empty()) return Error{label + ": no keys"};
-      for (size_t i = 1; i < ch.timesSec.size(); ++i)
-        if (!(ch.timesSec[i] > ch.timesSec[i - 1])) return Error{label + ": key times must increase (key " + std::to_string(i) + ")"};
-      const size_t perKey = ch.interpolation == Interpolation::CubicSpline ? 3 : 1;
-      if (ch.path == ChannelPath::Weights) {
-        auto sampler = weightSampler(c, ch, label, w);
-        if (!sampler) return Error{sampler.error()};
-        samplers.push_back(*sampler);
-        channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", ch.node}, {"path", "weights"}}}});
-        continue;
-      }
-      if (ch.values.size() != perKey * ch.timesSec.size())
-        return Error{label + ": " + std::to_string(ch.values.size()) + " values for " + std::to_string(ch.timesSec.size()) + " keys"};
-      const bool rot = ch.path == ChannelPath::Rotation;
-      std::vector<float> vals;
-      vals.reserve(ch.values.size() * 4);
-      for (const auto& v : ch.values) {
-        vals.insert(vals.end(), {v.x, v.y, v.z});
-        if (rot) vals.push_back(v.w);
-      }
-      int in = w.floats(ch.timesSec.data(), ch.timesSec.size(), 1, "SCALAR", 0, true);
-      int out = w.floats(vals.data(), ch.values.size(), rot ? 4 : 3, rot ? "VEC4" : "VEC3", 0, false);
-      samplers.push_back({{"input", in}, {"output", out}, {"interpolation", interpolationName(ch.interpolation)}});
-      channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", ch.node}, {"path", pathName(ch.path)}}}});
+// A clip with at least one channel as a glTF animation (its keys checked), its arrays into w.
+Result<json> animationJson(const Character& c, const AnimationClip& clip, GlbWriter& w) {
+  const int nodeCount = static_cast<int>(c.nodes.size());
+  json channels = json::array(), samplers = json::array();
+  for (size_t k = 0; k < clip.channels.size(); ++k) {
+    const Channel& ch = clip.channels[k];
+    const std::string label = "animation '" + clip.name + "' channel " + std::to_string(k);
+    if (ch.node < 0 || ch.node >= nodeCount) return Error{label + ": target node does not exist"};
+    if (ch.timesSec.empty()) return Error{label + ": no keys"};
+    for (size_t i = 1; i < ch.timesSec.size(); ++i)
+      if (!(ch.timesSec[i] > ch.timesSec[i - 1])) return Error{label + ": key times must increase (key " + std::to_string(i) + ")"};
+    const size_t perKey = ch.interpolation == Interpolation::CubicSpline ? 3 : 1;
+    if (ch.path == ChannelPath::Weights) {
+      auto sampler = weightSampler(c, ch, label, w);
+      if (!sampler) return Error{sampler.error()};
+      samplers.push_back(*sampler);
+      channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", ch.node}, {"path", "weights"}}}});
+      continue;
     }
-    anims.push_back({{"name", clip.name}, {"channels", channels}, {"samplers", samplers}});
+    if (ch.values.size() != perKey * ch.timesSec.size())
+      return Error{label + ": " + std::to_string(ch.values.size()) + " values for " + std::to_string(ch.timesSec.size()) + " keys"};
+    const bool rot = ch.path == ChannelPath::Rotation;
+    std::vector<float> vals;
+    vals.reserve(ch.values.size() * 4);
+    for (const auto& v : ch.values) {
+      vals.insert(vals.end(), {v.x, v.y, v.z});
+      if (rot) vals.push_back(v.w);
+    }
+    int in = w.floats(ch.timesSec.data(), ch.timesSec.size(), 1, "SCALAR", 0, true);
+    int out = w.floats(vals.data(), ch.values.size(), rot ? 4 : 3, rot ? "VEC4" : "VEC3", 0, false);
+    samplers.push_back({{"input", in}, {"output", out}, {"interpolation", interpolationName(ch.interpolation)}});
+    channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", ch.node}, {"path", pathName(ch.path)}}}});
+  }
+  return json{{"name", clip.name}, {"channels", channels}, {"samplers", samplers}};
+}
+
+}  // namespace
+
+Result<std::string> exportGlbBytes(const Character& c) {
+  GlbWriter w;
+  json root;
+  root["asset"] = {{"version", "2.0"}, {"generator", "Animorph"}};
+  // Meshes drawn by a skinned node carry joints and weights.
+  std::vector<int> skinOfMesh(c.meshes.size(), -1);
+  auto nodes = nodesJson(c, skinOfMesh);
+  if (!nodes) return Error{nodes.error()};
+  root["nodes"] = *nodes;
+  root["scene"] = 0;
+  root["scenes"] = json::array({{{"nodes", c.roots}}});
+  json meshes = json::array();
+  for (size_t mi = 0; mi < c.meshes.size(); ++mi) {
+    auto jm = meshJson(c, mi, skinOfMesh[mi], w);
+    if (!jm) return Error{jm.error()};
+    meshes.push_back(*jm);
+  }
+  if (!meshes.empty()) root["meshes"] = meshes;
+  auto skins = skinsJson(c, w);
+  if (!skins) return Error{skins.error()};
+  if (!skins->empty()) root["skins"] = *skins;
+  json anims = json::array();
+  for (const AnimationClip& clip : c.clips) {
+    if (clip.channels.empty()) continue;  // glTF requires at least one channel
+    auto anim = animationJson(c, clip, w);
+    if (!anim) return Error{anim.error()};
+    anims.push_back(*anim);
   }
   if (!anims.empty()) root["animations"] = anims;
   return w.finish(std::move(root));

@@ -107,6 +107,129 @@ std::vector<uint8_t> latticeNear(const ParticleShape& shape, const Bounds& box, 
   return best;
 }
 
+// 1. The shape's volume on a coarse grid, then the lattice of spacing h with about s.count points
+// inside. Fails when nothing is inside; on cancel returns success with the lattice unset.
+Status particleLattice(const ParticleShape& shape, const ConvertToParticlesSettings& s, const Bounds& box, int cells,
+                       float& h, SampleLattice& lattice, std::vector<uint8_t>& occupied) {
+  glm::vec3 size = box.size();
+  double boxVolume = double(std::max(size.x, 1e-6f)) * std::max(size.y, 1e-6f) * std::max(size.z, 1e-6f);
+  SampleLattice coarse = gridOver(box, float(std::cbrt(boxVolume / (cells / 4))));
+  double volume = double(countSet(shape.insideOnLattice(coarse))) * std::pow(double(coarse.spacing), 3);
+  if (volume <= 0.0)
+    return Error{"convert to particles: nothing inside the shape at a " + std::to_string(coarse.dims.x) + "x" +
+                 std::to_string(coarse.dims.y) + "x" + std::to_string(coarse.dims.z) + " grid"};
+  if (s.progress) s.progress(0.1f);
+  h = float(std::cbrt(volume / s.count));
+  occupied = latticeNear(shape, box, size_t(s.count), h, lattice, s);
+  if (cancelled(s)) return Status::success();
+  if (countSet(occupied) == 0) return Error{"convert to particles: no lattice point inside the shape"};
+  return Status::success();
+}
+
+// The potential of unit-intensity points of radius R at the occupied lattice points, at every
+// point of the fine grid.
+std::vector<float> particlePotential(const SampleLattice& fine, const SampleLattice& lattice,
+                                     const std::vector<uint8_t>& occupied, float h, float R, float stiffness) {
+  std::vector<float> potential(fine.size(), 0.0f);
+  float r2 = R * R;
+  tbb::parallel_for(0, fine.dims.z, [&](int z) {
+    for (int y = 0; y < fine.dims.y; ++y)
+      for (int x = 0; x < fine.dims.x; ++x) {
+        glm::vec3 p = fine.point(x, y, z);
+        glm::vec3 lo = (p - glm::vec3(R) - lattice.origin) / h, hi = (p + glm::vec3(R) - lattice.origin) / h;
+        glm::ivec3 a = glm::max(glm::ivec3(glm::ceil(lo)), glm::ivec3(0));
+        glm::ivec3 b = glm::min(glm::ivec3(glm::floor(hi)), lattice.dims - 1);
+        float sum = 0.0f;
+        for (int k = a.z; k <= b.z; ++k)
+          for (int j = a.y; j <= b.y; ++j)
+            for (int i = a.x; i <= b.x; ++i) {
+              if (!occupied[lattice.index(i, j, k)])
+                continue;
+              glm::vec3 d = p - lattice.point(i, j, k);
+              float d2 = glm::dot(d, d);
+              if (d2 >= r2) continue;
+              float t = 1.0f - d2 / r2;
+              sum += powStiffness(t, stiffness);
+            }
+        potential[fine.index(x, y, z)] = sum;
+      }
+  });
+  return potential;
+}
+
+// The particles as a Blend of Point nodes (ids from 2), one per occupied lattice point.
+void particleTree(const SampleLattice& lattice, const std::vector<uint8_t>& occupied, size_t count, float R,
+                  float intensity, const ConvertToParticlesSettings& s, BlobTree& tree) {
+  tree.threshold = FloatTrack(s.threshold);
+  tree.root = makeBlobNode(NodeType::Blend, 1, "particles");
+  tree.root.children.reserve(count);
+  int id = 2;
+  for (int k = 0; k < lattice.dims.z; ++k)
+    for (int j = 0; j < lattice.dims.y; ++j)
+      for (int i = 0; i < lattice.dims.x; ++i) {
+        if (!occupied[lattice.index(i, j, k)])
+          continue;
+        BlobNode p = makeBlobNode(NodeType::Point, id, "p" + std::to_string(id - 2));
+        ++id;
+        p.vec3Param("center") = Vec3Track(lattice.point(i, j, k));
+        p.floatParam("radius") = FloatTrack(R);
+        p.floatParam("intensity") = FloatTrack(intensity);
+        p.floatParam("stiffness") = FloatTrack(s.stiffness);
+        tree.root.children.push_back(std::move(p));
+      }
+}
+
+// The conversion proper (in the settings' task arena): the lattice, the calibration of the points'
+// intensity on a fine grid (as many fine cells inside the particles as inside the shape), the tree
+// and the report. On cancel returns success with out unfinished.
+Status convertInArena(const ParticleShape& shape, const ConvertToParticlesSettings& s, const Bounds& box, int cells,
+                      ConvertToParticlesResult& out) {
+  auto progress = [&](float f) {
+    if (s.progress) s.progress(f);
+  };
+  float h = 0.0f;
+  SampleLattice lattice;
+  std::vector<uint8_t> occupied;
+  if (Status st = particleLattice(shape, s, box, cells, h, lattice, occupied); !st || cancelled(s)) return st;
+  const size_t count = countSet(occupied);
+  progress(0.3f);
+  if (cancelled(s)) return Status::success();
+  // 2. Calibration: potential of unit-intensity points on a fine grid around the shape.
+  float R = s.radiusFactor * h;
+  Bounds grown = box;
+  grown.add(box.min - glm::vec3(R));
+  grown.add(box.max + glm::vec3(R));
+  glm::vec3 gs = grown.size();
+  SampleLattice fine = gridOver(grown, std::min(h * 0.5f, float(std::cbrt(double(gs.x) * gs.y * gs.z / cells))));
+  std::vector<uint8_t> shapeInside = shape.insideOnLattice(fine);
+  size_t target = countSet(shapeInside);
+  if (target == 0) return Error{"convert to particles: nothing inside the shape on the calibration grid"};
+  progress(0.5f);
+  if (cancelled(s)) return Status::success();
+  std::vector<float> potential = particlePotential(fine, lattice, occupied, h, R, s.stiffness);
+  progress(0.9f);
+  // 3. The intensity at which as many fine cells are inside the particles as inside the shape.
+  std::vector<float> sorted = potential;
+  std::nth_element(sorted.begin(), sorted.begin() + long(target - 1), sorted.end(), std::greater<float>());
+  float sAt = sorted[target - 1];
+  if (!(sAt > 0.0f))
+    return Error{"convert to particles: the shape is too thin for " + std::to_string(s.count) + " particles"};
+  float intensity = s.threshold / sAt;
+  size_t particleCells = 0;
+  for (float v : potential) particleCells += intensity * v >= s.threshold ? 1 : 0;
+  double cell3 = std::pow(double(fine.spacing), 3);
+  particleTree(lattice, occupied, count, R, intensity, s, out.tree);
+  ConvertToParticlesReport& rep = out.report;
+  rep.particles = count;
+  rep.spacing = h;
+  rep.radius = R;
+  rep.intensity = intensity;
+  rep.shapeVolume = double(target) * cell3;
+  rep.particleVolume = double(particleCells) * cell3;
+  progress(1.0f);
+  return Status::success();
+}
+
 }  // namespace
 
 Result<ParticleShape> fieldParticleShape(const FieldProgram& program) {
@@ -135,114 +258,8 @@ Result<ConvertToParticlesResult> convertToParticles(const ParticleShape& shape, 
   int cells = std::max(1000, s.calibrationCells);
   tbb::task_arena arena(s.threads > 0 ? s.threads : tbb::task_arena::automatic);
   ConvertToParticlesResult out;
-  ConvertToParticlesReport& rep = out.report;
-  auto progress = [&](float f) {
-    if (s.progress) s.progress(f);
-  };
-
   Status status;
-  arena.execute([&] {
-    glm::vec3 size = box.size();
-    double boxVolume = double(std::max(size.x, 1e-6f)) * std::max(size.y, 1e-6f) * std::max(size.z, 1e-6f);
-    // 1. The shape's volume on a coarse grid, then the lattice spacing for about `count` points.
-    SampleLattice coarse = gridOver(box, float(std::cbrt(boxVolume / (cells / 4))));
-    double volume = double(countSet(shape.insideOnLattice(coarse))) * std::pow(double(coarse.spacing), 3);
-    if (volume <= 0.0) {
-      status = Error{"convert to particles: nothing inside the shape at a " + std::to_string(coarse.dims.x) + "x" +
-                     std::to_string(coarse.dims.y) + "x" + std::to_string(coarse.dims.z) + " grid"};
-      return;
-    }
-    progress(0.1f);
-    float h = float(std::cbrt(volume / s.count));
-    SampleLattice lattice;
-    std::vector<uint8_t> occupied = latticeNear(shape, box, size_t(s.count), h, lattice, s);
-    if (cancelled(s)) return;
-    if (countSet(occupied) == 0) {
-      status = Error{"convert to particles: no lattice point inside the shape"};
-      return;
-    }
-    const size_t count = countSet(occupied);
-    progress(0.3f);
-    if (cancelled(s)) return;
-    // 2. Calibration: potential of unit-intensity points on a fine grid around the shape.
-    float R = s.radiusFactor * h;
-    Bounds grown = box;
-    grown.add(box.min - glm::vec3(R));
-    grown.add(box.max + glm::vec3(R));
-    glm::vec3 gs = grown.size();
-    SampleLattice fine = gridOver(grown, std::min(h * 0.5f, float(std::cbrt(double(gs.x) * gs.y * gs.z / cells))));
-    std::vector<uint8_t> shapeInside = shape.insideOnLattice(fine);
-    size_t target = countSet(shapeInside);
-    if (target == 0) {
-      status = Error{"convert to particles: nothing inside the shape on the calibration grid"};
-      return;
-    }
-    progress(0.5f);
-    if (cancelled(s)) return;
-    std::vector<float> potential(fine.size(), 0.0f);
-    float r2 = R * R;
-    tbb::parallel_for(0, fine.dims.z, [&](int z) {
-      for (int y = 0; y < fine.dims.y; ++y)
-        for (int x = 0; x < fine.dims.x; ++x) {
-          glm::vec3 p = fine.point(x, y, z);
-          glm::vec3 lo = (p - glm::vec3(R) - lattice.origin) / h, hi = (p + glm::vec3(R) - lattice.origin) / h;
-          glm::ivec3 a = glm::max(glm::ivec3(glm::ceil(lo)), glm::ivec3(0));
-          glm::ivec3 b = glm::min(glm::ivec3(glm::floor(hi)), lattice.dims - 1);
-          float sum = 0.0f;
-          for (int k = a.z; k <= b.z; ++k)
-            for (int j = a.y; j <= b.y; ++j)
-              for (int i = a.x; i <= b.x; ++i) {
-                if (!occupied[lattice.index(i, j, k)])
-                  continue;
-                glm::vec3 d = p - lattice.point(i, j, k);
-                float d2 = glm::dot(d, d);
-                if (d2 >= r2) continue;
-                float t = 1.0f - d2 / r2;
-                sum += powStiffness(t, s.stiffness);
-              }
-          potential[fine.index(x, y, z)] = sum;
-        }
-    });
-    progress(0.9f);
-    // 3. The intensity at which as many fine cells are inside the particles as inside the shape.
-    std::vector<float> sorted = potential;
-    std::nth_element(sorted.begin(), sorted.begin() + long(target - 1), sorted.end(), std::greater<float>());
-    float sAt = sorted[target - 1];
-    if (!(sAt > 0.0f)) {
-      status = Error{"convert to particles: the shape is too thin for " + std::to_string(s.count) + " particles"};
-      return;
-    }
-    float intensity = s.threshold / sAt;
-    size_t particleCells = 0;
-    for (float v : potential) particleCells += intensity * v >= s.threshold ? 1 : 0;
-    double cell3 = std::pow(double(fine.spacing), 3);
-
-    BlobTree& tree = out.tree;
-    tree.threshold = FloatTrack(s.threshold);
-    tree.root = makeBlobNode(NodeType::Blend, 1, "particles");
-    tree.root.children.reserve(count);
-    int id = 2;
-    for (int k = 0; k < lattice.dims.z; ++k)
-      for (int j = 0; j < lattice.dims.y; ++j)
-        for (int i = 0; i < lattice.dims.x; ++i) {
-          if (!occupied[lattice.index(i, j, k)])
-            continue;
-          BlobNode p = makeBlobNode(NodeType::Point, id, "p" + std::to_string(id - 2));
-          ++id;
-          p.vec3Param("center") = Vec3Track(lattice.point(i, j, k));
-          p.floatParam("radius") = FloatTrack(R);
-          p.floatParam("intensity") = FloatTrack(intensity);
-          p.floatParam("stiffness") = FloatTrack(s.stiffness);
-          tree.root.children.push_back(std::move(p));
-        }
-    rep.particles = count;
-    rep.spacing = h;
-    rep.radius = R;
-    rep.intensity = intensity;
-    rep.shapeVolume = double(target) * cell3;
-    rep.particleVolume = double(particleCells) * cell3;
-    progress(1.0f);
-  });
+  arena.execute([&] { status = convertInArena(shape, s, box, cells, out); });
   if (!status) return Error{status.error()};
   if (cancelled(s)) {
     out.tree = BlobTree{};

@@ -48,6 +48,20 @@ struct Candidate {
   float radius = 0.0f;
 };
 
+// Each vertex belongs to its closest segment (its distance and itself added to it).
+void assignToClosestSegment(const std::vector<glm::vec3>& pts, std::vector<Candidate>& mine) {
+  for (const auto& p : pts) {
+    size_t best = 0;
+    float bd = INFINITY;
+    for (size_t k = 0; k < mine.size(); ++k) {
+      const float d = glm::length(p - closestOnSegment(p, mine[k].a, mine[k].b));
+      if (d < bd) { bd = d; best = k; }
+    }
+    mine[best].dist.push_back(bd);
+    mine[best].pts.push_back(p);
+  }
+}
+
 // A bone whose vertices spread much wider one way than the other across it (a
 // plate, a fin, a disc) gets several parallel segments spanning the wide
 // direction instead of one round tube: one tube cannot fit a flat shape.
@@ -92,22 +106,296 @@ void splitFlat(Candidate& cd, float minLen, std::vector<Candidate>& out) {
     c.shrinkB = cd.shrinkB;
     parts.push_back(std::move(c));
   }
-  for (const auto& p : cd.pts) {
-    size_t best = 0;
-    float bd = INFINITY;
-    for (size_t k = 0; k < parts.size(); ++k) {
-      const float d = glm::length(p - closestOnSegment(p, parts[k].a, parts[k].b));
-      if (d < bd) { bd = d; best = k; }
-    }
-    parts[best].dist.push_back(bd);
-    parts[best].pts.push_back(p);
-  }
+  assignToClosestSegment(cd.pts, parts);
   for (auto& c : parts)
     if (!c.dist.empty()) out.push_back(std::move(c));
 }
 
 const AnimationClip* pickClip(const Character& c, int clip) {
   return clip >= 0 && clip < static_cast<int>(c.clips.size()) ? &c.clips[size_t(clip)] : nullptr;
+}
+
+// What the steps of one fit share: the character in its fitting pose, the rig, and which joints
+// carry segments.
+struct FitContext {
+  const Character& c;
+  const FitSettings& settings;
+  const CharacterPose& pose;
+  float diag = 0.0f;    // the posed mesh's bounding-box diagonal
+  float minLen = 0.0f;  // segments shorter than this are points
+  std::vector<char> rig{};                          // rigNodes(c)
+  std::vector<std::vector<glm::vec3>> dominated{};  // each node's vertices (its dominant ones)
+  std::vector<char> active{};                       // joints that carry segments
+  glm::vec3 jointPos(int n) const { return glm::vec3(pose.globals[size_t(n)][3]); }
+  int rigParent(int n) const {
+    int p = c.nodes[size_t(n)].parent;
+    while (p >= 0 && !rig[size_t(p)]) p = c.nodes[size_t(p)].parent;
+    return p;
+  }
+};
+
+// Joints that carry segments: rig joints with vertices of their own. Counts the others.
+void markActiveJoints(FitContext& x, FitReport& report) {
+  x.active.assign(x.c.nodes.size(), 0);
+  for (size_t j = 0; j < x.c.nodes.size(); ++j) {
+    x.active[j] = x.rig[j] && !x.dominated[j].empty();
+    if (x.rig[j] && x.dominated[j].empty()) ++report.bonesOmitted;
+  }
+}
+
+// True when node n or a node below it is active.
+bool hasActiveBelow(const FitContext& x, int n) {
+  std::vector<int> st{n};
+  while (!st.empty()) {
+    const int k = st.back();
+    st.pop_back();
+    if (x.active[size_t(k)]) return true;
+    for (int ch : x.c.nodes[size_t(k)].children) st.push_back(ch);
+  }
+  return false;
+}
+
+// Where a bone's segments go: its child joints, or (bridging) its nearest
+// active descendants through joints without vertices. `ends` are inactive
+// rig children with no active descendant (end bones): a leaf direction only.
+void targetsOf(const FitContext& x, int j, std::vector<int>& to, std::vector<int>& ends) {
+  const Character& c = x.c;
+  to.clear();
+  ends.clear();
+  std::vector<int> stack(c.nodes[size_t(j)].children.rbegin(), c.nodes[size_t(j)].children.rend());
+  while (!stack.empty()) {
+    const int n = stack.back();
+    stack.pop_back();
+    if (!x.settings.bridgeHelpers) {
+      if (x.rig[size_t(n)]) to.push_back(n);
+      continue;
+    }
+    if (x.active[size_t(n)]) {
+      to.push_back(n);
+      continue;
+    }
+    for (auto it = c.nodes[size_t(n)].children.rbegin(); it != c.nodes[size_t(n)].children.rend(); ++it)
+      stack.push_back(*it);
+    if (x.rig[size_t(n)] && c.nodes[size_t(n)].parent == j) ends.push_back(n);
+  }
+  // End bones only count where no active joint lies below them.
+  ends.erase(std::remove_if(ends.begin(), ends.end(), [&](int n) { return hasActiveBelow(x, n); }), ends.end());
+}
+
+// The number of vertices each node's sub-tree dominates.
+std::vector<size_t> subtreeVertexCounts(const FitContext& x) {
+  const Character& c = x.c;
+  std::vector<size_t> subtreeVerts(c.nodes.size(), 0);
+  for (size_t j = c.nodes.size(); j-- > 0;) {
+    // Children have larger indices in most files, but do not rely on it.
+    std::vector<int> st{int(j)};
+    size_t sum = 0;
+    while (!st.empty()) {
+      const int k = st.back();
+      st.pop_back();
+      sum += x.dominated[size_t(k)].size();
+      for (int ch : c.nodes[size_t(k)].children) st.push_back(ch);
+    }
+    subtreeVerts[j] = sum;
+  }
+  return subtreeVerts;
+}
+
+// A joint is inside its owner's body when it lies within the median distance
+// of the owner's vertices from the owner's joint, or within the box of those
+// vertices shrunk by 2 % (a brow bone under the forehead).
+struct JointBodies {
+  std::vector<float> roughRadius;
+  std::vector<Bounds> body;
+};
+
+JointBodies jointBodies(const FitContext& x) {
+  JointBodies b;
+  b.roughRadius.assign(x.c.nodes.size(), 0.0f);
+  b.body.resize(x.c.nodes.size());
+  for (size_t j = 0; j < x.c.nodes.size(); ++j) {
+    if (!x.active[j]) continue;
+    const glm::vec3 P = x.jointPos(int(j));
+    std::vector<float> d;
+    for (const auto& p : x.dominated[j]) {
+      d.push_back(glm::length(p - P));
+      b.body[j].add(p);
+    }
+    b.roughRadius[j] = percentile(d, 0.5f);
+    const glm::vec3 inset = 0.02f * b.body[j].size();
+    b.body[j].min += inset;
+    b.body[j].max -= inset;
+  }
+  return b;
+}
+
+// Small bones whose joint lies inside the tube of the bone that owns them
+// give their vertices to it (no blob of their own, no fan of segments).
+// Returns each node's owner (itself when active and not merged; -1: inactive).
+std::vector<int> mergeSmallBones(const FitContext& x, FitReport& report) {
+  const Character& c = x.c;
+  std::vector<int> owner(c.nodes.size(), -1);
+  const std::vector<size_t> subtreeVerts = subtreeVertexCounts(x);
+  const JointBodies b = jointBodies(x);
+  auto inside = [&](int j, int o) {
+    const glm::vec3 q = x.jointPos(j);
+    return glm::length(q - x.jointPos(o)) < b.roughRadius[size_t(o)] ||
+           (glm::all(glm::greaterThanEqual(q, b.body[size_t(o)].min)) &&
+            glm::all(glm::lessThanEqual(q, b.body[size_t(o)].max)));
+  };
+  std::vector<int> order;  // parents before children
+  for (int r : c.roots) order.push_back(r);
+  for (size_t q = 0; q < order.size(); ++q)
+    for (int ch : c.nodes[size_t(order[q])].children) order.push_back(ch);
+  for (int j : order) {
+    if (!x.active[size_t(j)]) continue;
+    owner[size_t(j)] = j;
+    if (!x.settings.mergeSmallBones) continue;
+    int a = x.rigParent(j);
+    while (a >= 0 && !x.active[size_t(a)]) a = x.rigParent(a);
+    if (a < 0) continue;
+    const int o = owner[size_t(a)];
+    if (inside(j, o) && subtreeVerts[size_t(j)] * 4 < x.dominated[size_t(o)].size()) {
+      owner[size_t(j)] = o;
+      ++report.bonesMerged;
+    }
+  }
+  return owner;
+}
+
+// No joint with vertices below: a segment towards the end bone along which the
+// vertices reach farthest, as far as they reach. False when none reaches past minLen.
+bool segmentTowardsEndBone(const FitContext& x, int j, const std::vector<glm::vec3>& pts,
+                           const std::vector<int>& ends, std::vector<Candidate>& mine) {
+  const glm::vec3 P = x.jointPos(j);
+  float best = x.minLen;
+  glm::vec3 bestDir(0.0f);
+  for (int e : ends) {
+    const glm::vec3 Q = x.jointPos(e);
+    if (glm::length(Q - P) <= x.minLen) continue;
+    const glm::vec3 dir = glm::normalize(Q - P);
+    std::vector<float> u;
+    for (const auto& p : pts) u.push_back(glm::dot(p - P, dir));
+    const float far = percentile(u, 0.9f);
+    if (far > best) { best = far; bestDir = dir; }
+  }
+  if (glm::length(bestDir) <= 0.0f) return false;
+  Candidate cd{j, P, P + bestDir * best};
+  cd.shrinkB = true;
+  mine.push_back(cd);
+  return true;
+}
+
+// Leaf (or every child at the joint itself): a segment along the parent bone's
+// direction, else along the vertices' principal axis (noted in the report).
+void leafSegment(const FitContext& x, int j, const std::vector<glm::vec3>& pts, std::vector<Candidate>& mine,
+                 FitReport& report) {
+  const glm::vec3 P = x.jointPos(j);
+  const int par = x.rigParent(j);
+  glm::vec3 dir(0.0f);
+  if (par >= 0 && glm::length(P - x.jointPos(par)) > x.minLen) dir = glm::normalize(P - x.jointPos(par));
+  std::vector<float> u;
+  if (glm::length(dir) > 0.0f) {
+    for (const auto& p : pts) u.push_back(glm::dot(p - P, dir));
+    const float far = percentile(u, 0.9f);
+    if (far > x.minLen) {
+      Candidate cd{j, P, P + dir * far};
+      cd.shrinkB = true;
+      mine.push_back(cd);
+      return;
+    }
+  }
+  glm::vec3 centroid;
+  const glm::vec3 axis = principalAxis(pts, centroid);
+  u.clear();
+  for (const auto& p : pts) u.push_back(glm::dot(p - centroid, axis));
+  std::vector<float> u2 = u;
+  float lo = percentile(u, 0.1f), hi = percentile(u2, 0.9f);
+  if (hi - lo < x.minLen) { lo -= 0.5f * x.minLen; hi += 0.5f * x.minLen; }
+  Candidate cd{j, centroid + axis * lo, centroid + axis * hi};
+  cd.shrinkA = cd.shrinkB = true;
+  mine.push_back(cd);
+  report.notes.push_back("node '" + x.c.nodes[size_t(j)].name +
+                         "': no child bone; segment along its vertices' principal axis");
+}
+
+
+// The segments of active joint j fitted to its vertices pts (its own and those of the bones merged
+// into it), with their radii, appended to cands.
+void fitJointSegments(const FitContext& x, int j, const std::vector<glm::vec3>& pts, std::vector<Candidate>& cands,
+                      FitReport& report) {
+  const glm::vec3 P = x.jointPos(j);
+  std::vector<int> to, ends;
+  targetsOf(x, j, to, ends);
+  std::vector<Candidate> mine;
+  for (int ch : to) {
+    const glm::vec3 Q = x.jointPos(ch);
+    if (glm::length(Q - P) > x.minLen) mine.emplace_back(j, P, Q);
+    if (x.settings.bridgeHelpers && x.c.nodes[size_t(ch)].parent != j) ++report.helperBridges;
+  }
+  if (mine.empty() && !segmentTowardsEndBone(x, j, pts, ends, mine)) leafSegment(x, j, pts, mine, report);
+  assignToClosestSegment(pts, mine);
+  std::vector<Candidate> split;
+  for (auto& cd : mine)
+    if (!cd.dist.empty()) splitFlat(cd, x.minLen, split);
+  for (auto& cd : split) {
+    cd.radius = std::max(1e-3f * x.diag, percentile(cd.dist, x.settings.radiusPercentile));
+    cd.pts.clear();
+    cd.pts.shrink_to_fit();
+    cands.push_back(std::move(cd));
+  }
+}
+
+// The candidates as the stand-in's segments, in their nodes' spaces; free ends pull in by half a
+// radius (the surface reaches past a segment's end); the sharpness follows the median radius.
+void buildSegments(const FitContext& x, std::vector<Candidate>& cands, Standin& s) {
+  std::vector<float> radii;
+  for (const auto& cd : cands) radii.push_back(cd.radius);
+  const float medianR = percentile(radii, 0.5f);
+  s.kind = x.settings.kind;
+  s.sharpness = x.settings.sharpnessTimesRadius / std::max(1e-6f, medianR);
+  for (auto& cd : cands) {
+    glm::vec3 d = cd.b - cd.a;
+    const float len = glm::length(d);
+    if (len > 0.0f) {
+      d /= len;
+      float room = len - x.minLen;
+      float pull = std::min(0.5f * cd.radius, room * 0.5f);
+      if (pull > 0.0f) {
+        if (cd.shrinkA) cd.a += d * pull;
+        if (cd.shrinkB) cd.b -= d * pull;
+      }
+    }
+    const glm::mat4 inv = glm::inverse(x.pose.globals[size_t(cd.node)]);
+    StandinSegment seg;
+    seg.node = cd.node;
+    seg.a = glm::vec3(inv * glm::vec4(cd.a, 1.0f));
+    seg.b = glm::vec3(inv * glm::vec4(cd.b, 1.0f));
+    // Radii are stored in the node's space too (poseStandin scales them back).
+    seg.radius = cd.radius / std::max(1e-12f, radiusScale(x.pose.globals[size_t(cd.node)]));
+    s.segments.push_back(seg);
+  }
+}
+
+// Measures the fit and, where it is poor and repair is on, repairs it; the report keeps the fit's
+// own counts and notes.
+void measureAndRepair(const FitContext& x, const std::vector<int>& owner, FitResult& result) {
+  const Character& c = x.c;
+  const FitSettings& settings = x.settings;
+  Standin& s = result.standin;
+  FitReport m = measureFitQuality(c, s, x.pose, settings.projection, settings.quality);
+  if (m.poor && settings.repair.enabled) {
+    std::vector<int> vertexNode(x.pose.positions.size(), -1);
+    for (size_t i = 0; i < vertexNode.size(); ++i) vertexNode[i] = owner[size_t(x.pose.dominantNode[i])];
+    m = repairStandinFit(c, x.pose, vertexNode, s, m, settings.projection, settings.quality,
+                         settings.radiusPercentile, settings.repair);
+    result.report.segments = s.segments.size();
+  }
+  m.bonesOmitted = result.report.bonesOmitted;
+  m.bonesMerged = result.report.bonesMerged;
+  m.helperBridges = result.report.helperBridges;
+  m.notes.insert(m.notes.begin(), result.report.notes.begin(), result.report.notes.end());
+  result.report = std::move(m);
 }
 
 }  // namespace
@@ -125,262 +413,38 @@ Result<FitResult> fitStandin(const Character& c, const FitSettings& settings) {
                  std::to_string(c.clips.size()) + " clips)"};
   const CharacterPose pose = poseCharacter(c, pickClip(c, settings.clip), settings.clipTimeSec, glm::mat4(1.0f));
   if (pose.positions.empty()) return Error{name + ": no mesh vertices to fit a stand-in to"};
+  FitContext x{c, settings, pose};
   Bounds box;
   for (const auto& p : pose.positions) box.add(p);
-  const float diag = std::max(1e-6f, box.diagonal());
-  const float minLen = 1e-3f * diag;
-
-  const std::vector<char> rig = rigNodes(c);
-  std::vector<std::vector<glm::vec3>> dominated(c.nodes.size());
-  for (size_t i = 0; i < pose.positions.size(); ++i) dominated[size_t(pose.dominantNode[i])].push_back(pose.positions[i]);
-  auto jointPos = [&](int n) { return glm::vec3(pose.globals[size_t(n)][3]); };
-  auto rigParent = [&](int n) {
-    int p = c.nodes[size_t(n)].parent;
-    while (p >= 0 && !rig[size_t(p)]) p = c.nodes[size_t(p)].parent;
-    return p;
-  };
+  x.diag = std::max(1e-6f, box.diagonal());
+  x.minLen = 1e-3f * x.diag;
+  x.rig = rigNodes(c);
+  x.dominated.resize(c.nodes.size());
+  for (size_t i = 0; i < pose.positions.size(); ++i)
+    x.dominated[size_t(pose.dominantNode[i])].push_back(pose.positions[i]);
   FitResult result;
-
-  // Joints that carry segments: rig joints with vertices of their own.
-  std::vector<char> active(c.nodes.size(), 0);
-  for (size_t j = 0; j < c.nodes.size(); ++j) {
-    active[j] = rig[j] && !dominated[j].empty();
-    if (rig[j] && dominated[j].empty()) ++result.report.bonesOmitted;
-  }
-  // Where a bone's segments go: its child joints, or (bridging) its nearest
-  // active descendants through joints without vertices. `ends` are inactive
-  // rig children with no active descendant (end bones): a leaf direction only.
-  auto targetsOf = [&](int j, std::vector<int>& to, std::vector<int>& ends) {
-    to.clear();
-    ends.clear();
-    std::vector<int> stack(c.nodes[size_t(j)].children.rbegin(), c.nodes[size_t(j)].children.rend());
-    while (!stack.empty()) {
-      const int n = stack.back();
-      stack.pop_back();
-      if (!settings.bridgeHelpers) {
-        if (rig[size_t(n)]) to.push_back(n);
-        continue;
-      }
-      if (active[size_t(n)]) {
-        to.push_back(n);
-        continue;
-      }
-      for (auto it = c.nodes[size_t(n)].children.rbegin(); it != c.nodes[size_t(n)].children.rend(); ++it)
-        stack.push_back(*it);
-      if (rig[size_t(n)] && c.nodes[size_t(n)].parent == j) ends.push_back(n);
-    }
-    // End bones only count where no active joint lies below them.
-    auto hasActiveBelow = [&](int n) {
-      std::vector<int> st{n};
-      while (!st.empty()) {
-        const int k = st.back();
-        st.pop_back();
-        if (active[size_t(k)]) return true;
-        for (int ch : c.nodes[size_t(k)].children) st.push_back(ch);
-      }
-      return false;
-    };
-    ends.erase(std::remove_if(ends.begin(), ends.end(), hasActiveBelow), ends.end());
-  };
-
-  // Small bones whose joint lies inside the tube of the bone that owns them
-  // give their vertices to it (no blob of their own, no fan of segments).
-  std::vector<int> owner(c.nodes.size(), -1);
-  std::vector<size_t> subtreeVerts(c.nodes.size(), 0);
-  for (size_t j = c.nodes.size(); j-- > 0;) {
-    // Children have larger indices in most files, but do not rely on it.
-    std::vector<int> st{int(j)};
-    size_t sum = 0;
-    while (!st.empty()) {
-      const int k = st.back();
-      st.pop_back();
-      sum += dominated[size_t(k)].size();
-      for (int ch : c.nodes[size_t(k)].children) st.push_back(ch);
-    }
-    subtreeVerts[j] = sum;
-  }
-  // A joint is inside its owner's body when it lies within the median distance
-  // of the owner's vertices from the owner's joint, or within the box of those
-  // vertices shrunk by 2 % (a brow bone under the forehead).
-  std::vector<float> roughRadius(c.nodes.size(), 0.0f);
-  std::vector<Bounds> body(c.nodes.size());
-  std::vector<int> to, ends;
-  for (size_t j = 0; j < c.nodes.size(); ++j) {
-    if (!active[j]) continue;
-    const glm::vec3 P = jointPos(int(j));
-    std::vector<float> d;
-    for (const auto& p : dominated[j]) {
-      d.push_back(glm::length(p - P));
-      body[j].add(p);
-    }
-    roughRadius[j] = percentile(d, 0.5f);
-    const glm::vec3 inset = 0.02f * body[j].size();
-    body[j].min += inset;
-    body[j].max -= inset;
-  }
-  auto inside = [&](int j, int o) {
-    const glm::vec3 q = jointPos(j);
-    return glm::length(q - jointPos(o)) < roughRadius[size_t(o)] ||
-           (glm::all(glm::greaterThanEqual(q, body[size_t(o)].min)) && glm::all(glm::lessThanEqual(q, body[size_t(o)].max)));
-  };
-  std::vector<int> order;  // parents before children
-  for (int r : c.roots) order.push_back(r);
-  for (size_t q = 0; q < order.size(); ++q)
-    for (int ch : c.nodes[size_t(order[q])].children) order.push_back(ch);
-  for (int j : order) {
-    if (!active[size_t(j)]) continue;
-    owner[size_t(j)] = j;
-    if (!settings.mergeSmallBones) continue;
-    int a = rigParent(j);
-    while (a >= 0 && !active[size_t(a)]) a = rigParent(a);
-    if (a < 0) continue;
-    const int o = owner[size_t(a)];
-    if (inside(j, o) && subtreeVerts[size_t(j)] * 4 < dominated[size_t(o)].size()) {
-      owner[size_t(j)] = o;
-      ++result.report.bonesMerged;
-    }
-  }
+  markActiveJoints(x, result.report);
+  const std::vector<int> owner = mergeSmallBones(x, result.report);
   std::vector<std::vector<glm::vec3>> fitted(c.nodes.size());
   for (size_t j = 0; j < c.nodes.size(); ++j)
-    if (active[j] && owner[j] >= 0) {
+    if (x.active[j] && owner[j] >= 0) {
       auto& dst = fitted[size_t(owner[j])];
-      dst.insert(dst.end(), dominated[j].begin(), dominated[j].end());
+      dst.insert(dst.end(), x.dominated[j].begin(), x.dominated[j].end());
     }
   // Merged joints act like helper bones for the segments' ends.
   for (size_t j = 0; j < c.nodes.size(); ++j)
-    if (active[j] && owner[j] != int(j)) active[j] = 0;
+    if (x.active[j] && owner[j] != int(j)) x.active[j] = 0;
 
   std::vector<Candidate> cands;
-  for (size_t j = 0; j < c.nodes.size(); ++j) {
-    if (!active[j]) continue;
-    const auto& pts = fitted[j];
-    const glm::vec3 P = jointPos(int(j));
-    targetsOf(int(j), to, ends);
-    std::vector<Candidate> mine;
-    for (int ch : to) {
-      const glm::vec3 Q = jointPos(ch);
-      if (glm::length(Q - P) > minLen) mine.emplace_back(int(j), P, Q);
-      if (settings.bridgeHelpers && c.nodes[size_t(ch)].parent != int(j)) ++result.report.helperBridges;
-    }
-    // No joint with vertices below: towards the end bone along which the
-    // vertices reach farthest, as far as they reach.
-    if (mine.empty()) {
-      float best = minLen;
-      glm::vec3 bestDir(0.0f);
-      for (int e : ends) {
-        const glm::vec3 Q = jointPos(e);
-        if (glm::length(Q - P) <= minLen) continue;
-        const glm::vec3 dir = glm::normalize(Q - P);
-        std::vector<float> u;
-        for (const auto& p : pts) u.push_back(glm::dot(p - P, dir));
-        const float far = percentile(u, 0.9f);
-        if (far > best) { best = far; bestDir = dir; }
-      }
-      if (glm::length(bestDir) > 0.0f) {
-        Candidate cd{int(j), P, P + bestDir * best};
-        cd.shrinkB = true;
-        mine.push_back(cd);
-      }
-    }
-    if (mine.empty()) {
-      // Leaf (or every child at the joint itself): along the parent bone's
-      // direction, else along the vertices' principal axis.
-      const int par = rigParent(int(j));
-      glm::vec3 dir(0.0f);
-      if (par >= 0 && glm::length(P - jointPos(par)) > minLen) dir = glm::normalize(P - jointPos(par));
-      std::vector<float> u;
-      if (glm::length(dir) > 0.0f) {
-        for (const auto& p : pts) u.push_back(glm::dot(p - P, dir));
-        const float far = percentile(u, 0.9f);
-        if (far > minLen) {
-          Candidate cd{int(j), P, P + dir * far};
-          cd.shrinkB = true;
-          mine.push_back(cd);
-        }
-      }
-      if (mine.empty()) {
-        glm::vec3 centroid;
-        const glm::vec3 axis = principalAxis(pts, centroid);
-        u.clear();
-        for (const auto& p : pts) u.push_back(glm::dot(p - centroid, axis));
-        std::vector<float> u2 = u;
-        float lo = percentile(u, 0.1f), hi = percentile(u2, 0.9f);
-        if (hi - lo < minLen) { lo -= 0.5f * minLen; hi += 0.5f * minLen; }
-        Candidate cd{int(j), centroid + axis * lo, centroid + axis * hi};
-        cd.shrinkA = cd.shrinkB = true;
-        mine.push_back(cd);
-        result.report.notes.push_back("node '" + c.nodes[j].name + "': no child bone; segment along its vertices' principal axis");
-      }
-    }
-    // Each vertex belongs to its closest segment of this bone.
-    for (const auto& p : pts) {
-      size_t best = 0;
-      float bd = INFINITY;
-      for (size_t k = 0; k < mine.size(); ++k) {
-        const float d = glm::length(p - closestOnSegment(p, mine[k].a, mine[k].b));
-        if (d < bd) { bd = d; best = k; }
-      }
-      mine[best].dist.push_back(bd);
-      mine[best].pts.push_back(p);
-    }
-    std::vector<Candidate> split;
-    for (auto& cd : mine)
-      if (!cd.dist.empty()) splitFlat(cd, minLen, split);
-    for (auto& cd : split) {
-      cd.radius = std::max(1e-3f * diag, percentile(cd.dist, settings.radiusPercentile));
-      cd.pts.clear();
-      cd.pts.shrink_to_fit();
-      cands.push_back(std::move(cd));
-    }
-  }
+  for (size_t j = 0; j < c.nodes.size(); ++j)
+    if (x.active[j]) fitJointSegments(x, int(j), fitted[j], cands, result.report);
   if (cands.empty()) return Error{name + ": no bone dominates any vertex; cannot fit a stand-in"};
-
-  std::vector<float> radii;
-  for (const auto& cd : cands) radii.push_back(cd.radius);
-  const float medianR = percentile(radii, 0.5f);
-  Standin& s = result.standin;
-  s.kind = settings.kind;
-  s.sharpness = settings.sharpnessTimesRadius / std::max(1e-6f, medianR);
-  for (auto& cd : cands) {
-    // Free ends pull in by half a radius: the surface reaches past a segment's end.
-    glm::vec3 d = cd.b - cd.a;
-    const float len = glm::length(d);
-    if (len > 0.0f) {
-      d /= len;
-      float room = len - minLen;
-      float pull = std::min(0.5f * cd.radius, room * 0.5f);
-      if (pull > 0.0f) {
-        if (cd.shrinkA) cd.a += d * pull;
-        if (cd.shrinkB) cd.b -= d * pull;
-      }
-    }
-    const glm::mat4 inv = glm::inverse(pose.globals[size_t(cd.node)]);
-    StandinSegment seg;
-    seg.node = cd.node;
-    seg.a = glm::vec3(inv * glm::vec4(cd.a, 1.0f));
-    seg.b = glm::vec3(inv * glm::vec4(cd.b, 1.0f));
-    // Radii are stored in the node's space too (poseStandin scales them back).
-    seg.radius = cd.radius / std::max(1e-12f, radiusScale(pose.globals[size_t(cd.node)]));
-    s.segments.push_back(seg);
-  }
-  result.report.segments = s.segments.size();
-  if (settings.measure) {
-    FitReport m = measureFitQuality(c, s, pose, settings.projection, settings.quality);
-    if (m.poor && settings.repair.enabled) {
-      std::vector<int> vertexNode(pose.positions.size(), -1);
-      for (size_t i = 0; i < vertexNode.size(); ++i) vertexNode[i] = owner[size_t(pose.dominantNode[i])];
-      m = repairStandinFit(c, pose, vertexNode, s, m, settings.projection, settings.quality,
-                           settings.radiusPercentile, settings.repair);
-      result.report.segments = s.segments.size();
-    }
-    m.bonesOmitted = result.report.bonesOmitted;
-    m.bonesMerged = result.report.bonesMerged;
-    m.helperBridges = result.report.helperBridges;
-    m.notes.insert(m.notes.begin(), result.report.notes.begin(), result.report.notes.end());
-    result.report = std::move(m);
-  } else {
-    result.report.diagonal = diag;
-  }
+  buildSegments(x, cands, result.standin);
+  result.report.segments = result.standin.segments.size();
+  if (settings.measure)
+    measureAndRepair(x, owner, result);
+  else
+    result.report.diagonal = x.diag;
   result.report.milliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return result;

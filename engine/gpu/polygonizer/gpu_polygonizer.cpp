@@ -188,6 +188,20 @@ struct GpuPolygonizer::Impl {
   void writeSet();
   Status recordFrame(VkCommandBuffer cmd, uint32_t slot, const GpuField& field, const GpuPolygonizeSettings& s,
                      GpuPolygonizeStats& stats, bool timed = false);
+  // recordFrame's parts. The per-frame buffers sized for grid g and programs pk (words: mask words
+  // per block), the descriptor set written; fails when a buffer cannot grow or the blocks exceed
+  // the scan's limit.
+  Status prepareFrameBuffers(const Grid& g, const PackedFieldPrograms& pk, uint32_t words);
+  // The passes' parameters for grid g, programs pk and field under s.
+  PolyParams frameParams(const Grid& g, const PackedFieldPrograms& pk, const GpuField& field,
+                         const GpuPolygonizeSettings& s, uint32_t words) const;
+  // A scan of n entries of source (blocks or counts) and what follows it (compaction and/or the
+  // indirect arguments): one workgroup when short enough, else three scan phases and the helpers.
+  void recordScan(VkCommandBuffer cb, const GpuPolygonizeSettings& s, uint32_t source, uint32_t n, uint32_t nBlocks);
+  // The passes: upload, coarse culling, block scan, cells, count scan, emit, normals (and noise),
+  // then the counters' copy into readback slot; a timestamp between stages when timed.
+  void recordPasses(VkCommandBuffer cb, uint32_t slot, const FieldPipelines& fp, const PolyParams& prm,
+                    const PackedFieldPrograms& pk, const Grid& g, const GpuPolygonizeSettings& s, bool timed);
 };
 
 GpuPolygonizer::Impl::~Impl() {
@@ -443,26 +457,9 @@ void GpuPolygonizer::Impl::writeSet() {
   setDirty = false;
 }
 
-Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, const GpuField& field,
-                                         const GpuPolygonizeSettings& s, GpuPolygonizeStats& stats, bool timed) {
-  if (!field.a) return Error{"GPU polygoniser: no field program"};
-  if (s.resolution < 2 || s.resolution > 512)
-    return Error{"GPU polygoniser: resolution " + std::to_string(s.resolution) + " is out of range (2..512)"};
-  Result<Grid> grid = makeGrid(field, s);
-  if (!grid) return Error{grid.error()};
-  Result<PackedFieldPrograms> packed = packFieldPrograms(*field.a, field.b);
-  if (!packed) return Error{"GPU polygoniser: " + packed.error()};
-  if (s.loopBudgetCheck)
-    if (std::string why = loopBudgetReason(field, loopLimit(ctx.properties())); !why.empty())
-      return Error{"GPU polygoniser: " + why};
-  const Grid& g = *grid;
-  const PackedFieldPrograms& pk = *packed;
+Status GpuPolygonizer::Impl::prepareFrameBuffers(const Grid& g, const PackedFieldPrograms& pk, uint32_t words) {
   const uint32_t nBlocks = g.blocks();
-  const uint32_t words = std::max(1u, (pk.primitiveTotal() + 31) / 32);
-  const VariantKey variant = variantKey(pk, field, s);
-  const bool storagePool = std::get<2>(variant) != 0;
   const VkBufferUsageFlags ssbo = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-
   Status st = ensure(pool, std::max<VkDeviceSize>(AM_POLY_UNIFORM_POOL_VEC4 * 16, pk.pool.size() * 16),
                      VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | ssbo);
   if (st) st = ensure(bounds, pk.bounds.size() * 16, ssbo);
@@ -476,13 +473,17 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   if (nBlocks > AM_POLY_SCAN_PER_GROUP * AM_POLY_SCAN_MAX_GROUPS)
     return Error{"GPU polygoniser: " + std::to_string(nBlocks) + " blocks exceed the scan's limit"};
   writeSet();
+  return Status::success();
+}
 
+PolyParams GpuPolygonizer::Impl::frameParams(const Grid& g, const PackedFieldPrograms& pk, const GpuField& field,
+                                             const GpuPolygonizeSettings& s, uint32_t words) const {
   const float Tmax = std::max(pk.threshold[0], pk.programCount > 1 ? pk.threshold[1] : 0.0f);
   PolyParams prm{};
   prm.gridOrigin = glm::vec4(g.origin, g.h);
   const uint32_t rowLimit = std::min<uint32_t>(AM_POLY_MAX_DISPATCH_X, ctx.properties().limits.maxComputeWorkGroupCount[0]);
   prm.gridCells = glm::uvec4(g.n[0], g.n[1], g.n[2], s.dispatchRow ? std::min(s.dispatchRow, rowLimit) : rowLimit);
-  prm.gridBlocks = glm::uvec4(g.nb[0], g.nb[1], g.nb[2], nBlocks);
+  prm.gridBlocks = glm::uvec4(g.nb[0], g.nb[1], g.nb[2], g.blocks());
   prm.progA = glm::uvec4(pk.opBegin[0], pk.opCount[0], pk.primBegin[0], pk.primCount[0]);
   prm.progB = glm::uvec4(pk.opBegin[1], pk.opCount[1], pk.primBegin[1], pk.primCount[1]);
   prm.thresholds = glm::vec4(pk.threshold[0], pk.threshold[1], 1e-3f * Tmax + 1e-7f, -1e-6f * Tmax);
@@ -493,21 +494,49 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   prm.morph1 = glm::vec4(field.a1, field.a2, field.a3, normalStep);
   prm.caps = glm::uvec4(vertexCapacity, triangleCapacity, pk.primitiveTotal(), 1u);
   prm.extra = glm::vec4(2.0f * normalStep, s.noiseAmplitude, s.noiseFrequency, 0.0f);
-  prm.superBlocks = glm::uvec4(g.superAxis(0), g.superAxis(1), g.superAxis(2), nSuper);
+  prm.superBlocks = glm::uvec4(g.superAxis(0), g.superAxis(1), g.superAxis(2), g.superBlocks());
+  return prm;
+}
 
-  stats.gridX = int(g.n[0]);
-  stats.gridY = int(g.n[1]);
-  stats.gridZ = int(g.n[2]);
-  stats.cellSize = g.h;
-  stats.blocksTotal = nBlocks;
-  stats.uniformPool = !storagePool;
-  stats.features = std::get<0>(variant);
-  stats.kinds = std::get<1>(variant);
-  Result<FieldPipelines> fp = fieldCache.get({stats.features, stats.kinds, storagePool ? 1 : 0});
-  if (!fp) return Error{fp.error()};
-  lastGrid = g;
+void GpuPolygonizer::Impl::recordScan(VkCommandBuffer cb, const GpuPolygonizeSettings& s, uint32_t source,
+                                      uint32_t n, uint32_t nBlocks) {
+  auto push = [&](uint32_t x, uint32_t y, uint32_t z) {
+    glm::uvec4 pc(x, y, z, 0u);
+    vkCmdPushConstants(cb, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, 16, &pc);
+  };
+  if (s.singleWorkgroupScan && n <= AM_POLY_SCAN_SINGLE_MAX) {
+    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, scanSingle);
+    push(0, source, n);
+    vkCmdDispatch(cb, 1, 1, 1);
+    computeToCompute(cb);
+    return;
+  }
+  uint32_t groups = std::max(1u, (n + AM_POLY_SCAN_PER_GROUP - 1) / AM_POLY_SCAN_PER_GROUP);
+  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, scan);
+  push(AM_SCAN_REDUCE, source, n);
+  vkCmdDispatch(cb, groups, 1, 1);
+  computeToCompute(cb);
+  push(AM_SCAN_PARTIALS, source, n);
+  vkCmdDispatch(cb, 1, 1, 1);
+  computeToCompute(cb);
+  push(AM_SCAN_DOWNSWEEP, source, n);
+  vkCmdDispatch(cb, groups, 1, 1);
+  computeToCompute(cb);
+  if (source == AM_SCAN_SOURCE_BLOCKS) {
+    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, compact);
+    vkCmdDispatch(cb, (nBlocks + AM_POLY_WG_LINEAR - 1) / AM_POLY_WG_LINEAR, 1, 1);
+    computeToCompute(cb);
+  }
+  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, args);
+  push(source == AM_SCAN_SOURCE_BLOCKS ? AM_ARGS_AFTER_BLOCKS : AM_ARGS_AFTER_COUNTS, 0, 0);
+  vkCmdDispatch(cb, 1, 1, 1);
+  computeToCompute(cb);
+}
 
-  timed = timed && timestamps != VK_NULL_HANDLE;
+void GpuPolygonizer::Impl::recordPasses(VkCommandBuffer cb, uint32_t slot, const FieldPipelines& fp,
+                                        const PolyParams& prm, const PackedFieldPrograms& pk, const Grid& g,
+                                        const GpuPolygonizeSettings& s, bool timed) {
+  const uint32_t nBlocks = g.blocks(), nSuper = g.superBlocks();
   uint32_t stamp = 0;
   auto timestamp = [&] {
     if (timed) vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps, stamp++);
@@ -535,41 +564,9 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
     glm::uvec4 pc(x, y, z, 0u);
     vkCmdPushConstants(cb, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, 16, &pc);
   };
-  // A scan and what follows it (compaction and/or indirect arguments): one workgroup when the array
-  // is short enough (poly_scan_single.comp: one dispatch), else three scan phases and the helpers.
-  auto runScan = [&](uint32_t source, uint32_t n) {
-    if (s.singleWorkgroupScan && n <= AM_POLY_SCAN_SINGLE_MAX) {
-      vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, scanSingle);
-      push(0, source, n);
-      vkCmdDispatch(cb, 1, 1, 1);
-      computeToCompute(cb);
-      return;
-    }
-    uint32_t groups = std::max(1u, (n + AM_POLY_SCAN_PER_GROUP - 1) / AM_POLY_SCAN_PER_GROUP);
-    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, scan);
-    push(AM_SCAN_REDUCE, source, n);
-    vkCmdDispatch(cb, groups, 1, 1);
-    computeToCompute(cb);
-    push(AM_SCAN_PARTIALS, source, n);
-    vkCmdDispatch(cb, 1, 1, 1);
-    computeToCompute(cb);
-    push(AM_SCAN_DOWNSWEEP, source, n);
-    vkCmdDispatch(cb, groups, 1, 1);
-    computeToCompute(cb);
-    if (source == AM_SCAN_SOURCE_BLOCKS) {
-      vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, compact);
-      vkCmdDispatch(cb, (nBlocks + AM_POLY_WG_LINEAR - 1) / AM_POLY_WG_LINEAR, 1, 1);
-      computeToCompute(cb);
-    }
-    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, args);
-    push(source == AM_SCAN_SOURCE_BLOCKS ? AM_ARGS_AFTER_BLOCKS : AM_ARGS_AFTER_COUNTS, 0, 0);
-    vkCmdDispatch(cb, 1, 1, 1);
-    computeToCompute(cb);
-  };
   const uint32_t linearGroups = (nBlocks + AM_POLY_WG_BLOCKS - 1) / AM_POLY_WG_BLOCKS;
-
   // Coarse: superblock bounds, then per-block primitive lists and interval culling.
-  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, fp->blocks);
+  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, fp.blocks);
   if (s.culling) {
     push(AM_COARSE_SUPERBLOCKS, 0, 0);
     vkCmdDispatch(cb, (nSuper + AM_POLY_WG_BLOCKS - 1) / AM_POLY_WG_BLOCKS, 1, 1);
@@ -580,21 +577,21 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   computeToCompute(cb);
   timestamp();
   // Active blocks -> slots, and the fine passes' dispatch.
-  runScan(AM_SCAN_SOURCE_BLOCKS, nBlocks);
+  recordScan(cb, s, AM_SCAN_SOURCE_BLOCKS, nBlocks, nBlocks);
   timestamp();
   // Fine: corner values, cell cases, vertex and triangle counts.
-  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, fp->cells);
+  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, fp.cells);
   vkCmdDispatchIndirect(cb, control.buffer, AM_CTL_DISPATCH * 4);
   computeToCompute(cb);
   timestamp();
   // Per-slot offsets, the draw's and the normals pass's arguments.
-  runScan(AM_SCAN_SOURCE_COUNTS, blockCapacity);
+  recordScan(cb, s, AM_SCAN_SOURCE_COUNTS, blockCapacity, nBlocks);
   timestamp();
   // Vertices and triangles per block, then the normals of all vertices.
-  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, fp->emit);
+  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, fp.emit);
   vkCmdDispatchIndirect(cb, control.buffer, AM_CTL_DISPATCH * 4);
   computeToCompute(cb);
-  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, fp->normals);
+  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, fp.normals);
   vkCmdDispatchIndirect(cb, control.buffer, AM_CTL_NORMALS * 4);
   if (s.noiseAmplitude != 0.0f) {
     // Solid noise along the normals just made (the CPU's displaceBySolidNoise).
@@ -612,6 +609,40 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   vkCmdCopyBuffer(cb, control.buffer, readback.buffer, 1, &copy);
   barrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
           VK_ACCESS_HOST_READ_BIT);
+}
+
+Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, const GpuField& field,
+                                         const GpuPolygonizeSettings& s, GpuPolygonizeStats& stats, bool timed) {
+  if (!field.a) return Error{"GPU polygoniser: no field program"};
+  if (s.resolution < 2 || s.resolution > 512)
+    return Error{"GPU polygoniser: resolution " + std::to_string(s.resolution) + " is out of range (2..512)"};
+  Result<Grid> grid = makeGrid(field, s);
+  if (!grid) return Error{grid.error()};
+  Result<PackedFieldPrograms> packed = packFieldPrograms(*field.a, field.b);
+  if (!packed) return Error{"GPU polygoniser: " + packed.error()};
+  if (s.loopBudgetCheck)
+    if (std::string why = loopBudgetReason(field, loopLimit(ctx.properties())); !why.empty())
+      return Error{"GPU polygoniser: " + why};
+  const Grid& g = *grid;
+  const PackedFieldPrograms& pk = *packed;
+  const uint32_t words = std::max(1u, (pk.primitiveTotal() + 31) / 32);
+  const VariantKey variant = variantKey(pk, field, s);
+  const bool storagePool = std::get<2>(variant) != 0;
+  if (Status st = prepareFrameBuffers(g, pk, words); !st) return st;
+  const PolyParams prm = frameParams(g, pk, field, s, words);
+
+  stats.gridX = int(g.n[0]);
+  stats.gridY = int(g.n[1]);
+  stats.gridZ = int(g.n[2]);
+  stats.cellSize = g.h;
+  stats.blocksTotal = g.blocks();
+  stats.uniformPool = !storagePool;
+  stats.features = std::get<0>(variant);
+  stats.kinds = std::get<1>(variant);
+  Result<FieldPipelines> fp = fieldCache.get({stats.features, stats.kinds, storagePool ? 1 : 0});
+  if (!fp) return Error{fp.error()};
+  lastGrid = g;
+  recordPasses(cb, slot, *fp, prm, pk, g, s, timed && timestamps != VK_NULL_HANDLE);
   return Status::success();
 }
 

@@ -16,21 +16,6 @@
 
 namespace animorph::gpu {
 
-namespace {
-
-// std140 mirror of FrameUniforms in shaders/include/frame.glsl.
-struct FrameUniforms {
-  glm::mat4 viewProj;
-  glm::mat4 view;
-  glm::vec4 cameraPos;
-  glm::vec4 keyLightDir;
-  glm::vec4 grid;
-  glm::vec4 gridCenter;
-  glm::vec4 selectColor;
-  glm::vec4 viewportPx;
-};
-static_assert(sizeof(FrameUniforms) == 2 * 64 + 6 * 16);
-
 // Push constants of the mesh pipelines (shaders/include/mesh_push.glsl); line.vert reads the first 64 bytes as LinePush.
 struct MeshPush {
   glm::mat4 model;
@@ -46,6 +31,22 @@ struct MeshPush {
   uint32_t morphPad;
 };
 static_assert(sizeof(MeshPush) == 128);  // the 128 bytes every device has (lavapipe's maxPushConstantsSize)
+
+namespace {
+
+// std140 mirror of FrameUniforms in shaders/include/frame.glsl.
+struct FrameUniforms {
+  glm::mat4 viewProj;
+  glm::mat4 view;
+  glm::vec4 cameraPos;
+  glm::vec4 keyLightDir;
+  glm::vec4 grid;
+  glm::vec4 gridCenter;
+  glm::vec4 selectColor;
+  glm::vec4 viewportPx;
+};
+static_assert(sizeof(FrameUniforms) == 2 * 64 + 6 * 16);
+
 
 // The colour's rgb in linear light, as the viewport shading uses it (gamma 2.2).
 glm::vec4 linearRgb(const glm::vec4& c) {
@@ -446,15 +447,42 @@ Status SceneRenderer::reserveTransitionParams(Slot& slot, VkDeviceSize bytes) {
   return Status::success();
 }
 
-Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const ViewportRect& rect,
-                             const OrbitCamera& camera, const Scene& scene) {
-  if (rect.width == 0 || rect.height == 0) return Status::success();
-  Slot& slot = *slots_[frameSerial % kFramesInFlight];
-  if (slot.serial != frameSerial) rewind(slot, frameSerial);  // the GPU is done with that slot's last frame
-  const SceneOptions& opt = scene.options;
+namespace {
 
-  // Gather per-frame data: joint matrices of every draw, then every line vertex
-  // (depth-tested lines, overlay lines, the axis tripod).
+// Cross-fading draws (opacity < 1) are dithered: colour alpha carries the opacity.
+template <class Draw>
+uint32_t fadeFlags(const Draw& d) {
+  if (!(d.opacity < 1.0f)) return 0u;
+  return AM_DRAW_DITHER | (d.complementDither ? AM_DRAW_DITHER_INVERT : 0u);
+}
+
+template <class Draw>
+glm::vec4 fadeColor(const Draw& d) {
+  return d.opacity < 1.0f ? glm::vec4(glm::vec3(d.color), std::max(0.0f, d.opacity)) : d.color;
+}
+
+}  // namespace
+
+// One record() call: the command buffer, the slot, this call's places in the slot's buffers, and
+// what is bound (pipelines and the morph set are rebound only when they change).
+struct SceneRenderer::RecordPass {
+  VkCommandBuffer cmd = VK_NULL_HANDLE;
+  Slot* slot = nullptr;
+  uint32_t frameOffset = 0;  // bytes into the frame uniforms
+  uint32_t jointBase = 0;    // matrices into the joint buffer
+  VkDeviceSize lineOffset = 0, weightBase = 0, particleBase = 0;  // bytes
+  std::vector<VkDeviceSize> weightOffsets;  // per overlay, in bytes from weightBase
+  uint32_t depthLineCount = 0, overlayLineCount = 0, axisFirst = 0;  // line vertices
+  glm::mat4 viewProj{1.0f}, view{1.0f};
+  uint32_t gridLines = 0;
+  VkViewport viewport{};
+  VkPipeline bound = VK_NULL_HANDLE;
+  VkDescriptorSet boundMorphSet = VK_NULL_HANDLE;
+};
+
+void SceneRenderer::gatherFrameData(const Scene& scene, RecordPass& rp) {
+  // Joint matrices of every draw, then every line vertex (depth-tested lines, overlay lines, the
+  // axis tripod).
   jointScratch_.clear();
   std::vector<uint32_t>& jointOffsets = drawJointOffsets_;
   jointOffsets.clear();
@@ -467,13 +495,12 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
   };
   for (const MeshDraw& d : scene.meshes) addJoints(d);
   weightScratch_.clear();
-  std::vector<VkDeviceSize> weightOffsets;  // per overlay, in bytes from this call's start
   for (const WeightOverlayDraw& d : scene.weightOverlays) {
     jointOffsets.push_back(static_cast<uint32_t>(jointScratch_.size()));
     if (d.jointMatrices.empty()) jointScratch_.push_back(glm::mat4(1.0f));
     else jointScratch_.insert(jointScratch_.end(), d.jointMatrices.begin(), d.jointMatrices.end());
     addMorphWeights(d.mesh, d.morphWeights);
-    weightOffsets.push_back(weightScratch_.size() * sizeof(float));
+    rp.weightOffsets.push_back(weightScratch_.size() * sizeof(float));
     if (d.mesh && d.weights.size() == d.mesh->vertexCount())
       weightScratch_.insert(weightScratch_.end(), d.weights.begin(), d.weights.end());
   }
@@ -483,7 +510,9 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
   const auto& overlayLines = scene.overlay.vertices();
   lineScratch_.insert(lineScratch_.end(), depthLines.begin(), depthLines.end());
   lineScratch_.insert(lineScratch_.end(), overlayLines.begin(), overlayLines.end());
-  const uint32_t axisFirst = static_cast<uint32_t>(lineScratch_.size());
+  rp.depthLineCount = static_cast<uint32_t>(depthLines.size());
+  rp.overlayLineCount = static_cast<uint32_t>(overlayLines.size());
+  rp.axisFirst = static_cast<uint32_t>(lineScratch_.size());
   const glm::vec4 axisColors[3] = {{0.9f, 0.3f, 0.3f, 1}, {0.4f, 0.85f, 0.35f, 1}, {0.35f, 0.55f, 1.0f, 1}};
   for (int a = 0; a < 3; ++a) {
     glm::vec3 tip(0.0f);
@@ -491,6 +520,10 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
     lineScratch_.push_back({glm::vec3(0.0f), packRgba(axisColors[a])});
     lineScratch_.push_back({tip, packRgba(axisColors[a])});
   }
+}
+
+Status SceneRenderer::uploadFrameData(const Scene& scene, RecordPass& rp) {
+  Slot& slot = *rp.slot;
   const VkDeviceSize jointBytes = jointScratch_.size() * sizeof(glm::mat4);
   const VkDeviceSize lineBytes = lineScratch_.size() * sizeof(LineVertex);
   const VkDeviceSize weightBytes = weightScratch_.size() * sizeof(float);
@@ -501,29 +534,36 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
     cap = reserveTransitionParams(slot, scene.transitionMeshes.size() * transitionParamStride_);
   if (!cap) return cap;
   // This call's places in the slot's buffers.
-  const uint32_t frameOffset = static_cast<uint32_t>(slot.frameUsed);
-  const uint32_t jointBase = static_cast<uint32_t>(slot.jointsUsed / sizeof(glm::mat4));
-  const VkDeviceSize lineOffset = slot.linesUsed;
-  const VkDeviceSize weightBase = slot.weightsUsed;
-  if (weightBytes) std::memcpy(static_cast<uint8_t*>(slot.weights.mapped) + weightBase, weightScratch_.data(), weightBytes);
+  rp.frameOffset = static_cast<uint32_t>(slot.frameUsed);
+  rp.jointBase = static_cast<uint32_t>(slot.jointsUsed / sizeof(glm::mat4));
+  rp.lineOffset = slot.linesUsed;
+  rp.weightBase = slot.weightsUsed;
+  if (weightBytes)
+    std::memcpy(static_cast<uint8_t*>(slot.weights.mapped) + rp.weightBase, weightScratch_.data(), weightBytes);
   slot.weightsUsed += weightBytes;
-  const VkDeviceSize particleBase = slot.particlesUsed;
+  rp.particleBase = slot.particlesUsed;
   for (const ParticleSpheresDraw& d : scene.particles) {
     std::memcpy(static_cast<uint8_t*>(slot.particles.mapped) + slot.particlesUsed, d.spheres.data(),
                 d.spheres.size() * sizeof(glm::vec4));
     slot.particlesUsed += d.spheres.size() * sizeof(glm::vec4);
   }
-  if (jointBytes) std::memcpy(static_cast<uint8_t*>(slot.joints.mapped) + slot.jointsUsed, jointScratch_.data(), jointBytes);
-  if (lineBytes) std::memcpy(static_cast<uint8_t*>(slot.lines.mapped) + lineOffset, lineScratch_.data(), lineBytes);
+  if (jointBytes)
+    std::memcpy(static_cast<uint8_t*>(slot.joints.mapped) + slot.jointsUsed, jointScratch_.data(), jointBytes);
+  if (lineBytes) std::memcpy(static_cast<uint8_t*>(slot.lines.mapped) + rp.lineOffset, lineScratch_.data(), lineBytes);
   slot.frameUsed += uniformStride_;
   slot.jointsUsed += jointBytes;
   slot.linesUsed += lineBytes;
+  return Status::success();
+}
 
+void SceneRenderer::writeFrameUniforms(const ViewportRect& rect, const OrbitCamera& camera, const SceneOptions& opt,
+                                       RecordPass& rp) {
   const float aspect = float(rect.width) / float(rect.height);
-  const glm::mat4 viewProj = camera.viewProjection(aspect);
+  rp.viewProj = camera.viewProjection(aspect);
   FrameUniforms fu{};
-  fu.viewProj = viewProj;
+  fu.viewProj = rp.viewProj;
   fu.view = camera.view();
+  rp.view = fu.view;
   fu.cameraPos = glm::vec4(camera.eye(), 1.0f);
   // Key light from the upper left, slightly behind the viewer (camera-relative like Maya's default light).
   fu.keyLightDir = glm::vec4(glm::normalize(-0.5f * camera.right() + 0.75f * camera.up() - 0.45f * camera.forward()), 0);
@@ -533,17 +573,20 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
   const float snap = 10.0f * cell;
   // The lines within the fade radius of the camera's foot (at most a camera distance from the target).
   const float gridHalf = fadeEnd + camera.distanceM + snap;
-  const uint32_t gridLines = static_cast<uint32_t>(std::min(std::ceil(gridHalf / cell), 2000.0f));
+  rp.gridLines = static_cast<uint32_t>(std::min(std::ceil(gridHalf / cell), 2000.0f));
   fu.gridCenter = glm::vec4(std::round(camera.target.x / snap) * snap, 0.0f, std::round(camera.target.z / snap) * snap,
-                            float(gridLines));
+                            float(rp.gridLines));
   fu.selectColor = linearRgb(opt.selectColor);
   fu.viewportPx = glm::vec4(float(rect.width), float(rect.height),
                             0.5f * float(rect.height) / std::tan(0.5f * camera.fovYRad), 0.0f);
-  std::memcpy(static_cast<uint8_t*>(slot.frame.mapped) + frameOffset, &fu, sizeof(fu));
+  std::memcpy(static_cast<uint8_t*>(rp.slot->frame.mapped) + rp.frameOffset, &fu, sizeof(fu));
+}
 
-  VkViewport viewport{float(rect.x), float(rect.y), float(rect.width), float(rect.height), 0.0f, 1.0f};
+void SceneRenderer::beginViewport(const ViewportRect& rect, const SceneOptions& opt, RecordPass& rp) {
+  VkCommandBuffer cmd = rp.cmd;
+  rp.viewport = VkViewport{float(rect.x), float(rect.y), float(rect.width), float(rect.height), 0.0f, 1.0f};
   VkRect2D scissor{{rect.x, rect.y}, {rect.width, rect.height}};
-  vkCmdSetViewport(cmd, 0, 1, &viewport);
+  vkCmdSetViewport(cmd, 0, 1, &rp.viewport);
   vkCmdSetScissor(cmd, 0, 1, &scissor);
   VkClearAttachment clears[2]{};
   clears[0].aspectMask = VK_IMAGE_ASPECT_COLOR_BIT;
@@ -553,57 +596,64 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
   clears[1].clearValue.depthStencil = {1.0f, 0};
   VkClearRect clearRect{scissor, 0, 1};
   vkCmdClearAttachments(cmd, 2, clears, 1, &clearRect);
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &slot.set, 1, &frameOffset);
-  slot.setBound = true;
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &rp.slot->set, 1, &rp.frameOffset);
+  rp.slot->setBound = true;
+}
 
+void SceneRenderer::bindPipeline(RecordPass& rp, VkPipeline p) {
+  if (p != rp.bound) vkCmdBindPipeline(rp.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
+  rp.bound = p;
+}
+
+void SceneRenderer::setMorph(RecordPass& rp, MeshPush& p, const GpuMesh* mesh, size_t i) {
+  const DrawMorph& dm = drawMorphs_[i];
+  p.morphOffset = rp.jointBase * 16u + dm.offset;
+  p.morphCount = dm.count;
+  p.morphVertexCount = mesh ? mesh->vertexCount() : 0u;
   // Set 2: the mesh's blend-shape deltas, or the placeholder; rebound only when it changes.
-  VkDescriptorSet boundMorphSet = VK_NULL_HANDLE;
-  auto bindMorphSet = [&](const GpuMesh* mesh) {
-    VkDescriptorSet set = mesh && mesh->morphSet() ? mesh->morphSet() : morphPlaceholderSet_;
-    if (set == boundMorphSet) return;
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, kMorphSet, 1, &set, 0, nullptr);
-    boundMorphSet = set;
-  };
-  auto setMorph = [&](MeshPush& p, const GpuMesh* mesh, size_t i) {
-    const DrawMorph& dm = drawMorphs_[i];
-    p.morphOffset = jointBase * 16u + dm.offset;
-    p.morphCount = dm.count;
-    p.morphVertexCount = mesh ? mesh->vertexCount() : 0u;
-    bindMorphSet(mesh);
-  };
-  auto pushMesh = [&](const MeshDraw& d, size_t i, uint32_t flags, const glm::vec4& color, float pull) {
-    MeshPush p{};
-    p.model = d.model;
-    p.color = color;
-    p.baseLinear = linearRgb(color);
-    p.jointOffset = jointBase + jointOffsets[i];
-    p.jointCount = d.jointMatrices.empty() ? 1u : static_cast<uint32_t>(d.jointMatrices.size());
-    p.flags = flags;
-    p.depthPull = pull;
-    setMorph(p, d.mesh, i);
-    vkCmdPushConstants(cmd, layout_, kPushStages, 0, sizeof(p), &p);
-  };
+  VkDescriptorSet set = mesh && mesh->morphSet() ? mesh->morphSet() : morphPlaceholderSet_;
+  if (set == rp.boundMorphSet) return;
+  vkCmdBindDescriptorSets(rp.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, kMorphSet, 1, &set, 0, nullptr);
+  rp.boundMorphSet = set;
+}
 
-  VkPipeline bound = VK_NULL_HANDLE;
-  auto bind = [&](VkPipeline p) {
-    if (p != bound) vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
-    bound = p;
-  };
-  // Cross-fading draws (opacity < 1) are dithered: colour alpha carries the opacity.
-  auto fadeFlags = [](const auto& d) {
-    if (!(d.opacity < 1.0f)) return 0u;
-    return AM_DRAW_DITHER | (d.complementDither ? AM_DRAW_DITHER_INVERT : 0u);
-  };
-  auto fadeColor = [](const auto& d) { return d.opacity < 1.0f ? glm::vec4(glm::vec3(d.color), std::max(0.0f, d.opacity)) : d.color; };
-  for (size_t i = 0; i < scene.meshes.size(); ++i) {
-    const MeshDraw& d = scene.meshes[i];
-    if (!d.mesh || d.mesh->indexCount() == 0 || !(d.opacity > 0.0f)) continue;
-    bind(d.opacity < 1.0f ? meshDitherPipeline_[d.doubleSided] : meshPipeline_[d.doubleSided]);
-    pushMesh(d, i, (d.selected ? kDrawSelected : 0u) | fadeFlags(d), fadeColor(d), 0.0f);
-    d.mesh->bindTriangles(cmd);
-    vkCmdDrawIndexed(cmd, d.mesh->indexCount(), 1, 0, 0, 0);
-  }
-  // Transitions: set 0 stays bound (the layouts agree on it); set 1 per draw at its record's offset.
+void SceneRenderer::pushMesh(RecordPass& rp, const MeshDraw& d, size_t i, uint32_t flags, const glm::vec4& color,
+                             float pull) {
+  MeshPush p{};
+  p.model = d.model;
+  p.color = color;
+  p.baseLinear = linearRgb(color);
+  p.jointOffset = rp.jointBase + drawJointOffsets_[i];
+  p.jointCount = d.jointMatrices.empty() ? 1u : static_cast<uint32_t>(d.jointMatrices.size());
+  p.flags = flags;
+  p.depthPull = pull;
+  setMorph(rp, p, d.mesh, i);
+  vkCmdPushConstants(rp.cmd, layout_, kPushStages, 0, sizeof(p), &p);
+}
+
+void SceneRenderer::drawGenerated(RecordPass& rp, const GeneratedMeshDraw& g, VkPipeline pipeline,
+                                  const glm::vec4& color, uint32_t flags, float pull) {
+  if (!g.positions || !g.normals || !g.indices || !g.indirect || !(g.opacity > 0.0f)) return;
+  VkCommandBuffer cmd = rp.cmd;
+  bindPipeline(rp, pipeline);
+  MeshPush p{};
+  p.model = g.model;
+  p.color = color;
+  p.baseLinear = linearRgb(p.color);
+  p.jointCount = 1;
+  p.flags = flags | (g.selected ? kDrawSelected : 0u);
+  p.depthPull = pull;
+  vkCmdPushConstants(cmd, layout_, kPushStages, 0, sizeof(p), &p);
+  VkBuffer streams[2] = {g.positions, g.normals};
+  VkDeviceSize offsets[2] = {0, 0};
+  vkCmdBindVertexBuffers(cmd, 0, 2, streams, offsets);
+  vkCmdBindIndexBuffer(cmd, g.indices, 0, VK_INDEX_TYPE_UINT32);
+  vkCmdDrawIndexedIndirect(cmd, g.indirect, g.indirectOffset, 1, sizeof(VkDrawIndexedIndirectCommand));
+}
+
+void SceneRenderer::drawTransitions(const Scene& scene, RecordPass& rp) {
+  // Set 0 stays bound (the layouts agree on it); set 1 per draw at its record's offset.
+  Slot& slot = *rp.slot;
   transitionParamOffsets_.assign(scene.transitionMeshes.size(), UINT32_MAX);
   for (size_t k = 0; k < scene.transitionMeshes.size(); ++k) {
     const TransitionMeshDraw& t = scene.transitionMeshes[k];
@@ -615,41 +665,27 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
     packTransitionParams(*t.frame, *reinterpret_cast<TransitionParams*>(
                                        static_cast<uint8_t*>(slot.transitionParams.mapped) + paramOffset));
     slot.transitionParamsUsed += transitionParamStride_;
-    bind(d.opacity < 1.0f ? transitionDitherPipeline_[d.doubleSided] : transitionPipeline_[d.doubleSided]);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, transitionLayout_, 1, 1, &slot.transitionSet, 1,
+    bindPipeline(rp, d.opacity < 1.0f ? transitionDitherPipeline_[d.doubleSided] : transitionPipeline_[d.doubleSided]);
+    vkCmdBindDescriptorSets(rp.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, transitionLayout_, 1, 1, &slot.transitionSet, 1,
                             &paramOffset);
     slot.transitionSetBound = true;
-    pushMesh(d, scene.meshes.size() + scene.weightOverlays.size() + k, (d.selected ? kDrawSelected : 0u) | fadeFlags(d), fadeColor(d), 0.0f);
-    d.mesh->bindTriangles(cmd);
-    t.binding->bind(cmd, t.firstVertex);
-    vkCmdDrawIndexed(cmd, d.mesh->indexCount(), 1, 0, 0, 0);
+    pushMesh(rp, d, scene.meshes.size() + scene.weightOverlays.size() + k,
+             (d.selected ? kDrawSelected : 0u) | fadeFlags(d), fadeColor(d), 0.0f);
+    d.mesh->bindTriangles(rp.cmd);
+    t.binding->bind(rp.cmd, t.firstVertex);
+    vkCmdDrawIndexed(rp.cmd, d.mesh->indexCount(), 1, 0, 0, 0);
   }
-  auto drawGenerated = [&](const GeneratedMeshDraw& g, VkPipeline pipeline, const glm::vec4& color, uint32_t flags,
-                           float pull) {
-    if (!g.positions || !g.normals || !g.indices || !g.indirect || !(g.opacity > 0.0f)) return;
-    bind(pipeline);
-    MeshPush p{};
-    p.model = g.model;
-    p.color = color;
-    p.baseLinear = linearRgb(p.color);
-    p.jointCount = 1;
-    p.flags = flags | (g.selected ? kDrawSelected : 0u);
-    p.depthPull = pull;
-    vkCmdPushConstants(cmd, layout_, kPushStages, 0, sizeof(p), &p);
-    VkBuffer streams[2] = {g.positions, g.normals};
-    VkDeviceSize offsets[2] = {0, 0};
-    vkCmdBindVertexBuffers(cmd, 0, 2, streams, offsets);
-    vkCmdBindIndexBuffer(cmd, g.indices, 0, VK_INDEX_TYPE_UINT32);
-    vkCmdDrawIndexedIndirect(cmd, g.indirect, g.indirectOffset, 1, sizeof(VkDrawIndexedIndirectCommand));
-  };
-  for (const GeneratedMeshDraw& g : scene.generatedMeshes)
-    drawGenerated(g, g.opacity < 1.0f ? generatedDitherPipeline_ : generatedPipeline_, fadeColor(g), fadeFlags(g), 0.0f);
+}
+
+void SceneRenderer::drawParticlesAndWeights(const Scene& scene, RecordPass& rp) {
+  VkCommandBuffer cmd = rp.cmd;
+  Slot& slot = *rp.slot;
   // Particles: one instanced draw of a triangle per particle draw, at its place in the ring buffer.
-  VkDeviceSize particleOffset = particleBase;
+  VkDeviceSize particleOffset = rp.particleBase;
   for (const ParticleSpheresDraw& d : scene.particles) {
     const VkDeviceSize bytes = d.spheres.size() * sizeof(glm::vec4);
     if (d.spheres.empty()) continue;
-    bind(particlePipeline_);
+    bindPipeline(rp, particlePipeline_);
     MeshPush p{};
     p.model = glm::mat4(1.0f);
     p.color = d.color;
@@ -664,71 +700,92 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
   for (size_t k = 0; k < scene.weightOverlays.size(); ++k) {
     const WeightOverlayDraw& d = scene.weightOverlays[k];
     if (!d.mesh || d.mesh->indexCount() == 0 || d.weights.size() != d.mesh->vertexCount()) continue;
-    bind(weightPipeline_);
+    bindPipeline(rp, weightPipeline_);
     MeshPush p{};
     p.model = d.model;
     p.color = glm::vec4(1.0f);
-    p.jointOffset = jointBase + jointOffsets[scene.meshes.size() + k];
+    p.jointOffset = rp.jointBase + drawJointOffsets_[scene.meshes.size() + k];
     p.jointCount = d.jointMatrices.empty() ? 1u : static_cast<uint32_t>(d.jointMatrices.size());
-    setMorph(p, d.mesh, scene.meshes.size() + k);
+    setMorph(rp, p, d.mesh, scene.meshes.size() + k);
     vkCmdPushConstants(cmd, layout_, kPushStages, 0, sizeof(p), &p);
     d.mesh->bindTriangles(cmd);
-    const VkDeviceSize offset = weightBase + weightOffsets[k];
+    const VkDeviceSize offset = rp.weightBase + rp.weightOffsets[k];
     vkCmdBindVertexBuffers(cmd, kVertexPaintWeight, 1, &slot.weights.buffer, &offset);
     vkCmdDrawIndexed(cmd, d.mesh->indexCount(), 1, 0, 0, 0);
   }
-  if (opt.wireframe) {
-    auto wireColor = [&](bool selected) { return selected ? glm::mix(opt.wireColor, opt.selectColor, 0.6f) : opt.wireColor; };
-    auto drawEdges = [&](const GpuMesh& mesh) {
-      if (edgeListWireframe_) {
-        if (mesh.edgeIndexCount() == 0) return;  // uploaded without an edge list
-        mesh.bindEdges(cmd);
-        vkCmdDrawIndexed(cmd, mesh.edgeIndexCount(), 1, 0, 0, 0);
-      } else if (mesh.indexCount() > 0) {
-        mesh.bindTriangles(cmd);
-        vkCmdDrawIndexed(cmd, mesh.indexCount(), 1, 0, 0, 0);
-      }
-    };
-    for (size_t i = 0; i < scene.meshes.size(); ++i) {
-      const MeshDraw& d = scene.meshes[i];
-      if (!d.mesh) continue;
-      bind(wirePipeline_[d.doubleSided]);
-      pushMesh(d, i, kDrawWireframe | (d.selected ? kDrawSelected : 0u), wireColor(d.selected), kWireDepthPull);
-      drawEdges(*d.mesh);
-    }
-    // The transitions' edges where their vertex shader puts them (drawn above: their set 1 record is written).
-    for (size_t k = 0; k < scene.transitionMeshes.size(); ++k) {
-      const TransitionMeshDraw& t = scene.transitionMeshes[k];
-      if (transitionParamOffsets_[k] == UINT32_MAX) continue;
-      const MeshDraw& d = t.draw;
-      bind(transitionWirePipeline_[d.doubleSided]);
-      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, transitionLayout_, 1, 1, &slot.transitionSet, 1,
-                              &transitionParamOffsets_[k]);
-      pushMesh(d, scene.meshes.size() + scene.weightOverlays.size() + k, kDrawWireframe | (d.selected ? kDrawSelected : 0u),
-               wireColor(d.selected), kWireDepthPull);
-      t.binding->bind(cmd, t.firstVertex);
-      drawEdges(*d.mesh);
-    }
-    // Generated meshes (the GPU polygoniser's) have no edge list: polygon-mode lines only.
-    if (generatedWirePipeline_)
-      for (const GeneratedMeshDraw& g : scene.generatedMeshes)
-        drawGenerated(g, generatedWirePipeline_, wireColor(g.selected), kDrawWireframe, kWireDepthPull);
-  }
+}
 
+void SceneRenderer::drawSurfaces(const Scene& scene, RecordPass& rp) {
+  for (size_t i = 0; i < scene.meshes.size(); ++i) {
+    const MeshDraw& d = scene.meshes[i];
+    if (!d.mesh || d.mesh->indexCount() == 0 || !(d.opacity > 0.0f)) continue;
+    bindPipeline(rp, d.opacity < 1.0f ? meshDitherPipeline_[d.doubleSided] : meshPipeline_[d.doubleSided]);
+    pushMesh(rp, d, i, (d.selected ? kDrawSelected : 0u) | fadeFlags(d), fadeColor(d), 0.0f);
+    d.mesh->bindTriangles(rp.cmd);
+    vkCmdDrawIndexed(rp.cmd, d.mesh->indexCount(), 1, 0, 0, 0);
+  }
+  drawTransitions(scene, rp);
+  for (const GeneratedMeshDraw& g : scene.generatedMeshes)
+    drawGenerated(rp, g, g.opacity < 1.0f ? generatedDitherPipeline_ : generatedPipeline_, fadeColor(g), fadeFlags(g),
+                  0.0f);
+  drawParticlesAndWeights(scene, rp);
+}
+
+void SceneRenderer::drawWireframes(const Scene& scene, RecordPass& rp) {
+  const SceneOptions& opt = scene.options;
+  VkCommandBuffer cmd = rp.cmd;
+  auto wireColor = [&](bool selected) { return selected ? glm::mix(opt.wireColor, opt.selectColor, 0.6f) : opt.wireColor; };
+  auto drawEdges = [&](const GpuMesh& mesh) {
+    if (edgeListWireframe_) {
+      if (mesh.edgeIndexCount() == 0) return;  // uploaded without an edge list
+      mesh.bindEdges(cmd);
+      vkCmdDrawIndexed(cmd, mesh.edgeIndexCount(), 1, 0, 0, 0);
+    } else if (mesh.indexCount() > 0) {
+      mesh.bindTriangles(cmd);
+      vkCmdDrawIndexed(cmd, mesh.indexCount(), 1, 0, 0, 0);
+    }
+  };
+  for (size_t i = 0; i < scene.meshes.size(); ++i) {
+    const MeshDraw& d = scene.meshes[i];
+    if (!d.mesh) continue;
+    bindPipeline(rp, wirePipeline_[d.doubleSided]);
+    pushMesh(rp, d, i, kDrawWireframe | (d.selected ? kDrawSelected : 0u), wireColor(d.selected), kWireDepthPull);
+    drawEdges(*d.mesh);
+  }
+  // The transitions' edges where their vertex shader puts them (drawn above: their set 1 record is written).
+  for (size_t k = 0; k < scene.transitionMeshes.size(); ++k) {
+    const TransitionMeshDraw& t = scene.transitionMeshes[k];
+    if (transitionParamOffsets_[k] == UINT32_MAX) continue;
+    const MeshDraw& d = t.draw;
+    bindPipeline(rp, transitionWirePipeline_[d.doubleSided]);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, transitionLayout_, 1, 1, &rp.slot->transitionSet, 1,
+                            &transitionParamOffsets_[k]);
+    pushMesh(rp, d, scene.meshes.size() + scene.weightOverlays.size() + k,
+             kDrawWireframe | (d.selected ? kDrawSelected : 0u), wireColor(d.selected), kWireDepthPull);
+    t.binding->bind(cmd, t.firstVertex);
+    drawEdges(*d.mesh);
+  }
+  // Generated meshes (the GPU polygoniser's) have no edge list: polygon-mode lines only.
+  if (generatedWirePipeline_)
+    for (const GeneratedMeshDraw& g : scene.generatedMeshes)
+      drawGenerated(rp, g, generatedWirePipeline_, wireColor(g.selected), kDrawWireframe, kWireDepthPull);
+}
+
+void SceneRenderer::drawLinesAndAxes(const ViewportRect& rect, const SceneOptions& opt, RecordPass& rp) {
+  VkCommandBuffer cmd = rp.cmd;
   auto drawLines = [&](VkPipeline pipeline, const glm::mat4& matrix, uint32_t first, uint32_t count) {
     if (count == 0) return;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
     vkCmdPushConstants(cmd, layout_, kPushStages, 0, sizeof(glm::mat4), &matrix);
-    vkCmdBindVertexBuffers(cmd, 0, 1, &slot.lines.buffer, &lineOffset);
+    vkCmdBindVertexBuffers(cmd, 0, 1, &rp.slot->lines.buffer, &rp.lineOffset);
     vkCmdDraw(cmd, count, 1, first, 0);
   };
-  drawLines(linePipeline_, viewProj, 0, static_cast<uint32_t>(depthLines.size()));
+  drawLines(linePipeline_, rp.viewProj, 0, rp.depthLineCount);
   if (opt.grid) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, gridPipeline_);
-    vkCmdDraw(cmd, 6, 2 * (2 * gridLines + 1), 0, 0);  // one quad per line (grid.vert)
+    vkCmdDraw(cmd, 6, 2 * (2 * rp.gridLines + 1), 0, 0);  // one quad per line (grid.vert)
   }
-  drawLines(overlayPipeline_, viewProj, static_cast<uint32_t>(depthLines.size()),
-            static_cast<uint32_t>(overlayLines.size()));
+  drawLines(overlayPipeline_, rp.viewProj, rp.depthLineCount, rp.overlayLineCount);
 
   const uint32_t size = opt.axisIndicatorPx, margin = 6;
   if (opt.axisIndicator && rect.width >= size + 2 * margin && rect.height >= size + 2 * margin) {
@@ -738,9 +795,26 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
     // Camera rotation only, orthographic, y flipped for Vulkan.
     glm::mat4 ortho = glm::orthoRH_ZO(-1.3f, 1.3f, -1.3f, 1.3f, -2.0f, 2.0f);
     ortho[1][1] = -ortho[1][1];
-    drawLines(overlayPipeline_, ortho * glm::mat4(glm::mat3(fu.view)), axisFirst, 6);
-    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    drawLines(overlayPipeline_, ortho * glm::mat4(glm::mat3(rp.view)), rp.axisFirst, 6);
+    vkCmdSetViewport(cmd, 0, 1, &rp.viewport);
   }
+}
+
+Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const ViewportRect& rect,
+                             const OrbitCamera& camera, const Scene& scene) {
+  if (rect.width == 0 || rect.height == 0) return Status::success();
+  Slot& slot = *slots_[frameSerial % kFramesInFlight];
+  if (slot.serial != frameSerial) rewind(slot, frameSerial);  // the GPU is done with that slot's last frame
+  RecordPass rp;
+  rp.cmd = cmd;
+  rp.slot = &slot;
+  gatherFrameData(scene, rp);
+  if (Status s = uploadFrameData(scene, rp); !s) return s;
+  writeFrameUniforms(rect, camera, scene.options, rp);
+  beginViewport(rect, scene.options, rp);
+  drawSurfaces(scene, rp);
+  if (scene.options.wireframe) drawWireframes(scene, rp);
+  drawLinesAndAxes(rect, scene.options, rp);
   return Status::success();
 }
 

@@ -23,6 +23,9 @@ struct TransitionFrame;
 
 namespace animorph::gpu {
 
+// Push constants of the mesh pipelines (defined in scene_renderer.cpp, mirrored by the shaders).
+struct MeshPush;
+
 // Pixel rectangle of the target to draw into (origin top-left); must lie within
 // the render area (an empty rectangle draws nothing).
 struct ViewportRect {
@@ -161,6 +164,33 @@ class SceneRenderer {
                  VkDeviceSize particleBytes = 0);
   Status reserveTransitionParams(Slot& slot, VkDeviceSize bytes);
   void rewind(Slot& slot, uint64_t frameSerial);
+
+  // record()'s steps, in order; rp carries one call's state (scene_renderer.cpp).
+  struct RecordPass;
+  // Joint matrices, morph weights, paint weights and line vertices of the scene into the scratch arrays.
+  void gatherFrameData(const Scene& scene, RecordPass& rp);
+  // The scratch arrays and the particles into the slot's buffers (grown as needed); fails when a
+  // buffer cannot grow.
+  Status uploadFrameData(const Scene& scene, RecordPass& rp);
+  // The camera, light and grid into this call's frame uniforms.
+  void writeFrameUniforms(const ViewportRect& rect, const OrbitCamera& camera, const SceneOptions& opt, RecordPass& rp);
+  // Viewport, scissor, clear, and set 0 bound.
+  void beginViewport(const ViewportRect& rect, const SceneOptions& opt, RecordPass& rp);
+  // Meshes, transitions, generated meshes, particles and weight overlays.
+  void drawSurfaces(const Scene& scene, RecordPass& rp);
+  void drawTransitions(const Scene& scene, RecordPass& rp);
+  void drawParticlesAndWeights(const Scene& scene, RecordPass& rp);
+  // The wireframe pass over meshes, transitions and generated meshes.
+  void drawWireframes(const Scene& scene, RecordPass& rp);
+  // Depth-tested lines, the grid, overlay lines and the corner axis tripod.
+  void drawLinesAndAxes(const ViewportRect& rect, const SceneOptions& opt, RecordPass& rp);
+  // Binds the pipeline unless bound; a draw's push constants (joints, morphs: draw index i); a
+  // generated (indirect) mesh's draw.
+  void bindPipeline(RecordPass& rp, VkPipeline p);
+  void setMorph(RecordPass& rp, MeshPush& p, const GpuMesh* mesh, size_t i);
+  void pushMesh(RecordPass& rp, const MeshDraw& d, size_t i, uint32_t flags, const glm::vec4& color, float pull);
+  void drawGenerated(RecordPass& rp, const GeneratedMeshDraw& g, VkPipeline pipeline, const glm::vec4& color,
+                     uint32_t flags, float pull);
 
   Context& ctx_;
   bool edgeListWireframe_ = false;
