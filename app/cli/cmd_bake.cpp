@@ -206,6 +206,7 @@ int bakeAnimorphosis(const Project& p, const std::string& project, FrameSink& si
     FrameSequenceSettings fs;
     fs.resolution = res;
     fs.reuseToleranceCells = coherence;
+    fs.colors = true;
     ProgressBar bar("baking", count);
     auto stats = polygonizeFrameSequence(
         count, programOf,
@@ -228,6 +229,7 @@ int bakeAnimorphosis(const Project& p, const std::string& project, FrameSink& si
       PolygonizeSettings ps;
       ps.resolution = res;
       ps.threads = jobs > 1 ? 1 : 0;
+      ps.colors = true;
       const FieldProgram field = programOf(k);
       auto r = polygonize(field, ps);
       if (!r) return r.error();

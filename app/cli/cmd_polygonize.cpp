@@ -14,6 +14,7 @@
 #include "core/project/project_io.h"
 #include "core/scene/scene_frame.h"
 #include "core/io/mesh_io.h"
+#include "core/field/surface_color.h"
 #include "core/poly/polygonizer.h"
 #include "gpu/vulkan/context.h"
 #include "gpu/polygonizer/gpu_polygonizer.h"
@@ -149,6 +150,11 @@ int polygonizeCommand(const std::vector<std::string>& args) {
     if (!stats) return fail(me, what + ": " + stats.error());
     auto mesh = (*poly)->readBack();
     if (!mesh) return fail(me, scene + ": " + mesh.error());
+    // Vertex colours on the CPU from the read-back vertices, by the same evaluator as the CPU path
+    // (field/surface_color.h; docs/blobtree.md, "Colour").
+    mesh->colors.resize(mesh->positions.size());
+    animorph::SurfaceColorEvaluator().evaluate(program, mesh->positions.data(), mesh->positions.size(),
+                                               mesh->colors.data());
     toWorld(*mesh, model);
     if (auto s = animorph::writeMesh(*mesh, output); !s) return fail(me, s.error());
     std::printf("%s at t = %g s: %zu triangles, %zu vertices in %.1f ms (GPU: %s)\n", what.c_str(), timeSec,
@@ -164,6 +170,7 @@ int polygonizeCommand(const std::vector<std::string>& args) {
   settings.resolution = int(res);
   settings.culling = cull;
   settings.threads = int(threads);
+  settings.colors = true;
   auto result = animorph::polygonize(program, settings);
   if (!result) return fail(me, what + ": " + result.error());
   toWorld(result->mesh, model);

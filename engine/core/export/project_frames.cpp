@@ -46,6 +46,7 @@ Result<TriangleMesh> ProjectFrames::mesh(int frame, int resolution, const std::a
   PolygonizeSettings ps;
   ps.resolution = resolution;
   ps.cancel = cancel;
+  ps.colors = true;  // the primitives' colours as vertex colours (docs/export.md)
   auto r = polygonize(compileGeneric(*generic_, timing_, timeSec), ps);
   if (!r) return Error{r.error()};
   if (r->cancelled || (cancel && cancel->load())) return jobCancelled();
