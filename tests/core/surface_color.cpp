@@ -12,6 +12,7 @@
 #include "core/blobtree/compile.h"
 #include "core/blobtree/validate.h"
 #include "core/field/surface_color.h"
+#include "core/particles/convert_to_particles.h"
 #include "core/poly/polygonizer.h"
 
 using namespace animorph;
@@ -149,7 +150,7 @@ TEST_CASE("colour: the animorphosis interpolates colours by s(t), and a null par
   a.root.children.push_back(coloredPoint(2, glm::vec3(0.0f), kRed));
   b.root = makeBlobNode(NodeType::Blend, 1, "b");
   b.root.children.push_back(coloredPoint(2, glm::vec3(0.0f), kBlue));
-  b.root.children.push_back(coloredPoint(3, glm::vec3(0.6f, 0.0f, 0.0f), kGreen));  // no partner in A
+  b.root.children.push_back(coloredPoint(3, glm::vec3(2.0f, 0.0f, 0.0f), kGreen, 0.3f));  // no partner in A
   CorrespondenceGraph g;
   g.links.push_back({1, 1, {}, 1.0f, true});
   g.links.push_back({2, 2, {}, 1.0f, true});
@@ -159,18 +160,50 @@ TEST_CASE("colour: the animorphosis interpolates colours by s(t), and a null par
   SurfaceColorEvaluator ev;
   // At u = 0.25, s = 3/16 - 2/64 = 0.15625: the point's colour is (0.84375, 0, 0.15625) in sRGB,
   // (0.84375^2.2, 0, 0.15625^2.2) = (0.688130, 0, 0.016842) in linear light. Behind the point (x < 0)
-  // the green one, beyond its reach, adds nothing.
+  // the small green one, growing out of the body, does not reach.
   FieldProgram quarter = compileGeneric(*c, timing, 0.25);
   checkNear(ev.evaluatePoint(quarter, {-0.3f, 0.0f, 0.0f}), {0.688130f, 0.0f, 0.016842f});
-  // The green null partner: no colour at all at u = 0 (its field is 0), more and more as it grows.
-  const glm::vec3 probe{0.35f, 0.0f, 0.0f};
-  float last = -1.0f;
+  // The green null partner: intensity (1 - s) 0 + s 1 = s, so at its own centre its weight is s
+  // against the red-blue point's (1 - (d / 1)^2)^3 at distance d: its colour fades in with its shape.
   for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
-    const glm::vec3 col = ev.evaluatePoint(compileGeneric(*c, timing, t), probe);
-    INFO("t = " << t << ": green " << col.g);
-    if (t == 0.0) CHECK(col.g == 0.0f);
-    else CHECK(col.g > last);
-    last = col.g;
+    const FieldProgram prog = compileGeneric(*c, timing, t);
+    const double s = 3.0 * t * t - 2.0 * t * t * t;
+    // The green primitive's centre in this frame (the partner grows out of the body as it moves).
+    glm::vec3 centre(0.0f);
+    for (size_t i = 0; i < prog.skeletal.size(); ++i)
+      if (prog.primitiveColor(PrimClass::Skeletal, uint32_t(i)) == kGreen) centre = prog.skeletal[i].skeleton.p0;
+    const float d = glm::length(centre);
+    const float w1 = d < 1.0f ? std::pow(1.0f - d * d, 3.0f) : 0.0f, wg = float(s);
+    const glm::vec3 c1 = srgbToLinear(glm::mix(kRed, kBlue, float(s)));
+    const glm::vec3 want = w1 + wg > 0.0f ? (w1 * c1 + wg * kGreen) / (w1 + wg) : c1;
+    INFO("t = " << t << ", green centre x = " << centre.x);
+    checkNear(ev.evaluatePoint(prog, centre), want, 1e-4f);
+    if (t == 0.0) CHECK(ev.evaluatePoint(prog, centre).g == 0.0f);
+    if (t == 1.0) CHECK(ev.evaluatePoint(prog, centre).g > 0.99f);
   }
-  CHECK(last > 0.3f);
+}
+
+TEST_CASE("colour: particles converted from a coloured shape carry the colour of the point they came from",
+          "[color][particles]") {
+  FieldProgram prog = compileFieldProgram(twoPoints(NodeType::Blend, kRed, kBlue), 0.0);
+  ConvertToParticlesSettings s;
+  s.count = 300;
+  s.calibrationCells = 100'000;
+  auto r = convertToParticles(prog, s);
+  REQUIRE(r.ok());
+  size_t red = 0, blue = 0;
+  for (const BlobNode& p : r->tree.root.children) {
+    const glm::vec3 c = p.vec3Param("color").evaluate(0.0), x = p.vec3Param("center").evaluate(0.0);
+    // The particle's colour is the shape's at its centre (sRGB of the blend in linear light).
+    checkNear(c, linearToSrgb(SurfaceColorEvaluator().evaluatePoint(prog, x)), 1e-4f);
+    red += x.x < -0.05f && c.r > 0.999f;
+    blue += x.x > 1.05f && c.b > 0.999f;
+  }
+  CHECK(red > 10);
+  CHECK(blue > 10);
+  // A shape without colours: the particles keep the default (not written to files).
+  BlobTree plain = twoPoints(NodeType::Blend, kClayColorSrgb, kClayColorSrgb);
+  auto q = convertToParticles(compileFieldProgram(plain, 0.0), s);
+  REQUIRE(q.ok());
+  for (const BlobNode& p : q->tree.root.children) REQUIRE(p.vec3Param("color") == Vec3Track(kClayColorSrgb));
 }

@@ -136,14 +136,14 @@ void combine(const FieldProgram& P, const FieldOp& op, RunScratch& S, int base, 
   float* V0 = S.V(base);
   for (int i = 0; i < n; ++i) {
     switch (op.code) {
-      case OpCode::Sum: {
+      case OpCode::Sum: {  // finish() folds sums to kFoldOperands operands: at most 64 colours weigh
         float v = 0.0f;
         for (int k = 0; k < count; ++k) {
           const float vk = S.V(base + k)[i];
           v += vk;
-          w[k] = std::max(vk, 0.0f);
+          if (k < 64) w[k] = std::max(vk, 0.0f);
         }
-        weighted(S, base, count, i, w);
+        weighted(S, base, std::min(count, 64), i, w);
         V0[i] = v;
         break;
       }
