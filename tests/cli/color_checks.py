@@ -91,8 +91,8 @@ def mode_files(cli):
             fail(f"too few vertices beyond the points: {len(red)}, {len(blue)}")
         if any(v[3] < 0.999 or v[5] > 0.001 for v in red) or any(v[5] < 0.999 or v[3] > 0.001 for v in blue):
             fail("vertices beyond one point's reach are not that point's colour")
-        mid = [v for v in verts if 0.45 < v[0] < 0.55]
-        if not mid or any(abs(v[3] - 0.5) > 0.06 or abs(v[5] - 0.5) > 0.06 for v in mid):
+        mid = [v for v in verts if 0.495 < v[0] < 0.505]
+        if not mid or any(abs(v[3] - 0.5) > 0.01 or abs(v[5] - 0.5) > 0.01 for v in mid):
             fail(f"vertices halfway are not an even blend: {mid[:3]}")
         if any(abs(v[3] + v[5] - 1.0) > 2e-3 or abs(v[4]) > 1e-4 for v in verts):
             fail("a vertex colour that is not a blend of red and blue")

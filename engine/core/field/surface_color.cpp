@@ -158,11 +158,14 @@ void combine(const FieldProgram& P, const FieldOp& op, RunScratch& S, int base, 
         }
         break;
       case OpCode::HyperBlend: {
+        // Weights p_k^q, scaled by the largest p^q (q is up to 64: small potentials would underflow).
         const int m = std::min(count, 64);
+        float top = 0.0f;
         for (int k = 0; k < m; ++k) {
           vals[k] = S.V(base + k)[i];
-          w[k] = vals[k] > 0.0f ? std::pow(vals[k], prm[0]) : 0.0f;
+          top = std::max(top, vals[k]);
         }
+        for (int k = 0; k < m; ++k) w[k] = vals[k] > 0.0f ? std::pow(vals[k] / top, prm[0]) : 0.0f;
         weighted(S, base, m, i, w);
         V0[i] = hyperBlend(vals, m, prm[0], d);
         break;
@@ -281,17 +284,24 @@ void evaluateRun(const FieldProgram& P, const glm::vec3* points, const uint32_t*
 void SurfaceColorEvaluator::evaluate(const FieldProgram& program, const glm::vec3* points, size_t n, glm::vec4* out,
                                      int threads) {
   if (n == 0) return;
-  // Sort the points by a coarse cell (64 per side of their box), so each run is compact.
+  // Sort the points along a Morton curve of 1024 cells per side of their box, so each run of
+  // consecutive points is compact (a small box, few primitives reaching it).
   Bounds all;
   for (size_t i = 0; i < n; ++i) all.add(points[i]);
-  const float cell = std::max(all.size().x, std::max(all.size().y, all.size().z)) / 64.0f + 1e-20f;
+  const float cell = std::max(all.size().x, std::max(all.size().y, all.size().z)) / 1024.0f + 1e-20f;
+  auto spread = [](uint64_t v) {  // 10 bits to every third bit
+    v &= 0x3ff;
+    v = (v | (v << 16)) & 0x30000ff;
+    v = (v | (v << 8)) & 0x300f00f;
+    v = (v | (v << 4)) & 0x30c30c3;
+    v = (v | (v << 2)) & 0x9249249;
+    return v;
+  };
   keys_.resize(n);
   order_.resize(n);
   for (size_t i = 0; i < n; ++i) {
-    const glm::ivec3 c = glm::clamp(glm::ivec3((points[i] - all.min) / cell), 0, 63);
-    // Cells in x-major slabs of 4: neighbours in all three directions stay close in the order.
-    keys_[i] = (uint64_t(c.z / 4) << 40) | (uint64_t(c.y / 4) << 32) | (uint64_t(c.x) << 16) |
-               uint64_t((c.z % 4) * 4 + c.y % 4);
+    const glm::ivec3 c = glm::clamp(glm::ivec3((points[i] - all.min) / cell), 0, 1023);
+    keys_[i] = spread(uint64_t(c.x)) | spread(uint64_t(c.y)) << 1 | spread(uint64_t(c.z)) << 2;
     order_[i] = uint32_t(i);
   }
   std::sort(order_.begin(), order_.end(), [&](uint32_t a, uint32_t b) { return keys_[a] < keys_[b]; });
