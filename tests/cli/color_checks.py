@@ -174,8 +174,11 @@ def mode_validator(cli, tools):
 
 BLENDER_SCRIPT = r"""
 import bpy, json, sys
-import numpy
-numpy.bool = bool  # Debian's numpy dropped the alias Blender 3.4's glTF add-on still uses
+try:
+    import numpy
+    numpy.bool = bool  # Debian's numpy dropped the alias Blender 3.4's glTF add-on still uses
+except ImportError:
+    pass
 path, out = sys.argv[sys.argv.index("--") + 1:]
 bpy.ops.wm.read_factory_settings(use_empty=True)
 bpy.ops.import_scene.gltf(filepath=path)
