@@ -14,8 +14,8 @@ int runFarm(const std::vector<std::string>& args) {
     return fail("farm", args[0] + ": " + e, 2);
   if (args[0] == "slurm" && !o.chunksDir.empty())
     return fail("farm", "slurm: --chunks is an option of farm assemble (slurm puts the chunks into DIR/chunks)", 2);
-  if (args[0] == "assemble" && (o.submit || !o.partition.empty() || !o.output.empty()))
-    return fail("farm", "assemble: -o, --partition and --submit are options of farm slurm", 2);
+  if (args[0] == "assemble" && (o.submit || !o.partition.empty() || !o.output.empty() || o.keepInnerShell))
+    return fail("farm", "assemble: -o, --partition, --keep-inner-shell and --submit are options of farm slurm", 2);
   return args[0] == "slurm" ? runFarmSlurm(o) : runFarmAssemble(o);
 }
 
@@ -25,7 +25,8 @@ ANIMORPH_CLI_COMMAND("farm", "split a bake by frame range over a render farm (Sl
                      "usage: animorph-cli farm slurm PROJECT.animorph --frames A:B --chunk N --res R -o DIR\n"
                      "                          [--format ply|obj|ply,obj|none] [--name NAME] [--gltf FILE.glb]\n"
                      "                          [--mp4 FILE.mp4 [--size WxH] [--burn-in]] [--jobs J]\n"
-                     "                          [--partition P] [--gpu] [--keep-chunks] [--submit]\n"
+                     "                          [--partition P] [--gpu] [--keep-inner-shell] [--keep-chunks]\n"
+                     "                          [--submit]\n"
                      "       animorph-cli farm assemble PROJECT.animorph --frames A:B --chunk N --chunks DIR\n"
                      "                          [--name NAME] [--gltf FILE.glb] [--mp4 FILE.mp4 [--size WxH] [--burn-in]]\n"
                      "                          [--keep-chunks]\n"
@@ -41,6 +42,9 @@ ANIMORPH_CLI_COMMAND("farm", "split a bake by frame range over a render farm (Sl
                      "  --gpu: every task asks Slurm for one GPU (#SBATCH --gres=gpu:1) and runs bake\n"
                      "  --gpu (B->C on the GPU polygoniser; a task whose node has no usable device fails\n"
                      "  with a message rather than bake on the CPU). A morph only.\n"
+                     "  --keep-inner-shell: every task runs bake --keep-inner-shell (collapse and\n"
+                     "  expansion frames keep the stand-in core as a second shell; by default they are\n"
+                     "  written as their visible surface, as bake writes them).\n"
                      "  Logs go to DIR/logs/. Without --submit it prints the sbatch commands; with\n"
                      "  --submit it runs sbatch (the bake array, then the assembly with\n"
                      "  --dependency=afterok on the array) and prints both job ids.\n"

@@ -21,7 +21,7 @@ struct FrameMapInfo {
   double polledAt = 0.0;     // CLOCK_MONOTONIC seconds when this frame took its input
   bool previewGpu = false;   // the preview shown is the GPU's
   std::string presentPath;   // how frames reach the window
-  bool particlesShown = false;  // some BlobTree was drawn as particles (scene/particle_view.h)
+  bool particlesShown = false;  // some BlobTree was drawn as particles (editor/particle_view.h)
   bool paced = false;           // scrubbing while a CPU preview computes: the loop is paced (scene/scrub_pacing.h)
 };
 

@@ -101,7 +101,7 @@ ViewportFrameResult ViewportFrame::build(EditorGpu& g, EditorUI& ui, EditorConte
     if (!note.empty()) ectx.viewportNote += (ectx.viewportNote.empty() ? "" : "  |  ") + note;
   }
   // Particle systems moving (scrubbing, playing) are drawn as particles, not polygonised (not for
-  // screenshots); so are those spread too far for the surface's grid (scene/particle_view.h).
+  // screenshots); so are those spread too far for the surface's grid (editor/particle_view.h).
   ParticleViewSettings pv;
   pv.enabled = prefs.particleView;
   pv.settle = settle;

@@ -13,7 +13,7 @@
 #include "core/scene/animorphosis_scene.h"
 #include "editor/morph_preparer.h"
 #include "core/scene/morph_scene.h"
-#include "core/scene/particle_view.h"
+#include "editor/particle_view.h"
 #include "core/scene/scene_frame.h"
 
 namespace animorph {

@@ -34,8 +34,8 @@ def scripts(*extra):
 try:
     # --gpu: each task asks Slurm for a GPU and bakes B->C on it; --keep-chunks reaches the assembly.
     bake, assemble = scripts()
-    if "--gres" in bake or " --gpu" in bake or "--keep-chunks" in assemble:
-        fail(f"farm slurm without --gpu/--keep-chunks wrote:\n{bake}\n{assemble}")
+    if "--gres" in bake or " --gpu" in bake or "--keep-inner-shell" in bake or "--keep-chunks" in assemble:
+        fail(f"farm slurm without --gpu/--keep-inner-shell/--keep-chunks wrote:\n{bake}\n{assemble}")
     bake, assemble = scripts("--gpu", "--keep-chunks")
     bake_line = [line for line in bake.splitlines() if line.startswith("exec ")]
     if "#SBATCH --gres=gpu:1\n" not in bake or len(bake_line) != 1 or not bake_line[0].endswith(" --gpu"):
@@ -43,6 +43,11 @@ try:
     if "--keep-chunks" not in assemble:
         fail(f"farm slurm --keep-chunks: the assembly script does not keep them:\n{assemble}")
     print("ok: --gpu asks Slurm for one GPU per task (--gres=gpu:1) and runs bake --gpu; --keep-chunks is passed on")
+    bake, assemble = scripts("--keep-inner-shell")
+    bake_line = [line for line in bake.splitlines() if line.startswith("exec ")]
+    if len(bake_line) != 1 or not bake_line[0].endswith(" --keep-inner-shell") or "--keep-inner-shell" in assemble:
+        fail(f"farm slurm --keep-inner-shell: the tasks do not bake with it (or the assembly got it):\n{bake}\n{assemble}")
+    print("ok: --keep-inner-shell reaches every task's bake")
 
     # What such a task does on a node without a usable Vulkan device: bake --gpu refuses clearly.
     env = dict(os.environ, VK_ICD_FILENAMES=os.path.join(tmp, "no-driver.json"))

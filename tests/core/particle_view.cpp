@@ -1,10 +1,10 @@
-// The viewport's particle view (scene/particle_view.h): which BlobTree draws are shown as particles.
+// The viewport's particle view (editor/particle_view.h): which BlobTree draws are shown as particles.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 
 #include "demo/dino_dragon.h"
-#include "core/scene/particle_view.h"
+#include "editor/particle_view.h"
 #include "util/blob_builders.h"
 
 using namespace animorph;

@@ -9,6 +9,10 @@
 #                              and exported as one glTF animation (morph targets + weights channel)
 #   blend_shape_static.glb     the same mesh with the shape keys held at 0.5 / 0.25 and no animation:
 #                              the glTF mesh's default weights are what moves it
+#   blend_shape_character.fbx,
+#   blend_shape_static.fbx     the same two scenes through Blender's FBX exporter (shape keys as
+#                              blend shape channels, their values as DeformPercent, the keyed values
+#                              as the channels' animation curves)
 #   blend_shape_reference.json Blender's own evaluated mesh (shape keys, then the armature) of both
 #                              files: {"frames": [F...], "fps": 24, "rest": [[x,y,z]...],
 #                              "animated": {"F": [[x,y,z]...]}, "static": [[x,y,z]...]}, world space in
@@ -159,6 +163,10 @@ def export(path, animations):
                               export_apply=False)
 
 
+def export_fbx(path, animations):
+    bpy.ops.export_scene.fbx(filepath=path, bake_anim=animations, add_leaf_bones=False)
+
+
 def main():
     out = out_dir()
     scene = clear_scene()
@@ -175,6 +183,7 @@ def main():
     scene.frame_set(0)
     ref["static"] = evaluated_positions(tube)
     export(os.path.join(out, "blend_shape_static.glb"), False)
+    export_fbx(os.path.join(out, "blend_shape_static.fbx"), False)
 
     key_animation(tube, arm, bulge, lean)
     ref["animated"] = {}
@@ -182,6 +191,7 @@ def main():
         scene.frame_set(f)
         ref["animated"][str(f)] = evaluated_positions(tube)
     export(os.path.join(out, "blend_shape_character.glb"), True)
+    export_fbx(os.path.join(out, "blend_shape_character.fbx"), True)
     with open(os.path.join(out, "blend_shape_reference.json"), "w") as f:
         json.dump(ref, f)
     print("wrote", out)

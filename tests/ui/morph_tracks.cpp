@@ -28,7 +28,9 @@ struct MorphFixture {
 
   MorphFixture() {
     fixture.loadHeroMorphScene();
-    auto fit = fitStandin(*registeredCharacter(dir.file("hero.gltf")));
+    auto hero = h.assets.get(dir.file("hero.gltf")).character;
+    REQUIRE(hero);
+    auto fit = fitStandin(*hero);
     REQUIRE(fit);
     Project p = h.doc().project();
     for (const char* id : {"hero", "other"}) {

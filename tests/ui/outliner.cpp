@@ -109,7 +109,7 @@ TEST_CASE("files dropped on the window: glTF files are imported, a project opens
   auto& h = f.h;
   // Two glTF files (one with an upper-case extension): two actors, each its own undo step.
   std::string upper = f.dir.file("HERO2.GLTF");
-  registerCharacter(upper, writeTestCharacter(upper));
+  writeTestCharacter(upper);
   h.ui->requestDrop({f.dir.file("hero.gltf"), upper});
   h.frames(1);
   REQUIRE(h.doc().project().actors.size() == 3);

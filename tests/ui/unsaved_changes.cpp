@@ -177,7 +177,7 @@ TEST_CASE("opening a glTF starts a new untitled project with the character impor
   f.loadHeroScene();
   auto& h = f.h;
   std::string asset = f.dir.file("walker.gltf");
-  registerCharacter(asset, writeTestCharacter(asset));
+  writeTestCharacter(asset);
 
   // The scene is clean: Open replaces it at once, as a project would.
   h.ui->requestOpen(asset);

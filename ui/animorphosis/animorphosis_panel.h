@@ -90,7 +90,8 @@ void drawCreateAnimorphosisPopup(Document& doc, CreateAnimorphosisState& st, Cor
 // animorphosis or the middle half of the range) and opens it next draw.
 void openCreateAnimorphosis(const Document& doc, CreateAnimorphosisState& st);
 
-// The correspondence editor window when visible. area: the region it opens over. It edits the
+// The correspondence editor window when visible, docked on area (the layout's correspondence
+// rectangle below the viewport). It edits the
 // animorphosis' graph; a morph by skeleton correspondence has its chain matching there too
 // (drawChainMatching on morph, the inspector's morph state: widgets noted corr/chains/...), on a
 // tab of its own when the project has both.

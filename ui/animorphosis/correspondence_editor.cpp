@@ -225,14 +225,15 @@ void drawToolbar(Document& doc, const BlobTree& a, const BlobTree& b, Correspond
     const CorrespondenceLink& l = m.graph.suggestions[size_t(sug)];
     const BlobNode* na = a.find(l.nodeA);
     const BlobNode* nb = b.find(l.nodeB);
-    ImGui::Text("%s -> %s  |  suggestion, confidence %.2f (not applied)", na ? nameOfNode(*na).c_str() : "?",
-                nb ? nameOfNode(*nb).c_str() : "?", l.confidence);
-    ImGui::SameLine();
+    // The button first: the docked editor may be too narrow for the whole line.
     if (ImGui::SmallButton("Accept")) {
       runCommand(doc, acceptSuggestionCommand(doc.project(), l.nodeA, l.nodeB), status);
       st.selectedSuggestion.reset();
     }
     noteWidget("corr/accept");
+    ImGui::SameLine();
+    ImGui::Text("%s -> %s  |  suggestion, confidence %.2f (not applied)", na ? nameOfNode(*na).c_str() : "?",
+                nb ? nameOfNode(*nb).c_str() : "?", l.confidence);
     return;
   }
   if (sel < 0) {
@@ -242,10 +243,7 @@ void drawToolbar(Document& doc, const BlobTree& a, const BlobTree& b, Correspond
   const CorrespondenceLink& l = m.graph.links[size_t(sel)];
   const BlobNode* na = a.find(l.nodeA);
   const BlobNode* nb = b.find(l.nodeB);
-  ImGui::Text("%s -> %s  |  %s, confidence %.2f  |  s(u): %s", na ? nameOfNode(*na).c_str() : "?",
-              nb ? nameOfNode(*nb).c_str() : "?", l.artist ? "artist" : "automatic", l.confidence,
-              l.sOverride ? "its own" : "inherited");
-  ImGui::SameLine();
+  // The button first: the docked editor may be too narrow for the whole line.
   if (!l.sOverride) {
     if (ImGui::SmallButton("Own s(u)"))
       runCommand(doc, setLinkSOverrideCommand(doc.project(), l.nodeA, l.nodeB, m.globalS), status);
@@ -257,6 +255,10 @@ void drawToolbar(Document& doc, const BlobTree& a, const BlobTree& b, Correspond
       runCommand(doc, setLinkSOverrideCommand(doc.project(), l.nodeA, l.nodeB, std::nullopt), status);
     noteWidget("corr/inherit_s");
   }
+  ImGui::SameLine();
+  ImGui::Text("%s -> %s  |  %s, confidence %.2f  |  s(u): %s", na ? nameOfNode(*na).c_str() : "?",
+              nb ? nameOfNode(*nb).c_str() : "?", l.artist ? "artist" : "automatic", l.confidence,
+              l.sOverride ? "its own" : "inherited");
 }
 
 }  // namespace
@@ -264,10 +266,8 @@ void drawToolbar(Document& doc, const BlobTree& a, const BlobTree& b, Correspond
 void drawCorrespondenceEditor(const LayoutRect& area, Document& doc, CorrespondenceEditorState& st,
                               MorphPanelState& morph, StatusMessage& status) {
   st.hovered = {};
-  const float h = std::clamp(area.size.y * 0.45f, 220.0f, 440.0f);  // the centre of the viewport stays in view
-  if (!beginToolWindow("Correspondence Editor", ImVec2(area.min.x + 8.0f, area.min.y + 28.0f),
-                       ImVec2(std::max(320.0f, area.size.x - 16.0f), h), "corr/window",
-                       {st.visible, st.placeNext, st.focused}))
+  if (!beginDockedToolWindow("Correspondence Editor", ImVec2(area.min.x, area.min.y), ImVec2(area.size.x, area.size.y),
+                             "corr/window", {st.visible, st.placeNext, st.focused}))
     return;
   const Project& project = doc.project();
   const AnimorphosisSetup& m = project.animorphosis;

@@ -1,6 +1,7 @@
 #include "ui/common/layout.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace animorph {
 
@@ -14,10 +15,40 @@ LayoutSizes clampLayout(LayoutSizes s, glm::vec2 display, float menuBarHeight, f
   // Vertical: timeline + splitter + viewport fit between menu and status bar.
   float vertRoom = std::max(0.0f, display.y - menuBarHeight - statusBarHeight - kSplitterThicknessPx - kMinViewportPx);
   s.timelineHeight = std::clamp(s.timelineHeight, std::min(kMinTimelinePx, vertRoom), std::max(vertRoom, 0.0f));
+  // The docked editors: between their minimum and what leaves the viewport its own.
+  const float upper = std::max(0.0f, display.y - menuBarHeight - statusBarHeight - s.timelineHeight - kSplitterThicknessPx);
+  const float editorsRoom = std::max(0.0f, upper - kSplitterThicknessPx - kMinViewportPx);
+  s.editorsHeight = std::clamp(s.editorsHeight, std::min(kMinEditorsPx, editorsRoom), std::max(editorsRoom, 0.0f));
+  s.editorsSplit = std::clamp(s.editorsSplit, kMinEditorsSplit, 1.0f - kMinEditorsSplit);
   return s;
 }
 
-LayoutRects computeLayout(glm::vec2 display, float menuBarHeight, float statusBarHeight, LayoutSizes sizes) {
+namespace {
+
+// Cuts the docked editors' area (and its splitter) off the bottom of the viewport.
+void dockEditors(const LayoutSizes& s, DockedEditors docked, LayoutRects& r) {
+  if (!docked.any()) return;
+  const float t = kSplitterThicknessPx;
+  LayoutRect& vp = r.viewport;
+  const float h = std::min(s.editorsHeight, std::max(0.0f, vp.size.y - t));
+  const float top = vp.max().y - h;
+  r.editorsSplitter = {{vp.min.x, top - t}, {vp.size.x, t}};
+  const LayoutRect area{{vp.min.x, top}, {vp.size.x, h}};
+  vp.size.y = std::max(0.0f, top - t - vp.min.y);
+  if (!(docked.correspondence && docked.curves)) {
+    (docked.correspondence ? r.correspondence : r.curves) = area;
+    return;
+  }
+  const float left = std::floor((area.size.x - t) * s.editorsSplit);
+  r.correspondence = {area.min, {left, h}};
+  r.editorsDivider = {{area.min.x + left, top}, {t, h}};
+  r.curves = {{area.min.x + left + t, top}, {std::max(0.0f, area.size.x - left - t), h}};
+}
+
+}  // namespace
+
+LayoutRects computeLayout(glm::vec2 display, float menuBarHeight, float statusBarHeight, LayoutSizes sizes,
+                          DockedEditors docked) {
   LayoutSizes s = clampLayout(sizes, display, menuBarHeight, statusBarHeight);
   const float t = kSplitterThicknessPx;
   LayoutRects r;
@@ -36,6 +67,7 @@ LayoutRects computeLayout(glm::vec2 display, float menuBarHeight, float statusBa
   r.inspectorSplitter = {{inspectorLeft - t, top}, {t, upperHeight}};
   float vpLeft = s.outlinerWidth + t;
   r.viewport = {{vpLeft, top}, {std::max(0.0f, inspectorLeft - t - vpLeft), upperHeight}};
+  dockEditors(s, docked, r);
   return r;
 }
 

@@ -29,7 +29,9 @@ std::string preferencesToJson(const Preferences& p) {
   json j;
   j["layout"] = {{"outlinerWidth", p.outlinerWidth},
                  {"inspectorWidth", p.inspectorWidth},
-                 {"timelineHeight", p.timelineHeight}};
+                 {"timelineHeight", p.timelineHeight},
+                 {"editorsHeight", p.editorsHeight},
+                 {"editorsSplit", p.editorsSplit}};
   j["camera"] = {{"scheme", p.cameraScheme == CameraScheme::Maya ? "maya" : "blender"},
                  {"otherSchemeToo", p.otherSchemeToo}};
   j["recentFiles"] = p.recentFiles;
@@ -74,6 +76,8 @@ Result<Preferences> preferencesFromJson(const std::string& text, const std::stri
       p.outlinerWidth = static_cast<float>(number(l, "outlinerWidth", "layout", p.outlinerWidth, 0, 1e5));
       p.inspectorWidth = static_cast<float>(number(l, "inspectorWidth", "layout", p.inspectorWidth, 0, 1e5));
       p.timelineHeight = static_cast<float>(number(l, "timelineHeight", "layout", p.timelineHeight, 0, 1e5));
+      p.editorsHeight = static_cast<float>(number(l, "editorsHeight", "layout", p.editorsHeight, 0, 1e5));
+      p.editorsSplit = static_cast<float>(number(l, "editorsSplit", "layout", p.editorsSplit, 0, 1));
     }
   }
   if (j.contains("camera")) {

@@ -19,6 +19,8 @@ struct Preferences {
   float outlinerWidth = 260.0f;   // pixels; the UI clamps it to the window
   float inspectorWidth = 320.0f;  // pixels
   float timelineHeight = 140.0f;  // pixels
+  float editorsHeight = 340.0f;   // pixels: the docked correspondence / curve editors below the viewport
+  float editorsSplit = 0.5f;      // the correspondence editor's share of their width when both are open
   CameraScheme cameraScheme = CameraScheme::Maya;
   // Also accept the bindings of the other scheme where they do not conflict
   // with the primary one (Maya uses Alt, Blender the bare middle button).
@@ -32,7 +34,7 @@ struct Preferences {
   int previewCoarseResolution = 96;
   PreviewDevice previewDevice = PreviewDevice::Auto;
   // BlobTrees of many point primitives (particles) drawn as spheres while scrubbing or playing,
-  // their surface polygonised once the time holds still (scene/particle_view.h).
+  // their surface polygonised once the time holds still (editor/particle_view.h).
   bool particleView = true;
   bool operator==(const Preferences&) const = default;
 };

@@ -134,9 +134,8 @@ glm::dvec2 pixelToCurve(const CurveEditorState& st, glm::vec2 px) {
 }
 
 void drawCurveEditorPanel(const LayoutRect& area, Document& doc, CurveEditorState& st, StatusMessage& status) {
-  const float h = std::clamp(area.size.y * 0.5f, 200.0f, 360.0f);
-  if (!beginToolWindow("Curve Editor", ImVec2(area.min.x, area.min.y + area.size.y - h), ImVec2(area.size.x, h),
-                       "curve/window", {st.visible, st.placeNext, st.focused}))
+  if (!beginDockedToolWindow("Curve Editor", ImVec2(area.min.x, area.min.y), ImVec2(area.size.x, area.size.y),
+                             "curve/window", {st.visible, st.placeNext, st.focused}))
     return;
   std::unique_ptr<CurveSource> source = curveSourceFor(doc, st);
   if (!source) {

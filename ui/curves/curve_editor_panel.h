@@ -70,8 +70,8 @@ struct CurveEditorState {
 glm::vec2 curveToPixel(const CurveEditorState& st, double frame, double value);
 glm::dvec2 pixelToCurve(const CurveEditorState& st, glm::vec2 px);
 
-// Draws the window when visible. area: the region it opens over (the
-// viewport). Refused edits report to status.
+// Draws the window when visible, docked on area (the layout's curves
+// rectangle below the viewport). Refused edits report to status.
 void drawCurveEditorPanel(const LayoutRect& area, Document& doc, CurveEditorState& st, StatusMessage& status);
 
 }  // namespace animorph

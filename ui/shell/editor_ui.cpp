@@ -138,9 +138,9 @@ void EditorUI::housekeeping(EditorContext& ctx) {
 void EditorUI::drawPanels(EditorContext& ctx, std::vector<Action>& actions) {
   const ImGuiIO& io = ImGui::GetIO();
   float statusHeight = ImGui::GetFrameHeight();
-  LayoutSizes sizes{st_.prefs.outlinerWidth, st_.prefs.inspectorWidth, st_.prefs.timelineHeight};
   glm::vec2 display(io.DisplaySize.x, io.DisplaySize.y);
-  st_.layout = computeLayout(display, st_.menuBarHeight, statusHeight, sizes);
+  st_.layout = computeLayout(display, st_.menuBarHeight, statusHeight, layoutSizes(),
+                             {st_.correspondence.visible, st_.curveEditor.visible});
 
   drawOutlinerPanel(st_.layout.outliner, doc(ctx), ctx.assets, st_.outliner, actions, st_.status);
   st_.inspector.morph.runtime = ctx.morphRuntime;
@@ -154,14 +154,14 @@ void EditorUI::drawPanels(EditorContext& ctx, std::vector<Action>& actions) {
   drawTimelinePanel(st_.layout.timeline, doc(ctx), st_.playback, keyFrames(ctx), st_.timeline, st_.drag, actions);
   drawStatusBar(st_.layout.statusBar, doc(ctx), ctx.stats, st_.status);
   drawViewport(ctx);
-  drawCorrespondenceEditor(st_.layout.viewport, doc(ctx), st_.correspondence, st_.inspector.morph, st_.status);
+  drawCorrespondenceEditor(st_.layout.correspondence, doc(ctx), st_.correspondence, st_.inspector.morph, st_.status);
   // While the correspondence editor is open the curve editor shows the s curves,
   // unless a BlobTree node is selected (and no link is).
   st_.curveEditor.animorphosis = st_.correspondence.visible &&
                                  (st_.correspondence.selected || doc(ctx).selection.node < 0);
   st_.curveEditor.animorphosisLinkA = st_.correspondence.selected ? st_.correspondence.selected->nodeA : -1;
   st_.curveEditor.animorphosisLinkB = st_.correspondence.selected ? st_.correspondence.selected->nodeB : -1;
-  drawCurveEditorPanel(st_.layout.viewport, doc(ctx), st_.curveEditor, st_.status);
+  drawCurveEditorPanel(st_.layout.curves, doc(ctx), st_.curveEditor, st_.status);
   drawWeightPaintPanel(st_.layout.viewport, doc(ctx), ctx.assets, st_.paint, st_.status);
   drawSplitters();
 }
@@ -323,17 +323,48 @@ void EditorUI::drawViewport(EditorContext& ctx) {
                                                                              : ImGuiMouseCursor_Hand);
 }
 
+LayoutSizes EditorUI::layoutSizes() const {
+  const Preferences& p = st_.prefs;
+  return {p.outlinerWidth, p.inspectorWidth, p.timelineHeight, p.editorsHeight, p.editorsSplit};
+}
+
+// Moves the size a splitter drags by the mouse's motion this frame.
+void EditorUI::dragSplitter(int which, glm::vec2 delta) {
+  Preferences& p = st_.prefs;
+  switch (which) {
+    case 0: p.outlinerWidth += delta.x; break;
+    case 1: p.inspectorWidth -= delta.x; break;
+    case 2: p.timelineHeight -= delta.y; break;
+    case 3: p.editorsHeight -= delta.y; break;
+    default: p.editorsSplit += delta.x / std::max(1.0f, st_.layout.editorsSplitter.size.x); break;
+  }
+}
+
+// Stores the clamped sizes, so the file never holds a layout that does not fit, and saves them.
+void EditorUI::storeLayoutSizes() {
+  const ImGuiIO& io = ImGui::GetIO();
+  const LayoutSizes c =
+      clampLayout(layoutSizes(), {io.DisplaySize.x, io.DisplaySize.y}, st_.menuBarHeight, ImGui::GetFrameHeight());
+  Preferences& p = st_.prefs;
+  p.outlinerWidth = c.outlinerWidth, p.inspectorWidth = c.inspectorWidth, p.timelineHeight = c.timelineHeight;
+  p.editorsHeight = c.editorsHeight, p.editorsSplit = c.editorsSplit;
+  savePreferences();
+}
+
 void EditorUI::drawSplitters() {
   ImGuiIO& io = ImGui::GetIO();
   struct Splitter {
-    const char* id;
+    const char* key;  // noted as splitter/KEY
     const LayoutRect* rect;
     bool vertical;  // a vertical bar dragged horizontally
   };
-  const Splitter splitters[] = {{"##split_outliner", &st_.layout.outlinerSplitter, true},
-                                {"##split_inspector", &st_.layout.inspectorSplitter, true},
-                                {"##split_timeline", &st_.layout.timelineSplitter, false}};
-  for (const Splitter& s : splitters) {
+  const Splitter splitters[] = {{"outliner", &st_.layout.outlinerSplitter, true},
+                                {"inspector", &st_.layout.inspectorSplitter, true},
+                                {"timeline", &st_.layout.timelineSplitter, false},
+                                {"editors", &st_.layout.editorsSplitter, false},
+                                {"editors_divider", &st_.layout.editorsDivider, true}};
+  for (int i = 0; i < int(std::size(splitters)); ++i) {
+    const Splitter& s = splitters[i];
     const LayoutRect& r = *s.rect;
     if (r.size.x <= 0.0f || r.size.y <= 0.0f) continue;
     ImGui::SetNextWindowPos(ImVec2(r.min.x, r.min.y));
@@ -341,37 +372,24 @@ void EditorUI::drawSplitters() {
     ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0.0f, 0.0f));
     ImGui::PushStyleVar(ImGuiStyleVar_WindowMinSize, ImVec2(1.0f, 1.0f));
     ImGui::PushStyleVar(ImGuiStyleVar_WindowBorderSize, 0.0f);
-    ImGui::Begin(s.id, nullptr, kOverlayFlags);
+    ImGui::Begin((std::string("##split_") + s.key).c_str(), nullptr, kOverlayFlags);
     ImGui::PopStyleVar(3);
     ImGui::InvisibleButton("##handle", ImVec2(r.size.x, r.size.y));
-    std::string key = std::string("splitter/") + (s.id + 8);  // "outliner", "inspector", "timeline"
-    noteWidget(key);
+    noteWidget(std::string("splitter/") + s.key);
     bool active = ImGui::IsItemActive();
     // The gap between panels (the window is cleared to the panels' colour: windowClearColor).
     ImGui::GetWindowDrawList()->AddRectFilled(ImVec2(r.min.x, r.min.y), ImVec2(r.max().x, r.max().y),
                                               ImGui::GetColorU32(ImVec4(kGapColor[0], kGapColor[1], kGapColor[2], 1.0f)));
-    if (active || ImGui::IsItemHovered())
-      ImGui::SetMouseCursor(s.vertical ? ImGuiMouseCursor_ResizeEW : ImGuiMouseCursor_ResizeNS);
     if (active || ImGui::IsItemHovered()) {
+      ImGui::SetMouseCursor(s.vertical ? ImGuiMouseCursor_ResizeEW : ImGuiMouseCursor_ResizeNS);
       ImGui::GetWindowDrawList()->AddRectFilled(ImVec2(r.min.x, r.min.y), ImVec2(r.max().x, r.max().y),
                                                 active ? IM_COL32(90, 160, 255, 200) : IM_COL32(90, 160, 255, 90));
     }
-    if (active && (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f)) {
-      if (s.id == splitters[0].id) st_.prefs.outlinerWidth += io.MouseDelta.x;
-      else if (s.id == splitters[1].id) st_.prefs.inspectorWidth -= io.MouseDelta.x;
-      else st_.prefs.timelineHeight -= io.MouseDelta.y;
-    }
+    if (active && (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f))
+      dragSplitter(i, {io.MouseDelta.x, io.MouseDelta.y});
     bool released = ImGui::IsItemDeactivated();
     ImGui::End();
-    if (released) {
-      // Store the clamped sizes so the file never holds a layout that does not fit.
-      LayoutSizes c = clampLayout({st_.prefs.outlinerWidth, st_.prefs.inspectorWidth, st_.prefs.timelineHeight},
-                                  {io.DisplaySize.x, io.DisplaySize.y}, st_.menuBarHeight, ImGui::GetFrameHeight());
-      st_.prefs.outlinerWidth = c.outlinerWidth;
-      st_.prefs.inspectorWidth = c.inspectorWidth;
-      st_.prefs.timelineHeight = c.timelineHeight;
-      savePreferences();
-    }
+    if (released) storeLayoutSizes();
   }
 }
 

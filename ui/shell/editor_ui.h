@@ -128,6 +128,11 @@ class EditorUI {
   void collectShortcuts(std::vector<Action>& actions);
   void drawOutputDialogs(EditorContext& ctx);
   void drawSplitters();
+  // The panel sizes from the preferences; a splitter's drag (which: its index in drawSplitters);
+  // the sizes clamped to the window and saved when a drag ends.
+  LayoutSizes layoutSizes() const;
+  void dragSplitter(int which, glm::vec2 delta);
+  void storeLayoutSizes();
   void drawViewport(EditorContext& ctx);
   void drawPrompts(EditorContext& ctx);
   void showError(const std::string& message);

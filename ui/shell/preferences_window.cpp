@@ -50,11 +50,15 @@ bool drawPreferencesWindow(bool& open, Preferences& prefs, const std::string& pr
   if (ImGui::IsItemDeactivatedAfterEdit()) changed = true;
   ImGui::DragFloat("Timeline height", &prefs.timelineHeight, 1.0f, 0.0f, 5000.0f, "%.0f px");
   if (ImGui::IsItemDeactivatedAfterEdit()) changed = true;
+  ImGui::DragFloat("Docked editors height", &prefs.editorsHeight, 1.0f, 0.0f, 5000.0f, "%.0f px");
+  if (ImGui::IsItemDeactivatedAfterEdit()) changed = true;
   if (ImGui::Button("Reset layout")) {
     Preferences d;
     prefs.outlinerWidth = d.outlinerWidth;
     prefs.inspectorWidth = d.inspectorWidth;
     prefs.timelineHeight = d.timelineHeight;
+    prefs.editorsHeight = d.editorsHeight;
+    prefs.editorsSplit = d.editorsSplit;
     changed = true;
   }
 

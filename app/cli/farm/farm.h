@@ -18,6 +18,7 @@ struct FarmOptions {
   std::string name;         // --name NAME (default: the project's name, as bake's prefix)
   std::string gltf, mp4, size = "1280x720";
   bool burnIn = false;
+  bool keepInnerShell = false;  // --keep-inner-shell (slurm): each task bakes with it (both shells kept)
   std::string chunksDir;    // --chunks DIR (assemble): where the chunks' glTFs are
   std::string partition;    // --partition P (slurm)
   bool submit = false;      // --submit (slurm)

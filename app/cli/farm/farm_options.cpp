@@ -30,6 +30,8 @@ std::string parseFarmOptions(const std::vector<std::string>& args, FarmOptions& 
       else o.output = v;
     } else if (a == "--burn-in") {
       o.burnIn = true;
+    } else if (a == "--keep-inner-shell") {
+      o.keepInnerShell = true;
     } else if (a == "--submit") {
       o.submit = true;
     } else if (a == "--gpu") {

@@ -65,6 +65,7 @@ std::string bakeScript(const FarmOptions& o, const std::string& exe, const std::
   if (o.format != "none") s += " -o " + shellQuote(out);
   if (!chunkDir.empty()) s += " --gltf \"${GLB[i]}\"";
   if (o.gpu) s += " --gpu";
+  if (o.keepInnerShell) s += " --keep-inner-shell";
   return s + "\n";
 }
 

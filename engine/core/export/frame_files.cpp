@@ -38,12 +38,22 @@ std::string StagedFiles::stage(const std::string& finalPath) {
 }
 
 Status StagedFiles::commit() {
+  // A folder in a file's place would stop its rename half-way through the set: refused first.
+  for (const auto& f : files_) {
+    std::error_code ec;
+    if (fs::is_directory(f.second, ec)) {
+      Error e{f.second + ": is a folder, cannot put the finished file there"};
+      discard();
+      return e;
+    }
+  }
   for (const auto& [tmp, final] : files_) {
     std::error_code ec;
     fs::rename(tmp, final, ec);
     if (ec) {
+      Error e{final + ": cannot rename the finished file into place: " + ec.message()};  // before discard() frees final
       discard();
-      return Error{final + ": cannot rename the finished file into place: " + ec.message()};
+      return e;
     }
   }
   committed_ = true;

@@ -32,8 +32,9 @@ class StagedFiles {
 
   // Where to write the file that is to become finalPath (recorded for commit()).
   std::string stage(const std::string& finalPath);
-  // Renames every staged file to its final name (replacing what was there); on a failed rename
-  // the error names the file and the temporaries not yet renamed are removed.
+  // Renames every staged file to its final name (replacing what was there). A folder at a final
+  // name is refused before any rename (nothing renamed, every temporary removed); on a failed
+  // rename the error names the file and the temporaries not yet renamed are removed.
   Status commit();
   // Removes the staged files now.
   void discard();

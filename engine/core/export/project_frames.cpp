@@ -4,8 +4,8 @@
 #include "core/project/animorphosis_project.h"
 #include "core/project/asset_cache.h"
 #include "core/poly/polygonizer.h"
-#include "core/util/job_progress.h"
 #include "core/scene/visible_surface.h"
+#include "core/util/job_progress.h"
 
 namespace animorph {
 
@@ -29,34 +29,63 @@ Result<ProjectFrames> ProjectFrames::prepare(const Project& p, const std::string
   return out;
 }
 
-Result<TriangleMesh> ProjectFrames::mesh(int frame, int resolution, const std::atomic<bool>* cancel) const {
-  const double timeSec = timeline_.frameToSec(frame);
-  if (morph_) {
-    MorphFrameSettings fs;
-    fs.resolution = resolution;
-    fs.cancel = cancel;
-    auto fr = evaluateMorphFrame(*morph_, timeSec, fs);
-    if (!fr) return Error{fr.error()};
-    if (fr->cancelled || (cancel && cancel->load())) return jobCancelled();
-    // The collapse and expansion carry the stand-in core as a second closed shell inside the
-    // mesh: the file gets what is seen, the boundary of their union.
-    if (fr->coreTriangles > 0) return visibleSurface(*morph_, *fr);
-    return std::move(fr->mesh);
-  }
-  PolygonizeSettings ps;
-  ps.resolution = resolution;
-  ps.cancel = cancel;
-  ps.colors = true;  // the primitives' colours as vertex colours (docs/export.md)
-  auto r = polygonize(compileGeneric(*generic_, timing_, timeSec), ps);
-  if (!r) return Error{r.error()};
-  if (r->cancelled || (cancel && cancel->load())) return jobCancelled();
-  return std::move(r->mesh);
+const std::vector<std::string>& ProjectFrames::notes() const {
+  static const std::vector<std::string> none;
+  return morph_ ? morph_->notes : none;
 }
 
-FrameLevelSet ProjectFrames::levelSet(int frame, int resolution, const std::atomic<bool>* cancel) const {
+MorphStage ProjectFrames::stageAt(int frame) const {
+  if (!morph_) return MorphStage::Morph;
+  double u = 0.0;
+  return morphStageAt(morph_->setup, morph_->timeline, timeline_.frameToSec(frame), u);
+}
+
+Result<BakedFrame> ProjectFrames::frame(int frame, const FrameBakeSettings& s) const {
   const double timeSec = timeline_.frameToSec(frame);
-  return morph_ ? morphFrameLevelSet(*morph_, timeSec, resolution, 0, cancel)
-                : fieldLevelSet(compileGeneric(*generic_, timing_, timeSec), resolution, 0, cancel);
+  const auto cancelled = [&] { return s.cancel && s.cancel->load(); };
+  BakedFrame out;
+  if (morph_) {
+    auto fr = [&]() -> Result<MorphFrame> {
+      if (s.implicitStage && stageAt(frame) == MorphStage::Morph) return s.implicitStage(*morph_, timeSec, s.resolution);
+      MorphFrameSettings fs;
+      fs.resolution = s.resolution;
+      fs.threads = s.threads;
+      fs.cancel = s.cancel;
+      return evaluateMorphFrame(*morph_, timeSec, fs);
+    }();
+    if (!fr) return Error{fr.error()};
+    if (fr->cancelled || cancelled()) return jobCancelled();
+    out.stage = fr->stage;
+    out.coreTriangles = fr->coreTriangles;
+    if (s.measure) out.measure = measureFrame(frame, fr->mesh, nullptr, fr->coreTriangles);
+    if (fr->coreTriangles == 0) out.mesh = std::move(fr->mesh);
+    else if (!s.keepInnerShell) out.mesh = visibleSurface(*morph_, *fr);
+    else {
+      if (s.measure) out.visible = visibleSurface(*morph_, *fr);
+      out.mesh = std::move(fr->mesh);
+    }
+    return out;
+  }
+  PolygonizeSettings ps;
+  ps.resolution = s.resolution;
+  ps.threads = s.threads;
+  ps.cancel = s.cancel;
+  ps.colors = s.colors;  // the primitives' colours as vertex colours (docs/export.md)
+  auto r = polygonize(animorphosisProgram(frame), ps);
+  if (!r) return Error{r.error()};
+  if (r->cancelled || cancelled()) return jobCancelled();
+  out.mesh = std::move(r->mesh);
+  return out;
+}
+
+FrameLevelSet ProjectFrames::levelSet(int frame, int resolution, const std::atomic<bool>* cancel, int threads) const {
+  const double timeSec = timeline_.frameToSec(frame);
+  return morph_ ? morphFrameLevelSet(*morph_, timeSec, resolution, threads, cancel)
+                : fieldLevelSet(animorphosisProgram(frame), resolution, threads, cancel);
+}
+
+FieldProgram ProjectFrames::animorphosisProgram(int frame) const {
+  return compileGeneric(*generic_, timing_, timeline_.frameToSec(frame));
 }
 
 }  // namespace animorph

@@ -139,12 +139,13 @@ Transform safeDecompose(const glm::mat4& m) {
 
 Status checkCounts(const Ctx& c) {
   const aiScene& s = c.s;
-  size_t vertices = 0, triangles = 0, keys = 0;
+  size_t vertices = 0, triangles = 0, keys = 0, shapeVertices = 0;
   for (unsigned i = 0; i < s.mNumMeshes; ++i) {
     const aiMesh* m = s.mMeshes[i];
     if (!m) return err(c, "mesh " + std::to_string(i), "missing");
     vertices += m->mNumVertices;
     triangles += m->mNumFaces;
+    shapeVertices += size_t(m->mNumAnimMeshes) * m->mNumVertices;
     if (m->mNumBones > c.limits.maxBonesPerMesh)
       return err(c, label("mesh", i, m->mName), std::to_string(m->mNumBones) + " bones, more than the limit of " +
                                                     std::to_string(c.limits.maxBonesPerMesh));
@@ -152,6 +153,9 @@ Status checkCounts(const Ctx& c) {
   if (vertices > c.limits.maxVertices)
     return Error{c.file + ": " + std::to_string(vertices) + " vertices, more than the limit of " +
                  std::to_string(c.limits.maxVertices)};
+  if (shapeVertices > c.limits.maxBlendShapeVertices)
+    return Error{c.file + ": blend shapes of " + std::to_string(shapeVertices) + " vertices in all, more than the limit of " +
+                 std::to_string(c.limits.maxBlendShapeVertices)};
   if (triangles > c.limits.maxTriangles)
     return Error{c.file + ": " + std::to_string(triangles) + " faces, more than the limit of " +
                  std::to_string(c.limits.maxTriangles)};
@@ -160,6 +164,9 @@ Status checkCounts(const Ctx& c) {
       const aiNodeAnim* na = s.mAnimations[a]->mChannels[k];
       if (na) keys += size_t(na->mNumPositionKeys) + na->mNumRotationKeys + na->mNumScalingKeys;
     }
+  for (unsigned a = 0; a < s.mNumAnimations; ++a)
+    for (unsigned k = 0; s.mAnimations[a] && k < s.mAnimations[a]->mNumMorphMeshChannels; ++k)
+      if (const aiMeshMorphAnim* mm = s.mAnimations[a]->mMorphMeshChannels[k]) keys += mm->mNumKeys;
   if (keys > c.limits.maxAnimationKeys)
     return Error{c.file + ": " + std::to_string(keys) + " animation keys, more than the limit of " +
                  std::to_string(c.limits.maxAnimationKeys)};
@@ -208,6 +215,123 @@ Status readNodes(Ctx& c) {
       if (an->mChildren[k]) stack.push_back({an->mChildren[k], index});
   }
   ch.roots = {0};
+  return {};
+}
+
+// ---------------------------------------------------------------------------
+// Blend shapes. assimp's anim meshes hold each target's whole positions (and normals); the
+// Character keeps deltas from the base mesh, as glTF does. Default weights: Collada's <morph>
+// weights; FBX's channel values (DeformPercent) do not reach assimp 5.2 (it reports 1 for every
+// shape), so FBX shapes start at 0 unless animated, and the report says so.
+
+glm::vec3 toGlm(const aiVector3D& v) { return {v.x, v.y, v.z}; }
+bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+Status readMorphTargets(Ctx& c, const aiMesh& am, const std::string& name, Mesh& mesh) {
+  const size_t nv = am.mNumVertices;
+  for (unsigned k = 0; k < am.mNumAnimMeshes; ++k) {
+    const aiAnimMesh* a = am.mAnimMeshes[k];
+    const std::string where = name + " blend shape " + std::to_string(k);
+    if (!a) return err(c, where, "missing");
+    if (a->mNumVertices != nv)
+      return err(c, where, std::to_string(a->mNumVertices) + " vertices, the mesh has " + std::to_string(nv));
+    MorphTarget t;
+    t.name = a->mName.length ? a->mName.C_Str() : "target " + std::to_string(k);
+    t.positionDeltas.assign(nv, glm::vec3(0.0f));
+    for (size_t v = 0; a->mVertices && v < nv; ++v) {
+      t.positionDeltas[v] = toGlm(a->mVertices[v]) - toGlm(am.mVertices[v]);
+      if (!finite(t.positionDeltas[v]))
+        return err(c, where, "position " + std::to_string(v) + " is not finite");
+    }
+    if (a->mNormals && am.mNormals && !mesh.normals.empty()) {
+      t.normalDeltas.resize(nv);
+      for (size_t v = 0; v < nv; ++v) {
+        const glm::vec3 d = toGlm(a->mNormals[v]) - toGlm(am.mNormals[v]);
+        t.normalDeltas[v] = finite(d) ? d : glm::vec3(0.0f);
+      }
+    }
+    mesh.morphTargets.push_back(std::move(t));
+    const bool declared = c.ch.format == "Collada" && std::isfinite(a->mWeight);
+    mesh.defaultMorphWeights.push_back(declared ? a->mWeight : 0.0f);
+  }
+  if (am.mNumAnimMeshes > 0 && c.ch.format == "FBX")
+    c.ch.report.warnings.push_back(name + ": " + std::to_string(am.mNumAnimMeshes) +
+                                   " blend shapes start at weight 0 where not animated (the file's shape "
+                                   "values are not read)");
+  return {};
+}
+
+// The node that draws the mesh a morph channel names: "NODE*K" (assimp's FBX converter: the
+// node's K-th mesh), else a node or mesh name. -1: none.
+int morphChannelNode(const Ctx& c, const std::string& channel) {
+  std::string node = channel;
+  std::string k = "0";
+  if (const size_t star = channel.rfind('*'); star != std::string::npos && star + 1 < channel.size() &&
+                                              channel.find_first_not_of("0123456789", star + 1) == std::string::npos)
+    node = channel.substr(0, star), k = channel.substr(star + 1);
+  if (auto it = c.nodeByName.find(node); it != c.nodeByName.end()) {
+    if (k == "0") return it->second;
+    for (int child : c.ch.nodes[size_t(it->second)].children)
+      if (c.ch.nodes[size_t(child)].name == node + " mesh " + k) return child;
+  }
+  for (size_t i = 0; i < c.ch.nodes.size(); ++i) {
+    const int m = c.ch.nodes[i].mesh;
+    if (m >= 0 && c.ch.meshes[size_t(m)].name == channel) return int(i);
+  }
+  return -1;
+}
+
+// A target's weight at t from its own keys (time, weight), held before the first and after the
+// last; def when the target has none.
+float weightAt(const std::vector<std::pair<float, float>>& keys, float t, float def) {
+  if (keys.empty()) return def;
+  if (t <= keys.front().first) return keys.front().second;
+  if (t >= keys.back().first) return keys.back().second;
+  auto hi = std::upper_bound(keys.begin(), keys.end(), t, [](float x, const auto& k) { return x < k.first; });
+  auto lo = hi - 1;
+  const float u = hi->first > lo->first ? (t - lo->first) / (hi->first - lo->first) : 1.0f;
+  return lo->second + u * (hi->second - lo->second);
+}
+
+// One mesh's weight animation as a Weights channel. A key lists only the targets keyed at its
+// time; the others are interpolated from their own keys, so every key holds every weight.
+Status readMorphChannel(Ctx& c, const std::string& clipWhere, const aiMeshMorphAnim& mm, double tps,
+                        AnimationClip& clip) {
+  const std::string where = clipWhere + " blend shape channel '" + std::string(mm.mName.C_Str()) + "'";
+  const int node = morphChannelNode(c, mm.mName.C_Str());
+  const int meshIndex = node < 0 ? -1 : c.ch.nodes[size_t(node)].mesh;
+  const size_t targets = meshIndex < 0 ? 0 : c.ch.meshes[size_t(meshIndex)].morphTargets.size();
+  if (targets == 0) {
+    c.ch.report.warnings.push_back(where + ": names no mesh with blend shapes; skipped");
+    return {};
+  }
+  Channel out;
+  out.node = node;
+  out.path = ChannelPath::Weights;
+  out.weightCount = int(targets);
+  std::vector<std::vector<std::pair<float, float>>> own(targets);
+  for (unsigned k = 0; k < mm.mNumKeys; ++k) {
+    const aiMeshMorphKey& key = mm.mKeys[k];
+    const double t = key.mTime / tps;
+    if (!std::isfinite(t)) return err(c, where, "key " + std::to_string(k) + ": time is not finite");
+    if (k > 0 && float(t) < out.timesSec.back()) return err(c, where, "key times decrease at key " + std::to_string(k));
+    if (key.mNumValuesAndWeights > 0 && (!key.mValues || !key.mWeights))
+      return err(c, where, "key " + std::to_string(k) + ": no values");
+    for (unsigned q = 0; q < key.mNumValuesAndWeights; ++q) {
+      if (key.mValues[q] >= targets)
+        return err(c, where, "key " + std::to_string(k) + ": blend shape " + std::to_string(key.mValues[q]) +
+                                 " does not exist (" + std::to_string(targets) + ")");
+      if (!std::isfinite(key.mWeights[q])) return err(c, where, "key " + std::to_string(k) + ": weight is not finite");
+      own[key.mValues[q]].push_back({float(t), float(key.mWeights[q])});
+    }
+    out.timesSec.push_back(float(t));
+  }
+  if (out.timesSec.empty()) return {};
+  const std::vector<float>& defaults = c.ch.meshes[size_t(meshIndex)].defaultMorphWeights;
+  for (float t : out.timesSec)
+    for (size_t i = 0; i < targets; ++i) out.weightValues.push_back(weightAt(own[i], t, defaults[i]));
+  clip.durationSec = std::max(clip.durationSec, out.timesSec.back());
+  clip.channels.push_back(std::move(out));
   return {};
 }
 
@@ -320,8 +444,7 @@ Result<Mesh> readMesh(Ctx& c, unsigned index, int& skinOut) {
     }
   }
   if (am.mMaterialIndex < c.s.mNumMaterials) mesh.material = int(am.mMaterialIndex);
-  if (am.mNumAnimMeshes > 0)
-    c.ch.report.unsupported.push_back("blend shapes (" + name + ": " + std::to_string(am.mNumAnimMeshes) + ")");
+  if (auto st = readMorphTargets(c, am, name, mesh); !st) return Error{st.error()};
 
   if (auto st = readSkin(c, am, name, mesh, skinOut); !st) return Error{st.error()};
   if (mesh.indices.empty()) c.ch.report.warnings.push_back(name + ": no triangles");
@@ -413,8 +536,10 @@ Status readAnimations(Ctx& c) {
         clip.channels.push_back(std::move(out));
       }
     }
-    if (an->mNumMorphMeshChannels > 0 || an->mNumMeshChannels > 0)
-      c.ch.report.unsupported.push_back("blend shape weight animation (" + where + ")");
+    for (unsigned k = 0; k < an->mNumMorphMeshChannels; ++k)
+      if (const aiMeshMorphAnim* mm = an->mMorphMeshChannels[k])
+        if (auto st = readMorphChannel(c, where, *mm, tps, clip); !st) return st;
+    if (an->mNumMeshChannels > 0) c.ch.report.unsupported.push_back("vertex animation (" + where + ")");
     c.ch.clips.push_back(std::move(clip));
   }
   return {};

@@ -17,13 +17,16 @@ struct AssimpImportLimits {
   size_t maxNodes = 1'000'000;
   size_t maxBonesPerMesh = 65'535;
   size_t maxAnimationKeys = 50'000'000;  // all channels of all clips together
+  size_t maxBlendShapeVertices = 20'000'000;  // blend shapes x their mesh's vertices, all meshes
 };
 
 // Imports meshes (triangulated; points and lines dropped and listed; normals computed when
 // missing), skins (any number of influences per vertex, normalised, the 8 strongest kept and
 // the drops counted, as glTF does), the node hierarchy, every animation clip (node
 // translation / rotation / scale keys, linear), materials' base colour and base colour
-// texture, and the file's length unit (FBX UnitScaleFactor, Collada <unit meter>; OBJ has
+// texture, blend shapes (FBX blend shape channels, Collada morph controllers: deltas from the
+// base mesh, and their weight animation as Weights channels; FBX shapes start at weight 0), and
+// the file's length unit (FBX UnitScaleFactor, Collada <unit meter>; OBJ has
 // none: metres assumed). Geometry stays in the file's units, turned to +Y up (FBX axis
 // settings, Collada up_axis). FBX pivots and pre-rotations (assimp's "$AssimpFbx$" helper
 // nodes) are kept as nodes where they are animated and folded into one node where not.

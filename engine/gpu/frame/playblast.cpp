@@ -5,6 +5,7 @@
 
 #include "core/export/frame_files.h"
 #include "core/export/frame_stage.h"
+#include "core/export/bake_route.h"
 #include "core/export/project_frames.h"
 #include "gpu/frame/mesh_sequence_renderer.h"
 
@@ -81,18 +82,14 @@ Result<PlayblastReport> playblastProject(const Project& project, const std::stri
   progress.setStage("preparing");
   auto frames = ProjectFrames::prepare(project, baseDir);
   if (!frames) return Error{"playblast: " + frames.error()};
-  std::vector<TriangleMesh> meshes;
-  meshes.reserve(size_t(count));
-  for (int f = first; f <= last; ++f) {
-    if (progress.cancelled()) return jobCancelled();
-    progress.setStage("baking frame " + std::to_string(f) + " (" + std::to_string(f - first + 1) + " of " +
-                      std::to_string(count) + ")");
-    auto mesh = frames->mesh(f, s.resolution, progress.cancelFlag());
-    if (!mesh)
-      return progress.cancelled() ? jobCancelled() : Error{"playblast: frame " + std::to_string(f) + ": " + mesh.error()};
-    meshes.push_back(std::move(*mesh));
-    progress.advance();
-  }
+  BakeSettings bake;  // the frames kept in memory, no file (export/bake_route.h)
+  bake.first = first;
+  bake.last = last;
+  bake.resolution = s.resolution;
+  bake.outputs.keepMeshes = true;
+  auto baked = bakeProject(*frames, bake, progress);
+  if (!baked) return isJobCancelled(Status(Error{baked.error()})) ? jobCancelled() : Error{"playblast: " + baked.error()};
+  std::vector<TriangleMesh> meshes = std::move(baked->meshes);
   // From here on progress counts seconds of work: the baking took bakeSec; drawing a frame is
   // guessed to cost as much as baking one until the first is drawn (playblastMeshes).
   const double bakeSec = secondsSince(t0);

@@ -124,11 +124,27 @@ void addBlobHighlight(const BlobGuides& guides, Scene& out) {
   for (const auto& m : guides.markers) b.add(m.position);
   for (const auto& l : guides.lines) b.add(l.a), b.add(l.b);
   const float radius = std::max(0.01f, 0.03f * (b.empty() ? 0.0f : b.diagonal()));
-  const uint32_t color = packRgba({1.0f, 0.35f, 0.85f, 1.0f});
-  for (const auto& l : guides.lines) out.overlay.line(l.a, l.b, color);
-  for (const auto& m : guides.markers) out.overlay.octahedron(m.position, radius, color);
-  for (const auto& a : guides.axes)
-    for (int k = 0; k < 3; ++k) out.overlay.line(a.origin, a.tips[k], color);
+  const size_t n = guides.markers.size() + guides.lines.size() + guides.axes.size();
+  // A few guides (a primitive, a chain) solid; a big sub-tree's guides, drawn over each other,
+  // would paint it flat: a sample of them, faint, under the sub-tree's outline box.
+  const size_t stride = highlightGuideStride(n);
+  const float alpha = highlightGuideAlpha(n);
+  const uint32_t color = packRgba({kHighlightColor.r, kHighlightColor.g, kHighlightColor.b, alpha});
+  if (alpha < 1.0f) out.overlay.box(b, packRgba(kHighlightColor));
+  for (size_t i = 0; i < guides.lines.size(); i += stride) out.overlay.line(guides.lines[i].a, guides.lines[i].b, color);
+  for (size_t i = 0; i < guides.markers.size(); i += stride)
+    out.overlay.octahedron(guides.markers[i].position, radius, color);
+  for (size_t i = 0; i < guides.axes.size(); i += stride)
+    for (int k = 0; k < 3; ++k) out.overlay.line(guides.axes[i].origin, guides.axes[i].tips[k], color);
+}
+
+size_t highlightGuideStride(size_t guides) {
+  return std::max<size_t>(1, (guides + kMaxHighlightGuides - 1) / kMaxHighlightGuides);
+}
+
+float highlightGuideAlpha(size_t guides) {
+  const size_t drawn = (guides + highlightGuideStride(guides) - 1) / highlightGuideStride(guides);
+  return std::clamp(kSolidHighlightGuides / float(std::max<size_t>(drawn, 1)), kMinHighlightAlpha, 1.0f);
 }
 
 }  // namespace animorph::gpu

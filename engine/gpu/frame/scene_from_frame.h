@@ -31,8 +31,23 @@ void setCrossFade(Scene& scene, size_t firstMesh, size_t firstGenerated, float o
 // Draws guides (e.g. the sub-tree of a node hovered in the correspondence
 // editor, scene/blob_guides.h subtreeGuides, or a skeleton chain hovered in the
 // morph's Chain matching) in the highlight colour over
-// everything else in the overlay, whether the skeleton is shown or not.
+// everything else in the overlay, whether the skeleton is shown or not. Up to
+// kSolidHighlightGuides guides are drawn solid; more are drawn translucent
+// (highlightGuideAlpha), at most about kMaxHighlightGuides of them (every
+// highlightGuideStride-th of each kind), under the solid outline of their
+// bounding box, so a big sub-tree is tinted rather than painted over and its
+// shape stays readable.
 void addBlobHighlight(const BlobGuides& guides, Scene& out);
+
+inline constexpr glm::vec4 kHighlightColor{1.0f, 0.35f, 0.85f, 1.0f};
+inline constexpr float kSolidHighlightGuides = 24.0f;
+inline constexpr size_t kMaxHighlightGuides = 160;
+inline constexpr float kMinHighlightAlpha = 0.15f;
+// Every how many guides of `guides` one is drawn: 1 up to kMaxHighlightGuides.
+size_t highlightGuideStride(size_t guides);
+// The alpha of each drawn guide: 1 up to kSolidHighlightGuides drawn, then
+// kSolidHighlightGuides / drawn, never below kMinHighlightAlpha.
+float highlightGuideAlpha(size_t guides);
 
 void buildScene(const SceneFrame& frame, const ViewOptions& view, const std::string& selectedActorId,
                 MeshCache& meshes, Scene& out, const BlobPreviewSet* blobs = nullptr, int selectedBlobNode = -1,

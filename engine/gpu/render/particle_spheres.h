@@ -1,9 +1,10 @@
 #pragma once
-// The particle view's drawing (scene/particle_view.h; docs/particles.md): a ParticleDraw (centres
-// and visible radii in its tree's space) as a ParticleSpheresDraw in the world, drawn by the scene
-// renderer as instanced, ray-cast spheres with true depth, shaded like the surface they stand for.
+// The particle view's drawing (core/scene/particle_draw.h; the editor's editor/particle_view.h says
+// when; docs/particles.md): a ParticleDraw (centres and visible radii in its tree's space) as a
+// ParticleSpheresDraw in the world, drawn by the scene renderer as instanced, ray-cast spheres with
+// true depth, shaded like the surface they stand for.
 #include "gpu/render/scene_renderer.h"
-#include "core/scene/particle_view.h"
+#include "core/scene/particle_draw.h"
 
 namespace animorph::gpu {
 

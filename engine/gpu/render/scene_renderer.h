@@ -92,7 +92,7 @@ struct WeightOverlayDraw {
   std::span<const float> morphWeights;  // as MeshDraw::morphWeights
 };
 
-// Particles drawn as spheres (the particle view while scrubbing, scene/particle_view.h): each a
+// Particles drawn as spheres (the particle view while scrubbing, editor/particle_view.h): each a
 // ray-cast impostor (particle_sphere shaders: an eye-facing triangle per instance) with the depth of
 // its true surface, shaded like a mesh of color. spheres: world centre (xyz) and radius (w) of each;
 // copied into the frame's ring buffer while recording (16 bytes a particle).

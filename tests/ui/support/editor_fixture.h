@@ -25,13 +25,11 @@ struct EditorFixture {
     h.ui->state().prefs.autosaveIntervalSec = 0.0;  // tests opt in
   }
 
-  // Writes hero.gltf into the temp dir (registered for the tests' asset
-  // cache) and opens a document "scene.animorph" in that dir with one actor
+  // Writes hero.gltf into the temp dir and opens a document "scene.animorph" in that dir with one actor
   // "hero" using it (not saved to disk). Returns the character.
   Character loadHeroScene() {
     std::string asset = dir.file("hero.gltf");
     Character c = writeTestCharacter(asset);
-    registerCharacter(asset, c);
     Project p;
     Actor a;
     a.id = "hero";

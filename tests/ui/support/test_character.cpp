@@ -2,8 +2,6 @@
 
 #include <cstring>
 #include <fstream>
-#include <map>
-#include <mutex>
 #include <stdexcept>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -12,11 +10,6 @@
 
 namespace animorph::test {
 namespace {
-
-std::map<std::string, std::shared_ptr<const Character>>& registry() {
-  static std::map<std::string, std::shared_ptr<const Character>> r;
-  return r;
-}
 
 std::string base64(const std::vector<unsigned char>& data) {
   static const char* t = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -166,15 +159,6 @@ Character writeTestCharacter(const std::string& path) {
   f << g.dump(1);
   if (!f) throw std::runtime_error("cannot write " + path);
   return c;
-}
-
-void registerCharacter(const std::string& absolutePath, Character c) {
-  registry()[absolutePath] = std::make_shared<const Character>(std::move(c));
-}
-
-std::shared_ptr<const Character> registeredCharacter(const std::string& absolutePath) {
-  auto it = registry().find(absolutePath);
-  return it == registry().end() ? nullptr : it->second;
 }
 
 }  // namespace animorph::test

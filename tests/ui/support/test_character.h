@@ -15,8 +15,4 @@ namespace animorph::test {
 // on spine's rotation and 0, 1.0 s on hip's translation.
 Character writeTestCharacter(const std::string& path);
 
-// Makes the tests' AssetCache return c for absolutePath.
-void registerCharacter(const std::string& absolutePath, Character c);
-std::shared_ptr<const Character> registeredCharacter(const std::string& absolutePath);
-
 }  // namespace animorph::test

@@ -1,29 +1,22 @@
 #pragma once
-// The viewport's fast view of particle systems (docs/particles.md): a BlobTree draw whose tree has
-// many particles (point primitives reached through operators only, particles/particle_tree.h: a
-// converted or simulated shape, the statue demo's C(t); not a creature whose points are templates
-// of meta-primitives under its joints' frames) is shown as its
-// particles -- each at its centre, the size of its visible radius -- while its time or its tree
-// changes (scrubbing, playing) and for holdSec after, and then until its polygonised surface has
-// caught up: the surface is not polygonised at every frame of a scrub, and a stale surface is not
-// shown in place of the moving particles. The renderer draws ParticleDraw as spheres
+// The editor's policy for particle systems in the viewport (docs/particles.md): a BlobTree draw
+// whose tree has many particles (core/scene/particle_draw.h) is shown as its particles -- each at
+// its centre, the size of its visible radius -- while its time or its tree changes (scrubbing,
+// playing) and for holdSec after, and then until its polygonised surface has caught up: the
+// surface is not polygonised at every frame of a scrub, and a stale surface is not shown in place
+// of the moving particles. The renderer draws ParticleDraw as spheres
 // (gpu/render/particle_spheres.h).
 //
-// Particles spread far apart are lost by the polygonised surface: the grid (surfaceResolution
-// cells along the longest side of the particles' bounds) gets cells larger than the particles,
-// and its corners miss them (the statue at 200 J spreads over 47 m: 0.37 m cells for 2 cm
-// particles, and the surface shows nothing). A particle system whose median visible radius is
-// below half a cell is therefore drawn as particles even while its time holds (and in
+// A particle system whose grid would lose its particles (particlesBelowGrid: median visible radius
+// below half a cell of the surface's grid) is drawn as particles even while its time holds (and in
 // screenshots), and note() says so; its surface comes back once the particles gather.
 #include <functional>
 #include <map>
 #include <string>
 #include <vector>
 
-#include <glm/glm.hpp>
-
 #include "core/project/project.h"
-#include "core/particles/particle_tree.h"
+#include "core/scene/particle_draw.h"
 #include "core/scene/scene_frame.h"
 
 namespace animorph {
@@ -35,14 +28,6 @@ struct ParticleViewSettings {
   bool holding = false;      // the user holds the time (drags the timeline, plays): particles stay
   bool settle = false;       // a screenshot: no particles for moving systems (only for those below the grid)
   int surfaceResolution = 0; // the refined surface's grid (cells along the longest side); 0: no check
-};
-
-// One draw's particles at its time, in the tree's space (model maps them to the world).
-struct ParticleDraw {
-  std::string actorId;
-  glm::mat4 model{1.0f};
-  std::vector<glm::vec3> centres;
-  std::vector<float> radii;  // visible radius of each (where a point alone reaches the threshold)
 };
 
 class ParticleView {
@@ -73,16 +58,5 @@ class ParticleView {
   bool pending_ = false;
   std::string note_;
 };
-
-// The particles of a draw's tree (its own, else the actor's) at its time; empty when the tree has
-// fewer than minParticles particles.
-ParticleDraw particleDraw(const BlobDraw& draw, const Project& project, size_t minParticles);
-
-// Whether a grid of resolution cells along the longest side of the particles' bounds (centres
-// grown by their radii) has cells more than twice the particles' median visible radius: most of
-// them would fall between its corners. False when that median is 0 (points that show only
-// together, e.g. a creature's blend, are not separate particles). cellSize (if given) gets the cell, in the tree's space.
-bool particlesBelowGrid(const ParticleDraw& draw, int resolution, float* cellSize = nullptr,
-                        float* medianRadius = nullptr);
 
 }  // namespace animorph
