@@ -32,7 +32,7 @@ struct BakeArgs {
   std::string project, output, frames, name, gltf, vdb, mp4, size = "1280x720", format = "ply";
   int res = 48, jobs = 1;
   float coherence = 0.1f;  // an animorphosis' temporal coherence tolerance (cells); 0: off
-  bool png = false, gpu = false, burnIn = false, keepInnerShell = false;
+  bool png = false, gpu = false, burnIn = false, keepInnerShell = false, noColor = false;
   cli::MorphMethodOptions methods;
   // From the above:
   bool writePlys = false, writeObjs = false;
@@ -74,6 +74,8 @@ std::string readArgs(const std::vector<std::string>& args, BakeArgs& o) {
       o.png = true;
     } else if (a == "--burn-in") {
       o.burnIn = true;
+    } else if (a == "--no-color") {
+      o.noColor = true;
     } else if (a == "--keep-inner-shell") {
       o.keepInnerShell = true;
     } else if (a == "--gpu") {
@@ -143,6 +145,7 @@ BakeSettings bakeSettings(const BakeArgs& o, const std::string& prefix) {
   s.jobs = o.jobs;
   s.coherence = o.coherence;
   s.keepInnerShell = o.keepInnerShell;
+  s.colors = !o.noColor;
   s.outputs.prefix = prefix;
   s.outputs.dir = o.output;
   s.outputs.ply = o.writePlys;
@@ -282,7 +285,7 @@ ANIMORPH_CLI_COMMAND("bake", "bake a project's morph into mesh sequences, an ani
                      "usage: animorph-cli bake PROJECT.animorph --frames A:B --res N -o DIR [--format ply|obj|ply,obj|none]\n"
                      "                         [--obj] [--name NAME] [--gltf FILE.glb] [--vdb DIR] [--png] [--mp4 FILE.mp4 [--size WxH]\n"
                      "                         [--burn-in]] [--gpu] [--jobs J] [--coherence C] [--method M [--correspondence-blend B]]\n"
-                     "                         [--keep-inner-shell]\n"
+                     "                         [--keep-inner-shell] [--no-color]\n"
                      "  Bakes every frame A..B: the source's skinned mesh before marker A, its\n"
                      "  collapse onto the stand-in A->B, the polygonised implicit morph B->C (N cells\n"
                      "  along the longest side), the target's expansion C->D and its skinned mesh\n"
@@ -332,6 +335,9 @@ ANIMORPH_CLI_COMMAND("bake", "bake a project's morph into mesh sequences, an ani
                      "               is written as what is seen, the boundary of their union (the mesh\n"
                      "               cut where it enters the core, the core cut where it enters the\n"
                      "               mesh); this keeps both shells whole\n"
+                     "  --no-color   an animorphosis' frames without vertex colours (by default they\n"
+                     "               carry the primitives' colours: PLY/OBJ vertex colours, glTF\n"
+                     "               COLOR_0); saves the colour pass\n"
                      "  A progress bar is drawn when stdout is a terminal. Then a continuity report:\n"
                      "  frames that are empty or whose enclosed volume changes by more than 20% from\n"
                      "  the frame before (what shows as a pop); they do not change the exit status;\n"

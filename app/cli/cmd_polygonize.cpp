@@ -14,6 +14,7 @@
 #include "core/project/project_io.h"
 #include "core/scene/scene_frame.h"
 #include "core/io/mesh_io.h"
+#include "core/field/surface_color.h"
 #include "core/poly/polygonizer.h"
 #include "gpu/vulkan/context.h"
 #include "gpu/polygonizer/gpu_polygonizer.h"
@@ -179,6 +180,11 @@ int polygonizeOnGpu(const PolyArgs& a, const PolyTree& t, const animorph::FieldP
   if (!stats) return fail(me, t.what + ": " + stats.error());
   auto mesh = (*poly)->readBack();
   if (!mesh) return fail(me, a.scene + ": " + mesh.error());
+  // Vertex colours on the CPU from the read-back vertices, by the same evaluator as the CPU path
+  // (field/surface_color.h; docs/blobtree.md, "Colour").
+  mesh->colors.resize(mesh->positions.size());
+  animorph::SurfaceColorEvaluator().evaluate(program, mesh->positions.data(), mesh->positions.size(),
+                                             mesh->colors.data());
   toWorld(*mesh, t.model);
   if (auto s = animorph::writeMesh(*mesh, a.output); !s) return fail(me, s.error());
   std::printf("%s at t = %g s: %zu triangles, %zu vertices in %.1f ms (GPU: %s)\n", t.what.c_str(), a.timeSec,
@@ -197,6 +203,7 @@ int polygonizeOnCpu(const PolyArgs& a, const PolyTree& t, const animorph::FieldP
   settings.resolution = int(a.res);
   settings.culling = a.cull;
   settings.threads = int(a.threads);
+  settings.colors = true;
   auto result = animorph::polygonize(program, settings);
   if (!result) return fail(me, t.what + ": " + result.error());
   toWorld(result->mesh, t.model);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <functional>
 #include <map>
 
@@ -353,6 +354,40 @@ void roundValues(BlobNode& n) {
   for (BlobNode& c : n.children) roundValues(c);
 }
 
+// The creatures' colours (sRGB): the dinosaur olive green with darker stripes along its body (every
+// other fibre), a cream belly, orange quills and ivory teeth and claws; the dragon crimson with
+// darker stripes, a golden belly, orange wing membranes and ivory horns. `part` is the name of the
+// nearest named ancestor (a fibre's point is "<part>_f<k>_pt"; quills and membrane patches are
+// unnamed under their spline or union).
+struct Palette {
+  glm::vec3 skin, stripe, belly, spike, membrane;
+};
+const Palette kDinosaurColors{{0.42f, 0.58f, 0.25f}, {0.24f, 0.36f, 0.15f}, {0.86f, 0.80f, 0.56f},
+                              {0.85f, 0.46f, 0.14f}, {0.85f, 0.46f, 0.14f}};
+const Palette kDragonColors{{0.66f, 0.13f, 0.10f}, {0.40f, 0.06f, 0.08f}, {0.92f, 0.70f, 0.26f},
+                            {0.95f, 0.93f, 0.84f}, {0.96f, 0.52f, 0.16f}};
+const glm::vec3 kIvory{0.95f, 0.93f, 0.84f};
+
+bool startsWith(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
+
+void paint(BlobNode& n, const Palette& c, const std::string& part) {
+  const std::string& here = n.name.empty() ? part : n.name;
+  if (paramIndex(n.type, "color") >= 0) {
+    glm::vec3 color = c.skin;
+    if (startsWith(here, "belly")) color = c.belly;
+    else if (startsWith(here, "quill") || startsWith(here, "horn")) color = c.spike;
+    else if (startsWith(here, "membrane")) color = c.membrane;
+    else if (startsWith(here, "tooth") || startsWith(here, "lowtooth") || here.find("claw") != std::string::npos)
+      color = kIvory;
+    else if (size_t f = here.rfind("_f"); f != std::string::npos && f + 2 < here.size()) {
+      const int fibre = std::atoi(here.c_str() + f + 2);
+      if (fibre % 2 == 1) color = c.stripe;
+    }
+    n.vec3Param("color") = Vec3Track(color);
+  }
+  for (BlobNode& k : n.children) paint(k, c, here);
+}
+
 BlobTree buildCreature(const BodyStyle& s) {
   Builder b;
   BlobTree tree;
@@ -471,6 +506,7 @@ BlobTree buildCreature(const BodyStyle& s) {
 
   flight.children.push_back(std::move(pelvis));
   tree.root.children.push_back(std::move(flight));
+  paint(tree.root, s.dragon ? kDragonColors : kDinosaurColors, "");
   roundValues(tree.root);
   return tree;
 }

@@ -11,6 +11,9 @@
 //    tail, legs tucked, flying above the ground), horns, and two wings that
 //    flap, each an arm and a hand of fibre bones holding a membrane: a union of
 //    Coons-patch meta-primitives tiling a billowing surface.
+// Both in colour (every primitive's colour parameter): the dinosaur olive green with darker
+// stripes, a cream belly, orange quills and ivory teeth and claws; the dragon crimson with darker
+// stripes, a golden belly, orange wing membranes and ivory horns.
 // Both clips loop (the dinosaur every kDinosaurLoopSec, the dragon every
 // kDragonLoopSec): every animated track has its last key at the loop time.
 #include "core/animorphosis/correspondence.h"

@@ -123,7 +123,7 @@ void transformNode(BlobNode& n, glm::vec3 offset, float scale, bool insideFrame,
       if (name == "a" || name == "b") moveTrack(std::get<Vec3Track>(n.params[i]));
     } else if (n.type == NodeType::Frame) {
       if (name == "translation") moveTrack(std::get<Vec3Track>(n.params[i]));
-    } else if (specs[i].kind == ParamKind::Vec3 && name != "normal" && name != "direction") {
+    } else if (specs[i].kind == ParamKind::Vec3 && name != "normal" && name != "direction" && !isColorParam(specs[i])) {
       moveTrack(std::get<Vec3Track>(n.params[i]));
     } else if (specs[i].kind == ParamKind::Vec3List) {
       for (auto& p : std::get<ControlPoints>(n.params[i])) moveTrack(p);

@@ -74,6 +74,7 @@ float rf(std::mt19937& rng, float a, float b) { return std::uniform_real_distrib
 void animate(BlobNode& n, std::mt19937& rng) {
   const auto& specs = nodeTypeInfo(n.type).params;
   for (size_t i = 0; i < specs.size(); ++i) {
+    if (isColorParam(specs[i])) continue;  // colours stay at the default (the random trees stay as they were)
     if (auto* f = std::get_if<FloatTrack>(&n.params[i])) {
       float v = f->evaluate(0.0);
       f->setKey(1.0, v * rf(rng, 0.8f, 1.2f));
@@ -94,6 +95,7 @@ BlobNode randomPrimitive(std::mt19937& rng, int& id) {
   for (size_t i = 0; i < specs.size(); ++i) {
     const ParamSpec& p = specs[i];
     std::string name = p.name;
+    if (isColorParam(p)) continue;
     if (p.kind == ParamKind::Vec3) {
       if (name == "normal") n.params[i] = Vec3Track(glm::normalize(rv(rng) + glm::vec3(0, 0.5f, 0)));
       else n.params[i] = Vec3Track(rv(rng));

@@ -36,7 +36,7 @@ bool keyedAt(const BlobTree& tree, const ParamAddress& a, double timeSec) {
 // One parameter row: key button, label, field. Returns nothing; edits go through commands.
 void paramRow(Document& doc, const std::string& actorId, const BlobTree& tree, const ParamAddress& a,
               const std::string& label, double timeSec, DragMerge& drag, StatusMessage& status,
-              const std::string& widgetKey) {
+              const std::string& widgetKey, bool color = false) {
   ParamSample value;
   if (!sampleParam(tree, a, timeSec, value)) return;
   ImGui::PushID(widgetKey.c_str());
@@ -58,6 +58,11 @@ void paramRow(Document& doc, const std::string& actorId, const BlobTree& tree, c
     float v = *f;
     changed = ImGui::DragFloat(label.c_str(), &v, 0.005f, 0.0f, 0.0f, "%.4g");
     next = v;
+  } else if (auto* p = std::get_if<glm::vec3>(&value); p && color) {
+    // A colour parameter (sRGB, 0..1): a swatch that opens a picker, and the components to type in.
+    glm::vec3 v = *p;
+    changed = ImGui::ColorEdit3(label.c_str(), &v.x, ImGuiColorEditFlags_Float);
+    next = glm::clamp(v, 0.0f, 1.0f);
   } else if (auto* p = std::get_if<glm::vec3>(&value)) {
     glm::vec3 v = *p;
     changed = ImGui::DragFloat3(label.c_str(), &v.x, 0.005f, 0.0f, 0.0f, "%.3f");
@@ -135,7 +140,7 @@ void drawBlobNodeInspector(Document& doc, const std::string& actorId, int nodeId
     const ParamSpec& spec = info.params[i];
     if (spec.kind != ParamKind::Vec3List) {
       paramRow(doc, actorId, tree, {nodeId, int(i), -1}, spec.name, t, drag, status,
-               std::string("inspector/blob/") + spec.name);
+               std::string("inspector/blob/") + spec.name, isColorParam(spec));
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", spec.doc);
       continue;
     }

@@ -280,7 +280,7 @@ struct Builder {
         std::string_view name = specs[i].name;
         if (name == "intensity" || (radiusIsSize && name == "radius")) {
           r.params[i] = FloatTrack(0.0f);
-        } else if (collapse && specs[i].kind == ParamKind::Vec3 && name != "normal") {
+        } else if (collapse && specs[i].kind == ParamKind::Vec3 && name != "normal" && !isColorParam(specs[i])) {
           r.params[i] = Vec3Track(anchor);
         } else if (collapse && specs[i].kind == ParamKind::Vec3List) {
           for (auto& p : std::get<ControlPoints>(r.params[i])) p = Vec3Track(anchor);

@@ -42,7 +42,7 @@ NodeExtent primitiveExtent(const BlobNode& n, double t, const Affine& m) {
   int r = paramIndex(n.type, "radius");
   float grow = r >= 0 ? std::max(0.0f, std::get<FloatTrack>(n.params[size_t(r)]).evaluate(t)) * m.scale() : 0.0f;
   for (size_t i = 0; i < specs.size(); ++i) {
-    if (specs[i].kind == ParamKind::Vec3 && !isDirection(specs[i].name))
+    if (specs[i].kind == ParamKind::Vec3 && !isDirection(specs[i].name) && !isColorParam(specs[i]))
       addPoint(e, m.apply(std::get<Vec3Track>(n.params[i]).evaluate(t)), grow);
     else if (specs[i].kind == ParamKind::Vec3List)
       for (const auto& p : std::get<ControlPoints>(n.params[i])) addPoint(e, m.apply(p.evaluate(t)), grow);

@@ -30,7 +30,12 @@ json nodeToJson(const BlobNode& n) {
   const auto& specs = nodeTypeInfo(n.type).params;
   if (!specs.empty()) {
     json p = json::object();
-    for (size_t i = 0; i < specs.size() && i < n.params.size(); ++i) p[specs[i].name] = paramToJson(n.params[i]);
+    for (size_t i = 0; i < specs.size() && i < n.params.size(); ++i) {
+      // A colour left at the default is not written: a tree without colours saves as it did before
+      // primitives carried colour (and reads back with the default).
+      if (isColorParam(specs[i]) && n.params[i] == ParamValue(Vec3Track(specs[i].defaultValue))) continue;
+      p[specs[i].name] = paramToJson(n.params[i]);
+    }
     j["params"] = p;
   }
   if (!n.children.empty()) {

@@ -12,7 +12,7 @@ int compileParamSlot(NodeType type, CompileParam p) {
       "center", "skeletonRadius", "a", "b", "c", "radiusA", "radiusB", "normal", "points", "radius", "intensity",
       "stiffness", "sharpness", "q", "a0", "a1", "a2", "a3", "scale", "translation", "rotation", "angle",
       "scaleA", "scaleB", "direction", "count", "scaleStart", "scaleEnd", "bottom", "top", "left", "right",
-      "resolution"};
+      "resolution", "color"};
   static const std::vector<std::array<int8_t, size_t(CompileParam::Size)>> slots = [] {
     std::vector<std::array<int8_t, size_t(CompileParam::Size)>> r;
     for (const NodeTypeInfo& info : allNodeTypes()) {

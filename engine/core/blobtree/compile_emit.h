@@ -30,7 +30,7 @@ namespace animorph {
 enum class CompileParam : uint8_t {
   Center, SkeletonRadius, A, B, C, RadiusA, RadiusB, Normal, Points, Radius, Intensity, Stiffness, Sharpness, Q,
   A0, A1, A2, A3, Scale, Translation, Rotation, Angle, ScaleA, ScaleB, Direction, Count, ScaleStart, ScaleEnd,
-  Bottom, Top, Left, Right, Resolution, Size
+  Bottom, Top, Left, Right, Resolution, Color, Size
 };
 
 // Index of p in nodeTypeInfo(type).params (looked up once per type, not per node); -1 where absent.
@@ -289,8 +289,21 @@ class FlatEmitter {
     p.stiffness = std::max(0.0f, f(n, CompileParam::Stiffness));
   }
 
+  // The program's colour for the primitives n adds: its "color" parameter (sRGB, clamped) in linear
+  // light; the conversion is kept for the next primitive of the same colour.
+  glm::vec3 lastSrgb{-1.0f}, lastLinear{0.0f};
+  void color(Node n) {
+    const glm::vec3 c = v(n, CompileParam::Color);
+    if (c != lastSrgb) {
+      lastSrgb = c;
+      lastLinear = srgbToLinear(c);
+    }
+    prog.nextColor = lastLinear;
+  }
+
   // Emits a primitive; returns true when it pushed a new operand.
   bool primitive(Node n, NodeType type, bool combine, bool combineMax) {
+    color(n);
     if (isSkeletalType(type)) return prog.addSkeletal(skeletal(n, type), combine, combineMax);
     if (type == NodeType::ConvSegment) {
       if (combineMax) combine = false;  // convolution ops only sum
@@ -307,6 +320,7 @@ class FlatEmitter {
   // reaching the largest value gives the gradient either way). Returns true when it pushed an operand.
   bool coonsPatch(Node n, bool combine) {
     const std::vector<std::array<glm::vec3, 3>>& tris = src.coonsTriangles(n, triangles);
+    color(n);
     SkeletalPrimitive p;
     p.skeleton.kind = SkeletonKind::Triangle;
     potential(n, p);

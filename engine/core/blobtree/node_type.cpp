@@ -8,6 +8,11 @@ using K = ParamKind;
 using R = ParamRule;
 const glm::vec3 z0(0.0f);
 
+// Every primitive's colour (a Vec3 track of sRGB components in [0, 1]; docs/blobtree.md, "Colour").
+ParamSpec colorParam() {
+  return {"color", K::Vec3, false, kDefaultBlobColor, R::Color, "surface colour (sRGB, each component 0..1)", 0};
+}
+
 ParamSpec req(const char* n, K k, R r, const char* doc, int minCount = 0) {
   return {n, k, true, z0, r, doc, minCount};
 }
@@ -18,6 +23,7 @@ std::vector<ParamSpec> potential(std::vector<ParamSpec> shape) {
   shape.push_back(req("radius", K::Float, R::NonNegative, "radius of influence R (m)"));
   shape.push_back(optf("intensity", 1.0f, R::Any, "intensity I (potential at the skeleton)"));
   shape.push_back(optf("stiffness", 3.0f, R::NonNegative, "stiffness k of (1 - (d/R)^2)^k"));
+  shape.push_back(colorParam());
   return shape;
 }
 
@@ -61,11 +67,11 @@ std::vector<NodeTypeInfo> makeTable() {
   t.push_back({NodeType::ConvSegment, "convSegment", "primitive", 0, 0,
                {req("a", K::Vec3, R::Any, "start"), req("b", K::Vec3, R::Any, "end"),
                 req("radius", K::Float, R::NonNegative, "surface radius of a long segment (weight is derived)"),
-                optf("sharpness", 10.0f, R::Positive, "Cauchy kernel S (1/m)")},
+                optf("sharpness", 10.0f, R::Positive, "Cauchy kernel S (1/m)"), colorParam()},
                "convolution segment (Cauchy kernel, closed form)"});
   t.push_back({NodeType::Capsule, "capsule", "primitive", 0, 0,
                {req("a", K::Vec3, R::Any, "start"), req("b", K::Vec3, R::Any, "end"),
-                req("radius", K::Float, R::NonNegative, "capsule radius")},
+                req("radius", K::Float, R::NonNegative, "capsule radius"), colorParam()},
                "canal surface: potential T * max(0, 2 - dist / radius)"});
   t.push_back({NodeType::Blend, "blend", "operator", 1, -1, {}, "sum of the children"});
   t.push_back({NodeType::HyperBlend, "hyperBlend", "operator", 1, 64,

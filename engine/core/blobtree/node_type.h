@@ -9,6 +9,8 @@
 
 #include <glm/glm.hpp>
 
+#include "core/math/color.h"
+
 namespace animorph {
 
 enum class NodeType : uint8_t {
@@ -33,7 +35,13 @@ enum class ParamRule : uint8_t {
   Positive,      // floats > 0
   AtLeastOne,    // floats >= 1 (hyper-blend q, counts)
   NonZero,       // vectors with non-zero length; Frame scale: every component non-zero
+  Color,         // vectors: an sRGB colour, every component in [0, 1]
 };
+
+// The colour every primitive has unless told otherwise (its "color" parameter's default): the
+// clay tone BlobTree surfaces were drawn in before they carried colour (sRGB), so trees saved
+// without colours look as they did.
+inline constexpr glm::vec3 kDefaultBlobColor = kClayColorSrgb;
 
 struct ParamSpec {
   const char* name;
@@ -63,6 +71,9 @@ const NodeTypeInfo* findNodeType(std::string_view name);
 const std::vector<NodeTypeInfo>& allNodeTypes();
 // Index of a parameter in the type's spec list, or -1.
 int paramIndex(NodeType t, std::string_view name);
+
+// True for a colour parameter (ParamRule::Color): not a position, not moved by geometry edits.
+inline bool isColorParam(const ParamSpec& p) { return p.rule == ParamRule::Color; }
 
 // True for the skeletal-potential primitives (Point ... Curve).
 inline bool isSkeletalType(NodeType t) { return t <= NodeType::Curve; }

@@ -332,7 +332,8 @@ Status setParamValue(BlobTree& tree, const ParamAddress& a, double timeSec, cons
       if (perComponent ? (v->x == 0.0f || v->y == 0.0f || v->z == 0.0f) : glm::length(*v) == 0.0f)
         return Error{describeNode(*n) + ": parameter '" + paramName(*n, a) + "' must be non-zero"};
     }
-    setTrackValue(*vt, timeSec, *v, key);
+    // A colour keeps to 0..1 as floats keep to their rule.
+    setTrackValue(*vt, timeSec, spec.rule == ParamRule::Color ? glm::clamp(*v, 0.0f, 1.0f) : *v, key);
   }
   return Status::success();
 }

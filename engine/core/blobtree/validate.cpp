@@ -55,6 +55,11 @@ Status checkVec3(const BlobNode& n, const ParamSpec& p, const Vec3Track& t) {
     std::string at = " at key " + std::to_string(k);
     if (!finite3(key.value) || !finite3(key.d1) || !finite3(key.d2) || !std::isfinite(key.timeSec))
       return Error{where + " has a non-finite component" + at};
+    if (p.rule == ParamRule::Color) {
+      for (int c = 0; c < 3; ++c)
+        if (key.value[c] < 0.0f || key.value[c] > 1.0f)
+          return Error{where + " has a colour component outside 0..1 (" + num(key.value[c]) + at + ")"};
+    }
     if (p.rule == ParamRule::NonZero) {
       bool scale = n.type == NodeType::Frame;
       if (scale ? (key.value.x == 0.0f || key.value.y == 0.0f || key.value.z == 0.0f)

@@ -47,6 +47,7 @@ Status bakeFramesApart(const ProjectFrames& frames, const BakeSettings& s, BakeS
   fs.cancel = progress.cancelFlag();
   fs.implicitStage = s.implicitStage;
   fs.keepInnerShell = s.keepInnerShell;
+  fs.colors = s.colors;
   fs.measure = meter != nullptr;
   const bool meshes = sink.wantsMeshes() || meter;
   return runFrameLoop(s.first, count, s.jobs, progress, [&](int k) -> Status {
@@ -75,6 +76,7 @@ Status bakeAnimorphosisSequence(const ProjectFrames& frames, const BakeSettings&
   FrameSequenceSettings fs;
   fs.resolution = s.resolution;
   fs.reuseToleranceCells = s.coherence;
+  fs.colors = s.colors;
   fs.cancel = progress.cancelFlag();
   auto programOf = [&](int k) { return frames.animorphosisProgram(s.first + k); };
   auto stats = polygonizeFrameSequence(

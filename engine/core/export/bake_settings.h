@@ -39,6 +39,9 @@ struct BakeSettings {
   // stand-in core inside it: by default a frame is written as what is seen, the boundary of their
   // union (scene/visible_surface.h); true keeps both shells (animorph-cli bake --keep-inner-shell).
   bool keepInnerShell = false;
+  // An animorphosis' frames carry the primitives' colours as vertex colours (field/surface_color.h);
+  // false: none (animorph-cli bake --no-color), which saves the colour pass (docs/export.md).
+  bool colors = true;
   // A morph: measure every frame for the continuity report (export/bake_continuity.h): its volume,
   // and the continuity ratio over the range's part of A..D. Needs the meshes, so it costs a mesh
   // per frame even when only volumes are written.

@@ -70,6 +70,7 @@ Result<BakedFrame> ProjectFrames::frame(int frame, const FrameBakeSettings& s) c
   ps.resolution = s.resolution;
   ps.threads = s.threads;
   ps.cancel = s.cancel;
+  ps.colors = s.colors;  // the primitives' colours as vertex colours (docs/export.md)
   auto r = polygonize(animorphosisProgram(frame), ps);
   if (!r) return Error{r.error()};
   if (r->cancelled || cancelled()) return jobCancelled();

@@ -54,6 +54,7 @@ struct FrameBakeSettings {
   // A collapse or expansion frame is two closed shells, the transitioned mesh and the stand-in
   // core inside it: false writes what is seen (the boundary of their union), true keeps both.
   bool keepInnerShell = false;
+  bool colors = true;    // an animorphosis' frames: vertex colours (BakeSettings::colors)
   bool measure = false;  // fill BakedFrame::measure and ::visible (the bake's continuity report)
 };
 

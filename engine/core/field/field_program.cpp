@@ -308,6 +308,9 @@ bool FieldProgram::pushPrims(PrimClass cls, uint32_t local, bool combineWithPrev
                              const PrimitiveBound& b) {
   uint32_t global = uint32_t(primitiveBounds.size());
   primitiveBounds.push_back(b);
+  std::vector<glm::vec3>& colors = classColors[size_t(cls)];
+  if (colors.size() <= local) colors.resize(size_t(local) + 1, nextColor);
+  colors[local] = nextColor;
   if (combineWithPrevious && !ops.empty()) {
     FieldOp& last = ops.back();
     if (last.code == OpCode::Prims && last.primClass == cls && last.combineMax == combineMax &&
@@ -445,6 +448,8 @@ void FieldProgram::reset() {
     v->clear();
   capsules.clear();
   primitiveBounds.clear();
+  for (std::vector<glm::vec3>& c : classColors) c.clear();
+  nextColor = srgbToLinear(kClayColorSrgb);
   openMaps_.clear();
   openBegins_.clear();
   openScale_.clear();

@@ -17,6 +17,7 @@
 #include "core/field/skeleton.h"
 #include "core/field/space_map.h"
 #include "core/math/bounds.h"
+#include "core/math/color.h"
 
 namespace animorph {
 
@@ -116,6 +117,17 @@ class FieldProgram {
   ConvolutionData convolution;
   std::vector<CapsulePrimitive> capsules;
   std::vector<PrimitiveBound> primitiveBounds;  // by global primitive id (order of Prims ops)
+  // Surface colour of each primitive (linear RGB), by class and class-local index (as a Prims op's
+  // indices): every add records nextColor. Read by SurfaceColorEvaluator (field/surface_color.h);
+  // the field itself never reads them.
+  std::vector<glm::vec3> classColors[3];  // [PrimClass]
+  // The colour the next added primitives get (reset() restores the clay tone, math/color.h).
+  glm::vec3 nextColor = srgbToLinear(kClayColorSrgb);
+  // Colour of a primitive of class cls, class-local index i (the clay tone when none was recorded).
+  glm::vec3 primitiveColor(PrimClass cls, uint32_t i) const {
+    const std::vector<glm::vec3>& c = classColors[size_t(cls)];
+    return i < c.size() ? c[i] : srgbToLinear(kClayColorSrgb);
+  }
 
   // --- building (postfix order; BlobTree's compiler and tests use these) ---
   // Each add returns true when it pushed a new operand, false when the primitive

@@ -1,5 +1,7 @@
 #include "core/particles/convert_to_particles.h"
 
+#include "core/field/surface_color.h"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -8,6 +10,7 @@
 #include <tbb/task_arena.h>
 
 #include "core/field/potential.h"
+#include "core/field/surface_color.h"
 
 namespace animorph {
 
@@ -243,7 +246,20 @@ Result<ParticleShape> fieldParticleShape(const FieldProgram& program) {
 Result<ConvertToParticlesResult> convertToParticles(const FieldProgram& program, const ConvertToParticlesSettings& s) {
   auto shape = fieldParticleShape(program);
   if (!shape) return Error{shape.error()};
-  return convertToParticles(*shape, s);
+  auto r = convertToParticles(*shape, s);
+  if (!r) return r;
+  // Each particle takes the shape's colour where it sits (field/surface_color.h); where that is the
+  // clay tone (a shape without colours) the default stays, so such trees save as before.
+  std::vector<BlobNode>& points = r->tree.root.children;
+  std::vector<glm::vec3> centres(points.size());
+  for (size_t i = 0; i < points.size(); ++i) centres[i] = points[i].vec3Param("center").evaluate(0.0);
+  std::vector<glm::vec4> colors(points.size());
+  SurfaceColorEvaluator().evaluate(program, centres.data(), centres.size(), colors.data(), s.threads);
+  const glm::vec3 clay = srgbToLinear(kClayColorSrgb);
+  for (size_t i = 0; i < points.size(); ++i)
+    if (glm::any(glm::greaterThan(glm::abs(glm::vec3(colors[i]) - clay), glm::vec3(1e-5f))))
+      points[i].vec3Param("color") = Vec3Track(linearToSrgb(glm::vec3(colors[i])));
+  return r;
 }
 
 Result<ConvertToParticlesResult> convertToParticles(const ParticleShape& shape, const ConvertToParticlesSettings& s) {

@@ -29,6 +29,7 @@ Result<FrameSequenceStats> polygonizeFrameSequence(int count, const std::functio
   ps.resolution = settings.resolution;
   ps.threads = settings.threads;
   ps.cancel = settings.cancel;
+  ps.colors = settings.colors;
   const auto t0 = std::chrono::steady_clock::now();
   auto grid = frameSequenceGrid(count, programOf, settings, &stats.cancelled);
   if (!grid) return Error{grid.error()};

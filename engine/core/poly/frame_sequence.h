@@ -16,6 +16,7 @@ struct FrameSequenceSettings {
   float reuseToleranceCells = 0.1f;  // PolygonizeSettings::reuseToleranceCells (0: exact reuse only)
   int threads = 0;                   // polygoniser threads; 0 = all
   const std::atomic<bool>* cancel = nullptr;  // stops between and inside frames (result: cancelled)
+  bool colors = false;               // vertex colours (PolygonizeSettings::colors)
 };
 
 struct FrameSequenceStats {

@@ -1,5 +1,7 @@
 #include "core/poly/polygonizer.h"
 
+#include "core/field/surface_color.h"
+
 #include <algorithm>
 #include <chrono>
 #include <memory>
@@ -13,6 +15,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "core/field/surface_color.h"
 #include "core/poly/marching_cubes_table.h"
 #include "core/poly/program_change.h"
 
@@ -902,6 +905,13 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
   run.saveHistory();
   st.pointsEvaluated = run.points.load() + st.orphanVertices;
   st.primitiveEvaluations = run.pairs.load();
+  if (s.colors) {
+    const auto c0 = std::chrono::steady_clock::now();
+    result.mesh.colors.resize(result.mesh.positions.size());
+    SurfaceColorEvaluator().evaluate(program, result.mesh.positions.data(), result.mesh.positions.size(),
+                                     result.mesh.colors.data(), s.threads);
+    st.colorMilliseconds = millisecondsSince(c0);
+  }
   if (s.progress) s.progress(1.0f);
   st.milliseconds = millisecondsSince(t0);
   return result;

@@ -88,6 +88,9 @@ struct PolygonizeSettings {
   // edge: the mesh then has a full sweep's triangles and vertex count, its vertices within this
   // many cells of a full sweep's; the reused normals are the older frame's. 0.1 is a good value.
   float reuseToleranceCells = 0.0f;
+  // Vertex colours (TriangleMesh::colors, linear): the surface colour of the program's primitives
+  // at each vertex (field/surface_color.h), computed after the mesh is made. Off: no colours.
+  bool colors = false;
 };
 
 struct PolygonizeStats {
@@ -105,6 +108,7 @@ struct PolygonizeStats {
   size_t blocksReused = 0;              // with a history: blocks taken from the previous frame
                                         // (counted in blocksCulled / blocksEvaluated as before)
   double milliseconds = 0.0;
+  double colorMilliseconds = 0.0;       // of milliseconds: the vertex colours (settings.colors)
 };
 
 struct PolygonizeResult {
