@@ -13,6 +13,7 @@
 
 #include "gpu/vulkan/context.h"
 #include "gpu/render/gpu_mesh.h"
+#include "gpu/render/gpu_texture.h"
 #include "gpu/transition/gpu_standin_binding.h"
 #include "gpu/render/line_batch.h"
 #include "core/camera/camera.h"
@@ -37,7 +38,10 @@ struct MeshDraw {
   // Blend-shape weights, one per morph target of the mesh (rig/pose.h
   // morphWeightsAt); empty or all zero: the bind shape. Copied while recording.
   std::span<const float> morphWeights;
-  glm::vec4 color{0.62f, 0.62f, 0.62f, 1.0f};  // base colour (sRGB)
+  glm::vec4 color{0.62f, 0.62f, 0.62f, 1.0f};  // base colour (sRGB) of parts without a material colour
+  // Draw the mesh's materials (GpuMesh::parts: factor x texture x vertex colour) where they give
+  // a colour; false: every part in `color` (a BlobTree surface polygonised into a mesh).
+  bool materials = true;
   bool selected = false;
   // glTF material.doubleSided: also draw back faces. Single-sided meshes cull
   // them (counter-clockwise is front, as in glTF), which also halves the
@@ -170,6 +174,8 @@ class SceneRenderer {
   VkDescriptorSetLayout morphSetLayout_ = VK_NULL_HANDLE;  // set AM_MORPH_SET (render/gpu_mesh.h)
   Buffer morphPlaceholder_;                                // bound for meshes without morph targets
   VkDescriptorSet morphPlaceholderSet_ = VK_NULL_HANDLE;
+  VkDescriptorSetLayout materialSetLayout_ = VK_NULL_HANDLE;  // set AM_MATERIAL_SET (render/gpu_texture.h)
+  std::unique_ptr<GpuTexture> whiteTexture_;                   // 1x1 white: bound for parts without a texture
   VkPipeline meshPipeline_[2]{};  // [doubleSided]
   VkPipeline wirePipeline_[2]{};  // [doubleSided]
   VkPipeline generatedPipeline_ = VK_NULL_HANDLE;  // GeneratedMeshDraw: positions + normals, indirect
