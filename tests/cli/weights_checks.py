@@ -2,7 +2,9 @@
 importing from a glTF without vertex colours fails naming the file and leaves
 the project untouched; a copy of the creature with a COLOR_0 written into it
 (red = a known ramp over the vertices) imports as the creature's weight map,
-and the saved project holds exactly those values.
+and the saved project holds exactly those values. A copy with an embedded
+8 x 1 PNG texture (alphas known) and TEXCOORD_0 at its texel centres imports
+with --from-texture alpha as exactly the hand-sampled alphas.
 
 usage: weights_checks.py CLI DEMO_DIR"""
 import base64
@@ -13,6 +15,7 @@ import struct
 import subprocess
 import sys
 import tempfile
+import zlib
 
 cli, demo = sys.argv[1], sys.argv[2]
 
@@ -71,6 +74,58 @@ def with_colours(src, dst):
     return reds
 
 
+def png_rgba(width, height, pixels):
+    """A PNG (8-bit RGBA, no filter) of pixels: rows of (r, g, b, a) tuples, top first."""
+    raw = b"".join(b"\0" + bytes(c for px in row for c in px) for row in pixels)
+
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0)) +
+            chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+
+
+ALPHAS = [10 + 32 * k for k in range(8)]
+
+
+def with_texture(src, dst):
+    """Adds an embedded 8 x 1 PNG (alpha ALPHAS[k] at texel k) as every primitive's base colour
+    texture and TEXCOORD_0 at the centre of texel i % 8 for vertex i; returns the expected alphas."""
+    doc, binary = read_glb(src)
+    png = png_rgba(8, 1, [[(200, 100, 50, a) for a in ALPHAS]])
+    while len(binary) % 4:
+        binary.append(0)
+    doc["bufferViews"].append({"buffer": 0, "byteOffset": len(binary), "byteLength": len(png)})
+    binary += png
+    doc["images"] = [{"bufferView": len(doc["bufferViews"]) - 1, "mimeType": "image/png"}]
+    doc["samplers"] = [{"magFilter": 9728, "minFilter": 9728}]
+    doc["textures"] = [{"source": 0, "sampler": 0}]
+    doc.setdefault("materials", []).append({"name": "painted", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}})
+    expected = []
+    for mesh in doc["meshes"]:
+        for prim in mesh["primitives"]:
+            n = doc["accessors"][prim["attributes"]["POSITION"]]["count"]
+            while len(binary) % 4:
+                binary.append(0)
+            offset = len(binary)
+            for i in range(n):
+                binary += struct.pack("<2f", (i % 8 + 0.5) / 8, 0.5)
+                expected.append(ALPHAS[i % 8] / 255)
+            doc["bufferViews"].append({"buffer": 0, "byteOffset": offset, "byteLength": 8 * n})
+            doc["accessors"].append({"bufferView": len(doc["bufferViews"]) - 1, "componentType": 5126,
+                                     "count": n, "type": "VEC2"})
+            prim["attributes"]["TEXCOORD_0"] = len(doc["accessors"]) - 1
+            prim["material"] = len(doc["materials"]) - 1
+    write_glb(dst, doc, binary)
+    return expected
+
+
+def saved_weights(project):
+    doc = json.load(open(project))
+    actor = next(a for a in doc["morph"]["actors"] if a["id"] == "creature")
+    raw = base64.b64decode(actor["weight_map"])
+    return struct.unpack("<%df" % (len(raw) // 4), raw)
+
+
 work = tempfile.mkdtemp(prefix="animorph-cli-weights-")
 for name in ("demo.animorph", "creature.glb", "gear.glb"):
     shutil.copy(os.path.join(demo, name), work)
@@ -107,4 +162,21 @@ r = subprocess.run([cli, "weights", "import", project, "--actor", "creature", "-
                     os.path.join(work, "gear.glb")], capture_output=True, text=True)
 check(r.returncode == 1 and "gear.glb" in r.stderr and "vertices" in r.stderr,
       f"a glTF with other vertices is refused, naming it: {r.stderr.strip()}")
+
+textured = os.path.join(work, "creature_textured.glb")
+alphas = with_texture(os.path.join(work, "creature.glb"), textured)
+r = subprocess.run([cli, "weights", "import", project, "--actor", "creature", "--from-texture", "alpha", "--gltf",
+                    textured], capture_output=True, text=True)
+check(r.returncode == 0 and "texture channel alpha" in r.stdout,
+      f"importing a texture's alpha works: {r.stdout.strip()} {r.stderr.strip()}")
+weights = saved_weights(project)
+check(len(weights) == len(alphas), f"one weight per creature vertex ({len(weights)})")
+check(max(abs(a - b) for a, b in zip(weights, alphas)) < 1e-6,
+      "the weights are the texture's alpha sampled at each vertex, as sampled by hand")
+r = subprocess.run([cli, "weights", "import", project, "--actor", "creature", "--from-texture", "alpha", "--gltf",
+                    os.path.join(work, "gear.glb")], capture_output=True, text=True)
+check(r.returncode == 1, "a glTF without a texture (and other vertices) is refused")
+r = subprocess.run([cli, "weights", "import", project, "--actor", "creature", "--from-texture", "luminance"],
+                   capture_output=True, text=True)
+check(r.returncode == 2 and "--from-texture" in r.stderr, "an unknown texture channel is a usage error")
 print("weights import: all checks passed")
