@@ -52,24 +52,39 @@ def write_glb(path, doc, binary):
     open(path, "wb").write(out)
 
 
+def append_view(doc, binary, data):
+    """Appends data (bytes) to the buffer as a new bufferView, 4-byte aligned; returns its index."""
+    while len(binary) % 4:
+        binary.append(0)
+    doc["bufferViews"].append({"buffer": 0, "byteOffset": len(binary), "byteLength": len(data)})
+    binary += data
+    return len(doc["bufferViews"]) - 1
+
+
+def add_float_attribute(doc, binary, prim, name, values, comps):
+    """Adds attribute name (float VECn, one tuple of values per vertex) to prim."""
+    data = b"".join(struct.pack("<%df" % comps, *v) for v in values)
+    view = append_view(doc, binary, data)
+    doc["accessors"].append({"bufferView": view, "componentType": 5126, "count": len(values),
+                             "type": "VEC%d" % comps})
+    prim["attributes"][name] = len(doc["accessors"]) - 1
+
+
+def primitives(doc):
+    """Every primitive with its vertex count."""
+    for mesh in doc["meshes"]:
+        for prim in mesh["primitives"]:
+            yield prim, doc["accessors"][prim["attributes"]["POSITION"]]["count"]
+
+
 def with_colours(src, dst):
     """Adds COLOR_0 (float RGBA; red = i / (n - 1) over each primitive's vertices) to every primitive."""
     doc, binary = read_glb(src)
     reds = []
-    for mesh in doc["meshes"]:
-        for prim in mesh["primitives"]:
-            n = doc["accessors"][prim["attributes"]["POSITION"]]["count"]
-            while len(binary) % 4:
-                binary.append(0)
-            offset = len(binary)
-            for i in range(n):
-                r = i / max(1, n - 1)
-                reds.append(r)
-                binary += struct.pack("<4f", r, 0.5, 0.0, 1.0)
-            doc["bufferViews"].append({"buffer": 0, "byteOffset": offset, "byteLength": 16 * n})
-            doc["accessors"].append({"bufferView": len(doc["bufferViews"]) - 1, "componentType": 5126,
-                                     "count": n, "type": "VEC4"})
-            prim["attributes"]["COLOR_0"] = len(doc["accessors"]) - 1
+    for prim, n in primitives(doc):
+        colours = [(i / max(1, n - 1), 0.5, 0.0, 1.0) for i in range(n)]
+        reds += [c[0] for c in colours]
+        add_float_attribute(doc, binary, prim, "COLOR_0", colours, 4)
     write_glb(dst, doc, binary)
     return reds
 
@@ -92,29 +107,15 @@ def with_texture(src, dst):
     texture and TEXCOORD_0 at the centre of texel i % 8 for vertex i; returns the expected alphas."""
     doc, binary = read_glb(src)
     png = png_rgba(8, 1, [[(200, 100, 50, a) for a in ALPHAS]])
-    while len(binary) % 4:
-        binary.append(0)
-    doc["bufferViews"].append({"buffer": 0, "byteOffset": len(binary), "byteLength": len(png)})
-    binary += png
-    doc["images"] = [{"bufferView": len(doc["bufferViews"]) - 1, "mimeType": "image/png"}]
+    doc["images"] = [{"bufferView": append_view(doc, binary, png), "mimeType": "image/png"}]
     doc["samplers"] = [{"magFilter": 9728, "minFilter": 9728}]
     doc["textures"] = [{"source": 0, "sampler": 0}]
     doc.setdefault("materials", []).append({"name": "painted", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}})
     expected = []
-    for mesh in doc["meshes"]:
-        for prim in mesh["primitives"]:
-            n = doc["accessors"][prim["attributes"]["POSITION"]]["count"]
-            while len(binary) % 4:
-                binary.append(0)
-            offset = len(binary)
-            for i in range(n):
-                binary += struct.pack("<2f", (i % 8 + 0.5) / 8, 0.5)
-                expected.append(ALPHAS[i % 8] / 255)
-            doc["bufferViews"].append({"buffer": 0, "byteOffset": offset, "byteLength": 8 * n})
-            doc["accessors"].append({"bufferView": len(doc["bufferViews"]) - 1, "componentType": 5126,
-                                     "count": n, "type": "VEC2"})
-            prim["attributes"]["TEXCOORD_0"] = len(doc["accessors"]) - 1
-            prim["material"] = len(doc["materials"]) - 1
+    for prim, n in primitives(doc):
+        add_float_attribute(doc, binary, prim, "TEXCOORD_0", [((i % 8 + 0.5) / 8, 0.5) for i in range(n)], 2)
+        expected += [ALPHAS[i % 8] / 255 for i in range(n)]
+        prim["material"] = len(doc["materials"]) - 1
     write_glb(dst, doc, binary)
     return expected
 

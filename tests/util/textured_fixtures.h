@@ -30,7 +30,7 @@ struct TexturedQuadOptions {
   bool secondPrimitive = false;   // a second quad beside it (x + 2.5) with an untextured blue material
 };
 
-// Writes dir/quad.gltf (+ quad.bin, + the texture file): a 2 x 2 m quad in the z = 0 plane
+// Writes dir/quad.gltf (its buffer embedded, + the texture file): a 2 x 2 m quad in the z = 0 plane
 // facing +z, corners (-1, -1) .. (1, 1), uv (0, 0) at its top-left corner (-1, 1) and (1, 1)
 // at (1, -1), so each texel covers one quarter. Returns the .gltf path.
 std::string writeTexturedQuad(const std::string& dir, const TexturedQuadOptions& options = {});
