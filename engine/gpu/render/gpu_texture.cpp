@@ -1,8 +1,5 @@
 #include "gpu/render/gpu_texture.h"
 
-#include <cstring>
-
-#include "gpu/vulkan/buffer.h"
 #include "gpu/vulkan/vk_check.h"
 #include "shared_constants.h"
 
@@ -20,31 +17,6 @@ VkSamplerAddressMode addressMode(TextureWrap w) {
 }
 
 VkFilter filter(TextureFilter f) { return f == TextureFilter::Nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR; }
-
-// Copies the staging buffer into the image's only level and leaves it shader-readable.
-Status copyToImage(Context& ctx, VkBuffer src, VkImage dst, VkExtent2D extent) {
-  return ctx.submitImmediate([&](VkCommandBuffer cmd) {
-    VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    b.image = dst;
-    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-    b.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
-                         nullptr, 1, &b);
-    VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = {extent.width, extent.height, 1};
-    vkCmdCopyBufferToImage(cmd, src, dst, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-    b.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-    b.newLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-    b.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 0, nullptr, 0,
-                         nullptr, 1, &b);
-  });
-}
 
 }  // namespace
 
@@ -68,16 +40,9 @@ Result<std::unique_ptr<GpuTexture>> GpuTexture::upload(Context& ctx, const Textu
                  " is larger than the device's largest image (" + std::to_string(maxSide) + ")"};
   std::unique_ptr<GpuTexture> t(new GpuTexture(ctx.device()));
   const VkExtent2D extent{uint32_t(texture.width), uint32_t(texture.height)};
-  Result<Image> img = createImage(ctx, extent, VK_FORMAT_R8G8B8A8_SRGB,
-                                  VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+  Result<Image> img = createSampledImage(ctx, extent, VK_FORMAT_R8G8B8A8_SRGB, texture.rgba->data(), texture.rgba->size());
   if (!img) return Error{what + ": " + img.error()};
   t->image_ = *img;
-  Result<Buffer> staging = createHostBuffer(ctx, texture.rgba->size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
-  if (!staging) return Error{what + ": " + staging.error()};
-  std::memcpy(staging->mapped, texture.rgba->data(), texture.rgba->size());
-  Status st = copyToImage(ctx, staging->buffer, t->image_.image, extent);
-  destroyBuffer(ctx.device(), *staging);
-  if (!st) return Error{what + ": upload failed: " + st.error()};
 
   VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   si.magFilter = filter(texture.magFilter);
