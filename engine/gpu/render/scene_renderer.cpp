@@ -216,7 +216,8 @@ Status SceneRenderer::init(VkRenderPass renderPass, SceneRendererSettings settin
   };
   auto wireDesc = [&](VkCullModeFlags cull) {
     PipelineDesc d = meshDesc(cull);
-    d.frag = "mesh.frag";  // flat colour
+    // mesh_material.frag too (mesh.frag would leave the material outputs unread): with
+    // AM_DRAW_WIREFRAME it draws the flat wire colour.
     if (edgeListWireframe_) {
       d.topology = VK_PRIMITIVE_TOPOLOGY_LINE_LIST;  // lines are never culled
       d.cull = none;
@@ -617,7 +618,9 @@ Status SceneRenderer::record(VkCommandBuffer cmd, uint64_t frameSerial, const Vi
   };
   auto fadeColor = [](const auto& d) { return d.opacity < 1.0f ? glm::vec4(glm::vec3(d.color), std::max(0.0f, d.opacity)) : d.color; };
   // Set 3: the part's base colour texture, or the white placeholder; rebound only when it changes.
-  VkDescriptorSet boundMaterialSet = VK_NULL_HANDLE;
+  // The placeholder from the start: the wireframe pass reads set 3 too, also for meshes not drawn.
+  VkDescriptorSet boundMaterialSet = whiteTexture_->set();
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, kMaterialSet, 1, &boundMaterialSet, 0, nullptr);
   // One draw per material part: its factor (linear) as the base colour, its texture and the
   // vertex colours multiplied in; parts without a material colour keep the draw's colour.
   auto drawParts = [&](const MeshDraw& d, size_t i, uint32_t flags, const glm::vec4& color) {
