@@ -63,7 +63,7 @@ try:
             break
     g.check(best[0] > MIN_PIXELS, f"the gear is drawn in its bronze ({best[0]} orange pixels at frame {best[1]}, "
                                   f"{best[2]})")
-    ed.key("ctrl+q")
+    g.xdo("key", "--clearmodifiers", "ctrl+q")
     rc = ed.wait_exit()
     g.check(rc == 0, f"the editor exits cleanly, with no validation errors (exit {rc})")
 finally:
