@@ -7,6 +7,7 @@
 // with p and n the blend shapes' result (include/morph_targets.glsl).
 #include "frame.glsl"
 #include "skinned_vertex.glsl"
+#include "material_vertex.glsl"
 
 layout(location = 0) out vec3 outWorldPos;
 layout(location = 1) out vec3 outWorldNormal;
@@ -18,6 +19,7 @@ void main() {
   vec4 wp = world * vec4(p, 1.0);
   outWorldPos = wp.xyz;
   outWorldNormal = transpose(inverse(mat3(world))) * n;
+  amPassMaterial();
   gl_Position = frame.viewProj * wp;
   // Wireframe pass: pull towards the camera so lines win the depth test against their own faces.
   gl_Position.z -= pc.depthPull * gl_Position.w;

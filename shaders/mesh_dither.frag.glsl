@@ -11,17 +11,13 @@
 
 #include "mesh_push.glsl"
 #include "mesh_shading.glsl"
+#include "dither.glsl"
 
 layout(location = 0) in vec3 inWorldPos;
 layout(location = 1) in vec3 inWorldNormal;
 layout(location = 0) out vec4 outColor;
 
-const float kBayer4[16] = float[](0.0, 8.0, 2.0, 10.0, 12.0, 4.0, 14.0, 6.0, 3.0, 11.0, 1.0, 9.0, 15.0, 7.0, 13.0, 5.0);
-
 void main() {
-  ivec2 q = ivec2(gl_FragCoord.xy) & 3;
-  float threshold = (kBayer4[q.y * 4 + q.x] + 0.5) / 16.0;
-  if ((pc.flags & AM_DRAW_DITHER_INVERT) != 0u) threshold = 1.0 - threshold;
-  if (!(pc.color.a > threshold)) discard;
+  if (amDitheredOut()) discard;
   outColor = vec4(amShadeMesh(inWorldPos, inWorldNormal).rgb, 1.0);
 }

@@ -10,6 +10,7 @@ layout(location = AM_VERTEX_STANDIN_OFFSET) in vec4 inStandinOffset;  // dp, m
 layout(location = AM_VERTEX_STANDIN_NORMAL) in vec4 inStandinNormal;  // n~, 0
 
 #include "transition.glsl"
+#include "material_vertex.glsl"
 
 layout(location = 0) out vec3 outWorldPos;
 layout(location = 1) out vec3 outWorldNormal;
@@ -25,6 +26,9 @@ void main() {
   amTransitionVertex(p, n, inJoints0, inWeights0, inJoints1, inWeights1, dpm, inStandinNormal.xyz, wp, wn);
   outWorldPos = wp.xyz;
   outWorldNormal = wn;
+  // The mesh's material (texture coordinates, COLOR_0) as it is: a transition that fades the
+  // colour towards its stand-in's overwrites outColor0 here (the pixel then multiplies it).
+  amPassMaterial();
   gl_Position = frame.viewProj * wp;
   gl_Position.z -= pc.depthPull * gl_Position.w;
 }

@@ -1,5 +1,5 @@
-// animorph-cli weights import P.animorph --actor ID --from red|luminance|alpha [--gltf FILE]:
-// sets a morph actor's weight map from glTF vertex colours and saves the project.
+// animorph-cli weights import P.animorph --actor ID (--from red|luminance|alpha | --from-texture alpha|r|g|b)
+// [--gltf FILE]: sets a morph actor's weight map from vertex colours or a texture channel and saves the project.
 #include <cstdio>
 #include <filesystem>
 
@@ -7,6 +7,7 @@
 #include "core/project/project_io.h"
 #include "core/io/character_import.h"
 #include "core/paint/weights_from_colors.h"
+#include "core/paint/weights_from_texture.h"
 
 namespace {
 
@@ -15,7 +16,7 @@ namespace fs = std::filesystem;
 
 int runWeights(const std::vector<std::string>& args) {
   if (args.empty() || args[0] != "import") return cli::fail("weights", "usage: weights import P.animorph --actor ID --from red|luminance|alpha (see --help)", 2);
-  std::string project, actorId, from = "red", gltf;
+  std::string project, actorId, from = "red", fromTexture, gltf;
   for (size_t i = 1; i < args.size(); ++i) {
     const std::string& a = args[i];
     auto value = [&](std::string& out) {
@@ -27,6 +28,8 @@ int runWeights(const std::vector<std::string>& args) {
       if (!value(actorId)) return cli::fail("weights", "--actor needs a value", 2);
     } else if (a == "--from") {
       if (!value(from)) return cli::fail("weights", "--from needs a value", 2);
+    } else if (a == "--from-texture") {
+      if (!value(fromTexture)) return cli::fail("weights", "--from-texture needs a value", 2);
     } else if (a == "--gltf") {
       if (!value(gltf)) return cli::fail("weights", "--gltf needs a value", 2);
     } else if (!a.empty() && a[0] == '-') {
@@ -41,6 +44,9 @@ int runWeights(const std::vector<std::string>& args) {
     return cli::fail("weights", "usage: weights import P.animorph --actor ID --from red|luminance|alpha", 2);
   auto channel = parseColorChannel(from);
   if (!channel) return cli::fail("weights", "--from: expected red (or color), luminance or alpha, not '" + from + "'", 2);
+  auto texChannel = parseTextureChannel(fromTexture);
+  if (!fromTexture.empty() && !texChannel)
+    return cli::fail("weights", "--from-texture: expected alpha, r, g or b, not '" + fromTexture + "'", 2);
 
   auto p = loadProject(project);
   if (!p) return cli::fail("weights", p.error());
@@ -68,8 +74,10 @@ int runWeights(const std::vector<std::string>& args) {
                                       std::to_string(own->totalVertices()));
     colours = std::move(*other);
   }
-  auto map = weightMapFromVertexColors(colours, *channel);
+  auto map = texChannel ? weightMapFromTexture(colours, *texChannel) : weightMapFromVertexColors(colours, *channel);
   if (!map) return cli::fail("weights", map.error());
+  const std::string source = texChannel ? std::string("texture channel ") + textureChannelName(*texChannel)
+                                        : std::string(colorChannelName(*channel));
 
   ActorMorph* am = p->morph.findActor(actorId);
   if (!am) {
@@ -86,21 +94,24 @@ int runWeights(const std::vector<std::string>& args) {
     sum += w;
   }
   std::printf("%s: weight map of '%s' from the %s of %s: %zu vertices, %zu non-zero, mean %.3f\n", project.c_str(),
-              actorId.c_str(), colorChannelName(*channel), fs::path(colours.sourcePath).filename().c_str(), map->size(),
+              actorId.c_str(), source.c_str(), fs::path(colours.sourcePath).filename().c_str(), map->size(),
               painted, map->empty() ? 0.0 : sum / static_cast<double>(map->size()));
   return 0;
 }
 
 }  // namespace
 
-ANIMORPH_CLI_COMMAND("weights", "import a morph actor's weight map from glTF vertex colours",
-                     "usage: animorph-cli weights import PROJECT.animorph --actor ID --from CHANNEL [--gltf FILE]\n"
+ANIMORPH_CLI_COMMAND("weights", "import a morph actor's weight map from vertex colours or a texture channel",
+                     "usage: animorph-cli weights import PROJECT.animorph --actor ID\n"
+                     "         (--from CHANNEL | --from-texture CHANNEL) [--gltf FILE]\n"
                      "  Sets the weight map of the morph's source or target actor ID (which vertices start\n"
-                     "  their transition first) from the vertex colours (COLOR_0) of its glTF, and saves\n"
-                     "  the project in place (atomically).\n"
-                     "  --from red | color | luminance | alpha   the channel (default red)\n"
+                     "  their transition first) from the vertex colours (COLOR_0) of its file, or from a\n"
+                     "  channel of its base colour texture sampled at each vertex's texture coordinates,\n"
+                     "  and saves the project in place (atomically).\n"
+                     "  --from red | color | luminance | alpha   the vertex colour channel (default red)\n"
+                     "  --from-texture alpha | r | g | b         the texture channel (instead of --from)\n"
                      "  --gltf FILE  read the colours from FILE instead of the actor's own asset (same\n"
                      "               vertices in the same order, e.g. a copy painted in another tool)\n"
-                     "  Exit status: 0 on success, 1 when a file cannot be read, has no COLOR_0 or does not\n"
+                     "  Exit status: 0 on success, 1 when a file cannot be read, has no COLOR_0 (no texture) or does not\n"
                      "  match, 2 on bad arguments.\n",
                      runWeights);

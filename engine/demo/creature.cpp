@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <vector>
 
 #include "demo/marching_tetrahedra.h"
 #include "demo/rig_builder.h"
@@ -61,6 +63,50 @@ std::vector<Capsule> creatureCapsules(const std::vector<BoneSpec>& bones) {
   return caps;
 }
 
+// The creature's skin: 128 x 64 texels (sRGB), rows from the back (top) to the belly (bottom):
+// dark green bands across the back, lighter flanks, a pale belly, all in small overlapping
+// scales (cells of 8 texels, every other row shifted by half, darker towards their rims).
+// Repeats along the body (u), clamped across it (v).
+TextureImage scalesTexture() {
+  constexpr int kW = 128, kH = 64, kCell = 8;
+  auto px = std::make_shared<std::vector<uint8_t>>(size_t(kW) * kH * 4);
+  const glm::vec3 back(40, 92, 32), flank(96, 165, 58), belly(218, 206, 142);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const float t = float(y) / float(kH - 1);
+      glm::vec3 c = t < 0.5f ? glm::mix(back, flank, t / 0.5f) : glm::mix(flank, belly, (t - 0.5f) / 0.5f);
+      if (t < 0.35f && (x / 16) % 2 == 0) c *= 0.62f;  // bands across the back
+      const int row = y / kCell;
+      const float cx = float(x) + (row % 2 ? 0.5f * kCell : 0.0f);
+      const glm::vec2 d(std::fmod(cx, float(kCell)) - 0.5f * kCell, float(y % kCell) - 0.5f * kCell);
+      const float rim = glm::clamp((glm::length(d) / (0.5f * kCell) - 0.55f) / 0.45f, 0.0f, 1.0f);
+      c *= 1.0f - 0.38f * rim * rim;
+      uint8_t* p = px->data() + (size_t(y) * kW + x) * 4;
+      for (int k = 0; k < 3; ++k) p[k] = uint8_t(glm::clamp(c[k], 0.0f, 255.0f));
+      p[3] = 255;
+    }
+  TextureImage img;
+  img.name = "scales (generated)";
+  img.width = kW;
+  img.height = kH;
+  img.rgba = std::move(px);
+  img.wrapS = TextureWrap::Repeat;
+  img.wrapT = TextureWrap::ClampToEdge;
+  return img;
+}
+
+// Side projection: v from the top of the body (0) to the feet (1), u along the body, one
+// texture width per two body heights; the same scales on both flanks.
+std::vector<glm::vec2> sideProjection(const std::vector<glm::vec3>& positions) {
+  Bounds b;
+  for (const auto& p : positions) b.add(p);
+  const float height = std::max(b.max.y - b.min.y, 1e-6f);
+  std::vector<glm::vec2> uv;
+  uv.reserve(positions.size());
+  for (const auto& p : positions) uv.push_back({0.5f * (p.z - b.min.z) / height, (b.max.y - p.y) / height});
+  return uv;
+}
+
 }  // namespace
 
 Character makeCreatureCharacter() {
@@ -114,6 +160,13 @@ Character makeCreatureCharacter() {
     mesh.joints0.push_back(j);
     mesh.weights0.push_back(wt);
   }
+  mesh.texcoords0 = sideProjection(mesh.positions);
+  c.textures.push_back(scalesTexture());
+  Material skin;
+  skin.name = "scales";
+  skin.baseColorTexture = 0;
+  c.materials.push_back(skin);
+  mesh.material = 0;
   c.meshes.push_back(std::move(mesh));
   const int first = addSkeleton(c, bones, 0, "creature_skin");
   auto node = [&](const char* name) {

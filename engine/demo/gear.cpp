@@ -104,6 +104,11 @@ Character makeGearCharacter() {
 
   Character c;
   c.sourcePath = "procedural:gear";
+  Material bronze;
+  bronze.name = "bronze";
+  bronze.baseColorFactor = glm::vec4(0.62f, 0.33f, 0.08f, 1.0f);  // linear
+  c.materials.push_back(bronze);
+  mesh.material = 0;
   c.meshes.push_back(std::move(mesh));
   const int hub = addSkeleton(c, {{"hub", -1, centre, centre + glm::vec3(0, 0, 0.1f)},
                                   {"rim", 0, centre, centre + glm::vec3(0, 0.3f, 0)}},

@@ -10,7 +10,8 @@ namespace animorph {
 // have their own vertices for crisp normals. Skinned to two bones: "hub"
 // (inside the spokes) and its child "rim" (outside), blended along the spokes.
 // One clip, "turn": the hub turns a full revolution in 4 s (LINEAR) while the
-// rim flexes a few degrees back and forth (LINEAR). Deterministic.
+// rim flexes a few degrees back and forth (LINEAR). Material "bronze" (a base colour
+// factor). Deterministic.
 Character makeGearCharacter();
 
 }  // namespace animorph

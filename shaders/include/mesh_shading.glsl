@@ -2,7 +2,8 @@
 // key light over a little ambient, two-sided, readable on any base colour (like
 // Maya's default shading); selection adds a rim. Needs frame.glsl and
 // mesh_push.glsl first.
-vec4 amShadeMesh(vec3 worldPos, vec3 worldNormal) {
+// base: the surface colour in linear light (mesh_material.glsl's, or pc.baseLinear.rgb).
+vec4 amShadeMeshBase(vec3 worldPos, vec3 worldNormal, vec3 base) {
   if ((pc.flags & AM_DRAW_WIREFRAME) != 0u) return pc.color;
   vec3 v = normalize(frame.cameraPos.xyz - worldPos);
   vec3 n = worldNormal;
@@ -15,7 +16,6 @@ vec4 amShadeMesh(vec3 worldPos, vec3 worldNormal) {
   // x^40 by squaring: a pow is a log and an exp per pixel on a CPU device (llvmpipe).
   float s1 = max(dot(n, normalize(v + l)), 0.0), s2 = s1 * s1, s4 = s2 * s2, s8 = s4 * s4, s16 = s8 * s8;
   float spec = s16 * s16 * s8;
-  vec3 base = pc.baseLinear.rgb;  // pow(color, 2.2), taken once per draw
   vec3 lit = base * (0.10 + 0.60 * head + 0.45 * key) + vec3(0.06) * spec;
   if ((pc.flags & AM_DRAW_SELECTED) != 0u) {
     vec3 sel = frame.selectColor.rgb;  // linear
@@ -23,4 +23,8 @@ vec4 amShadeMesh(vec3 worldPos, vec3 worldNormal) {
     lit = mix(lit, sel * (0.3 + 0.7 * head), 0.25) + sel * rim * 0.8;
   }
   return vec4(pow(lit, vec3(1.0 / 2.2)), pc.color.a);
+}
+
+vec4 amShadeMesh(vec3 worldPos, vec3 worldNormal) {
+  return amShadeMeshBase(worldPos, worldNormal, pc.baseLinear.rgb);  // pow(color, 2.2), taken once per draw
 }

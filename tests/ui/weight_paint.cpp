@@ -110,3 +110,16 @@ TEST_CASE("importing weights from a character without vertex colours reports the
   CHECK(h.ui->state().status.text.find("hero.gltf: no vertex colours (COLOR_0)") != std::string::npos);
   CHECK(h.doc().history().size() == 0);
 }
+
+TEST_CASE("importing weights from the texture of a character without one reports the file", "[paint]") {
+  EditorFixture f;
+  addMorph(f);
+  auto& h = f.h;
+  h.tapKey(GLFW_KEY_P);
+  h.frames(1);
+  h.clickWidget("paint/import_texture");
+  CHECK(h.ui->state().status.error);
+  CHECK(h.ui->state().status.text.find("hero.gltf: no mesh has texture coordinates and a decoded base colour texture") !=
+        std::string::npos);
+  CHECK(h.doc().history().size() == 0);
+}

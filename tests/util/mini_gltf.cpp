@@ -45,6 +45,13 @@ int MiniGltf::addView(const void* data, size_t bytes, int componentType, size_t 
   return static_cast<int>(root_["accessors"].size()) - 1;
 }
 
+int MiniGltf::addBytes(const std::vector<uint8_t>& bytes) {
+  while (bin_.size() % 4) bin_.push_back(0);
+  root_["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", bin_.size()}, {"byteLength", bytes.size()}});
+  bin_.insert(bin_.end(), bytes.begin(), bytes.end());
+  return static_cast<int>(root_["bufferViews"].size()) - 1;
+}
+
 static size_t componentsOf(const std::string& type) {
   if (type == "SCALAR") return 1;
   if (type == "VEC2") return 2;

@@ -16,6 +16,8 @@ class MiniGltf {
   int addFloats(const std::vector<float>& values, const char* type);
   int addU16(const std::vector<uint16_t>& values, const char* type);
   int addU8(const std::vector<uint8_t>& values, const char* type);
+  // Appends raw bytes (an encoded image) as a bufferView; returns the bufferView index.
+  int addBytes(const std::vector<uint8_t>& bytes);
   // One triangle mesh (POSITION, optional indices) with extra attributes; returns the mesh index.
   int addMesh(int positionAccessor, int indexAccessor, const nlohmann::json& extraAttributes = nlohmann::json::object());
   nlohmann::json& json() { return root_; }

@@ -79,6 +79,19 @@ void drawImportControls(Document& doc, AssetCache& assets, const std::string& ac
   noteWidget(std::string(keyPrefix) + "import");
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Reads the weight map from the chosen channel of COLOR_0 in the actor's glTF file");
+  static const char* const kTextureChannels[] = {"r", "g", "b", "alpha"};
+  int texChannel = static_cast<int>(st.importTextureChannel);
+  ImGui::SetNextItemWidth(110.0f);
+  if (ImGui::Combo("##texture_channel", &texChannel, kTextureChannels, 4))
+    st.importTextureChannel = static_cast<TextureChannel>(texChannel);
+  noteWidget(std::string(keyPrefix) + "texture_channel");
+  ImGui::SameLine();
+  if (ImGui::Button("Import from texture"))
+    importWeightsFromTexture(doc, assets, actorId, st.importTextureChannel, status);
+  noteWidget(std::string(keyPrefix) + "import_texture");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Reads the weight map from the chosen channel of the actor's base colour texture, "
+                      "sampled at each vertex's texture coordinates");
 }
 
 }  // namespace
@@ -122,6 +135,23 @@ bool importWeightsFromColors(Document& doc, AssetCache& assets, const std::strin
   }
   return executeMap(doc, actorId, std::move(*map),
                     std::string("Import weights from vertex colour (") + colorChannelName(channel) + ")", status);
+}
+
+bool importWeightsFromTexture(Document& doc, AssetCache& assets, const std::string& actorId, TextureChannel channel,
+                              StatusMessage& status) {
+  const Actor* a = doc.project().findActor(actorId);
+  const Character* c = a ? actorCharacter(doc, assets, *a) : nullptr;
+  if (!c) {
+    status = {"Import weights: actor '" + actorId + "' has no loaded character", true};
+    return false;
+  }
+  auto map = weightMapFromTexture(*c, channel);
+  if (!map) {
+    status = {"Import weights: " + map.error(), true};
+    return false;
+  }
+  return executeMap(doc, actorId, std::move(*map),
+                    std::string("Import weights from texture (") + textureChannelName(channel) + ")", status);
 }
 
 void drawWeightPaintPanel(const LayoutRect& viewport, Document& doc, AssetCache& assets, WeightPaintState& st,

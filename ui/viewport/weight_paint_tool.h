@@ -17,6 +17,7 @@
 #include "ui/common/layout.h"
 #include "core/paint/weight_brush.h"
 #include "core/paint/weights_from_colors.h"
+#include "core/paint/weights_from_texture.h"
 #include "ui/common/status_bar.h"
 #include "ui/viewport/viewport_input.h"
 
@@ -29,6 +30,7 @@ struct WeightPaintState {
   bool overlayAlways = false;  // View > Weight Overlay: heat colours outside paint mode too
   BrushSettings brush;
   ColorChannel importChannel = ColorChannel::Red;
+  TextureChannel importTextureChannel = TextureChannel::Alpha;
   bool openImportPopup = false;
   // The stroke in progress (mouse down .. up), painting a copy of the map.
   std::shared_ptr<WeightStroke> stroke;
@@ -68,6 +70,11 @@ bool updateWeightPaint(Document& doc, AssetCache& assets, const OrbitCamera& cam
 // glTF (channel). One undo step; errors go to status.
 bool importWeightsFromColors(Document& doc, AssetCache& assets, const std::string& actorId, ColorChannel channel,
                              StatusMessage& status);
+
+// Replaces actorId's weight map with one channel of its base colour texture sampled at
+// each vertex's texture coordinates. One undo step; errors go to status.
+bool importWeightsFromTexture(Document& doc, AssetCache& assets, const std::string& actorId, TextureChannel channel,
+                              StatusMessage& status);
 
 // What the viewport should show in heat colours: the painted actor's map (the
 // stroke's live copy during a stroke) in paint mode or with overlayAlways;

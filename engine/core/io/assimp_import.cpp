@@ -22,6 +22,7 @@
 #include <sstream>
 
 #include "core/io/declared_size_check.h"
+#include "core/io/texture_decode.h"
 #include "core/rig/mesh_normals.h"
 #include "core/rig/skin_influences.h"
 #include "core/util/atomic_file.h"
@@ -443,6 +444,13 @@ Result<Mesh> readMesh(Ctx& c, unsigned index, int& skinOut) {
       mesh.colors[v] = glm::any(glm::isnan(rgba)) ? glm::vec4(1.0f) : glm::clamp(rgba, 0.0f, 1.0f);
     }
   }
+  if (am.mTextureCoords[0]) {  // assimp's v runs upwards (OpenGL); glTF's and ours run down the image
+    mesh.texcoords0.resize(nv);
+    for (size_t v = 0; v < nv; ++v) {
+      const aiVector3D& t = am.mTextureCoords[0][v];
+      mesh.texcoords0[v] = std::isfinite(t.x) && std::isfinite(t.y) ? glm::vec2(t.x, 1.0f - t.y) : glm::vec2(0.0f);
+    }
+  }
   if (am.mMaterialIndex < c.s.mNumMaterials) mesh.material = int(am.mMaterialIndex);
   if (auto st = readMorphTargets(c, am, name, mesh); !st) return Error{st.error()};
 
@@ -567,6 +575,44 @@ std::string textureUri(Ctx& c, const std::string& where, const std::string& raw,
   return fs::path(uri).lexically_normal().generic_string();
 }
 
+// Decodes a material's base colour texture (a file in the folder, or embedded in the
+// file: compressed bytes, or raw BGRA texels) into c.ch.textures; returns its index, or -1
+// with a warning naming the texture and the reason (the factor colour is drawn).
+int readTexture(Ctx& c, const std::string& where, const std::string& raw, const std::string& uri, bool embedded) {
+  Result<TextureImage> t = Error{"no texture"};
+  if (embedded) {
+    const aiTexture* at = c.s.GetEmbeddedTexture(raw.c_str());
+    const std::string name = "embedded texture '" + raw + "'";
+    if (!at || !at->pcData) t = Error{name + ": no data"};
+    else if (at->mHeight == 0)
+      t = decodeTextureImage(reinterpret_cast<const unsigned char*>(at->pcData), at->mWidth, name);
+    else if (at->mWidth > unsigned(kMaxTextureSide) || at->mHeight > unsigned(kMaxTextureSide))
+      t = Error{name + ": " + std::to_string(at->mWidth) + " x " + std::to_string(at->mHeight) +
+                " pixels is over the texture budget"};
+    else {
+      auto px = std::make_shared<std::vector<uint8_t>>(size_t(at->mWidth) * at->mHeight * 4);
+      for (size_t i = 0; i < size_t(at->mWidth) * at->mHeight; ++i) {
+        const aiTexel& x = at->pcData[i];
+        (*px)[4 * i] = x.r, (*px)[4 * i + 1] = x.g, (*px)[4 * i + 2] = x.b, (*px)[4 * i + 3] = x.a;
+      }
+      TextureImage img;
+      img.name = name;
+      img.width = int(at->mWidth);
+      img.height = int(at->mHeight);
+      img.rgba = std::move(px);
+      t = std::move(img);
+    }
+  } else if (!uri.empty()) {
+    t = loadTextureFile(c.folder.string(), uri);
+  }
+  if (!t) {
+    c.ch.report.warnings.push_back(c.file + ": " + where + ": " + t.error() + "; drawn in its factor colour");
+    return -1;
+  }
+  c.ch.textures.push_back(std::move(*t));
+  return int(c.ch.textures.size()) - 1;
+}
+
 void readMaterials(Ctx& c) {
   for (unsigned i = 0; i < c.s.mNumMaterials; ++i) {
     const aiMaterial* am = c.s.mMaterials[i];
@@ -588,7 +634,14 @@ void readMaterials(Ctx& c) {
     aiString tex;
     if (am->GetTexture(aiTextureType_BASE_COLOR, 0, &tex) == AI_SUCCESS ||
         am->GetTexture(aiTextureType_DIFFUSE, 0, &tex) == AI_SUCCESS)
+    {
       m.baseColorTextureUri = textureUri(c, label("material", i, name), tex.C_Str(), m.baseColorTextureEmbedded);
+      std::error_code ec;  // a missing file is warned about once, by textureUri
+      if (m.baseColorTextureEmbedded ||
+          (!m.baseColorTextureUri.empty() && fs::is_regular_file(c.folder / m.baseColorTextureUri, ec)))
+        m.baseColorTexture = readTexture(c, label("material", i, name), tex.C_Str(), m.baseColorTextureUri,
+                                         m.baseColorTextureEmbedded);
+    }
     c.ch.materials.push_back(std::move(m));
   }
 }

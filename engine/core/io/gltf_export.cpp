@@ -2,6 +2,7 @@
 
 #include "core/util/atomic_file.h"
 #include "core/io/glb_writer.h"
+#include "core/io/texture_decode.h"
 #include "core/rig/morph_targets.h"
 
 namespace animorph {
@@ -140,10 +141,12 @@ Result<json> meshJson(const Character& c, size_t mi, int skin, GlbWriter& w) {
     if (m.colors.size() != nv) return Error{label + ": " + std::to_string(m.colors.size()) + " colours for " + std::to_string(nv) + " vertices"};
     attrs["COLOR_0"] = w.floats(&m.colors.data()->x, nv, 4, "VEC4", kArrayBuffer, false);
   }
+  if (m.texcoords0.size() == nv) attrs["TEXCOORD_0"] = w.floats(&m.texcoords0.data()->x, nv, 2, "VEC2", kArrayBuffer, false);
   if (skin >= 0 && nv > 0)
     if (Status st = addSkinAttributes(c, m, skin, label, w, attrs); !st) return Error{st.error()};
   json prim = {{"attributes", attrs}, {"mode", 4}};
   if (!m.indices.empty()) prim["indices"] = w.indices(m.indices, nv);
+  if (m.material >= 0 && size_t(m.material) < c.materials.size()) prim["material"] = m.material;
   json jm = {{"name", m.name}};
   if (!m.morphTargets.empty())
     if (Status st = addMorphTargets(m, label, w, prim, jm); !st) return Error{st.error()};
@@ -204,6 +207,37 @@ Result<json> animationJson(const Character& c, const AnimationClip& clip, GlbWri
   return json{{"name", clip.name}, {"channels", channels}, {"samplers", samplers}};
 }
 
+int glWrap(TextureWrap w) {
+  return w == TextureWrap::ClampToEdge ? 33071 : w == TextureWrap::MirroredRepeat ? 33648 : 10497;
+}
+int glFilter(TextureFilter f) { return f == TextureFilter::Nearest ? 9728 : 9729; }
+
+// Materials (name, base colour factor and texture) and their textures as embedded PNG images.
+void writeMaterials(const Character& c, GlbWriter& w, json& root) {
+  json materials = json::array(), images = json::array(), textures = json::array(), samplers = json::array();
+  std::vector<int> textureIndex(c.textures.size(), -1);
+  for (size_t t = 0; t < c.textures.size(); ++t) {
+    const std::vector<uint8_t> png = encodeTexturePng(c.textures[t]);
+    if (png.empty()) continue;
+    const TextureImage& ti = c.textures[t];
+    images.push_back({{"bufferView", w.view(png.data(), png.size(), 0)}, {"mimeType", "image/png"}});
+    samplers.push_back({{"wrapS", glWrap(ti.wrapS)}, {"wrapT", glWrap(ti.wrapT)}, {"magFilter", glFilter(ti.magFilter)},
+                        {"minFilter", glFilter(ti.minFilter)}});
+    textureIndex[t] = int(textures.size());
+    textures.push_back({{"source", images.size() - 1}, {"sampler", samplers.size() - 1}});
+  }
+  for (const Material& mat : c.materials) {
+    const glm::vec4& f = mat.baseColorFactor;
+    json pbr = {{"baseColorFactor", {f.r, f.g, f.b, f.a}}};
+    if (mat.baseColorTexture >= 0 && size_t(mat.baseColorTexture) < textureIndex.size() &&
+        textureIndex[size_t(mat.baseColorTexture)] >= 0)
+      pbr["baseColorTexture"] = {{"index", textureIndex[size_t(mat.baseColorTexture)]}};
+    materials.push_back({{"name", mat.name}, {"pbrMetallicRoughness", pbr}});
+  }
+  if (!materials.empty()) root["materials"] = materials;
+  if (!images.empty()) root["images"] = images, root["textures"] = textures, root["samplers"] = samplers;
+}
+
 }  // namespace
 
 Result<std::string> exportGlbBytes(const Character& c) {
@@ -224,6 +258,7 @@ Result<std::string> exportGlbBytes(const Character& c) {
     meshes.push_back(*jm);
   }
   if (!meshes.empty()) root["meshes"] = meshes;
+  writeMaterials(c, w, root);
   auto skins = skinsJson(c, w);
   if (!skins) return Error{skins.error()};
   if (!skins->empty()) root["skins"] = *skins;

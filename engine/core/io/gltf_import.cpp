@@ -21,6 +21,7 @@
 
 #include "core/util/atomic_file.h"
 #include "core/io/gltf_schema_check.h"
+#include "core/io/texture_decode.h"
 #include "core/rig/mesh_normals.h"
 #include "core/rig/skin_influences.h"
 
@@ -99,9 +100,12 @@ bool refuseWrite(std::string* err, const std::string&, const std::vector<unsigne
   return false;
 }
 
-// Textures are not used by the editor: keep the bytes, decode nothing.
-bool skipImageDecode(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
-                     void*) {
+// Images are decoded later (io/texture_decode.h, bounded, only those a material draws):
+// keep the encoded bytes as they are.
+bool keepEncodedImage(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                      const unsigned char* bytes, int size, void*) {
+  if (bytes && size > 0) image->image.assign(bytes, bytes + size);
+  image->as_is = true;
   return true;
 }
 
@@ -383,6 +387,7 @@ struct PrimitiveGeometry {
   std::vector<uint32_t> indices;
   std::vector<std::vector<Influence>> influences;  // empty when the primitive has no JOINTS_0
   std::vector<glm::vec4> colors;                   // COLOR_0; empty when the primitive has none
+  std::vector<glm::vec2> texcoords;                // the base colour texture's TEXCOORD_n, transformed; empty: none
   // Morph targets: POSITION deltas of each target (one per vertex), NORMAL deltas (empty: none).
   std::vector<std::vector<glm::vec3>> targetPositions, targetNormals;
   bool computedNormals = false;
@@ -459,6 +464,65 @@ Status readPrimitiveTargets(const Ctx& c, const tinygltf::Primitive& prim, const
   return {};
 }
 
+// The base colour texture of a primitive's material: its textureInfo, or null.
+const tinygltf::TextureInfo* baseColorTextureInfo(const Ctx& c, const tinygltf::Primitive& prim) {
+  if (prim.material < 0 || prim.material >= int(c.m.materials.size())) return nullptr;
+  const auto& info = c.m.materials[prim.material].pbrMetallicRoughness.baseColorTexture;
+  return info.index >= 0 ? &info : nullptr;
+}
+
+// KHR_texture_transform of a textureInfo as a 3x3 matrix (translation * rotation * scale,
+// as the extension defines it) and the texCoord set it overrides (or the textureInfo's).
+glm::mat3 textureTransform(const tinygltf::TextureInfo& info, int& texCoord) {
+  texCoord = info.texCoord;
+  auto it = info.extensions.find("KHR_texture_transform");
+  if (it == info.extensions.end() || !it->second.IsObject()) return glm::mat3(1.0f);
+  const tinygltf::Value& v = it->second;
+  auto number = [&](const tinygltf::Value& x, double fallback) {
+    return x.IsNumber() ? x.GetNumberAsDouble() : fallback;
+  };
+  auto pair = [&](const char* key, glm::vec2 fallback) {
+    const tinygltf::Value& a = v.Get(key);
+    if (!a.IsArray() || a.ArrayLen() != 2) return fallback;
+    return glm::vec2(float(number(a.Get(0), fallback.x)), float(number(a.Get(1), fallback.y)));
+  };
+  const glm::vec2 offset = pair("offset", glm::vec2(0.0f)), scale = pair("scale", glm::vec2(1.0f));
+  const float r = float(number(v.Get("rotation"), 0.0));
+  if (v.Has("texCoord") && v.Get("texCoord").IsInt()) texCoord = v.Get("texCoord").GetNumberAsInt();
+  // T * R * S, column by column as the extension's GLSL writes them (glm is column-major too).
+  const glm::mat3 t(1, 0, 0, 0, 1, 0, offset.x, offset.y, 1);
+  const glm::mat3 rot(std::cos(r), std::sin(r), 0, -std::sin(r), std::cos(r), 0, 0, 0, 1);
+  const glm::mat3 sc(scale.x, 0, 0, 0, scale.y, 0, 0, 0, 1);
+  return t * rot * sc;
+}
+
+// The texture coordinates the primitive's base colour texture uses (TEXCOORD_n of its
+// textureInfo, KHR_texture_transform applied). None when the material has no texture or
+// the primitive lacks the attribute (a warning: the texture is then drawn at uv (0, 0)).
+Status readBaseColorTexcoords(const Ctx& c, const tinygltf::Primitive& prim, const std::string& label, size_t vcount,
+                              std::vector<glm::vec2>& out) {
+  const tinygltf::TextureInfo* info = baseColorTextureInfo(c, prim);
+  if (!info) return Status::success();
+  int set = 0;
+  const glm::mat3 m = textureTransform(*info, set);
+  const std::string attrName = "TEXCOORD_" + std::to_string(set);
+  auto it = prim.attributes.find(attrName);
+  if (it == prim.attributes.end()) {
+    c.report.warnings.push_back(label + ": its material has a base colour texture but the primitive has no " + attrName);
+    return Status::success();
+  }
+  std::vector<float> uv;
+  int comps = 0;
+  auto k = readAccessor(c, it->second, {{TINYGLTF_TYPE_VEC2}, kFloatOrNormalised, "TEXCOORD"}, uv, comps);
+  if (!k) return Error{k.error()};
+  if (*k != vcount)
+    return err(c, label, attrName + " has " + std::to_string(*k) + " elements but POSITION has " + std::to_string(vcount));
+  if (auto s = checkFinite(c, it->second, uv, 2, "texture coordinate"); !s) return Error{s.error()};
+  out.resize(vcount);
+  for (size_t v = 0; v < vcount; ++v) out[v] = glm::vec2(m * glm::vec3(uv[2 * v], uv[2 * v + 1], 1.0f));
+  return Status::success();
+}
+
 // Reads one triangle primitive. Returns an empty geometry with a warning for
 // recoverable problems.
 Result<PrimitiveGeometry> readPrimitive(const Ctx& c, int meshIndex, int primIndex) {
@@ -533,6 +597,8 @@ Result<PrimitiveGeometry> readPrimitive(const Ctx& c, int meshIndex, int primInd
       g.colors[v] = glm::clamp(glm::vec4(col[v * cc], col[v * cc + 1], col[v * cc + 2], cc == 4 ? col[v * cc + 3] : 1.0f),
                                0.0f, 1.0f);
   }
+
+  if (auto s = readBaseColorTexcoords(c, prim, label, vcount, g.texcoords); !s) return Error{s.error()};
 
   // Every JOINTS_n / WEIGHTS_n pair contributes influences.
   for (int set = 0;; ++set) {
@@ -661,6 +727,7 @@ Result<Mesh> readMesh(const Ctx& c, int meshIndex) {
   bool computed = false;
   bool anySkinned = false;
   std::vector<PrimitiveGeometry> prims;
+  std::vector<int> materials;  // of each kept primitive
   for (int p = 0; p < static_cast<int>(gm.primitives.size()); ++p) {
     const auto& prim = gm.primitives[p];
     if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
@@ -675,11 +742,20 @@ Result<Mesh> readMesh(const Ctx& c, int meshIndex) {
     computed |= g->computedNormals;
     anySkinned |= !g->influences.empty();
     prims.push_back(std::move(*g));
+    materials.push_back(prim.material >= 0 && prim.material < int(c.m.materials.size()) ? prim.material : -1);
   }
   InfluenceStats stats;
   bool needSecondSet = false;
   const bool anyColors = std::any_of(prims.begin(), prims.end(), [](const auto& g) { return !g.colors.empty(); });
-  for (auto& g : prims) {
+  const bool anyTexcoords = std::any_of(prims.begin(), prims.end(), [](const auto& g) { return !g.texcoords.empty(); });
+  for (size_t p = 0; p < prims.size(); ++p) {
+    auto& g = prims[p];
+    const uint32_t firstIndex = static_cast<uint32_t>(mesh.indices.size());
+    mesh.parts.push_back({firstIndex, static_cast<uint32_t>(g.indices.size()), materials[p]});
+    if (anyTexcoords) {  // a primitive without texture coordinates samples uv (0, 0)
+      if (g.texcoords.empty()) mesh.texcoords0.insert(mesh.texcoords0.end(), g.positions.size(), glm::vec2(0.0f));
+      else mesh.texcoords0.insert(mesh.texcoords0.end(), g.texcoords.begin(), g.texcoords.end());
+    }
     if (anyColors) {  // a primitive without COLOR_0 is white, as glTF renders it
       if (g.colors.empty()) mesh.colors.insert(mesh.colors.end(), g.positions.size(), glm::vec4(1.0f));
       else mesh.colors.insert(mesh.colors.end(), g.colors.begin(), g.colors.end());
@@ -1032,9 +1108,57 @@ Status checkSkinBindings(const Ctx& c, Character& ch) {
   return {};
 }
 
-// Base colour factor and texture of every material (Character::materials, by glTF index).
+TextureWrap wrapMode(int gl) {
+  if (gl == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE) return TextureWrap::ClampToEdge;
+  if (gl == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT) return TextureWrap::MirroredRepeat;
+  return TextureWrap::Repeat;
+}
+
+// NEAREST and the NEAREST_MIPMAP_* minification filters sample the nearest texel (no mipmaps here).
+TextureFilter filterMode(int gl) {
+  return gl == TINYGLTF_TEXTURE_FILTER_NEAREST || gl == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST ||
+                 gl == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR
+             ? TextureFilter::Nearest
+             : TextureFilter::Linear;
+}
+
+// Decodes glTF texture `tex` (its image, file or bufferView, and its sampler) into
+// ch.textures; returns its index, or -1 with a warning naming the image and the reason.
+int readTexture(const Ctx& c, int tex, const std::string& materialLabel, Character& ch) {
+  const auto& m = c.m;
+  const int src = m.textures[tex].source;
+  if (src < 0 || src >= int(m.images.size())) {
+    c.report.warnings.push_back(materialLabel + ": base colour texture " + std::to_string(tex) +
+                                " has no image; drawn in its factor colour");
+    return -1;
+  }
+  const auto& img = m.images[src];
+  const bool embedded = img.uri.empty() || img.uri.rfind("data:", 0) == 0;
+  const std::string name = embedded ? "image " + std::to_string(src) + " (embedded)" : img.uri;
+  Result<TextureImage> t = img.image.empty()
+                               ? Result<TextureImage>(Error{name + ": not loaded (missing file or bufferView)"})
+                               : decodeTextureImage(img.image.data(), img.image.size(), name);
+  if (!t) {
+    c.report.warnings.push_back(c.file + ": " + materialLabel + ": texture " + t.error() + "; drawn in its factor colour");
+    return -1;
+  }
+  const int smp = m.textures[tex].sampler;
+  if (smp >= 0 && smp < int(m.samplers.size())) {
+    const auto& sm = m.samplers[smp];
+    t->wrapS = wrapMode(sm.wrapS);
+    t->wrapT = wrapMode(sm.wrapT);
+    t->magFilter = filterMode(sm.magFilter);
+    t->minFilter = filterMode(sm.minFilter);
+  }
+  ch.textures.push_back(std::move(*t));
+  return int(ch.textures.size()) - 1;
+}
+
+// Base colour factor and texture of every material (Character::materials, by glTF index);
+// each glTF texture a material uses is decoded once.
 void readMaterials(const Ctx& c, Character& ch) {
   const auto& m = c.m;
+  std::map<int, int> decoded;  // glTF texture -> ch.textures index (or -1)
   for (size_t i = 0; i < m.materials.size(); ++i) {
     const auto& gm = m.materials[i];
     Material mat;
@@ -1050,6 +1174,9 @@ void readMaterials(const Ctx& c, Character& ch) {
         if (uri.empty() || uri.rfind("data:", 0) == 0) mat.baseColorTextureEmbedded = true;
         else mat.baseColorTextureUri = uri;  // inside the file's folder: the file-system guard read it
       }
+      auto it = decoded.find(tex);
+      if (it == decoded.end()) it = decoded.emplace(tex, readTexture(c, tex, "material '" + mat.name + "'", ch)).first;
+      mat.baseColorTexture = it->second;
     }
     ch.materials.push_back(std::move(mat));
   }
@@ -1057,7 +1184,8 @@ void readMaterials(const Ctx& c, Character& ch) {
 
 void listUnsupportedFeatures(const Ctx& c) {
   const auto& m = c.m;
-  for (const auto& e : m.extensionsUsed) c.report.unsupported.push_back("extension " + e);
+  for (const auto& e : m.extensionsUsed)
+    if (e != "KHR_texture_transform") c.report.unsupported.push_back("extension " + e);  // read by readMaterials
   if (!m.lights.empty()) c.report.unsupported.push_back("lights (" + std::to_string(m.lights.size()) + ")");
   if (!m.cameras.empty()) c.report.unsupported.push_back("cameras (" + std::to_string(m.cameras.size()) + ")");
   for (size_t i = 0; i < m.materials.size(); ++i) {
@@ -1159,7 +1287,7 @@ Result<Character> importImpl(const std::string& path) {
   while (guard.baseDir.size() > 1 && guard.baseDir.back() == '/') guard.baseDir.pop_back();
   tinygltf::TinyGLTF loader;
   loader.SetFsCallbacks({guardedFileExists, identityExpand, guardedReadWholeFile, refuseWrite, &guard});
-  loader.SetImageLoader(skipImageDecode, nullptr);
+  loader.SetImageLoader(keepEncodedImage, nullptr);
   tinygltf::Model model;
   std::string terr, twarn;
   bool ok;

@@ -10,6 +10,7 @@
 
 #include "core/math/bounds.h"
 #include "core/math/transform.h"
+#include "core/rig/texture_image.h"
 
 namespace animorph {
 
@@ -45,7 +46,20 @@ struct Mesh {
   std::vector<glm::uvec4> joints0, joints1;
   std::vector<glm::vec4> weights0, weights1;
   std::vector<glm::vec4> colors;  // glTF COLOR_0 (RGBA, 0..1; RGB files get alpha 1); empty: none
+  // Texture coordinates of the base colour texture, one per vertex: glTF TEXCOORD_n of the
+  // material's baseColorTexture (n = its texCoord, usually 0) with the material's
+  // KHR_texture_transform already applied; (0, 0) is the image's top-left corner. Empty: none.
+  std::vector<glm::vec2> texcoords0;
   int material = -1;              // index into Character::materials (its first primitive's), or -1
+  // The triangles of each material, in index order (one part per glTF primitive, FBX / Collada
+  // material group). Empty: the whole mesh is drawn with `material`. A part whose range does
+  // not lie inside `indices` is ignored by the renderer.
+  struct Part {
+    uint32_t firstIndex = 0;
+    uint32_t indexCount = 0;
+    int material = -1;  // index into Character::materials, or -1 (the default material)
+  };
+  std::vector<Part> parts;
   // Blend shapes. A glTF mesh's primitives are concatenated, and so are their
   // targets: target t holds primitive k's target t at primitive k's vertices
   // (zero deltas where a primitive has fewer targets). defaultMorphWeights has
@@ -96,14 +110,18 @@ struct AnimationClip {
 };
 
 // A surface's base colour, as the file gives it (glTF baseColorFactor / baseColorTexture,
-// FBX / Collada / OBJ diffuse colour and texture). Nothing draws it yet.
+// FBX / Collada / OBJ diffuse colour and texture). The renderer draws
+// baseColorFactor x texture x COLOR_0 under the viewport lighting (docs/rendering.md).
 struct Material {
   std::string name;
   glm::vec4 baseColorFactor{1.0f};  // linear RGBA, 0..1
   // The base colour texture's file, relative to the character file's folder (never absolute,
   // never outside that folder: such URIs are dropped with a warning); empty: none, or embedded.
   std::string baseColorTextureUri;
-  bool baseColorTextureEmbedded = false;  // the texture is inside the file (not kept)
+  bool baseColorTextureEmbedded = false;  // the texture is inside the file (decoded like a file's)
+  // The decoded base colour texture: index into Character::textures; -1: none, or it could not
+  // be decoded (the import report's warning names it and the reason; the factor colour is drawn).
+  int baseColorTexture = -1;
 };
 
 // The length unit of the file's scene units. Geometry stays in the file's units; morphs and
@@ -132,6 +150,7 @@ struct Character {
   std::vector<Skin> skins;
   std::vector<AnimationClip> clips;
   std::vector<Material> materials;
+  std::vector<TextureImage> textures;  // decoded base colour textures (Material::baseColorTexture)
   LengthUnit unit;      // glTF: metres
   std::string format;   // "glTF", "FBX", "Collada", "OBJ"
   ImportReport report;

@@ -28,7 +28,7 @@ void buildScene(const SceneFrame& frame, const ViewOptions& view, const std::str
     md.selected = !selectedActorId.empty() && d.actorId == selectedActorId;
     md.opacity = d.opacity;
     md.complementDither = d.complementDither;
-    if (d.color) md.color = glm::vec4(*d.color, 1.0f);
+    if (d.color) md.color = glm::vec4(*d.color, 1.0f), md.materials = false;
     out.meshes.push_back(md);
     Bounds mb = gm->bounds();
     if (!mb.empty()) {

@@ -16,6 +16,9 @@
 #define AM_VERTEX_WEIGHTS0 4
 #define AM_VERTEX_WEIGHTS1 5
 #define AM_VERTEX_PAINT_WEIGHT 6  // weight-map overlay only: one float per vertex (its own buffer)
+// Material streams of a GPU mesh (after the transition's stand-in binding, 6 and 7):
+#define AM_VERTEX_TEXCOORD0 8  // vec2: the base colour texture's coordinates ((0, 0) without a texture)
+#define AM_VERTEX_COLOR0 9     // vec4: glTF COLOR_0 ((1, 1, 1, 1) without one)
 
 // Joint influences per vertex (two sets of four, glTF JOINTS_0/1, WEIGHTS_0/1).
 #define AM_MAX_INFLUENCES 8
@@ -33,9 +36,17 @@
 #define AM_MORPH_DELTA_FLOATS 6
 #define AM_MAX_ACTIVE_MORPH_TARGETS 64
 
+// Materials (shaders/include/mesh_material.glsl): set AM_MATERIAL_SET binds the
+// draw's base colour texture (a 1x1 white placeholder when it has none); the
+// factor rides in MeshPush.baseLinear.
+#define AM_MATERIAL_SET 3
+#define AM_MATERIAL_BINDING_BASE_COLOR 0
+
 // MeshPush.flags bits.
 #define AM_DRAW_SELECTED 1u   // tint and rim-light the mesh
 #define AM_DRAW_WIREFRAME 2u  // wireframe pass: flat colour, depth pulled toward the camera
+#define AM_DRAW_TEXTURED 256u      // multiply the base colour by the material's texture (set AM_MATERIAL_SET)
+#define AM_DRAW_VERTEX_COLOR 512u  // multiply the base colour by the vertex colour (AM_VERTEX_COLOR0)
 
 // Frames the CPU may record ahead of the GPU (ring buffers have this many slots).
 #define AM_FRAMES_IN_FLIGHT 2
@@ -51,6 +62,11 @@ inline constexpr uint32_t kDrawSelected = AM_DRAW_SELECTED;
 inline constexpr uint32_t kDrawWireframe = AM_DRAW_WIREFRAME;
 inline constexpr uint32_t kFramesInFlight = AM_FRAMES_IN_FLIGHT;
 inline constexpr uint32_t kMorphSet = AM_MORPH_SET;
+inline constexpr uint32_t kMaterialSet = AM_MATERIAL_SET;
+inline constexpr uint32_t kVertexTexcoord0 = AM_VERTEX_TEXCOORD0;
+inline constexpr uint32_t kVertexColor0 = AM_VERTEX_COLOR0;
+inline constexpr uint32_t kDrawTextured = AM_DRAW_TEXTURED;
+inline constexpr uint32_t kDrawVertexColor = AM_DRAW_VERTEX_COLOR;
 inline constexpr uint32_t kMorphDeltaFloats = AM_MORPH_DELTA_FLOATS;
 inline constexpr uint32_t kMaxActiveMorphTargets = AM_MAX_ACTIVE_MORPH_TARGETS;
 }  // namespace animorph::gpu

@@ -123,43 +123,9 @@ Status ImGuiVulkan::uploadAtlas() {
   io.Fonts->GetTexDataAsAlpha8(&pixels, &w, &h);
   if (!pixels || w <= 0 || h <= 0) return Error{"ImGui: the font atlas could not be built"};
   const VkDeviceSize bytes = VkDeviceSize(w) * VkDeviceSize(h);
-  Result<gpu::Buffer> staging = gpu::createHostBuffer(ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
-  if (!staging) return Error{"ImGui: font atlas: " + staging.error()};
-  std::memcpy(staging->mapped, pixels, bytes);
-  Result<gpu::Image> img = gpu::createImage(ctx_, {uint32_t(w), uint32_t(h)}, VK_FORMAT_R8_UNORM,
-                                            VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
-                                            VK_IMAGE_ASPECT_COLOR_BIT);
-  if (!img) {
-    gpu::destroyBuffer(ctx_.device(), *staging);
-    return Error{"ImGui: font atlas: " + img.error()};
-  }
+  Result<gpu::Image> img = gpu::createSampledImage(ctx_, {uint32_t(w), uint32_t(h)}, VK_FORMAT_R8_UNORM, pixels, bytes);
+  if (!img) return Error{"ImGui: font atlas: " + img.error()};
   atlas_ = *img;
-  VkBuffer src = staging->buffer;
-  VkImage dst = atlas_.image;
-  Status st = ctx_.submitImmediate([&](VkCommandBuffer cmd) {
-    VkImageMemoryBarrier b{};
-    b.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
-    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    b.image = dst;
-    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-    b.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
-                         nullptr, 1, &b);
-    VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = {uint32_t(w), uint32_t(h), 1};
-    vkCmdCopyBufferToImage(cmd, src, dst, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-    b.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-    b.newLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-    b.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 0, nullptr, 0,
-                         nullptr, 1, &b);
-  });
-  gpu::destroyBuffer(ctx_.device(), *staging);
-  if (!st) return Error{"ImGui: font upload failed: " + st.error()};
   VkDescriptorImageInfo ii{sampler_, atlas_.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   VkWriteDescriptorSet wr{};
   wr.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;

@@ -77,14 +77,19 @@ Result<std::unique_ptr<GpuMesh>> GpuMesh::upload(Context& ctx, const Mesh& mesh,
     for (size_t v = 0; v < n; ++v) j1[v] = packJoints(mesh.joints1[v]);
     w1 = mesh.weights1;
   }
+  if (!mesh.texcoords0.empty() && mesh.texcoords0.size() != n) return Error{what + ": texture coordinates do not have one entry per vertex"};
+  if (!mesh.colors.empty() && mesh.colors.size() != n) return Error{what + ": COLOR_0 does not have one entry per vertex"};
+  std::vector<glm::vec2> uv = mesh.texcoords0.empty() ? std::vector<glm::vec2>(n, glm::vec2(0.0f)) : mesh.texcoords0;
+  std::vector<glm::vec4> col = mesh.colors.empty() ? std::vector<glm::vec4>(n, glm::vec4(1.0f)) : mesh.colors;
   std::vector<uint32_t> edges;
   if (withEdgeList || !ctx.supportsWireframeFill()) edges = uniqueEdges(mesh.indices);
 
   std::unique_ptr<GpuMesh> gm(new GpuMesh(ctx.device()));
-  const void* streams[6] = {mesh.positions.data(), normals->data(), j0.data(), j1.data(), w0.data(), w1.data()};
-  const VkDeviceSize strides[6] = {12, 12, 8, 8, 16, 16};
+  const void* streams[kStreams] = {mesh.positions.data(), normals->data(), j0.data(), j1.data(), w0.data(), w1.data(),
+                                   uv.data(), col.data()};
+  const VkDeviceSize strides[kStreams] = {12, 12, 8, 8, 16, 16, 8, 16};
   VkDeviceSize size = 0;
-  for (int s = 0; s < 6; ++s) {
+  for (int s = 0; s < kStreams; ++s) {
     gm->streamOffsets_[s] = size;
     size = alignUp(size + strides[s] * n, 16);
   }
@@ -93,7 +98,7 @@ Result<std::unique_ptr<GpuMesh>> GpuMesh::upload(Context& ctx, const Mesh& mesh,
   gm->edgeOffset_ = size;
   size += 4 * edges.size();
   std::vector<uint8_t> blob(size);
-  for (int s = 0; s < 6; ++s) std::memcpy(blob.data() + gm->streamOffsets_[s], streams[s], strides[s] * n);
+  for (int s = 0; s < kStreams; ++s) std::memcpy(blob.data() + gm->streamOffsets_[s], streams[s], strides[s] * n);
   if (!mesh.indices.empty()) std::memcpy(blob.data() + gm->indexOffset_, mesh.indices.data(), 4 * mesh.indices.size());
   if (!edges.empty()) std::memcpy(blob.data() + gm->edgeOffset_, edges.data(), 4 * edges.size());
 
@@ -106,6 +111,14 @@ Result<std::unique_ptr<GpuMesh>> GpuMesh::upload(Context& ctx, const Mesh& mesh,
   gm->edgeIndexCount_ = static_cast<uint32_t>(edges.size());
   gm->bounds_ = mesh.bounds();
   gm->name_ = mesh.name;
+  gm->hasVertexColors_ = std::any_of(col.begin(), col.end(), [](const glm::vec4& c) {
+    return c.r < 0.999f || c.g < 0.999f || c.b < 0.999f;
+  });
+  for (const Mesh::Part& p : mesh.parts)
+    if (p.indexCount > 0 && p.firstIndex <= mesh.indices.size() && p.indexCount <= mesh.indices.size() - p.firstIndex)
+      gm->parts_.push_back({p.firstIndex, p.indexCount, p.material});
+  if (gm->parts_.empty()) gm->parts_.push_back({0, gm->indexCount_, mesh.material});
+  gm->setMaterials({}, {});
   if (!mesh.morphTargets.empty())
     if (Status st = gm->uploadMorphTargets(ctx, mesh); !st) return Error{what + ": " + st.error()};
   return gm;
@@ -172,16 +185,37 @@ GpuMesh::~GpuMesh() {
   destroyBuffer(device_, buffer_);
 }
 
-void GpuMesh::bindTriangles(VkCommandBuffer cmd) const {
-  VkBuffer bufs[6] = {buffer_.buffer, buffer_.buffer, buffer_.buffer, buffer_.buffer, buffer_.buffer, buffer_.buffer};
+void GpuMesh::setMaterials(std::span<const Material> materials, std::span<const VkDescriptorSet> textureSets) {
+  for (GpuMeshPart& p : parts_) {
+    p.factor = glm::vec4(1.0f);
+    p.texture = VK_NULL_HANDLE;
+    if (p.material >= 0 && size_t(p.material) < materials.size()) {
+      const Material& m = materials[size_t(p.material)];
+      p.factor = m.baseColorFactor;
+      if (m.baseColorTexture >= 0 && size_t(m.baseColorTexture) < textureSets.size())
+        p.texture = textureSets[size_t(m.baseColorTexture)];
+    }
+    const bool white = glm::all(glm::greaterThanEqual(glm::vec3(p.factor), glm::vec3(0.999f)));
+    p.coloured = !white || p.texture != VK_NULL_HANDLE || hasVertexColors_;
+  }
+}
+
+void GpuMesh::bindStreams(VkCommandBuffer cmd) const {
+  VkBuffer bufs[kStreams];
+  for (VkBuffer& b : bufs) b = buffer_.buffer;
   static_assert(AM_VERTEX_POSITION == 0 && AM_VERTEX_WEIGHTS1 == 5, "streams are bound as bindings 0..5");
+  static_assert(AM_VERTEX_COLOR0 == AM_VERTEX_TEXCOORD0 + 1, "the material streams are bound together");
   vkCmdBindVertexBuffers(cmd, 0, 6, bufs, streamOffsets_);
+  vkCmdBindVertexBuffers(cmd, AM_VERTEX_TEXCOORD0, 2, bufs + 6, streamOffsets_ + 6);
+}
+
+void GpuMesh::bindTriangles(VkCommandBuffer cmd) const {
+  bindStreams(cmd);
   vkCmdBindIndexBuffer(cmd, buffer_.buffer, indexOffset_, VK_INDEX_TYPE_UINT32);
 }
 
 void GpuMesh::bindEdges(VkCommandBuffer cmd) const {
-  VkBuffer bufs[6] = {buffer_.buffer, buffer_.buffer, buffer_.buffer, buffer_.buffer, buffer_.buffer, buffer_.buffer};
-  vkCmdBindVertexBuffers(cmd, 0, 6, bufs, streamOffsets_);
+  bindStreams(cmd);
   vkCmdBindIndexBuffer(cmd, buffer_.buffer, edgeOffset_, VK_INDEX_TYPE_UINT32);
 }
 

@@ -4,7 +4,11 @@
 // the device cannot draw polygons as lines, an edge list for the wireframe.
 // A mesh with blend shapes also gets its morph deltas as a storage buffer in a
 // descriptor set of its own (set AM_MORPH_SET of the skinned vertex shaders).
+// Material streams: texture coordinates and COLOR_0 (bindings AM_VERTEX_TEXCOORD0 /
+// AM_VERTEX_COLOR0), and the triangles of each material (parts()).
 #include <memory>
+#include <span>
+#include <vector>
 
 #include "gpu/vulkan/buffer.h"
 #include "gpu/vulkan/context.h"
@@ -12,6 +16,17 @@
 #include "core/rig/character.h"
 
 namespace animorph::gpu {
+
+// The triangles [firstIndex, firstIndex + indexCount) of a GpuMesh drawn with one material.
+struct GpuMeshPart {
+  uint32_t firstIndex = 0, indexCount = 0;
+  int material = -1;                         // index into the character's materials, or -1
+  glm::vec4 factor{1.0f};                    // the material's base colour factor (linear)
+  VkDescriptorSet texture = VK_NULL_HANDLE;  // set AM_MATERIAL_SET of its base colour texture; null: none
+  // The material gives the part a colour (a factor other than white, a texture, or vertex
+  // colours other than white); otherwise it is drawn in the draw's colour (the viewport grey).
+  bool coloured = false;
+};
 
 class GpuMesh {
  public:
@@ -32,6 +47,14 @@ class GpuMesh {
   void bindEdges(VkCommandBuffer cmd) const;
 
   uint32_t vertexCount() const { return vertexCount_; }
+  // The material parts (mesh.parts whose ranges lie inside the indices; else one part, the
+  // whole mesh with mesh.material), factors white and no textures until setMaterials.
+  std::span<const GpuMeshPart> parts() const { return parts_; }
+  // Vertex colours other than white: multiplied in (AM_DRAW_VERTEX_COLOR).
+  bool hasVertexColors() const { return hasVertexColors_; }
+  // Gives every part its material's factor and texture set: textureSets[i] is the set of
+  // materials' texture i (null: none or not uploaded). Materials out of range stay white.
+  void setMaterials(std::span<const Material> materials, std::span<const VkDescriptorSet> textureSets);
   // Morph targets on the device: the mesh's, or the first ones whose deltas fit
   // the device's maxStorageBufferRange (the rest are not drawn by the GPU).
   uint32_t morphTargetCount() const { return morphTargetCount_; }
@@ -46,7 +69,10 @@ class GpuMesh {
   explicit GpuMesh(VkDevice device) : device_(device) {}
   VkDevice device_;
   Buffer buffer_;  // every stream and both index lists, at the offsets below
-  VkDeviceSize streamOffsets_[6]{};
+  static constexpr int kStreams = 8;  // AM_VERTEX_POSITION..WEIGHTS1, then TEXCOORD0, COLOR0
+  VkDeviceSize streamOffsets_[kStreams]{};
+  std::vector<GpuMeshPart> parts_;
+  bool hasVertexColors_ = false;
   VkDeviceSize indexOffset_ = 0, edgeOffset_ = 0;
   uint32_t vertexCount_ = 0, indexCount_ = 0, edgeIndexCount_ = 0;
   Bounds bounds_;
@@ -57,6 +83,7 @@ class GpuMesh {
   VkDescriptorSet morphSet_ = VK_NULL_HANDLE;
   uint32_t morphTargetCount_ = 0;
   Status uploadMorphTargets(Context& ctx, const Mesh& mesh);
+  void bindStreams(VkCommandBuffer cmd) const;
 };
 
 // The layout of set AM_MORPH_SET (one storage buffer, vertex stage): the

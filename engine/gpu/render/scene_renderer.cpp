@@ -85,6 +85,12 @@ Result<VkPipeline> createPipeline(VkDevice device, VkRenderPass pass, VkPipeline
       bindings.push_back({s, streams[s].stride, VK_VERTEX_INPUT_RATE_VERTEX});
       attributes.push_back({s, s, streams[s].format, 0});
     }
+    if (d.input != VertexInput::MeshWeights) {  // the material streams (include/material_vertex.glsl)
+      bindings.push_back({kVertexTexcoord0, 8, VK_VERTEX_INPUT_RATE_VERTEX});
+      attributes.push_back({kVertexTexcoord0, kVertexTexcoord0, VK_FORMAT_R32G32_SFLOAT, 0});
+      bindings.push_back({kVertexColor0, 16, VK_VERTEX_INPUT_RATE_VERTEX});
+      attributes.push_back({kVertexColor0, kVertexColor0, VK_FORMAT_R32G32B32A32_SFLOAT, 0});
+    }
     if (d.input == VertexInput::Transition) {  // the stand-in binding: (dp, m), (n~, 0) interleaved
       bindings.push_back({AM_VERTEX_STANDIN_OFFSET, uint32_t(GpuStandinBinding::kVertexStride), VK_VERTEX_INPUT_RATE_VERTEX});
       attributes.push_back({AM_VERTEX_STANDIN_OFFSET, AM_VERTEX_STANDIN_OFFSET, VK_FORMAT_R32G32B32A32_SFLOAT, 0});
@@ -170,13 +176,17 @@ Status SceneRenderer::init(VkRenderPass renderPass, SceneRendererSettings settin
   Result<VkDescriptorSetLayout> morphLayout = createMorphSetLayout(dev);
   if (!morphLayout) return Error{morphLayout.error()};
   morphSetLayout_ = *morphLayout;
-  // Both layouts hold all three sets, so they agree on every set and the push
+  // Set 3 (AM_MATERIAL_SET): a part's base colour texture (render/gpu_texture.h).
+  Result<VkDescriptorSetLayout> materialLayout = createMaterialSetLayout(dev);
+  if (!materialLayout) return Error{materialLayout.error()};
+  materialSetLayout_ = *materialLayout;
+  // Both layouts hold all four sets, so they agree on every set and the push
   // constants: sets bound through one stay bound for pipelines of the other.
   VkPushConstantRange push{kPushStages, 0, sizeof(MeshPush)};
-  const VkDescriptorSetLayout sets[3] = {setLayout_, transitionSetLayout_, morphSetLayout_};
-  static_assert(AM_TRANSITION_SET == 1 && AM_MORPH_SET == 2, "set order of the pipeline layouts");
+  const VkDescriptorSetLayout sets[4] = {setLayout_, transitionSetLayout_, morphSetLayout_, materialSetLayout_};
+  static_assert(AM_TRANSITION_SET == 1 && AM_MORPH_SET == 2 && AM_MATERIAL_SET == 3, "set order of the pipeline layouts");
   VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  pli.setLayoutCount = 3;
+  pli.setLayoutCount = 4;
   pli.pSetLayouts = sets;
   pli.pushConstantRangeCount = 1;
   pli.pPushConstantRanges = &push;
@@ -201,12 +211,14 @@ Status SceneRenderer::init(VkRenderPass renderPass, SceneRendererSettings settin
 
   const VkCullModeFlags back = VK_CULL_MODE_BACK_BIT, none = VK_CULL_MODE_NONE;
   auto meshDesc = [](VkCullModeFlags cull) {
-    PipelineDesc d{"mesh.vert", "mesh.frag", VertexInput::Mesh, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST};
+    PipelineDesc d{"mesh.vert", "mesh_material.frag", VertexInput::Mesh, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST};
     d.cull = cull;
     return d;
   };
   auto wireDesc = [&](VkCullModeFlags cull) {
     PipelineDesc d = meshDesc(cull);
+    // mesh_material.frag too (mesh.frag would leave the material outputs unread): with
+    // AM_DRAW_WIREFRAME it draws the flat wire colour.
     if (edgeListWireframe_) {
       d.topology = VK_PRIMITIVE_TOPOLOGY_LINE_LIST;  // lines are never culled
       d.cull = none;
@@ -228,22 +240,22 @@ Status SceneRenderer::init(VkRenderPass renderPass, SceneRendererSettings settin
   } wants[] = {
       {&meshPipeline_[0], meshDesc(back)},
       {&meshPipeline_[1], meshDesc(none)},
-      {&meshDitherPipeline_[0], withShaders(meshDesc(back), "mesh.vert", "mesh_dither.frag", VertexInput::Mesh)},
+      {&meshDitherPipeline_[0], withShaders(meshDesc(back), "mesh.vert", "mesh_material_dither.frag", VertexInput::Mesh)},
       {&generatedDitherPipeline_, withShaders(meshDesc(back), "generated.vert", "mesh_dither.frag", VertexInput::Generated)},
-      {&meshDitherPipeline_[1], withShaders(meshDesc(none), "mesh.vert", "mesh_dither.frag", VertexInput::Mesh)},
-      {&transitionPipeline_[0], withShaders(meshDesc(back), "transition.vert", "mesh.frag", VertexInput::Transition),
+      {&meshDitherPipeline_[1], withShaders(meshDesc(none), "mesh.vert", "mesh_material_dither.frag", VertexInput::Mesh)},
+      {&transitionPipeline_[0], withShaders(meshDesc(back), "transition.vert", "mesh_material.frag", VertexInput::Transition),
        transitionLayout_},
-      {&transitionPipeline_[1], withShaders(meshDesc(none), "transition.vert", "mesh.frag", VertexInput::Transition),
+      {&transitionPipeline_[1], withShaders(meshDesc(none), "transition.vert", "mesh_material.frag", VertexInput::Transition),
        transitionLayout_},
       {&transitionDitherPipeline_[0],
-       withShaders(meshDesc(back), "transition.vert", "mesh_dither.frag", VertexInput::Transition), transitionLayout_},
+       withShaders(meshDesc(back), "transition.vert", "mesh_material_dither.frag", VertexInput::Transition), transitionLayout_},
       {&transitionDitherPipeline_[1],
-       withShaders(meshDesc(none), "transition.vert", "mesh_dither.frag", VertexInput::Transition), transitionLayout_},
+       withShaders(meshDesc(none), "transition.vert", "mesh_material_dither.frag", VertexInput::Transition), transitionLayout_},
       {&wirePipeline_[0], wireDesc(back)},
       {&wirePipeline_[1], wireDesc(none)},
-      {&transitionWirePipeline_[0], withShaders(wireDesc(back), "transition.vert", "mesh.frag", VertexInput::Transition),
+      {&transitionWirePipeline_[0], withShaders(wireDesc(back), "transition.vert", "mesh_material.frag", VertexInput::Transition),
        transitionLayout_},
-      {&transitionWirePipeline_[1], withShaders(wireDesc(none), "transition.vert", "mesh.frag", VertexInput::Transition),
+      {&transitionWirePipeline_[1], withShaders(wireDesc(none), "transition.vert", "mesh_material.frag", VertexInput::Transition),
        transitionLayout_},
       {&generatedPipeline_, {"generated.vert", "mesh.frag", VertexInput::Generated, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST,
                              VK_POLYGON_MODE_FILL, true, true, false, back}},
@@ -271,6 +283,13 @@ Status SceneRenderer::init(VkRenderPass renderPass, SceneRendererSettings settin
   }
 
   if (Status st = initMorphPlaceholder(); !st) return st;
+  TextureImage white;
+  white.name = "white placeholder";
+  white.width = white.height = 1;
+  white.rgba = std::make_shared<const std::vector<uint8_t>>(4, uint8_t(255));
+  Result<std::unique_ptr<GpuTexture>> whiteTex = GpuTexture::upload(ctx_, white);
+  if (!whiteTex) return Error{whiteTex.error()};
+  whiteTexture_ = std::move(*whiteTex);
   for (uint32_t i = 0; i < kFramesInFlight; ++i) {
     slots_.push_back(std::make_unique<Slot>());
     Status s = reserve(*slots_.back(), 0, 0);  // initial capacity: steady frames allocate nothing
@@ -349,6 +368,8 @@ SceneRenderer::~SceneRenderer() {
                        transitionDitherPipeline_[1], particlePipeline_})
     if (p) vkDestroyPipeline(dev, p, nullptr);
   destroyBuffer(dev, morphPlaceholder_);
+  whiteTexture_.reset();
+  if (materialSetLayout_) vkDestroyDescriptorSetLayout(dev, materialSetLayout_, nullptr);
   if (morphSetLayout_) vkDestroyDescriptorSetLayout(dev, morphSetLayout_, nullptr);
   if (layout_) vkDestroyPipelineLayout(dev, layout_, nullptr);
   if (transitionLayout_) vkDestroyPipelineLayout(dev, transitionLayout_, nullptr);
@@ -478,6 +499,7 @@ struct SceneRenderer::RecordPass {
   VkViewport viewport{};
   VkPipeline bound = VK_NULL_HANDLE;
   VkDescriptorSet boundMorphSet = VK_NULL_HANDLE;
+  VkDescriptorSet boundMaterialSet = VK_NULL_HANDLE;
 };
 
 void SceneRenderer::gatherFrameData(const Scene& scene, RecordPass& rp) {
@@ -618,17 +640,40 @@ void SceneRenderer::setMorph(RecordPass& rp, MeshPush& p, const GpuMesh* mesh, s
 }
 
 void SceneRenderer::pushMesh(RecordPass& rp, const MeshDraw& d, size_t i, uint32_t flags, const glm::vec4& color,
-                             float pull) {
+                             float pull, const glm::vec4* baseLinear) {
   MeshPush p{};
   p.model = d.model;
   p.color = color;
-  p.baseLinear = linearRgb(color);
+  p.baseLinear = baseLinear ? *baseLinear : linearRgb(color);
   p.jointOffset = rp.jointBase + drawJointOffsets_[i];
   p.jointCount = d.jointMatrices.empty() ? 1u : static_cast<uint32_t>(d.jointMatrices.size());
   p.flags = flags;
   p.depthPull = pull;
   setMorph(rp, p, d.mesh, i);
   vkCmdPushConstants(rp.cmd, layout_, kPushStages, 0, sizeof(p), &p);
+}
+
+// One draw per material part: its factor (linear) as the base colour, its texture and the vertex
+// colours multiplied in; parts without a material colour keep the draw's colour. Set 3 (the
+// part's base colour texture, or the white placeholder) is rebound only when it changes.
+void SceneRenderer::drawParts(RecordPass& rp, const MeshDraw& d, size_t i, uint32_t flags, const glm::vec4& color) {
+  for (const GpuMeshPart& part : d.mesh->parts()) {
+    if (part.indexCount == 0) continue;
+    uint32_t f = flags;
+    glm::vec4 base = linearRgb(color);
+    VkDescriptorSet set = whiteTexture_->set();
+    if (d.materials && part.coloured) {
+      base = glm::vec4(glm::vec3(part.factor), color.a);
+      if (part.texture) f |= kDrawTextured, set = part.texture;
+      if (d.mesh->hasVertexColors()) f |= kDrawVertexColor;
+    }
+    pushMesh(rp, d, i, f, color, 0.0f, &base);
+    if (set != rp.boundMaterialSet) {
+      vkCmdBindDescriptorSets(rp.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, kMaterialSet, 1, &set, 0, nullptr);
+      rp.boundMaterialSet = set;
+    }
+    vkCmdDrawIndexed(rp.cmd, part.indexCount, 1, part.firstIndex, 0, 0);
+  }
 }
 
 void SceneRenderer::drawGenerated(RecordPass& rp, const GeneratedMeshDraw& g, VkPipeline pipeline,
@@ -669,11 +714,10 @@ void SceneRenderer::drawTransitions(const Scene& scene, RecordPass& rp) {
     vkCmdBindDescriptorSets(rp.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, transitionLayout_, 1, 1, &slot.transitionSet, 1,
                             &paramOffset);
     slot.transitionSetBound = true;
-    pushMesh(rp, d, scene.meshes.size() + scene.weightOverlays.size() + k,
-             (d.selected ? kDrawSelected : 0u) | fadeFlags(d), fadeColor(d), 0.0f);
     d.mesh->bindTriangles(rp.cmd);
     t.binding->bind(rp.cmd, t.firstVertex);
-    vkCmdDrawIndexed(rp.cmd, d.mesh->indexCount(), 1, 0, 0, 0);
+    drawParts(rp, d, scene.meshes.size() + scene.weightOverlays.size() + k,
+              (d.selected ? kDrawSelected : 0u) | fadeFlags(d), fadeColor(d));
   }
 }
 
@@ -716,13 +760,16 @@ void SceneRenderer::drawParticlesAndWeights(const Scene& scene, RecordPass& rp) 
 }
 
 void SceneRenderer::drawSurfaces(const Scene& scene, RecordPass& rp) {
+  // Set 3 starts as the white placeholder: the wireframe pass reads it too, also for meshes not drawn.
+  rp.boundMaterialSet = whiteTexture_->set();
+  vkCmdBindDescriptorSets(rp.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, kMaterialSet, 1, &rp.boundMaterialSet, 0,
+                          nullptr);
   for (size_t i = 0; i < scene.meshes.size(); ++i) {
     const MeshDraw& d = scene.meshes[i];
     if (!d.mesh || d.mesh->indexCount() == 0 || !(d.opacity > 0.0f)) continue;
     bindPipeline(rp, d.opacity < 1.0f ? meshDitherPipeline_[d.doubleSided] : meshPipeline_[d.doubleSided]);
-    pushMesh(rp, d, i, (d.selected ? kDrawSelected : 0u) | fadeFlags(d), fadeColor(d), 0.0f);
     d.mesh->bindTriangles(rp.cmd);
-    vkCmdDrawIndexed(rp.cmd, d.mesh->indexCount(), 1, 0, 0, 0);
+    drawParts(rp, d, i, (d.selected ? kDrawSelected : 0u) | fadeFlags(d), fadeColor(d));
   }
   drawTransitions(scene, rp);
   for (const GeneratedMeshDraw& g : scene.generatedMeshes)

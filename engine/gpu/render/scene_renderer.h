@@ -13,6 +13,7 @@
 
 #include "gpu/vulkan/context.h"
 #include "gpu/render/gpu_mesh.h"
+#include "gpu/render/gpu_texture.h"
 #include "gpu/transition/gpu_standin_binding.h"
 #include "gpu/render/line_batch.h"
 #include "core/camera/camera.h"
@@ -40,7 +41,10 @@ struct MeshDraw {
   // Blend-shape weights, one per morph target of the mesh (rig/pose.h
   // morphWeightsAt); empty or all zero: the bind shape. Copied while recording.
   std::span<const float> morphWeights;
-  glm::vec4 color{0.62f, 0.62f, 0.62f, 1.0f};  // base colour (sRGB)
+  glm::vec4 color{0.62f, 0.62f, 0.62f, 1.0f};  // base colour (sRGB) of parts without a material colour
+  // Draw the mesh's materials (GpuMesh::parts: factor x texture x vertex colour) where they give
+  // a colour; false: every part in `color` (a BlobTree surface polygonised into a mesh).
+  bool materials = true;
   bool selected = false;
   // glTF material.doubleSided: also draw back faces. Single-sided meshes cull
   // them (counter-clockwise is front, as in glTF), which also halves the
@@ -188,7 +192,11 @@ class SceneRenderer {
   // generated (indirect) mesh's draw.
   void bindPipeline(RecordPass& rp, VkPipeline p);
   void setMorph(RecordPass& rp, MeshPush& p, const GpuMesh* mesh, size_t i);
-  void pushMesh(RecordPass& rp, const MeshDraw& d, size_t i, uint32_t flags, const glm::vec4& color, float pull);
+  // baseLinear: the base colour in linear light; null: color's.
+  void pushMesh(RecordPass& rp, const MeshDraw& d, size_t i, uint32_t flags, const glm::vec4& color, float pull,
+                const glm::vec4* baseLinear = nullptr);
+  // A mesh's material parts, each in its factor, texture and vertex colours (MeshDraw::materials).
+  void drawParts(RecordPass& rp, const MeshDraw& d, size_t i, uint32_t flags, const glm::vec4& color);
   void drawGenerated(RecordPass& rp, const GeneratedMeshDraw& g, VkPipeline pipeline, const glm::vec4& color,
                      uint32_t flags, float pull);
 
@@ -200,6 +208,8 @@ class SceneRenderer {
   VkDescriptorSetLayout morphSetLayout_ = VK_NULL_HANDLE;  // set AM_MORPH_SET (render/gpu_mesh.h)
   Buffer morphPlaceholder_;                                // bound for meshes without morph targets
   VkDescriptorSet morphPlaceholderSet_ = VK_NULL_HANDLE;
+  VkDescriptorSetLayout materialSetLayout_ = VK_NULL_HANDLE;  // set AM_MATERIAL_SET (render/gpu_texture.h)
+  std::unique_ptr<GpuTexture> whiteTexture_;                   // 1x1 white: bound for parts without a texture
   VkPipeline meshPipeline_[2]{};  // [doubleSided]
   VkPipeline wirePipeline_[2]{};  // [doubleSided]
   VkPipeline generatedPipeline_ = VK_NULL_HANDLE;  // GeneratedMeshDraw: positions + normals, indirect

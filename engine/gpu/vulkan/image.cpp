@@ -1,8 +1,40 @@
 #include "gpu/vulkan/image.h"
 
+#include <cstring>
+
+#include "gpu/vulkan/buffer.h"
 #include "gpu/vulkan/vk_check.h"
 
 namespace animorph::gpu {
+
+namespace {
+
+// Copies src into the image's only level and leaves it shader-readable.
+Status copyToImage(Context& ctx, VkBuffer src, VkImage dst, VkExtent2D extent) {
+  return ctx.submitImmediate([&](VkCommandBuffer cmd) {
+    VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = dst;
+    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    b.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
+                         nullptr, 1, &b);
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {extent.width, extent.height, 1};
+    vkCmdCopyBufferToImage(cmd, src, dst, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    b.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    b.newLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    b.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 0, nullptr, 0,
+                         nullptr, 1, &b);
+  });
+}
+
+}  // namespace
 
 Result<Image> createImage(const Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
                           VkImageAspectFlags aspect) {
@@ -51,6 +83,25 @@ void destroyImage(VkDevice device, Image& img) {
   if (img.image) vkDestroyImage(device, img.image, nullptr);
   if (img.memory) vkFreeMemory(device, img.memory, nullptr);
   img = Image{};
+}
+
+Result<Image> createSampledImage(Context& ctx, VkExtent2D extent, VkFormat format, const void* data, VkDeviceSize bytes) {
+  Result<Image> img = createImage(ctx, extent, format, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                                  VK_IMAGE_ASPECT_COLOR_BIT);
+  if (!img) return img;
+  Result<Buffer> staging = createHostBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+  if (!staging) {
+    destroyImage(ctx.device(), *img);
+    return Error{staging.error()};
+  }
+  std::memcpy(staging->mapped, data, bytes);
+  Status st = copyToImage(ctx, staging->buffer, img->image, extent);
+  destroyBuffer(ctx.device(), *staging);
+  if (!st) {
+    destroyImage(ctx.device(), *img);
+    return Error{"upload failed: " + st.error()};
+  }
+  return img;
 }
 
 }  // namespace animorph::gpu

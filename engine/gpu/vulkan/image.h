@@ -19,6 +19,11 @@ struct Image {
 Result<Image> createImage(const Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
                           VkImageAspectFlags aspect);
 
+// A device-local image for sampling, filled with bytes (rows top to bottom, tightly packed)
+// through a staging buffer (waits for the copy), left in SHADER_READ_ONLY_OPTIMAL for
+// fragment shaders. Errors: as createImage, the staging buffer, the submission.
+Result<Image> createSampledImage(Context& ctx, VkExtent2D extent, VkFormat format, const void* data, VkDeviceSize bytes);
+
 // Frees image (no-op on an empty one) and resets it to empty.
 void destroyImage(VkDevice device, Image& image);
 
