@@ -23,4 +23,5 @@ with open(out, "w") as fh:
     json.dump({"version": bpy.app.version_string, "object": added[0].name,
                "grids": [g.name for g in volume.grids],
                "grid_type": volume.grids[0].data_type if len(volume.grids) else "",
+               "grid_types": [g.data_type for g in volume.grids],
                "box": [[min(c[a] for c in corners) for a in range(3)], [max(c[a] for c in corners) for a in range(3)]]}, fh)

@@ -3,7 +3,7 @@
 
 usage: color_checks.py MODE CLI TOOLS_DIR
   files     polygonize of a scene of a red and a blue point writes vertex colours to PLY (red green
-            blue alpha), OBJ (v x y z r g b) and GLB (COLOR_0): red near the red point, blue near
+            blue alpha, sRGB), OBJ (v x y z r g b, sRGB) and GLB (COLOR_0, linear): red near the red point, blue near
             the blue one, blends between; a scene without colours is the clay tone.
   gpu       polygonize --gpu gives every vertex the colour the CPU gives the same vertex, within
             1/255 (exit 77: skipped without a Vulkan device).
@@ -25,7 +25,8 @@ SCENE = {
         {"id": 3, "type": "point", "params": {"center": [1, 0, 0], "radius": 1, "color": [0, 0, 1]}},
     ]},
 }
-CLAY_LINEAR = tuple(c ** 2.2 for c in (0.55, 0.68, 0.82))
+CLAY_SRGB = (0.55, 0.68, 0.82)  # OBJ and PLY colours are sRGB (linear light ** (1 / 2.2))
+HALF_SRGB = 0.5 ** (1 / 2.2)    # an even blend of red and blue, 0.5 in linear light
 
 
 def fail(msg):
@@ -92,10 +93,10 @@ def mode_files(cli):
         if any(v[3] < 0.999 or v[5] > 0.001 for v in red) or any(v[5] < 0.999 or v[3] > 0.001 for v in blue):
             fail("vertices beyond one point's reach are not that point's colour")
         mid = [v for v in verts if 0.495 < v[0] < 0.505]
-        if not mid or any(abs(v[3] - 0.5) > 0.01 or abs(v[5] - 0.5) > 0.01 for v in mid):
-            fail(f"vertices halfway are not an even blend: {mid[:3]}")
-        if any(abs(v[3] + v[5] - 1.0) > 2e-3 or abs(v[4]) > 1e-4 for v in verts):
-            fail("a vertex colour that is not a blend of red and blue")
+        if not mid or any(abs(v[3] - HALF_SRGB) > 0.01 or abs(v[5] - HALF_SRGB) > 0.01 for v in mid):
+            fail(f"vertices halfway are not an even blend (sRGB {HALF_SRGB:.4f}): {mid[:3]}")
+        if any(abs(v[3] ** 2.2 + v[5] ** 2.2 - 1.0) > 2e-3 or abs(v[4]) > 1e-4 for v in verts):
+            fail("a vertex colour that is not a blend of red and blue (in linear light)")
 
         ply = os.path.join(tmp, "m.ply")
         polygonize(cli, scene, ply)
@@ -105,14 +106,14 @@ def mode_files(cli):
         if not any(c["red"] == 255 and c["blue"] == 0 for c in cols) or not any(c["blue"] == 255 for c in cols):
             fail("PLY colours: no pure red or no pure blue vertex")
 
-        # A scene without colours: the clay tone (in linear light) everywhere.
+        # A scene without colours: the clay tone everywhere.
         plain = json.loads(json.dumps(SCENE))
         for n in plain["root"]["children"]:
             del n["params"]["color"]
         polygonize(cli, write_scene(tmp, plain), obj)
         for v in obj_colored_vertices(obj):
-            if any(abs(a - b) > 2e-4 for a, b in zip(v[3:], CLAY_LINEAR)):
-                fail(f"a scene without colours: vertex colour {v[3:]}, expected the clay tone {CLAY_LINEAR}")
+            if any(abs(a - b) > 2e-4 for a, b in zip(v[3:], CLAY_SRGB)):
+                fail(f"a scene without colours: vertex colour {v[3:]}, expected the clay tone {CLAY_SRGB}")
     print("vertex colours in OBJ and PLY: red, blue and their blend; clay without colours")
 
 
@@ -143,7 +144,8 @@ def mode_gpu(cli):
             if sum((p - q) ** 2 for p, q in zip(v[:3], w[:3])) > 1e-8:
                 continue
             matched += 1
-            worst = max(worst, max(abs(p - q) for p, q in zip(v[3:], w[3:])))
+            # compared in linear light, as the meshes hold them (the OBJ has sRGB)
+            worst = max(worst, max(abs(p ** 2.2 - q ** 2.2) for p, q in zip(v[3:], w[3:])))
         if matched < 0.9 * len(b):
             fail(f"only {matched} of {len(b)} GPU vertices lie on CPU vertices")
         print(f"GPU vs CPU: {matched} vertices matched, largest colour difference {worst:.5f} (<= 1/255 = 0.00392)")

@@ -6,11 +6,12 @@ usage: vdb_checks.py MODE CLI PROJECT [ARGS...]
                              and none for skinned-mesh frames; vdb_print reads each back: one grid
                              'surface' of class level set, background 3 voxels, values of both signs
                              within the band, its active voxels' world box around the PLY's box of the
-                             same frame by at most the band (plus a voxel); a --vdb path that is a
+                             same frame by at most the band (plus a voxel), a float-vector grid 'Cd'
+                             (the surface colour) after it, none with --no-color; a --vdb path that is a
                              file and a range without an implicit frame fail naming the reason
                              (exit 77: skipped when vdb_print, Debian's libopenvdb-tools, is not installed)
   blender CLI PROJECT SCRIPT Blender imports a .vdb as a volume object headless (SCRIPT runs inside
-                             it): one grid 'surface', the volume's box around the PLY's box of the same
+                             it): grids 'surface' and 'Cd' (float, float vector), the volume's box around the PLY's box of the same
                              frame (exit 77: skipped when blender or vdb_print is not installed)
 """
 import json
@@ -30,24 +31,26 @@ RES = "24"
 
 
 def ply_box(path):
-    """The bounding box of a binary PLY's vertices (x, y, z: its first three float properties)."""
+    """The bounding box of a binary little-endian PLY's vertices (x, y, z: its first three properties,
+    floats; the others, such as uchar colours, only move the stride)."""
+    sizes = {"char": 1, "uchar": 1, "short": 2, "ushort": 2, "int": 4, "uint": 4, "float": 4, "double": 8}
     with open(path, "rb") as f:
         data = f.read()
     end = data.find(b"end_header\n")
     header = data[:end].decode("ascii").split("\n")
-    verts = props = 0
+    verts = stride = 0
     in_vertex = False
     for line in header:
         if line.startswith("element "):
             in_vertex = line.startswith("element vertex ")
             if in_vertex:
                 verts = int(line.split()[2])
-        elif line.startswith("property float ") and in_vertex:
-            props += 1
+        elif line.startswith("property ") and in_vertex:
+            stride += sizes[line.split()[1]]
     body = data[end + len("end_header\n"):]
     lo, hi = [float("inf")] * 3, [float("-inf")] * 3
     for v in range(verts):
-        xyz = struct.unpack_from("<3f", body, v * props * 4)
+        xyz = struct.unpack_from("<3f", body, v * stride)
         lo = [min(a, b) for a, b in zip(lo, xyz)]
         hi = [max(a, b) for a, b in zip(hi, xyz)]
     return lo, hi
@@ -74,11 +77,24 @@ def number(text, pattern, path):
     return m.groups() if len(m.groups()) > 1 else m.group(1)
 
 
-def check_level_set(path, ply):
-    """vdb_print's account of one file against the PLY of the same frame; returns the voxel size."""
-    text = vdb_print(path)
-    if len(re.findall(r"^Name: ", text, re.M)) != 1 or not re.search(r"^Name: surface$", text, re.M):
-        fail(f"{path}: expected one grid named 'surface':\n{text}")
+def grid_sections(text):
+    """vdb_print -l -m's account split per grid: {name: its lines}."""
+    parts = re.split(r"^(?=Name: )", text, flags=re.M)
+    return {re.match(r"Name: (\S+)", p).group(1): p for p in parts if p.startswith("Name: ")}
+
+
+def check_level_set(path, ply, colors=True):
+    """vdb_print's account of one file against the PLY of the same frame; returns the voxel size.
+    colors: a float-vector grid 'Cd' (the surface colour next to the surface) follows the level set."""
+    grids = grid_sections(vdb_print(path))
+    expected = ["surface", "Cd"] if colors else ["surface"]
+    if list(grids) != expected:
+        fail(f"{path}: grids {list(grids)}, expected {expected}:\n{grids}")
+    if colors:
+        cd = grids["Cd"]
+        if "vec3s" not in cd or "Bounding box of active voxels" not in cd:
+            fail(f"{path}: grid 'Cd' is not a float-vector grid with active voxels:\n{cd}")
+    text = grids["surface"]
     if "class: level set" not in text:
         fail(f"{path}: the grid is not of class level set:\n{text}")
     voxel = float(number(text, r"voxel size: ([-0-9.e+]+)", path))
@@ -128,7 +144,16 @@ def mode_bake(cli, project):
         if vdbs != expected:
             fail(f"--vdb wrote {vdbs}, expected {expected}")
         voxels = [check_level_set(os.path.join(vdb_dir, v), os.path.join(ply_dir, v[:-4] + ".ply")) for v in vdbs]
-        print(f"{len(vdbs)} level sets (voxel {voxels[0]:.4g}..{voxels[-1]:.4g}), {skipped} skinned frames without one")
+        print(f"{len(vdbs)} level sets with colour grids (voxel {voxels[0]:.4g}..{voxels[-1]:.4g}), "
+              f"{skipped} skinned frames without one")
+
+        # --no-color: the level sets alone.
+        plain_ply, plain_vdb = os.path.join(tmp, "plain_ply"), os.path.join(tmp, "plain_vdb")
+        r = run(cli, "bake", project, "--frames", "54:54", "--res", RES, "-o", plain_ply, "--vdb", plain_vdb,
+                "--no-color")
+        if r.returncode != 0:
+            fail(f"bake --vdb --no-color: exit {r.returncode}: {r.stderr}")
+        check_level_set(os.path.join(plain_vdb, "demo_0054.vdb"), os.path.join(plain_ply, "demo_0054.ply"), colors=False)
 
         # A --vdb path that is a file, and a range of skinned frames only: exit 1, naming the reason.
         blocker = os.path.join(tmp, "a_file")
@@ -158,8 +183,9 @@ def mode_blender(cli, project, script):
             fail(f"blender exited {r.returncode}: {r.stdout[-2000:]}{r.stderr[-2000:]}")
         with open(result) as fh:
             got = json.load(fh)
-        if got["grids"] != ["surface"]:
-            fail(f"Blender's volume has grids {got['grids']}, expected ['surface']")
+        if got["grids"] != ["surface", "Cd"] or got["grid_types"] != ["FLOAT", "VECTOR_FLOAT"]:
+            fail(f"Blender's volume has grids {got['grids']} of types {got['grid_types']}, "
+                 f"expected ['surface', 'Cd'] (FLOAT, VECTOR_FLOAT)")
         # Blender's box is the grid's leaf nodes (8^3 voxels) in world units: around the mesh's box by at
         # most the band, the crossing's voxel and a leaf.
         mesh_lo, mesh_hi = ply_box(ply)
@@ -168,7 +194,7 @@ def mode_blender(cli, project, script):
         for a in range(3):
             if not (mesh_lo[a] - slack <= lo[a] <= mesh_lo[a] and mesh_hi[a] <= hi[a] <= mesh_hi[a] + slack):
                 fail(f"Blender's volume spans {lo}..{hi}, the mesh {mesh_lo}..{mesh_hi}: axis {a} off by more than {slack}")
-        print(f"Blender {got['version']}: volume object {got['object']} with grid 'surface' ({got['grid_type']}), "
+        print(f"Blender {got['version']}: volume object {got['object']} with grids 'surface' and 'Cd' ({got['grid_types']}), "
               f"box {lo}..{hi} around the mesh's {mesh_lo}..{mesh_hi}")
 
 

@@ -123,11 +123,13 @@ TEST_CASE("an empty mesh writes a valid empty GLB scene", "[mesh_io]") {
   CHECK_FALSE(j.contains("buffers"));
 }
 
-TEST_CASE("vertex colours: OBJ v x y z r g b, PLY uchar red/green/blue/alpha, GLB COLOR_0", "[mesh_io]") {
+TEST_CASE("vertex colours: OBJ v x y z r g b and PLY uchar red/green/blue in sRGB, alpha and GLB COLOR_0 as stored",
+          "[mesh_io]") {
   TempDir dir;
   TriangleMesh m = sphereMesh();
   m.colors.resize(m.positions.size());
-  for (size_t i = 0; i < m.colors.size(); ++i) m.colors[i] = {float(i % 2), 0.5f, 1.0f, 1.0f};
+  // Linear 0.5 is sRGB 0.5^(1/2.2) = 0.7297 (186.1 of 255); alpha 0.5 stays 0.5 (128).
+  for (size_t i = 0; i < m.colors.size(); ++i) m.colors[i] = {float(i % 2), 0.5f, 1.0f, 0.5f};
   REQUIRE(writeMesh(m, dir.file("c.obj")).ok());
   REQUIRE(writeMesh(m, dir.file("c.ply")).ok());
 
@@ -140,7 +142,7 @@ TEST_CASE("vertex colours: OBJ v x y z r g b, PLY uchar red/green/blue/alpha, GL
     float x, y, z, r, g, b;
     REQUIRE(bool(ls >> x >> y >> z >> r >> g >> b));
     CHECK(r == float(vertices % 2));
-    CHECK(g == 0.5f);
+    CHECK(g == Approx(0.7297f).margin(1e-4));
     ++vertices;
   }
   CHECK(vertices == m.positions.size());
@@ -154,8 +156,16 @@ TEST_CASE("vertex colours: OBJ v x y z r g b, PLY uchar red/green/blue/alpha, GL
   CHECK(ply->size() - (end + 11) == m.positions.size() * 28 + m.triangleCount() * 13);
   // The second vertex (odd: red 1) starts after the first's 28 bytes; its colour follows 6 floats.
   CHECK(uint8_t((*ply)[end + 11 + 28 + 24]) == 255);
-  CHECK(uint8_t((*ply)[end + 11 + 28 + 25]) == 128);
+  CHECK(uint8_t((*ply)[end + 11 + 28 + 25]) == 186);
+  CHECK(uint8_t((*ply)[end + 11 + 28 + 27]) == 128);
 
   auto j = nlohmann::json::parse(glbBytes(m).substr(20, readAt<uint32_t>(glbBytes(m), 12)));
   CHECK(j["meshes"][0]["primitives"][0]["attributes"].contains("COLOR_0"));
+  // GLB COLOR_0 keeps linear light: the second vertex's green is 0.5 in the buffer.
+  const std::string glb = glbBytes(m);
+  const size_t jsonLen = readAt<uint32_t>(glb, 12), bin = 20 + jsonLen + 8;
+  const auto& acc = j["accessors"][j["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"].get<int>()];
+  const auto& view = j["bufferViews"][acc["bufferView"].get<int>()];
+  const size_t at = bin + view.value("byteOffset", size_t(0)) + acc.value("byteOffset", size_t(0)) + 16;
+  CHECK(readAt<float>(glb, at + 4) == 0.5f);
 }

@@ -14,6 +14,7 @@
 #include "core/export/frame_volume.h"
 #include "core/project/animorphosis_project.h"
 #include "core/project/project_io.h"
+#include "core/field/surface_color.h"
 #include "core/io/vdb_export.h"
 #include "util/animorph_fixtures.h"
 #include "util/morph_fixtures.h"
@@ -26,16 +27,41 @@ namespace fs = std::filesystem;
 
 namespace {
 
-openvdb::FloatGrid::Ptr readLevelSet(const std::string& path) {
+openvdb::GridPtrVecPtr readGrids(const std::string& path) {
   openvdb::initialize();
   openvdb::io::File file(path);
   file.open();
   openvdb::GridPtrVecPtr grids = file.getGrids();
   file.close();
-  REQUIRE(grids->size() == 1);
+  return grids;
+}
+
+// The file's level set: its first grid, a float grid (a colour grid "Cd" may follow it).
+openvdb::FloatGrid::Ptr readLevelSet(const std::string& path) {
+  openvdb::GridPtrVecPtr grids = readGrids(path);
+  REQUIRE(!grids->empty());
+  REQUIRE(grids->size() <= 2);
   auto grid = openvdb::gridPtrCast<openvdb::FloatGrid>((*grids)[0]);
   REQUIRE(grid);
   return grid;
+}
+
+// Two balls (point primitives of radius 0.5 at x = -+0.45), red on the left, blue on the right.
+FieldProgram twoColouredBalls() {
+  FieldProgram p;
+  p.threshold = 0.5f;
+  for (float x : {-0.45f, 0.45f}) {
+    SkeletalPrimitive prim;
+    prim.skeleton.kind = SkeletonKind::Point;
+    prim.skeleton.p0 = glm::vec3(x, 0.0f, 0.0f);
+    prim.radius = 0.5f;
+    prim.intensity = 1.0f;
+    prim.stiffness = 3.0f;
+    p.nextColor = x < 0.0f ? glm::vec3(1.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 0.0f, 1.0f);
+    p.addSkeletal(prim, x > 0.0f, false);  // the second joins the first's sum (a blend)
+  }
+  p.finish();
+  return p;
 }
 
 // A ball: one point primitive I (1 - (d/R)^2)^k with threshold T, whose surface is the sphere of
@@ -122,6 +148,66 @@ TEST_CASE("vdb export: a ball's band is its signed distance, the file a level se
   CHECK(active > band->index.size() / 2);
   CHECK(fileNearErr < 0.1f * h);
   CHECK(fileBandErr < 0.5f * h);
+}
+
+TEST_CASE("vdb export: a coloured field's file carries a colour grid Cd beside the level set, with each side's colour",
+          "[vdb][color]") {
+  const FieldProgram balls = twoColouredBalls();
+  LevelSetSettings ls;
+  ls.grid.resolution = 32;
+  ls.colors = true;
+  auto band = sampleLevelSet(balls, ls);
+  INFO(band.error());
+  REQUIRE(band.ok());
+  const float h = band->voxelSize;
+  REQUIRE(band->colorVoxel.size() == band->color.size());
+  REQUIRE(band->colorVoxel.size() > 500);
+  // Exactly the voxels within kColorBandVoxels of the surface have a colour.
+  size_t near = 0;
+  for (float d : band->distance) near += std::abs(d) < kColorBandVoxels * h;
+  CHECK(band->colorVoxel.size() == near);
+  CHECK(band->colorVoxel.size() < band->index.size());
+
+  TempDir tmp;
+  const std::string path = tmp.file("balls.vdb");
+  REQUIRE(writeVdbLevelSet(*band, path).ok());
+  openvdb::GridPtrVecPtr grids = readGrids(path);
+  REQUIRE(grids->size() == 2);
+  CHECK((*grids)[0]->getName() == "surface");
+  auto cd = openvdb::gridPtrCast<openvdb::Vec3SGrid>((*grids)[1]);
+  REQUIRE(cd);
+  CHECK(cd->getName() == "Cd");
+  CHECK(cd->voxelSize()[0] == Approx(h));
+  CHECK(cd->activeVoxelCount() == openvdb::Index64(band->colorVoxel.size()));
+  // The far ends of the two balls (apart: each beyond the other's reach there) are their own colour.
+  openvdb::tools::GridSampler<openvdb::Vec3SGrid, openvdb::tools::BoxSampler> sample(*cd);
+  const float r = 0.45f + 0.5f * std::sqrt(1.0f - std::pow(0.5f, 1.0f / 3.0f));
+  const openvdb::Vec3s left = sample.wsSample(openvdb::Vec3d(-r, 0.0, 0.0));
+  const openvdb::Vec3s right = sample.wsSample(openvdb::Vec3d(r, 0.0, 0.0));
+  CAPTURE(left.x(), left.z(), right.x(), right.z());
+  CHECK(left.x() > 0.95f);
+  CHECK(left.z() < 0.05f);
+  CHECK(right.z() > 0.95f);
+  CHECK(right.x() < 0.05f);
+  // Every stored colour is the evaluator's at its voxel, and each voxel's value is in the file.
+  SurfaceColorEvaluator colors;
+  auto acc = cd->getConstAccessor();
+  for (size_t c = 0; c < band->colorVoxel.size(); c += 37) {
+    const glm::ivec3 v = band->index[band->colorVoxel[c]];
+    const glm::vec3 expect = colors.evaluatePoint(balls, band->origin + h * glm::vec3(v));
+    const openvdb::Vec3s got = acc.getValue(openvdb::Coord(v.x, v.y, v.z));
+    CHECK(std::abs(got.x() - expect.x) < 1e-5f);
+    CHECK(std::abs(got.z() - expect.z) < 1e-5f);
+  }
+
+  // Without colours: the level set alone.
+  ls.colors = false;
+  auto plain = sampleLevelSet(balls, ls);
+  REQUIRE(plain.ok());
+  CHECK(plain->colorVoxel.empty());
+  const std::string plainPath = tmp.file("plain.vdb");
+  REQUIRE(writeVdbLevelSet(*plain, plainPath).ok());
+  CHECK(readGrids(plainPath)->size() == 1);
 }
 
 TEST_CASE("vdb export: a B->C frame of the demo morph crosses zero within half a voxel of its polygonised mesh",

@@ -62,7 +62,7 @@ Status bakeFramesApart(const ProjectFrames& frames, const BakeSettings& s, BakeS
       stages.add(frames.stageAt(f), 0);
     }
     if (!sink.wantsVolumes()) return Status::success();
-    auto band = frames.levelSet(f, s.resolution, fs.cancel, fs.threads);
+    auto band = frames.levelSet(f, s.resolution, fs.cancel, fs.threads, s.colors);
     if (!band) return Error{band.error()};
     if (progress.cancelled() || (*band && (*band)->cancelled)) return jobCancelled();
     return sink.addVolume(k, *band ? &**band : nullptr);
@@ -87,7 +87,7 @@ Status bakeAnimorphosisSequence(const ProjectFrames& frames, const BakeSettings&
                           std::to_string(count) + ")");
         Status st;
         if (sink.wantsVolumes()) {
-          auto band = fieldLevelSet(programOf(k), s.resolution, 0, fs.cancel);
+          auto band = fieldLevelSet(programOf(k), s.resolution, 0, fs.cancel, s.colors);
           if (!band) st = Error{band.error()};
           else if (progress.cancelled() || (*band)->cancelled) return jobCancelled();
           else st = sink.addVolume(k, &**band);

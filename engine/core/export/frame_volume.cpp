@@ -3,7 +3,7 @@
 namespace animorph {
 
 FrameLevelSet morphFrameLevelSet(const MorphRuntime& rt, double timeSec, int resolution,
-                                                         int threads, const std::atomic<bool>* cancel) {
+                                 int threads, const std::atomic<bool>* cancel, bool colors) {
   std::optional<MorphImplicitField> field = morphFrameField(rt, timeSec, resolution);
   if (!field) return std::optional<LevelSetVoxels>{};
   LevelSetSettings ls;
@@ -11,6 +11,7 @@ FrameLevelSet morphFrameLevelSet(const MorphRuntime& rt, double timeSec, int res
   ls.grid.bounds = field->bounds;  // as evaluateMorphImplicit polygonises it
   ls.grid.threads = threads;
   ls.grid.cancel = cancel;
+  ls.colors = colors;
   ls.noiseAmplitude = field->noiseAmplitude;
   ls.noiseFrequency = rt.setup.noiseFrequency;
   auto band = sampleLevelSet(field->program, ls);
@@ -19,11 +20,12 @@ FrameLevelSet morphFrameLevelSet(const MorphRuntime& rt, double timeSec, int res
 }
 
 FrameLevelSet fieldLevelSet(const FieldProgram& program, int resolution, int threads,
-                                     const std::atomic<bool>* cancel) {
+                            const std::atomic<bool>* cancel, bool colors) {
   LevelSetSettings ls;
   ls.grid.resolution = resolution;
   ls.grid.threads = threads;
   ls.grid.cancel = cancel;
+  ls.colors = colors;
   auto band = sampleLevelSet(program, ls);
   if (!band) return Error{band.error()};
   return std::optional<LevelSetVoxels>(std::move(*band));

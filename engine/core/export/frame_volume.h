@@ -15,12 +15,13 @@ namespace animorph {
 using FrameLevelSet = Result<std::optional<LevelSetVoxels>>;
 
 // A morph's frame at timeSec: nullopt (not an error) for a frame that is a skinned mesh and has no
-// implicit field (morphFrameField). threads: 0 = all; cancel may be null.
+// implicit field (morphFrameField). threads: 0 = all; cancel may be null. colors: the surface
+// colour at the voxels next to the surface too (LevelSetSettings::colors).
 FrameLevelSet morphFrameLevelSet(const MorphRuntime& rt, double timeSec, int resolution,
-                                                         int threads, const std::atomic<bool>* cancel);
+                                 int threads, const std::atomic<bool>* cancel, bool colors = false);
 
 // Any field polygonised with its own bounds (an animorphosis' C(t), a BlobTree): always a level set.
 FrameLevelSet fieldLevelSet(const FieldProgram& program, int resolution, int threads,
-                                     const std::atomic<bool>* cancel);
+                            const std::atomic<bool>* cancel, bool colors = false);
 
 }  // namespace animorph

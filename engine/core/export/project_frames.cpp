@@ -78,10 +78,11 @@ Result<BakedFrame> ProjectFrames::frame(int frame, const FrameBakeSettings& s) c
   return out;
 }
 
-FrameLevelSet ProjectFrames::levelSet(int frame, int resolution, const std::atomic<bool>* cancel, int threads) const {
+FrameLevelSet ProjectFrames::levelSet(int frame, int resolution, const std::atomic<bool>* cancel, int threads,
+                                      bool colors) const {
   const double timeSec = timeline_.frameToSec(frame);
-  return morph_ ? morphFrameLevelSet(*morph_, timeSec, resolution, threads, cancel)
-                : fieldLevelSet(animorphosisProgram(frame), resolution, threads, cancel);
+  return morph_ ? morphFrameLevelSet(*morph_, timeSec, resolution, threads, cancel, colors)
+                : fieldLevelSet(animorphosisProgram(frame), resolution, threads, cancel, colors);
 }
 
 FieldProgram ProjectFrames::animorphosisProgram(int frame) const {

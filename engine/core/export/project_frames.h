@@ -80,8 +80,9 @@ class ProjectFrames {
   // The stage of frame f without baking it (an animorphosis: Morph).
   MorphStage stageAt(int frame) const;
   // Frame f's implicit field as a level set; none for a skinned-mesh frame of a morph.
-  // threads: 0 = all.
-  FrameLevelSet levelSet(int frame, int resolution, const std::atomic<bool>* cancel, int threads = 0) const;
+  // threads: 0 = all. colors: the surface colour beside it (LevelSetSettings::colors).
+  FrameLevelSet levelSet(int frame, int resolution, const std::atomic<bool>* cancel, int threads = 0,
+                         bool colors = false) const;
   // An animorphosis' C at frame f as one program (for a sequence on one grid); needs animorphosis().
   FieldProgram animorphosisProgram(int frame) const;
 

@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/math/color.h"
 #include "core/util/atomic_file.h"
 #include "core/io/glb_writer.h"
 
@@ -32,8 +33,8 @@ Status writeObj(const TriangleMesh& m, const std::string& path) {
   const bool colors = m.colors.size() == m.positions.size();
   for (size_t i = 0; i < m.positions.size(); ++i) {
     const glm::vec3& p = m.positions[i];
-    int n = colors ? std::snprintf(buf, sizeof buf, "v %.7g %.7g %.7g %.4f %.4f %.4f\n", p.x, p.y, p.z, m.colors[i].r,
-                                   m.colors[i].g, m.colors[i].b)
+    const glm::vec3 c = colors ? linearToSrgb(glm::vec3(m.colors[i])) : glm::vec3(0.0f);
+    int n = colors ? std::snprintf(buf, sizeof buf, "v %.7g %.7g %.7g %.4f %.4f %.4f\n", p.x, p.y, p.z, c.r, c.g, c.b)
                    : std::snprintf(buf, sizeof buf, "v %.7g %.7g %.7g\n", p.x, p.y, p.z);
     s.append(buf, size_t(n));
   }
@@ -65,8 +66,10 @@ Status writePly(const TriangleMesh& m, const std::string& path) {
   for (size_t i = 0; i < m.positions.size(); ++i) {
     append(s, m.positions[i]);
     if (normals) append(s, m.normals[i]);
-    if (colors)
-      for (int k = 0; k < 4; ++k) append(s, uint8_t(std::lround(std::clamp(m.colors[i][k], 0.0f, 1.0f) * 255.0f)));
+    if (colors) {
+      const glm::vec4 c(linearToSrgb(glm::vec3(m.colors[i])), std::clamp(m.colors[i].a, 0.0f, 1.0f));
+      for (int k = 0; k < 4; ++k) append(s, uint8_t(std::lround(c[k] * 255.0f)));
+    }
   }
   for (size_t i = 0; i + 2 < m.indices.size(); i += 3) {
     append(s, uint8_t(3));

@@ -1,9 +1,10 @@
 #pragma once
 // Writing meshes: Wavefront OBJ, binary PLY and glTF binary (GLB, a minimal
 // writer: one mesh, POSITION + NORMAL + indices). Writes are atomic.
-// Vertex colours, when the mesh has them: OBJ "v x y z r g b" (the values as
-// stored), PLY uchar red/green/blue/alpha (clamped to [0, 1], times 255),
-// GLB COLOR_0 (RGBA float).
+// Vertex colours, when the mesh has them (TriangleMesh::colors, linear light): OBJ
+// "v x y z r g b" and PLY uchar red/green/blue (times 255) in sRGB, as Blender, MeshLab and
+// other viewers read them (math/color.h's linearToSrgb, clamped to [0, 1]); PLY alpha as
+// stored (times 255); GLB COLOR_0 (RGBA float, linear, as glTF requires).
 #include <string>
 
 #include "core/poly/mesh.h"

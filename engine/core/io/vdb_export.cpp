@@ -17,6 +17,27 @@
 
 namespace animorph {
 
+namespace {
+
+// The band's colours as a vector grid "Cd" (Houdini's name for colour; Blender lists it as a
+// float-vector grid of the volume): linear RGB at the voxels next to the surface, inactive
+// (0, 0, 0) elsewhere, the level set's transform.
+openvdb::Vec3SGrid::Ptr colorGrid(const LevelSetVoxels& band, const openvdb::math::Transform::Ptr& xform) {
+  auto grid = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
+  grid->setTransform(xform);
+  grid->setName("Cd");
+  grid->setGridClass(openvdb::GRID_UNKNOWN);
+  grid->setVectorType(openvdb::VEC_INVARIANT);  // a colour: not moved by a transform
+  auto acc = grid->getAccessor();
+  for (size_t c = 0; c < band.colorVoxel.size() && c < band.color.size(); ++c) {
+    const glm::ivec3& v = band.index[band.colorVoxel[c]];
+    acc.setValue(openvdb::Coord(v.x, v.y, v.z), openvdb::Vec3s(band.color[c].x, band.color[c].y, band.color[c].z));
+  }
+  return grid;
+}
+
+}  // namespace
+
 Status writeVdbLevelSet(const LevelSetVoxels& band, const std::string& path, const std::string& gridName) {
   if (band.cancelled) return Error{path + ": the level set was cancelled before it was complete; not written"};
   if (!(band.voxelSize > 0.0f) || !std::isfinite(band.voxelSize) || !(band.background > 0.0f))
@@ -58,7 +79,9 @@ Status writeVdbLevelSet(const LevelSetVoxels& band, const std::string& path, con
     openvdb::tools::pruneLevelSet(grid->tree());
     // Serialised in memory (the same format as io::File's), then written atomically.
     std::ostringstream bytes(std::ios_base::binary);
-    openvdb::io::Stream(bytes).write(openvdb::GridPtrVec{grid});
+    openvdb::GridPtrVec grids{grid};
+    if (!band.colorVoxel.empty()) grids.push_back(colorGrid(band, xform));
+    openvdb::io::Stream(bytes).write(grids);
     if (Status st = writeFileAtomic(path, bytes.str()); !st)
       return Error{"cannot write the OpenVDB file " + st.error()};
   } catch (const std::exception& e) {  // openvdb::Exception among them

@@ -15,7 +15,9 @@ namespace animorph {
 // a signed flood fill (negative), blosc-compressed. The band is redistanced first: voxels within
 // one voxel of the surface keep their (first-order) distances, the others get OpenVDB's fast
 // sweeping's (tools::sdfToSdf), clamped to the background (docs/export.md has the measurements).
-// Serialised in memory, then written atomically (a temporary beside path, renamed: no
+// With colours (LevelSetVoxels::colorVoxel non-empty), a second grid "Cd" beside it: a
+// float-vector grid of the linear RGB surface colour at the voxels next to the surface
+// (Houdini's colour attribute name), the same transform. Serialised in memory, then written atomically (a temporary beside path, renamed: no
 // half-written file). Errors name the path and the reason (the folder is missing or not
 // writable, the band is cancelled or has no valid voxel size).
 Status writeVdbLevelSet(const LevelSetVoxels& band, const std::string& path, const std::string& gridName = "surface");

@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "core/field/surface_color.h"
 #include "core/poly/solid_noise.h"
 
 namespace animorph {
@@ -32,6 +33,21 @@ struct BlockBand {
 float boxDistance(const glm::vec3& p, const glm::vec3& lo, const glm::vec3& hi) {
   const glm::vec3 q = glm::abs(p - 0.5f * (lo + hi)) - 0.5f * (hi - lo);
   return glm::length(glm::max(q, glm::vec3(0.0f))) + std::min(std::max(q.x, std::max(q.y, q.z)), 0.0f);
+}
+
+// The surface colour at the band's voxels next to the surface (LevelSetSettings::colors).
+void colorBand(const FieldProgram& program, int threads, LevelSetVoxels& out) {
+  const float near = kColorBandVoxels * out.voxelSize;
+  std::vector<glm::vec3> points;
+  for (size_t v = 0; v < out.index.size(); ++v) {
+    if (std::abs(out.distance[v]) >= near) continue;
+    out.colorVoxel.push_back(uint32_t(v));
+    points.push_back(out.origin + out.voxelSize * glm::vec3(out.index[v]));
+  }
+  std::vector<glm::vec4> rgba(points.size());
+  SurfaceColorEvaluator().evaluate(program, points.data(), points.size(), rgba.data(), threads);
+  out.color.resize(rgba.size());
+  for (size_t i = 0; i < rgba.size(); ++i) out.color[i] = glm::vec3(rgba[i]);
 }
 
 }  // namespace
@@ -134,6 +150,7 @@ Result<LevelSetVoxels> sampleLevelSet(const FieldProgram& program, const LevelSe
     out.index.insert(out.index.end(), bb.index.begin(), bb.index.end());
     out.distance.insert(out.distance.end(), bb.distance.begin(), bb.distance.end());
   }
+  if (s.colors) colorBand(program, s.grid.threads, out);
   return out;
 }
 

@@ -29,7 +29,15 @@ struct LevelSetSettings {
   // is moved by the same amount (d - amplitude * noise(frequency * p)); 0: none.
   float noiseAmplitude = 0.0f;
   float noiseFrequency = 0.0f;
+  // Surface colour beside the distance (field/surface_color.h) at the voxels within
+  // kColorBandVoxels of the surface: LevelSetVoxels::colorVoxel / color. Off: none.
+  bool colors = false;
 };
+
+// Voxels whose |distance| is below this many voxel sizes get a colour (LevelSetSettings::colors):
+// every voxel a trilinear lookup at the surface reads (the surface lies within one voxel of
+// the eight corners around it, each within sqrt(3) voxels of the surface).
+constexpr float kColorBandVoxels = 2.0f;
 
 struct LevelSetVoxels {
   glm::vec3 origin{0.0f};  // world position of voxel (0, 0, 0)'s centre
@@ -40,6 +48,11 @@ struct LevelSetVoxels {
   // units, negative inside, |distance| < background).
   std::vector<glm::ivec3> index;
   std::vector<float> distance;
+  // With LevelSetSettings::colors: the positions in index/distance of the voxels that have a
+  // colour (|distance| < kColorBandVoxels * voxelSize, increasing) and their colours (linear
+  // RGB of the surface colour at the voxel's centre). Empty without colours.
+  std::vector<uint32_t> colorVoxel;
+  std::vector<glm::vec3> color;
   size_t pointsEvaluated = 0;  // field evaluations (with gradient)
   bool cancelled = false;      // the cancel flag was set: the band is incomplete
 };
@@ -47,7 +60,8 @@ struct LevelSetVoxels {
 // Samples the band of f = 0 of the program. Beyond the grid's box the level set is cut by it as
 // the polygoniser closes a surface cut by its grid (max with the box's signed distance), so an
 // unbounded field (space-time blending) gives a closed level set. A field inside nowhere gives an
-// empty band. Errors: as polygonizeGrid's (bad resolution, an unbounded field without bounds),
+// empty band. With settings.colors, the voxels next to the surface get the surface colour
+// (a second pass after the band, SurfaceColorEvaluator with the grid's threads). Errors: as polygonizeGrid's (bad resolution, an unbounded field without bounds),
 // halfWidth outside 1..16.
 Result<LevelSetVoxels> sampleLevelSet(const FieldProgram& program, const LevelSetSettings& settings);
 
