@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "core/io/assimp_import.h"
+#include "core/io/gltf_export.h"
 #include "core/io/gltf_import.h"
 #include "core/io/texture_decode.h"
 #include "core/paint/weights_from_texture.h"
@@ -160,6 +161,40 @@ TEST_CASE("textures: KHR_texture_transform is applied to the coordinates and pri
   CHECK(mesh.parts[1].material == 1);
   CHECK(c->materials.at(1).baseColorTexture == -1);
   CHECK(c->materials.at(1).baseColorFactor.b == Approx(0.9f));
+}
+
+TEST_CASE("textures: a mesh of two materials exports as two primitives and imports back with its parts and colours",
+          "[textures][export]") {
+  TempDir tmp;
+  TexturedQuadOptions o;
+  o.secondPrimitive = true;
+  auto c = importGltf(test::writeTexturedQuad(tmp.path().string(), o));
+  INFO((c ? std::string() : c.error()));
+  REQUIRE(c);
+  REQUIRE(c->meshes.at(0).parts.size() == 2);
+  const std::string out = tmp.file("two_materials.glb");
+  Status st = exportGlb(*c, out);
+  INFO(st.error());
+  REQUIRE(st.ok());
+  auto back = importGltf(out);
+  INFO((back ? std::string() : back.error()));
+  REQUIRE(back);
+  const Mesh& a = c->meshes[0];
+  const Mesh& b = back->meshes.at(0);
+  // The shared vertices are written once per primitive's attributes and concatenated again on
+  // import: each part's triangles keep their corners' positions and their material.
+  REQUIRE(b.parts.size() == 2);
+  REQUIRE(back->materials.size() == c->materials.size());
+  for (size_t k = 0; k < 2; ++k) {
+    CAPTURE(k);
+    CHECK(b.parts[k].indexCount == a.parts[k].indexCount);
+    CHECK(b.parts[k].material == a.parts[k].material);
+    for (uint32_t i = 0; i < a.parts[k].indexCount; ++i)
+      CHECK(b.positions[b.indices[b.parts[k].firstIndex + i]] == a.positions[a.indices[a.parts[k].firstIndex + i]]);
+  }
+  CHECK(back->materials[1].baseColorFactor == c->materials[1].baseColorFactor);
+  REQUIRE(back->textures.size() == c->textures.size());
+  CHECK(back->materials[0].baseColorTexture == c->materials[0].baseColorTexture);
 }
 
 TEST_CASE("textures: a texture that cannot be decoded is named with its path and reason, the factor is kept",

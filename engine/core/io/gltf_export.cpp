@@ -1,5 +1,7 @@
 #include "core/io/gltf_export.h"
 
+#include <unordered_map>
+
 #include "core/util/atomic_file.h"
 #include "core/io/glb_writer.h"
 #include "core/io/texture_decode.h"
@@ -125,32 +127,103 @@ Status addMorphTargets(const Mesh& m, const std::string& label, GlbWriter& w, js
   return Status::success();
 }
 
-// Mesh mi as one triangle primitive (skinned when skin >= 0), its arrays into w.
-Result<json> meshJson(const Character& c, size_t mi, int skin, GlbWriter& w) {
-  const Mesh& m = c.meshes[mi];
-  const std::string label = "mesh " + std::to_string(mi) + " '" + m.name + "'";
+// Whether m has two or more material parts, each a whole number of triangles inside its index
+// list (then each is written as a primitive of its own).
+bool hasValidParts(const Mesh& m) {
+  if (m.parts.size() < 2) return false;
+  for (const Mesh::Part& p : m.parts)
+    if (p.indexCount == 0 || p.indexCount % 3 != 0 || size_t(p.firstIndex) + p.indexCount > m.indices.size())
+      return false;
+  return true;
+}
+
+// The triangles of part p as a mesh of their own: the vertices they use (in order of first use),
+// every per-vertex array and morph target cut to them, the indices renumbered. Vertices shared
+// by two parts are written once per part, as a glTF primitive holds its own vertices.
+Mesh meshPart(const Mesh& m, const Mesh::Part& p) {
+  Mesh out;
+  out.name = m.name;
+  out.material = p.material;
+  out.defaultMorphWeights = m.defaultMorphWeights;
+  for (const MorphTarget& t : m.morphTargets) out.morphTargets.push_back({t.name, {}, {}});
+  std::unordered_map<uint32_t, uint32_t> remap;
+  auto take = [](const auto& from, auto& to, uint32_t v) {
+    if (v < from.size()) to.push_back(from[v]);
+  };
+  for (uint32_t k = 0; k < p.indexCount; ++k) {
+    const uint32_t v = m.indices[p.firstIndex + k];
+    auto [it, added] = remap.try_emplace(v, uint32_t(out.positions.size()));
+    out.indices.push_back(it->second);
+    if (!added) continue;
+    take(m.positions, out.positions, v);
+    take(m.normals, out.normals, v);
+    take(m.colors, out.colors, v);
+    take(m.texcoords0, out.texcoords0, v);
+    take(m.joints0, out.joints0, v);
+    take(m.joints1, out.joints1, v);
+    take(m.weights0, out.weights0, v);
+    take(m.weights1, out.weights1, v);
+    for (size_t t = 0; t < m.morphTargets.size(); ++t) {
+      take(m.morphTargets[t].positionDeltas, out.morphTargets[t].positionDeltas, v);
+      take(m.morphTargets[t].normalDeltas, out.morphTargets[t].normalDeltas, v);
+    }
+  }
+  return out;
+}
+
+// Errors glTF cannot hold in m's vertex arrays: no vertices, normals or colours not one per
+// vertex, an index out of range. label names the mesh.
+Status checkVertexArrays(const Mesh& m, const std::string& label) {
   const size_t nv = m.vertexCount();
   if (nv == 0) return Error{label + ": has no vertices (glTF accessors cannot be empty)"};
   if (m.normals.size() != nv) return Error{label + ": " + std::to_string(m.normals.size()) + " normals for " + std::to_string(nv) + " vertices"};
+  if (!m.colors.empty() && m.colors.size() != nv)
+    return Error{label + ": " + std::to_string(m.colors.size()) + " colours for " + std::to_string(nv) + " vertices"};
   for (uint32_t i : m.indices)
     if (i >= nv) return Error{label + ": index " + std::to_string(i) + " out of range (" + std::to_string(nv) + " vertices)"};
+  return Status::success();
+}
+
+// One triangle primitive of mesh m drawn with `material` (skinned when skin >= 0), its arrays
+// into w; the morph targets' default weights and names onto jm. label names the mesh in errors.
+Result<json> primitiveJson(const Character& c, const Mesh& m, int material, int skin, const std::string& label,
+                           GlbWriter& w, json& jm) {
+  const size_t nv = m.vertexCount();
+  if (Status st = checkVertexArrays(m, label); !st) return Error{st.error()};
   json attrs;
   attrs["POSITION"] = w.floats(&m.positions.data()->x, nv, 3, "VEC3", kArrayBuffer, true);
   attrs["NORMAL"] = w.normals(m.normals);
-  if (!m.colors.empty()) {
-    if (m.colors.size() != nv) return Error{label + ": " + std::to_string(m.colors.size()) + " colours for " + std::to_string(nv) + " vertices"};
-    attrs["COLOR_0"] = w.floats(&m.colors.data()->x, nv, 4, "VEC4", kArrayBuffer, false);
-  }
+  if (!m.colors.empty()) attrs["COLOR_0"] = w.floats(&m.colors.data()->x, nv, 4, "VEC4", kArrayBuffer, false);
   if (m.texcoords0.size() == nv) attrs["TEXCOORD_0"] = w.floats(&m.texcoords0.data()->x, nv, 2, "VEC2", kArrayBuffer, false);
   if (skin >= 0 && nv > 0)
     if (Status st = addSkinAttributes(c, m, skin, label, w, attrs); !st) return Error{st.error()};
   json prim = {{"attributes", attrs}, {"mode", 4}};
   if (!m.indices.empty()) prim["indices"] = w.indices(m.indices, nv);
-  if (m.material >= 0 && size_t(m.material) < c.materials.size()) prim["material"] = m.material;
-  json jm = {{"name", m.name}};
+  if (material >= 0 && size_t(material) < c.materials.size()) prim["material"] = material;
   if (!m.morphTargets.empty())
     if (Status st = addMorphTargets(m, label, w, prim, jm); !st) return Error{st.error()};
-  jm["primitives"] = json::array({prim});
+  return prim;
+}
+
+// Mesh mi as its triangle primitives (skinned when skin >= 0), its arrays into w: one per material
+// part when it has two or more (Mesh::parts), else one drawn with Mesh::material.
+Result<json> meshJson(const Character& c, size_t mi, int skin, GlbWriter& w) {
+  const Mesh& m = c.meshes[mi];
+  const std::string label = "mesh " + std::to_string(mi) + " '" + m.name + "'";
+  json jm = {{"name", m.name}}, prims = json::array();
+  if (Status st = checkVertexArrays(m, label); !st) return Error{st.error()};
+  if (std::string bad = checkMorphTargets(m); !bad.empty()) return Error{label + ": " + bad};
+  if (!hasValidParts(m)) {
+    auto prim = primitiveJson(c, m, m.material, skin, label, w, jm);
+    if (!prim) return Error{prim.error()};
+    prims.push_back(*prim);
+  }
+  for (size_t k = 0; hasValidParts(m) && k < m.parts.size(); ++k) {
+    auto prim = primitiveJson(c, meshPart(m, m.parts[k]), m.parts[k].material, skin, label + " part " + std::to_string(k), w, jm);
+    if (!prim) return Error{prim.error()};
+    prims.push_back(*prim);
+  }
+  jm["primitives"] = prims;
   return jm;
 }
 

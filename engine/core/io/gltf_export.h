@@ -7,8 +7,11 @@
 
 namespace animorph {
 
-// Serialises c as GLB bytes: nodes (TRS), meshes (POSITION, NORMAL, COLOR_0 when present, indices,
-// JOINTS_0/WEIGHTS_0 and _1 when used, for meshes drawn with a skin; morph
+// Serialises c as GLB bytes: nodes (TRS), meshes (POSITION, NORMAL, COLOR_0 when present,
+// TEXCOORD_0, indices, JOINTS_0/WEIGHTS_0 and _1 when used, for meshes drawn with a skin; a mesh
+// with two or more material parts (Mesh::parts) as one primitive per part, sharing the vertex
+// attributes, each with its indices and material; materials with their base colour factor and
+// texture (embedded PNG); morph
 // targets with POSITION and NORMAL deltas, their names in extras.targetNames and
 // the default weights), skins
 // with inverse bind matrices, animations with STEP/LINEAR/CUBICSPLINE
