@@ -28,6 +28,212 @@
 
 using namespace animorph;
 
+namespace {
+
+// What the wait after a frame weighs: this frame's input, what its viewport drew and presented, and
+// whether the previews still work.
+struct FrameOutcome {
+  bool input = false;
+  ViewportFrameResult viewport;
+  PresentedFrame shown;
+  bool blobBusy = false, morphBusy = false;
+  std::string previewInfoDrawn;  // the status bar's preview line as this frame drew it
+};
+
+// The editor's parts, wired once, and the frame loop over them.
+class Editor {
+ public:
+  Editor(const EditorArgs& args, GLFWwindow* window, const gpu::SwapchainSettings& ss,
+         std::unique_ptr<EditorGpu> gpuSide, FrameClock& clock);
+
+  // One frame: input, the UI, the viewport, presentation, then the wait for the next one. False when
+  // the loop ends (quit, a screenshot taken with --quit, a bench done, a lost device not remade).
+  bool frame();
+  // After the loop: the bench figures, validation errors (exit status 3), the preferences saved, the
+  // Vulkan side and the window closed. Returns the exit status.
+  int finish();
+
+ private:
+  bool recoverIfDeviceLost();
+  void takeWindowRequests();
+  void tickClock();
+  void endGpuFrame();
+  void waitForNextFrame(const FrameOutcome& f);
+
+  GLFWwindow* window_;
+  gpu::SwapchainSettings ss_;
+  std::unique_ptr<EditorGpu> gpuSide_;
+  FrameClock& clock_;
+  EditorUI ui_;
+  AssetCache assets_;
+  std::unique_ptr<Document> document_ = std::make_unique<Document>();
+  EditorContext ectx_{document_, assets_};
+  EditorAutomation automation_;
+  ViewportFrame viewport_{ui_.state().prefs.previewDevice};
+  RedrawPolicy redraw_;  // on demand: an idle editor waits for events
+  ScrubPacer pacer_;     // while scrubbing a CPU preview: a frame per new mesh, input at most once an interval
+  gpu::Scene scene_;
+  const char* uiMapPath_ = std::getenv("ANIMORPH_UI_MAP");
+  bool continuousRedraw_ = false;
+  std::string lastTitle_, pendingCapture_;
+  int frameCount_ = 0, captureFrames_ = 0;  // captureFrames_: since pendingCapture_ was set (taken on the second)
+  int exitCode_ = 0;
+  uint64_t eventsSeen_ = 0;
+};
+
+Editor::Editor(const EditorArgs& args, GLFWwindow* window, const gpu::SwapchainSettings& ss,
+               std::unique_ptr<EditorGpu> gpuSide, FrameClock& clock)
+    : window_(window), ss_(ss), gpuSide_(std::move(gpuSide)), clock_(clock), automation_(args) {
+  const char* demoDir = std::getenv("ANIMORPH_DEMO_DIR");  // Help > Demos: the repository's by default
+  ui_.setDemoDir(demoDir ? demoDir : ANIMORPH_SOURCE_DIR "/resources/demo");
+  if (!args.project.empty()) ui_.requestOpen(args.project);
+  ectx_.playblast = gpu::playblastProject;  // File > Export > Playblast...: its own offscreen device
+  const char* redrawEnv = std::getenv("ANIMORPH_REDRAW");
+  continuousRedraw_ = redrawEnv && std::strcmp(redrawEnv, "continuous") == 0;
+}
+
+bool Editor::recoverIfDeviceLost() {
+  if (!gpu::deviceLost()) return true;
+  auto recovered = recoverLostDevice(window_, ss_, *document_, ectx_.nowSec, gpuSide_);
+  if (!recovered) return false;
+  viewport_.forgetPrewarm();
+  ui_.state().status = {*recovered, true};
+  return true;
+}
+
+// Files dropped on the window and its close button become the UI's requests.
+void Editor::takeWindowRequests() {
+  if (auto dropped = takeDroppedPaths(); !dropped.empty()) ui_.requestDrop(std::move(dropped));
+  if (glfwWindowShouldClose(window_)) {
+    glfwSetWindowShouldClose(window_, GLFW_FALSE);
+    ui_.requestQuit();
+  }
+}
+
+void Editor::tickClock() {
+  clock_.tick();
+  ectx_.nowSec = clock_.nowSec();
+  ectx_.dtSec = clock_.dtSec();
+  ectx_.stats.frameMs = static_cast<float>(clock_.smoothedMs());
+  ectx_.stats.fps = static_cast<float>(clock_.smoothedMs() > 0.0 ? 1000.0 / clock_.smoothedMs() : 0.0);
+  ectx_.stats.deviceName = gpuSide_->ctx->deviceName();
+}
+
+void Editor::endGpuFrame() {
+  gpuSide_->meshes->endFrame();
+  gpuSide_->blobPreviews->endFrame();
+  gpuSide_->standinBindings->endFrame();
+  gpuSide_->morphPreview->endFrame();
+}
+
+bool Editor::frame() {
+  glfwPollEvents();
+  if (!recoverIfDeviceLost()) {
+    exitCode_ = 1;
+    return false;
+  }
+  const uint64_t events = windowEventCount();
+  FrameOutcome f;
+  f.input = events != eventsSeen_;
+  eventsSeen_ = events;
+  takeWindowRequests();
+  tickClock();
+  automation_.beforeUi(*document_, ui_.state().playback, ectx_.nowSec, frameCount_,
+                       ui_.output().jobRunning || viewport_.morphPreparing());
+
+  gpuSide_->imgui->newFrame();
+  f.previewInfoDrawn = ectx_.stats.previewInfo;  // the status bar below shows this one
+  viewport_.updateMorphRuntime(ectx_, ui_.output());  // the inspector shows this frame's morph
+  ui_.draw(ectx_);
+  ImGui::Render();
+  const EditorOutput& out = ui_.output();
+  if (out.quit) return false;
+  if (out.screenshotPath) pendingCapture_ = *out.screenshotPath;
+  if (auto due = automation_.screenshotDue(frameCount_, out.jobRunning || viewport_.morphPreparing()))
+    pendingCapture_ = *due;
+  pacer_.frameStarted(ectx_.nowSec, events, PreviewPolygonizer::publishedTotal());  // meshes after this are new
+  f.viewport = viewport_.build(*gpuSide_, ui_, ectx_, !pendingCapture_.empty(), scene_);
+  // The first frame settles the previews; the second, whose status bar already shows them, is captured.
+  if (!pendingCapture_.empty() && captureFrames_++ >= 1) gpuSide_->swapchain->requestCapture();
+  f.shown = presentFrame(*gpuSide_, out.viewport, out.camera, scene_, pendingCapture_);
+  if (f.shown.status == gpu::FrameStatus::Ready) automation_.firstFrameShown(clock_.sinceStartMs());
+  if (f.shown.captured) {
+    pendingCapture_.clear();
+    captureFrames_ = 0;
+    if (automation_.quitAfterScreenshot()) return false;
+  }
+  if (f.shown.status == gpu::FrameStatus::Failed) glfwWaitEventsTimeout(0.1);
+  endGpuFrame();
+  ++frameCount_;
+  f.blobBusy = gpuSide_->blobPreviews->busy();
+  f.morphBusy = gpuSide_->morphPreview->busy();
+  if (automation_.frameDone(frameCount_, clock_.dtSec(), ectx_.nowSec, !f.blobBusy && !f.morphBusy, continuousRedraw_))
+    return false;
+  waitForNextFrame(f);
+  return true;
+}
+
+// Draw the next frame at once, or wait for input (on demand, as Blender does). A skipped frame
+// (swapchain out of date) is drawn again at once; a minimised window waits.
+void Editor::waitForNextFrame(const FrameOutcome& f) {
+  const ViewportFrameResult& vf = f.viewport;
+  int fbw = 0, fbh = 0;
+  glfwGetFramebufferSize(window_, &fbw, &fbh);
+  RedrawState rs;
+  rs.input = f.input;
+  const bool movesOnItsOwn = ui_.state().playback.playing() || gpuSide_->blobPreviews->needsFrames() ||
+                             (vf.morphStageShown && gpuSide_->morphPreview->needsFrames()) || vf.particlesShown ||
+                             frameCount_ < 10 || automation_.needsFrames() || !pendingCapture_.empty() ||
+                             (f.shown.status == gpu::FrameStatus::Skipped && fbw > 0 && fbh > 0) || continuousRedraw_;
+  rs.awaitingWork = f.blobBusy || (vf.morphStageShown && f.morphBusy);
+  // Scrubbing while the CPU worker computes: paced (scene/scrub_pacing.h), not a frame per motion.
+  const bool paced = ScrubPacer::applies(ui_.state().timeline.scrubbing, rs.awaitingWork, movesOnItsOwn);
+  viewport_.setScrubPaced(paced);
+  // The status bar is built before the previews update: one more frame shows what they did (a mesh
+  // that arrived without input would otherwise sit under a stale "refining" until the idle tick).
+  // Paced, the next frame comes with the next mesh or input anyway.
+  rs.animating = movesOnItsOwn || (!paced && (ImGui::IsAnyMouseDown() || ectx_.stats.previewInfo != f.previewInfoDrawn));
+  rs.jobRunning = ui_.output().jobRunning || viewport_.morphPreparing();  // polled ten times a second
+  rs.textInput = ImGui::GetIO().WantTextInput;
+  double waitSec = redraw_.waitAfterFrame(rs);
+  pacer_.setIntervalSec(ScrubPacer::intervalFor(document_->project().timeline.fps));
+  if (paced)
+    waitSec = pacer_.waitSec(clock_.sinceStartMs() / 1000.0, windowEventCount(), PreviewPolygonizer::publishedTotal());
+  if (uiMapPath_ && (frameCount_ % 3 == 0 || waitSec > 0.0))
+    writeEditorUiMap(uiMapPath_, ui_, ectx_, frameCount_,
+                     {rs.awaitingWork, waitSec > 0.0, clock_.tickEpochSec(),
+                      vf.morphStageShown ? vf.morphBackend.gpu : vf.backend.gpu, gpuSide_->swapchain->presentPath(),
+                      vf.particlesShown, paced});
+  const std::string title = "Animorph - " + document_->displayName() + (document_->dirty() ? " *" : "");
+  if (title != lastTitle_) glfwSetWindowTitle(window_, (lastTitle_ = title).c_str());
+  if (waitSec <= 0.0) return;
+  Status flushed = gpuSide_->swapchain->flushPresentation();  // the last frame is in the window before we wait
+  if (!flushed) std::fprintf(stderr, "animorph: %s\n", flushed.error().c_str());
+  glfwWaitEventsTimeout(waitSec);
+  // Paced: events before the interval is up (the cursor moving) are taken in by the next frame.
+  while (paced && (waitSec = pacer_.waitSec(clock_.sinceStartMs() / 1000.0, windowEventCount(),
+                                            PreviewPolygonizer::publishedTotal())) > 0.0)
+    glfwWaitEventsTimeout(waitSec);
+  if (!paced) clock_.woke();  // frame times and playback count from the wake, not the wait
+}
+
+int Editor::finish() {
+  if (gpuSide_) {  // else: the device was lost and could not be remade (said above)
+    automation_.printBench(gpuSide_->ctx->deviceName(), gpuSide_->swapchain->presentPath());
+    gpuSide_->ctx->waitIdle();
+    if (gpuSide_->ctx->validationEnabled() && gpuSide_->ctx->validationErrorCount() > 0) {
+      std::fprintf(stderr, "animorph: %u Vulkan validation error(s)\n", gpuSide_->ctx->validationErrorCount());
+      exitCode_ = 3;
+    }
+  }
+  ui_.savePreferences();
+  gpuSide_.reset();
+  closeEditorWindow(window_);
+  return exitCode_;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   FrameClock clock;
   EditorArgs args;
@@ -41,140 +247,9 @@ int main(int argc, char** argv) {
     closeEditorWindow(window);
     return 1;
   }
-  std::unique_ptr<EditorGpu> gpuSide = std::move(*gpuR);
-
-  EditorUI ui;
-  const char* demoDir = std::getenv("ANIMORPH_DEMO_DIR");  // Help > Demos: the repository's by default
-  ui.setDemoDir(demoDir ? demoDir : ANIMORPH_SOURCE_DIR "/resources/demo");
-  AssetCache assets;
-  std::unique_ptr<Document> document = std::make_unique<Document>();
-  if (!args.project.empty()) ui.requestOpen(args.project);
-  EditorContext ectx(document, assets);
-  ectx.playblast = gpu::playblastProject;  // File > Export > Playblast...: its own offscreen device
-  const char* uiMapPath = std::getenv("ANIMORPH_UI_MAP");
-  const char* redrawEnv = std::getenv("ANIMORPH_REDRAW");
-  const bool continuousRedraw = redrawEnv && std::strcmp(redrawEnv, "continuous") == 0;
-  EditorAutomation automation(args);
-  ViewportFrame viewport(ui.state().prefs.previewDevice);
-  RedrawPolicy redraw;  // on demand: an idle editor waits for events
-  ScrubPacer pacer;     // while scrubbing a CPU preview: a frame per new mesh, input at most once an interval
-  gpu::Scene scene;
-  std::string lastTitle, pendingCapture;
-  int frameCount = 0, captureFrames = 0;  // captureFrames: since pendingCapture was set (taken on the second)
-  int exitCode = 0;
-  uint64_t eventsSeen = 0;
+  Editor editor(args, window, ss, std::move(*gpuR), clock);
   clock.startFrames();
-
-  for (;;) {
-    glfwPollEvents();
-    if (gpu::deviceLost()) {
-      auto recovered = recoverLostDevice(window, ss, *document, ectx.nowSec, gpuSide);
-      if (!recovered) {
-        exitCode = 1;
-        break;
-      }
-      viewport.forgetPrewarm();
-      ui.state().status = {*recovered, true};
-    }
-    const uint64_t events = windowEventCount();
-    const bool inputThisFrame = events != eventsSeen;
-    eventsSeen = events;
-    if (auto dropped = takeDroppedPaths(); !dropped.empty()) ui.requestDrop(std::move(dropped));
-    if (glfwWindowShouldClose(window)) {
-      glfwSetWindowShouldClose(window, GLFW_FALSE);
-      ui.requestQuit();
-    }
-    clock.tick();
-    ectx.nowSec = clock.nowSec();
-    ectx.dtSec = clock.dtSec();
-    ectx.stats.frameMs = static_cast<float>(clock.smoothedMs());
-    ectx.stats.fps = static_cast<float>(clock.smoothedMs() > 0.0 ? 1000.0 / clock.smoothedMs() : 0.0);
-    ectx.stats.deviceName = gpuSide->ctx->deviceName();
-    automation.beforeUi(*document, ui.state().playback, ectx.nowSec, frameCount,
-                        ui.output().jobRunning || viewport.morphPreparing());
-
-    gpuSide->imgui->newFrame();
-    const std::string previewInfoDrawn = ectx.stats.previewInfo;  // the status bar below shows this one
-    viewport.updateMorphRuntime(ectx, ui.output());  // the inspector shows this frame's morph
-    ui.draw(ectx);
-    ImGui::Render();
-    const EditorOutput& out = ui.output();
-    if (out.quit) break;
-    if (out.screenshotPath) pendingCapture = *out.screenshotPath;
-    if (auto due = automation.screenshotDue(frameCount, out.jobRunning || viewport.morphPreparing())) pendingCapture = *due;
-    pacer.frameStarted(ectx.nowSec, events, PreviewPolygonizer::publishedTotal());  // meshes after this are new
-    const ViewportFrameResult vf = viewport.build(*gpuSide, ui, ectx, !pendingCapture.empty(), scene);
-    // The first frame settles the previews; the second, whose status bar already shows them, is captured.
-    if (!pendingCapture.empty() && captureFrames++ >= 1) gpuSide->swapchain->requestCapture();
-    const PresentedFrame shown = presentFrame(*gpuSide, out.viewport, out.camera, scene, pendingCapture);
-    if (shown.status == gpu::FrameStatus::Ready) automation.firstFrameShown(clock.sinceStartMs());
-    if (shown.captured) {
-      pendingCapture.clear();
-      captureFrames = 0;
-      if (automation.quitAfterScreenshot()) break;
-    }
-    if (shown.status == gpu::FrameStatus::Failed) glfwWaitEventsTimeout(0.1);
-    gpuSide->meshes->endFrame();
-    gpuSide->blobPreviews->endFrame();
-    gpuSide->standinBindings->endFrame();
-    gpuSide->morphPreview->endFrame();
-    ++frameCount;
-    const bool blobBusy = gpuSide->blobPreviews->busy(), morphBusy = gpuSide->morphPreview->busy();
-    if (automation.frameDone(frameCount, clock.dtSec(), ectx.nowSec, !blobBusy && !morphBusy, continuousRedraw)) break;
-
-    // Draw the next frame at once, or wait for input (on demand, as Blender does). A skipped
-    // frame (swapchain out of date) is drawn again at once; a minimised window waits.
-    int fbw = 0, fbh = 0;
-    glfwGetFramebufferSize(window, &fbw, &fbh);
-    RedrawState rs;
-    rs.input = inputThisFrame;
-    const bool movesOnItsOwn = ui.state().playback.playing() || gpuSide->blobPreviews->needsFrames() ||
-                               (vf.morphStageShown && gpuSide->morphPreview->needsFrames()) || vf.particlesShown ||
-                               frameCount < 10 || automation.needsFrames() || !pendingCapture.empty() ||
-                               (shown.status == gpu::FrameStatus::Skipped && fbw > 0 && fbh > 0) || continuousRedraw;
-    rs.awaitingWork = blobBusy || (vf.morphStageShown && morphBusy);
-    // Scrubbing while the CPU worker computes: paced (scene/scrub_pacing.h), not a frame per motion.
-    const bool paced = ScrubPacer::applies(ui.state().timeline.scrubbing, rs.awaitingWork, movesOnItsOwn);
-    viewport.setScrubPaced(paced);
-    // The status bar is built before the previews update: one more frame shows what they did (a mesh
-    // that arrived without input would otherwise sit under a stale "refining" until the idle tick).
-    // Paced, the next frame comes with the next mesh or input anyway.
-    rs.animating = movesOnItsOwn || (!paced && (ImGui::IsAnyMouseDown() || ectx.stats.previewInfo != previewInfoDrawn));
-    rs.jobRunning = out.jobRunning || viewport.morphPreparing();  // polled ten times a second
-    rs.textInput = ImGui::GetIO().WantTextInput;
-    double waitSec = redraw.waitAfterFrame(rs);
-    pacer.setIntervalSec(ScrubPacer::intervalFor(document->project().timeline.fps));
-    if (paced)
-      waitSec = pacer.waitSec(clock.sinceStartMs() / 1000.0, windowEventCount(), PreviewPolygonizer::publishedTotal());
-    if (uiMapPath && (frameCount % 3 == 0 || waitSec > 0.0))
-      writeEditorUiMap(uiMapPath, ui, ectx, frameCount,
-                       {rs.awaitingWork, waitSec > 0.0, clock.tickEpochSec(),
-                        vf.morphStageShown ? vf.morphBackend.gpu : vf.backend.gpu, gpuSide->swapchain->presentPath(),
-                        vf.particlesShown, paced});
-    const std::string title = "Animorph - " + document->displayName() + (document->dirty() ? " *" : "");
-    if (title != lastTitle) glfwSetWindowTitle(window, (lastTitle = title).c_str());
-    if (waitSec > 0.0) {
-      Status flushed = gpuSide->swapchain->flushPresentation();  // the last frame is in the window before we wait
-      if (!flushed) std::fprintf(stderr, "animorph: %s\n", flushed.error().c_str());
-      glfwWaitEventsTimeout(waitSec);
-      // Paced: events before the interval is up (the cursor moving) are taken in by the next frame.
-      while (paced && (waitSec = pacer.waitSec(clock.sinceStartMs() / 1000.0, windowEventCount(),
-                                               PreviewPolygonizer::publishedTotal())) > 0.0)
-        glfwWaitEventsTimeout(waitSec);
-      if (!paced) clock.woke();  // frame times and playback count from the wake, not the wait
-    }
+  while (editor.frame()) {
   }
-
-  if (gpuSide) {  // else: the device was lost and could not be remade (said above)
-    automation.printBench(gpuSide->ctx->deviceName(), gpuSide->swapchain->presentPath());
-    gpuSide->ctx->waitIdle();
-    if (gpuSide->ctx->validationEnabled() && gpuSide->ctx->validationErrorCount() > 0) {
-      std::fprintf(stderr, "animorph: %u Vulkan validation error(s)\n", gpuSide->ctx->validationErrorCount());
-      exitCode = 3;
-    }
-  }
-  ui.savePreferences();
-  gpuSide.reset();
-  closeEditorWindow(window);
-  return exitCode;
+  return editor.finish();
 }

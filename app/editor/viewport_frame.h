@@ -49,6 +49,22 @@ class ViewportFrame {
   void forgetPrewarm() { prewarmedMorph_ = nullptr; }
 
  private:
+  // What the morph shows this frame beside its transitions: the implicit stage's opacity (below 1:
+  // the cross-fade, dithered, complementary to the mesh) and whose actor it stands for.
+  struct MorphShown {
+    float opacity = 0.0f;
+    std::string sourceId;
+  };
+  // build's steps, in order (viewport_frame.cpp says what each does).
+  MorphShown applyMorphStage(EditorGpu& g, const Preferences& prefs, EditorContext& ectx, double timeSec, bool settle,
+                             int previewThreads, ViewportFrameResult& r);
+  std::vector<ParticleDraw> updateBlobPreviews(EditorGpu& g, EditorUI& ui, EditorContext& ectx, bool settle,
+                                               int previewThreads, ViewportFrameResult& r);
+  void applyClick(EditorGpu& g, EditorContext& ectx, const EditorOutput& out, double timeSec, bool morphStageShown);
+  void composeScene(EditorGpu& g, EditorUI& ui, EditorContext& ectx, double timeSec,
+                    const std::vector<ParticleDraw>& particles, const MorphShown& morph, const ViewportFrameResult& r,
+                    gpu::Scene& scene);
+
   MorphPreparer morphPreparer_;
   AnimorphosisCache animorphosisCache_;  // the generic tree C of the project's animorphosis
   MorphFrameSettings morphSettings_;             // the transitions; the B->C stage is the implicit preview's

@@ -388,6 +388,87 @@ void paint(BlobNode& n, const Palette& c, const std::string& part) {
   for (BlobNode& k : n.children) paint(k, c, here);
 }
 
+// The back between the shoulders: the dinosaur's quills, the dragon's wings.
+BlobNode buildBack(Builder& b, const BodyStyle& s) {
+  BlobNode back = b.frame("back", {0.2f, 0.26f * s.girth, 0});
+  if (!s.dragon) {
+    for (int row = 0; row < 5; ++row)
+      for (int q = 0; q < 22; ++q) {
+        float x = -0.7f + 0.05f * float(q), zq = 0.05f * float(row - 2);
+        float h = 0.07f + 0.05f * std::sin(3.14159265f * float(q) / 21.0f);
+        ControlPoints pts = {Vec3Track(glm::vec3(x, -0.02f - 0.02f * std::abs(float(row - 2)), zq)),
+                             Vec3Track(glm::vec3(x - 0.02f, h * 0.6f, zq * 1.1f)),
+                             Vec3Track(glm::vec3(x - 0.06f, h, zq * 1.2f))};
+        BlobNode quill = b.pointSpline("quill_" + std::to_string(row) + "_" + std::to_string(q), std::move(pts), 5.0f,
+                                       0.075f, 0.04f, 0.9f, "");
+        back.children.push_back(std::move(quill));
+      }
+  } else {
+    back.children.push_back(buildWing(b, s, "l"));
+    back.children.push_back(buildWing(b, s, "r"));
+  }
+  return back;
+}
+
+// The neck, the head on it and the jaw: the dinosaur's teeth, the dragon's horns.
+BlobNode buildNeck(Builder& b, const BodyStyle& s) {
+  const double loop = s.loopSec, w = kTwoPi / loop;
+  BlobNode neck = b.frame("neck", {0.62f, 0.16f, 0});
+  neck.quatParam("rotation") = rotationLoop(loop, {0, 0, 1}, [=](double t) {
+    return (s.dragon ? 0.1f : -0.05f) + 0.06f * float(std::sin(w * t + 0.7));
+  });
+  float nl = s.neckLength;
+  glm::vec3 neckEnd(0.8f * nl, 1.0f * nl, 0);
+  neck.children.push_back(b.part("neckflesh", {{-0.05f, -0.02f, 0}, 0.5f * neckEnd + glm::vec3(0.04f, 0, 0), neckEnd},
+                                  {0.22f, 0.18f, 0.15f}));
+  BlobNode head = b.frame("head", neckEnd);
+  head.quatParam("rotation") = rotationLoop(loop, {0, 0, 1}, [=](double t) {
+    return -0.15f - 0.08f * float(std::sin(w * t + 1.4));
+  });
+  head.children.push_back(b.part("skull", {{-0.06f, 0.04f, 0}, {0.2f, 0.02f, 0}, {0.45f, -0.04f, 0}}, {0.17f, 0.14f, 0.08f}));
+  BlobNode jaw = b.frame("jaw", {-0.02f, -0.08f, 0});
+  jaw.quatParam("rotation") = rotationLoop(loop, {0, 0, 1}, [=](double t) {
+    return -0.12f - 0.1f * float(0.5 + 0.5 * std::sin(2.0 * w * t));
+  });
+  jaw.children.push_back(b.part("jawflesh", {{-0.02f, 0, 0}, {0.2f, -0.04f, 0}, {0.42f, -0.04f, 0}}, {0.1f, 0.08f, 0.05f}));
+  if (!s.dragon)
+    for (int side = -1; side <= 1; side += 2)
+      for (int k = 0; k < 8; ++k) {
+        float x = 0.1f + 0.04f * float(k), zt = float(side) * (0.055f - 0.004f * float(k));
+        std::string n = std::string(side < 0 ? "r" : "l") + std::to_string(k);
+        head.children.push_back(b.cone("tooth_" + n, {x, -0.09f, zt}, {x + 0.01f, -0.16f, zt}, 0.014f, 0.003f, 0.03f));
+        jaw.children.push_back(b.cone("lowtooth_" + n, {x, 0.0f, zt}, {x + 0.01f, 0.06f, zt}, 0.012f, 0.003f, 0.03f));
+      }
+  else
+    for (int side = -1; side <= 1; side += 2)
+      head.children.push_back(b.part(std::string("horn_") + (side < 0 ? "r" : "l"),
+                                      {{-0.02f, 0.12f, 0.07f * side}, {-0.16f, 0.2f, 0.1f * side}, {-0.3f, 0.24f, 0.12f * side}},
+                                      {0.05f, 0.038f, 0.025f}, &kBoneLayers));
+  head.children.push_back(std::move(jaw));
+  neck.children.push_back(std::move(head));
+  return neck;
+}
+
+BlobNode buildTail(Builder& b, const BodyStyle& s) {
+  const double loop = s.loopSec, w = kTwoPi / loop;
+  // The tail: fibres whose control points sway sideways, the wave running to the tip.
+  BlobNode tailFrame = b.frame("tail", {-0.4f, 0.04f, 0});
+  float tl = s.tailLength;
+  PartSpec tail;
+  tail.name = "tailflesh";
+  tail.axis = {{0.05f, 0, 0}, {-0.25f * tl, 0.02f, 0}, {-0.5f * tl, -0.02f, 0}, {-0.75f * tl, 0.0f, 0}, {-tl, 0.06f, 0}};
+  tail.radii = {0.27f, 0.2f, 0.14f, 0.09f, 0.055f};
+  tail.loopSec = loop;
+  float amp = s.dragon ? 0.18f : 0.12f;
+  tail.sway = [=](int j, double t) {
+    float reach = float(j) / 4.0f;
+    return glm::vec3(0, s.dragon ? 0.05f * reach * float(std::sin(w * t - 1.2 * j)) : 0.0f,
+                     amp * reach * reach * 2.0f * float(std::sin(w * t - 0.9 * j)));
+  };
+  tailFrame.children.push_back(b.part(tail));
+  return tailFrame;
+}
+
 BlobTree buildCreature(const BodyStyle& s) {
   Builder b;
   BlobTree tree;
@@ -426,60 +507,9 @@ BlobTree buildCreature(const BodyStyle& s) {
   });
   chest.children.push_back(b.part("torso", {{-0.1f, 0, 0}, {0.25f, 0.06f, 0}, {0.6f, 0.16f, 0}}, {0.34f * g, 0.33f * g, 0.24f * g}));
 
-  // The back between the shoulders: the dinosaur's quills, the dragon's wings.
-  BlobNode back = b.frame("back", {0.2f, 0.26f * g, 0});
-  if (!s.dragon) {
-    for (int row = 0; row < 5; ++row)
-      for (int q = 0; q < 22; ++q) {
-        float x = -0.7f + 0.05f * float(q), zq = 0.05f * float(row - 2);
-        float h = 0.07f + 0.05f * std::sin(3.14159265f * float(q) / 21.0f);
-        ControlPoints pts = {Vec3Track(glm::vec3(x, -0.02f - 0.02f * std::abs(float(row - 2)), zq)),
-                             Vec3Track(glm::vec3(x - 0.02f, h * 0.6f, zq * 1.1f)),
-                             Vec3Track(glm::vec3(x - 0.06f, h, zq * 1.2f))};
-        BlobNode quill = b.pointSpline("quill_" + std::to_string(row) + "_" + std::to_string(q), std::move(pts), 5.0f,
-                                       0.075f, 0.04f, 0.9f, "");
-        back.children.push_back(std::move(quill));
-      }
-  } else {
-    back.children.push_back(buildWing(b, s, "l"));
-    back.children.push_back(buildWing(b, s, "r"));
-  }
-  chest.children.push_back(std::move(back));
+  chest.children.push_back(buildBack(b, s));
 
-  BlobNode neck = b.frame("neck", {0.62f, 0.16f, 0});
-  neck.quatParam("rotation") = rotationLoop(loop, {0, 0, 1}, [=](double t) {
-    return (s.dragon ? 0.1f : -0.05f) + 0.06f * float(std::sin(w * t + 0.7));
-  });
-  float nl = s.neckLength;
-  glm::vec3 neckEnd(0.8f * nl, 1.0f * nl, 0);
-  neck.children.push_back(b.part("neckflesh", {{-0.05f, -0.02f, 0}, 0.5f * neckEnd + glm::vec3(0.04f, 0, 0), neckEnd},
-                                  {0.22f, 0.18f, 0.15f}));
-  BlobNode head = b.frame("head", neckEnd);
-  head.quatParam("rotation") = rotationLoop(loop, {0, 0, 1}, [=](double t) {
-    return -0.15f - 0.08f * float(std::sin(w * t + 1.4));
-  });
-  head.children.push_back(b.part("skull", {{-0.06f, 0.04f, 0}, {0.2f, 0.02f, 0}, {0.45f, -0.04f, 0}}, {0.17f, 0.14f, 0.08f}));
-  BlobNode jaw = b.frame("jaw", {-0.02f, -0.08f, 0});
-  jaw.quatParam("rotation") = rotationLoop(loop, {0, 0, 1}, [=](double t) {
-    return -0.12f - 0.1f * float(0.5 + 0.5 * std::sin(2.0 * w * t));
-  });
-  jaw.children.push_back(b.part("jawflesh", {{-0.02f, 0, 0}, {0.2f, -0.04f, 0}, {0.42f, -0.04f, 0}}, {0.1f, 0.08f, 0.05f}));
-  if (!s.dragon)
-    for (int side = -1; side <= 1; side += 2)
-      for (int k = 0; k < 8; ++k) {
-        float x = 0.1f + 0.04f * float(k), zt = float(side) * (0.055f - 0.004f * float(k));
-        std::string n = std::string(side < 0 ? "r" : "l") + std::to_string(k);
-        head.children.push_back(b.cone("tooth_" + n, {x, -0.09f, zt}, {x + 0.01f, -0.16f, zt}, 0.014f, 0.003f, 0.03f));
-        jaw.children.push_back(b.cone("lowtooth_" + n, {x, 0.0f, zt}, {x + 0.01f, 0.06f, zt}, 0.012f, 0.003f, 0.03f));
-      }
-  else
-    for (int side = -1; side <= 1; side += 2)
-      head.children.push_back(b.part(std::string("horn_") + (side < 0 ? "r" : "l"),
-                                      {{-0.02f, 0.12f, 0.07f * side}, {-0.16f, 0.2f, 0.1f * side}, {-0.3f, 0.24f, 0.12f * side}},
-                                      {0.05f, 0.038f, 0.025f}, &kBoneLayers));
-  head.children.push_back(std::move(jaw));
-  neck.children.push_back(std::move(head));
-  chest.children.push_back(std::move(neck));
+  chest.children.push_back(buildNeck(b, s));
   chest.children.push_back(buildArm(b, s, "l", 0.2f, 0.0f));
   chest.children.push_back(buildArm(b, s, "r", -0.2f, 3.14159265f));
   pelvis.children.push_back(std::move(chest));
@@ -487,22 +517,7 @@ BlobTree buildCreature(const BodyStyle& s) {
   pelvis.children.push_back(buildLeg(b, s, "l", 0.22f, 0.0f));
   pelvis.children.push_back(buildLeg(b, s, "r", -0.22f, 3.14159265f));
 
-  // The tail: fibres whose control points sway sideways, the wave running to the tip.
-  BlobNode tailFrame = b.frame("tail", {-0.4f, 0.04f, 0});
-  float tl = s.tailLength;
-  PartSpec tail;
-  tail.name = "tailflesh";
-  tail.axis = {{0.05f, 0, 0}, {-0.25f * tl, 0.02f, 0}, {-0.5f * tl, -0.02f, 0}, {-0.75f * tl, 0.0f, 0}, {-tl, 0.06f, 0}};
-  tail.radii = {0.27f, 0.2f, 0.14f, 0.09f, 0.055f};
-  tail.loopSec = loop;
-  float amp = s.dragon ? 0.18f : 0.12f;
-  tail.sway = [=](int j, double t) {
-    float reach = float(j) / 4.0f;
-    return glm::vec3(0, s.dragon ? 0.05f * reach * float(std::sin(w * t - 1.2 * j)) : 0.0f,
-                     amp * reach * reach * 2.0f * float(std::sin(w * t - 0.9 * j)));
-  };
-  tailFrame.children.push_back(b.part(tail));
-  pelvis.children.push_back(std::move(tailFrame));
+  pelvis.children.push_back(buildTail(b, s));
 
   flight.children.push_back(std::move(pelvis));
   tree.root.children.push_back(std::move(flight));

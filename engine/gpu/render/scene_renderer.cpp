@@ -156,9 +156,30 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(Context& ctx, VkRen
 }
 
 Status SceneRenderer::init(VkRenderPass renderPass, SceneRendererSettings settings) {
-  VkDevice dev = ctx_.device();
   edgeListWireframe_ = settings.forceEdgeListWireframe || !ctx_.supportsWireframeFill();
+  if (Status s = createLayouts(); !s) return s;
+  if (Status s = createDescriptorPool(); !s) return s;
+  if (Status s = createPipelines(renderPass); !s) return s;
+  if (Status st = initMorphPlaceholder(); !st) return st;
+  TextureImage white;
+  white.name = "white placeholder";
+  white.width = white.height = 1;
+  white.rgba = std::make_shared<const std::vector<uint8_t>>(4, uint8_t(255));
+  Result<std::unique_ptr<GpuTexture>> whiteTex = GpuTexture::upload(ctx_, white);
+  if (!whiteTex) return Error{whiteTex.error()};
+  whiteTexture_ = std::move(*whiteTex);
+  for (uint32_t i = 0; i < kFramesInFlight; ++i) {
+    slots_.push_back(std::make_unique<Slot>());
+    Status s = reserve(*slots_.back(), 0, 0);  // initial capacity: steady frames allocate nothing
+    if (!s) return s;
+  }
+  return Status::success();
+}
 
+// The descriptor set layouts (frame + joints, the transitions' parameters, blend shapes, material)
+// and the two pipeline layouts over all four.
+Status SceneRenderer::createLayouts() {
+  VkDevice dev = ctx_.device();
   VkDescriptorSetLayoutBinding b[2]{};
   b[0] = {kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 1, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
   b[1] = {kBindingJoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr};
@@ -194,7 +215,11 @@ Status SceneRenderer::init(VkRenderPass renderPass, SceneRendererSettings settin
   AM_VK_TRY(vkCreatePipelineLayout(dev, &pli, nullptr, &transitionLayout_), "vkCreatePipelineLayout");
   const VkDeviceSize storageAlign = std::max<VkDeviceSize>(ctx_.properties().limits.minStorageBufferOffsetAlignment, 16);
   transitionParamStride_ = (sizeof(TransitionParams) + storageAlign - 1) / storageAlign * storageAlign;
+  return Status::success();
+}
 
+Status SceneRenderer::createDescriptorPool() {
+  VkDevice dev = ctx_.device();
   // Sets are replaced only when a ring buffer grows: a few per slot over a session.
   constexpr uint32_t kMaxSets = 64;
   VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, kMaxSets},
@@ -208,7 +233,13 @@ Status SceneRenderer::init(VkRenderPass renderPass, SceneRendererSettings settin
   AM_VK_TRY(vkCreateDescriptorPool(dev, &dpi, nullptr, &descriptorPool_), "vkCreateDescriptorPool");
   const VkDeviceSize align = std::max<VkDeviceSize>(ctx_.properties().limits.minUniformBufferOffsetAlignment, 16);
   uniformStride_ = (sizeof(FrameUniforms) + align - 1) / align * align;
+  return Status::success();
+}
 
+// Every pipeline the renderer draws with (mesh, dithered, transition, wireframe, generated,
+// overlays), on renderPass.
+Status SceneRenderer::createPipelines(VkRenderPass renderPass) {
+  VkDevice dev = ctx_.device();
   const VkCullModeFlags back = VK_CULL_MODE_BACK_BIT, none = VK_CULL_MODE_NONE;
   auto meshDesc = [](VkCullModeFlags cull) {
     PipelineDesc d{"mesh.vert", "mesh_material.frag", VertexInput::Mesh, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST};
@@ -282,19 +313,6 @@ Status SceneRenderer::init(VkRenderPass renderPass, SceneRendererSettings settin
     generatedWirePipeline_ = *p;
   }
 
-  if (Status st = initMorphPlaceholder(); !st) return st;
-  TextureImage white;
-  white.name = "white placeholder";
-  white.width = white.height = 1;
-  white.rgba = std::make_shared<const std::vector<uint8_t>>(4, uint8_t(255));
-  Result<std::unique_ptr<GpuTexture>> whiteTex = GpuTexture::upload(ctx_, white);
-  if (!whiteTex) return Error{whiteTex.error()};
-  whiteTexture_ = std::move(*whiteTex);
-  for (uint32_t i = 0; i < kFramesInFlight; ++i) {
-    slots_.push_back(std::make_unique<Slot>());
-    Status s = reserve(*slots_.back(), 0, 0);  // initial capacity: steady frames allocate nothing
-    if (!s) return s;
-  }
   return Status::success();
 }
 

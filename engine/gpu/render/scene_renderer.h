@@ -164,6 +164,10 @@ class SceneRenderer {
   struct Slot;
   explicit SceneRenderer(Context& ctx);
   Status init(VkRenderPass renderPass, SceneRendererSettings settings);
+  // init's steps, in order; each returns what failed to be made.
+  Status createLayouts();
+  Status createDescriptorPool();
+  Status createPipelines(VkRenderPass renderPass);
   Status reserve(Slot& slot, VkDeviceSize jointBytes, VkDeviceSize lineBytes, VkDeviceSize weightBytes = 0,
                  VkDeviceSize particleBytes = 0);
   Status reserveTransitionParams(Slot& slot, VkDeviceSize bytes);

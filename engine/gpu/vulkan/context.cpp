@@ -84,10 +84,28 @@ Result<std::unique_ptr<Context>> Context::create(const ContextSettings& settings
 Status Context::init(const ContextSettings& settings) {
   window_ = settings.window;
   counters_->print = settings.printValidationMessages;
+  if (Status s = createInstance(settings.validation); !s) return s;
+  if (window_) AM_VK_TRY(glfwCreateWindowSurface(instance_, window_, nullptr, &surface_), "glfwCreateWindowSurface");
+  if (Status s = choosePhysicalDevice(settings.deviceOverride); !s) return s;
+  if (Status s = createDevice(); !s) return s;
+  if (Status s = chooseDepthFormat(); !s) return s;
+  if (Status c = createCommandResources(device_, queueFamily_, 1, &immediatePool_, &immediateCmd_, &immediateFence_); !c)
+    return Error{c.error()};
 
+  VkDescriptorPoolSize uiSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 64};
+  VkDescriptorPoolCreateInfo dpi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  dpi.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
+  dpi.maxSets = 64;
+  dpi.poolSizeCount = 1;
+  dpi.pPoolSizes = &uiSize;
+  AM_VK_TRY(vkCreateDescriptorPool(device_, &dpi, nullptr, &uiDescriptorPool_), "vkCreateDescriptorPool (UI)");
+  return Status::success();
+}
+
+Status Context::createInstance(bool validation) {
   std::vector<const char*> layers;
   std::vector<const char*> extensions;
-  if (settings.validation) {
+  if (validation) {
     if (hasLayer(kValidationLayer)) {
       layers.push_back(kValidationLayer);
       validationEnabled_ = true;
@@ -132,9 +150,10 @@ Status Context::init(const ContextSettings& settings) {
         vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
     if (create) AM_VK_TRY(create(instance_, &messengerInfo, nullptr, &messenger_), "vkCreateDebugUtilsMessengerEXT");
   }
+  return Status::success();
+}
 
-  if (window_) AM_VK_TRY(glfwCreateWindowSurface(instance_, window_, nullptr, &surface_), "glfwCreateWindowSurface");
-
+Status Context::choosePhysicalDevice(const std::string& deviceOverride) {
   uint32_t count = 0;
   vkEnumeratePhysicalDevices(instance_, &count, nullptr);
   std::vector<VkPhysicalDevice> physicals(count);
@@ -151,14 +170,17 @@ Status Context::init(const ContextSettings& settings) {
                (!window_ || hasDeviceExtension(pd, VK_KHR_SWAPCHAIN_EXTENSION_NAME));
     candidates.push_back(c);
   }
-  Result<size_t> picked = pickPhysicalDevice(candidates, settings.deviceOverride);
+  Result<size_t> picked = pickPhysicalDevice(candidates, deviceOverride);
   if (!picked) return Error{picked.error()};
   physical_ = physicals[*picked];
   vkGetPhysicalDeviceProperties(physical_, &properties_);
   vkGetPhysicalDeviceMemoryProperties(physical_, &memory_);
   deviceName_ = properties_.deviceName;
   queueFamily_ = static_cast<uint32_t>(findQueueFamily(physical_, surface_));
+  return Status::success();
+}
 
+Status Context::createDevice() {
   VkPhysicalDeviceFeatures supported{};
   vkGetPhysicalDeviceFeatures(physical_, &supported);
   VkPhysicalDeviceFeatures enabled{};
@@ -189,7 +211,10 @@ Status Context::init(const ContextSettings& settings) {
   dci.pEnabledFeatures = &enabled;
   AM_VK_TRY(vkCreateDevice(physical_, &dci, nullptr, &device_), "vkCreateDevice (" + deviceName_ + ")");
   vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
+  return Status::success();
+}
 
+Status Context::chooseDepthFormat() {
   depthFormat_ = VK_FORMAT_UNDEFINED;
   for (VkFormat f : {VK_FORMAT_D32_SFLOAT, VK_FORMAT_X8_D24_UNORM_PACK32, VK_FORMAT_D24_UNORM_S8_UINT,
                      VK_FORMAT_D16_UNORM}) {
@@ -197,22 +222,10 @@ Status Context::init(const ContextSettings& settings) {
     vkGetPhysicalDeviceFormatProperties(physical_, f, &fp);
     if (fp.optimalTilingFeatures & VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT) {
       depthFormat_ = f;
-      break;
+      return Status::success();
     }
   }
-  if (depthFormat_ == VK_FORMAT_UNDEFINED) return Error{deviceName_ + " supports no depth attachment format"};
-
-  if (Status c = createCommandResources(device_, queueFamily_, 1, &immediatePool_, &immediateCmd_, &immediateFence_); !c)
-    return Error{c.error()};
-
-  VkDescriptorPoolSize uiSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 64};
-  VkDescriptorPoolCreateInfo dpi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  dpi.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
-  dpi.maxSets = 64;
-  dpi.poolSizeCount = 1;
-  dpi.pPoolSizes = &uiSize;
-  AM_VK_TRY(vkCreateDescriptorPool(device_, &dpi, nullptr, &uiDescriptorPool_), "vkCreateDescriptorPool (UI)");
-  return Status::success();
+  return Error{deviceName_ + " supports no depth attachment format"};
 }
 
 Context::~Context() {

@@ -84,6 +84,13 @@ class Context {
  private:
   Context() = default;
   Status init(const ContextSettings& settings);
+  // init's steps, in order: the instance (validation layer and debug messenger when asked and
+  // installed), the physical device (pickPhysicalDevice over the usable ones), the logical device
+  // and its queue, the depth format. Each returns what failed.
+  Status createInstance(bool validation);
+  Status choosePhysicalDevice(const std::string& deviceOverride);
+  Status createDevice();
+  Status chooseDepthFormat();
 
   std::unique_ptr<ValidationCounters> counters_ = std::make_unique<ValidationCounters>();
   GLFWwindow* window_ = nullptr;
