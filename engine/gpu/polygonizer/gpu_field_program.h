@@ -28,6 +28,12 @@ struct PackedFieldPrograms {
   // AM_FEAT_OP_BIT / AM_FEAT_CLASS_BIT bits, and AM_KIND_SKEL_BIT / AM_KIND_MAP_BIT bits.
   uint32_t features = 0;
   uint32_t kinds = 0;
+  // Where each program's records start in the pool: operator parameters (in floats: 4 a word),
+  // maps, and the primitives of each PrimClass. Op lists packed later (appendRegionOpLists) point
+  // into the same records.
+  uint32_t paramsBase[2] = {0, 0};
+  uint32_t mapsBase[2] = {0, 0};
+  uint32_t classBase[2][3] = {{0, 0, 0}, {0, 0, 0}};
   uint32_t primitiveTotal() const { return primCount[0] + primCount[1]; }
 };
 
