@@ -48,7 +48,8 @@ std::string gpuUnsupportedReason(const FieldProgram& program);
 // every primitive of a skeletal or capsule run stepped over, operators' operands, the coarse
 // pass's primitive lists. The kernels of the primitives reaching a block add to it. lavapipe
 // stops a shader invocation's loops past AM_POLY_LLVMPIPE_LOOP_LIMIT (poly_constants.h): programs
-// estimated above it are refused there up front; the passes detect the rest (AM_OVERFLOW_LOOPS).
+// estimated above it are walked per region there (gpu_region_op_lists.h), or refused up front when
+// region programs are off; the passes detect the rest (AM_OVERFLOW_LOOPS).
 uint64_t gpuLoopIterationEstimate(const FieldProgram& a, const FieldProgram* b = nullptr);
 
 // Packs a (and b, when non-null) for the shaders. Errors: gpuUnsupportedReason's,
