@@ -43,6 +43,9 @@ class EditorAutomation {
   double scrubStartSec_ = -1.0;
   double firstFrameMs_ = -1.0;
   std::vector<double> frameMs_;
+  // --bench: the editor process's processor time (all its threads) when the first measured frame
+  // started, and when the last ended: frames shown per second and processor time per frame.
+  double benchCpuStartSec_ = -1.0, benchCpuEndSec_ = -1.0;
   // --idle-bench: from 2 s after start-up (the project open, the previews refined), S seconds without input.
   double idleStartSec_ = -1.0, idleStartCpu_ = 0.0;
   int idleStartFrames_ = 0;

@@ -41,16 +41,29 @@ void coarsePass() {
     uvec3 cnt = min(uvec3(AM_POLY_SUPER * AM_POLY_BLOCK), P.gridCells.xyz - c0);
     vec3 dlo = cornerPosition(c0) - grow, dhi = cornerPosition(c0 + cnt) + grow;
     uint maskBase = (P.gridBlocks.w + s) * words;
-    for (uint w = 0u; w < words; ++w) {
-      uint bits = 0u;
-      for (uint k = 0u; k < 32u; ++k) {
-        uint g = w * 32u + k;
-        if (g >= total) break;
-        if (reaches(g, dlo, dhi)) bits |= 1u << k;
+    if (P.regions.x != 0u) {
+      // Per-region lists: the CPU listed the superblock's primitives with its op lists (the same
+      // test on the same grown box); a loop over every primitive would outrun lavapipe's loop limit.
+      for (uint w = 0u; w < words; ++w) {
+        uint q = P.regions.z + s * words + w;
+        blockMask[maskBase + w] = pool[q >> 2][q & 3u];
       }
-      blockMask[maskBase + w] = bits;
+    } else {
+      for (uint w = 0u; w < words; ++w) {
+        uint bits = 0u;
+        for (uint k = 0u; k < 32u; ++k) {
+          uint g = w * 32u + k;
+          if (g >= total) break;
+          if (reaches(g, dlo, dhi)) bits |= 1u << k;
+        }
+        blockMask[maskBase + w] = bits;
+      }
     }
-    superFlag[s] = canHoldSurface(c0, cnt, maskBase) ? 1u : 0u;
+    selectSuperblockOps(s);
+    // AM_POLY_NONE: the superblock's list is too long to walk here (gpu_polygonizer.cpp); its
+    // blocks test themselves (its op count is 0, so the walk below costs nothing).
+    bool untested = gOps.x == AM_POLY_NONE;
+    superFlag[s] = untested || canHoldSurface(c0, cnt, maskBase) ? 1u : 0u;
     return;
   }
   uint b = gl_GlobalInvocationID.x;
@@ -70,6 +83,7 @@ void coarsePass() {
   }
   uvec3 c0 = bc * uint(AM_POLY_BLOCK);
   uvec3 cnt = blockCells(bc);
+  selectRegionOps(regionOf(bc));
   vec3 dlo = cornerPosition(c0) - grow, dhi = cornerPosition(c0 + cnt) + grow;
   for (uint w = 0u; w < words; ++w) {
     uint candidates = blockMask[(P.gridBlocks.w + s) * words + w], bits = 0u;

@@ -158,6 +158,7 @@ void cellsPass() {
   uint t = gl_LocalInvocationID.x;
   uvec3 bc = unpackBlockCoord(activeBlocks[slot]);
   uint b = blockIndex(bc);
+  selectRegionOps(regionOf(bc));
   uvec3 c0 = bc * uint(AM_POLY_BLOCK);
   uvec3 cnt = blockCells(bc);
   if (t < uint(AM_POLY_EDGE_WORDS)) sMask[t] = 0u;

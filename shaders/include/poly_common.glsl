@@ -55,6 +55,10 @@ layout(set = 0, binding = AM_PB_PARAMS, std430) readonly buffer PolyParams {
   uvec4 caps;       // x: vertex capacity, y: triangle capacity, z: total primitives, w: 1 (kept opaque to the compiler: no unrolling)
   vec4 extra;       // x: reach dilation of a block box (m)
   uvec4 superBlocks; // xyz: superblocks per axis; w: total
+  uvec4 regions;    // x: 1 when the pool holds per-region op lists (gpu_region_op_lists.h), y: the superblocks'
+                    // table (pool index, a uvec4 per superblock), z: their primitive masks (pool word index),
+                    // w: log2 of the blocks a side of the regions whose lists the blocks walk (2: superblocks)
+  uvec4 regionLists; // x: the blocks' regions' table, y, z: regions along x and y
 } P;
 
 #if AM_POOL_STORAGE
@@ -64,6 +68,25 @@ layout(set = 0, binding = AM_PB_POOL_UBO, std140) uniform PoolUniform { uvec4 po
 #endif
 #define POOLF(i) uintBitsToFloat(pool[i])
 #define POOLU(i) pool[i]
+
+// The op lists the interpreters walk: x, y program A's first op record and op count, z, w B's. The
+// whole programs, or with per-region lists (P.regions.x) those of one superblock: its programs
+// specialised on the CPU to the primitives reaching it. Each pass selects them per block.
+uvec4 gOps;
+// The superblock's lists (its coarse pass).
+void selectSuperblockOps(uint superblock) {
+  gOps = P.regions.x != 0u ? POOLU(P.regions.y + superblock) : uvec4(P.progA.xy, P.progB.xy);
+}
+// The region (P.regions.w) holding block bc: 0 without region lists.
+uint regionOf(uvec3 bc) {
+  if (P.regions.x == 0u) return 0u;
+  uvec3 rc = bc >> P.regions.w;
+  return rc.x + P.regionLists.y * (rc.y + P.regionLists.z * rc.z);
+}
+// The lists of a block's region (its coarse and fine passes).
+void selectRegionOps(uint region) {
+  gOps = P.regions.x != 0u ? POOLU(P.regionLists.x + region) : uvec4(P.progA.xy, P.progB.xy);
+}
 
 layout(set = 0, binding = AM_PB_BOUNDS, std430) readonly buffer PrimBounds { vec4 primBounds[]; };
 layout(set = 0, binding = AM_PB_BLOCK_MASK, std430) buffer BlockMask { uint blockMask[]; };

@@ -229,10 +229,10 @@ Grad4 programGrad(uint opBegin, uint opCount, float T, uint maskBase, vec4 px, v
 
 // The polygonised field and its gradient at the points (fieldV's combination).
 Grad4 fieldGrad(uint maskBase, vec4 x, vec4 y, vec4 z) {
-  Grad4 a = programGrad(P.progA.x, P.progA.y, P.thresholds.x, maskBase, x, y, z);
+  Grad4 a = programGrad(gOps.x, gOps.y, P.thresholds.x, maskBase, x, y, z);
   if (AM_SINGLE_ONLY) return a;
   if (P.modes.x == AM_COMBINE_SINGLE) return a;
-  Grad4 b = programGrad(P.progB.x, P.progB.y, P.thresholds.y, maskBase, x, y, z);
+  Grad4 b = programGrad(gOps.z, gOps.w, P.thresholds.y, maskBase, x, y, z);
   if (AM_HAS_COMBINE(AM_COMBINE_INTERPOLATE) && P.modes.x == AM_COMBINE_INTERPOLATE) {
     float w = P.morph0.x;
     return combineGrad(a, vec4(1.0 - w), b, vec4(w), (1.0 - w) * a.f + w * b.f);

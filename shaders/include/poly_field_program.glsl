@@ -180,11 +180,11 @@ void AM_PROGRAM(uint opBegin, uint opCount, float T, uint maskBase, AM_POINTS w,
 // The field polygonised at the invocation's points: program A alone, or the
 // morph of A and B (morph_field.h).
 void AM_FIELD(uint maskBase, AM_POINTS w, out vec4 res[AM_FIELD_V]) {
-  AM_PROGRAM(P.progA.x, P.progA.y, P.thresholds.x, maskBase, w, res);
+  AM_PROGRAM(gOps.x, gOps.y, P.thresholds.x, maskBase, w, res);
   if (AM_SINGLE_ONLY) return;
   if (P.modes.x == AM_COMBINE_SINGLE) return;
   vec4 b[AM_FIELD_V];
-  AM_PROGRAM(P.progB.x, P.progB.y, P.thresholds.y, maskBase, w, b);
+  AM_PROGRAM(gOps.z, gOps.w, P.thresholds.y, maskBase, w, b);
   if (AM_HAS_COMBINE(AM_COMBINE_INTERPOLATE) && P.modes.x == AM_COMBINE_INTERPOLATE) {
     float wt = P.morph0.x;
 #define AM_LERP(j) res[j] = (1.0 - wt) * res[j] + wt * b[j];

@@ -39,21 +39,23 @@ vec3 stencilGradient(vec4 f) {
   return vec3(dot(f, vec4(1, -1, -1, 1)), dot(f, vec4(-1, -1, 1, 1)), dot(f, vec4(-1, 1, -1, 1)));
 }
 
-void normalsPass() {
-  uint total = min(control[AM_CTL_VERTICES], P.caps.x);
-  uint v0 = 4u * gl_GlobalInvocationID.x;
-  uint last = max(total, 1u) - 1u;
-  vec4 q0 = positions[min(v0, last)], q1 = positions[min(v0 + 1u, last)];
-  vec4 q2 = positions[min(v0 + 2u, last)], q3 = positions[min(v0 + 3u, last)];
-  gMaskBases = uvec4(floatBitsToUint(q0.w), floatBitsToUint(q1.w), floatBitsToUint(q2.w), floatBitsToUint(q3.w));
-  if (v0 >= total) return;
+// The region of the vertex whose block's primitive mask is at maskBase (0 without region lists).
+uint vertexRegion(uint maskBase) {
+  if (P.regions.x == 0u) return 0u;
+  return regionOf(blockCoord(maskBase / max(P.modes.y, 1u)));
+}
+
+// Normals of the invocation's vertices that lie in region `region`, with its op lists.
+void normalsIn(uint region, uvec4 supers, uint v0, uint total, vec4 q0, vec4 q1, vec4 q2, vec4 q3) {
+  selectRegionOps(region);
+  bvec4 mine = equal(supers, uvec4(region));
   if (AM_ANALYTIC_GRADIENT) {
     Grad4 g = fieldGrad(gMaskBases.x, vec4(q0.x, q1.x, q2.x, q3.x), vec4(q0.y, q1.y, q2.y, q3.y),
                         vec4(q0.z, q1.z, q2.z, q3.z));
-    writeNormal(v0, vec3(g.x[0], g.y[0], g.z[0]));
-    if (v0 + 1u < total) writeNormal(v0 + 1u, vec3(g.x[1], g.y[1], g.z[1]));
-    if (v0 + 2u < total) writeNormal(v0 + 2u, vec3(g.x[2], g.y[2], g.z[2]));
-    if (v0 + 3u < total) writeNormal(v0 + 3u, vec3(g.x[3], g.y[3], g.z[3]));
+    if (mine.x) writeNormal(v0, vec3(g.x[0], g.y[0], g.z[0]));
+    if (mine.y && v0 + 1u < total) writeNormal(v0 + 1u, vec3(g.x[1], g.y[1], g.z[1]));
+    if (mine.z && v0 + 2u < total) writeNormal(v0 + 2u, vec3(g.x[2], g.y[2], g.z[2]));
+    if (mine.w && v0 + 3u < total) writeNormal(v0 + 3u, vec3(g.x[3], g.y[3], g.z[3]));
   } else {
     const float d = P.morph1.w;
     const vec3 k0 = vec3(1, -1, -1), k1 = vec3(-1, -1, 1), k2 = vec3(-1, 1, -1), k3 = vec3(1, 1, 1);
@@ -67,10 +69,32 @@ void normalsPass() {
       vec4 f[AM_FIELD_V];
       fieldV(gMaskBases.x, w, f);
       uint va = v0 + 2u * h;
-      if (va < total) writeNormal(va, stencilGradient(f[0]));
-      if (va + 1u < total) writeNormal(va + 1u, stencilGradient(f[1]));
+      if ((h == 0u ? mine.x : mine.z) && va < total) writeNormal(va, stencilGradient(f[0]));
+      if ((h == 0u ? mine.y : mine.w) && va + 1u < total) writeNormal(va + 1u, stencilGradient(f[1]));
     }
   }
+}
+
+void normalsPass() {
+  uint total = min(control[AM_CTL_VERTICES], P.caps.x);
+  uint v0 = 4u * gl_GlobalInvocationID.x;
+  uint last = max(total, 1u) - 1u;
+  vec4 q0 = positions[min(v0, last)], q1 = positions[min(v0 + 1u, last)];
+  vec4 q2 = positions[min(v0 + 2u, last)], q3 = positions[min(v0 + 3u, last)];
+  gMaskBases = uvec4(floatBitsToUint(q0.w), floatBitsToUint(q1.w), floatBitsToUint(q2.w), floatBitsToUint(q3.w));
+  if (v0 >= total) return;
+  // With per-region op lists the four vertices may lie in up to four regions: one evaluation per
+  // distinct region (nearly always one: the vertices are in block order), each writing its own
+  // vertices. The loop's trip count is the count of distinct ones (an `if` would not skip
+  // the evaluations on lavapipe).
+  uvec4 supers = uvec4(vertexRegion(gMaskBases.x), vertexRegion(gMaskBases.y),
+                       vertexRegion(gMaskBases.z), vertexRegion(gMaskBases.w));
+  uvec4 todo = uvec4(supers.x, 0u, 0u, 0u);
+  uint n = 1u;
+  if (supers.y != supers.x) todo[n++] = supers.y;
+  if (supers.z != supers.x && supers.z != supers.y) todo[n++] = supers.z;
+  if (supers.w != supers.x && supers.w != supers.y && supers.w != supers.z) todo[n++] = supers.w;
+  for (uint k = 0u; k < n; ++k) normalsIn(todo[k], supers, v0, total, q0, q1, q2, q3);
 }
 
 void main() {

@@ -4,6 +4,7 @@
 // uses (on-demand redraw against continuous). Runs `animorph --bench` / `--idle-bench`
 // in child processes, under xvfb-run when there is no display.
 #include <cstdio>
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -31,11 +32,12 @@ std::vector<animorph::bench::Row> benchEditor(const animorph::bench::Options& op
     rows.push_back({"failed: the editor printed no figures", 0.0, "", "", play.output.substr(0, 200)});
     return rows;
   }
-  const std::string note = std::to_string(play.frames) + " frames, 1600x900, demo playing, " + play.device;
+  const std::string note = "1600x900, demo playing; " + animorph::bench::editorRunNote(play);
   rows.push_back({"start to first frame", play.first, "ms", "<= 1500 ms", ""});
   rows.push_back({"frame time p50", play.p50, "ms", "", note});
   rows.push_back({"frame time p95", play.p95, "ms", "<= 10 ms", note});
   rows.push_back({"frame time max", play.max, "ms", "", ""});
+  rows.push_back({"frames shown per second, demo playing", animorph::bench::framesShownPerSec(play), "fps", "", note});
   // Scrubbing the morph's implicit stage (B..C of the demo: frames 48..84), one new frame per
   // redraw, with the device Auto picks (the GPU path for this morph of convolution stand-ins, on
   // CPU devices too) and with the CPU worker forced, for comparison.
@@ -54,9 +56,14 @@ std::vector<animorph::bench::Row> benchEditor(const animorph::bench::Options& op
       rows.push_back({std::string("scrubbing, ") + sc.name + ": failed", 0.0, "", "", r.output.substr(0, 200)});
       continue;
     }
-    const std::string n = std::to_string(r.frames) + " frames, 1600x900, frames 50..82..50, preview at 96^3";
-    rows.push_back({std::string("scrubbing the morph, ") + sc.name + ", fps at p50", 1000.0 / r.p50, "fps", ">= 30 fps", n});
-    rows.push_back({std::string("scrubbing the morph, ") + sc.name + ", frame time p95", r.p95, "ms", "", ""});
+    const std::string n = "1600x900, frames 50..82..50, preview at 96^3; " + animorph::bench::editorRunNote(r);
+    const std::string head = std::string("scrubbing the morph, ") + sc.name;
+    rows.push_back({head + ", frames shown per second", animorph::bench::framesShownPerSec(r), "fps", ">= 30 fps", n});
+    rows.push_back({head + ", frame time p50", r.p50, "ms", "", "latency of one frame, wall"});
+    rows.push_back({head + ", frame time p95", r.p95, "ms", "", "latency of one frame, wall"});
+    if (r.framesCpuMs >= 0)
+      rows.push_back({head + ", editor processor time per frame", r.framesCpuMs / double(std::max<size_t>(1, r.frames)),
+                      "ms", "", "the measured frames only, editor process, all threads"});
     // Less load-dependent than the frame times: CPU of the whole run (start-up included) per frame.
     rows.push_back({std::string("scrubbing the morph, ") + sc.name + ", CPU per frame", 1e3 * r.cpuSec / double(r.frames + 10),
                     "ms", "", "editor + X server, all threads, start-up included; 2 cores give 2 ms per ms"});

@@ -56,10 +56,24 @@ EditorRun runEditor(const fs::path& editor, const fs::path& demo, const std::str
     std::sscanf(out.c_str() + pos, "frame time over %zu frames: p50 %lf ms, p95 %lf ms, max %lf ms (device: %255[^)])",
                 &r.frames, &r.p50, &r.p95, &r.max, device);
   r.device = device;
+  if (auto pos = out.find("frames shown:"); pos != std::string::npos) {
+    size_t shown = 0;
+    std::sscanf(out.c_str() + pos, "frames shown: %zu in %lf ms wall, %lf ms processor", &shown, &r.framesWallMs,
+                &r.framesCpuMs);
+  }
   if (auto pos = out.find("idle over"); pos != std::string::npos)
     std::sscanf(out.c_str() + pos, "idle over %lf s: %d frames, CPU %lf ms per second", &r.idleSec, &r.idleFrames,
                 &r.idleCpuMsPerSec);
   return r;
+}
+
+std::string editorRunNote(const EditorRun& r) {
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "%zu frames, warm (after 10 start-up frames): %.0f ms wall, %.0f ms processor (the editor process's "
+                "threads: UI, previews, the Vulkan driver's -- lavapipe runs one per core; %ld cores), %s",
+                r.frames, r.framesWallMs, r.framesCpuMs, ::sysconf(_SC_NPROCESSORS_ONLN), r.device.c_str());
+  return buf;
 }
 
 bool editorDisplayPrefix(std::string& prefix) {

@@ -11,6 +11,9 @@ struct EditorRun {
   double first = -1, p50 = -1, p95 = -1, max = -1;
   double cpuSec = 0;  // CPU time of the child processes (the editor and, under xvfb-run, the X server)
   size_t frames = 0;
+  // The measured frames' wall time (their sum) and the editor process's processor time over them
+  // (all its threads, lavapipe's included; -1 when the editor did not print them).
+  double framesWallMs = -1, framesCpuMs = -1;
   double idleSec = -1, idleCpuMsPerSec = -1;  // --idle-bench
   int idleFrames = 0;
   std::string device, output;
@@ -19,6 +22,12 @@ struct EditorRun {
 // One run of `animorph --bench FRAMES ARGS` (FRAMES 0: `animorph ARGS`) on project with preferences
 // `prefsJson` (empty: defaults) in a private configuration directory; `env` is prepended; prefix
 // from editorDisplayPrefix.
+// Throughput of a run: the frames the window showed per second of their wall time (not 1000 / p50).
+inline double framesShownPerSec(const EditorRun& r) {
+  return r.framesWallMs > 0 ? 1e3 * double(r.frames) / r.framesWallMs : 0.0;
+}
+// The note every editor row carries: frames, wall and processor time, threads, warm.
+std::string editorRunNote(const EditorRun& r);
 EditorRun runEditor(const std::filesystem::path& editor, const std::filesystem::path& project,
                     const std::string& prefix, int frames, const std::string& args, const std::string& prefsJson,
                     const std::string& env = "");

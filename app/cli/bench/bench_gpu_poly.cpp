@@ -8,12 +8,18 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <chrono>
 #include <random>
+#include <thread>
 
 #include <sys/resource.h>
 
 #include "core/blobtree/compile.h"
 #include "app/cli/bench/bench.h"
+#include "core/animorphosis/compile_generic.h"
+#include "core/animorphosis/evaluate_generic.h"
+#include "core/project/animorphosis_project.h"
+#include "demo/animorphosis_demo.h"
 #include "demo/blob_creature.h"
 #include "core/poly/polygonizer.h"
 #include "gpu/vulkan/context.h"
@@ -106,6 +112,16 @@ Bounds unitCube() {
 
 namespace g = animorph::gpu;
 
+// Threads the CPU baseline runs on: as many as the device uses. lavapipe runs its shaders on
+// LP_NUM_THREADS worker threads, one per core by default; beside a real GPU, every core too.
+int baselineThreads() {
+  if (const char* lp = std::getenv("LP_NUM_THREADS")) {
+    const int n = std::atoi(lp);
+    if (n > 0) return n;
+  }
+  return int(std::max(1u, std::thread::hardware_concurrency()));
+}
+
 // The grid sizes to measure: 64 (quick) or 64, 128, 256; ANIMORPH_BENCH_GPU_RES (e.g. "128")
 // picks some while tuning.
 std::vector<int> gpuBenchSizes(const animorph::bench::Options& opt) {
@@ -126,6 +142,7 @@ std::vector<int> gpuBenchSizes(const animorph::bench::Options& opt) {
 struct GpuTimes {
   g::GpuPolygonizeStats culled, dense;  // culled: each pass's median over the culled runs
   double ms = 0.0, cpuMs = 0.0, denseMs = 0.0;  // median wall, mean process CPU, dense median wall
+  double readBackMs = 0.0;                      // median of the read-back alone (inside ms)
   std::string error;
 };
 
@@ -135,11 +152,19 @@ GpuTimes timeGpu(g::GpuPolygonizer& poly, const g::GpuField& field, int res, int
   gs.resolution = res;
   gs.bounds = unitCube();
   std::vector<std::array<double, 6>> culledPasses;  // per run, for medians per pass
+  std::vector<double> readBackMs;
   auto runGpu = [&](bool cull, g::GpuPolygonizeStats& out) {
     gs.culling = cull;
     auto r = poly.polygonize(field, gs);
     if (r) out = *r;
     else t.error = r.error();
+    // The mesh reaches host memory inside the timing, as the CPU's does.
+    if (r) {
+      const auto rb = std::chrono::steady_clock::now();
+      auto mesh = poly.readBack();
+      if (!mesh) t.error = mesh.error();
+      if (cull) readBackMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - rb).count());
+    }
     if (r && cull) culledPasses.push_back({r->passMs[0], r->passMs[1], r->passMs[2], r->passMs[3], r->passMs[4], r->passMs[5]});
   };
   // medianMs warms up first (pipelines compile lazily on lavapipe, buffers grow).
@@ -156,6 +181,8 @@ GpuTimes timeGpu(g::GpuPolygonizer& poly, const g::GpuField& field, int res, int
     std::sort(v.begin(), v.end());
     if (!v.empty()) t.culled.passMs[k] = v[v.size() / 2];
   }
+  std::sort(readBackMs.begin(), readBackMs.end());
+  if (!readBackMs.empty()) t.readBackMs = readBackMs[readBackMs.size() / 2];
   t.denseMs = withDense ? animorph::bench::medianMs(res >= 256 ? 1 : 3, [&] { runGpu(false, t.dense); }) : 0.0;
   return t;
 }
@@ -165,12 +192,12 @@ struct CpuTimes {
   double ms = 0.0, cpuMs = 0.0, denseMs = 0.0;
 };
 
-CpuTimes timeCpu(const FieldProgram& merged, int res, int reps, bool withDense) {
+CpuTimes timeCpu(const FieldProgram& merged, int res, int reps, bool withDense, int threads) {
   CpuTimes t;
   PolygonizeSettings cs;
   cs.resolution = res;
   cs.bounds = unitCube();
-  cs.threads = 2;
+  cs.threads = threads;
   t.ms = animorph::bench::medianMs(reps, [&] {
     cs.culling = true;
     if (auto r = polygonize(merged, cs)) t.culled = std::move(*r);
@@ -188,79 +215,124 @@ CpuTimes timeCpu(const FieldProgram& merged, int res, int reps, bool withDense) 
 }
 
 // The rows of one size: GPU and CPU, culled and dense, and how they compare.
-void sizeRows(const std::string& tag, const char* target, const GpuTimes& gpu, const CpuTimes& cpu, bool withDense,
-              std::vector<Row>& rows) {
+void sizeRows(const std::string& tag, const char* target, const char* ratioTarget, const GpuTimes& gpu, const CpuTimes& cpu, bool withDense,
+              int threads, std::vector<Row>& rows) {
   const g::GpuPolygonizeStats& gpuCulled = gpu.culled;
   const g::GpuPolygonizeStats& gpuDense = gpu.dense;
   const double msGpu = gpu.ms, msCpu = cpu.ms;
-  char note[200];
-  std::snprintf(note, sizeof note, "%u tris, %u/%u blocks evaluated, load %s", gpuCulled.triangles,
-                gpuCulled.blocksActive, gpuCulled.blocksTotal, loadAverage().c_str());
+  const std::string th = std::to_string(threads) + " threads";
+  char note[320];
+  std::snprintf(note, sizeof note,
+                "latency, wall, warm (median after a warm-up), polygonise + read-back (%.2f ms of it); processor "
+                "time %.1f ms (all threads: %s of the device); %u tris, %u/%u blocks evaluated, load %s",
+                gpu.readBackMs, gpu.cpuMs, th.c_str(), gpuCulled.triangles, gpuCulled.blocksActive,
+                gpuCulled.blocksTotal, loadAverage().c_str());
   rows.push_back({tag + " GPU culled", msGpu, "ms", target, note});
-  std::snprintf(note, sizeof note, "medians: upload %.2f, coarse %.2f, compact %.2f, field+cells %.2f, scan %.2f, emit %.2f ms",
+  std::snprintf(note, sizeof note, "timestamps, medians: upload %.2f, coarse %.2f, compact %.2f, field+cells %.2f, scan %.2f, emit %.2f ms; no read-back",
                 gpuCulled.passMs[0], gpuCulled.passMs[1], gpuCulled.passMs[2], gpuCulled.passMs[3],
                 gpuCulled.passMs[4], gpuCulled.passMs[5]);
   double gpuSum = 0.0;
   for (double x : gpuCulled.passMs) gpuSum += x;
   rows.push_back({tag + " GPU culled, GPU time", gpuSum, "ms", "", note});
-  rows.push_back({tag + " GPU culled, CPU time", gpu.cpuMs, "ms", "", "mean per run, all threads (lavapipe runs on the CPU): less load-dependent"});
+  rows.push_back({tag + " GPU culled, processor time", gpu.cpuMs, "ms", "",
+                  "mean per run incl. read-back, all threads of the process (" + th + " of the device), warm"});
   if (withDense) {
-    std::snprintf(note, sizeof note, "%u tris; passes %.2f %.2f %.2f %.2f %.2f %.2f ms", gpuDense.triangles,
+    std::snprintf(note, sizeof note, "wall, warm, incl. read-back; %u tris; passes %.2f %.2f %.2f %.2f %.2f %.2f ms", gpuDense.triangles,
                   gpuDense.passMs[0], gpuDense.passMs[1], gpuDense.passMs[2], gpuDense.passMs[3], gpuDense.passMs[4],
                   gpuDense.passMs[5]);
     rows.push_back({tag + " GPU dense", gpu.denseMs, "ms", "", note});
     rows.push_back({tag + " GPU dense/culled", gpu.denseMs / msGpu, "ratio", "", ""});
   }
-  rows.push_back({tag + " GPU triangles/s", gpuCulled.triangles / (msGpu * 1e-3), "tris/s", "", ""});
+  rows.push_back({tag + " GPU triangles/s", gpuCulled.triangles / (msGpu * 1e-3), "tris/s", "", "one polygonisation at a time (latency-bound), incl. read-back"});
   const PolygonizeResult& cpuCulled = cpu.culled;
-  std::snprintf(note, sizeof note, "%zu tris, %zu/%zu blocks evaluated, %zu cells, %zu points, %zu pairs, 2 threads",
-                cpuCulled.mesh.triangleCount(), cpuCulled.stats.blocksEvaluated, cpuCulled.stats.blocksTotal,
-                cpuCulled.stats.cellsVisited, cpuCulled.stats.pointsEvaluated, cpuCulled.stats.primitiveEvaluations);
+  std::snprintf(note, sizeof note,
+                "latency, wall, warm (median after a warm-up), %s; processor time %.1f ms; %zu tris, %zu/%zu blocks "
+                "evaluated, %zu cells, %zu points, %zu pairs",
+                th.c_str(), cpu.cpuMs, cpuCulled.mesh.triangleCount(), cpuCulled.stats.blocksEvaluated,
+                cpuCulled.stats.blocksTotal, cpuCulled.stats.cellsVisited, cpuCulled.stats.pointsEvaluated,
+                cpuCulled.stats.primitiveEvaluations);
   rows.push_back({tag + " CPU culled", msCpu, "ms", "", note});
-  rows.push_back({tag + " CPU culled, CPU time", cpu.cpuMs, "ms", "", "mean per run, both threads"});
+  rows.push_back({tag + " CPU culled, processor time", cpu.cpuMs, "ms", "", "mean per run, all " + th + ", warm"});
   if (withDense) {
-    rows.push_back({tag + " CPU dense", cpu.denseMs, "ms", "", std::to_string(cpu.dense.mesh.triangleCount()) + " tris"});
+    rows.push_back({tag + " CPU dense", cpu.denseMs, "ms", "", "wall, warm, " + th + ", " + std::to_string(cpu.dense.mesh.triangleCount()) + " tris"});
     rows.push_back({tag + " CPU dense/culled", cpu.denseMs / msCpu, "ratio", "", ""});
   }
-  rows.push_back({tag + " CPU triangles/s", cpuCulled.mesh.triangleCount() / (msCpu * 1e-3), "tris/s", "", ""});
-  rows.push_back({tag + " GPU / CPU time", msGpu / msCpu, "ratio", "", "culled, same field and grid"});
+  rows.push_back({tag + " CPU triangles/s", cpuCulled.mesh.triangleCount() / (msCpu * 1e-3), "tris/s", "", "one polygonisation at a time, " + th});
+  rows.push_back({tag + " GPU / CPU time", msGpu / msCpu, "ratio", ratioTarget, "wall, culled, same field and grid, both " + th + ", GPU incl. read-back"});
   double triDiff = std::abs(double(gpuCulled.triangles) - double(cpuCulled.mesh.triangleCount())) /
                    std::max<double>(1.0, double(cpuCulled.mesh.triangleCount()));
   rows.push_back({tag + " GPU vs CPU triangle difference", 100.0 * triDiff, "%", "<= 0.5 %", ""});
 }
 
-// The demo BlobTree creature (frames, so affine maps: the point path, not line groups), at the
-// editor's scrubbing resolution: GPU and CPU side by side.
-void blobCreatureRows(g::GpuPolygonizer& poly, std::vector<Row>& rows) {
-  FieldProgram creature = compileFieldProgram(makeBlobCreature(), 0.5);
-  const int res = 96, reps = 5;
+// One program at one resolution, GPU (polygonise + read-back) against the CPU on as many threads
+// as the device, both warm, with the program's own bounds: the BlobTree preview's two backends.
+void programRows(g::GpuPolygonizer& poly, const std::string& tag, const FieldProgram& program, int res, int reps,
+                 int threads, const char* target, std::vector<Row>& rows) {
+  const std::string th = std::to_string(threads) + " threads";
+  const g::GpuField field = g::GpuField::single(program);
+  if (std::string why = g::GpuPolygonizer::unsupported(field); !why.empty()) {
+    rows.push_back({tag + " GPU refused", 0, "", target, why});
+    return;
+  }
   g::GpuPolygonizeSettings gs;
   gs.resolution = res;
   g::GpuPolygonizeStats st;
   std::string error;
-  double msGpu = animorph::bench::medianMs(reps, [&] {
-    auto r = poly.polygonize(g::GpuField::single(creature), gs);
-    if (r) st = *r;
-    else error = r.error();
-  });
+  auto runGpu = [&] {
+    auto r = poly.polygonize(field, gs);
+    if (!r) {
+      error = r.error();
+      return;
+    }
+    st = *r;
+    if (auto mesh = poly.readBack(); !mesh) error = mesh.error();
+  };
+  const double msGpu = animorph::bench::medianMs(reps, runGpu);
+  const double cpuGpu = processCpuMs([&] { runGpu(); });
   PolygonizeSettings cs;
   cs.resolution = res;
-  cs.threads = 2;
+  cs.threads = threads;
   PolygonizeResult cpu;
-  double msCpu = animorph::bench::medianMs(reps, [&] {
-    if (auto r = polygonize(creature, cs)) cpu = std::move(*r);
-  });
-  const std::string tag = "blob creature 96^3";
+  auto runCpu = [&] {
+    if (auto r = polygonize(program, cs)) cpu = std::move(*r);
+  };
+  const double msCpu = animorph::bench::medianMs(reps, runCpu);
+  const double cpuCpu = processCpuMs(runCpu);
   if (!error.empty()) {
-    rows.push_back({tag + " GPU failed", 0, "", "", error});
+    rows.push_back({tag + " GPU failed", 0, "", target, error});
     return;
   }
-  char note[200];
-  std::snprintf(note, sizeof note, "%u tris, %u/%u blocks evaluated; cells %.2f, emit %.2f ms", st.triangles,
-                st.blocksActive, st.blocksTotal, st.passMs[3], st.passMs[5]);
+  char note[360];
+  std::snprintf(note, sizeof note,
+                "latency, wall, warm, polygonise + read-back; processor time %.1f ms (all threads, %s of the "
+                "device); %u tris, %u/%u blocks evaluated; cells %.2f, emit %.2f ms",
+                cpuGpu, th.c_str(), st.triangles, st.blocksActive, st.blocksTotal, st.passMs[3], st.passMs[5]);
   rows.push_back({tag + " GPU culled", msGpu, "ms", "", note});
-  rows.push_back({tag + " CPU culled", msCpu, "ms", "", std::to_string(cpu.mesh.triangleCount()) + " tris, 2 threads"});
-  rows.push_back({tag + " GPU / CPU time", msGpu / msCpu, "ratio", "", "the BlobTree preview's backends"});
+  std::snprintf(note, sizeof note, "latency, wall, warm, %s; processor time %.1f ms; %zu tris, %zu primitives",
+                th.c_str(), cpuCpu, cpu.mesh.triangleCount(), program.primitiveCount());
+  rows.push_back({tag + " CPU culled", msCpu, "ms", "", note});
+  rows.push_back({tag + " GPU / CPU time", msGpu / msCpu, "ratio", target, "wall, both " + th + ", GPU incl. read-back"});
+}
+
+// The demo BlobTree creature (frames, so affine maps: the point path, not line groups) at the
+// editor's scrubbing resolution, and the animorphosis demo's dragon and C(t) (thousands of
+// primitives, each under its own frame).
+void blobTreeRows(g::GpuPolygonizer& poly, int threads, bool quick, std::vector<Row>& rows) {
+  const FieldProgram creature = compileFieldProgram(makeBlobCreature(), 0.5);
+  programRows(poly, "blob creature 96^3", creature, 96, 5, threads, "<= 1.5", rows);
+  auto project = makeAnimorphosisDemoProject();
+  auto c = project ? projectGenericTree(*project) : Result<GenericTree>(Error{project.error()});
+  if (!c) {
+    rows.push_back({"animorphosis demo: skipped", 0, "", "", c.error()});
+    return;
+  }
+  const FieldProgram dragon = compileFieldProgram(project->actors[1].blobTree, 0.5);
+  programRows(poly, std::string("demo dragon ") + (quick ? "64^3" : "128^3"), dragon, quick ? 64 : 128, quick ? 1 : 3,
+              threads, "<= 1.5", rows);
+  const double mid = 0.5 * (kDemoMorphStartSec + kDemoMorphEndSec);
+  const FieldProgram ct = compileGeneric(*c, animorphosisTiming(*project), mid);
+  programRows(poly, std::string("demo C(t) at the middle ") + (quick ? "48^3" : "96^3"), ct, quick ? 48 : 96,
+              quick ? 1 : 3, threads, "<= 1.5", rows);
 }
 
 std::vector<Row> runGpuPoly(const animorph::bench::Options& opt) {
@@ -288,6 +360,7 @@ std::vector<Row> runGpuPoly(const animorph::bench::Options& opt) {
   rows.push_back({"device", 0, "", "", (*ctx)->deviceName() + "; load average " + loadAverage() + " at start"});
   const g::GpuField field = g::GpuField::interpolation(a, b, w);
   const bool withDense = !std::getenv("ANIMORPH_BENCH_GPU_NO_DENSE");
+  const int threads = baselineThreads();
   for (const int res : gpuBenchSizes(opt)) {
     const char* target = res == 64 ? "<= 5 ms" : res == 128 ? "<= 30 ms" : "<= 200 ms";
     const int reps = res >= 256 ? 3 : (res >= 128 ? 5 : 9);
@@ -297,10 +370,10 @@ std::vector<Row> runGpuPoly(const animorph::bench::Options& opt) {
       rows.push_back({tag + " GPU failed", 0, "", "", gpu.error});
       continue;
     }
-    const CpuTimes cpu = timeCpu(merged, res, reps, withDense);
-    sizeRows(tag, target, gpu, cpu, withDense, rows);
+    const CpuTimes cpu = timeCpu(merged, res, reps, withDense, threads);
+    sizeRows(tag, target, res >= 128 ? "<= 1.2" : "", gpu, cpu, withDense, threads, rows);
   }
-  blobCreatureRows(**poly, rows);
+  blobTreeRows(**poly, threads, opt.quick, rows);
   return rows;
 }
 

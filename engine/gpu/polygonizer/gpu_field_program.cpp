@@ -133,6 +133,11 @@ void packOne(const FieldProgram& prog, uint32_t primOffset, PackedFieldPrograms&
   }
   out.opBegin[which] = opsBase;
   out.opCount[which] = uint32_t(prog.ops.size());
+  out.paramsBase[which] = paramsBase;
+  out.mapsBase[which] = mapsBase;
+  out.classBase[which][AM_PRIM_SKELETAL] = skelBase;
+  out.classBase[which][AM_PRIM_CONVOLUTION] = convBase;
+  out.classBase[which][AM_PRIM_CAPSULE] = capBase;
   out.primBegin[which] = primOffset;
   out.primCount[which] = uint32_t(prog.primitiveCount());
   out.threshold[which] = prog.threshold;

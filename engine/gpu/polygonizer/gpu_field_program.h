@@ -28,6 +28,12 @@ struct PackedFieldPrograms {
   // AM_FEAT_OP_BIT / AM_FEAT_CLASS_BIT bits, and AM_KIND_SKEL_BIT / AM_KIND_MAP_BIT bits.
   uint32_t features = 0;
   uint32_t kinds = 0;
+  // Where each program's records start in the pool: operator parameters (in floats: 4 a word),
+  // maps, and the primitives of each PrimClass. Op lists packed later (appendRegionOpLists) point
+  // into the same records.
+  uint32_t paramsBase[2] = {0, 0};
+  uint32_t mapsBase[2] = {0, 0};
+  uint32_t classBase[2][3] = {{0, 0, 0}, {0, 0, 0}};
   uint32_t primitiveTotal() const { return primCount[0] + primCount[1]; }
 };
 
@@ -42,7 +48,8 @@ std::string gpuUnsupportedReason(const FieldProgram& program);
 // every primitive of a skeletal or capsule run stepped over, operators' operands, the coarse
 // pass's primitive lists. The kernels of the primitives reaching a block add to it. lavapipe
 // stops a shader invocation's loops past AM_POLY_LLVMPIPE_LOOP_LIMIT (poly_constants.h): programs
-// estimated above it are refused there up front; the passes detect the rest (AM_OVERFLOW_LOOPS).
+// estimated above it are walked per region there (gpu_region_op_lists.h), or refused up front when
+// region programs are off; the passes detect the rest (AM_OVERFLOW_LOOPS).
 uint64_t gpuLoopIterationEstimate(const FieldProgram& a, const FieldProgram* b = nullptr);
 
 // Packs a (and b, when non-null) for the shaders. Errors: gpuUnsupportedReason's,

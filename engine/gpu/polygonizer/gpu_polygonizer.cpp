@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <bit>
 #include <chrono>
 #include <cmath>
@@ -11,6 +10,7 @@
 
 #include "gpu/polygonizer/field_pipeline_cache.h"
 #include "gpu/polygonizer/gpu_field_program.h"
+#include "gpu/polygonizer/gpu_region_op_lists.h"
 #include "core/poly/solid_noise.h"
 #include "core/poly/marching_cubes_table.h"
 #include "poly_constants.h"
@@ -37,8 +37,10 @@ struct PolyParams {
   glm::uvec4 caps;
   glm::vec4 extra;
   glm::uvec4 superBlocks;
+  glm::uvec4 regions;
+  glm::uvec4 regionLists;
 };
-static_assert(sizeof(PolyParams) == 12 * 16);
+static_assert(sizeof(PolyParams) == 14 * 16);
 
 constexpr uint32_t kTableVec4 = 256 + 64;  // poly_table.glsl: the marching-cubes cases, then the noise permutation
 constexpr VkDeviceSize kVertexStride = GeneratedMeshDraw::kVertexStride;  // poly_emit_main.glsl: vec4 positions, normals
@@ -108,10 +110,6 @@ void computeToCompute(VkCommandBuffer cmd) {
           VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
 }
 
-// The smallest loop limit (GpuPolygonizer::loopLimit) of the devices polygonisers were created on
-// (0: none), for the static unsupported(): the editor has one device.
-std::atomic<uint64_t> gLoopLimit{0};
-
 // Why field's loops would outrun limit by the estimate (empty when not, or limit is 0).
 std::string loopBudgetReason(const GpuField& field, uint64_t limit) {
   if (limit == 0 || !field.a) return {};
@@ -122,6 +120,87 @@ std::string loopBudgetReason(const GpuField& field, uint64_t limit) {
          " primitives, " + std::to_string(field.a->ops.size() + (field.b ? field.b->ops.size() : 0)) + " ops) need ~" +
          std::to_string(need) + " shader loop iterations per invocation; llvmpipe stops a shader's loops after " +
          std::to_string(limit);
+}
+
+// Whether the passes walk per-region op lists for field under s (GpuPolygonizeSettings::regionPrograms).
+bool useRegionLists(const GpuField& field, const GpuPolygonizeSettings& s, uint64_t limit) {
+  using R = GpuPolygonizeSettings::RegionPrograms;
+  if (s.regionPrograms != R::Auto || !field.a) return s.regionPrograms == R::On;
+  const size_t ops = field.a->ops.size() + (field.b ? field.b->ops.size() : 0);
+  if (ops > GpuPolygonizeSettings::kRegionListMinOps) return true;
+  return limit != 0 && gpuLoopIterationEstimate(*field.a, field.b) + 64 >= limit;
+}
+
+// The world box of each region of grid g, a cube of 2^shift blocks a side (shift 2: the
+// superblocks), in the shaders' order, grown by what the passes read beyond it (the normal step's
+// reach, PolyParams::extra.x) and a hundredth of a cell more, so that the CPU's test of a
+// primitive's bound against it admits every primitive the shaders' test admits for its blocks.
+// parentOf: each region's superblock.
+std::vector<Bounds> regionBoxes(const Grid& g, uint32_t shift, float grow, glm::uvec3& dims,
+                                std::vector<uint32_t>& parentOf) {
+  std::vector<Bounds> boxes;
+  const uint32_t side = 1u << shift, span = side * AM_POLY_BLOCK;
+  for (int a = 0; a < 3; ++a) dims[a] = (g.nb[a] + side - 1) / side;
+  boxes.reserve(size_t(dims.x) * dims.y * dims.z);
+  parentOf.clear();
+  const float pad = grow + 0.01f * g.h;
+  const uint32_t toSuper = 2 - shift;
+  for (uint32_t z = 0; z < dims.z; ++z)
+    for (uint32_t y = 0; y < dims.y; ++y)
+      for (uint32_t x = 0; x < dims.x; ++x) {
+        const glm::uvec3 c0(x * span, y * span, z * span);
+        const glm::uvec3 c1 = glm::min(c0 + glm::uvec3(span), glm::uvec3(g.n[0], g.n[1], g.n[2]));
+        Bounds b;
+        b.add(g.origin + g.h * glm::vec3(c0) - glm::vec3(pad));
+        b.add(g.origin + g.h * glm::vec3(c1) + glm::vec3(pad));
+        boxes.push_back(b);
+        parentOf.push_back((x >> toSuper) + g.superAxis(0) * ((y >> toSuper) + g.superAxis(1) * (z >> toSuper)));
+      }
+  return boxes;
+}
+
+// A frame's per-region lists: the superblocks' (with their primitive masks: the coarse pass's
+// candidates and its superblock intervals) and those the blocks walk -- the same, or where a
+// superblock's walk would outrun the device's loop limit, lists of cubes of 2 blocks or of single
+// blocks (their candidates: their superblock's primitives).
+struct FrameRegions {
+  RegionOpLists super, blocks;
+  uint32_t shift = 2;  // the blocks' regions: 2^shift blocks a side
+  glm::uvec3 dims{1u};  // the blocks' regions per axis
+};
+
+Result<FrameRegions> buildRegionLists(const GpuField& field, const Grid& g, uint64_t limit, bool check,
+                                      bool conservative, PackedFieldPrograms& pk) {
+  FrameRegions fr;
+  const float grow = 2.0f * 0.05f * g.h;  // PolyParams::extra.x: twice the normal step
+  std::vector<uint32_t> parentOf;
+  const std::vector<Bounds> supers = regionBoxes(g, 2, grow, fr.dims, parentOf);
+  fr.super = appendRegionOpLists(*field.a, field.b, supers, pk, true);
+  fr.blocks = fr.super;
+  auto fits = [&](uint64_t loops) { return limit == 0 || !check || loops + 64 < limit; };
+  const size_t poolBefore = pk.pool.size();
+  for (int shift = 1;
+       shift >= 0 && (conservative || !fits(std::max(fr.blocks.longestCoarse, fr.blocks.longestFine))); --shift) {
+    pk.pool.resize(poolBefore);  // drop a coarser attempt
+    glm::uvec3 dims;
+    const std::vector<Bounds> boxes = regionBoxes(g, uint32_t(shift), grow, dims, parentOf);
+    fr.blocks = appendRegionOpLists(*field.a, field.b, boxes, pk, false, &fr.super, &parentOf);
+    fr.shift = uint32_t(shift);
+    fr.dims = dims;
+  }
+  // A superblock whose own interval walk would outrun the limit is not tested as a whole (its
+  // table entry says so: AM_POLY_NONE); its blocks test themselves with their shorter lists.
+  uint64_t superWalk = 0;
+  for (uint32_t r = 0; fr.shift < 2 && r < fr.super.regions; ++r) {
+    if (fits(fr.super.intervalWalk[r]) && !conservative) superWalk = std::max(superWalk, fr.super.intervalWalk[r]);
+    else pk.pool[fr.super.table + r] = glm::uvec4(AM_POLY_NONE, 0u, AM_POLY_NONE, 0u);
+  }
+  const uint64_t need = std::max({superWalk, fr.blocks.longestCoarse, fr.blocks.longestFine});
+  if (!fits(need))
+    return Error{"a block of the grid needs ~" + std::to_string(need) + " shader loop iterations per invocation (its op list " +
+                 std::to_string(fr.blocks.longestOps) + " ops); llvmpipe stops a shader's loops after " +
+                 std::to_string(limit) + " (a finer grid has smaller blocks)"};
+  return fr;
 }
 
 // vkCmdUpdateBuffer in chunks of at most 64 KiB.
@@ -168,6 +247,11 @@ struct GpuPolygonizer::Impl {
   // with it too, even when recordFitted() took those counters, so the caller goes to the CPU rather
   // than redoing a frame that cannot fit.
   bool cutLoops = false;
+  // A frame walking per-region lists had its loops cut all the same (the iteration counts are
+  // estimates): from then on the lists are for single blocks and superblocks are not tested as a
+  // whole (buildRegionLists), the most the device can be spared. lastRegionLists: the last
+  // recorded frame used lists, not yet conservative ones.
+  bool conservativeRegions = false, lastRegionLists = false;
   GpuPolygonizeSettings lastSettings;
   Grid lastGrid;
 
@@ -340,7 +424,10 @@ GpuPolygonizer::Impl::VariantKey GpuPolygonizer::Impl::variantKey(const PackedFi
                                                                   const GpuPolygonizeSettings& s) const {
   const bool fitsUniform = pk.pool.size() <= AM_POLY_UNIFORM_POOL_VEC4 &&
                            ctx.properties().limits.maxUniformBufferRange >= AM_POLY_UNIFORM_POOL_VEC4 * 16u;
-  const bool storagePool = s.poolBuffer == GpuPolygonizeSettings::PoolBuffer::Storage || !fitsUniform ||
+  // Per-region lists make the pool grow with the grid: always a storage buffer (prewarm() and
+  // ready() pack the programs without them and must pick the same variant).
+  const bool lists = useRegionLists(field, s, loopLimit(ctx.properties()));
+  const bool storagePool = s.poolBuffer == GpuPolygonizeSettings::PoolBuffer::Storage || !fitsUniform || lists ||
                            (s.poolBuffer == GpuPolygonizeSettings::PoolBuffer::Auto && !uniformPoolAllowed);
   const uint32_t features = s.specialise ? pk.features | AM_FEAT_COMBINE_BIT(combineMode(field)) : AM_FEAT_ALL;
   const uint32_t kinds = s.specialise ? pk.kinds : AM_FEAT_ALL;
@@ -620,16 +707,35 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   if (!grid) return Error{grid.error()};
   Result<PackedFieldPrograms> packed = packFieldPrograms(*field.a, field.b);
   if (!packed) return Error{"GPU polygoniser: " + packed.error()};
-  if (s.loopBudgetCheck)
-    if (std::string why = loopBudgetReason(field, loopLimit(ctx.properties())); !why.empty())
-      return Error{"GPU polygoniser: " + why};
   const Grid& g = *grid;
+  const uint64_t limit = loopLimit(ctx.properties());
+  const bool lists = useRegionLists(field, s, limit);
+  FrameRegions fr;
+  stats.regionLists = lists;
+  if (lists) {
+    // The programs specialised on the CPU per region (gpu_region_op_lists.h).
+    const auto t0 = std::chrono::steady_clock::now();
+    Result<FrameRegions> built = buildRegionLists(field, g, limit, s.loopBudgetCheck, conservativeRegions, *packed);
+    if (!built) return Error{"GPU polygoniser: " + built.error()};
+    fr = std::move(*built);
+    stats.regionListMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    stats.regionLongestOps = fr.blocks.longestOps;
+    stats.regionOpsTotal = fr.blocks.opsTotal;
+    stats.regionBlocks = 1u << fr.shift;
+  }
+  lastRegionLists = lists && !conservativeRegions;
+  if (s.loopBudgetCheck && !lists)
+    if (std::string why = loopBudgetReason(field, limit); !why.empty()) return Error{"GPU polygoniser: " + why};
   const PackedFieldPrograms& pk = *packed;
   const uint32_t words = std::max(1u, (pk.primitiveTotal() + 31) / 32);
   const VariantKey variant = variantKey(pk, field, s);
   const bool storagePool = std::get<2>(variant) != 0;
   if (Status st = prepareFrameBuffers(g, pk, words); !st) return st;
-  const PolyParams prm = frameParams(g, pk, field, s, words);
+  PolyParams prm = frameParams(g, pk, field, s, words);
+  if (lists) {
+    prm.regions = glm::uvec4(1u, fr.super.table, fr.super.masks * 4u, fr.shift);
+    prm.regionLists = glm::uvec4(fr.blocks.table, fr.dims.x, fr.dims.y, 0u);
+  }
 
   stats.gridX = int(g.n[0]);
   stats.gridY = int(g.n[1]);
@@ -679,11 +785,6 @@ std::string GpuPolygonizer::deviceShortfall(const VkPhysicalDeviceLimits& l) {
 
 Result<std::unique_ptr<GpuPolygonizer>> GpuPolygonizer::create(Context& ctx) {
   if (std::string why = deviceShortfall(ctx.properties().limits); !why.empty()) return Error{"GPU polygoniser: " + why};
-  if (uint64_t limit = loopLimit(ctx.properties()); limit != 0) {
-    uint64_t seen = gLoopLimit.load();
-    while ((seen == 0 || limit < seen) && !gLoopLimit.compare_exchange_weak(seen, limit)) {
-    }
-  }
   std::unique_ptr<GpuPolygonizer> p(new GpuPolygonizer(ctx));
   Status s = p->impl_->init();
   if (!s) return Error{"GPU polygoniser: " + s.error()};
@@ -703,7 +804,7 @@ std::string GpuPolygonizer::unsupported(const GpuField& field) {
   if (std::string why = gpuUnsupportedReason(*field.a); !why.empty()) return why;
   if (field.b)
     if (std::string why = gpuUnsupportedReason(*field.b); !why.empty()) return "target program: " + why;
-  return loopBudgetReason(field, gLoopLimit.load());
+  return {};  // a program's size is no reason (regionPrograms): record() and polygonize() check the regions
 }
 
 void GpuPolygonizer::prewarm(const GpuField& field, const GpuPolygonizeSettings& s) {
@@ -742,6 +843,7 @@ Status GpuPolygonizer::absorbCounters(uint32_t slot) {
   if (c[AM_CTL_OVERFLOW] == 0) return Status::success();
   if (c[AM_CTL_OVERFLOW] & AM_OVERFLOW_LOOPS) {  // redoing it would cut them again
     m.cutLoops = true;
+    if (m.lastRegionLists) m.conservativeRegions = true;  // the next shape's frames spare the device more
     return Error{kCutLoops};
   }
   // That frame drew nothing; grow to what it needed (counts past a block overflow are
@@ -797,9 +899,7 @@ GeneratedMeshDraw GpuPolygonizer::generatedMesh(const glm::vec4& color) const {
 
 Result<GpuPolygonizeStats> GpuPolygonizer::polygonize(const GpuField& field, const GpuPolygonizeSettings& s) {
   Impl& m = *impl_;
-  if (std::string why = unsupported(field); !why.empty() && (s.loopBudgetCheck || !field.a ||
-                                                             loopBudgetReason(field, gLoopLimit.load()).empty()))
-    return Error{"GPU polygoniser: " + why};
+  if (std::string why = unsupported(field); !why.empty()) return Error{"GPU polygoniser: " + why};
   // Initial capacities for this grid (or the caller's, e.g. tiny ones in tests).
   {
     Result<Grid> g = makeGrid(field, s);
@@ -842,7 +942,11 @@ Result<GpuPolygonizeStats> GpuPolygonizer::polygonize(const GpuField& field, con
     stats.vertices = c[AM_CTL_VERTICES];
     stats.triangles = c[AM_CTL_TRIANGLES];
     uint32_t overflow = c[AM_CTL_OVERFLOW];
-    if (overflow & AM_OVERFLOW_LOOPS) return Error{kCutLoops};
+    if (overflow & AM_OVERFLOW_LOOPS) {
+      if (!m.lastRegionLists) return Error{kCutLoops};
+      m.conservativeRegions = true;  // redo it with the smallest regions
+      continue;
+    }
     if (overflow == 0) {
       uint64_t ticks[kTimestamps] = {};
       if (m.timestamps && vkGetQueryPoolResults(dev, m.timestamps, 0, kTimestamps, sizeof ticks, ticks, sizeof(uint64_t),

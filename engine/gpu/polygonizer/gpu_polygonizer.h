@@ -103,6 +103,14 @@ struct GpuPolygonizeSettings {
   // Workgroups a row of the fine passes' dispatch (0: AM_POLY_MAX_DISPATCH_X, the least every
   // device allows); the blocks past a row go on in the next. Tests narrow it to run that path.
   uint32_t dispatchRow = 0;
+  // Per-region programs (docs/gpu-polygonizer.md, "Per-region programs"): each superblock's passes
+  // walk the programs specialised on the CPU to the primitives reaching it (gpu_region_op_lists.h)
+  // instead of the whole programs. Auto: for programs of more than kRegionListMinOps ops, and for
+  // any whose whole walk would outrun the device's loop limit (lavapipe). Same mesh either way
+  // (tests compare On and Off); On costs a CPU specialisation per superblock each frame.
+  enum class RegionPrograms : uint8_t { Auto, Off, On };
+  RegionPrograms regionPrograms = RegionPrograms::Auto;
+  static constexpr size_t kRegionListMinOps = 256;
   // Refuse programs whose loops could run past the device's per-invocation loop limit (lavapipe:
   // GpuPolygonizer::loopLimit). Tests turn it off to run the shaders' own detection of cut loops,
   // which fails the polygonisation instead of drawing a wrong mesh.
@@ -123,6 +131,13 @@ struct GpuPolygonizeStats {
   bool overflowed = false;    // record(): the frame kFramesInFlight ago did not fit (it is redone now)
   bool uniformPool = true;    // programs read from a uniform buffer (else storage)
   uint32_t features = 0, kinds = 0;  // the pipeline variant (AM_FEAT_* / AM_KIND_*; all bits: generic)
+  // Per-region programs (GpuPolygonizeSettings::regionPrograms): used, the longest list's ops and
+  // all lists' ops together, and the CPU time spent building them (ms, part of the record).
+  bool regionLists = false;
+  uint32_t regionLongestOps = 0;
+  uint32_t regionBlocks = 0;  // blocks a side of the regions the blocks' lists are for (4: superblocks)
+  uint64_t regionOpsTotal = 0;
+  double regionListMs = 0.0;
   double milliseconds = 0.0;  // polygonize(): wall time from submit to completion (all passes)
   // polygonize(): GPU time per pass from timestamps (0 when the queue has none):
   // uploads, coarse (lists + intervals), block compaction, corners + cells, vertex/triangle scan, emit.
@@ -142,10 +157,10 @@ class GpuPolygonizer {
   GpuPolygonizer& operator=(const GpuPolygonizer&) = delete;
 
   // Why the GPU cannot polygonise field (empty when it can). Callers use the CPU path otherwise.
-  // Besides the programs' own limits: once a polygoniser exists on a device that stops long shader
-  // loops (loopLimit), programs whose walk alone exceeds that limit (gpuLoopIterationEstimate) --
-  // BlobTrees of thousands of ops, such as the animorphosis demo's creatures, on lavapipe. A frame
-  // whose loops still run out (many primitives reaching a block) fails in polygonize() and record().
+  // A program's size is no reason: on a device that stops long shader loops (loopLimit, lavapipe)
+  // programs whose whole walk would outrun it are walked per region (regionPrograms). What remains
+  // (a region reached by more primitives than the limit allows) fails in polygonize() and record()
+  // with the figures, and a frame whose loops still run out is flagged and never drawn.
   static std::string unsupported(const GpuField& field);
   // Loop iterations after which the device stops every loop of a shader invocation, all loops
   // together (0: no such limit). llvmpipe (lavapipe): AM_POLY_LLVMPIPE_LOOP_LIMIT.
