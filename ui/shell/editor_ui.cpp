@@ -246,6 +246,10 @@ void EditorUI::draw(EditorContext& ctx) {
     st_.correspondence.bakeRequested = false;
     startBakeKeysJob(ctx);
   }
+  if (st_.correspondence.autoMapRequested) {
+    st_.correspondence.autoMapRequested = false;
+    startAutoMapJob(ctx);
+  }
   drawJob(ctx);
   drawCreateAnimorphosisPopup(doc(ctx), st_.createAnimorphosis, st_.correspondence, st_.status);
   drawCreateMorphPopup(doc(ctx), ctx.assets, st_.createMorph, st_.status);

@@ -472,7 +472,8 @@ class AutoMapper {
     }
   }
 
-  void run(AutoCorrespondReport& rep);
+  // Matches every level from the roots down; false when the settings' cancel flag stopped it.
+  bool run(AutoCorrespondReport& rep);
   std::vector<CorrespondenceLink> links;  // confidence set; the caller splits them at the threshold
 
  private:
@@ -565,7 +566,7 @@ void AutoMapper::matchBelow(const Pair& p, AutoCorrespondReport& rep) {
   for (const LevelMatch& lm : level.run(&rep.regrouped, &rep.splits)) emitChains(level, lm, p.confidence);
 }
 
-void AutoMapper::run(AutoCorrespondReport& rep) {
+bool AutoMapper::run(AutoCorrespondReport& rep) {
   // The roots correspond; the rest of their chains align below them (a tree parked under an extra
   // frame, or its placing frame removed).
   std::vector<int> ca = A_.chainSlots(A_.chainFrom(0)), cb = B_.chainSlots(B_.chainFrom(0));
@@ -579,11 +580,16 @@ void AutoMapper::run(AutoCorrespondReport& rep) {
   }
   queue_.push_back(top);
   for (const auto& l : artist_) queue_.push_back({A_.slotOf(l.nodeA), B_.slotOf(l.nodeB), 1.0f});
+  const double total = double(A_.size());
+  double done = 0.0;
   while (!queue_.empty()) {
+    if (st_.cancel && st_.cancel->load(std::memory_order_relaxed)) return false;
     Pair p = queue_.front();
     queue_.pop_front();
     matchBelow(p, rep);
+    if (st_.progress) st_.progress(std::min(done += 1.0, total - 1.0), total);
   }
+  return true;
 }
 
 // Keeps the longest run of links (most confident first) that validates, dropping each link that
@@ -627,7 +633,8 @@ Result<CorrespondenceGraph> autoCorrespond(const BlobTree& a, const BlobTree& b,
     }
   }
   AutoMapper mapper(a, b, st, out.links);
-  mapper.run(rep);
+  auto cancelled = [&] { return st.cancel && st.cancel->load(std::memory_order_relaxed); };
+  if (!mapper.run(rep) || cancelled()) return Error{"auto-map cancelled"};
   std::vector<CorrespondenceLink> applied, suggested;
   for (const auto& l : mapper.links) (l.confidence >= st.suggestBelow ? applied : suggested).push_back(l);
   std::stable_sort(applied.begin(), applied.end(),
@@ -641,6 +648,7 @@ Result<CorrespondenceGraph> autoCorrespond(const BlobTree& a, const BlobTree& b,
   out.links.insert(out.links.end(), applied.begin(), applied.end());
   out.suggestions = std::move(suggested);
   if (report) *report = rep;
+  if (st.progress) st.progress(double(a.root.subtreeSize()), double(a.root.subtreeSize()));
   return out;
 }
 
