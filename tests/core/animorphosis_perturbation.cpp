@@ -31,16 +31,15 @@ struct KindTotals {
 };
 
 // Runs auto-map on `variants` variants of `a` per kind (and a mix of all kinds), prints a table
-// and checks the rates.
-// Where a kind misses the target (95 % recovered, 1 % wrong) on a tree, the rate measured
-// instead (docs/animorphosis.md, "Measured"), so a regression still fails.
-struct Shortfall {
+// and checks the rates: at least the target (95 % recovered, at most 1 % wrong) or, where a kind
+// is held higher, the rate measured (docs/animorphosis.md, "Measured"), so a regression fails.
+struct HeldRate {
   const char* kind;
   double recovered, wrong;
 };
 
 void checkPerturbations(const std::string& label, const BlobTree& a, int variants, unsigned seed, int edits,
-                        std::vector<Shortfall> shortfalls = {}) {
+                        std::vector<HeldRate> held = {}) {
   std::vector<std::vector<Perturbation>> kinds;
   std::vector<std::string> names;
   for (Perturbation p : allPerturbations()) {
@@ -68,7 +67,10 @@ void checkPerturbations(const std::string& label, const BlobTree& a, int variant
       t.suggestions += s.suggestions;
       t.rightSuggestions += s.rightSuggestions;
       t.edits += b.edits;
-      t.unbuilt += buildGenericTree(a, b.tree, *g).ok() ? 0 : 1;
+      const auto generic = buildGenericTree(a, b.tree, *g);
+      INFO(label << ", " << names[k] << ", variant " << v << ": " << (generic.ok() ? std::string() : generic.error()));
+      CHECK(generic.ok());  // splits of convolution segments too: their pieces share the segment
+      t.unbuilt += generic.ok() ? 0 : 1;
     }
     std::printf("  %-15s %4d edits: recovered %6.2f %%, wrong links %5.2f %% (%d of %d), suggestions %d (%d right), "
                 "generic tree not built %d of %d\n",
@@ -81,7 +83,7 @@ void checkPerturbations(const std::string& label, const BlobTree& a, int variant
       continue;
     }
     double minRecovered = 0.95, maxWrong = 0.01;
-    for (const Shortfall& f : shortfalls)
+    for (const HeldRate& f : held)
       if (names[k] == f.kind) minRecovered = f.recovered, maxWrong = f.wrong;
     CHECK(t.share() >= minRecovered);
     CHECK(t.wrongShare() <= maxWrong);
@@ -93,22 +95,19 @@ void checkPerturbations(const std::string& label, const BlobTree& a, int variant
 TEST_CASE("animorphosis: auto-map recovers the identity through every kind of artist's change (demo creature, "
           "random trees)",
           "[animorph]") {
-  // Short of the target: a split convolution segment whose parts are matched one to one (94.9 %), and
-  // a dropped part whose place an added one takes (92.2 % recovered, 3.8 % wrong) in a 30-node tree.
+  // Held above the target where measured so: splits 98.0 %, drop / add 97.4 % (0.93 % wrong).
   checkPerturbations("the BlobTree demo creature", makeBlobCreature(), 8, 100, 3,
-                     {{"split", 0.945, 0.01}, {"drop/add", 0.92, 0.04}});
+                     {{"split", 0.975, 0.0}, {"drop/add", 0.97, 0.01}});
   for (unsigned seed : {5u, 6u}) {
     std::mt19937 rng(seed);
-    // Short of the target: the points of a chain that became a spline linked elsewhere (1.6-1.8 % wrong).
     checkPerturbations("a random tree (seed " + std::to_string(seed) + ")", randomCreature(rng, 300), 3, 200 + seed,
-                       8, {{"spline<->chain", 0.95, 0.02}});
+                       8, {{"spline<->chain", 0.995, 0.0}});
   }
 }
 
 TEST_CASE("animorphosis: auto-map recovers the identity through every kind of artist's change (dinosaur, dragon)",
           "[animorph][demo]") {
-  // Short of the target: regrouped fibres of the dinosaur (94.7 %).
-  checkPerturbations("the dinosaur", makeDinosaur(), 1, 300, 30, {{"regroup", 0.945, 0.01}});
+  checkPerturbations("the dinosaur", makeDinosaur(), 1, 300, 30, {{"regroup", 0.995, 0.0}});
   checkPerturbations("the dragon", makeDragon(), 1, 400, 40);
 }
 
