@@ -666,3 +666,26 @@ TEST_CASE("correspondence editor: Auto-map on the demo, cancelled, leaves the gr
   CHECK(f.h.doc().history().canUndo());
   CHECK(graph(f.h).links.size() > 0);
 }
+
+TEST_CASE("Create > Animorphosis with automatic correspondence proposes the graph as a job, and Cancel creates nothing",
+          "[animorphosis_ui]") {
+  EditorFixture f({1600.0f, 1200.0f});
+  loadCreatures(f);
+  openCreateModal(f.h);
+  REQUIRE(f.h.hasWidget("animorphosis/create/create"));
+  f.h.finishJobs = false;
+  f.h.clickWidget("animorphosis/create/create");
+  const BackgroundJob* job = f.h.ui->runningJob();
+  REQUIRE(job);
+  CHECK(job->label() == "Create animorphosis");  // its panel (progress, Cancel) is drawn from the next frame
+  CHECK_FALSE(f.h.doc().project().animorphosis.enabled());  // nothing yet on the UI thread
+  f.h.ui->cancelJob();
+  while (!job->finished()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  f.h.ui->finishJob(f.h.ctx);
+  f.h.finishJobs = true;
+  f.h.frames(2);
+  CHECK(f.h.ui->state().status.text.find("cancelled") != std::string::npos);
+  CHECK_FALSE(f.h.doc().project().animorphosis.enabled());
+  CHECK_FALSE(f.h.doc().history().canUndo());
+  CHECK_FALSE(f.h.ui->state().correspondence.visible);
+}

@@ -48,6 +48,9 @@ struct CreateAnimorphosisState {
   int startFrame = 24, endFrame = 72;
   bool autoMap = true;
   std::string error;  // the last refusal, shown in the modal
+  // Create was pressed with automatic correspondence: the editor proposes the graph off the UI
+  // thread (the fields above say what to create) and applies the animorphosis as one step.
+  bool createRequested = false;
 };
 
 struct CorrespondenceLinkRef {
@@ -94,7 +97,8 @@ AutoCorrespondSettings autoMapSettings(const Project& p);
 // K artist links kept".
 std::string autoMapNote(const AutoCorrespondReport& report);
 
-// The modal; call every frame. On success it opens the correspondence editor.
+// The modal; call every frame. On success it opens the correspondence editor; with automatic
+// correspondence it checks the choice, closes and sets st.createRequested instead.
 void drawCreateAnimorphosisPopup(Document& doc, CreateAnimorphosisState& st, CorrespondenceEditorState& editor,
                                  StatusMessage& status);
 // Fills the modal's fields from the project (its BlobTree actors, the current

@@ -182,6 +182,54 @@ void EditorUI::startAutoMapJob(EditorContext& ctx) {
   startJob("Auto-map", std::move(work), std::move(done), /*lateCancelDiscards=*/true);
 }
 
+void EditorUI::startCreateAnimorphosisJob(EditorContext& ctx) {
+  const CreateAnimorphosisState& cs = st_.createAnimorphosis;
+  auto snapshot = std::make_shared<const Project>(doc(ctx).project());
+  const Timeline& tl = snapshot->timeline;
+  const std::string source = cs.sourceActorId, target = cs.targetActorId;
+  const double startSec = tl.frameToSec(cs.startFrame), endSec = tl.frameToSec(cs.endFrame);
+  auto cmd = std::make_shared<std::unique_ptr<Command>>();
+  auto work = [snapshot, source, target, startSec, endSec, cmd](JobProgress& pr) -> Status {
+    pr.setStage("proposing the correspondence");
+    AutoCorrespondSettings settings;
+    settings.cancel = pr.cancelFlag();
+    settings.progress = [&pr](double done, double total) {
+      pr.setTotal(total);
+      pr.setDone(done);
+    };
+    auto c = createAnimorphosisCommand(*snapshot, source, target, startSec, endSec, /*autoMap=*/true, settings);
+    if (pr.cancelled()) return jobCancelled();
+    if (!c) return Error{c.error()};
+    *cmd = std::move(*c);
+    return Status::success();
+  };
+  auto done = [this, snapshot, source, target, cmd](EditorContext& c, const Status& st) {
+    if (!st) {
+      setStatus("Create animorphosis: " + st.error(), true);
+      return;
+    }
+    Document& dd = doc(c);
+    const Project& now = dd.project();
+    const Actor* a = now.findActor(source);
+    const Actor* b = now.findActor(target);
+    if (!(now.animorphosis == snapshot->animorphosis) || !a || !b ||
+        !(a->blobTree == snapshot->findActor(source)->blobTree) ||
+        !(b->blobTree == snapshot->findActor(target)->blobTree)) {
+      setStatus("Create animorphosis: the actors or the animorphosis were edited meanwhile; nothing was created. "
+                "Create it again.",
+                true);
+      return;
+    }
+    const std::string label = (*cmd)->label();
+    dd.execute(std::move(*cmd));
+    const size_t links = dd.project().animorphosis.graph.links.size();
+    setStatus(label + ": " + std::to_string(links) + " link" + (links == 1 ? "" : "s"));
+    st_.correspondence.visible = true;
+    st_.correspondence.selected.reset();
+  };
+  startJob("Create animorphosis", std::move(work), std::move(done), /*lateCancelDiscards=*/true);
+}
+
 bool EditorUI::startJob(std::string label, BackgroundJob::Work work, JobDone done, bool lateCancelDiscards) {
   if (job_) {
     setStatus("Wait for " + job_->label() + " to finish, or cancel it (Esc), first", true);

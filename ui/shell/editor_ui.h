@@ -110,6 +110,10 @@ class EditorUI {
   // (progress per level matched, Cancel between levels); its graph applied as one undoable command
   // when the animorphosis and its trees are still those it matched; a cancel changes nothing.
   void startAutoMapJob(EditorContext& ctx);
+  // Create > Animorphosis... with automatic correspondence (st_.createAnimorphosis says what): the
+  // animorphosis with its proposed graph built off the UI thread, applied as one undoable step when
+  // the two actors are unchanged, then the correspondence editor opened; Cancel creates nothing.
+  void startCreateAnimorphosisJob(EditorContext& ctx);
   void drawJob(EditorContext& ctx);
   void startExport(EditorContext& ctx);
   // File > Export > Playblast...: the dialog's settings become the project's (one undoable step),
