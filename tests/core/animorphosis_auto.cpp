@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <functional>
 #include <numeric>
 #include <random>
@@ -124,4 +125,42 @@ TEST_CASE("animorphosis: auto-map recovers the demo creature from a perturbed co
   REQUIRE(c.ok());
   CHECK(c->splitCopies == 0);
   CHECK(c->nullPartners == 0);
+}
+
+TEST_CASE("animorphosis: auto-map reports its progress level by level, and a cancel stops it with no graph",
+          "[animorph]") {
+  const BlobTree a = walkerTree(), b = flyerTree();
+  const double nodes = double(a.root.subtreeSize());
+  AutoCorrespondSettings st;
+  std::vector<std::pair<double, double>> calls;
+  st.progress = [&](double done, double total) { calls.push_back({done, total}); };
+  auto g = autoCorrespond(a, b, {}, st);
+  REQUIRE(g.ok());
+  REQUIRE(calls.size() >= 2);  // at least one level and the end
+  for (size_t i = 0; i < calls.size(); ++i) {
+    CHECK(calls[i].second == nodes);
+    CHECK(calls[i].first <= calls[i].second);
+    if (i > 0) CHECK(calls[i].first >= calls[i - 1].first);
+  }
+  CHECK(calls.back().first == nodes);
+  // The same graph with and without progress.
+  CHECK(*g == *autoCorrespond(a, b, {}, {}));
+
+  // Cancelled before the first level: an error saying so, no progress past the start.
+  std::atomic<bool> cancel{true};
+  st.cancel = &cancel;
+  calls.clear();
+  auto cancelled = autoCorrespond(a, b, {}, st);
+  REQUIRE_FALSE(cancelled.ok());
+  CHECK(cancelled.error().find("cancelled") != std::string::npos);
+  CHECK(calls.empty());
+  // Cancelled after the second level: it stops there.
+  cancel = false;
+  st.progress = [&](double done, double total) {
+    calls.push_back({done, total});
+    if (calls.size() == 2) cancel = true;
+  };
+  cancelled = autoCorrespond(a, b, {}, st);
+  REQUIRE_FALSE(cancelled.ok());
+  CHECK(calls.size() == 2);
 }

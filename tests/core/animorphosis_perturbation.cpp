@@ -10,7 +10,9 @@
 #include "core/animorphosis/auto_correspond.h"
 #include "core/animorphosis/generic_tree.h"
 #include "core/animorphosis/validate_correspondence.h"
+#include "core/blobtree/compile.h"
 #include "core/blobtree/validate.h"
+#include "core/field/field_program.h"
 #include "demo/blob_creature.h"
 #include "demo/dino_dragon.h"
 #include "util/animorph_fixtures.h"
@@ -29,16 +31,15 @@ struct KindTotals {
 };
 
 // Runs auto-map on `variants` variants of `a` per kind (and a mix of all kinds), prints a table
-// and checks the rates.
-// Where a kind misses the issue's target (95 % recovered, 1 % wrong) on a tree, the rate measured
-// instead (docs/animorphosis.md, "Measured"), so a regression still fails.
-struct Shortfall {
+// and checks the rates: at least the target (95 % recovered, at most 1 % wrong) or, where a kind
+// is held higher, the rate measured (docs/animorphosis.md, "Measured"), so a regression fails.
+struct HeldRate {
   const char* kind;
   double recovered, wrong;
 };
 
 void checkPerturbations(const std::string& label, const BlobTree& a, int variants, unsigned seed, int edits,
-                        std::vector<Shortfall> shortfalls = {}) {
+                        std::vector<HeldRate> held = {}) {
   std::vector<std::vector<Perturbation>> kinds;
   std::vector<std::string> names;
   for (Perturbation p : allPerturbations()) {
@@ -66,7 +67,10 @@ void checkPerturbations(const std::string& label, const BlobTree& a, int variant
       t.suggestions += s.suggestions;
       t.rightSuggestions += s.rightSuggestions;
       t.edits += b.edits;
-      t.unbuilt += buildGenericTree(a, b.tree, *g).ok() ? 0 : 1;
+      const auto generic = buildGenericTree(a, b.tree, *g);
+      INFO(label << ", " << names[k] << ", variant " << v << ": " << (generic.ok() ? std::string() : generic.error()));
+      CHECK(generic.ok());  // splits of convolution segments too: their pieces share the segment
+      t.unbuilt += generic.ok() ? 0 : 1;
     }
     std::printf("  %-15s %4d edits: recovered %6.2f %%, wrong links %5.2f %% (%d of %d), suggestions %d (%d right), "
                 "generic tree not built %d of %d\n",
@@ -79,7 +83,7 @@ void checkPerturbations(const std::string& label, const BlobTree& a, int variant
       continue;
     }
     double minRecovered = 0.95, maxWrong = 0.01;
-    for (const Shortfall& f : shortfalls)
+    for (const HeldRate& f : held)
       if (names[k] == f.kind) minRecovered = f.recovered, maxWrong = f.wrong;
     CHECK(t.share() >= minRecovered);
     CHECK(t.wrongShare() <= maxWrong);
@@ -91,22 +95,19 @@ void checkPerturbations(const std::string& label, const BlobTree& a, int variant
 TEST_CASE("animorphosis: auto-map recovers the identity through every kind of artist's change (demo creature, "
           "random trees)",
           "[animorph]") {
-  // Short of the target: a split convolution segment whose parts are matched one to one (94.9 %), and
-  // a dropped part whose place an added one takes (92.2 % recovered, 3.8 % wrong) in a 30-node tree.
+  // Held above the target where measured so: splits 98.0 %, drop / add 97.4 % (0.93 % wrong).
   checkPerturbations("the BlobTree demo creature", makeBlobCreature(), 8, 100, 3,
-                     {{"split", 0.945, 0.01}, {"drop/add", 0.92, 0.04}});
+                     {{"split", 0.975, 0.0}, {"drop/add", 0.97, 0.01}});
   for (unsigned seed : {5u, 6u}) {
     std::mt19937 rng(seed);
-    // Short of the target: the points of a chain that became a spline linked elsewhere (1.6-1.8 % wrong).
     checkPerturbations("a random tree (seed " + std::to_string(seed) + ")", randomCreature(rng, 300), 3, 200 + seed,
-                       8, {{"spline<->chain", 0.95, 0.02}});
+                       8, {{"spline<->chain", 0.995, 0.0}});
   }
 }
 
 TEST_CASE("animorphosis: auto-map recovers the identity through every kind of artist's change (dinosaur, dragon)",
           "[animorph][demo]") {
-  // Short of the target: regrouped fibres of the dinosaur (94.7 %).
-  checkPerturbations("the dinosaur", makeDinosaur(), 1, 300, 30, {{"regroup", 0.945, 0.01}});
+  checkPerturbations("the dinosaur", makeDinosaur(), 1, 300, 30, {{"regroup", 0.995, 0.0}});
   checkPerturbations("the dragon", makeDragon(), 1, 400, 40);
 }
 
@@ -141,4 +142,47 @@ TEST_CASE("animorphosis: auto-map finds the demo creature in a shuffled, renamed
   CHECK(right >= 28);
   CHECK(int(g->links.size()) - right <= 0);
   CHECK(buildGenericTree(a, b, *g).ok());
+}
+
+TEST_CASE("animorphosis: a convolution segment linked to the parts it was split into is cut into pieces that keep "
+          "both fields",
+          "[animorph]") {
+  const BlobTree a = makeBlobCreature();
+  int splitCopies = 0;
+  for (unsigned seed = 0; seed < 6; ++seed) {
+    std::mt19937 rng(700 + seed);
+    PerturbedTree b = perturbTree(a, {Perturbation::Split}, 2, rng);
+    // The identity as the graph: each split segment linked to its two or three parts.
+    CorrespondenceGraph g;
+    for (const auto& [idA, idsB] : b.identity)
+      for (int idB : idsB) g.links.push_back({idA, idB, {}, 1.0f, false});
+    REQUIRE(validateCorrespondence(a, b.tree, g).ok());
+    auto c = buildGenericTree(a, b.tree, g);
+    INFO("seed " << seed << ": " << (c.ok() ? std::string() : c.error()));
+    REQUIRE(c.ok());
+    splitCopies += c->splitCopies;
+    // The pieces under their sum are the whole: A' is A, B' is B, at random points and times.
+    const BlobTree a2 = genericSide(*c, MorphSide::A), b2 = genericSide(*c, MorphSide::B);
+    std::uniform_real_distribution<float> x(-1.5f, 1.5f);
+    std::uniform_real_distribution<double> time(0.0, 2.0);
+    FieldEvaluator ev;
+    double worst = 0.0;
+    for (int k = 0; k < 8; ++k) {
+      const double t = time(rng);
+      // No cut-off of the segments' tails (at 1e-3 T each, three pieces would differ by 3e-3 T).
+      CompileOptions exact;
+      exact.cutoffEpsilon = 1e-9f;
+      const FieldProgram pa = compileFieldProgram(a, t, exact), pa2 = compileFieldProgram(a2, t, exact);
+      const FieldProgram pb = compileFieldProgram(b.tree, t, exact), pb2 = compileFieldProgram(b2, t, exact);
+      for (int i = 0; i < 250; ++i) {
+        const glm::vec3 p(x(rng), x(rng), x(rng));
+        const double fa = ev.evaluatePoint(pa, p), fb = ev.evaluatePoint(pb, p);
+        worst = std::max(worst, std::abs(ev.evaluatePoint(pa2, p) - fa) / std::max(std::abs(fa), double(pa.threshold)));
+        worst = std::max(worst, std::abs(ev.evaluatePoint(pb2, p) - fb) / std::max(std::abs(fb), double(pb.threshold)));
+      }
+    }
+    INFO("largest relative field difference " << worst);
+    CHECK(worst <= 1e-4);
+  }
+  CHECK(splitCopies >= 6);  // every variant split something
 }

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <chrono>
+#include <cstdio>
 #include <thread>
 
 #define GLFW_INCLUDE_NONE
@@ -583,4 +584,108 @@ TEST_CASE("correspondence editor: suggestions are dashed violet wires, Accept ap
   CHECK(graph(f.h).links.empty());
   CHECK(graph(f.h).suggestions.size() == 3);
   CHECK(f.h.hasWidget("corr/suggestion/2-102"));
+}
+
+TEST_CASE("correspondence editor: Auto-map runs as a background job with progress, then applies its links as one "
+          "undo step",
+          "[animorphosis_ui]") {
+  EditorFixture f({1600.0f, 1200.0f});
+  loadCreatures(f);
+  createThroughModal(f.h, /*autoMap=*/false);
+  dragLink(f.h, 2, 102);
+  REQUIRE(graph(f.h).links.size() == 1);
+  const size_t steps = f.h.doc().history().index();
+  f.h.finishJobs = false;  // the person sees the job before its result
+  f.h.clickWidget("corr/automap");
+  // The button started a job; the graph is not touched on the UI thread.
+  const BackgroundJob* job = f.h.ui->runningJob();
+  REQUIRE(job);
+  CHECK(job->label() == "Auto-map");
+  CHECK(f.h.hasWidget("job/progress"));
+  CHECK(f.h.hasWidget("job/cancel"));
+  while (!job->finished()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  CHECK(graph(f.h).links.size() == 1);
+  // Progress counted the levels against the source's nodes, and ended complete.
+  CHECK(job->progress().total() == Approx(double(walkerTree().root.subtreeSize())));
+  CHECK(job->progress().done() == Approx(job->progress().total()));
+  f.h.frames(1);  // the next frame applies the result
+  CHECK_FALSE(f.h.ui->runningJob());
+  f.h.finishJobs = true;
+  INFO(f.h.ui->state().status.text);
+  const CorrespondenceGraph g = graph(f.h);
+  CHECK(g.links.size() > 1);
+  REQUIRE(g.find(2, 102) >= 0);
+  CHECK(g.links[size_t(g.find(2, 102))].artist);
+  // The walker's tail is the flyer's tail (ids 9 and 112 in the demo trees' naming).
+  CHECK(g.find(9, 112) >= 0);
+  CHECK(f.h.ui->state().status.text.find("Auto-map correspondence") != std::string::npos);
+  CHECK(f.h.ui->state().status.text.find("proposed") != std::string::npos);
+  CHECK(f.h.doc().history().index() == steps + 1);
+  for (const CorrespondenceLink& l : g.links)
+    CHECK(f.h.hasWidget("corr/link/" + std::to_string(l.nodeA) + "-" + std::to_string(l.nodeB)));
+  f.h.tapKey(GLFW_KEY_Z, true);
+  f.h.frames(2);
+  CHECK(graph(f.h).links.size() == 1);
+}
+
+TEST_CASE("correspondence editor: Auto-map on the demo, cancelled, leaves the graph untouched", "[animorphosis_ui]") {
+  EditorFixture f({1600.0f, 1200.0f});
+  auto demo = makeAnimorphosisDemoProject();
+  INFO(demo.error());
+  REQUIRE(demo.ok());
+  f.h.document->reset(*demo, f.dir.file("demo.animorph"));
+  f.h.ui->state().correspondence.visible = true;
+  f.h.frames(2);
+  REQUIRE(f.h.hasWidget("corr/automap"));
+  const CorrespondenceGraph before = graph(f.h);
+  const uint64_t revision = f.h.doc().revision();
+  f.h.finishJobs = false;
+  f.h.clickWidget("corr/automap");
+  const BackgroundJob* job = f.h.ui->runningJob();
+  REQUIRE(job);
+  REQUIRE(f.h.hasWidget("job/cancel"));
+  // What Cancel (or Esc) does, at once: a click takes frames the matching may not need. However far
+  // the matching got, its result is not applied.
+  f.h.ui->cancelJob();
+  while (!job->finished()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  std::printf("Auto-map on the demo cancelled after %.0f of %.0f levels\n", job->progress().done(),
+              job->progress().total());
+  f.h.ui->finishJob(f.h.ctx);
+  f.h.finishJobs = true;
+  f.h.frames(2);
+  CHECK(f.h.ui->state().status.text.find("Auto-map cancelled") != std::string::npos);
+  CHECK(graph(f.h) == before);
+  CHECK(f.h.doc().revision() == revision);
+  CHECK_FALSE(f.h.doc().history().canUndo());
+
+  // Run again to the end, it applies a graph (one undo step).
+  f.h.clickWidget("corr/automap");
+  f.h.frames(2);
+  INFO(f.h.ui->state().status.text);
+  CHECK_FALSE(f.h.ui->state().status.error);
+  CHECK(f.h.doc().history().canUndo());
+  CHECK(graph(f.h).links.size() > 0);
+}
+
+TEST_CASE("Create > Animorphosis with automatic correspondence proposes the graph as a job, and Cancel creates nothing",
+          "[animorphosis_ui]") {
+  EditorFixture f({1600.0f, 1200.0f});
+  loadCreatures(f);
+  openCreateModal(f.h);
+  REQUIRE(f.h.hasWidget("animorphosis/create/create"));
+  f.h.finishJobs = false;
+  f.h.clickWidget("animorphosis/create/create");
+  const BackgroundJob* job = f.h.ui->runningJob();
+  REQUIRE(job);
+  CHECK(job->label() == "Create animorphosis");  // its panel (progress, Cancel) is drawn from the next frame
+  CHECK_FALSE(f.h.doc().project().animorphosis.enabled());  // nothing yet on the UI thread
+  f.h.ui->cancelJob();
+  while (!job->finished()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  f.h.ui->finishJob(f.h.ctx);
+  f.h.finishJobs = true;
+  f.h.frames(2);
+  CHECK(f.h.ui->state().status.text.find("cancelled") != std::string::npos);
+  CHECK_FALSE(f.h.doc().project().animorphosis.enabled());
+  CHECK_FALSE(f.h.doc().history().canUndo());
+  CHECK_FALSE(f.h.ui->state().correspondence.visible);
 }

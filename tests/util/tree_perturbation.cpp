@@ -119,6 +119,9 @@ class Perturber {
   std::unordered_map<int, std::vector<int>> ident_;  // A id -> the variant's nodes it is
   std::unordered_map<int, int> owner_;               // variant id -> the A id it is (part of)
   int dropAddTurn_ = 0;
+  // A spline made from a chain of points (by id in the variant): the original nodes its points
+  // were, in order (-1: a point that was no one's), so the chain it may become again is them.
+  std::unordered_map<int, std::vector<int>> chainPoints_;
 };
 
 bool Perturber::wrap() {
@@ -234,6 +237,13 @@ bool Perturber::splineToChain() {
     copy.floatParam("radius") = FloatTrack(radius * scales[std::min(i, scales.size() - 1)]);
     chain.children.push_back(std::move(copy));
   }
+  // A chain turned into a spline and back: each copy stands where the point it came from stood.
+  if (auto it = chainPoints_.find(spline.id); it != chainPoints_.end() && it->second.size() == chain.children.size())
+    for (size_t i = 0; i < chain.children.size(); ++i)
+      if (int original = it->second[i]; original >= 0) {
+        ident_[original].push_back(chain.children[i].id);
+        owner_[chain.children[i].id] = original;
+      }
   becomes(spline.id, {chain.id});
   becomes(tmpl.id, {});
   s.node() = std::move(chain);
@@ -264,7 +274,12 @@ bool Perturber::chainToSpline() {
   tmpl.vec3Param("center") = Vec3Track(glm::vec3(0.0f));
   spline.children.push_back(std::move(tmpl));
   becomes(chain.id, {spline.id});
-  for (const BlobNode& c : chain.children) becomes(c.id, {});
+  std::vector<int>& originals = chainPoints_[spline.id];
+  for (const BlobNode& c : chain.children) {
+    auto owner = owner_.find(c.id);
+    originals.push_back(owner == owner_.end() ? -1 : owner->second);
+    becomes(c.id, {});
+  }
   s.node() = std::move(spline);
   return true;
 }

@@ -110,11 +110,15 @@ void drawCreateAnimorphosisPopup(Document& doc, CreateAnimorphosisState& st, Cor
     if (choice == ModalChoice::Cancel) close = true;
     if (choice == ModalChoice::Create) {
       const Timeline& tl = p.timeline;
+      // Checked without the matching (at once); with it, the editor runs the matching as a job.
       auto cmd = createAnimorphosisCommand(p, st.sourceActorId, st.targetActorId, tl.frameToSec(st.startFrame),
-                                           tl.frameToSec(st.endFrame), st.autoMap);
+                                           tl.frameToSec(st.endFrame), /*autoMap=*/false);
       if (!cmd) {
         st.error = cmd.error();
         status = {cmd.error(), true};
+      } else if (st.autoMap) {
+        st.createRequested = true;
+        close = true;
       } else {
         std::string label = (*cmd)->label();
         doc.execute(std::move(*cmd));

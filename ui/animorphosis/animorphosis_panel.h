@@ -10,7 +10,8 @@
 //    other: link; click a wire: select it; Del, right-click > Cut, or a
 //    Ctrl+right-drag across wires: cut; the wheel zooms around the mouse, a
 //    middle drag pans, F frames all (as in the curve editor); Auto-map:
-//    propose links again keeping the artist's; Bake to key-frame actor: the
+//    propose links again keeping the artist's (a background job: progress,
+//    Cancel; its result one undoable command); Bake to key-frame actor: the
 //    animorphosis as a new key-framed BlobTree actor (Animorphosis menu too);
 //    Ghosts: the viewport also shows A(t) and B(t), translucent (saved in the
 //    project's animorphosis, undoable).
@@ -32,6 +33,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/animorphosis/auto_correspond.h"
 #include "core/doc/document.h"
 #include "ui/inspector/morph_panel.h"
 #include "ui/common/layout.h"
@@ -46,6 +48,9 @@ struct CreateAnimorphosisState {
   int startFrame = 24, endFrame = 72;
   bool autoMap = true;
   std::string error;  // the last refusal, shown in the modal
+  // Create was pressed with automatic correspondence: the editor proposes the graph off the UI
+  // thread (the fields above say what to create) and applies the animorphosis as one step.
+  bool createRequested = false;
 };
 
 struct CorrespondenceLinkRef {
@@ -81,9 +86,19 @@ struct CorrespondenceEditorState {
   bool frameAllNext = false;
   // The toolbar's Bake to key-frame actor was pressed; the editor starts the job.
   bool bakeRequested = false;
+  // The toolbar's Auto-map was pressed; the editor starts the job (autoMapSettings, then one command).
+  bool autoMapRequested = false;
 };
 
-// The modal; call every frame. On success it opens the correspondence editor.
+// Auto-map's settings for the project's animorphosis: each clip sampled from where its actor is at
+// the interval's start. Needs a valid animorphosis (checkAnimorphosis).
+AutoCorrespondSettings autoMapSettings(const Project& p);
+// What the status line adds to Auto-map's label: ": N proposed (mean confidence C), S suggested,
+// K artist links kept".
+std::string autoMapNote(const AutoCorrespondReport& report);
+
+// The modal; call every frame. On success it opens the correspondence editor; with automatic
+// correspondence it checks the choice, closes and sets st.createRequested instead.
 void drawCreateAnimorphosisPopup(Document& doc, CreateAnimorphosisState& st, CorrespondenceEditorState& editor,
                                  StatusMessage& status);
 // Fills the modal's fields from the project (its BlobTree actors, the current

@@ -38,12 +38,12 @@ std::string nodeTitle(const BlobNode& n) {
 // suggestions before Accept all (the count the toolbar shows this frame).
 size_t drawToolbarButtons(Document& doc, CorrespondenceEditorState& st, StatusMessage& status) {
   const AnimorphosisSetup& m = doc.project().animorphosis;
-  if (ImGui::Button("Auto-map")) autoMapCorrespondence(doc, status);
+  if (ImGui::Button("Auto-map")) st.autoMapRequested = true;
   noteWidget("corr/automap");
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Propose the automatic links again (kind, place and extent over the clip, across wrappers, "
                       "regrouped parts and split segments); links it is unsure of become suggestions (dashed); "
-                      "artist links are kept.");
+                      "artist links are kept. Runs in the background: Esc or Cancel leaves the links as they are.");
   ImGui::SameLine();
   if (ImGui::Button("Bake to key-frame actor")) st.bakeRequested = true;
   noteWidget("corr/bake_keys");

@@ -16,19 +16,20 @@ void runCorrCommand(Document& doc, Result<std::unique_ptr<Command>> cmd, StatusM
   if (executeOrReport(doc, std::move(cmd), status, /*announce=*/true)) status.text += note;
 }
 
-void autoMapCorrespondence(Document& doc, StatusMessage& status) {
-  const Project& p = doc.project();
+AutoCorrespondSettings autoMapSettings(const Project& p) {
   const AnimorphosisTiming t = animorphosisTiming(p);
   AutoCorrespondSettings settings;
   settings.timeSecA = t.source.localTime(t.startSec);
   settings.timeSecB = t.target.localTime(t.startSec);
-  AutoCorrespondReport report;
-  auto cmd = autoMapCommand(p, settings, &report);
+  return settings;
+}
+
+std::string autoMapNote(const AutoCorrespondReport& report) {
   char buf[160];
   std::snprintf(buf, sizeof buf, ": %d proposed (mean confidence %.2f), %d suggested, %d artist link%s kept",
                 report.proposed, report.meanConfidence, report.suggested, report.artistKept,
                 report.artistKept == 1 ? "" : "s");
-  runCorrCommand(doc, std::move(cmd), status, buf);
+  return buf;
 }
 
 void dropCorrWire(CorrFrame& f) {

@@ -111,8 +111,6 @@ bool corrWireCrossesTrail(const CorrWire& w, const std::vector<glm::vec2>& trail
 // Executes cmd; a refusal goes to the status line; on success note is appended to its label.
 void runCorrCommand(Document& doc, Result<std::unique_ptr<Command>> cmd, StatusMessage& status,
                     std::string note = {});
-// Auto-map: proposes the links again, the report's figures on the status line.
-void autoMapCorrespondence(Document& doc, StatusMessage& status);
 // The left button released over a row of the other tree links the dragged node to it (selected).
 void dropCorrWire(CorrFrame& f);
 // The right-click menus of a suggestion (Accept) and of a link (Cut, Own / Inherit s(u)).

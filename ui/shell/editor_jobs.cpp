@@ -1,7 +1,7 @@
 // EditorUI's long operations, run as background jobs (util/background_job.h): opening a project
 // (and loading its characters), opening or importing a glTF, File > Export > Meshes and Volumes...
 // and Playblast..., Refit all,
-// Animorphosis > Bake to Key-frame Actor, and the Particles section's Simulate, Explode and re-form
+// Animorphosis > Bake to Key-frame Actor, the correspondence editor's Auto-map, and the Particles section's Simulate, Explode and re-form
 // and Convert to particles (of a BlobTree actor, or of a character into a new actor). The work runs on the job's thread on copies and fills a result that only the UI thread applies, in
 // pollJob(), as one step: a new document, or one undoable command.
 #include <cmath>
@@ -16,7 +16,9 @@
 #include "core/doc/animorphosis_bake_actor.h"
 #include "core/doc/particle_commands.h"
 #include "core/doc/standin_commands.h"
+#include "core/doc/animorphosis_commands.h"
 #include "core/io/gltf_import.h"
+#include "core/project/animorphosis_project.h"
 #include "ui/shell/editor_ui.h"
 #include "ui/shell/job_progress_panel.h"
 #include "core/standin/fit_standin.h"
@@ -133,13 +135,109 @@ void EditorUI::startBakeKeysJob(EditorContext& ctx) {
   });
 }
 
-bool EditorUI::startJob(std::string label, BackgroundJob::Work work, JobDone done) {
+void EditorUI::startAutoMapJob(EditorContext& ctx) {
+  const Project& p = doc(ctx).project();
+  if (Status s = checkAnimorphosis(p); !s) {
+    setStatus("Auto-map: " + s.error(), true);
+    return;
+  }
+  // The matching reads a copy: the UI goes on (and may edit the project) while it runs.
+  auto snapshot = std::make_shared<const Project>(p);
+  auto cmd = std::make_shared<std::unique_ptr<Command>>();
+  auto report = std::make_shared<AutoCorrespondReport>();
+  auto work = [snapshot, cmd, report](JobProgress& pr) -> Status {
+    pr.setStage("matching the trees level by level");
+    AutoCorrespondSettings settings = autoMapSettings(*snapshot);
+    settings.cancel = pr.cancelFlag();
+    settings.progress = [&pr](double done, double total) {
+      pr.setTotal(total);
+      pr.setDone(done);
+    };
+    auto c = autoMapCommand(*snapshot, settings, report.get());
+    if (pr.cancelled()) return jobCancelled();
+    if (!c) return Error{c.error()};
+    *cmd = std::move(*c);
+    return Status::success();
+  };
+  auto done = [this, snapshot, cmd, report](EditorContext& c, const Status& st) {
+    if (!st) {
+      setStatus("Auto-map: " + st.error(), true);
+      return;
+    }
+    Document& dd = doc(c);
+    // The command swaps the whole setup: applied over an edit made meanwhile it would undo that edit.
+    const Project& now = dd.project();
+    const AnimorphosisSetup& m = snapshot->animorphosis;
+    const Actor* a = now.findActor(m.sourceActorId);
+    const Actor* b = now.findActor(m.targetActorId);
+    if (!(now.animorphosis == m) || !a || !b || !(a->blobTree == snapshot->findActor(m.sourceActorId)->blobTree) ||
+        !(b->blobTree == snapshot->findActor(m.targetActorId)->blobTree)) {
+      setStatus("Auto-map: the animorphosis or its trees were edited while it ran; nothing changed. Run it again.",
+                true);
+      return;
+    }
+    setStatus((*cmd)->label() + autoMapNote(*report));
+    dd.execute(std::move(*cmd));
+  };
+  startJob("Auto-map", std::move(work), std::move(done), /*lateCancelDiscards=*/true);
+}
+
+void EditorUI::startCreateAnimorphosisJob(EditorContext& ctx) {
+  const CreateAnimorphosisState& cs = st_.createAnimorphosis;
+  auto snapshot = std::make_shared<const Project>(doc(ctx).project());
+  const Timeline& tl = snapshot->timeline;
+  const std::string source = cs.sourceActorId, target = cs.targetActorId;
+  const double startSec = tl.frameToSec(cs.startFrame), endSec = tl.frameToSec(cs.endFrame);
+  auto cmd = std::make_shared<std::unique_ptr<Command>>();
+  auto work = [snapshot, source, target, startSec, endSec, cmd](JobProgress& pr) -> Status {
+    pr.setStage("proposing the correspondence");
+    AutoCorrespondSettings settings;
+    settings.cancel = pr.cancelFlag();
+    settings.progress = [&pr](double done, double total) {
+      pr.setTotal(total);
+      pr.setDone(done);
+    };
+    auto c = createAnimorphosisCommand(*snapshot, source, target, startSec, endSec, /*autoMap=*/true, settings);
+    if (pr.cancelled()) return jobCancelled();
+    if (!c) return Error{c.error()};
+    *cmd = std::move(*c);
+    return Status::success();
+  };
+  auto done = [this, snapshot, source, target, cmd](EditorContext& c, const Status& st) {
+    if (!st) {
+      setStatus("Create animorphosis: " + st.error(), true);
+      return;
+    }
+    Document& dd = doc(c);
+    const Project& now = dd.project();
+    const Actor* a = now.findActor(source);
+    const Actor* b = now.findActor(target);
+    if (!(now.animorphosis == snapshot->animorphosis) || !a || !b ||
+        !(a->blobTree == snapshot->findActor(source)->blobTree) ||
+        !(b->blobTree == snapshot->findActor(target)->blobTree)) {
+      setStatus("Create animorphosis: the actors or the animorphosis were edited meanwhile; nothing was created. "
+                "Create it again.",
+                true);
+      return;
+    }
+    const std::string label = (*cmd)->label();
+    dd.execute(std::move(*cmd));
+    const size_t links = dd.project().animorphosis.graph.links.size();
+    setStatus(label + ": " + std::to_string(links) + " link" + (links == 1 ? "" : "s"));
+    st_.correspondence.visible = true;
+    st_.correspondence.selected.reset();
+  };
+  startJob("Create animorphosis", std::move(work), std::move(done), /*lateCancelDiscards=*/true);
+}
+
+bool EditorUI::startJob(std::string label, BackgroundJob::Work work, JobDone done, bool lateCancelDiscards) {
   if (job_) {
     setStatus("Wait for " + job_->label() + " to finish, or cancel it (Esc), first", true);
     return false;
   }
   job_ = std::make_unique<BackgroundJob>(std::move(label), std::move(work));
   jobDone_ = std::move(done);
+  jobLateCancelDiscards_ = lateCancelDiscards;
   return true;
 }
 
@@ -148,7 +246,7 @@ void EditorUI::pollJob(EditorContext& ctx) {
   std::unique_ptr<BackgroundJob> job = std::move(job_);
   JobDone done = std::move(jobDone_);
   jobDone_ = nullptr;
-  if (job->wasCancelled()) {
+  if (job->wasCancelled() || (jobLateCancelDiscards_ && job->progress().cancelled())) {
     setStatus(job->label() + " cancelled");
     return;
   }

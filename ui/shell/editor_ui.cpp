@@ -246,8 +246,16 @@ void EditorUI::draw(EditorContext& ctx) {
     st_.correspondence.bakeRequested = false;
     startBakeKeysJob(ctx);
   }
+  if (st_.correspondence.autoMapRequested) {
+    st_.correspondence.autoMapRequested = false;
+    startAutoMapJob(ctx);
+  }
   drawJob(ctx);
   drawCreateAnimorphosisPopup(doc(ctx), st_.createAnimorphosis, st_.correspondence, st_.status);
+  if (st_.createAnimorphosis.createRequested) {
+    st_.createAnimorphosis.createRequested = false;
+    startCreateAnimorphosisJob(ctx);
+  }
   drawCreateMorphPopup(doc(ctx), ctx.assets, st_.createMorph, st_.status);
   if (drawPreferencesWindow(st_.showPreferences, st_.prefs, st_.prefsPath)) savePreferences();
   drawShortcutsWindow(st_.showShortcuts);

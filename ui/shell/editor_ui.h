@@ -95,14 +95,25 @@ class EditorUI {
   void addImportedActor(const std::string& path, EditorContext& ctx);
   // Runs work as the editor's background job; done runs on the UI thread with the work's status
   // (not for a cancelled job: the status bar says so). Refused, with a message, while another runs.
+  // lateCancelDiscards: a Cancel that comes after the work returned but before the UI thread applied
+  // its result discards the result too (for work with no effect outside it: the person asked for
+  // nothing to change, and nothing does).
   using JobDone = std::function<void(EditorContext&, const Status&)>;
-  bool startJob(std::string label, BackgroundJob::Work work, JobDone done);
+  bool startJob(std::string label, BackgroundJob::Work work, JobDone done, bool lateCancelDiscards = false);
   void pollJob(EditorContext& ctx);
   // Runs the inspector's Refit all (st_.standinTool.refitAllRequest) as the background job.
   void startRefitJob(EditorContext& ctx);
   // Animorphosis > Bake to Key-frame Actor: bakes the animorphosis off the UI thread, then adds
   // the key-frame BlobTree as a new actor (one undoable step) and reports the key counts.
   void startBakeKeysJob(EditorContext& ctx);
+  // The correspondence editor's Auto-map: autoCorrespond on a copy of the project off the UI thread
+  // (progress per level matched, Cancel between levels); its graph applied as one undoable command
+  // when the animorphosis and its trees are still those it matched; a cancel changes nothing.
+  void startAutoMapJob(EditorContext& ctx);
+  // Create > Animorphosis... with automatic correspondence (st_.createAnimorphosis says what): the
+  // animorphosis with its proposed graph built off the UI thread, applied as one undoable step when
+  // the two actors are unchanged, then the correspondence editor opened; Cancel creates nothing.
+  void startCreateAnimorphosisJob(EditorContext& ctx);
   void drawJob(EditorContext& ctx);
   void startExport(EditorContext& ctx);
   // File > Export > Playblast...: the dialog's settings become the project's (one undoable step),
@@ -144,6 +155,7 @@ class EditorUI {
   EditorOutput out_;
   std::unique_ptr<BackgroundJob> job_;
   JobDone jobDone_;
+  bool jobLateCancelDiscards_ = false;
   WidgetRects widgets_;
   std::vector<std::pair<PendingKind, std::string>> external_;  // requestQuit/requestOpen
   std::vector<std::string> dropped_;                           // requestDrop

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <deque>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <unordered_set>
 
@@ -94,8 +95,9 @@ struct Matcher {
   // clip at the same fractions when they have as many samples).
   static int at(int k, int own, int common) { return own == common ? k : k * own / common; }
 
-  // Cost of pairing x (in A, under the matched parent pa) with y (in B, under pb).
-  double cost(const Shape& x, int pa, const Shape& y, int pb) const {
+  // Cost of pairing x (in A, under the matched parent pa) with y (in B, under pb). shift (one per
+  // sample, or null): what the level's consensus says A's offsets are off by (Level::recentre).
+  double cost(const Shape& x, int pa, const Shape& y, int pb, const glm::vec3* shift = nullptr) const {
     const NodeExtent* ea = A.extents(pa);
     const NodeExtent* eb = B.extents(pb);
     double pos = 0.0, size = 0.0;
@@ -106,6 +108,7 @@ struct Matcher {
       const NodeExtent& pB = eb[at(k, B.samples(), samples)];
       glm::vec3 oa = xa.count > 0 ? (xa.centroid() - pA.centroid()) / A.scale() : glm::vec3(0.0f);
       glm::vec3 ob = yb.count > 0 ? (yb.centroid() - pB.centroid()) / B.scale() : glm::vec3(0.0f);
+      if (shift) oa -= shift[k];
       pos += glm::distance(oa, ob);
       size += glm::distance(xa.size() / A.scale(), yb.size() / B.scale());
     }
@@ -131,6 +134,8 @@ class Level {
   // Matches the items; opens groups that match better as their parts; proposes splits.
   std::vector<LevelMatch> run(int* regrouped, int* splits);
   const std::vector<ChainItem>& xs() const { return xs_; }
+  // The final assignment's score after run() (each item pays its pair's cost, or maxCost unpaired).
+  double score() const { return score_; }
   const std::vector<ChainItem>& ys() const { return ys_; }
 
  private:
@@ -142,6 +147,12 @@ class Level {
   double regretOf(const std::vector<int>& rowOf, int r, int c) const;
   bool trySplit(bool sideA, int one, std::vector<int> candidates, LevelMatch& out) const;
   double pairCost(int x, int y) const { return c_[size_t(x) * ys_.size() + size_t(y)]; }
+  // Costs and assigns the level again without its consensus offset (the median offset difference
+  // of its pairs); kept when it scores better. False when it was not.
+  bool recentre(std::vector<int>& match, double& best);
+  // Whether some item of A, of B, is left unpaired (or paired above maxCost) by match.
+  void findUnpaired(const std::vector<int>& match, bool& unpairedA, bool& unpairedB) const;
+  const glm::vec3* shift() const { return shift_.empty() ? nullptr : shift_.data(); }
 
   const Matcher& m_;
   int pa_, pb_;
@@ -149,6 +160,8 @@ class Level {
   std::vector<Shape> sx_, sy_;
   std::vector<double> c_;
   double parentScale_ = 1.0;  // the parent's size in units of its tree's
+  std::vector<glm::vec3> shift_;  // per sample: the level's consensus offset of A against B (empty: none)
+  double score_ = 0.0;
 };
 
 void Level::fillCosts() {
@@ -160,7 +173,7 @@ void Level::fillCosts() {
   if (std::max(xs_.size(), cols) <= size_t(m_.st.hungarianLimit)) {
     c_.assign(xs_.size() * cols, 0.0);
     for (size_t r = 0; r < xs_.size(); ++r)
-      for (size_t c = 0; c < cols; ++c) c_[r * cols + c] = m_.cost(sx_[r], pa_, sy_[c], pb_);
+      for (size_t c = 0; c < cols; ++c) c_[r * cols + c] = m_.cost(sx_[r], pa_, sy_[c], pb_, shift());
     return;
   }
   // A wide level (a union of thousands of patches): each row is costed against its nearest columns
@@ -244,6 +257,62 @@ bool Level::tryOpen(bool sideA, size_t item, std::vector<int>& match, double& be
   return false;
 }
 
+// A part dropped, added or split moves its parent's centroid, and with it every sibling's offset:
+// siblings that did not change then all differ by the same vector. The median difference of the
+// paired items (per sample, per axis) is that vector; the level is costed and assigned again
+// without it, and kept so when it pairs the level better.
+bool Level::recentre(std::vector<int>& match, double& best) {
+  if (std::max(xs_.size(), ys_.size()) > size_t(m_.st.hungarianLimit)) return false;
+  std::vector<std::pair<int, int>> pairs;
+  for (size_t r = 0; r < xs_.size(); ++r)
+    if (match[r] >= 0 && pairCost(int(r), match[r]) <= m_.st.maxCost) pairs.push_back({int(r), match[r]});
+  if (pairs.size() < 2) return false;
+  const int n = m_.samples;
+  std::vector<glm::vec3> shift(static_cast<size_t>(n), glm::vec3(0.0f));
+  const NodeExtent* ea = m_.A.extents(pa_);
+  const NodeExtent* eb = m_.B.extents(pb_);
+  std::vector<float> d(pairs.size());
+  for (int k = 0; k < n; ++k) {
+    const int ka = Matcher::at(k, m_.A.samples(), n), kb = Matcher::at(k, m_.B.samples(), n);
+    for (int axis = 0; axis < 3; ++axis) {
+      for (size_t i = 0; i < pairs.size(); ++i) {
+        const NodeExtent& x = sx_[size_t(pairs[i].first)].extents[size_t(ka)];
+        const NodeExtent& y = sy_[size_t(pairs[i].second)].extents[size_t(kb)];
+        d[i] = (x.centroid()[axis] - ea[ka].centroid()[axis]) / m_.A.scale() -
+               (y.centroid()[axis] - eb[kb].centroid()[axis]) / m_.B.scale();
+      }
+      std::nth_element(d.begin(), d.begin() + long(d.size() / 2), d.end());
+      float med = d[d.size() / 2];
+      if (d.size() % 2 == 0) med = 0.5f * (med + *std::max_element(d.begin(), d.begin() + long(d.size() / 2)));
+      shift[size_t(k)][axis] = med;
+    }
+  }
+  std::vector<glm::vec3> saved = std::move(shift_);
+  shift_ = std::move(shift);
+  fillCosts();
+  std::vector<int> trial = assign();
+  const double s = score(trial);
+  if (s < best) {
+    best = s;
+    match = std::move(trial);
+    return true;
+  }
+  shift_ = std::move(saved);
+  fillCosts();
+  return false;
+}
+
+void Level::findUnpaired(const std::vector<int>& match, bool& unpairedA, bool& unpairedB) const {
+  std::vector<char> usedB(ys_.size(), 0);
+  unpairedA = unpairedB = false;
+  for (size_t r = 0; r < xs_.size(); ++r) {
+    const bool paired = match[r] >= 0 && pairCost(int(r), match[r]) <= m_.st.maxCost;
+    if (paired) usedB[size_t(match[r])] = 1;
+    unpairedA = unpairedA || !paired;
+  }
+  for (char u : usedB) unpairedB = unpairedB || !u;
+}
+
 std::vector<LevelMatch> Level::run(int* regrouped, int* splits) {
   fillCosts();
   std::vector<int> match = assign();
@@ -252,8 +321,13 @@ std::vector<LevelMatch> Level::run(int* regrouped, int* splits) {
   // (a group opened may hold another).
   for (int round = 0; round < 16; ++round) {
     bool opened = false;
+    // A group that pairs cheaply may still hold items the other side left unpaired (parts moved
+    // into a new group with the bundle they sit on match the bundle alone): it is tried too.
+    bool unpairedA = false, unpairedB = false;
+    findUnpaired(match, unpairedA, unpairedB);
     for (int sideA = 0; sideA < 2 && !opened; ++sideA) {
       const size_t n = sideA ? xs_.size() : ys_.size();
+      const bool othersLeft = sideA ? unpairedB : unpairedA;
       for (size_t i = 0; i < n && !opened; ++i) {
         double paired = std::numeric_limits<double>::infinity();
         if (sideA) {
@@ -262,12 +336,14 @@ std::vector<LevelMatch> Level::run(int* regrouped, int* splits) {
           for (size_t r = 0; r < xs_.size(); ++r)
             if (match[r] == int(i)) paired = pairCost(int(r), int(i));
         }
-        if (paired > 0.02 * m_.st.maxCost && tryOpen(sideA != 0, i, match, best)) opened = true;
+        if ((paired > 0.02 * m_.st.maxCost || othersLeft) && tryOpen(sideA != 0, i, match, best)) opened = true;
       }
     }
     if (!opened) break;
     ++*regrouped;
   }
+  recentre(match, best);
+  score_ = best;
   return collect(match, splits);
 }
 
@@ -283,7 +359,7 @@ bool Level::trySplit(bool sideA, int one, std::vector<int> candidates, LevelMatc
     Shape merged = shapeOf(other, slots);
     merged.types = self.types;    // the parts' own kinds were compared when they were filtered
     merged.primitives = self.primitives;
-    return sideA ? m_.cost(self, pa_, merged, pb_) : m_.cost(merged, pa_, self, pb_);
+    return sideA ? m_.cost(self, pa_, merged, pb_, shift()) : m_.cost(merged, pa_, self, pb_, shift());
   };
   // The nearest candidates only (a limb faces two or three segments next to it).
   const glm::vec3 c0 = self.extents[0].centroid();
@@ -377,7 +453,8 @@ std::vector<LevelMatch> Level::collect(const std::vector<int>& match, int* split
       for (size_t o = 0; o < other.size(); ++o)
         if (!otherUsed[o] && isSplitPart(os.node(other[o].bottom).type)) candidates.push_back(int(o));
       LevelMatch split;
-      if (candidates.size() < 2 || !trySplit(sideA != 0, sideA ? r : c, candidates, split) || split.cost > 0.5 * lm.cost)
+      const bool tried = candidates.size() >= 2 && trySplit(sideA != 0, sideA ? r : c, candidates, split);
+      if (!tried || split.cost > 0.5 * lm.cost)
         continue;
       const std::vector<int>& parts = sideA ? split.ys : split.xs;
       if (std::find(parts.begin(), parts.end(), sideA ? c : r) == parts.end()) continue;  // its partner stays in
@@ -430,7 +507,7 @@ std::vector<std::pair<int, int>> alignChains(const MatchSide& A, const std::vect
       glm::vec3 tb = y.vec3Param("translation").evaluate(timeB) / B.scale();
       float dq = std::abs(glm::dot(glm::normalize(x.quatParam("rotation").evaluate(timeA)),
                                    glm::normalize(y.quatParam("rotation").evaluate(timeB))));
-      s += 0.15 * std::exp(-glm::distance(ta, tb) / 0.02) + 0.15 * dq * dq;
+      s += 0.6 * std::exp(-glm::distance(ta, tb) / 0.02) + 0.15 * dq * dq;
     }
     return s;
   };
@@ -472,7 +549,8 @@ class AutoMapper {
     }
   }
 
-  void run(AutoCorrespondReport& rep);
+  // Matches every level from the roots down; false when the settings' cancel flag stopped it.
+  bool run(AutoCorrespondReport& rep);
   std::vector<CorrespondenceLink> links;  // confidence set; the caller splits them at the threshold
 
  private:
@@ -547,25 +625,34 @@ void AutoMapper::matchBelow(const Pair& p, AutoCorrespondReport& rep) {
   // nothing below them pairs.
   if ((na.type == NodeType::SplineOfNodes) != (nb.type == NodeType::SplineOfNodes)) return;
   // One side in the middle of a chain the other has left: either the rest of that chain wraps what
-  // lies below (skip it), or the other side's node lost children (keep it); the closer child count wins.
-  int ua = p.a, ub = p.b;
-  auto closer = [](size_t want, size_t here, size_t below) {
-    auto d = [&](size_t n) { return n > want ? n - want : want - n; };
-    return d(below) < d(here);
-  };
-  if (isTransparentLink(na) && !isTransparentLink(nb) &&
-      closer(nb.children.size(), 1, A_.node(A_.chainFrom(p.a).bottom).children.size()))
-    ua = A_.chainFrom(p.a).bottom;
-  if (isTransparentLink(nb) && !isTransparentLink(na) &&
-      closer(na.children.size(), 1, B_.node(B_.chainFrom(p.b).bottom).children.size()))
-    ub = B_.chainFrom(p.b).bottom;
-  std::vector<ChainItem> xs = freeItems(A_, ua, artistA_), ys = freeItems(B_, ub, artistB_);
-  if (xs.empty() || ys.empty()) return;
-  Level level(m_, ua, ub, std::move(xs), std::move(ys));
-  for (const LevelMatch& lm : level.run(&rep.regrouped, &rep.splits)) emitChains(level, lm, p.confidence);
+  // lies below (skip it: a frame over a new group of the other's children), or the other side's node
+  // lost children (keep it: a frame left with one child); both are matched, the level that pairs
+  // better (Level::score) is kept.
+  std::vector<std::pair<int, int>> options{{p.a, p.b}};
+  if (isTransparentLink(na) && !isTransparentLink(nb)) options.push_back({A_.chainFrom(p.a).bottom, p.b});
+  if (isTransparentLink(nb) && !isTransparentLink(na)) options.push_back({p.a, B_.chainFrom(p.b).bottom});
+  std::unique_ptr<Level> best;
+  std::vector<LevelMatch> bestMatches;
+  int bestRegrouped = 0, bestSplits = 0;
+  for (const auto& [ua, ub] : options) {
+    std::vector<ChainItem> xs = freeItems(A_, ua, artistA_), ys = freeItems(B_, ub, artistB_);
+    if (xs.empty() || ys.empty()) continue;
+    auto level = std::make_unique<Level>(m_, ua, ub, std::move(xs), std::move(ys));
+    int regrouped = 0, splits = 0;
+    std::vector<LevelMatch> matches = level->run(&regrouped, &splits);
+    if (best && level->score() >= best->score()) continue;
+    best = std::move(level);
+    bestMatches = std::move(matches);
+    bestRegrouped = regrouped;
+    bestSplits = splits;
+  }
+  if (!best) return;
+  rep.regrouped += bestRegrouped;
+  rep.splits += bestSplits;
+  for (const LevelMatch& lm : bestMatches) emitChains(*best, lm, p.confidence);
 }
 
-void AutoMapper::run(AutoCorrespondReport& rep) {
+bool AutoMapper::run(AutoCorrespondReport& rep) {
   // The roots correspond; the rest of their chains align below them (a tree parked under an extra
   // frame, or its placing frame removed).
   std::vector<int> ca = A_.chainSlots(A_.chainFrom(0)), cb = B_.chainSlots(B_.chainFrom(0));
@@ -579,11 +666,16 @@ void AutoMapper::run(AutoCorrespondReport& rep) {
   }
   queue_.push_back(top);
   for (const auto& l : artist_) queue_.push_back({A_.slotOf(l.nodeA), B_.slotOf(l.nodeB), 1.0f});
+  const double total = double(A_.size());
+  double done = 0.0;
   while (!queue_.empty()) {
+    if (st_.cancel && st_.cancel->load(std::memory_order_relaxed)) return false;
     Pair p = queue_.front();
     queue_.pop_front();
     matchBelow(p, rep);
+    if (st_.progress) st_.progress(std::min(done += 1.0, total - 1.0), total);
   }
+  return true;
 }
 
 // Keeps the longest run of links (most confident first) that validates, dropping each link that
@@ -627,7 +719,8 @@ Result<CorrespondenceGraph> autoCorrespond(const BlobTree& a, const BlobTree& b,
     }
   }
   AutoMapper mapper(a, b, st, out.links);
-  mapper.run(rep);
+  auto cancelled = [&] { return st.cancel && st.cancel->load(std::memory_order_relaxed); };
+  if (!mapper.run(rep) || cancelled()) return Error{"auto-map cancelled"};
   std::vector<CorrespondenceLink> applied, suggested;
   for (const auto& l : mapper.links) (l.confidence >= st.suggestBelow ? applied : suggested).push_back(l);
   std::stable_sort(applied.begin(), applied.end(),
@@ -641,6 +734,7 @@ Result<CorrespondenceGraph> autoCorrespond(const BlobTree& a, const BlobTree& b,
   out.links.insert(out.links.end(), applied.begin(), applied.end());
   out.suggestions = std::move(suggested);
   if (report) *report = rep;
+  if (st.progress) st.progress(double(a.root.subtreeSize()), double(a.root.subtreeSize()));
   return out;
 }
 

@@ -16,6 +16,9 @@
 // `suggestBelow` are returned as suggestions, not applied. Artist links are
 // never touched: their nodes are not matched again, and no automatic link may
 // contradict one.
+#include <atomic>
+#include <functional>
+
 #include "core/animorphosis/correspondence.h"
 #include "core/blobtree/blob_tree.h"
 #include "core/util/result.h"
@@ -35,6 +38,13 @@ struct AutoCorrespondSettings {
   double marginScale = 0.02;     // confidence: the next candidate's extra cost against (cost / 4 + this * the parent's size)
   double suggestBelow = 0.25;    // links less confident than this are suggestions, not applied
   int hungarianLimit = 300;      // wider levels use a greedy cheapest-pair-first assignment
+  // Run as a background job (the editor's Auto-map): progress(done, total) is called on the calling
+  // thread after each matched level (total: the source tree's nodes, an upper bound on the levels;
+  // done reaches total when the graph is complete); a set cancel flag stops the matching before the
+  // next level or before the validation, and autoCorrespond returns an error saying it was cancelled.
+  // Null / empty: no progress, no cancel.
+  const std::atomic<bool>* cancel = nullptr;
+  std::function<void(double done, double total)> progress;
 };
 
 struct AutoCorrespondReport {

@@ -73,6 +73,32 @@ void scaleIntensity(BlobNode& n, float f) {
   for (BlobNode& c : n.children) scaleIntensity(c, f);
 }
 
+// The track of the point a fraction f of the way from a to b, keyed where either is.
+Vec3Track pointAlong(const Vec3Track& a, const Vec3Track& b, float f) {
+  if (f <= 0.0f) return a;
+  if (f >= 1.0f) return b;
+  std::set<double> times;
+  for (const auto& k : a.keys()) times.insert(k.timeSec);
+  for (const auto& k : b.keys()) times.insert(k.timeSec);
+  if (times.empty()) return a;
+  const KeyInterp interp = a.keys().empty() ? KeyInterp::Hermite : a.keys().front().interp;
+  Vec3Track r = a;
+  r.clearKeys();
+  for (double t : times) r.setKey(t, glm::mix(a.evaluate(t), b.evaluate(t), f), interp);
+  return r;
+}
+
+// Piece `which` of a convolution segment cut at the fractions `cuts` (ascending, inside 0..1) of
+// its length: the field of a convolution segment is its kernel integrated along it, so its pieces
+// under a sum make the whole's field (exactly where the ends move linearly between keys).
+BlobNode segmentPiece(const BlobNode& n, size_t which, const std::vector<float>& cuts) {
+  BlobNode r = n;
+  const float f0 = which == 0 ? 0.0f : cuts[which - 1], f1 = which < cuts.size() ? cuts[which] : 1.0f;
+  r.vec3Param("a") = pointAlong(n.vec3Param("a"), n.vec3Param("b"), f0);
+  r.vec3Param("b") = pointAlong(n.vec3Param("a"), n.vec3Param("b"), f1);
+  return r;
+}
+
 BlobNode shallow(const BlobNode& n) {
   BlobNode s;
   s.id = n.id;
@@ -212,9 +238,33 @@ struct Builder {
     return memo[&n] = std::move(d);
   }
 
-  // The part of n that goes with partner j when n's links go to several partners.
+  // The piece of convolution segment n that goes with partner j of d (indices in partners, the
+  // other parent's children): the partners' centroids at time 0 projected on the segment order the
+  // pieces, cut half way between neighbours (a segment split in two or three on the other side
+  // morphs piece by piece into its parts).
+  static BlobNode convSegmentShare(const BlobNode& n, int j, const std::vector<int>& d,
+                                   const std::vector<BlobNode>& partners) {
+    const glm::vec3 a = n.vec3Param("a").evaluate(0.0), ab = n.vec3Param("b").evaluate(0.0) - a;
+    const float len2 = glm::dot(ab, ab);
+    std::vector<std::pair<float, int>> along;
+    for (int k : d) {
+      const glm::vec3 c = subtreeExtent(partners[size_t(k)], 0.0).centroid();
+      along.push_back({len2 > 0.0f ? std::clamp(glm::dot(c - a, ab) / len2, 0.0f, 1.0f) : 0.0f, k});
+    }
+    std::sort(along.begin(), along.end());
+    std::vector<float> cuts;
+    size_t which = 0;
+    for (size_t i = 0; i < along.size(); ++i) {
+      if (along[i].second == j) which = i;
+      if (i > 0) cuts.push_back(std::max(cuts.empty() ? 0.0f : cuts.back(), 0.5f * (along[i - 1].first + along[i].first)));
+    }
+    return segmentPiece(n, which, cuts);
+  }
+
+  // The part of n that goes with partner j when n's links go to several partners (partners: the
+  // other parent's children, which j indexes).
   BlobNode restrictTo(const BlobNode& n, int j, Combine parent, MorphSide side, const EndDests& ends,
-                      DestMemo& memo) {
+                      DestMemo& memo, const std::vector<BlobNode>& partners) {
     const std::vector<int> d = dests(n, ends, memo);
     if (d.size() == 1) return n;
     BlobNode r = shallow(n);
@@ -222,6 +272,7 @@ struct Builder {
     std::string count = std::to_string(d.size());
     if (isLeafType(n.type)) {
       if (parent == Combine::Sum) {
+        if (n.type == NodeType::ConvSegment) return convSegmentShare(n, j, d, partners);
         if (paramIndex(n.type, "intensity") < 0)
           throw BuildError{describe(n, side) + " links to " + count + " separate sub-trees of the " +
                            sideName(other(side)) + " but has no intensity to share among its copies under a sum"};
@@ -260,7 +311,7 @@ struct Builder {
         }
       } else if (std::binary_search(cd.begin(), cd.end(), j)) {
         if (cd.size() > 1 && j == cd.front()) out.splitCopies += int(cd.size()) - 1;
-        r.children.push_back(restrictTo(c, j, own, side, ends, memo));
+        r.children.push_back(restrictTo(c, j, own, side, ends, memo, partners));
       }
     }
     return r;
@@ -462,15 +513,16 @@ struct Builder {
     // copies[i][j]: the part of A kid i that goes with B kid j (and the same for B).
     std::vector<std::map<int, BlobNode>> aCopies(aKids.size()), bCopies(bKids.size());
     auto makeCopies = [&](const std::vector<BlobNode>& kids, MorphSide side, const EndDests& ends, DestMemo& memo,
-                          Combine parent, std::vector<std::map<int, BlobNode>>& copies) {
+                          Combine parent, std::vector<std::map<int, BlobNode>>& copies,
+                          const std::vector<BlobNode>& partners) {
       for (size_t i = 0; i < kids.size(); ++i) {
         std::vector<int> d = dests(kids[i], ends, memo);
-        for (int j : d) copies[i].emplace(j, restrictTo(kids[i], j, parent, side, ends, memo));
+        for (int j : d) copies[i].emplace(j, restrictTo(kids[i], j, parent, side, ends, memo, partners));
         if (d.size() > 1) out.splitCopies += int(d.size()) - 1;
       }
     };
-    makeCopies(aKids, MorphSide::A, aEnds, aMemo, combineOf(pa.type), aCopies);
-    makeCopies(bKids, MorphSide::B, bEnds, bMemo, combineOf(pb.type), bCopies);
+    makeCopies(aKids, MorphSide::A, aEnds, aMemo, combineOf(pa.type), aCopies, bKids);
+    makeCopies(bKids, MorphSide::B, bEnds, bMemo, combineOf(pb.type), bCopies, aKids);
 
     std::vector<GenericNode> r;
     for (const auto& [i, j] : edges) {

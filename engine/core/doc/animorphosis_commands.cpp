@@ -40,7 +40,8 @@ std::unique_ptr<Command> setAnimorphosisCommand(const Project& p, AnimorphosisSe
 
 Result<std::unique_ptr<Command>> createAnimorphosisCommand(const Project& p, const std::string& sourceActorId,
                                                            const std::string& targetActorId, double startSec,
-                                                           double endSec, bool autoMap) {
+                                                           double endSec, bool autoMap,
+                                                           AutoCorrespondSettings st) {
   AnimorphosisSetup a;
   a.sourceActorId = sourceActorId;
   a.targetActorId = targetActorId;
@@ -50,7 +51,6 @@ Result<std::unique_ptr<Command>> createAnimorphosisCommand(const Project& p, con
   trial.animorphosis = a;
   if (Status s = checkAnimorphosis(trial); !s) return Error{s.error()};
   if (autoMap) {
-    AutoCorrespondSettings st;
     AnimorphosisTiming t = animorphosisTiming(trial);
     st.timeSecA = t.source.localTime(startSec);
     st.timeSecB = t.target.localTime(startSec);

@@ -20,10 +20,13 @@ std::unique_ptr<Command> setAnimorphosisCommand(const Project& p, AnimorphosisSe
                                                 std::string mergeKey = {});
 
 // Starts an animorphosis of two BlobTree actors over [startSec, endSec], its
-// graph proposed automatically when autoMap is set (empty otherwise).
+// graph proposed automatically when autoMap is set (empty otherwise) with autoSettings (their clip
+// times are set from the interval; their progress and cancel are used: a cancelled proposal is an
+// error saying so).
 Result<std::unique_ptr<Command>> createAnimorphosisCommand(const Project& p, const std::string& sourceActorId,
                                                            const std::string& targetActorId, double startSec,
-                                                           double endSec, bool autoMap);
+                                                           double endSec, bool autoMap,
+                                                           AutoCorrespondSettings autoSettings = {});
 // Draws an artist link (refused when it breaks the hierarchy rules; an existing
 // automatic link between the same nodes becomes an artist one).
 Result<std::unique_ptr<Command>> addCorrespondenceLinkCommand(const Project& p, int nodeA, int nodeB);

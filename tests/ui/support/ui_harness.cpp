@@ -19,6 +19,9 @@ EditorHarness::EditorHarness(const std::string& prefsPath, glm::vec2 display)
   unsigned char* pixels = nullptr;
   int w = 0, h = 0;
   io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
+  // As the editor's renderer (gpu/present/imgui_vulkan.cpp): draw lists past 64K vertices (the
+  // animorphosis demo's thousands of wires) are split by vertex offsets, not refused.
+  io.BackendFlags |= ImGuiBackendFlags_RendererHasVtxOffset;
   // The GLFW backend's key map (imgui_impl_glfw.cpp, 1.86).
   io.KeyMap[ImGuiKey_Tab] = GLFW_KEY_TAB;
   io.KeyMap[ImGuiKey_LeftArrow] = GLFW_KEY_LEFT;
