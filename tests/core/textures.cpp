@@ -163,6 +163,52 @@ TEST_CASE("textures: KHR_texture_transform is applied to the coordinates and pri
   CHECK(c->materials.at(1).baseColorFactor.b == Approx(0.9f));
 }
 
+TEST_CASE("textures: the mipmap chain halves each level down to 1 x 1, averaging in linear light", "[textures]") {
+  CHECK(textureLevelCount(1, 1) == 1);
+  CHECK(textureLevelCount(256, 256) == 9);
+  CHECK(textureLevelCount(5, 3) == 3);
+  // A 4 x 2 image: black and white texels side by side, then a red row.
+  TextureImage t;
+  t.name = "chain";
+  t.width = 4;
+  t.height = 2;
+  t.rgba = std::make_shared<std::vector<uint8_t>>(std::vector<uint8_t>{
+      0, 0, 0, 255, 255, 255, 255, 255, 0, 0, 0, 255, 255, 255, 255, 0,          //
+      255, 0, 0, 255, 255, 0, 0, 255, 255, 0, 0, 255, 255, 0, 0, 255});
+  const std::vector<TextureLevel> levels = textureMipLevels(t);
+  REQUIRE(levels.size() == 2);
+  CHECK(levels[0].width == 2);
+  CHECK(levels[0].height == 1);
+  CHECK(levels[1].width == 1);
+  CHECK(levels[1].height == 1);
+  // Texel 0 of level 1: black, white, red, red -> linear red (0 + 1 + 1 + 1) / 4 = 0.75, green and
+  // blue 0.25; sRGB bytes 225 and 137 (a plain byte average would give 191 and 64). Alpha: 255.
+  const uint8_t* p = levels[0].rgba.data();
+  CHECK(int(p[0]) == 225);
+  CHECK(int(p[1]) == 137);
+  CHECK(int(p[2]) == 137);
+  CHECK(int(p[3]) == 255);
+  // Texel 1: the white texel's alpha is 0: (255 + 0 + 255 + 255) / 4 = 191.25 -> 191.
+  CHECK(int(p[7]) == 191);
+  // Level 2 averages level 1's two texels, both alike but for alpha.
+  CHECK(std::abs(int(levels[1].rgba[0]) - 225) <= 1);
+  CHECK(int(levels[1].rgba[3]) == 223);
+  // Odd sizes: 5 x 3 -> 2 x 1 -> 1 x 1; a 1 x 1 texture and an invalid one have no levels below.
+  TextureImage odd;
+  odd.width = 5;
+  odd.height = 3;
+  odd.rgba = std::make_shared<std::vector<uint8_t>>(5 * 3 * 4, uint8_t(90));
+  const auto oddLevels = textureMipLevels(odd);
+  REQUIRE(oddLevels.size() == 2);
+  CHECK(oddLevels[0].width == 2);
+  CHECK(oddLevels[0].height == 1);
+  CHECK(int(oddLevels[1].rgba[0]) == 90);  // a flat image stays flat through the sRGB round trip
+  odd.width = odd.height = 1;
+  odd.rgba = std::make_shared<std::vector<uint8_t>>(4, uint8_t(7));
+  CHECK(textureMipLevels(odd).empty());
+  CHECK(textureMipLevels(TextureImage{}).empty());
+}
+
 TEST_CASE("textures: a mesh of two materials exports as two primitives and imports back with its parts and colours",
           "[textures][export]") {
   TempDir tmp;

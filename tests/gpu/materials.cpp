@@ -133,6 +133,61 @@ TEST_CASE("a factor tints the texture, a second material draws its own colour, a
   }
 }
 
+TEST_CASE("a minified one-texel checker is drawn in its mean grey through the mipmaps, not aliased",
+          "[gpu][materials]") {
+  auto ctx = test::makeTestContext();
+  auto target = test::makeSceneTarget(*ctx, 160, 160);
+  // A 2 x 2 m quad with a 256 x 256 checker of single black and white texels, seen from 12 m:
+  // about 25 pixels across, ten texels a pixel.
+  constexpr int kSide = 256;
+  auto pixels = std::make_shared<std::vector<uint8_t>>(size_t(kSide) * kSide * 4, uint8_t(255));
+  for (int y = 0; y < kSide; ++y)
+    for (int x = 0; x < kSide; ++x)
+      if ((x + y) % 2) std::fill_n(pixels->data() + (size_t(y) * kSide + size_t(x)) * 4, 3, uint8_t(0));
+  Character c;
+  Mesh m;
+  m.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+  m.normals.assign(4, {0, 0, 1});
+  m.texcoords0 = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+  m.indices = {0, 1, 2, 0, 2, 3};
+  m.material = 0;
+  c.meshes.push_back(m);
+  TextureImage t;
+  t.name = "checker";
+  t.width = t.height = kSide;
+  t.rgba = pixels;
+  c.textures.push_back(t);
+  Material mat;
+  mat.baseColorTexture = 0;
+  c.materials.push_back(mat);
+  c.nodes.push_back(Node{});
+  c.nodes[0].mesh = 0;
+  c.roots = {0};
+  auto ch = std::make_shared<const Character>(c);
+  MeshCache cache(*ctx);
+  const GpuMesh* mesh = cache.get(ch, 0);
+  INFO(cache.lastError());
+  REQUIRE(mesh);
+  OrbitCamera cam = frontCamera();
+  cam.distanceM = 12.0f;
+  const RgbaImage& img = test::renderScene(target, cam, sceneOf(mesh));
+  keep(img, "minified_checker.png");
+  // The quad's inner pixels: without mipmaps each takes the one or four texels nearest its
+  // centre (black, white or anything between, a moire); with them, the checker's mean.
+  int lo = 255, hi = 0;
+  for (float x = -0.7f; x <= 0.7f; x += 0.1f)
+    for (float y = -0.7f; y <= 0.7f; y += 0.1f) {
+      const glm::u8vec4 p = pixelAt(img, cam, {x, y, 0});
+      lo = std::min(lo, int(p.g));
+      hi = std::max(hi, int(p.g));
+    }
+  INFO("green over the quad " << lo << ".." << hi);
+  CHECK(hi - lo <= 12);
+  CHECK(lo > 60);    // not the black texels
+  CHECK(hi < 240);   // nor the white ones
+  CHECK(ctx->validationErrorCount() == 0);
+}
+
 TEST_CASE("vertex colours colour a mesh, and a mesh without colour keeps the viewport grey exactly",
           "[gpu][materials]") {
   auto ctx = test::makeTestContext();

@@ -1,5 +1,6 @@
 #include "core/rig/texture_image.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace animorph {
@@ -26,7 +27,65 @@ glm::vec4 texel(const TextureImage& t, int x, int y) {
   return glm::vec4(p[0], p[1], p[2], p[3]) / 255.0f;
 }
 
+// sRGB-encoded byte to linear light (the exact sRGB curve, as the GPU decodes _SRGB formats).
+float srgbByteToLinear(uint8_t b) {
+  const float c = float(b) / 255.0f;
+  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+uint8_t linearToSrgbByte(float l) {
+  const float c = l <= 0.0031308f ? 12.92f * l : 1.055f * std::pow(l, 1.0f / 2.4f) - 0.055f;
+  return uint8_t(std::lround(std::clamp(c, 0.0f, 1.0f) * 255.0f));
+}
+
+// The level below `above` (w x h): the mean of the 2 x 2 texels each covers.
+TextureLevel halveLevel(const uint8_t* above, int w, int h, const float* toLinear) {
+  TextureLevel out;
+  out.width = std::max(1, w / 2);
+  out.height = std::max(1, h / 2);
+  out.rgba.resize(size_t(out.width) * size_t(out.height) * 4);
+  const int sx = w > 1 ? 2 : 1, sy = h > 1 ? 2 : 1;
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x) {
+      float sum[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+      for (int dy = 0; dy < sy; ++dy)
+        for (int dx = 0; dx < sx; ++dx) {
+          const uint8_t* p = above + (size_t(y * sy + dy) * size_t(w) + size_t(x * sx + dx)) * 4;
+          for (int k = 0; k < 3; ++k) sum[k] += toLinear[p[k]];
+          sum[3] += float(p[3]);
+        }
+      const float n = float(sx * sy);
+      uint8_t* q = out.rgba.data() + (size_t(y) * size_t(out.width) + size_t(x)) * 4;
+      for (int k = 0; k < 3; ++k) q[k] = linearToSrgbByte(sum[k] / n);
+      q[3] = uint8_t(std::lround(sum[3] / n));
+    }
+  return out;
+}
+
 }  // namespace
+
+int textureLevelCount(int width, int height) {
+  int levels = 1;
+  for (int side = std::max(width, height); side > 1; side /= 2) ++levels;
+  return levels;
+}
+
+std::vector<TextureLevel> textureMipLevels(const TextureImage& t) {
+  std::vector<TextureLevel> levels;
+  if (!t.valid()) return levels;
+  float toLinear[256];
+  for (int b = 0; b < 256; ++b) toLinear[b] = srgbByteToLinear(uint8_t(b));
+  levels.reserve(size_t(textureLevelCount(t.width, t.height) - 1));  // no reallocation: `above` stays valid
+  const uint8_t* above = t.rgba->data();
+  int w = t.width, h = t.height;
+  while (w > 1 || h > 1) {
+    levels.push_back(halveLevel(above, w, h, toLinear));
+    above = levels.back().rgba.data();
+    w = levels.back().width;
+    h = levels.back().height;
+  }
+  return levels;
+}
 
 glm::vec4 sampleTexture(const TextureImage& t, glm::vec2 uv) {
   if (!t.valid() || !std::isfinite(uv.x) || !std::isfinite(uv.y)) return glm::vec4(0.0f);

@@ -123,7 +123,7 @@ Status ImGuiVulkan::uploadAtlas() {
   io.Fonts->GetTexDataAsAlpha8(&pixels, &w, &h);
   if (!pixels || w <= 0 || h <= 0) return Error{"ImGui: the font atlas could not be built"};
   const VkDeviceSize bytes = VkDeviceSize(w) * VkDeviceSize(h);
-  Result<gpu::Image> img = gpu::createSampledImage(ctx_, {uint32_t(w), uint32_t(h)}, VK_FORMAT_R8_UNORM, pixels, bytes);
+  Result<gpu::Image> img = gpu::createSampledImage(ctx_, VK_FORMAT_R8_UNORM, {{VkExtent2D{uint32_t(w), uint32_t(h)}, pixels, bytes}});
   if (!img) return Error{"ImGui: font atlas: " + img.error()};
   atlas_ = *img;
   VkDescriptorImageInfo ii{sampler_, atlas_.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};

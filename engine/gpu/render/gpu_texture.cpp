@@ -39,19 +39,27 @@ Result<std::unique_ptr<GpuTexture>> GpuTexture::upload(Context& ctx, const Textu
     return Error{what + ": " + std::to_string(texture.width) + " x " + std::to_string(texture.height) +
                  " is larger than the device's largest image (" + std::to_string(maxSide) + ")"};
   std::unique_ptr<GpuTexture> t(new GpuTexture(ctx.device()));
-  const VkExtent2D extent{uint32_t(texture.width), uint32_t(texture.height)};
-  Result<Image> img = createSampledImage(ctx, extent, VK_FORMAT_R8G8B8A8_SRGB, texture.rgba->data(), texture.rgba->size());
+  // The full chain of mipmaps (averaged in linear light on the CPU), so a minified texture is
+  // filtered rather than aliased.
+  const std::vector<TextureLevel> mips = textureMipLevels(texture);
+  std::vector<ImageLevel> levels{{VkExtent2D{uint32_t(texture.width), uint32_t(texture.height)}, texture.rgba->data(),
+                                  VkDeviceSize(texture.rgba->size())}};
+  for (const TextureLevel& m : mips)
+    levels.push_back({VkExtent2D{uint32_t(m.width), uint32_t(m.height)}, m.rgba.data(), VkDeviceSize(m.rgba.size())});
+  Result<Image> img = createSampledImage(ctx, VK_FORMAT_R8G8B8A8_SRGB, levels);
   if (!img) return Error{what + ": " + img.error()};
   t->image_ = *img;
 
   VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   si.magFilter = filter(texture.magFilter);
   si.minFilter = filter(texture.minFilter);
-  si.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  // Between levels as between texels: trilinear for a linear minification filter.
+  si.mipmapMode = texture.minFilter == TextureFilter::Nearest ? VK_SAMPLER_MIPMAP_MODE_NEAREST
+                                                              : VK_SAMPLER_MIPMAP_MODE_LINEAR;
   si.addressModeU = addressMode(texture.wrapS);
   si.addressModeV = addressMode(texture.wrapT);
   si.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
-  si.maxLod = 0.0f;
+  si.maxLod = float(levels.size() - 1);
   AM_VK_TRY(vkCreateSampler(t->device_, &si, nullptr, &t->sampler_), "vkCreateSampler");
   Result<VkDescriptorSetLayout> layout = createMaterialSetLayout(t->device_);
   if (!layout) return Error{what + ": " + layout.error()};

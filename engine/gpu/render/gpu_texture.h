@@ -1,7 +1,8 @@
 #pragma once
 // A TextureImage (rig/texture_image.h) uploaded once to device memory: an
-// R8G8B8A8_SRGB image (sampling returns linear RGB), one mip level, a sampler
-// with the texture's wrap modes and filters, and the descriptor set of the
+// R8G8B8A8_SRGB image (sampling returns linear RGB) with its full mipmap chain
+// (rig/texture_image.h textureMipLevels), a sampler with the texture's wrap modes
+// and filters (trilinear when the minification filter is linear), and the descriptor set of the
 // material pipelines' set AM_MATERIAL_SET that binds both.
 #include <memory>
 
