@@ -7,7 +7,7 @@
 #include "transition_constants.h"
 #include "skinned_vertex.glsl"
 layout(location = AM_VERTEX_STANDIN_OFFSET) in vec4 inStandinOffset;  // dp, m
-layout(location = AM_VERTEX_STANDIN_NORMAL) in vec4 inStandinNormal;  // n~, 0
+layout(location = AM_VERTEX_STANDIN_NORMAL) in vec4 inStandinNormal;  // n~, stand-in colour (gpu_standin_binding.h)
 
 #include "transition.glsl"
 #include "material_vertex.glsl"
@@ -26,9 +26,14 @@ void main() {
   amTransitionVertex(p, n, inJoints0, inWeights0, inJoints1, inWeights1, dpm, inStandinNormal.xyz, wp, wn);
   outWorldPos = wp.xyz;
   outWorldNormal = wn;
-  // The mesh's material (texture coordinates, COLOR_0) as it is: a transition that fades the
-  // colour towards its stand-in's overwrites outColor0 here (the pixel then multiplies it).
+  // The mesh's material (texture coordinates, COLOR_0) as it is, faded by the pixel into the
+  // stand-in's colour where the vertex lands, with the position's alpha (the CPU's
+  // transitionColors at the vertices). The colour is RGBA8 in the bits of n~'s w, its top byte
+  // AM_STANDIN_COLOR_TAG (none: 0).
   amPassMaterial();
+  const uint packed = floatBitsToUint(inStandinNormal.w);
+  if ((packed >> 24) == AM_STANDIN_COLOR_TAG)
+    outStandinColor = vec4(unpackUnorm4x8(packed).rgb, clamp(amTransitionAlpha(inStandinOffset.w), 0.0, 1.0));
   gl_Position = frame.viewProj * wp;
   gl_Position.z -= pc.depthPull * gl_Position.w;
 }

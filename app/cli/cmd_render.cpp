@@ -78,6 +78,7 @@ int runRender(const std::vector<std::string>& args) {
     if (!own && !actor) continue;
     PolygonizeSettings ps;
     ps.resolution = morphResolution;
+    ps.colors = !b.tint;  // as the editor draws it: in the primitives' colours, a ghost in its tint
     auto poly = polygonize(compileFieldProgram(own ? *own : actor->blobTree, b.treeTimeSec), ps);
     if (!poly) return cli::fail("render", "BlobTree actor '" + b.actorId + "': " + poly.error());
     MeshDraw d;
@@ -86,7 +87,7 @@ int runRender(const std::vector<std::string>& args) {
     d.meshNode = 0;
     d.meshIndex = 0;
     d.joints = {b.model};
-    d.color = b.tint ? *b.tint : glm::vec3(gpu::kBlobSurfaceColor);  // as the editor draws it
+    if (b.tint) d.color = *b.tint;
     frame.meshes.push_back(std::move(d));
   }
 

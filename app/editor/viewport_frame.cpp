@@ -86,9 +86,11 @@ ViewportFrame::MorphShown ViewportFrame::applyMorphStage(EditorGpu& g, const Pre
     ectx.viewportNote = morphPreparer_.error().empty() ? "" : "morph: " + morphPreparer_.error();
     return shown;
   }
+  // A morph with colours is drawn in them by the CPU worker (the GPU polygoniser's meshes have
+  // no colour stream yet): on CPU devices Auto takes the worker for it.
   const bool convolution = !rt->source.isTree() && !rt->target.isTree() &&
                            rt->source.morph.standin.kind == StandinKind::Convolution &&
-                           rt->target.morph.standin.kind == StandinKind::Convolution;
+                           rt->target.morph.standin.kind == StandinKind::Convolution && !morphHasColors(*rt);
   r.morphBackend = gpu::choosePreviewBackend(prefs.previewDevice, g.ctx->deviceType(),
                                              convolution ? gpu::PreviewWork::ConvolutionMorph : gpu::PreviewWork::Other);
   if (rt.get() != prewarmedMorph_ && r.morphBackend.gpu) {

@@ -6,10 +6,14 @@ layout(location = AM_VERTEX_COLOR0) in vec4 inColor0;
 
 layout(location = 2) out vec2 outTexcoord0;
 layout(location = 3) out vec4 outColor0;
+// The colour the material's base fades into (rgb, linear) and how far (a): a
+// transition's stand-in colour at its alpha (transition.vert); (0, 0, 0, 0) else.
+layout(location = 4) out vec4 outStandinColor;
 
-// Passes the vertex's material inputs on unchanged. A transition that blends the
-// colour towards its stand-in's writes outColor0 after calling this.
+// Passes the vertex's material inputs on unchanged, with no stand-in colour. A
+// transition writes outStandinColor after calling this.
 void amPassMaterial() {
   outTexcoord0 = inTexcoord0;
   outColor0 = inColor0;
+  outStandinColor = vec4(0.0);
 }

@@ -7,10 +7,12 @@ layout(set = AM_MATERIAL_SET, binding = AM_MATERIAL_BINDING_BASE_COLOR) uniform 
 
 layout(location = 2) in vec2 inTexcoord0;
 layout(location = 3) in vec4 inColor0;
+layout(location = 4) in vec4 inStandinColor;  // a transition's stand-in colour (rgb) and alpha (a)
 
+// Then faded into a transition's stand-in colour by its alpha (include/material_vertex.glsl).
 vec3 amMaterialBase() {
   vec3 base = pc.baseLinear.rgb;
   if ((pc.flags & AM_DRAW_TEXTURED) != 0u) base *= texture(baseColorTexture, inTexcoord0).rgb;
   if ((pc.flags & AM_DRAW_VERTEX_COLOR) != 0u) base *= inColor0.rgb;
-  return base;
+  return mix(base, inStandinColor.rgb, inStandinColor.a);
 }

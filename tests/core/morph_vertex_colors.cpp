@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 
 #include "core/io/gltf_export.h"
+#include "core/rig/vertex_colors.h"
 #include "core/scene/morph_runtime.h"
 #include "util/morph_fixtures.h"
 #include "util/temp_dir.h"
@@ -27,17 +28,28 @@ TEST_CASE("morph frames carry the characters' vertex colours on the skinned and 
   const double fps = demo.project.timeline.fps;
   MorphFrameSettings s;
   s.resolution = 24;
+  // The vertex's textured colour (the scales texture x COLOR_0) before A, fading into the
+  // stand-in's through the collapse (tests/core/morph_colors.cpp holds the fade's values).
+  const StandinBinding& b = (*rt)->source.binding;
+  REQUIRE(b.hasColors());
+  const std::vector<glm::vec4> textured = characterVertexColors(creature);
+  REQUIRE(textured.size() == total);
+  CHECK(b.vertexColors[13] == textured[13]);
   for (int frame : {mk.a - 2, (mk.a + mk.b) / 2}) {  // skinned source, collapse
     auto fr = evaluateMorphFrame(**rt, frame / fps, s);
     REQUIRE(fr.ok());
     REQUIRE(fr->mesh.positions.size() >= total);  // the collapse: then the stand-in core's vertices
     REQUIRE(fr->mesh.colors.size() == fr->mesh.positions.size());
-    CHECK(fr->mesh.colors[13] == glm::vec4(float(13 % 7) / 6.0f, 0.25f, 0.5f, 1.0f));
+    if (frame < mk.a) CHECK(fr->mesh.colors[13] == textured[13]);
+    std::vector<float> alpha;
+    transitionAlphas(fr->progress, (*rt)->setup.easing, (*rt)->source.morph.weightMap, (*rt)->setup.weightMapShift, false, total,
+                     alpha);
+    CHECK(glm::distance(fr->mesh.colors[13], glm::mix(b.vertexColors[13], b.standinColors[13], alpha[13])) < 1e-6f);
   }
-  // The gear has no colours; the implicit morph has none of its own.
+  // The implicit morph and the gear carry colours too (the stand-ins' and the gear's bronze).
   for (int frame : {(mk.b + mk.c) / 2, mk.d + 2}) {
     auto fr = evaluateMorphFrame(**rt, frame / fps, s);
     REQUIRE(fr.ok());
-    CHECK(fr->mesh.colors.empty());
+    CHECK(fr->mesh.colors.size() == fr->mesh.positions.size());
   }
 }

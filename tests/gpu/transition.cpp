@@ -263,6 +263,19 @@ TEST_CASE("transition pipeline: at alpha = 0 it draws exactly what plain skinnin
   INFO(differing << " pixels differ between the GPU and CPU collapsed shapes");
   CHECK(countDifferent(atOne, reference, 8) > 200);  // the collapse changed the picture
   CHECK(differing < 40);
+  // ... in the stand-in's colours (the creature's scales, StandinBinding::standinColors): the
+  // shader fades to them as the CPU's vertex colours do (colour within the 8 levels above).
+  REQUIRE(a.binding.hasColors());
+  REQUIRE(cpu.mesh.colors.size() == cpu.mesh.positions.size());
+  auto coloured = [](const RgbaImage& im) {
+    size_t n = 0;
+    for (size_t i = 0; i < im.pixels.size(); i += 4)
+      n += std::abs(int(im.pixels[i]) - int(im.pixels[i + 1])) + std::abs(int(im.pixels[i + 1]) - int(im.pixels[i + 2])) > 24;
+    return n;
+  };
+  INFO(coloured(atOne) << " coloured pixels at alpha 1, " << coloured(reference) << " at alpha 0 (grey: no material bound)");
+  CHECK(coloured(reference) == 0);
+  CHECK(coloured(atOne) > 1000);
   CHECK(ctx->validationErrorCount() == 0);
 }
 

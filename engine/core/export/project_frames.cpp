@@ -51,6 +51,7 @@ Result<BakedFrame> ProjectFrames::frame(int frame, const FrameBakeSettings& s) c
       fs.resolution = s.resolution;
       fs.threads = s.threads;
       fs.cancel = s.cancel;
+      fs.colors = s.colors;
       return evaluateMorphFrame(*morph_, timeSec, fs);
     }();
     if (!fr) return Error{fr.error()};

@@ -906,10 +906,22 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
   st.pointsEvaluated = run.points.load() + st.orphanVertices;
   st.primitiveEvaluations = run.pairs.load();
   if (s.colors) {
+    // In runs of vertices, so that a cancel (a preview superseded while it colours) is seen.
     const auto c0 = std::chrono::steady_clock::now();
-    result.mesh.colors.resize(result.mesh.positions.size());
-    SurfaceColorEvaluator().evaluate(program, result.mesh.positions.data(), result.mesh.positions.size(),
-                                     result.mesh.colors.data(), s.threads);
+    const size_t n = result.mesh.positions.size();
+    constexpr size_t kColorRun = 32768;
+    result.mesh.colors.resize(n);
+    SurfaceColorEvaluator colors;
+    for (size_t first = 0; first < n; first += kColorRun) {
+      if (s.cancel && s.cancel->load()) {
+        result.mesh = TriangleMesh{};  // as a cancelled sweep: empty
+        result.cancelled = true;
+        st.milliseconds = millisecondsSince(t0);
+        return result;
+      }
+      colors.evaluate(s.colorProgram ? *s.colorProgram : program, result.mesh.positions.data() + first,
+                      std::min(kColorRun, n - first), result.mesh.colors.data() + first, s.threads);
+    }
     st.colorMilliseconds = millisecondsSince(c0);
   }
   if (s.progress) s.progress(1.0f);

@@ -89,8 +89,13 @@ struct PolygonizeSettings {
   // many cells of a full sweep's; the reused normals are the older frame's. 0.1 is a good value.
   float reuseToleranceCells = 0.0f;
   // Vertex colours (TriangleMesh::colors, linear): the surface colour of the program's primitives
-  // at each vertex (field/surface_color.h), computed after the mesh is made. Off: no colours.
+  // at each vertex (field/surface_color.h), computed after the mesh is made, in runs of vertices
+  // between which cancel is polled (a cancel there gives the cancelled, empty result). Off: none.
   bool colors = false;
+  // With colors: the program the colours are evaluated on instead of the polygonised one (a
+  // finished program with the same surface whose primitives carry finer colours: a morph's
+  // stand-ins split into their colour samples, standin/standin_colors.h). Null: the program itself.
+  const FieldProgram* colorProgram = nullptr;
 };
 
 struct PolygonizeStats {

@@ -58,6 +58,7 @@ Result<PolygonizeResult> polygonizePreviewProgram(const FieldProgram& program, i
   settings.resolution = resolution;
   settings.threads = threads;
   settings.cancel = cancel;
+  settings.colors = true;
   if (history) {
     // Stay on the last frame's grid while the shape fits in it, so its blocks can be reused.
     auto own = polygonizeGrid(program, settings);

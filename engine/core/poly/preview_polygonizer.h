@@ -58,7 +58,8 @@ class PreviewSource {
 inline constexpr float kPreviewReuseToleranceCells = 0.1f;
 
 // How a preview polygonises one program (BlobTree sources, the animorphosis' C(t)): with the
-// worker's history, on the last frame's grid while the shape fits in it, its blocks reused.
+// worker's history, on the last frame's grid while the shape fits in it, its blocks reused; with
+// the primitives' colours as vertex colours (field/surface_color.h), drawn by the viewport.
 Result<PolygonizeResult> polygonizePreviewProgram(const FieldProgram& program, int resolution, int threads,
                                                   const std::atomic<bool>* cancel, PolygonizeHistory* history);
 

@@ -10,6 +10,7 @@ std::shared_ptr<const Character> characterFromMesh(const TriangleMesh& tm, const
   m.positions = tm.positions;
   m.normals = tm.normals;
   m.indices = tm.indices;
+  if (tm.colors.size() == tm.positions.size()) m.colors = tm.colors;  // linear, drawn as COLOR_0
   m.joints0.assign(m.positions.size(), glm::uvec4(0));
   m.weights0.assign(m.positions.size(), glm::vec4(1, 0, 0, 0));
   c->meshes.push_back(std::move(m));

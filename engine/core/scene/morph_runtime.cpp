@@ -156,6 +156,8 @@ TransitionStats transitionMesh(const MorphActorRuntime& a, double timeSec, const
     st = evaluateTransition(*a.character, a.binding, globals, root, alpha, nullptr, nullptr, ts, pos, nrm);
   }
   out = assemble(*a.character, std::move(pos), std::move(nrm));
+  // The transition's colours: the textured colour fading into the stand-in's with the position.
+  if (a.binding.hasColors()) transitionColors(a.binding, alpha, out.colors);
   return st;
 }
 
@@ -217,6 +219,12 @@ MorphStage morphStageAt(const MorphSetup& s, const Timeline& tl, double timeSec,
   return MorphStage::Target;
 }
 
+bool morphHasColors(const MorphRuntime& rt) {
+  for (const MorphActorRuntime* a : {&rt.source, &rt.target})
+    if (a->isTree() || a->binding.hasColors()) return true;
+  return false;
+}
+
 MorphOperand posedOperand(const MorphActorRuntime& a, double timeSec, double u) {
   if (a.isTree()) {
     MorphOperand op;
@@ -243,6 +251,8 @@ MorphOperand posedOperand(const MorphActorRuntime& a, double timeSec, double u) 
   op.sharpness = s.sharpness;
   op.segments = poseStandin(s, actorGlobals(a, timeSec), a.actor.transform.matrix());
   for (size_t i = 0; i < scale.size(); ++i) op.segments[i].weightScale = scale[i];
+  if (a.binding.segmentColors.size() == op.segments.size())
+    for (size_t i = 0; i < op.segments.size(); ++i) op.segments[i].colors = a.binding.segmentColors[i];
   return op;
 }
 
@@ -254,9 +264,14 @@ MorphImplicitField morphImplicitField(const MorphRuntime& rt, double timeSec, in
   out.blend = std::clamp(m.blend.evaluate(out.progress), 0.0f, 1.0f);
   const MorphOperand src = posedOperand(rt.source, timeSec, out.progress);
   const MorphOperand dst = posedOperand(rt.target, timeSec, out.progress);
-  out.program = rt.correspondence ? buildCorrespondenceMorphProgram(*rt.correspondence, src, dst, m.correspondenceBlend,
-                                                                     out.blend, m.spaceTime, m.interpolationBound)
-                                   : buildMorphProgram(src, dst, m.method, out.blend, m.spaceTime, m.interpolationBound);
+  auto build = [&](bool colorProfiles) {
+    return rt.correspondence
+               ? buildCorrespondenceMorphProgram(*rt.correspondence, src, dst, m.correspondenceBlend, out.blend,
+                                                 m.spaceTime, m.interpolationBound, colorProfiles)
+               : buildMorphProgram(src, dst, m.method, out.blend, m.spaceTime, m.interpolationBound, colorProfiles);
+  };
+  out.program = build(false);
+  if (morphHasColors(rt)) out.colorProgram = std::make_shared<const FieldProgram>(build(true));
   out.noiseAmplitude = m.noiseAmplitude.evaluate(out.progress);
   if (out.program.unbounded()) {
     // Space-time blending: the bound solid makes the field positive far
@@ -351,6 +366,8 @@ Result<MorphFrame> evaluateMorphImplicit(const MorphRuntime& rt, double timeSec,
   ps.threads = settings.threads;
   ps.cancel = settings.cancel;
   ps.bounds = field.bounds;
+  ps.colors = settings.colors && field.colorProgram;
+  ps.colorProgram = field.colorProgram.get();
   auto r = polygonize(field.program, ps);
   if (!r) return Error{"morph at " + std::to_string(timeSec) + " s: " + r.error()};
   fr.cancelled = r->cancelled;

@@ -80,6 +80,10 @@ struct MorphFrameSettings {
   // Collapse and expansion frames carry the stand-in core (scene/standin_core.h)
   // as a second shell of their mesh. false: the transitioned mesh alone.
   bool standinCore = true;
+  // Vertex colours (TriangleMesh::colors) of the implicit stage and the stand-in core where a side
+  // has colours (MorphImplicitField::colorProgram); false: none (the transitions' colours come with
+  // their mesh either way).
+  bool colors = true;
 };
 
 struct MorphFrame {
@@ -112,6 +116,10 @@ struct MorphImplicitField {
   FieldProgram program;
   std::optional<Bounds> bounds;
   float noiseAmplitude = 0.0f;
+  // The program of the surface's colours (PolygonizeSettings::colorProgram: the same field, the
+  // stand-ins' segments split into their colour samples); null when neither side has colours
+  // (characters without colours of their own: the surface has none either).
+  std::shared_ptr<const FieldProgram> colorProgram;
 };
 // progress >= 0 overrides the stage's u (the cross-fade shows the surface
 // just before B at u = 0 and just after C at u = 1).
@@ -150,8 +158,13 @@ struct SeamGap {
 };
 Result<SeamGap> measureSeamGap(const MorphRuntime& rt, bool atB, int resolution);
 
+// Whether the morph's implicit surfaces have colours: a side is a BlobTree (its primitives' colours)
+// or a character with colours of its own (its stand-in's, StandinBinding::segmentColors).
+bool morphHasColors(const MorphRuntime& rt);
+
 // The posed stand-in of a runtime actor at scene time timeSec (world space),
-// with its segment tracks applied at morph progress u (negative: none).
+// with its segment tracks applied at morph progress u (negative: none), its
+// segments carrying their colours (StandinBinding::segmentColors).
 MorphOperand posedOperand(const MorphActorRuntime& a, double timeSec, double u);
 
 }  // namespace animorph

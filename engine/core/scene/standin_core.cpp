@@ -44,13 +44,21 @@ std::optional<MorphImplicitField> standinCoreField(const MorphRuntime& rt, doubl
     g.a = mid + shrink * (g.a - mid);
     g.b = mid + shrink * (g.b - mid);
   }
-  out.program.threshold = kStandinThreshold;
-  appendMorphOperand(out.program, op, 1.0f);
-  if (c < 1.0f) {
-    const float prm[2] = {c, K};
-    out.program.addOperator(OpCode::Remap, 1, prm, 2);
+  auto build = [&](FieldProgram& p, bool colorProfiles) {
+    p.threshold = kStandinThreshold;
+    appendMorphOperand(p, op, 1.0f, colorProfiles);
+    if (c < 1.0f) {
+      const float prm[2] = {c, K};
+      p.addOperator(OpCode::Remap, 1, prm, 2);
+    }
+    p.finish();
+  };
+  build(out.program, false);
+  if (a.binding.hasColors()) {
+    auto colors = std::make_shared<FieldProgram>();
+    build(*colors, true);
+    out.colorProgram = std::move(colors);
   }
-  out.program.finish();
   out.noiseAmplitude = m.noiseAmplitude.evaluate(expand ? 1.0 : 0.0);
   return out;
 }
@@ -65,6 +73,8 @@ Status appendStandinCore(const MorphRuntime& rt, MorphFrame& fr, const MorphFram
   ps.threads = settings.threads;
   ps.cancel = settings.cancel;
   ps.bounds = field->bounds;
+  ps.colors = settings.colors && field->colorProgram;
+  ps.colorProgram = field->colorProgram.get();
   auto r = polygonize(field->program, ps);
   if (!r) return Error{"stand-in core at " + std::to_string(fr.timeSec) + " s: " + r.error()};
   fr.cancelled = fr.cancelled || r->cancelled;
@@ -74,12 +84,16 @@ Status appendStandinCore(const MorphRuntime& rt, MorphFrame& fr, const MorphFram
   if (core.indices.empty()) return Status::success();
   TriangleMesh& mesh = fr.mesh;
   const uint32_t first = uint32_t(mesh.positions.size());
-  const bool colors = !mesh.colors.empty() && mesh.colors.size() == mesh.positions.size();
+  // Colours when the mesh has them for every vertex (or has no vertex: the preview's core alone).
+  const bool colors = mesh.colors.size() == mesh.positions.size() && (first == 0 || !mesh.colors.empty());
   mesh.positions.insert(mesh.positions.end(), core.positions.begin(), core.positions.end());
   if (mesh.normals.size() == first && core.normals.size() == core.positions.size())
     mesh.normals.insert(mesh.normals.end(), core.normals.begin(), core.normals.end());
-  // The mesh's vertex colours, when it has them: the core takes their mean.
-  if (colors) {
+  // The mesh's vertex colours, when it has them: the core's own (the stand-in's colours), else
+  // the mesh's mean.
+  if (colors && core.colors.size() == core.positions.size()) {
+    mesh.colors.insert(mesh.colors.end(), core.colors.begin(), core.colors.end());
+  } else if (colors && first > 0) {
     glm::vec4 mean(0.0f);
     for (size_t i = 0; i < first; ++i) mean += mesh.colors[i];
     mesh.colors.resize(mesh.positions.size(), first ? mean / float(first) : glm::vec4(1.0f));

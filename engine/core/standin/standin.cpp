@@ -52,13 +52,21 @@ std::vector<PosedSegment> poseStandin(const Standin& s, const std::vector<glm::m
   return out;
 }
 
+glm::vec3 SegmentColors::mean() const {
+  glm::vec3 m(0.0f);
+  for (const glm::vec3& c : samples) m += c;
+  return m / float(kSegmentColorSamples);
+}
+
 void appendStandinOperand(FieldProgram& p, StandinKind kind, float sharpness, const std::vector<PosedSegment>& segs,
                           float scale) {
   bool pushed = false;
   const float T = p.threshold;
+  const glm::vec3 defaultColor = p.nextColor;
   for (const PosedSegment& s : segs) {
     const float w = scale * s.weightScale;
     if (!(w > 0.0f) || !(s.radius >= 0.0f)) continue;
+    p.nextColor = s.colors.set ? s.colors.mean() : defaultColor;
     glm::vec3 a = s.a, b = s.b;
     if (glm::length(b - a) < kMinSegmentLength) b = a + glm::vec3(kMinSegmentLength, 0.0f, 0.0f);
     if (kind == StandinKind::Convolution) {
@@ -88,6 +96,7 @@ void appendStandinOperand(FieldProgram& p, StandinKind kind, float sharpness, co
     }
     pushed = true;
   }
+  p.nextColor = defaultColor;
   if (!pushed) p.addConstant(0.0f);
 }
 

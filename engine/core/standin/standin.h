@@ -3,6 +3,7 @@
 // the morph (docs/design.md §4). One primitive per bone, bound to a node of the
 // character's rig so the stand-in animates with the skeleton: each segment's
 // ends are stored in its node's space and posed by that node's global matrix.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -39,11 +40,23 @@ struct Standin {
   bool operator==(const Standin&) const = default;
 };
 
+// Colour samples along a segment (docs/morph.md, "Colour"): sample k is the colour (linear RGB)
+// of the surface the segment approximates over the k-th of kSegmentColorSamples equal parts of its
+// length, from a to b (standin/standin_colors.h samples them from the character's vertices).
+inline constexpr int kSegmentColorSamples = 4;
+struct SegmentColors {
+  std::array<glm::vec3, kSegmentColorSamples> samples{};
+  bool set = false;  // false: the segment has no colour of its own (the clay tone)
+  // The mean of the samples (the colour of the segment as one primitive).
+  glm::vec3 mean() const;
+};
+
 // One segment at one time, in the space the caller posed it in.
 struct PosedSegment {
   glm::vec3 a{0.0f}, b{0.0f};
   float radius = 0.0f;
   float weightScale = 1.0f;  // multiplies the primitive's weight / intensity (morph, collapse)
+  SegmentColors colors{};    // carried along by the morph's in-between stand-ins
 };
 
 // The scale a segment's radius takes under matrix m: the mean of its axes' lengths.
@@ -55,7 +68,9 @@ std::vector<PosedSegment> poseStandin(const Standin& s, const std::vector<glm::m
 
 // Appends the posed stand-in as one operand of p (potential form) with every
 // primitive's weight multiplied by scale * segment.weightScale. Primitives with
-// a zero weight are skipped; an empty stand-in pushes a zero constant.
+// a zero weight are skipped; an empty stand-in pushes a zero constant. Each
+// primitive's colour (FieldProgram::classColors) is its segment's mean colour,
+// or the program's nextColor for a segment without colours.
 void appendStandinOperand(FieldProgram& p, StandinKind kind, float sharpness, const std::vector<PosedSegment>& segs,
                           float scale = 1.0f);
 

@@ -34,12 +34,14 @@ MorphOperand correspondenceOperand(const SkeletonCorrespondence& c, const MorphO
 
 FieldProgram buildCorrespondenceMorphProgram(const SkeletonCorrespondence& c, const MorphOperand& source,
                                              const MorphOperand& target, MorphMethod combine, float w,
-                                             const SpaceTimeParams& spaceTime, float interpolationBound) {
+                                             const SpaceTimeParams& spaceTime, float interpolationBound,
+                                             bool colorProfiles) {
   const MorphMethod how = combine == MorphMethod::SpaceTime ? MorphMethod::SpaceTime : MorphMethod::Interpolation;
-  if (source.tree || target.tree) return buildMorphProgram(source, target, how, w, spaceTime, interpolationBound);
+  if (source.tree || target.tree)
+    return buildMorphProgram(source, target, how, w, spaceTime, interpolationBound, colorProfiles);
   const MorphOperand s = correspondenceOperand(c, source, target, w, true);
   const MorphOperand d = correspondenceOperand(c, source, target, w, false);
-  return buildMorphProgram(s, d, how, w, spaceTime, interpolationBound);
+  return buildMorphProgram(s, d, how, w, spaceTime, interpolationBound, colorProfiles);
 }
 
 }  // namespace animorph

@@ -24,6 +24,7 @@ MorphOperand correspondenceOperand(const SkeletonCorrespondence& c, const MorphO
 // (Interpolation or SpaceTime; SkeletonCorrespondence reads as Interpolation).
 FieldProgram buildCorrespondenceMorphProgram(const SkeletonCorrespondence& c, const MorphOperand& source,
                                              const MorphOperand& target, MorphMethod combine, float w,
-                                             const SpaceTimeParams& spaceTime, float interpolationBound);
+                                             const SpaceTimeParams& spaceTime, float interpolationBound,
+                                             bool colorProfiles = false);
 
 }  // namespace animorph

@@ -55,7 +55,9 @@ struct MorphOperand {
 
 // Appends the operand to p as one operand with its potential multiplied by
 // scale (stand-ins: their weights; trees: a Remap op when scale != 1).
-void appendMorphOperand(FieldProgram& p, const MorphOperand& op, float scale);
+// colorProfiles: a stand-in's coloured segments split into their colour samples
+// (standin/standin_colors.h: the program of its colours, with the same field).
+void appendMorphOperand(FieldProgram& p, const MorphOperand& op, float scale, bool colorProfiles = false);
 
 // World box of the region where the operand can be inside (empty: nowhere).
 Bounds morphOperandBounds(const MorphOperand& op);
@@ -67,8 +69,11 @@ Bounds morphOperandBounds(const MorphOperand& op);
 // (1 - w) h(p1) >= T shrinks to nothing by w = 1 - 1/K and the target grows
 // from w = 1/K, instead of a thin remnant of the source living near its
 // skeleton until the last frame before C. <= 1: the plain (unbounded) sum.
+// colorProfiles: the program of the morph's colours (appendMorphOperand), for
+// PolygonizeSettings::colorProgram: the same field, blended the same way.
 FieldProgram buildMorphProgram(const MorphOperand& source, const MorphOperand& target, MorphMethod method, float w,
-                               const SpaceTimeParams& spaceTime, float interpolationBound = 0.0f);
+                               const SpaceTimeParams& spaceTime, float interpolationBound = 0.0f,
+                               bool colorProfiles = false);
 
 // "interpolation", "space_time", "skeleton_correspondence"
 const char* morphMethodName(MorphMethod m);

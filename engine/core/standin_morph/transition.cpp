@@ -7,13 +7,36 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "core/field/surface_color.h"
 #include "core/rig/morph_targets.h"
+#include "core/rig/vertex_colors.h"
+#include "core/standin/standin_colors.h"
 #include "core/rig/pose.h"
 #include "core/standin/character_pose.h"
 
 namespace animorph {
 
 FloatTrack smoothstepTrack() { return hermiteRampTrack(0.0f, 0.0f); }
+
+namespace {
+
+// The binding's colours (StandinBinding): segs and positions posed alike, projected the vertices'
+// points on the stand-in. Nothing when c has no colour of its own.
+void bindColors(const Character& c, std::vector<PosedSegment> segs, const Standin& s,
+                const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& projected, StandinBinding& b) {
+  b.vertexColors = characterVertexColors(c);
+  if (b.vertexColors.size() != positions.size() || positions.empty()) {
+    b.vertexColors.clear();
+    return;
+  }
+  b.segmentColors = sampleSegmentColors(segs, positions.data(), b.vertexColors.data(), positions.size());
+  for (size_t k = 0; k < segs.size(); ++k) segs[k].colors = b.segmentColors[k];
+  const FieldProgram colors = standinProgram(s.kind, s.sharpness, splitSegmentsForColor(segs));
+  b.standinColors.resize(projected.size());
+  SurfaceColorEvaluator().evaluate(colors, projected.data(), projected.size(), b.standinColors.data());
+}
+
+}  // namespace
 
 StandinBinding bindToStandin(const Character& c, const Standin& s, const AnimationClip* clip, float clipTimeSec,
                              const ProjectionSettings& settings) {
@@ -41,7 +64,20 @@ StandinBinding bindToStandin(const Character& c, const Standin& s, const Animati
     const float l = glm::length(nb);
     b.standinNormals[i] = l > 0.0f ? nb / l : glm::vec3(0, 1, 0);
   });
+  bindColors(c, segs, s, pose.positions, projected, b);
   return b;
+}
+
+void transitionColors(const StandinBinding& b, const std::vector<float>& alpha, std::vector<glm::vec4>& out) {
+  if (!b.hasColors() || alpha.size() != b.vertexColors.size()) {
+    out.clear();
+    return;
+  }
+  out.resize(alpha.size());
+  for (size_t i = 0; i < alpha.size(); ++i) {
+    const float a = std::clamp(alpha[i], 0.0f, 1.0f);
+    out[i] = b.vertexColors[i] + a * (b.standinColors[i] - b.vertexColors[i]);
+  }
 }
 
 void transitionEasingTable(const FloatTrack& easing, std::vector<float>& table) {

@@ -6,6 +6,9 @@
 // mesh's bind space. Skinning drift (the blended vertex moves differently from
 // the rigid segments) is removed near alpha = 1 by re-projecting onto the
 // posed stand-in, so alpha = 1 lies on that frame's implicit surface.
+// Colour follows the position: c_i(t) = lerp(c_i, c~_i, alpha_i(t)), from the
+// vertex's textured colour c_i to the stand-in's colour c~_i at the point it
+// lands on (docs/morph.md, "Colour through the morph").
 #include <cstddef>
 #include <vector>
 
@@ -24,7 +27,16 @@ struct StandinBinding {
   std::vector<glm::vec3> offsets;         // dp_i, bind mesh space
   std::vector<glm::vec3> standinNormals;  // n~_i, bind mesh space, unit
   ProjectionStats stats;
+  // Colour; all three empty when the character has no colour of its own (rig/vertex_colors.h).
+  std::vector<glm::vec4> vertexColors;      // c_i: the vertex's textured colour, linear RGBA
+  std::vector<glm::vec4> standinColors;     // c~_i: the stand-in's colour where the vertex lands, linear
+  std::vector<SegmentColors> segmentColors;  // per stand-in segment (standin/standin_colors.h)
+  bool hasColors() const { return !vertexColors.empty() && vertexColors.size() == standinColors.size(); }
 };
+
+// Each vertex's colour at alpha (one per vertex; lerp(c_i, c~_i, alpha_i)) into out; out is
+// cleared when the binding has no colours or alpha has another length.
+void transitionColors(const StandinBinding& binding, const std::vector<float>& alpha, std::vector<glm::vec4>& out);
 
 // Projects every vertex of c, posed at clipTimeSec of clip (null: rest pose),
 // blend shapes included, onto the stand-in posed the same way, and expresses

@@ -67,6 +67,8 @@ void buildScene(const SceneFrame& frame, const ViewOptions& view, const std::str
     blobs->draw(d.key(), out, d.model, d.tint ? glm::vec4(*d.tint, 1.0f) : kBlobSurfaceColor,
                 !ghost && !selectedActorId.empty() && d.actorId == selectedActorId);
     for (size_t i = firstMesh; ghost && i < out.meshes.size(); ++i) out.meshes[i].opacity = d.opacity;
+    // The surface in its vertex colours (the primitives' colours; ImplicitPreview::draw), a tinted one in its tint.
+    for (size_t i = firstMesh; d.tint && i < out.meshes.size(); ++i) out.meshes[i].materials = false;
     for (size_t i = firstGenerated; ghost && i < out.generatedMeshes.size(); ++i) out.generatedMeshes[i].opacity = d.opacity;
   }
   // The skeleton's drawings are built only when it is shown (scene_frame.h, LazyBlobGuides).

@@ -6,7 +6,11 @@
 
 // Extra vertex streams of a transition draw (after the mesh's AM_VERTEX_*).
 #define AM_VERTEX_STANDIN_OFFSET 6  // vec4: dp_i (bind space), weight-map value m_i
-#define AM_VERTEX_STANDIN_NORMAL 7  // vec4: n~_i (bind space, unit), 0
+#define AM_VERTEX_STANDIN_NORMAL 7  // vec4: n~_i (bind space, unit), the stand-in colour's bits
+// The stand-in colour c~_i in AM_VERTEX_STANDIN_NORMAL's w: its bits are RGBA8 (unpackUnorm4x8's
+// order, linear) with this tag in the top byte (0: no colour). With the tag the bits are a normal
+// float in [0.5, 2), never a NaN or a denormal a vertex fetch could change.
+#define AM_STANDIN_COLOR_TAG 63u
 
 // Descriptor set 1 of the transition pipelines: the per-draw parameters
 // (a storage buffer with a dynamic offset: lavapipe specialises shaders on

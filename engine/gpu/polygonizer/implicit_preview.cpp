@@ -143,6 +143,7 @@ void ImplicitPreview::uploadNew() {
   m.positions = r->mesh.positions;
   m.normals = r->mesh.normals;
   m.indices = r->mesh.indices;
+  if (r->mesh.colors.size() == r->mesh.positions.size()) m.colors = r->mesh.colors;  // drawn in them (draw())
   auto up = GpuMesh::upload(ctx_, m);
   if (up) mesh_ = std::move(*up);
   else uploadError_ = up.error();

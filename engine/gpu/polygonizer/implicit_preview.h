@@ -85,7 +85,8 @@ struct PreviewBackend {
 // stand-ins runs the GPU path's line groups, which scrub faster in the editor than the CPU worker
 // there (`bench editor`: ~34-41 ms against ~47-51 ms a frame at 1600x900, 96^3); BlobTrees and
 // capsule stand-ins run the per-point interpreter, several times slower than the worker there
-// (`bench gpu`, blob creature row).
+// (`bench gpu`, blob creature row). A morph whose sides have colours counts as Other: only the
+// worker's meshes carry vertex colours (the GPU polygoniser's have no colour stream yet).
 enum class PreviewWork { ConvolutionMorph, Other };
 PreviewBackend choosePreviewBackend(PreviewDevice preference, VkPhysicalDeviceType deviceType,
                                     PreviewWork work = PreviewWork::Other);

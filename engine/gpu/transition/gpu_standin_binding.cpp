@@ -1,10 +1,24 @@
 #include "gpu/transition/gpu_standin_binding.h"
 
+#include <algorithm>
+#include <bit>
+#include <cmath>
 #include <string>
 
 #include "transition_constants.h"
 
 namespace animorph::gpu {
+
+namespace {
+
+// c (linear, clamped) as RGBA8 bits tagged AM_STANDIN_COLOR_TAG, read back as a float.
+float packStandinColor(const glm::vec4& c) {
+  auto byte = [](float x) { return uint32_t(std::lround(std::clamp(x, 0.0f, 1.0f) * 255.0f)); };
+  const uint32_t bits = byte(c.r) | byte(c.g) << 8 | byte(c.b) << 16 | uint32_t(AM_STANDIN_COLOR_TAG) << 24;
+  return std::bit_cast<float>(bits);
+}
+
+}  // namespace
 
 Result<std::unique_ptr<GpuStandinBinding>> GpuStandinBinding::upload(Context& ctx, const StandinBinding& binding,
                                                                      const std::vector<float>& weightMap) {
@@ -19,7 +33,8 @@ Result<std::unique_ptr<GpuStandinBinding>> GpuStandinBinding::upload(Context& ct
   std::vector<glm::vec4> data(2 * n);
   for (size_t i = 0; i < n; ++i) {
     data[2 * i] = glm::vec4(binding.offsets[i], weightMap.empty() ? 0.0f : weightMap[i]);
-    data[2 * i + 1] = glm::vec4(binding.standinNormals[i], 0.0f);
+    data[2 * i + 1] = glm::vec4(binding.standinNormals[i],
+                                binding.hasColors() ? packStandinColor(binding.standinColors[i]) : 0.0f);
   }
   std::unique_ptr<GpuStandinBinding> b(new GpuStandinBinding(ctx.device()));
   Result<Buffer> buf = createDeviceBuffer(ctx, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,

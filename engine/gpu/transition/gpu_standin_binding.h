@@ -1,7 +1,8 @@
 #pragma once
 // A character's vertices bound to its stand-in (standin_morph/transition.h
 // StandinBinding) and its weight map, uploaded once per prepared morph: per
-// vertex two vec4, (dp_i, m_i) and (n~_i, 0), concatenated over the
+// vertex two vec4, (dp_i, m_i) and (n~_i, c~_i: the stand-in colour packed as
+// transition_constants.h's AM_STANDIN_COLOR_TAG says, 0 without colours), concatenated over the
 // character's mesh nodes. Read as vertex stream AM_VERTEX_STANDIN_* by
 // transition.vert and as a storage buffer by transition.comp.
 #include <memory>
