@@ -236,7 +236,12 @@ def mode_fit(cli):
             fail(f"fit error too large: {d['report']}")
 
 
+PLY_SIZES = {"char": 1, "uchar": 1, "short": 2, "ushort": 2, "int": 4, "uint": 4, "float": 4, "double": 8}
+
+
 def read_ply_header(path):
+    """(vertices, faces) of a binary little-endian PLY whose body is exactly its vertices (any
+    properties: floats, uchar colours) and its triangles (a uchar count, three 32-bit indices)."""
     with open(path, "rb") as f:
         data = f.read()
     end = data.find(b"end_header\n")
@@ -244,19 +249,19 @@ def read_ply_header(path):
         fail(f"{path}: not a binary little-endian PLY")
     header = data[:end].decode("ascii").split("\n")
     verts = faces = None
-    props = 0
+    stride = 0
     for line in header:
         if line.startswith("element vertex "):
             verts = int(line.split()[2])
         elif line.startswith("element face "):
             faces = int(line.split()[2])
-        elif line.startswith("property float ") and faces is None:
-            props += 1
+        elif line.startswith("property ") and not line.startswith("property list") and faces is None:
+            stride += PLY_SIZES[line.split()[1]]
     body = len(data) - end - len("end_header\n")
     if verts is None or faces is None or verts <= 0 or faces <= 0:
         fail(f"{path}: header counts {verts} vertices, {faces} faces")
-    if body != verts * props * 4 + faces * 13:
-        fail(f"{path}: {body} bytes of data for {verts} vertices x {props} floats and {faces} faces")
+    if body != verts * stride + faces * 13:
+        fail(f"{path}: {body} bytes of data for {verts} vertices x {stride} bytes and {faces} faces")
     return verts, faces
 
 

@@ -15,8 +15,10 @@ def read_ply_mesh(path):
     end = data.find(b"end_header\n")
     if not data.startswith(b"ply\nformat binary_little_endian 1.0\n") or end < 0:
         raise ValueError(f"{path}: not a binary little-endian PLY")
+    sizes = {"char": 1, "uchar": 1, "short": 2, "ushort": 2, "int": 4, "uint": 4, "float": 4, "double": 8}
     verts = faces = None
-    props = 0
+    stride = floats_first = 0  # bytes per vertex; how many float properties lead it
+    leading = True
     index_type = None
     for line in data[:end].decode("ascii").split("\n"):
         words = line.split()
@@ -24,18 +26,19 @@ def read_ply_mesh(path):
             verts = int(words[2])
         elif line.startswith("element face "):
             faces = int(words[2])
-        elif line.startswith("property float ") and faces is None:
-            props += 1
         elif line.startswith("property list ") and faces is not None:
             index_type = words[3]
-    if verts is None or faces is None or props < 3 or index_type not in ("int", "uint", "int32", "uint32"):
-        raise ValueError(f"{path}: header has {verts} vertices x {props} floats, {faces} faces of {index_type}")
+        elif line.startswith("property ") and faces is None:
+            stride += sizes.get(words[1], 0)
+            leading = leading and words[1] == "float"
+            floats_first += leading
+    if verts is None or faces is None or floats_first < 3 or index_type not in ("int", "uint", "int32", "uint32"):
+        raise ValueError(f"{path}: header has {verts} vertices ({floats_first} leading floats), {faces} faces of {index_type}")
     body = end + len("end_header\n")
-    floats = struct.unpack_from(f"<{verts * props}f", data, body)
-    positions = [floats[i * props:i * props + 3] for i in range(verts)]
+    positions = [struct.unpack_from("<3f", data, body + i * stride) for i in range(verts)]
     code = "<B3I" if index_type.startswith("u") else "<B3i"
     triangles = []
-    for n, a, b, c in struct.iter_unpack(code, data[body + verts * props * 4:body + verts * props * 4 + faces * 13]):
+    for n, a, b, c in struct.iter_unpack(code, data[body + verts * stride:body + verts * stride + faces * 13]):
         if n != 3 or max(a, b, c) >= verts or min(a, b, c) < 0:
             raise ValueError(f"{path}: face {len(triangles)} is not a triangle of valid indices")
         triangles.append((a, b, c))

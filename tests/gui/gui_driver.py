@@ -244,6 +244,29 @@ def scene_region(ui_map):
     return vx, top, vw, vy + vh - top
 
 
+
+def hue_counts(png, region):
+    """(green, orange, clay, saturated) pixel counts of a region (x, y, w, h) of a screenshot:
+    saturated = max - min channel > 40; of those, green: g the largest channel by 25; orange
+    (the gear's bronze, warm scales): r > g > b, r - b > 60; clay: the implicit surfaces' default
+    blue-grey (b > r + 25, b > g)."""
+    x, y, w, h = (int(v) for v in region)
+    raw = subprocess.run(["convert", png, "-crop", f"{w}x{h}+{x}+{y}", "+repage", "-depth", "8", "rgb:-"],
+                         capture_output=True, check=True).stdout
+    green = orange = clay = saturated = 0
+    for i in range(0, len(raw) - 2, 3):
+        r, gg, b = raw[i], raw[i + 1], raw[i + 2]
+        if max(r, gg, b) - min(r, gg, b) <= 40:
+            continue
+        saturated += 1
+        if gg > r + 25 and gg > b + 25:
+            green += 1
+        elif r > gg > b and r - b > 60:
+            orange += 1
+        elif b > r + 25 and b > gg:
+            clay += 1
+    return green, orange, clay, saturated
+
 def differing_pixels(png_a, png_b, x, y, w, h, fuzz="3%"):
     """Number of pixels of a region that differ between two screenshots."""
     crop = f"{int(w)}x{int(h)}+{int(x)}+{int(y)}"

@@ -6,7 +6,6 @@ background and grid (grey) must not be all there is.
 
 usage: test_demo_colours.py EDITOR_BIN DEMO_DIR"""
 import os
-import subprocess
 import sys
 import tempfile
 
@@ -22,31 +21,12 @@ editor_bin, demo_dir = sys.argv[1], sys.argv[2]
 work, project, doc = g.demo_copy(demo_dir, "animorph-gui-colours-")
 
 
-def hue_counts(png, region):
-    """(green, orange, saturated) pixel counts of a region: saturated = max - min channel > 40;
-    green: g the largest channel by 25; orange: r > g > b, r - b > 60."""
-    x, y, w, h = (int(v) for v in region)
-    raw = subprocess.run(["convert", png, "-crop", f"{w}x{h}+{x}+{y}", "+repage", "-depth", "8", "rgb:-"],
-                         capture_output=True, check=True).stdout
-    green = orange = saturated = 0
-    for i in range(0, len(raw) - 2, 3):
-        r, gg, b = raw[i], raw[i + 1], raw[i + 2]
-        if max(r, gg, b) - min(r, gg, b) <= 40:
-            continue
-        saturated += 1
-        if gg > r + 25 and gg > b + 25:
-            green += 1
-        elif r > gg > b and r - b > 60:
-            orange += 1
-    return green, orange, saturated
-
-
 ed = g.Editor(editor_bin, project, workdir=work).start()
 try:
     m = ed.fresh_map()
     region = g.scene_region(m)
     shot0 = ed.screenshot(os.path.join(tempfile.gettempdir(), "animorph_demo_colours_start.png"))
-    green, orange, saturated = hue_counts(shot0, region)
+    green, orange, _, saturated = g.hue_counts(shot0, region)
     g.check(green > MIN_PIXELS, f"the creature is drawn in its green scales ({green} green pixels, "
                                 f"{saturated} saturated, at frame {m['current_frame']})")
     # After marker D the morph's target, the gear, is drawn in its place.
@@ -56,7 +36,7 @@ try:
     for frame in (min(end, d_frame + 12), end):
         ed.set_frame(frame)
         shot = ed.screenshot(os.path.join(tempfile.gettempdir(), f"animorph_demo_colours_{frame}.png"))
-        orange = hue_counts(shot, region)[1]
+        orange = g.hue_counts(shot, region)[1]
         if orange > best[0]:
             best = (orange, frame, shot)
         if orange > MIN_PIXELS:

@@ -11,9 +11,11 @@ FrameLevelSet morphFrameLevelSet(const MorphRuntime& rt, double timeSec, int res
   ls.grid.bounds = field->bounds;  // as evaluateMorphImplicit polygonises it
   ls.grid.threads = threads;
   ls.grid.cancel = cancel;
-  ls.colors = colors;
   ls.noiseAmplitude = field->noiseAmplitude;
   ls.noiseFrequency = rt.setup.noiseFrequency;
+  // Without a colour program the morph's surface has no colours (characters without their own).
+  ls.colors = colors && field->colorProgram;
+  ls.colorProgram = field->colorProgram.get();
   auto band = sampleLevelSet(field->program, ls);
   if (!band) return Error{band.error()};
   return std::optional<LevelSetVoxels>(std::move(*band));

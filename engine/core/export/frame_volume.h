@@ -16,7 +16,8 @@ using FrameLevelSet = Result<std::optional<LevelSetVoxels>>;
 
 // A morph's frame at timeSec: nullopt (not an error) for a frame that is a skinned mesh and has no
 // implicit field (morphFrameField). threads: 0 = all; cancel may be null. colors: the surface
-// colour at the voxels next to the surface too (LevelSetSettings::colors).
+// colour at the voxels next to the surface too (LevelSetSettings::colors; a morph's from its
+// colour program, MorphImplicitField::colorProgram; none when neither character has colours).
 FrameLevelSet morphFrameLevelSet(const MorphRuntime& rt, double timeSec, int resolution,
                                  int threads, const std::atomic<bool>* cancel, bool colors = false);
 

@@ -150,7 +150,7 @@ Result<LevelSetVoxels> sampleLevelSet(const FieldProgram& program, const LevelSe
     out.index.insert(out.index.end(), bb.index.begin(), bb.index.end());
     out.distance.insert(out.distance.end(), bb.distance.begin(), bb.distance.end());
   }
-  if (s.colors) colorBand(program, s.grid.threads, out);
+  if (s.colors) colorBand(s.colorProgram ? *s.colorProgram : program, s.grid.threads, out);
   return out;
 }
 

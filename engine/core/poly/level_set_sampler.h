@@ -32,6 +32,10 @@ struct LevelSetSettings {
   // Surface colour beside the distance (field/surface_color.h) at the voxels within
   // kColorBandVoxels of the surface: LevelSetVoxels::colorVoxel / color. Off: none.
   bool colors = false;
+  // With colors: the program the colours are evaluated on instead of the sampled one (as
+  // PolygonizeSettings::colorProgram: a morph's stand-ins split into their colour samples).
+  // Null: the program itself.
+  const FieldProgram* colorProgram = nullptr;
 };
 
 // Voxels whose |distance| is below this many voxel sizes get a colour (LevelSetSettings::colors):
