@@ -4,6 +4,11 @@
 // frames and volume jumps, and only those.
 #include <catch2/catch.hpp>
 
+#include <limits>
+#include <random>
+
+#include "core/field/skeleton.h"
+#include "core/standin_morph/mesh_distance.h"
 #include "core/standin_morph/morph_continuity.h"
 #include "core/standin_morph/morph_field.h"
 #include "core/poly/mesh_checks.h"
@@ -98,4 +103,51 @@ TEST_CASE("Hausdorff distance between frames: symmetric, zero on itself, the off
   CHECK(hausdorffDistance(a, b) == Approx(0.25).margin(1e-6));
   CHECK(hausdorffDistance(b, a) == Approx(0.25).margin(1e-6));
   CHECK(std::isinf(hausdorffDistance(a, TriangleMesh{})));
+}
+
+TEST_CASE("point-to-mesh distances: the grid search and the largest distance equal a search of every triangle",
+          "[morph][continuity]") {
+  // Seeded triangle soups: a dense cluster and long slivers across the box (listed in many cells),
+  // points inside, near and far outside the box, and the vertices of a jittered copy (consecutive
+  // frames, where the largest distance stops early at almost every point).
+  for (uint32_t seed = 1; seed <= 6; ++seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    auto v3 = [&](float s) { return glm::vec3(u(rng), u(rng), u(rng)) * s; };
+    TriangleMesh mesh;
+    const int nt = 200 + int(seed) * 150;
+    for (int t = 0; t < nt; ++t) {
+      const glm::vec3 c = t % 7 == 0 ? v3(1.0f) : v3(0.3f) + glm::vec3(0.5f, 0.0f, 0.0f);
+      const float size = t % 11 == 0 ? 1.5f : 0.05f;
+      for (int k = 0; k < 3; ++k) {
+        mesh.indices.push_back(uint32_t(mesh.positions.size()));
+        mesh.positions.push_back(c + v3(size));
+      }
+    }
+    std::vector<glm::vec3> points;
+    for (int i = 0; i < 300; ++i) points.push_back(v3(i % 5 == 0 ? 4.0f : 1.2f));
+    for (const glm::vec3& p : mesh.positions) points.push_back(p + v3(0.01f));
+    auto brute = [&](const glm::vec3& p) {
+      float best = std::numeric_limits<float>::infinity();
+      for (size_t t = 0; t < mesh.triangleCount(); ++t)
+        best = std::min(best, glm::length(p - closestOnTriangle(p, mesh.positions[mesh.indices[3 * t]],
+                                                                   mesh.positions[mesh.indices[3 * t + 1]],
+                                                                   mesh.positions[mesh.indices[3 * t + 2]])));
+      return best;
+    };
+    const std::vector<float> grid = pointDistancesToMesh(points, mesh);
+    float largest = 0.0f;
+    for (size_t i = 0; i < points.size(); ++i) {
+      const float b = brute(points[i]);
+      largest = std::max(largest, b);
+      REQUIRE(grid[i] == Approx(b).margin(1e-6));
+    }
+    CHECK(maxPointToMeshDistance(points, mesh) == Approx(largest).margin(1e-6));
+    const std::vector<glm::vec3> near(points.begin() + 300, points.end());
+    float nearLargest = 0.0f;
+    for (const glm::vec3& p : near) nearLargest = std::max(nearLargest, brute(p));
+    CHECK(maxPointToMeshDistance(near, mesh) == Approx(nearLargest).margin(1e-6));
+  }
+  CHECK(maxPointToMeshDistance({}, TriangleMesh{}) == 0.0);
+  CHECK(std::isinf(maxPointToMeshDistance({glm::vec3(0.0f)}, TriangleMesh{})));
 }

@@ -23,4 +23,10 @@ PointMeshDistances pointsToMeshDistance(const std::vector<glm::vec3>& points, co
 // The same, one distance per point (infinite ones for an empty mesh).
 std::vector<float> pointDistancesToMesh(const std::vector<glm::vec3>& points, const TriangleMesh& mesh);
 
+// The largest of those distances alone (0 without points; infinite for an empty mesh), exactly as
+// pointsToMeshDistance's maxDistance, but a point closer than the largest distance found so far
+// stops at the first triangle that close: for two nearby meshes (consecutive frames) a few
+// triangles per point instead of every triangle around it.
+double maxPointToMeshDistance(const std::vector<glm::vec3>& points, const TriangleMesh& mesh);
+
 }  // namespace animorph

@@ -20,7 +20,7 @@ double hausdorffDistance(const TriangleMesh& a, const TriangleMesh& b) {
   const bool ea = a.triangleCount() == 0, eb = b.triangleCount() == 0;
   if (ea && eb) return 0.0;
   if (ea || eb) return std::numeric_limits<double>::infinity();
-  return std::max(pointsToMeshDistance(a.positions, b).maxDistance, pointsToMeshDistance(b.positions, a).maxDistance);
+  return std::max(maxPointToMeshDistance(a.positions, b), maxPointToMeshDistance(b.positions, a));
 }
 
 FrameMeasure measureFrame(int frame, const TriangleMesh& mesh, const TriangleMesh* previous, size_t coreTriangles) {
