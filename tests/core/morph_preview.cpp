@@ -80,12 +80,16 @@ TEST_CASE("morph preview: the coarse answer comes first, the refined one once th
 TEST_CASE("morph preview: scrubbing supersedes older times and cancels runs in progress", "[morph][preview]") {
   const auto rt = test::demoMorph().runtime;
   PreviewPolygonizer worker(1);
-  // A slow refined level so that newer times arrive while it runs.
+  // A slow refined level so that newer times arrive while it runs: each newer time is sent once
+  // the worker has begun both levels of the one before (or finished it), whatever the machine's load.
   double lastTime = 0.0;
   for (int i = 0; i < 12; ++i) {
     lastTime = midStageSec(*rt, 0.1 + 0.07 * i);
+    const uint64_t started = worker.counters().runsStarted;
     worker.submit(morphRequest(rt, lastTime, 32, 160));
-    std::this_thread::sleep_for(std::chrono::milliseconds(15));
+    const auto giveUp = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (worker.counters().runsStarted < started + 2 && worker.busy() && std::chrono::steady_clock::now() < giveUp)
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
   REQUIRE(worker.waitIdle(240.0));
   const PreviewCounters c = worker.counters();
