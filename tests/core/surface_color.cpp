@@ -4,7 +4,9 @@
 // animorphosis' interpolation of colours (a null partner fading its colour with its shape).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "core/animorphosis/evaluate_generic.h"
 #include "core/animorphosis/generic_tree.h"
@@ -14,6 +16,10 @@
 #include "core/field/surface_color.h"
 #include "core/particles/convert_to_particles.h"
 #include "core/poly/polygonizer.h"
+#include "core/project/animorphosis_project.h"
+#include "demo/animorphosis_demo.h"
+#include "demo/blob_creature.h"
+#include "util/blob_builders.h"
 
 using namespace animorph;
 using Catch::Matchers::Contains;
@@ -45,7 +51,198 @@ void checkNear(const glm::vec3& got, const glm::vec3& want, float tol = 1e-5f) {
   CHECK(glm::all(glm::lessThanEqual(glm::abs(got - want), glm::vec3(tol))));
 }
 
+// Every primitive of the subtree painted with one of three colours (so some ops are of one colour,
+// others mixed).
+void paintRandomly(BlobNode& n, std::mt19937& rng) {
+  const glm::vec3 palette[3] = {kRed, kBlue, kGreen};
+  if (paramIndex(n.type, "color") >= 0) n.vec3Param("color") = Vec3Track(palette[rng() % 3]);
+  for (BlobNode& c : n.children) paintRandomly(c, rng);
+}
+
+float largestChannel(const glm::vec4& d) {
+  return std::max({std::abs(d.r), std::abs(d.g), std::abs(d.b), std::abs(d.a)});
+}
+
+// The polygoniser's vertex colours (each block's own programs) against two references at the same
+// vertices: the run-sorted evaluate() at every vertex, and the unrestricted walk over the whole
+// program at every stride-th. And at those: the whole program's field against the program
+// specialised to a cell-sized box around the vertex (the reach bounds are safe there).
+struct ColorAgreement {
+  float vsRuns = 0.0f, vsFull = 0.0f, field = 0.0f;
+  size_t vertices = 0, sampled = 0;
+};
+ColorAgreement compareBlockColors(const FieldProgram& prog, int resolution, size_t stride) {
+  PolygonizeSettings ps;
+  ps.resolution = resolution;
+  ps.threads = 2;
+  ps.colors = true;
+  auto r = polygonize(prog, ps);
+  REQUIRE(r.ok());
+  const TriangleMesh& m = r->mesh;
+  REQUIRE(m.colors.size() == m.positions.size());
+  ColorAgreement a;
+  a.vertices = m.positions.size();
+  std::vector<glm::vec4> runs(m.positions.size());
+  SurfaceColorEvaluator ev;
+  ev.evaluate(prog, m.positions.data(), m.positions.size(), runs.data(), 2);
+  std::vector<glm::vec3> sample;
+  std::vector<glm::vec4> sampleBlock;
+  for (size_t i = 0; i < m.positions.size(); ++i) {
+    a.vsRuns = std::max(a.vsRuns, largestChannel(m.colors[i] - runs[i]));
+    if (i % stride == 0) {
+      sample.push_back(m.positions[i]);
+      sampleBlock.push_back(m.colors[i]);
+    }
+  }
+  std::vector<glm::vec4> full(sample.size());
+  ev.evaluateFull(prog, sample.data(), sample.size(), full.data());
+  FieldEvaluator fe;
+  std::vector<uint32_t> reach;
+  ActiveProgram active;
+  const glm::vec3 h(r->stats.cellSize);
+  for (size_t i = 0; i < sample.size(); ++i) {
+    a.vsFull = std::max(a.vsFull, largestChannel(sampleBlock[i] - full[i]));
+    Bounds box;
+    box.add(sample[i] - h);
+    box.add(sample[i] + h);
+    prog.primitivesReaching(box, reach);
+    prog.specialise(reach, active);
+    float f = 0.0f;
+    fe.evaluate(prog, active, &sample[i].x, &sample[i].y, &sample[i].z, 1, &f);
+    a.field = std::max(a.field, std::abs(f - fe.evaluatePoint(prog, sample[i])));
+  }
+  a.sampled = sample.size();
+  return a;
+}
+
+// Colours equal within an 8-bit colour's step (what differs is float rounding only,
+// field/surface_color.h); the field within float rounding of its threshold.
+void checkAgreement(const ColorAgreement& a, const FieldProgram& prog) {
+  INFO(a.vertices << " vertices (" << a.sampled << " against the whole walk): largest colour difference "
+                  << a.vsRuns << " against the runs, " << a.vsFull << " against the whole walk; field " << a.field);
+  CHECK(a.vsRuns <= 1.0f / 255.0f);
+  CHECK(a.vsFull <= 1.0f / 255.0f);
+  CHECK(a.field <= 1e-5f * std::max(1.0f, prog.threshold));
+}
+
 }  // namespace
+
+TEST_CASE("colour: the polygoniser colours each vertex with its block's program as the whole walk does "
+          "(the animorphosis demo's C(t) at two times, the blob creature, seeded random trees)",
+          "[color]") {
+  SECTION("the animorphosis demo's C(t): a quarter and halfway (both creatures' colours blending, 22k primitives)") {
+    auto project = makeAnimorphosisDemoProject();
+    REQUIRE(project.ok());
+    auto c = projectGenericTree(*project);
+    REQUIRE(c.ok());
+    for (double u : {0.25, 0.5}) {
+      const double t = kDemoMorphStartSec + u * (kDemoMorphEndSec - kDemoMorphStartSec);
+      const FieldProgram prog = compileGeneric(*c, animorphosisTiming(*project), t);
+      const ColorAgreement a = compareBlockColors(prog, 64, 17);
+      INFO("t = " << t);
+      CHECK(a.vertices > 2000);
+      checkAgreement(a, prog);
+    }
+  }
+  SECTION("the blob creature, mid-stride") {
+    const FieldProgram prog = compileFieldProgram(makeBlobCreature(), 0.7);
+    const ColorAgreement a = compareBlockColors(prog, 64, 3);
+    CHECK(a.vertices > 2000);
+    checkAgreement(a, prog);
+  }
+  SECTION("random trees of every node type") {
+    int compared = 0;
+    for (unsigned seed = 1; seed <= 16; ++seed) {
+      std::mt19937 rng(seed);
+      int nextId = 1;
+      BlobTree t = test::treeOf(test::randomNode(rng, 4, nextId), 0.5f);
+      paintRandomly(t.root, rng);
+      const FieldProgram prog = compileFieldProgram(t, 0.0);
+      if (prog.unbounded() || prog.tightBounds().empty()) continue;
+      const ColorAgreement a = compareBlockColors(prog, 40, 1);
+      if (a.vertices == 0) continue;
+      INFO("seed " << seed);
+      checkAgreement(a, prog);
+      ++compared;
+    }
+    CHECK(compared >= 8);
+  }
+}
+
+TEST_CASE("colour: an op specialised to none of its primitives has its first primitive's colour, a dropped operand's "
+          "colour is kept (the whole walk's colours)",
+          "[color]") {
+  // blend(point, green, far below; union(point, red, above; convolution segment, blue)) specialised
+  // to the segment alone: the red point's op is left holding no primitive (and the old walk read the
+  // segment's index for it), the green point's op is dropped from the blend.
+  BlobNode segment = test::convSegmentNode(4, {-1.0f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.0f}, 0.3f);
+  segment.vec3Param("color") = Vec3Track(kBlue);
+  BlobTree t = test::treeOf(test::operatorNode(
+      NodeType::Blend, 1,
+      {coloredPoint(2, {0.0f, -40.0f, 0.0f}, kGreen),
+       test::operatorNode(NodeType::Union, 3, {coloredPoint(5, {0.0f, 40.0f, 0.0f}, kRed), segment})}));
+  const FieldProgram prog = compileFieldProgram(t, 0.0);
+  REQUIRE(prog.primitiveCount() == 3);
+  uint32_t segmentId = 0;
+  for (const FieldOp& op : prog.ops)
+    if (op.code == OpCode::Prims && op.primClass == PrimClass::Convolution) segmentId = op.primBegin;
+  ActiveProgram active;
+  prog.specialise({segmentId}, active);
+  size_t emptyOps = 0;
+  for (const FieldOp& op : active.ops) emptyOps += op.code == OpCode::Prims && op.count == 0;
+  REQUIRE(emptyOps == 1);
+  const ColorProgram cp(prog);
+  // Near the segment (blue wins the union), and far from every primitive (0 everywhere: the blend
+  // keeps its first operand's colour, the green point's), as the whole walk gives.
+  const std::vector<glm::vec3> points = {{0.0f, 0.2f, 0.0f}, {0.5f, -0.1f, 0.1f}, {0.0f, 0.0f, 100.0f}};
+  std::vector<float> x, y, z;
+  for (const glm::vec3& p : points) {
+    x.push_back(p.x);
+    y.push_back(p.y);
+    z.push_back(p.z);
+  }
+  std::vector<glm::vec4> got(points.size()), want(points.size());
+  SurfaceColorEvaluator ev;
+  ev.evaluateActive(cp, active, x.data(), y.data(), z.data(), int(points.size()), got.data());
+  ev.evaluateFull(prog, points.data(), points.size(), want.data());
+  for (size_t i = 0; i < points.size(); ++i) checkNear(glm::vec3(got[i]), glm::vec3(want[i]));
+  checkNear(glm::vec3(got[0]), kBlue);
+  checkNear(glm::vec3(got[1]), kBlue);
+  checkNear(glm::vec3(got[2]), kGreen);
+}
+
+TEST_CASE("colour: a block kept from the previous frame keeps its colours, and is coloured again when only the "
+          "colours changed",
+          "[color]") {
+  const FieldProgram red = compileFieldProgram(twoPoints(NodeType::Blend, kRed, kRed), 0.0);
+  const FieldProgram blue = compileFieldProgram(twoPoints(NodeType::Blend, kBlue, kBlue), 0.0);
+  for (float tolerance : {0.0f, 0.1f}) {
+    INFO("tolerance " << tolerance << " cells");
+    PolygonizeHistory history;
+    PolygonizeSettings ps;
+    ps.resolution = 40;
+    ps.threads = 2;
+    ps.colors = true;
+    ps.history = &history;
+    ps.reuseToleranceCells = tolerance;
+    auto first = polygonize(red, ps);
+    auto again = polygonize(red, ps);
+    REQUIRE(first.ok());
+    REQUIRE(again.ok());
+    CHECK(again->stats.blocksReused > 0);
+    REQUIRE(again->mesh.colors.size() == again->mesh.positions.size());
+    for (const glm::vec4& c : again->mesh.colors) REQUIRE(glm::vec3(c) == kRed);
+    auto second = polygonize(blue, ps);
+    REQUIRE(second.ok());
+    // The same field: within a tolerance its blocks are kept (and coloured again), without one
+    // a colour change alone makes them new.
+    if (tolerance > 0.0f) CHECK(second->stats.blocksReused > 0);
+    else CHECK(second->stats.blocksReused == 0);
+    REQUIRE(second->mesh.colors.size() == second->mesh.positions.size());
+    REQUIRE(!second->mesh.colors.empty());
+    for (const glm::vec4& c : second->mesh.colors) REQUIRE(glm::vec3(c) == kBlue);
+  }
+}
 
 TEST_CASE("colour: a point between two primitives takes the blend weighted by their field contributions",
           "[color]") {

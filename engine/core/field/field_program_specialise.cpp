@@ -23,14 +23,36 @@ using field_detail::distToSegment;
 void FieldProgram::specialiseAll(ActiveProgram& out) const {
   out.ops = ops;
   out.indices.clear();
-  for (FieldOp& op : out.ops)
+  for (FieldOp& op : out.ops) {
+    op.subtreeBegin = 0;  // no colour provenance (see colourProvenance)
     if (op.code == OpCode::Prims) {
       uint32_t off = uint32_t(out.indices.size());
       for (uint32_t k = 0; k < op.count; ++k) out.indices.push_back(op.first + k);
       op.first = off;
     }
+  }
   out.primitiveCount = primitiveBounds.size();
 }
+
+namespace {
+// In an ActiveProgram, an op's subtreeBegin (an index of the whole program, meaningless there and
+// read by no evaluator) carries the colour walk's provenance instead (field/surface_color.h): bits
+// 30-31 a rule, bits 0-29 one plus the index of the whole program's op whose empty colour (its
+// colour where none of its primitives contributes) the op has where the rule applies. Rule 1:
+// everywhere (a constant standing for a dropped subtree); 2: where every operand's weight is 0 (a
+// Sum whose first operand, exactly 0, was dropped); 3: where its value is <= 0 (the one operand
+// left of a Sum whose other, zero operands were dropped, the first among them). 0: none.
+uint32_t colourProvenance(uint32_t rule, uint32_t op) { return rule << 30 | ((op + 1) & 0x3fffffffu); }
+
+// The last op of the one operand left of Sum ops[origin] (its other operands, the first among them,
+// were exactly 0 and dropped): where its value is <= 0 every weight of the Sum was 0, and the
+// Sum's colour was its first operand's, the Sum's empty colour. This rule covers any the op had
+// (they fire only where its value is <= 0 too), but a constant's own colour where it is above 0.
+void markLoneOperand(FieldOp& last, uint32_t origin) {
+  if (last.code == OpCode::Const && last.emptyValue > 0.0f) return;
+  last.subtreeBegin = colourProvenance(last.code == OpCode::Const ? 1 : 3, origin);
+}
+}  // namespace
 
 void FieldProgram::specialise(const std::vector<uint32_t>& active, ActiveProgram& out) const {
   out.ops.clear();
@@ -43,6 +65,10 @@ void FieldProgram::specialise(const std::vector<uint32_t>& active, ActiveProgram
   // Operands that are exactly zero (a constant 0, primitives none of which is active) are dropped
   // from sums as they are emitted: a + 0 is a, and the other operands keep their order, so the
   // values are the same and the evaluation runs fewer ops.
+  //
+  // The colour walk (field/surface_color.h) must give the whole program's colours: where a dropped
+  // operand or subtree would have decided the colour, each op's subtreeBegin says whose empty
+  // colour it is (colourProvenance). The field ignores it.
   struct Operand {
     uint32_t start;  // first op of the operand in out.ops
     bool zero;       // a single op pushing exactly 0
@@ -51,7 +77,7 @@ void FieldProgram::specialise(const std::vector<uint32_t>& active, ActiveProgram
   thread_local std::vector<uint32_t> mapStarts;
   operands.clear();
   mapStarts.clear();
-  auto emitted = [&](const FieldOp& op) {
+  auto emitted = [&](const FieldOp& op, uint32_t origin) {
     const uint32_t at = uint32_t(out.ops.size()) - 1;
     switch (op.code) {
       case OpCode::Const: operands.push_back({at, op.emptyValue == 0.0f}); return;
@@ -69,6 +95,7 @@ void FieldProgram::specialise(const std::vector<uint32_t>& active, ActiveProgram
       size_t zeros = 0;
       for (size_t k = base; k < operands.size(); ++k) zeros += operands[k].zero;
       if (zeros > 0) {
+        const bool firstZero = operands[base].zero;
         out.ops.pop_back();  // the Sum, emitted again below if still needed
         // Operands before the first zero stay where they are (the first is often a long chain).
         size_t k = base, kept = 0;
@@ -87,13 +114,17 @@ void FieldProgram::specialise(const std::vector<uint32_t>& active, ActiveProgram
           FieldOp c;
           c.code = OpCode::Const;
           c.emptyValue = 0.0f;
+          c.subtreeBegin = colourProvenance(1, origin);
           out.ops.push_back(c);
           operands.push_back({first, true});
         } else {
           if (kept > 1) {
             FieldOp sum = op;
             sum.count = uint32_t(kept);
+            if (firstZero) sum.subtreeBegin = colourProvenance(2, origin);
             out.ops.push_back(sum);
+          } else if (firstZero) {
+            markLoneOperand(out.ops.back(), origin);
           }
           operands.push_back({first, false});
         }
@@ -115,12 +146,14 @@ void FieldProgram::specialise(const std::vector<uint32_t>& active, ActiveProgram
       FieldOp c;
       c.code = OpCode::Const;
       c.emptyValue = ops[e].emptyValue;
+      c.subtreeBegin = colourProvenance(1, e);
       out.ops.push_back(c);
-      emitted(c);
+      emitted(c, e);
       i = e + 1;
       continue;
     }
     FieldOp op = ops[i];
+    op.subtreeBegin = 0;
     if (op.code == OpCode::Prims) {
       while (cursor < active.size() && active[cursor] < op.primBegin) ++cursor;
       uint32_t off = uint32_t(out.indices.size());
@@ -132,7 +165,7 @@ void FieldProgram::specialise(const std::vector<uint32_t>& active, ActiveProgram
       op.count = uint32_t(out.indices.size()) - off;
     }
     out.ops.push_back(op);
-    emitted(op);
+    emitted(op, uint32_t(i));
     ++i;
   }
 }

@@ -15,19 +15,35 @@ namespace animorph {
 
 namespace {
 
-constexpr int kRun = 128;  // points evaluated together (one specialised program per run)
+constexpr int kRun = SurfaceColorEvaluator::kRun;  // points evaluated together (one specialised program per run)
 
 // One run's operand stack: entry s holds kRun values, then kRun each of r, g, b; the map levels'
 // points; a scratch row for one primitive's contribution and one for the weights.
-struct RunScratch {
-  std::vector<float> stack, coords, one, weight;
-  std::vector<uint32_t> reach;
-  ActiveProgram active;
-  std::vector<const float*> lx, ly, lz;  // per map level: the points
-  std::vector<glm::vec3> lo, hi;         // per map level: their box
-  float* V(int s) { return stack.data() + size_t(s) * 4 * kRun; }
-  float* C(int s, int c) { return V(s) + size_t(c + 1) * kRun; }
-};
+using RunScratch = SurfaceColorEvaluator::RunScratch;
+
+const glm::vec3& clayLinear() {
+  static const glm::vec3 clay = srgbToLinear(kClayColorSrgb);
+  return clay;
+}
+
+// The colour provenance specialise leaves in an op of an ActiveProgram (its subtreeBegin, see
+// field_program_specialise.cpp): the rule (0 none; 1 everywhere; 2 where every operand's weight is
+// 0; 3 where its value is <= 0) and the empty colour it gives (clay without one).
+uint32_t colorRule(const FieldOp& op) { return op.subtreeBegin >> 30; }
+glm::vec3 ruleColor(const ColorProgram& CP, const FieldOp& op) {
+  const uint32_t ref = op.subtreeBegin & 0x3fffffffu;
+  return ref > 0 && ref - 1 < CP.emptyColor.size() ? CP.emptyColor[ref - 1] : clayLinear();
+}
+
+// The colour of a Const op: a constant of the program is clay; one standing for a subtree that
+// specialisation dropped has that subtree's colour where none of its primitives contributes.
+glm::vec3 constColor(const ColorProgram& CP, const FieldOp& op) { return ruleColor(CP, op); }
+
+// The colour of a Prims op where none of its primitives contributes: its first primitive's (in the
+// whole program, whichever of them a specialised op still holds).
+glm::vec3 primsFallback(const ColorProgram& CP, const FieldOp& op) {
+  return op.primBegin < CP.primColor.size() ? CP.primColor[op.primBegin] : clayLinear();
+}
 
 void boxOf(const float* x, const float* y, const float* z, int n, glm::vec3& lo, glm::vec3& hi) {
   lo = glm::vec3(INFINITY);
@@ -43,38 +59,111 @@ void fillColor(RunScratch& S, int s, int n, const glm::vec3& c) {
   for (int k = 0; k < 3; ++k) std::fill(S.C(s, k), S.C(s, k) + n, c[k]);
 }
 
-// One primitive's contribution at the points into S.one.
-void contribution(const FieldProgram& P, PrimClass cls, const uint32_t* idx, bool combineMax, const float* x,
-                  const float* y, const float* z, int n, const glm::vec3& lo, const glm::vec3& hi, float* f) {
+// The field of primitives idx[0, count) at the points into f (summed, or their max with 0).
+void contribution(const FieldProgram& P, PrimClass cls, const uint32_t* idx, int count, bool combineMax,
+                  const float* x, const float* y, const float* z, int n, const glm::vec3& lo, const glm::vec3& hi,
+                  float* f) {
   std::fill(f, f + n, 0.0f);
   switch (cls) {
-    case PrimClass::Skeletal: skeletalKernel(P, idx, 1, combineMax, x, y, z, n, lo, hi, f, nullptr, nullptr, nullptr); break;
-    case PrimClass::Convolution: convolutionKernel(P.convolution, idx, 1, x, y, z, n, f, nullptr, nullptr, nullptr); break;
+    case PrimClass::Skeletal:
+      skeletalKernel(P, idx, count, combineMax, x, y, z, n, lo, hi, f, nullptr, nullptr, nullptr);
+      break;
+    case PrimClass::Convolution:
+      convolutionKernel(P.convolution, idx, count, x, y, z, n, f, nullptr, nullptr, nullptr);
+      break;
     case PrimClass::Capsule:
-      capsuleKernel(P.capsules, P.threshold, idx, 1, combineMax, x, y, z, n, f, nullptr, nullptr, nullptr);
+      capsuleKernel(P.capsules, P.threshold, idx, count, combineMax, x, y, z, n, f, nullptr, nullptr, nullptr);
       break;
   }
 }
 
-// A Prims op into entry s: the sum (weighted colours) or max (the larger's colour) of its primitives.
-void primsOp(const FieldProgram& P, const ActiveProgram& A, const FieldOp& op, RunScratch& S, int s, const float* x,
+// True when every primitive the op holds has colour c: then c is the op's colour at every point (a
+// blend of equal colours, or the one taken), and its value needs no per-primitive split.
+bool uniformColor(const FieldProgram& P, const ActiveProgram& A, const FieldOp& op, const glm::vec3& c) {
+  for (uint32_t k = 0; k < op.count; ++k)
+    if (P.primitiveColor(op.primClass, A.indices[op.first + k]) != c) return false;
+  return true;
+}
+
+// True when no primitive of the op can contribute a negative value (skeletal: intensity >= 0;
+// convolution: weight >= 0; capsules never): then max(sum of a group, 0) is the sum of the group's
+// max(p, 0), and primitives of one colour can be summed in one kernel call.
+bool nonNegative(const FieldProgram& P, const ActiveProgram& A, const FieldOp& op) {
+  for (uint32_t k = 0; k < op.count; ++k) {
+    const uint32_t i = A.indices[op.first + k];
+    if (op.primClass == PrimClass::Skeletal && !(P.skeletal[i].intensity >= 0.0f)) return false;
+    if (op.primClass == PrimClass::Convolution && !(P.convolution.weight[i] >= 0.0f)) return false;
+  }
+  return true;
+}
+
+constexpr size_t kMaxGroups = 16;  // more colours in one op: a kernel call per primitive
+
+// The op's primitives into groups of one colour (S.grouped, S.groupStart, S.groupColor), in the
+// order of their first primitive; each primitive its own group, in order, when some could be
+// negative (its weight is max(p, 0) alone) or there are over kMaxGroups colours. Returns the number
+// of groups.
+size_t groupByColor(const FieldProgram& P, const ActiveProgram& A, const FieldOp& op, RunScratch& S) {
+  S.grouped.clear();
+  S.groupStart.clear();
+  S.groupColor.clear();
+  const uint32_t* idx = A.indices.data() + op.first;
+  bool grouping = nonNegative(P, A, op);
+  for (uint32_t k = 0; grouping && k < op.count; ++k) {
+    const glm::vec3 c = P.primitiveColor(op.primClass, idx[k]);
+    if (std::find(S.groupColor.begin(), S.groupColor.end(), c) == S.groupColor.end()) S.groupColor.push_back(c);
+    grouping = S.groupColor.size() <= kMaxGroups;
+  }
+  if (!grouping) {
+    S.groupColor.clear();
+    for (uint32_t k = 0; k < op.count; ++k) {
+      S.grouped.push_back(idx[k]);
+      S.groupStart.push_back(k);
+      S.groupColor.push_back(P.primitiveColor(op.primClass, idx[k]));
+    }
+  } else {
+    for (const glm::vec3& c : S.groupColor) {
+      S.groupStart.push_back(uint32_t(S.grouped.size()));
+      for (uint32_t k = 0; k < op.count; ++k)
+        if (P.primitiveColor(op.primClass, idx[k]) == c) S.grouped.push_back(idx[k]);
+    }
+  }
+  S.groupStart.push_back(op.count);
+  return S.groupColor.size();
+}
+
+// A Prims op into entry s: the sum (weighted colours) or max (the larger's colour) of its
+// primitives, one kernel call per group of one colour.
+void primsOp(const ColorProgram& CP, const ActiveProgram& A, const FieldOp& op, RunScratch& S, int s, const float* x,
              const float* y, const float* z, int n, const glm::vec3& lo, const glm::vec3& hi) {
+  const FieldProgram& P = CP.program;
   float* V = S.V(s);
   float* R = S.C(s, 0);
   float* G = S.C(s, 1);
   float* B = S.C(s, 2);
   float* W = S.weight.data();
   float* one = S.one.data();
+  const glm::vec3 first = primsFallback(CP, op);
+  if (op.count == 0) {  // a specialised op whose primitives all miss the region: 0
+    std::fill(V, V + n, 0.0f);
+    fillColor(S, s, n, first);
+    return;
+  }
+  if (uniformColor(P, A, op, first)) {
+    contribution(P, op.primClass, A.indices.data() + op.first, int(op.count), op.combineMax, x, y, z, n, lo, hi, V);
+    fillColor(S, s, n, first);
+    return;
+  }
   std::fill(V, V + n, 0.0f);
   std::fill(W, W + n, 0.0f);
-  const glm::vec3 first = P.primitiveColor(op.primClass, A.indices[op.first]);
   if (op.combineMax) fillColor(S, s, n, first);
   else
     for (int k = 0; k < 3; ++k) std::fill(S.C(s, k), S.C(s, k) + n, 0.0f);
-  for (uint32_t k = 0; k < op.count; ++k) {
-    const uint32_t* idx = A.indices.data() + op.first + k;
-    const glm::vec3 c = P.primitiveColor(op.primClass, *idx);
-    contribution(P, op.primClass, idx, op.combineMax, x, y, z, n, lo, hi, one);
+  const size_t groups = groupByColor(P, A, op, S);
+  for (size_t g = 0; g < groups; ++g) {
+    const glm::vec3 c = S.groupColor[g];
+    contribution(P, op.primClass, S.grouped.data() + S.groupStart[g], int(S.groupStart[g + 1] - S.groupStart[g]),
+                 op.combineMax, x, y, z, n, lo, hi, one);
     for (int i = 0; i < n; ++i) {
       if (op.combineMax) {
         if (one[i] > V[i]) {
@@ -107,8 +196,9 @@ void primsOp(const FieldProgram& P, const ActiveProgram& A, const FieldOp& op, R
   }
 }
 
-// Entry base's colour at point i: the blend of entries base + k with weights w[k] (first kept when all 0).
-void weighted(RunScratch& S, int base, int count, int i, const float* w) {
+// Entry base's colour at point i: the blend of entries base + k with weights w[k] (first kept when
+// all 0: then false).
+bool weighted(RunScratch& S, int base, int count, int i, const float* w) {
   float sum = 0.0f;
   glm::vec3 c(0.0f);
   for (int k = 0; k < count; ++k) {
@@ -116,11 +206,16 @@ void weighted(RunScratch& S, int base, int count, int i, const float* w) {
     sum += w[k];
     c += w[k] * glm::vec3(S.C(base + k, 0)[i], S.C(base + k, 1)[i], S.C(base + k, 2)[i]);
   }
-  if (!(sum > 0.0f)) return;
+  if (!(sum > 0.0f)) return false;
   c /= sum;
   S.C(base, 0)[i] = c.r;
   S.C(base, 1)[i] = c.g;
   S.C(base, 2)[i] = c.b;
+  return true;
+}
+
+void setColor(RunScratch& S, int s, int i, const glm::vec3& c) {
+  for (int k = 0; k < 3; ++k) S.C(s, k)[i] = c[k];
 }
 
 void take(RunScratch& S, int base, int k, int i) {
@@ -128,7 +223,10 @@ void take(RunScratch& S, int base, int k, int i) {
 }
 
 // A combining op over entries [base, base + count), result (value and colour) in entry base.
-void combine(const FieldProgram& P, const FieldOp& op, RunScratch& S, int base, int n) {
+// A Sum whose first operand specialisation dropped (rule 2) where every weight is 0: the colour
+// that first operand had, the Sum's empty colour.
+void combine(const ColorProgram& CP, const FieldOp& op, RunScratch& S, int base, int n) {
+  const FieldProgram& P = CP.program;
   const int count = int(op.count);
   const float T = P.threshold;
   const float* prm = P.params.data() + op.param;
@@ -143,7 +241,7 @@ void combine(const FieldProgram& P, const FieldOp& op, RunScratch& S, int base, 
           v += vk;
           if (k < 64) w[k] = std::max(vk, 0.0f);
         }
-        weighted(S, base, std::min(count, 64), i, w);
+        if (!weighted(S, base, std::min(count, 64), i, w) && colorRule(op) == 2) setColor(S, base, i, ruleColor(CP, op));
         V0[i] = v;
         break;
       }
@@ -199,9 +297,46 @@ void combine(const FieldProgram& P, const FieldOp& op, RunScratch& S, int base, 
   }
 }
 
-// The ops of a specialised program over one run of n points (n <= kRun): colours into out.
-void runColors(const FieldProgram& P, const ActiveProgram& A, RunScratch& S, const float* x, const float* y,
-               const float* z, int n, glm::vec4* out) {
+// True (with c) when the program can give only one colour: every primitive it holds, every
+// fallback colour (a Prims op's first primitive, a constant's, a Sum's, a skipped map's) is c.
+// Every op's colour is a blend of, or a choice among, these: c wherever it is evaluated.
+bool singleColor(const ColorProgram& CP, const ActiveProgram& A, glm::vec3& c) {
+  bool any = false;
+  auto same = [&](const glm::vec3& ck) {
+    if (!any) c = ck;
+    any = true;
+    return ck == c;
+  };
+  for (const FieldOp& op : A.ops) {
+    switch (op.code) {
+      case OpCode::Prims:
+        if (!same(primsFallback(CP, op))) return false;
+        if (!uniformColor(CP.program, A, op, c)) return false;
+        break;
+      case OpCode::Const:
+        if (!same(constColor(CP, op))) return false;
+        break;
+      case OpCode::BeginMap:
+        if (op.first < CP.mapEmptyColor.size() && !same(CP.mapEmptyColor[op.first])) return false;
+        break;
+      default: break;
+    }
+    if (colorRule(op) != 0 && !same(ruleColor(CP, op))) return false;
+  }
+  return any;
+}
+
+// From BeginMap ops[oi]: the index of its EndMap.
+size_t matchingEnd(const ActiveProgram& A, size_t oi) {
+  for (int open = 1; open > 0;) {
+    const OpCode c = A.ops[++oi].code;
+    open += c == OpCode::BeginMap ? 1 : c == OpCode::EndMap ? -1 : 0;
+  }
+  return oi;
+}
+
+// Sizes the scratch for one run of program P and sets the points of level 0.
+void prepareRun(const FieldProgram& P, RunScratch& S, const float* x, const float* y, const float* z, int n) {
   const int depth = P.maxMapDepth() + 1;
   S.stack.resize(size_t(std::max(1, P.maxStack())) * 4 * kRun);
   S.coords.resize(size_t(depth) * 3 * kRun);
@@ -210,58 +345,94 @@ void runColors(const FieldProgram& P, const ActiveProgram& A, RunScratch& S, con
   for (auto* l : {&S.lx, &S.ly, &S.lz}) l->resize(size_t(depth));
   S.lo.resize(size_t(depth));
   S.hi.resize(size_t(depth));
-  std::vector<const float*>&lx = S.lx, &ly = S.ly, &lz = S.lz;
-  std::vector<glm::vec3>&lo = S.lo, &hi = S.hi;
-  lx[0] = x;
-  ly[0] = y;
-  lz[0] = z;
-  boxOf(x, y, z, n, lo[0], hi[0]);
-  const glm::vec3 clay = srgbToLinear(kClayColorSrgb);
+  S.lx[0] = x;
+  S.ly[0] = y;
+  S.lz[0] = z;
+  boxOf(x, y, z, n, S.lo[0], S.hi[0]);
+}
+
+// Enters map m: the points of the next level are the current level's in the map's local space.
+void enterMap(const SpaceMap& m, RunScratch& S, int& level, int n) {
+  float* o = S.coords.data() + size_t(level + 1) * 3 * kRun;
+  const size_t l = size_t(level);
+  for (int i = 0; i < n; ++i) {
+    const glm::vec3 q = m.toLocal({S.lx[l][i], S.ly[l][i], S.lz[l][i]});
+    o[i] = q.x;
+    o[kRun + i] = q.y;
+    o[2 * kRun + i] = q.z;
+  }
+  ++level;
+  S.lx[size_t(level)] = o;
+  S.ly[size_t(level)] = o + kRun;
+  S.lz[size_t(level)] = o + 2 * kRun;
+  boxOf(o, o + kRun, o + 2 * kRun, n, S.lo[size_t(level)], S.hi[size_t(level)]);
+}
+
+// Entry s just pushed by op: where its value is <= 0, colorRule 3's colour.
+void applyValueRule(const ColorProgram& CP, const FieldOp& op, RunScratch& S, int s, int n) {
+  if (colorRule(op) != 3) return;
+  const glm::vec3 c = ruleColor(CP, op);
+  const float* V = S.V(s);
+  for (int i = 0; i < n; ++i)
+    if (!(V[i] > 0.0f)) setColor(S, s, i, c);
+}
+
+// The ops of a specialised program over one run of n points (n <= kRun): colours into out.
+// skipMissedMaps: a map whose primitives reach none of the points is its empty value there, with
+// its empty colour, without mapping the points (as the field evaluator does): the same result.
+void runColors(const ColorProgram& CP, const ActiveProgram& A, RunScratch& S, const float* x, const float* y,
+               const float* z, int n, glm::vec4* out, bool skipMissedMaps) {
+  const FieldProgram& P = CP.program;
+  prepareRun(P, S, x, y, z, n);
   int sp = 0, level = 0;
-  for (const FieldOp& op : A.ops) {
+  for (size_t oi = 0; oi < A.ops.size(); ++oi) {
+    const FieldOp& op = A.ops[oi];
+    const size_t l = size_t(level);
     switch (op.code) {
       case OpCode::Prims:
-        primsOp(P, A, op, S, sp, lx[size_t(level)], ly[size_t(level)], lz[size_t(level)], n, lo[size_t(level)],
-                hi[size_t(level)]);
+        primsOp(CP, A, op, S, sp, S.lx[l], S.ly[l], S.lz[l], n, S.lo[l], S.hi[l]);
+        applyValueRule(CP, op, S, sp, n);
         ++sp;
         break;
       case OpCode::Const:
         std::fill(S.V(sp), S.V(sp) + n, op.emptyValue);
-        fillColor(S, sp, n, clay);
+        fillColor(S, sp, n, constColor(CP, op));
         ++sp;
         break;
       case OpCode::BeginMap: {
-        const SpaceMap& m = P.maps[op.first];
-        float* o = S.coords.data() + size_t(level + 1) * 3 * kRun;
-        for (int i = 0; i < n; ++i) {
-          const glm::vec3 q = m.toLocal({lx[size_t(level)][i], ly[size_t(level)][i], lz[size_t(level)][i]});
-          o[i] = q.x;
-          o[kRun + i] = q.y;
-          o[2 * kRun + i] = q.z;
+        const Bounds& r = P.mapReach(op.first);
+        if (skipMissedMaps &&
+            (r.empty() || glm::any(glm::greaterThan(r.min, S.hi[0])) || glm::any(glm::lessThan(r.max, S.lo[0])))) {
+          oi = matchingEnd(A, oi);
+          std::fill(S.V(sp), S.V(sp) + n, A.ops[oi].emptyValue);
+          fillColor(S, sp, n, op.first < CP.mapEmptyColor.size() ? CP.mapEmptyColor[op.first] : clayLinear());
+          applyValueRule(CP, A.ops[oi], S, sp, n);
+          ++sp;
+          break;
         }
-        ++level;
-        lx[size_t(level)] = o;
-        ly[size_t(level)] = o + kRun;
-        lz[size_t(level)] = o + 2 * kRun;
-        boxOf(o, o + kRun, o + 2 * kRun, n, lo[size_t(level)], hi[size_t(level)]);
+        enterMap(P.maps[op.first], S, level, n);
         break;
       }
-      case OpCode::EndMap: --level; break;
+      case OpCode::EndMap:
+        --level;
+        applyValueRule(CP, op, S, sp - 1, n);
+        break;
       default: {
         const int base = sp - int(op.count);
-        combine(P, op, S, base, n);
+        combine(CP, op, S, base, n);
+        applyValueRule(CP, op, S, base, n);
         sp = base + 1;
       }
     }
   }
   for (int i = 0; i < n; ++i) {
-    glm::vec3 c = sp > 0 ? glm::vec3(S.C(0, 0)[i], S.C(0, 1)[i], S.C(0, 2)[i]) : clay;
+    glm::vec3 c = sp > 0 ? glm::vec3(S.C(0, 0)[i], S.C(0, 1)[i], S.C(0, 2)[i]) : clayLinear();
     out[i] = glm::vec4(glm::clamp(c, 0.0f, 1.0f), 1.0f);
   }
 }
 
 // Points order[begin, end) (at most kRun): evaluated with the primitives reaching their box.
-void evaluateRun(const FieldProgram& P, const glm::vec3* points, const uint32_t* order, int n, glm::vec4* out,
+void evaluateRun(const ColorProgram& CP, const glm::vec3* points, const uint32_t* order, int n, glm::vec4* out,
                  RunScratch& S) {
   float xyz[3 * kRun];
   Bounds box;
@@ -272,16 +443,64 @@ void evaluateRun(const FieldProgram& P, const glm::vec3* points, const uint32_t*
     xyz[2 * kRun + i] = p.z;
     box.add(p);
   }
-  P.primitivesReaching(box, S.reach);
-  P.specialise(S.reach, S.active);
+  CP.program.primitivesReaching(box, S.reach);
+  CP.program.specialise(S.reach, S.active);
   glm::vec4 colors[kRun];
-  runColors(P, S.active, S, xyz, xyz + kRun, xyz + 2 * kRun, n, colors);
+  glm::vec3 c;
+  if (singleColor(CP, S.active, c)) std::fill(colors, colors + n, glm::vec4(glm::clamp(c, 0.0f, 1.0f), 1.0f));
+  else runColors(CP, S.active, S, xyz, xyz + kRun, xyz + 2 * kRun, n, colors, true);
   for (int i = 0; i < n; ++i) out[order[i]] = colors[i];
 }
 
 }  // namespace
 
+ColorProgram::ColorProgram(const FieldProgram& p) : program(p) {
+  primColor.assign(p.primitiveCount(), clayLinear());
+  for (const FieldOp& op : p.ops)
+    if (op.code == OpCode::Prims)
+      for (uint32_t k = 0; k < op.count && op.primBegin + k < primColor.size(); ++k)
+        primColor[op.primBegin + k] = p.primitiveColor(op.primClass, op.first + k);
+  // The whole walk where no primitive contributes: every Prims op 0 in its first primitive's colour,
+  // the operators' rules on these (the same code as at points, one point).
+  emptyColor.assign(p.ops.size(), clayLinear());
+  mapEmptyColor.assign(p.maps.size(), clayLinear());
+  RunScratch S;
+  S.stack.resize(size_t(std::max(1, p.maxStack())) * 4 * kRun);
+  S.one.resize(kRun);
+  S.weight.resize(kRun);
+  int sp = 0;
+  for (size_t i = 0; i < p.ops.size(); ++i) {
+    const FieldOp& op = p.ops[i];
+    switch (op.code) {
+      case OpCode::Prims:
+      case OpCode::Const:
+        S.V(sp)[0] = op.code == OpCode::Prims ? 0.0f : op.emptyValue;
+        setColor(S, sp, 0, op.code == OpCode::Prims ? primsFallback(*this, op) : clayLinear());
+        ++sp;
+        break;
+      case OpCode::BeginMap: break;
+      case OpCode::EndMap:
+        if (op.first < mapEmptyColor.size() && sp > 0)
+          mapEmptyColor[op.first] = glm::vec3(S.C(sp - 1, 0)[0], S.C(sp - 1, 1)[0], S.C(sp - 1, 2)[0]);
+        break;
+      default: {
+        const int base = sp - int(op.count);
+        if (base < 0) return;  // malformed (finish() leaves none)
+        combine(*this, op, S, base, 1);
+        sp = base + 1;
+      }
+    }
+    if (sp > 0) emptyColor[i] = glm::vec3(S.C(sp - 1, 0)[0], S.C(sp - 1, 1)[0], S.C(sp - 1, 2)[0]);
+  }
+}
+
 void SurfaceColorEvaluator::evaluate(const FieldProgram& program, const glm::vec3* points, size_t n, glm::vec4* out,
+                                     int threads) {
+  if (n == 0) return;
+  evaluate(ColorProgram(program), points, n, out, threads);
+}
+
+void SurfaceColorEvaluator::evaluate(const ColorProgram& program, const glm::vec3* points, size_t n, glm::vec4* out,
                                      int threads) {
   if (n == 0) return;
   // Sort the points along a Morton curve of 1024 cells per side of their box, so each run of
@@ -320,6 +539,32 @@ void SurfaceColorEvaluator::evaluate(const FieldProgram& program, const glm::vec
   }
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
   arena.execute([&] { tbb::parallel_for(tbb::blocked_range<size_t>(0, runs, 4), body); });
+}
+
+void SurfaceColorEvaluator::evaluateActive(const ColorProgram& program, const ActiveProgram& active, const float* x,
+                                           const float* y, const float* z, int n, glm::vec4* out) {
+  if (glm::vec3 c; singleColor(program, active, c)) {
+    std::fill(out, out + n, glm::vec4(glm::clamp(c, 0.0f, 1.0f), 1.0f));
+    return;
+  }
+  for (int b = 0; b < n; b += kRun)
+    runColors(program, active, run_, x + b, y + b, z + b, std::min(kRun, n - b), out + b, true);
+}
+
+void SurfaceColorEvaluator::evaluateFull(const FieldProgram& program, const glm::vec3* points, size_t n,
+                                         glm::vec4* out) {
+  const ColorProgram cp(program);
+  program.specialiseAll(run_.active);
+  float xyz[3 * kRun];
+  for (size_t b = 0; b < n; b += kRun) {
+    const int m = int(std::min<size_t>(kRun, n - b));
+    for (int i = 0; i < m; ++i) {
+      xyz[i] = points[b + size_t(i)].x;
+      xyz[kRun + i] = points[b + size_t(i)].y;
+      xyz[2 * kRun + i] = points[b + size_t(i)].z;
+    }
+    runColors(cp, run_.active, run_, xyz, xyz + kRun, xyz + 2 * kRun, m, out + b, false);
+  }
 }
 
 glm::vec3 SurfaceColorEvaluator::evaluatePoint(const FieldProgram& program, const glm::vec3& p) {

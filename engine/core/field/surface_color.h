@@ -11,12 +11,22 @@
 //   * difference: the kept (first) operand's colour; R-union, R-intersection, bounded blend: the
 //     operands' partial derivatives (clamped >= 0) as weights; remap: the operand's colour;
 //   * space maps move the point as for the field; a constant (no primitive) has the clay tone.
-// Where every weight is 0, the first operand's colour is kept. The field itself is not changed
+// Where every weight is 0, the first operand's colour is kept; where none of a Prims op's
+// primitives contributes, it has the colour of its first primitive. The field itself is not changed
 // and its kernels are reused as they are: colour costs one more walk over the primitives reaching
-// each point, done per output vertex after polygonisation (not per grid point).
+// each point, done per output vertex (not per grid point).
 //
-// One function for every user of surface colour: the CPU polygoniser's vertices, the GPU
-// polygoniser's read-back vertices, exports, and (later) the stand-in's colour.
+// Only the primitives reaching a point can colour it (the others' field, and so their weight, is 0
+// there), so the walk is restricted to them: evaluate() sorts the points into compact runs and
+// specialises the program to each run's box; evaluateActive() takes a program the caller has
+// already specialised to the points' region (the CPU polygoniser's per-block programs, in the
+// block's own thread). A subtree that specialisation replaced by a constant keeps the colour the
+// whole walk gives it there (ColorProgram::emptyColor: its colour where none of its primitives
+// contributes), so both give the colours of the unrestricted walk (evaluateFull) up to float
+// rounding: within 1e-5 per channel, below the 1/255 of an 8-bit colour (tests/core/surface_color.cpp).
+//
+// One evaluator for every user of surface colour: the CPU polygoniser's vertices, the GPU
+// polygoniser's read-back vertices, exports, particles converted from a shape.
 #include <cstddef>
 #include <vector>
 
@@ -26,6 +36,19 @@
 
 namespace animorph {
 
+// A finished program with what its colour walk needs besides it, computed once per program (a
+// walk over its ops and primitives) and shared read-only by every thread colouring it.
+struct ColorProgram {
+  // program must outlive this object.
+  explicit ColorProgram(const FieldProgram& program);
+  const FieldProgram& program;
+  std::vector<glm::vec3> primColor;   // by global primitive id: its colour (linear)
+  // By op index of program: the colour of the subtree op i closes where none of its primitives
+  // contributes (what a constant standing for it in a specialised program has).
+  std::vector<glm::vec3> emptyColor;
+  std::vector<glm::vec3> mapEmptyColor;  // by map index: the same for the map's subtree
+};
+
 class SurfaceColorEvaluator {
  public:
   // out[i] = (linear r, g, b, 1) of the surface colour at points[i], each component in [0, 1].
@@ -33,12 +56,38 @@ class SurfaceColorEvaluator {
   // evaluated with only the primitives reaching its box. threads: 0 = all hardware threads,
   // 1 = this thread only. A finished program is required; an empty one gives the clay tone.
   void evaluate(const FieldProgram& program, const glm::vec3* points, size_t n, glm::vec4* out, int threads = 0);
+  void evaluate(const ColorProgram& program, const glm::vec3* points, size_t n, glm::vec4* out, int threads = 0);
   // One point (tests, tools): the same value evaluate gives.
   glm::vec3 evaluatePoint(const FieldProgram& program, const glm::vec3& p);
+  // out[i] as evaluate gives it at (x[i], y[i], z[i]), i < n (any n >= 0), on this thread, with the
+  // ops of active: program.program specialised (FieldProgram::specialise) to primitives including
+  // every one whose bound reaches the points, or specialiseAll. The points are taken in runs of
+  // 128 as given; map subtrees and skeletal primitives missing a run's box are skipped, so keep
+  // them spatially compact.
+  void evaluateActive(const ColorProgram& program, const ActiveProgram& active, const float* x, const float* y,
+                      const float* z, int n, glm::vec4* out);
+  // The reference: every point against the whole program (specialiseAll), no spatial restriction
+  // but the kernels' own skipping. For tests; slow on large programs.
+  void evaluateFull(const FieldProgram& program, const glm::vec3* points, size_t n, glm::vec4* out);
+
+  // One run's working memory (public only so that its type is complete here; not an interface).
+  static constexpr int kRun = 128;  // points evaluated together
+  struct RunScratch {
+    std::vector<float> stack, coords, one, weight;  // stack entry s: kRun values, then kRun each of r, g, b
+    std::vector<uint32_t> reach;
+    std::vector<uint32_t> grouped, groupStart;  // a Prims op's primitives by colour, each group's first
+    std::vector<glm::vec3> groupColor;
+    ActiveProgram active;
+    std::vector<const float*> lx, ly, lz;  // per map level: the points
+    std::vector<glm::vec3> lo, hi;         // per map level: their box
+    float* V(int s) { return stack.data() + size_t(s) * 4 * kRun; }
+    float* C(int s, int c) { return V(s) + size_t(c + 1) * kRun; }
+  };
 
  private:
   std::vector<uint32_t> order_;
   std::vector<uint64_t> keys_;
+  RunScratch run_;  // evaluateActive's and evaluateFull's
 };
 
 }  // namespace animorph

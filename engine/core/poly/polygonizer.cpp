@@ -1,7 +1,5 @@
 #include "core/poly/polygonizer.h"
 
-#include "core/field/surface_color.h"
-
 #include <algorithm>
 #include <chrono>
 #include <memory>
@@ -44,6 +42,9 @@ struct ExternalVertex {
 
 struct BlockOutput {
   std::vector<glm::vec3> positions, normals;
+  // With per-block colours (PolygonizeRun::colorProg): one per position, made in the block's thread
+  // with its programs; kept with the output by a history (coloured again when a colour changed).
+  std::vector<glm::vec4> colors;
   std::vector<int32_t> ownedSlot;   // (lk*8 + lj)*8 + li)*3 + axis -> local vertex
   std::vector<uint64_t> corners;    // triangle corners: local index, or kExternal | external index
   std::vector<ExternalVertex> externals;
@@ -62,6 +63,8 @@ struct Scratch {
   std::vector<uint8_t> vertexSub;   // sub-block of each owned vertex
   std::vector<uint32_t> previousReaching, merged;  // tolerance reuse: the previous frame's list, the union
   std::vector<uint32_t> gather;     // vertices of one sub-block
+  SurfaceColorEvaluator color;      // the vertices' colours (per-block colours)
+  std::vector<glm::vec4> rgba;
 };
 
 // A block reached by more primitives than this that the evaluator cannot skip evaluates each 4^3
@@ -117,6 +120,7 @@ struct PolygonizeHistory::State {
   float h = 0.0f;
   int n[3] = {0, 0, 0};
   bool subBlockLists = true;
+  bool colors = false;  // the outputs carry per-block colours
   FieldProgram program;
   std::vector<std::vector<uint32_t>> superCandidates;
   std::vector<std::unique_ptr<BlockOutput>> out;  // null: the block was culled
@@ -259,6 +263,9 @@ struct PolygonizeRun {
     nBlocks = size_t(g.nb[0]) * g.nb[1] * g.nb[2];
     nSupers = size_t(g.ns[0]) * g.ns[1] * g.ns[2];
     margin = 1e-3f * T + 1e-7f;
+    // Colours of the polygonised program itself are made per block; another colour program's
+    // after the mesh (its primitives are not the blocks' ones).
+    if (s.colors && (!s.colorProgram || s.colorProgram == &program)) colorProg = std::make_unique<ColorProgram>(program);
   }
 
   const FieldProgram& program;
@@ -268,10 +275,12 @@ struct PolygonizeRun {
   Grid g;
   size_t nBlocks = 0, nSupers = 0;
   float margin = 0.0f;  // |f| within which an interval proves no sign
+  std::unique_ptr<ColorProgram> colorProg;  // per-block colours (settings.colors on the program itself)
 
   // Temporal coherence: the previous frame, when its grid and program structure match this one.
   std::unique_ptr<PolygonizeHistory::State> previous;
-  std::vector<uint8_t> changed;      // per primitive, against the previous frame
+  std::vector<uint8_t> changed;      // per primitive, against the previous frame (its colour too, with colorProg)
+  std::vector<uint8_t> colorChanged; // per primitive, with colorProg: its colour changed
   float tolerance = 0.0f;
   std::vector<float> changeBound;    // per primitive: how far its change can move the field
   std::vector<BlockSummary> summary;
@@ -287,6 +296,7 @@ struct PolygonizeRun {
   // Outputs only for blocks that are evaluated (most are culled at high resolution).
   std::vector<std::unique_ptr<BlockOutput>> out;
   std::atomic<size_t> culled{0}, evaluated{0}, cells{0}, points{0}, pairs{0}, done{0}, reused{0};
+  std::atomic<int64_t> colorNs{0};  // the blocks' colour work, summed over threads
 
   glm::vec3 cornerPos(int i, int j, int k) const { return g.origin + g.h * glm::vec3(float(i), float(j), float(k)); }
   // World box of the corners of cells [c0, c0 + count) per axis.
@@ -329,6 +339,9 @@ struct PolygonizeRun {
   void summariseCorners(const BlockJob& job, const Scratch& sc);
   void triangulateBlock(const BlockJob& job, Scratch& sc);
   void gradientNormals(const BlockJob& job, Scratch& sc);
+  void colorVertices(const ActiveProgram& active, BlockOutput& o, Scratch& sc, size_t m);
+  void recolorKept(BlockOutput& o, Scratch& sc);
+  void markColorChanges();
   void stitch(tbb::task_arena& arena, TriangleMesh& mesh);
   size_t addOrphanVertices(TriangleMesh& mesh);
   void saveHistory();
@@ -339,14 +352,32 @@ void PolygonizeRun::takeHistory() {
   if (previous && s.culling && previous->subBlockLists == s.subBlockLists && previous->origin == g.origin &&
       previous->h == g.h && previous->n[0] == g.n[0] && previous->n[1] == g.n[1] && previous->n[2] == g.n[2] &&
       previous->out.size() == nBlocks && previous->superCandidates.size() == nSupers &&
-      sameStructure(program, previous->program))
+      previous->colors == (colorProg != nullptr) && sameStructure(program, previous->program))
     changed = changedPrimitives(program, previous->program);
   else
     previous.reset();
+  if (previous && colorProg) markColorChanges();
   tolerance = std::max(0.0f, s.reuseToleranceCells);
   if (previous && tolerance > 0.0f) changeBound = primitiveChangeBounds(program, previous->program);
   summary.resize(nBlocks);
   superReused.assign(nSupers, 0);
+}
+
+// With per-block colours: primitives whose colour changed since the previous frame. Such a change
+// alone leaves the field as it was: a block it reaches is not kept whole (changed), and one kept
+// within the tolerance is coloured again.
+void PolygonizeRun::markColorChanges() {
+  colorChanged.assign(program.primitiveCount(), 0);
+  for (const FieldOp& op : program.ops) {
+    if (op.code != OpCode::Prims) continue;
+    for (uint32_t k = 0; k < op.count; ++k) {
+      const uint32_t g = op.primBegin + k;
+      if (g >= colorChanged.size()) break;
+      colorChanged[g] =
+          program.primitiveColor(op.primClass, op.first + k) != previous->program.primitiveColor(op.primClass, op.first + k);
+      changed[g] = uint8_t(changed[g] | colorChanged[g]);
+    }
+  }
 }
 
 // Coarse level: superblocks whose interval proves one sign are culled; each keeps the primitives
@@ -534,6 +565,12 @@ bool PolygonizeRun::reuseWithinTolerance(const BlockJob& job, Scratch& sc, size_
   }
   if (!keepsBlock(previous->summary[bi], delta, tolerance, T)) return false;
   out[bi] = std::move(previous->out[bi]);
+  if (colorProg)
+    for (uint32_t p : sc.reaching)
+      if (colorChanged[p]) {
+        recolorKept(*out[bi], sc);
+        break;
+      }
   summary[bi] = previous->summary[bi];
   summary[bi].drift = float(delta);
   evaluated.fetch_add(1, std::memory_order_relaxed);
@@ -770,8 +807,40 @@ void PolygonizeRun::gradientNormals(const BlockJob& job, Scratch& sc) {
       nq = outwardNormal(sc.gx[q], sc.gy[q], sc.gz[q], nq);
     }
     pairs.fetch_add(m * active.primitiveCount, std::memory_order_relaxed);
+    if (colorProg) colorVertices(active, o, sc, m);
   }
   points.fetch_add(nv, std::memory_order_relaxed);
+}
+
+// The colours of the m vertices sc.gather of o (their points in sc.x, y, z), with the program
+// their normals were evaluated with (field/surface_color.h: the whole walk's colours).
+void PolygonizeRun::colorVertices(const ActiveProgram& active, BlockOutput& o, Scratch& sc, size_t m) {
+  const auto c0 = std::chrono::steady_clock::now();
+  o.colors.resize(o.positions.size());
+  sc.rgba.resize(m);
+  sc.color.evaluateActive(*colorProg, active, sc.x.data(), sc.y.data(), sc.z.data(), int(m), sc.rgba.data());
+  for (size_t q = 0; q < m; ++q) o.colors[sc.gather[q]] = sc.rgba[q];
+  colorNs.fetch_add(
+      std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - c0).count(),
+      std::memory_order_relaxed);
+}
+
+// A block output kept within the tolerance while a colour reaching it changed: its vertices
+// coloured again with the block's program (sc.active), in their stored order (an output's vertices
+// come cell by cell: compact runs).
+void PolygonizeRun::recolorKept(BlockOutput& o, Scratch& sc) {
+  const size_t nv = o.positions.size();
+  sc.x.resize(nv);
+  sc.y.resize(nv);
+  sc.z.resize(nv);
+  sc.gather.resize(nv);
+  for (size_t q = 0; q < nv; ++q) {
+    sc.x[q] = o.positions[q].x;
+    sc.y[q] = o.positions[q].y;
+    sc.z[q] = o.positions[q].z;
+    sc.gather[q] = uint32_t(q);
+  }
+  colorVertices(sc.active, o, sc, nv);
 }
 
 // Global vertex numbering in block order, then each block's triangle corners resolved: its own
@@ -788,12 +857,15 @@ void PolygonizeRun::stitch(tbb::task_arena& arena, TriangleMesh& mesh) {
   mesh.positions.resize(nv);
   mesh.normals.resize(nv);
   mesh.indices.resize(ni);
+  if (colorProg) mesh.colors.resize(nv);
   arena.execute([&] {
     tbb::parallel_for(size_t(0), nBlocks, [&](size_t bi) {
       if (!out[bi]) return;
       const BlockOutput& o = *out[bi];
       std::copy(o.positions.begin(), o.positions.end(), mesh.positions.begin() + std::ptrdiff_t(o.vertexOffset));
       std::copy(o.normals.begin(), o.normals.end(), mesh.normals.begin() + std::ptrdiff_t(o.vertexOffset));
+      if (colorProg && o.colors.size() == o.positions.size())
+        std::copy(o.colors.begin(), o.colors.end(), mesh.colors.begin() + std::ptrdiff_t(o.vertexOffset));
       for (size_t q = 0; q < o.corners.size(); ++q) {
         uint64_t code = o.corners[q];
         uint32_t index = kUnresolved;
@@ -852,6 +924,7 @@ void PolygonizeRun::saveHistory() {
   next->h = g.h;
   for (int a = 0; a < 3; ++a) next->n[a] = g.n[a];
   next->subBlockLists = s.subBlockLists;
+  next->colors = colorProg != nullptr;
   next->program = program;
   next->superCandidates = std::move(superCandidates);
   next->out = std::move(out);
@@ -861,6 +934,33 @@ void PolygonizeRun::saveHistory() {
 
 double millisecondsSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// The colours the blocks did not make (settings.colors): with per-block colours only the orphan
+// vertices [stitched, end), else (another colour program) every vertex, in runs between which
+// cancel is polled. Sets st.colorMilliseconds (with per-block colours: the blocks' colour time
+// summed over their threads, processor time, plus this). False when cancelled.
+bool colorAfterMesh(const PolygonizeRun& run, TriangleMesh& mesh, size_t stitched, PolygonizeStats& st) {
+  const PolygonizeSettings& s = run.s;
+  const auto c0 = std::chrono::steady_clock::now();
+  const size_t n = mesh.positions.size();
+  mesh.colors.resize(n);
+  SurfaceColorEvaluator colors;
+  if (run.colorProg) {
+    if (n > stitched) colors.evaluate(*run.colorProg, mesh.positions.data() + stitched, n - stitched,
+                                      mesh.colors.data() + stitched, s.threads);
+    st.colorMilliseconds = double(run.colorNs.load()) * 1e-6 + millisecondsSince(c0);
+    return true;
+  }
+  constexpr size_t kColorRun = 32768;
+  const ColorProgram program(s.colorProgram ? *s.colorProgram : run.program);
+  for (size_t first = 0; first < n; first += kColorRun) {
+    if (s.cancel && s.cancel->load()) return false;
+    colors.evaluate(program, mesh.positions.data() + first, std::min(kColorRun, n - first), mesh.colors.data() + first,
+                    s.threads);
+  }
+  st.colorMilliseconds = millisecondsSince(c0);
+  return true;
 }
 
 }  // namespace
@@ -901,28 +1001,16 @@ Result<PolygonizeResult> polygonize(const FieldProgram& program, const Polygoniz
     return result;
   }
   run.stitch(arena, result.mesh);
+  const size_t stitched = result.mesh.positions.size();
   st.orphanVertices = run.addOrphanVertices(result.mesh);
   run.saveHistory();
   st.pointsEvaluated = run.points.load() + st.orphanVertices;
   st.primitiveEvaluations = run.pairs.load();
-  if (s.colors) {
-    // In runs of vertices, so that a cancel (a preview superseded while it colours) is seen.
-    const auto c0 = std::chrono::steady_clock::now();
-    const size_t n = result.mesh.positions.size();
-    constexpr size_t kColorRun = 32768;
-    result.mesh.colors.resize(n);
-    SurfaceColorEvaluator colors;
-    for (size_t first = 0; first < n; first += kColorRun) {
-      if (s.cancel && s.cancel->load()) {
-        result.mesh = TriangleMesh{};  // as a cancelled sweep: empty
-        result.cancelled = true;
-        st.milliseconds = millisecondsSince(t0);
-        return result;
-      }
-      colors.evaluate(s.colorProgram ? *s.colorProgram : program, result.mesh.positions.data() + first,
-                      std::min(kColorRun, n - first), result.mesh.colors.data() + first, s.threads);
-    }
-    st.colorMilliseconds = millisecondsSince(c0);
+  if (s.colors && !colorAfterMesh(run, result.mesh, stitched, st)) {
+    result.mesh = TriangleMesh{};  // as a cancelled sweep: empty
+    result.cancelled = true;
+    st.milliseconds = millisecondsSince(t0);
+    return result;
   }
   if (s.progress) s.progress(1.0f);
   st.milliseconds = millisecondsSince(t0);

@@ -89,8 +89,12 @@ struct PolygonizeSettings {
   // many cells of a full sweep's; the reused normals are the older frame's. 0.1 is a good value.
   float reuseToleranceCells = 0.0f;
   // Vertex colours (TriangleMesh::colors, linear): the surface colour of the program's primitives
-  // at each vertex (field/surface_color.h), computed after the mesh is made, in runs of vertices
-  // between which cancel is polled (a cancel there gives the cancelled, empty result). Off: none.
+  // at each vertex (field/surface_color.h), equal to the whole program's colour walk. Made by each
+  // block in its own thread with the block's specialised programs (only what reaches the vertex);
+  // a history keeps them with a kept block (coloured again when a colour reaching it changed; a
+  // block kept within reuseToleranceCells keeps its older vertices and their colours, as its
+  // normals). With colorProgram, after the mesh instead, in runs of vertices between which
+  // cancel is polled (a cancel there gives the cancelled, empty result). Off: none.
   bool colors = false;
   // With colors: the program the colours are evaluated on instead of the polygonised one (a
   // finished program with the same surface whose primitives carry finer colours: a morph's
@@ -113,7 +117,10 @@ struct PolygonizeStats {
   size_t blocksReused = 0;              // with a history: blocks taken from the previous frame
                                         // (counted in blocksCulled / blocksEvaluated as before)
   double milliseconds = 0.0;
-  double colorMilliseconds = 0.0;       // of milliseconds: the vertex colours (settings.colors)
+  // The vertex colours (settings.colors): made per block, the blocks' colour work summed over their
+  // threads (processor time, not a share of milliseconds' wall time) plus the orphans'; with a
+  // colorProgram, the wall time of the pass after the mesh.
+  double colorMilliseconds = 0.0;
 };
 
 struct PolygonizeResult {
