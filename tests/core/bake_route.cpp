@@ -15,9 +15,11 @@
 #include <random>
 #include <thread>
 
+#include "core/animorphosis/evaluate_generic.h"
 #include "core/export/bake_route.h"
 #include "core/export/export_project.h"
 #include "core/export/frame_files.h"
+#include "core/project/animorphosis_project.h"
 #include "core/scene/visible_surface.h"
 #include "core/util/background_job.h"
 #include "util/animorph_fixtures.h"
@@ -354,4 +356,37 @@ TEST_CASE("bake route: bad settings are named before anything is baked or writte
   REQUIRE_FALSE(r.ok());
   CHECK_THAT(r.error(), Contains(blocker));
   CHECK(progress.done() == 0.0);
+}
+
+TEST_CASE("bake route: an animorphosis' frames are compiled straight from C, the snapshot's programs exactly",
+          "[bake]") {
+  const ProjectFrames& frames = walkerToFlyerFrames();
+  REQUIRE(frames.animorphosis());
+  const Project p = walkerToFlyerProject("walker");
+  const AnimorphosisTiming timing = animorphosisTiming(p);
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  FieldEvaluator ev;
+  // Before, inside and after the interval (1 s to 3 s at 24 frames a second), out of order.
+  for (int f : {60, 0, 30, 24, 48, 72, 96, 31}) {
+    INFO("frame " << f);
+    const FieldProgram direct = frames.animorphosisProgram(f);
+    const FieldProgram ref = compileGeneric(*frames.animorphosis(), timing, p.timeline.frameToSec(f));
+    REQUIRE(direct.ops.size() == ref.ops.size());
+    REQUIRE(direct.primitiveCount() == ref.primitiveCount());
+    CHECK(direct.threshold == ref.threshold);
+    CHECK(direct.params == ref.params);
+    CHECK(direct.bounds().min == ref.bounds().min);
+    CHECK(direct.bounds().max == ref.bounds().max);
+    REQUIRE_FALSE(ref.bounds().empty());
+    const Bounds box = ref.bounds();
+    int inside = 0;
+    for (int i = 0; i < 100; ++i) {
+      const glm::vec3 q = box.min + (box.max - box.min) * glm::vec3(u(rng), u(rng), u(rng));
+      const float a = ev.evaluatePoint(direct, q), b = ev.evaluatePoint(ref, q);
+      REQUIRE(a == b);
+      inside += a >= 0.0f;
+    }
+    CHECK(inside > 0);
+  }
 }

@@ -23,6 +23,7 @@
 #include "demo/blob_creature.h"
 #include "core/poly/polygonizer.h"
 #include "gpu/vulkan/context.h"
+#include "gpu/polygonizer/gpu_field_program.h"
 #include "gpu/polygonizer/gpu_polygonizer.h"
 
 namespace {
@@ -314,6 +315,29 @@ void programRows(g::GpuPolygonizer& poly, const std::string& tag, const FieldPro
   rows.push_back({tag + " GPU / CPU time", msGpu / msCpu, "ratio", target, "wall, both " + th + ", GPU incl. read-back"});
 }
 
+// The host's part of a GPU frame of one program that does not depend on the grid: packing it for
+// the shaders (every record) and finding its pipeline variant (every frame of the editor's preview:
+// GpuPolygonizer::ready, which packed the whole program for it until 2026-11-29 and now walks
+// its ops: fieldProgramsShape). Latency, wall, one thread, warm.
+void hostRows(const std::string& tag, const FieldProgram& program, std::vector<Row>& rows) {
+  size_t words = 0;
+  const double pack = animorph::bench::medianMs(5, [&] {
+    if (auto pk = g::packFieldPrograms(program)) words = pk->pool.size() + pk->bounds.size();
+  });
+  size_t shapeWords = 0;
+  const double shape = animorph::bench::medianMs(5, [&] { shapeWords = g::fieldProgramsShape(program).poolWords; });
+  rows.push_back({tag + " host: pack for the GPU", pack, "ms", "",
+                  "each record; " + std::to_string(words * 16 / 1024) + " KiB uploaded (pool and bounds)"});
+  Bounds tight;
+  const double bounds = animorph::bench::medianMs(3, [&] { tight = program.tightBounds(); });
+  rows.push_back({tag + " host: grid bounds (tightBounds)", bounds, "ms", "",
+                  std::string("each record without a bounds override (the CPU polygoniser's grid rule)") +
+                      (tight.empty() ? "; empty" : "")});
+  rows.push_back({tag + " host: pipeline variant lookup", shape, "ms", "",
+                  "each preview frame (ready, prewarm): the programs' shape (" + std::to_string(shapeWords) +
+                      " pool words); was a whole pack (the row above)"});
+}
+
 // The demo BlobTree creature (frames, so affine maps: the point path, not line groups) at the
 // editor's scrubbing resolution, and the animorphosis demo's dragon and C(t) (thousands of
 // primitives, each under its own frame).
@@ -331,6 +355,7 @@ void blobTreeRows(g::GpuPolygonizer& poly, int threads, bool quick, std::vector<
               threads, "<= 1.5", rows);
   const double mid = 0.5 * (kDemoMorphStartSec + kDemoMorphEndSec);
   const FieldProgram ct = compileGeneric(*c, animorphosisTiming(*project), mid);
+  hostRows("demo C(t) at the middle", ct, rows);
   programRows(poly, std::string("demo C(t) at the middle ") + (quick ? "48^3" : "96^3"), ct, quick ? 48 : 96,
               quick ? 1 : 3, threads, "<= 1.5", rows);
 }

@@ -1,9 +1,9 @@
 #include "core/export/project_frames.h"
 
-#include "core/animorphosis/evaluate_generic.h"
 #include "core/project/animorphosis_project.h"
 #include "core/project/asset_cache.h"
 #include "core/poly/polygonizer.h"
+#include "core/scene/animorphosis_preview_source.h"
 #include "core/scene/visible_surface.h"
 #include "core/util/job_progress.h"
 
@@ -21,6 +21,7 @@ Result<ProjectFrames> ProjectFrames::prepare(const Project& p, const std::string
     auto c = projectGenericTree(p);
     if (!c) return Error{c.error()};
     out.generic_ = std::make_shared<const GenericTree>(std::move(*c));
+    out.compiler_ = std::make_shared<SharedGenericCompiler>(out.generic_);
     out.timing_ = animorphosisTiming(p);
   } else {
     return Error{"the project has no morph or animorphosis to bake (Create > Morph... or Create > Animorphosis... "
@@ -87,7 +88,9 @@ FrameLevelSet ProjectFrames::levelSet(int frame, int resolution, const std::atom
 }
 
 FieldProgram ProjectFrames::animorphosisProgram(int frame) const {
-  return compileGeneric(*generic_, timing_, timeline_.frameToSec(frame));
+  FieldProgram program;
+  compiler_->compile(timing_, timeline_.frameToSec(frame), program);
+  return program;
 }
 
 }  // namespace animorph

@@ -21,6 +21,8 @@
 
 namespace animorph {
 
+class SharedGenericCompiler;  // scene/animorphosis_preview_source.h
+
 // A polygoniser for the morph's implicit stage (B->C) plugged in by the caller (animorph-cli bake
 // --gpu: the GPU's), so that the core needs no GPU: the frame at timeSec on the same field and grid
 // as the CPU's (morphImplicitField), its mesh in world space. Called from the bake's worker
@@ -84,12 +86,15 @@ class ProjectFrames {
   FrameLevelSet levelSet(int frame, int resolution, const std::atomic<bool>* cancel, int threads = 0,
                          bool colors = false) const;
   // An animorphosis' C at frame f as one program (for a sequence on one grid); needs animorphosis().
+  // Compiled straight from C (animorphosis/compile_generic.h): compileGeneric's program, field for
+  // field, without the BlobTree snapshot (one compile at a time: the compiler keeps a frame's values).
   FieldProgram animorphosisProgram(int frame) const;
 
  private:
   Timeline timeline_;
   std::shared_ptr<const MorphRuntime> morph_;  // or else the animorphosis:
   std::shared_ptr<const GenericTree> generic_;
+  std::shared_ptr<SharedGenericCompiler> compiler_;  // C compiled directly (shared by copies, serialised)
   AnimorphosisTiming timing_;
 };
 

@@ -205,6 +205,25 @@ uint64_t gpuLoopIterationEstimate(const FieldProgram& a, const FieldProgram* b) 
   return std::max({coarse, cells, normals});
 }
 
+FieldProgramsShape fieldProgramsShape(const FieldProgram& a, const FieldProgram* b) {
+  FieldProgramsShape out;
+  for (const FieldProgram* p : {&a, b}) {
+    if (!p) continue;
+    for (const FieldOp& op : p->ops) {
+      out.features |= AM_FEAT_OP_BIT(uint32_t(op.code));
+      if (op.code == OpCode::Prims) out.features |= AM_FEAT_CLASS_BIT(uint32_t(op.primClass));
+    }
+    for (const SpaceMap& m : p->maps) out.kinds |= AM_KIND_MAP_BIT(uint32_t(m.kind));
+    for (const SkeletalPrimitive& sp : p->skeletal) out.kinds |= AM_KIND_SKEL_BIT(uint32_t(sp.skeleton.kind));
+    // packOne's layout: ops, params (4 a word), maps, convolution, skeletal, capsule records, curve points.
+    out.poolWords += AM_REC_OP * p->ops.size() + (p->params.size() + 3) / 4 + AM_REC_MAP * p->maps.size() +
+                     AM_REC_CONV * p->convolution.size() + AM_REC_SKEL * p->skeletal.size() +
+                     AM_REC_CAPSULE * p->capsules.size() + p->curvePoints.size();
+  }
+  out.poolWords = std::max<size_t>(out.poolWords, 1);  // packFieldPrograms never leaves the pool empty
+  return out;
+}
+
 Result<PackedFieldPrograms> packFieldPrograms(const FieldProgram& a, const FieldProgram* b) {
   if (std::string why = gpuUnsupportedReason(a); !why.empty()) return Error{"program A: " + why};
   if (b)

@@ -52,6 +52,15 @@ std::string gpuUnsupportedReason(const FieldProgram& program);
 // region programs are off; the passes detect the rest (AM_OVERFLOW_LOOPS).
 uint64_t gpuLoopIterationEstimate(const FieldProgram& a, const FieldProgram* b = nullptr);
 
+// What packFieldPrograms(a, b) gives for the pipeline variant, without packing: its features and
+// kinds bits and its pool's size in 16-byte words. Costs a walk over the ops, maps and skeletal
+// primitives (no pool is written): what GpuPolygonizer::ready and prewarm need every frame.
+struct FieldProgramsShape {
+  uint32_t features = 0, kinds = 0;
+  size_t poolWords = 0;
+};
+FieldProgramsShape fieldProgramsShape(const FieldProgram& a, const FieldProgram* b = nullptr);
+
 // Packs a (and b, when non-null) for the shaders. Errors: gpuUnsupportedReason's,
 // prefixed with "program A"/"program B".
 Result<PackedFieldPrograms> packFieldPrograms(const FieldProgram& a, const FieldProgram* b = nullptr);

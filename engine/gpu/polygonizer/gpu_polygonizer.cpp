@@ -203,6 +203,10 @@ Result<FrameRegions> buildRegionLists(const GpuField& field, const Grid& g, uint
   return fr;
 }
 
+// The most vkCmdUpdateBuffer takes in one call. Larger uploads (the program pool and the
+// primitives' bounds: megabytes for the animorphosis demo's C(t)) go through a staging buffer.
+constexpr VkDeviceSize kUpdateBufferMax = 65536;
+
 // vkCmdUpdateBuffer in chunks of at most 64 KiB.
 void updateBuffer(VkCommandBuffer cmd, VkBuffer buffer, const void* data, VkDeviceSize bytes) {
   const auto* p = static_cast<const uint8_t*>(data);
@@ -237,6 +241,11 @@ struct GpuPolygonizer::Impl {
   Buffer active, corners, edges, counts, offsets;  // per active-block slot
   Buffer positions, normals, indices;
   Buffer readback;  // host: AM_CTL_READBACK_UINTS per frame slot
+  // Host buffers per read-back slot: a frame's pool and bounds when they exceed kUpdateBufferMax,
+  // copied by the frame's command buffer (vkCmdUpdateBuffer would copy them into the command buffer
+  // in 64 KiB pieces). A slot's buffer is rewritten only once its previous frame has completed
+  // (record()'s contract; polygonize() waits for its own).
+  std::array<Buffer, kFramesInFlight + 1> staging{};
   uint32_t blockCapacity = 0, vertexCapacity = 0, triangleCapacity = 0;
   bool setDirty = true;
   bool uniformPoolAllowed = true;
@@ -261,14 +270,22 @@ struct GpuPolygonizer::Impl {
   Result<VkPipeline> pipeline(const char* name, const VkSpecializationInfo* spec = nullptr);
   // Creates a variant's pipelines (any thread: it touches only the device and the layout).
   Result<FieldPipelines> createFieldPipelines(uint32_t features, uint32_t kinds, bool storage);
-  // The variant (specialisation constants, pool buffer kind) packed programs pk of field need under s.
-  VariantKey variantKey(const PackedFieldPrograms& pk, const GpuField& field, const GpuPolygonizeSettings& s) const;
+  // The variant (specialisation constants, pool buffer kind) programs of this shape (features, kinds,
+  // pool size: fieldProgramsShape, or a PackedFieldPrograms') of field need under s.
+  VariantKey variantKey(const FieldProgramsShape& shape, const GpuField& field, const GpuPolygonizeSettings& s) const;
+  VariantKey variantKey(const PackedFieldPrograms& pk, const GpuField& field, const GpuPolygonizeSettings& s) const {
+    return variantKey(FieldProgramsShape{pk.features, pk.kinds, pk.pool.size()}, field, s);
+  }
   static uint32_t combineMode(const GpuField& field) {
     return !field.b ? AM_COMBINE_SINGLE
                     : field.method == MorphMethod::Interpolation ? AM_COMBINE_INTERPOLATE : AM_COMBINE_SPACETIME;
   }
   Status ensure(Buffer& b, VkDeviceSize bytes, VkBufferUsageFlags usage);
   Status ensureCapacities(uint32_t blocksWanted, uint32_t verticesWanted, uint32_t trianglesWanted);
+  Status ensureStaging(uint32_t slot, VkDeviceSize bytes);
+  // The frame's pool and bounds into their device buffers: vkCmdUpdateBuffer when small, else a
+  // copy from the slot's staging buffer (ensureStaging first).
+  void uploadPrograms(VkCommandBuffer cb, uint32_t slot, const PackedFieldPrograms& pk);
   void writeSet();
   Status recordFrame(VkCommandBuffer cmd, uint32_t slot, const GpuField& field, const GpuPolygonizeSettings& s,
                      GpuPolygonizeStats& stats, bool timed = false);
@@ -295,6 +312,7 @@ GpuPolygonizer::Impl::~Impl() {
   for (Buffer* b : {&params, &pool, &bounds, &table, &blockMask, &blockFlag, &blockPrefix, &blockSlot, &partials,
                     &superFlag, &control, &active, &corners, &edges, &counts, &offsets, &positions, &normals, &indices, &readback})
     destroyBuffer(dev, *b);
+  for (Buffer& b : staging) destroyBuffer(dev, b);
   fieldCache.destroy(dev);
   for (VkPipeline p : {scan, scanSingle, compact, args, noise})
     if (p) vkDestroyPipeline(dev, p, nullptr);
@@ -420,9 +438,9 @@ Status GpuPolygonizer::Impl::init() {
   return Status::success();
 }
 
-GpuPolygonizer::Impl::VariantKey GpuPolygonizer::Impl::variantKey(const PackedFieldPrograms& pk, const GpuField& field,
+GpuPolygonizer::Impl::VariantKey GpuPolygonizer::Impl::variantKey(const FieldProgramsShape& pk, const GpuField& field,
                                                                   const GpuPolygonizeSettings& s) const {
-  const bool fitsUniform = pk.pool.size() <= AM_POLY_UNIFORM_POOL_VEC4 &&
+  const bool fitsUniform = pk.poolWords <= AM_POLY_UNIFORM_POOL_VEC4 &&
                            ctx.properties().limits.maxUniformBufferRange >= AM_POLY_UNIFORM_POOL_VEC4 * 16u;
   // Per-region lists make the pool grow with the grid: always a storage buffer (prewarm() and
   // ready() pack the programs without them and must pick the same variant).
@@ -506,6 +524,31 @@ Status GpuPolygonizer::Impl::ensureCapacities(uint32_t blocksWanted, uint32_t ve
     triangleCapacity = trianglesWanted;
   }
   return s;
+}
+
+Status GpuPolygonizer::Impl::ensureStaging(uint32_t slot, VkDeviceSize bytes) {
+  Buffer& b = staging[slot];
+  if (b.buffer && b.size >= bytes) return Status::success();
+  destroyBuffer(ctx.device(), b);  // its last frame has completed
+  Result<Buffer> nb = createHostBuffer(ctx, roundCapacity(bytes), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+  if (!nb) return Error{"GPU polygoniser: staging buffer: " + nb.error()};
+  b = *nb;
+  return Status::success();
+}
+
+void GpuPolygonizer::Impl::uploadPrograms(VkCommandBuffer cb, uint32_t slot, const PackedFieldPrograms& pk) {
+  const VkDeviceSize poolBytes = pk.pool.size() * 16, boundsBytes = pk.bounds.size() * 16;
+  if (poolBytes + boundsBytes <= kUpdateBufferMax) {
+    updateBuffer(cb, pool.buffer, pk.pool.data(), poolBytes);
+    updateBuffer(cb, bounds.buffer, pk.bounds.data(), boundsBytes);
+    return;
+  }
+  auto* host = static_cast<uint8_t*>(staging[slot].mapped);  // host-coherent: visible at the submit
+  std::memcpy(host, pk.pool.data(), poolBytes);
+  std::memcpy(host + poolBytes, pk.bounds.data(), boundsBytes);
+  const VkBufferCopy toPool{0, 0, poolBytes}, toBounds{poolBytes, 0, boundsBytes};
+  vkCmdCopyBuffer(cb, staging[slot].buffer, pool.buffer, 1, &toPool);
+  vkCmdCopyBuffer(cb, staging[slot].buffer, bounds.buffer, 1, &toBounds);
 }
 
 void GpuPolygonizer::Impl::writeSet() {
@@ -638,8 +681,7 @@ void GpuPolygonizer::Impl::recordPasses(VkCommandBuffer cb, uint32_t slot, const
           VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
           VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
   updateBuffer(cb, params.buffer, &prm, sizeof(prm));
-  updateBuffer(cb, pool.buffer, pk.pool.data(), pk.pool.size() * 16);
-  updateBuffer(cb, bounds.buffer, pk.bounds.data(), pk.bounds.size() * 16);
+  uploadPrograms(cb, slot, pk);
   vkCmdFillBuffer(cb, control.buffer, 0, AM_CTL_UINTS * 4, 0);
   vkCmdFillBuffer(cb, counts.buffer, 0, VkDeviceSize(blockCapacity) * 8, 0);
   barrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
@@ -731,6 +773,8 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   const VariantKey variant = variantKey(pk, field, s);
   const bool storagePool = std::get<2>(variant) != 0;
   if (Status st = prepareFrameBuffers(g, pk, words); !st) return st;
+  if ((pk.pool.size() + pk.bounds.size()) * 16 > kUpdateBufferMax)
+    if (Status st = ensureStaging(slot, (pk.pool.size() + pk.bounds.size()) * 16); !st) return st;
   PolyParams prm = frameParams(g, pk, field, s, words);
   if (lists) {
     prm.regions = glm::uvec4(1u, fr.super.table, fr.super.masks * 4u, fr.shift);
@@ -810,18 +854,17 @@ std::string GpuPolygonizer::unsupported(const GpuField& field) {
 void GpuPolygonizer::prewarm(const GpuField& field, const GpuPolygonizeSettings& s) {
   Impl& m = *impl_;
   if (!field.a || !unsupported(field).empty()) return;
-  Result<PackedFieldPrograms> packed = packFieldPrograms(*field.a, field.b);
-  if (!packed) return;
-  const Impl::VariantKey key = m.variantKey(*packed, field, s);
+  const Impl::VariantKey key = m.variantKey(fieldProgramsShape(*field.a, field.b), field, s);
   m.fieldCache.prewarm(key);
 }
 
 bool GpuPolygonizer::ready(const GpuField& field, const GpuPolygonizeSettings& s) const {
   const Impl& m = *impl_;
-  if (!field.a) return true;  // record() fails at once
-  Result<PackedFieldPrograms> packed = packFieldPrograms(*field.a, field.b);
-  if (!packed) return true;
-  const Impl::VariantKey key = m.variantKey(*packed, field, s);
+  if (!field.a || !gpuUnsupportedReason(*field.a).empty() || (field.b && !gpuUnsupportedReason(*field.b).empty()))
+    return true;  // record() fails at once
+  // The variant from the programs' shape: packing them whole (megabytes for the animorphosis
+  // demo's C(t)) only to look the variant up cost as much as the record's own packing, every frame.
+  const Impl::VariantKey key = m.variantKey(fieldProgramsShape(*field.a, field.b), field, s);
   return m.fieldCache.ready(key);
 }
 
