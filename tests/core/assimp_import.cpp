@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -15,7 +16,9 @@
 
 #include "core/io/assimp_import.h"
 #include "core/io/character_import.h"
+#include "core/io/collada_morphs.h"
 #include "core/io/declared_size_check.h"
+#include "core/io/fbx_shape_values.h"
 #include "core/rig/skinning.h"
 #include "util/bounded_run.h"
 #include "util/temp_dir.h"
@@ -365,6 +368,215 @@ TEST_CASE("assimp import: each test character's FBX poses like the glTF Blender 
     ++compared;
   }
   CHECK(compared >= 10);
+}
+
+TEST_CASE("fbx shape values: channels' DeformPercent from ASCII and binary FBX, a cut file never read past its end",
+          "[assimp]") {
+  const std::string ascii =
+      "Objects:  {\n"
+      "\tDeformer: 11, \"SubDeformer::smile\", \"BlendShapeChannel\" {\n\t\tVersion: 100\n"
+      "\t\tDeformPercent: 35\n\t\tFullWeights: *1 {\n\t\t\ta: 100\n\t\t}\n\t}\n"
+      "\tDeformer: 12, \"SubDeformer::blink\", \"BlendShapeChannel\" {\n\t\tDeformPercent: 10\n"
+      "\t\tProperties70:  {\n\t\t\tP: \"DeformPercent\", \"Number\", \"\", \"A\",80.5\n\t\t}\n\t}\n"
+      "\tDeformer: 13, \"Deformer::Body\", \"BlendShape\" {\n\t\tVersion: 100\n\t}\n}\n";
+  auto a = readFbxShapeValues("a.fbx", ascii);
+  INFO(a.error());
+  REQUIRE(a.ok());
+  CHECK(a->percentByChannel.size() == 2);
+  CHECK(a->percentByChannel.count("smile") == 1);
+  CHECK(a->percentByChannel.count("blink") == 1);
+  if (a->percentByChannel.size() == 2) {
+    CHECK(a->percentByChannel.at("smile") == 35.0);
+    CHECK(a->percentByChannel.at("blink") == 80.5);  // the Properties70 value over the record's
+  }
+
+  // Blender's binary FBX of the fuzz seed: one shape key held at 0.35.
+  const std::string rig = readBytes(std::string(ANIMORPH_SOURCE_DIR) + "/tests/fuzz/corpus/fbx/rig.fbx");
+  REQUIRE(isFbxBinary(rig));
+  auto b = readFbxShapeValues("rig.fbx", rig);
+  INFO(b.error());
+  REQUIRE(b.ok());
+  REQUIRE(b->percentByChannel.count("squash") == 1);
+  CHECK(b->percentByChannel.at("squash") == Approx(35.0).margin(1e-4));
+  // Every cut of it is read or refused naming the file, never past its bytes (ASan builds check that).
+  int refused = 0;
+  for (size_t cut = 0; cut < rig.size(); cut += 7) {
+    auto r = readFbxShapeValues("rig.fbx", rig.substr(0, cut));
+    if (!r.ok()) {
+      CHECK(r.error().rfind("rig.fbx: ", 0) == 0);
+      ++refused;
+    }
+  }
+  CHECK(refused > 0);
+  // The importer gives the shape its value.
+  auto c = importCharacter(std::string(ANIMORPH_SOURCE_DIR) + "/tests/fuzz/corpus/fbx/rig.fbx");
+  INFO(outcome(c));
+  REQUIRE(c.ok());
+  REQUIRE(c->meshes.size() == 1);
+  REQUIRE(c->meshes[0].morphTargets.size() == 1);
+  CHECK(c->meshes[0].defaultMorphWeights[0] == Approx(0.35f));
+}
+
+TEST_CASE("collada morphs: Blender's skin and shape key open with the shape at its value, bad morphs are refused "
+          "naming the controller",
+          "[assimp]") {
+  const std::string path = std::string(ANIMORPH_SOURCE_DIR) + "/tests/fuzz/corpus/collada/rig.dae";
+  const std::string dae = readBytes(path);
+  REQUIRE(dae.find("<morph") != std::string::npos);
+  auto prepared = prepareColladaMorphs("rig.dae", dae, 1000000);
+  INFO(prepared.error());
+  REQUIRE(prepared.ok());
+  REQUIRE(prepared->morphs.size() == 1);
+  const ColladaMorph& m = prepared->morphs[0];
+  REQUIRE(m.targets.size() == 1);
+  CHECK(m.targets[0].name == "squash");
+  CHECK(m.defaultWeights == std::vector<float>{0.35f});
+  CHECK(m.targets[0].deltas.size() == m.basePositions.size());
+  CHECK(prepared->document.find("<morph") == std::string::npos);
+  CHECK(prepared->document.find("set=\"" + std::to_string(kColladaIndexSet) + "\"") != std::string::npos);
+  // Opened: the box's vertices split per face keep the shape (z x 0.8 where the base is z).
+  auto c = importCharacter(path);
+  INFO(outcome(c));
+  REQUIRE(c.ok());
+  REQUIRE(c->meshes.size() == 1);
+  const Mesh& mesh = c->meshes[0];
+  REQUIRE(mesh.morphTargets.size() == 1);
+  CHECK(mesh.defaultMorphWeights[0] == Approx(0.35f));
+  CHECK(mesh.texcoords0.size() == mesh.positions.size());
+  for (const glm::vec2& uv : mesh.texcoords0) CHECK(uv.y != Approx(1.0f - kColladaIndexTag));  // the tag is not a UV set
+  size_t checked = 0;
+  for (size_t v = 0; v < mesh.positions.size(); ++v) {
+    // Blender's geometry is Z up: the shape scales z (the file's third coordinate) by 0.8.
+    const glm::vec3 d = mesh.morphTargets[0].positionDeltas[v];
+    CHECK(d.x == Approx(0.0f).margin(1e-6));
+    CHECK(d.y == Approx(0.0f).margin(1e-6));
+    CHECK(d.z == Approx(-0.2f * mesh.positions[v].z).margin(1e-5));
+    ++checked;
+  }
+  CHECK(checked >= 8);
+
+  // Broken morphs: a target of another size, a base that is not a geometry, a missing target.
+  auto refused = [&](const std::string& from, const std::string& to, const std::string& reason) {
+    std::string bad = dae;
+    const size_t at = bad.find(from);
+    REQUIRE(at != std::string::npos);
+    bad.replace(at, from.size(), to);
+    auto r = prepareColladaMorphs("rig.dae", bad, 1000000);
+    REQUIRE_FALSE(r.ok());
+    INFO(r.error());
+    CHECK(r.error().rfind("rig.dae: ", 0) == 0);
+    CHECK(r.error().find(reason) != std::string::npos);
+  };
+  const size_t morphAt = dae.find("<morph source=\"#");
+  const size_t baseEnd = dae.find('"', morphAt + 16);
+  const std::string base = dae.substr(morphAt + 16, baseEnd - morphAt - 16);
+  // A skin whose source is the morph controller (as other exporters chain them) opens the same.
+  {
+    std::string chained = dae;
+    const std::string skinSource = "<skin source=\"#" + base + "\"";
+    const size_t at = chained.find(skinSource);
+    REQUIRE(at != std::string::npos);
+    chained.replace(at, skinSource.size(), "<skin source=\"#" + m.controllerId + "\"");
+    TempDir tmp;
+    writeBytes(tmp.file("chained.dae"), chained);
+    auto d = importCharacter(tmp.file("chained.dae"));
+    INFO(outcome(d));
+    REQUIRE(d.ok());
+    REQUIRE(d->meshes.size() == 1);
+    CHECK(d->meshes[0].morphTargets.size() == 1);
+    CHECK(d->meshes[0].positions.size() == mesh.positions.size());
+    CHECK(d->skins.size() == 1);
+  }
+  refused("<morph source=\"#" + base + "\"", "<morph source=\"#nothing\"", "names no geometry");
+  refused(base + "_morph_squash</IDREF_array>", "missing_target</IDREF_array>", "geometry 'missing_target': missing");
+  CHECK(prepareColladaMorphs("rig.dae", dae, 3).ok() == false);  // over the shape budget
+}
+
+namespace {
+
+// The character with every blend shape at weight w and no weight animation (the glTF's weights
+// channels dropped: Blender's Collada has none), to compare two files' shapes at the same weights.
+Character withShapesAt(Character c, float w) {
+  for (Mesh& m : c.meshes) std::fill(m.defaultMorphWeights.begin(), m.defaultMorphWeights.end(), w);
+  for (AnimationClip& clip : c.clips)
+    clip.channels.erase(std::remove_if(clip.channels.begin(), clip.channels.end(),
+                                       [](const Channel& ch) { return ch.path == ChannelPath::Weights; }),
+                        clip.channels.end());
+  return c;
+}
+
+// The worst distance between a's and b's vertex sets, relative to b's diagonal, at 10 times of
+// their first clips from each clip's first key; each side scaled to metres.
+double worstOverClip(const Character& a, float aToMetres, const Character& b, float bToMetres) {
+  const AnimationClip &ca = a.clips[0], &cb = b.clips[0];
+  const float startA = firstKey(ca), startB = firstKey(cb), length = ca.durationSec - startA;
+  double worst = 0.0;
+  for (int i = 0; i < 10; ++i) {
+    const float t = length * float(i) / 9.0f;
+    const auto pa = scaled(skinnedWorldPositions(a, &ca, startA + t), aToMetres);
+    const auto pb = scaled(skinnedWorldPositions(b, &cb, startB + t), bToMetres);
+    const double diagonal = boundsOf(pb).diagonal();
+    worst = std::max(worst, setDistance(pa, pb, float(1e-3 * diagonal)) / diagonal);
+  }
+  return worst;
+}
+
+// The largest distance a vertex moves at rest when every shape goes from weight 0 to 1, relative
+// to the character's diagonal.
+double largestShapeMove(const Character& c) {
+  const auto p0 = skinnedWorldPositions(withShapesAt(c, 0.0f), nullptr, 0.0f);
+  const auto p1 = skinnedWorldPositions(withShapesAt(c, 1.0f), nullptr, 0.0f);
+  double worst = 0.0;
+  for (size_t i = 0; i < p0.size() && i < p1.size(); ++i) worst = std::max(worst, double(glm::distance(p0[i], p1[i])));
+  return worst / boundsOf(p0).diagonal();
+}
+
+}  // namespace
+
+TEST_CASE("assimp import: each test character's Collada opens with its shape keys and poses like the glTF Blender "
+          "wrote from the same scene, shapes at 0 and at 1, within 1e-4 of the diagonal at 10 times",
+          "[.daetwins]") {
+  const std::string dir = ANIMORPH_TEST_CHARACTERS;
+  std::ifstream in(dir + "/manifest.json");
+  if (!in) ANIMORPH_SKIP("the test characters are missing (" << dir << "/manifest.json; the fixture needs Blender)");
+  const nlohmann::json manifest = nlohmann::json::parse(in);
+  int compared = 0;
+  for (const auto& entry : manifest.at("files")) {
+    if (entry.at("format") != "dae") continue;
+    const std::string name = entry.at("character").get<std::string>() + "_" + entry.at("variant").get<std::string>();
+    INFO(name);
+    auto dae = importCharacter(dir + "/" + entry.at("file").get<std::string>());
+    INFO(outcome(dae));
+    REQUIRE(dae.ok());
+    auto gltf = importCharacter(dir + "/" + name + ".glb");
+    REQUIRE(gltf.ok());
+    CHECK(dae->unit.declared);
+    CHECK(dae->unit.metresPerUnit == Approx(entry.at("unit") == "cm" ? 0.01 : 1.0));
+    // Every shape key, by name, at the value of the frame Blender exported at (frame 1: 0).
+    std::map<std::string, float> shapes;
+    for (const Mesh& m : dae->meshes)
+      for (size_t k = 0; k < m.morphTargets.size(); ++k) shapes[m.morphTargets[k].name] = m.defaultMorphWeights[k];
+    CHECK(shapes.size() == entry.at("shape_keys").size());
+    for (const auto& item : entry.at("shape_keys").items()) {
+      const std::string key = item.key();
+      INFO("shape key " << key);
+      REQUIRE(shapes.count(key) == 1);
+      CHECK(shapes[key] == 0.0f);
+    }
+    REQUIRE(dae->clips.size() == 1);
+    REQUIRE(gltf->clips.size() == 1);
+    keepFourInfluences(*dae);
+    const float daeToMetres = float(dae->unit.metresPerUnit), gltfToMetres = entry.at("scene_unit_scale").get<float>();
+    const double atZero = worstOverClip(withShapesAt(*dae, 0.0f), daeToMetres, withShapesAt(*gltf, 0.0f), gltfToMetres);
+    const double atOne = worstOverClip(withShapesAt(*dae, 1.0f), daeToMetres, withShapesAt(*gltf, 1.0f), gltfToMetres);
+    const double moved = largestShapeMove(*dae);  // the shapes matter: at weight 1 they move vertices
+    INFO("worst distance, shapes at 0: " << atZero << ", at 1: " << atOne << " of the diagonal; shapes move " << moved);
+    CHECK(atZero < 1e-4);
+    CHECK(atOne < 1e-4);
+    CHECK(moved > 1e-3);
+    ++compared;
+  }
+  CHECK(compared == 9);
 }
 
 TEST_CASE("character import: glTF materials give the same base colour and texture fields as FBX's", "[assimp]") {

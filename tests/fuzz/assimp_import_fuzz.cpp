@@ -1,6 +1,8 @@
 // libFuzzer target: importCharacter on one FBX or Collada file (ANIMORPH_FUZZ_FILE_NAME:
 // "input.fbx" for fuzz_fbx, "input.dae" for fuzz_collada), which goes through assimp
-// (io/assimp_import.h) after the declared-size checks. The input is written into a private
+// (io/assimp_import.h) after the declared-size checks and the readers that run beside assimp
+// (io/fbx_shape_values: the blend shape channels' values; io/collada_morphs: <morph> controllers
+// and the document rewritten for assimp). The input is written into a private
 // directory; an imported character is then posed and skinned at a few times of each clip, as
 // the editor does when it plays one, and its weights must sum to 1.
 #include <unistd.h>

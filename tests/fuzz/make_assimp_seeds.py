@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Writes the FBX and Collada fuzz targets' seed corpora (committed; rerun after changing this
 script): a tiny skinned, animated rig -- a box of 8 vertices on two bones, keyed over 6 frames,
-with a material -- as Blender exports it, and a few hand-broken variants.
+with a material and a shape key held at 0.35 (an FBX blend shape channel with its DeformPercent, a
+Collada <morph> controller) -- as Blender exports it, and a few hand-broken variants.
 
   corpus/fbx/      rig.fbx (Blender's binary FBX 7.4), rig_ascii.fbx (the same scene as ASCII FBX,
                    written by the `assimp` command), rig_cut.fbx (truncated), rig_big_count.fbx
@@ -29,6 +30,11 @@ def in_blender(out_fbx, out_dae):
     mat = bpy.data.materials.new("seed_red")
     mat.diffuse_color = (0.8, 0.1, 0.1, 1.0)
     box.data.materials.append(mat)
+    box.shape_key_add(name="Basis", from_mix=False)
+    squash = box.shape_key_add(name="squash", from_mix=False)
+    for point in squash.data:
+        point.co.z *= 0.8
+    squash.value = 0.35
     bpy.ops.object.armature_add(location=(0, 0, 0))
     arm = bpy.context.object
     bpy.ops.object.mode_set(mode="EDIT")
@@ -50,7 +56,8 @@ def in_blender(out_fbx, out_dae):
     bpy.ops.object.mode_set(mode="OBJECT")
     bpy.ops.export_scene.fbx(filepath=out_fbx, object_types={"ARMATURE", "MESH"}, bake_anim=True,
                              bake_anim_simplify_factor=0.0, add_leaf_bones=False)
-    bpy.ops.wm.collada_export(filepath=out_dae, include_armatures=True, include_animations=True, triangulate=True)
+    bpy.ops.wm.collada_export(filepath=out_dae, include_armatures=True, include_shapekeys=True, include_animations=True,
+                              triangulate=True)
 
 
 def broken(path, data, cut_to, marker, replacement):

@@ -13,6 +13,10 @@
 #   blend_shape_static.fbx     the same two scenes through Blender's FBX exporter (shape keys as
 #                              blend shape channels, their values as DeformPercent, the keyed values
 #                              as the channels' animation curves)
+#   blend_shape_character.dae,
+#   blend_shape_static.dae     the same two scenes through Blender's Collada exporter (a <skin> of
+#                              the base geometry beside a <morph> controller whose weights are the
+#                              shape keys' values at export; Blender writes no shape animation)
 #   blend_shape_reference.json Blender's own evaluated mesh (shape keys, then the armature) of both
 #                              files: {"frames": [F...], "fps": 24, "rest": [[x,y,z]...],
 #                              "animated": {"F": [[x,y,z]...]}, "static": [[x,y,z]...]}, world space in
@@ -167,6 +171,11 @@ def export_fbx(path, animations):
     bpy.ops.export_scene.fbx(filepath=path, bake_anim=animations, add_leaf_bones=False)
 
 
+def export_dae(path, animations):
+    bpy.ops.wm.collada_export(filepath=path, include_armatures=True, include_shapekeys=True,
+                              include_animations=animations, triangulate=True)
+
+
 def main():
     out = out_dir()
     scene = clear_scene()
@@ -184,6 +193,7 @@ def main():
     ref["static"] = evaluated_positions(tube)
     export(os.path.join(out, "blend_shape_static.glb"), False)
     export_fbx(os.path.join(out, "blend_shape_static.fbx"), False)
+    export_dae(os.path.join(out, "blend_shape_static.dae"), False)
 
     key_animation(tube, arm, bulge, lean)
     ref["animated"] = {}
@@ -192,6 +202,7 @@ def main():
         ref["animated"][str(f)] = evaluated_positions(tube)
     export(os.path.join(out, "blend_shape_character.glb"), True)
     export_fbx(os.path.join(out, "blend_shape_character.fbx"), True)
+    export_dae(os.path.join(out, "blend_shape_character.dae"), True)
     with open(os.path.join(out, "blend_shape_reference.json"), "w") as f:
         json.dump(ref, f)
     print("wrote", out)

@@ -21,7 +21,9 @@
 #include <set>
 #include <sstream>
 
+#include "core/io/collada_morphs.h"
 #include "core/io/declared_size_check.h"
+#include "core/io/fbx_shape_values.h"
 #include "core/io/texture_decode.h"
 #include "core/rig/mesh_normals.h"
 #include "core/rig/skin_influences.h"
@@ -92,6 +94,8 @@ struct Ctx {
   fs::path folder;  // canonical folder of the file
   Character& ch;
   std::map<std::string, int> nodeByName;  // first node of each name
+  const ColladaMorphDocument* collada = nullptr;  // Collada: the shapes read beside assimp
+  const FbxShapeValues* fbxShapeValues = nullptr;  // FBX: the channels' values read beside assimp
 };
 
 Error err(const Ctx& c, const std::string& element, const std::string& reason) {
@@ -221,15 +225,30 @@ Status readNodes(Ctx& c) {
 
 // ---------------------------------------------------------------------------
 // Blend shapes. assimp's anim meshes hold each target's whole positions (and normals); the
-// Character keeps deltas from the base mesh, as glTF does. Default weights: Collada's <morph>
-// weights; FBX's channel values (DeformPercent) do not reach assimp 5.2 (it reports 1 for every
-// shape), so FBX shapes start at 0 unless animated, and the report says so.
+// Character keeps deltas from the base mesh, as glTF does. Default weights: FBX's channel values
+// (DeformPercent), which assimp 5.2 does not pass on (it reports 1 for every shape), are read from
+// the file by io/fbx_shape_values and matched by name. Collada's <morph> controllers do not reach
+// assimp 5.2 at all: io/collada_morphs reads them and tags each vertex with its position in the
+// file (readColladaMorphTargets).
 
 glm::vec3 toGlm(const aiVector3D& v) { return {v.x, v.y, v.z}; }
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
+// A shape's weight at rest: an FBX channel's value (DeformPercent / 100) matched by the shape's
+// name, a Collada weight assimp gives; 0 when the file gives none (counted in missing).
+float restWeight(const Ctx& c, const aiAnimMesh& a, size_t& missing) {
+  if (c.ch.format == "Collada" && std::isfinite(a.mWeight)) return a.mWeight;
+  if (c.fbxShapeValues) {
+    auto it = c.fbxShapeValues->percentByChannel.find(a.mName.C_Str());
+    if (it != c.fbxShapeValues->percentByChannel.end()) return float(it->second / 100.0);
+  }
+  ++missing;
+  return 0.0f;
+}
+
 Status readMorphTargets(Ctx& c, const aiMesh& am, const std::string& name, Mesh& mesh) {
   const size_t nv = am.mNumVertices;
+  size_t missing = 0;
   for (unsigned k = 0; k < am.mNumAnimMeshes; ++k) {
     const aiAnimMesh* a = am.mAnimMeshes[k];
     const std::string where = name + " blend shape " + std::to_string(k);
@@ -252,14 +271,57 @@ Status readMorphTargets(Ctx& c, const aiMesh& am, const std::string& name, Mesh&
       }
     }
     mesh.morphTargets.push_back(std::move(t));
-    const bool declared = c.ch.format == "Collada" && std::isfinite(a->mWeight);
-    mesh.defaultMorphWeights.push_back(declared ? a->mWeight : 0.0f);
+    mesh.defaultMorphWeights.push_back(restWeight(c, *a, missing));
   }
-  if (am.mNumAnimMeshes > 0 && c.ch.format == "FBX")
-    c.ch.report.warnings.push_back(name + ": " + std::to_string(am.mNumAnimMeshes) +
-                                   " blend shapes start at weight 0 where not animated (the file's shape "
-                                   "values are not read)");
+  if (missing > 0)
+    c.ch.report.warnings.push_back(name + ": " + std::to_string(missing) +
+                                   " blend shapes have no value in the file's blend shape channels; they start at "
+                                   "weight 0 where not animated");
   return {};
+}
+
+// The texture coordinate set of a mesh assimp built from a geometry io/collada_morphs tagged: the
+// last set, whose second coordinate is kColladaIndexTag at every vertex; -1 when there is none.
+int colladaTagSet(const aiMesh& am) {
+  int last = -1;
+  for (int s = 0; s < AI_MAX_NUMBER_OF_TEXTURECOORDS; ++s)
+    if (am.mTextureCoords[s]) last = s;
+  if (last < 0) return -1;
+  for (unsigned v = 0; v < am.mNumVertices; ++v)
+    if (am.mTextureCoords[last][v].y != kColladaIndexTag) return -1;
+  return last;
+}
+
+// The Collada shapes of the geometry assimp built this mesh from (assimp names a mesh by its
+// geometry's id): each vertex's tag is its position in the file, whose deltas it takes. Where the
+// tags do not lead back to the vertices' positions, the shapes are dropped and the report says so.
+void readColladaMorphTargets(Ctx& c, const aiMesh& am, int tagSet, const std::string& name, Mesh& mesh) {
+  if (!c.collada || tagSet < 0) return;
+  for (const ColladaMorph& morph : c.collada->morphs) {
+    if (morph.baseGeometryId != am.mName.C_Str()) continue;
+    std::vector<size_t> position(am.mNumVertices);
+    for (unsigned v = 0; v < am.mNumVertices; ++v) {
+      const float x = am.mTextureCoords[tagSet][v].x;
+      const size_t i = x >= 0.0f ? size_t(x) : 0;
+      const bool known = x >= 0.0f && float(i) == x && i < morph.basePositions.size();
+      const glm::vec3 base = known ? morph.basePositions[i] : glm::vec3(0.0f);
+      if (!known || glm::length(toGlm(am.mVertices[v]) - base) > 1e-4f * (1.0f + glm::length(base))) {
+        c.ch.report.warnings.push_back(name + ": the blend shapes of controller '" + morph.controllerId +
+                                       "' do not map onto the mesh's vertices (vertex " + std::to_string(v) +
+                                       "); not read");
+        return;
+      }
+      position[v] = i;
+    }
+    for (size_t k = 0; k < morph.targets.size(); ++k) {
+      MorphTarget t;
+      t.name = morph.targets[k].name;
+      t.positionDeltas.resize(am.mNumVertices);
+      for (unsigned v = 0; v < am.mNumVertices; ++v) t.positionDeltas[v] = morph.targets[k].deltas[position[v]];
+      mesh.morphTargets.push_back(std::move(t));
+      mesh.defaultMorphWeights.push_back(morph.defaultWeights[k]);
+    }
+  }
 }
 
 // The node that draws the mesh a morph channel names: "NODE*K" (assimp's FBX converter: the
@@ -444,7 +506,8 @@ Result<Mesh> readMesh(Ctx& c, unsigned index, int& skinOut) {
       mesh.colors[v] = glm::any(glm::isnan(rgba)) ? glm::vec4(1.0f) : glm::clamp(rgba, 0.0f, 1.0f);
     }
   }
-  if (am.mTextureCoords[0]) {  // assimp's v runs upwards (OpenGL); glTF's and ours run down the image
+  const int tagSet = c.collada ? colladaTagSet(am) : -1;
+  if (am.mTextureCoords[0] && tagSet != 0) {  // assimp's v runs upwards (OpenGL); glTF's and ours run down the image
     mesh.texcoords0.resize(nv);
     for (size_t v = 0; v < nv; ++v) {
       const aiVector3D& t = am.mTextureCoords[0][v];
@@ -453,6 +516,7 @@ Result<Mesh> readMesh(Ctx& c, unsigned index, int& skinOut) {
   }
   if (am.mMaterialIndex < c.s.mNumMaterials) mesh.material = int(am.mMaterialIndex);
   if (auto st = readMorphTargets(c, am, name, mesh); !st) return Error{st.error()};
+  readColladaMorphTargets(c, am, tagSet, name, mesh);
 
   if (auto st = readSkin(c, am, name, mesh, skinOut); !st) return Error{st.error()};
   if (mesh.indices.empty()) c.ch.report.warnings.push_back(name + ": no triangles");
@@ -746,6 +810,27 @@ void readUnitAndAxes(Ctx& c, const std::string& format, const std::string& bytes
   if (!ch.unit.declared) ch.unit.name += " (assumed: the file declares no unit)";
 }
 
+// Blender's Collada skins: Blender writes an identity <bind_shape_matrix> and reads its own skinned
+// meshes as placed by their node (a mesh under a scaled armature takes the armature's scale), where
+// the Collada rule (joint x inverse bind x bind shape) ignores the node. For a file Blender wrote,
+// each skinned mesh node's transform below the scene root is folded into its skin's inverse bind
+// matrices, so the character stands where Blender shows it (identity nodes change nothing).
+size_t placeBlenderColladaSkins(Character& ch) {
+  size_t changed = 0;
+  for (size_t n = 0; n < ch.nodes.size(); ++n) {
+    const Node& node = ch.nodes[n];
+    if (node.mesh < 0 || node.skin < 0 || size_t(node.skin) >= ch.skins.size()) continue;
+    glm::mat4 m(1.0f);
+    for (int i = int(n); i > 0; i = ch.nodes[size_t(i)].parent) m = ch.nodes[size_t(i)].rest.matrix() * m;
+    float off = 0.0f;
+    for (int k = 0; k < 16; ++k) off = std::max(off, std::abs(m[k / 4][k % 4] - (k / 4 == k % 4 ? 1.0f : 0.0f)));
+    if (off < 1e-6f) continue;
+    for (glm::mat4& ibm : ch.skins[size_t(node.skin)].inverseBindMatrices) ibm = ibm * m;
+    ++changed;
+  }
+  return changed;
+}
+
 // ---------------------------------------------------------------------------
 // FBX pivot helper nodes ("NAME_$AssimpFbx$_PreRotation" ...): a run of them that no channel
 // animates is folded into the node below it, when their product is still T * R * S.
@@ -832,6 +917,21 @@ Result<Character> importImpl(const std::string& path, const AssimpImportLimits& 
   if (!bytes) return Error{bytes.error()};
   const std::string format = formatOf(path);
   if (auto st = checkDeclaredSizes(path, format, *bytes); !st) return Error{st.error()};
+  // Read beside assimp, before it: Collada's <morph> controllers (and the document rewritten so
+  // that assimp reads the file), FBX's blend shape channel values.
+  std::optional<ColladaMorphDocument> collada;
+  if (format == "Collada") {
+    auto prepared = prepareColladaMorphs(path, *bytes, limits.maxBlendShapeVertices);
+    if (!prepared) return Error{prepared.error()};
+    collada = std::move(*prepared);
+  }
+  std::optional<FbxShapeValues> fbxShapeValues;
+  std::string fbxShapeProblem;
+  if (format == "FBX") {
+    auto values = readFbxShapeValues(path, *bytes);
+    if (values) fbxShapeValues = std::move(*values);
+    else fbxShapeProblem = values.error();
+  }
   std::error_code ec;
   const fs::path folder = fs::weakly_canonical(fs::absolute(fs::path(path), ec).parent_path(), ec);
   if (ec) return Error{path + ": cannot resolve its folder: " + ec.message()};
@@ -844,7 +944,9 @@ Result<Character> importImpl(const std::string& path, const AssimpImportLimits& 
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   const unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_JoinIdenticalVertices |
                          aiProcess_ValidateDataStructure;
-  const aiScene* scene = importer.ReadFile(path, flags);
+  const aiScene* scene = collada && !collada->document.empty()
+                            ? importer.ReadFileFromMemory(collada->document.data(), collada->document.size(), flags, "dae")
+                            : importer.ReadFile(path, flags);
   std::vector<std::string> refused = io->refused;
   if (!scene || !scene->mRootNode) {
     if (!refused.empty()) return Error{path + ": " + refused.front()};
@@ -856,7 +958,12 @@ Result<Character> importImpl(const std::string& path, const AssimpImportLimits& 
   Character ch;
   ch.sourcePath = path;
   ch.format = format;
-  Ctx c{path, *scene, limits, folder, ch, {}};
+  Ctx c{path, *scene, limits, folder, ch, {}, collada ? &*collada : nullptr, fbxShapeValues ? &*fbxShapeValues : nullptr};
+  if (!fbxShapeProblem.empty())
+    ch.report.warnings.push_back("blend shape values not read (" + fbxShapeProblem + "); shapes start at weight 0");
+  if (fbxShapeValues)
+    for (const std::string& n : fbxShapeValues->conflicting)
+      ch.report.warnings.push_back("blend shape channels named '" + n + "' have different values; the first is used");
   if (auto st = checkCounts(c); !st) return Error{st.error()};
   if (auto st = readNodes(c); !st) return Error{st.error()};
   if (auto st = readMeshes(c); !st) return Error{st.error()};
@@ -864,6 +971,8 @@ Result<Character> importImpl(const std::string& path, const AssimpImportLimits& 
   readMaterials(c);
   readUnitAndAxes(c, format, *bytes);
   if (format == "FBX") foldStaticFbxHelpers(ch);
+  if (format == "Collada" && bytes->find("<authoring_tool>Blender") != std::string::npos && placeBlenderColladaSkins(ch))
+    ch.report.warnings.push_back("Blender's Collada: skinned meshes placed by their nodes, as Blender reads them");
   for (auto& r : refused) ch.report.warnings.push_back(r);
   if (scene->mNumCameras) ch.report.unsupported.push_back("cameras (" + std::to_string(scene->mNumCameras) + ")");
   if (scene->mNumLights) ch.report.unsupported.push_back("lights (" + std::to_string(scene->mNumLights) + ")");

@@ -24,8 +24,10 @@ struct AssimpImportLimits {
 // missing), skins (any number of influences per vertex, normalised, the 8 strongest kept and
 // the drops counted, as glTF does), the node hierarchy, every animation clip (node
 // translation / rotation / scale keys, linear), materials' base colour and base colour
-// texture, blend shapes (FBX blend shape channels, Collada morph controllers: deltas from the
-// base mesh, and their weight animation as Weights channels; FBX shapes start at weight 0), and
+// texture, blend shapes (FBX blend shape channels with their DeformPercent values, read beside
+// assimp by io/fbx_shape_values, and their weight animation as Weights channels; Collada morph
+// controllers, read beside assimp by io/collada_morphs, with their weights; deltas from the base
+// mesh), and
 // the file's length unit (FBX UnitScaleFactor, Collada <unit meter>; OBJ has
 // none: metres assumed). Geometry stays in the file's units, turned to +Y up (FBX axis
 // settings, Collada up_axis). FBX pivots and pre-rotations (assimp's "$AssimpFbx$" helper
