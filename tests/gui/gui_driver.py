@@ -73,6 +73,10 @@ class Editor:
         if self.project:
             args.append(self.project)
         self.log = open(self.log_path, "w")
+        # A map left by an editor started before in the same folder (a reopen) would pass the wait
+        # below at once, and the first input would reach a window not drawn yet.
+        if os.path.exists(self.map_path):
+            os.remove(self.map_path)
         self.proc = subprocess.Popen(args, env=env, stdout=self.log, stderr=subprocess.STDOUT)
         self.wait_until(lambda m: m.get("frame_count", 0) >= 6, "the editor draws frames", timeout=60)
         out = subprocess.run(["xdotool", "search", "--sync", "--name", "^Animorph"], capture_output=True,
