@@ -84,22 +84,4 @@ float fieldAt(const FieldProgram& p, const glm::vec3& x, glm::vec3* gradient) {
   return e.evaluatePoint(p, x, gradient);
 }
 
-Character scaledCharacter(const Character& c, float k) {
-  Character out = c;
-  out.unit.metresPerUnit /= double(k);
-  for (Node& n : out.nodes) n.rest.translation *= k;
-  for (Mesh& m : out.meshes) {
-    for (glm::vec3& p : m.positions) p *= k;
-    for (MorphTarget& t : m.morphTargets)
-      for (glm::vec3& d : t.positionDeltas) d *= k;
-  }
-  for (Skin& s : out.skins)
-    for (glm::mat4& ib : s.inverseBindMatrices) ib[3] = glm::vec4(glm::vec3(ib[3]) * k, ib[3].w);
-  for (AnimationClip& clip : out.clips)
-    for (Channel& ch : clip.channels)
-      if (ch.path == ChannelPath::Translation)
-        for (glm::vec4& v : ch.values) v = glm::vec4(glm::vec3(v) * k, v.w);
-  return out;
-}
-
 }  // namespace animorph::test

@@ -29,11 +29,6 @@ const DemoMorph& demoMorph();
 // (the caller skips, saying so). Throws when they are there but do not load.
 const Project* tentaclePlateMorph(const std::string& assetsDir);
 
-// c with every length multiplied by k (a change of unit: k = 100 turns metres into centimetres):
-// node translations and translation keys, vertex positions and morph offsets, the translations
-// of the inverse bind matrices. Rotations, scales, normals and weights stay.
-Character scaledCharacter(const Character& c, float k);
-
 // Field value of a program at one point.
 float fieldAt(const FieldProgram& p, const glm::vec3& x, glm::vec3* gradient = nullptr);
 

@@ -39,18 +39,9 @@ ProjectionStats projectOntoField(const FieldProgram& prog, const std::vector<Pos
   const auto t0 = std::chrono::steady_clock::now();
   ProjectionStats st;
   st.points = n;
-  const float radius = medianSegmentRadius(segs);  // scene units
-  const float maxStep = std::max(1e-6f, s.maxStepRadii * radius);
+  const float maxStep = std::max(1e-6f, s.maxStepRadii * medianSegmentRadius(segs));
   const float tol = s.tolerance;
   const float T = prog.threshold;
-  // Flat: |grad f| below 1e-6 of the slope near a surface (about T per radius), in any unit of length.
-  const float flatG2 = 1e-12f * (T * T) / std::max(1e-30f, radius * radius);
-  // On the surface: |f| within the tolerance, or the distance estimate |f| / |grad f| within
-  // surfaceRadii radii. The float evaluation of f carries noise of about the tolerance that no step
-  // removes; where a point lands in that noise depends on the float rounding of its coordinates, and
-  // so on the file's unit of length (quadruped_cm.dae failed on one vertex where quadruped_m.dae did not).
-  const float surfaceDistance = s.surfaceRadii * radius;
-  auto onSurface = [&](float f, float g2) { return std::abs(f) <= tol || f * f <= surfaceDistance * surfaceDistance * g2; };
   const size_t chunks = (n + kChunk - 1) / kChunk;
   std::vector<uint8_t> fellBack(n, 0), failed(n, 0);
   std::vector<float> finalF(n, 0.0f);
@@ -93,9 +84,9 @@ ProjectionStats projectOntoField(const FieldProgram& prog, const std::vector<Pos
             best[k] = pos[k];
             grad[k] = g;
           }
+          if (std::abs(f) <= tol) { done[k] = 1; continue; }
           const float g2 = glm::dot(g, g);
-          if (onSurface(f, g2)) { done[k] = 1; continue; }
-          const bool flat = !(g2 > flatG2) || f <= -T * (1.0f - 1e-6f);
+          const bool flat = !(g2 > 1e-12f * T * T) || f <= -T * (1.0f - 1e-6f);
           const bool stalled = iter[k] >= s.maxIterations;
           if (flat || stalled) {
             if (fellBack[b + k] || segs.empty()) { done[k] = 1; failed[b + k] = 1; continue; }
@@ -120,7 +111,7 @@ ProjectionStats projectOntoField(const FieldProgram& prog, const std::vector<Pos
       for (size_t k = 0; k < m; ++k) {
         out[b + k] = best[k];
         finalF[b + k] = bestF[k];
-        if (!onSurface(bestF[k], glm::dot(grad[k], grad[k]))) failed[b + k] = 1;
+        if (std::abs(bestF[k]) > tol) failed[b + k] = 1;
         if (normals) {
           const float gl = glm::length(grad[k]);
           normals[b + k] = gl > 0.0f ? -grad[k] / gl : glm::vec3(0, 1, 0);

@@ -16,8 +16,6 @@ namespace animorph {
 struct ProjectionSettings {
   int maxIterations = 40;      // Newton steps per point (after a fallback, the count restarts once)
   float tolerance = 1e-5f;     // |f| accepted as on the surface (f is ~T = 1 deep inside)
-  float surfaceRadii = 1e-5f;  // also on the surface: |f| / |grad f| below this many median segment radii
-                               // (f's float noise is about `tolerance`: a unit-free test that it does not fail)
   float maxStepRadii = 0.5f;   // longest Newton step, in units of the median segment radius
   int threads = 0;             // 0: all hardware threads
   bool operator==(const ProjectionSettings&) const = default;
@@ -25,7 +23,7 @@ struct ProjectionSettings {
 
 struct ProjectionStats {
   size_t points = 0;
-  size_t converged = 0;   // on the surface at the end (|f| <= tolerance, or within surfaceRadii)
+  size_t converged = 0;   // |f| <= tolerance at the end
   size_t fallbacks = 0;   // points that took the closest-segment direction
   size_t failures = 0;    // not converged: left at the point of smallest |f| found
   float maxAbsField = 0.0f;
