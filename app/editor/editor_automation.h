@@ -33,12 +33,15 @@ class EditorAutomation {
   // After frame frameCount: records --bench's frame time and --idle-bench's figures. True when the
   // run is over (the bench's frames measured, --quit without a screenshot, the idle time elapsed).
   bool frameDone(int frameCount, double dtSec, double nowSec, bool previewsSettled, bool continuousRedraw);
+  // --bench was given.
+  bool benchRan() const { return args_.benchFrames > 0; }
   // --bench's figures, on exit.
   void printBench(const std::string& deviceName, const std::string& presentPath) const;
 
  private:
   EditorArgs args_;
   bool frameApplied_ = false;
+  bool benchPlayStarted_ = false;
   int screenshotAt_ = -1;
   double scrubStartSec_ = -1.0;
   double firstFrameMs_ = -1.0;

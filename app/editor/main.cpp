@@ -79,6 +79,9 @@ class Editor {
   int frameCount_ = 0, captureFrames_ = 0;  // captureFrames_: since pendingCapture_ was set (taken on the second)
   int exitCode_ = 0;
   uint64_t eventsSeen_ = 0;
+  // Frames that rendered the 3D scene, and that showed the kept viewport image instead (the bench
+  // counts from its first measured frame, like its frame times).
+  int scenePasses_ = 0, keptFrames_ = 0, benchScenePasses_ = 0, benchKeptFrames_ = 0;
 };
 
 Editor::Editor(const EditorArgs& args, GLFWwindow* window, const gpu::SwapchainSettings& ss,
@@ -157,6 +160,9 @@ bool Editor::frame() {
   if (!pendingCapture_.empty() && captureFrames_++ >= 1) gpuSide_->swapchain->requestCapture();
   f.shown = presentFrame(*gpuSide_, out.viewport, out.camera, scene_, pendingCapture_);
   if (f.shown.status == gpu::FrameStatus::Ready) automation_.firstFrameShown(clock_.sinceStartMs());
+  if (frameCount_ == 10) benchScenePasses_ = scenePasses_, benchKeptFrames_ = keptFrames_;  // the bench's first frame
+  scenePasses_ += f.shown.scenePass;
+  keptFrames_ += f.shown.sceneKept;
   if (f.shown.captured) {
     pendingCapture_.clear();
     captureFrames_ = 0;
@@ -203,7 +209,7 @@ void Editor::waitForNextFrame(const FrameOutcome& f) {
     writeEditorUiMap(uiMapPath_, ui_, ectx_, frameCount_,
                      {rs.awaitingWork, waitSec > 0.0, clock_.tickEpochSec(),
                       vf.morphStageShown ? vf.morphBackend.gpu : vf.backend.gpu, gpuSide_->swapchain->presentPath(),
-                      vf.particlesShown, paced});
+                      vf.particlesShown, paced, scenePasses_, keptFrames_});
   const std::string title = "Animorph - " + document_->displayName() + (document_->dirty() ? " *" : "");
   if (title != lastTitle_) glfwSetWindowTitle(window_, (lastTitle_ = title).c_str());
   if (waitSec <= 0.0) return;
@@ -220,6 +226,9 @@ void Editor::waitForNextFrame(const FrameOutcome& f) {
 int Editor::finish() {
   if (gpuSide_) {  // else: the device was lost and could not be remade (said above)
     automation_.printBench(gpuSide_->ctx->deviceName(), gpuSide_->swapchain->presentPath());
+    if (automation_.benchRan())
+      std::printf("viewport: %d scene passes, %d frames showed the kept image (%s)\n", scenePasses_ - benchScenePasses_,
+                  keptFrames_ - benchKeptFrames_, gpuSide_->viewportImage ? "kept viewport image" : "drawn every frame");
     gpuSide_->ctx->waitIdle();
     if (gpuSide_->ctx->validationEnabled() && gpuSide_->ctx->validationErrorCount() > 0) {
       std::fprintf(stderr, "animorph: %u Vulkan validation error(s)\n", gpuSide_->ctx->validationErrorCount());

@@ -38,6 +38,8 @@ void writeEditorUiMap(const std::string& path, const EditorUI& ui, EditorContext
               {"present", info.presentPath},
               {"particle_view", info.particlesShown},
               {"paced", info.paced},
+              {"scene_passes", info.scenePasses},
+              {"kept_viewport_frames", info.keptFrames},
               {"standin_segment", selectedStandinSegment(doc)},
               {"job", ui.runningJob() ? ui.runningJob()->label() : std::string()},
               {"job_fraction", ui.runningJob() ? ui.runningJob()->progress().fraction() : 0.0}});

@@ -23,6 +23,8 @@ struct FrameMapInfo {
   std::string presentPath;   // how frames reach the window
   bool particlesShown = false;  // some BlobTree was drawn as particles (editor/particle_view.h)
   bool paced = false;           // scrubbing while a CPU preview computes: the loop is paced (scene/scrub_pacing.h)
+  int scenePasses = 0;          // frames so far that rendered the 3D scene
+  int keptFrames = 0;           // frames so far that showed the kept viewport image of an unchanged scene
 };
 
 // writeUiMap with the editor's state: the status line, the preview line, the stand-in segment.

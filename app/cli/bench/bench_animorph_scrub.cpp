@@ -6,12 +6,15 @@
 // renderer into an offscreen 1280x720 target (no window). A simulated cursor moves the playhead
 // a timeline frame every 1/48 s. The CPU worker is measured twice: with the loop drawing a frame
 // at once after each (as the editor did) and with the editor's scrub pacing (scene/scrub_pacing.h:
-// a frame per new mesh, input at most once a paced interval, the worker on every hardware thread).
+// a frame per new mesh, input at most once a paced interval, the worker on every hardware thread),
+// and a third time paced with the kept viewport image (a frame whose scene did not change renders
+// nothing).
 // The frame loop never waits for a polygoniser, so two figures matter: frames per second of the
 // loop, and new C(t) meshes shown per second while scrubbing (what the artist sees move); plus how
 // long input waits for its frame, and how long the preview takes to settle at 128^3 once
 // scrubbing stops.
 #include <algorithm>
+#include <optional>
 #include <cstdint>
 #include <cstdio>
 #include <ctime>
@@ -25,6 +28,7 @@
 #include "gpu/polygonizer/blob_preview_set.h"
 #include "core/poly/preview_polygonizer.h"
 #include "gpu/render/mesh_cache.h"
+#include "gpu/render/scene_fingerprint.h"
 #include "gpu/frame/scene_from_frame.h"
 #include "core/scene/animorphosis_scene.h"
 #include "core/scene/scene_frame.h"
@@ -87,6 +91,9 @@ constexpr double kMovesPerSec = 48.0;  // the cursor: about the speed the unpace
 struct ScrubMode {
   bool gpu, paced;
   const char* policy;
+  // The editor's kept viewport image (gpu/present/viewport_image.h): a frame whose scene fingerprint
+  // did not change renders nothing (the editor copies the kept image under its UI: not modelled here).
+  bool keepImage = false;
 };
 
 // One mode's run: the editor's pipeline for a frame, and what the frames measured.
@@ -105,6 +112,8 @@ struct ScrubRun {
   double stageMs[4] = {0, 0, 0, 0};  // evaluate the scene, C(t) into it, previews.update, draw
   std::string error;
   size_t meshesShown = 0;
+  size_t scenePasses = 0;  // frames that rendered the scene (keepImage: the others kept the image)
+  std::optional<uint64_t> keptFingerprint;
   gpu::ImplicitPreviewStatus last;
 
   ScrubRun(ScrubDemo& demo, OffscreenBench& o, const OrbitCamera& cam, ScrubMode m)
@@ -128,7 +137,12 @@ struct ScrubRun {
     lap(2);
     gpu::Scene scene;
     gpu::buildScene(frame, d.project.view, {}, meshes, scene, &previews);
-    if (std::string e = off.render(camera, scene); !e.empty()) error = e;
+    const std::optional<uint64_t> fp = gpu::sceneFingerprint(scene, camera, off.width, off.height);
+    if (!mode.keepImage || !fp || fp != keptFingerprint) {
+      if (std::string e = off.render(camera, scene); !e.empty()) error = e;
+      keptFingerprint = fp;
+      ++scenePasses;
+    }
     lap(3);
     meshes.endFrame();
     previews.endFrame();
@@ -153,6 +167,7 @@ struct ScrubRun {
       oneFrame(frameSec(d.frames.front()));
     }
     meshesShown = 0;
+    scenePasses = 0;
     polyMs.clear();
     for (double& m : stageMs) m = 0.0;
   }
@@ -165,6 +180,7 @@ struct ScrubFigures {
   std::string stages;  // the stages' mean times per scrubbing frame
   gpu::PreviewFieldCounters fields;
   size_t shownWhileScrubbing = 0;
+  size_t scenePassesWhileScrubbing = 0;
   std::vector<double> polyWhileScrubbing;
   double refineMs = 0.0;
   int settleFrames = 0;
@@ -218,6 +234,7 @@ ScrubFigures scrub(ScrubRun& r) {
   out.fields.callerThreadMs -= fieldsBefore.callerThreadMs;
   out.fields.superseded -= fieldsBefore.superseded;
   out.shownWhileScrubbing = r.meshesShown;
+  out.scenePassesWhileScrubbing = r.scenePasses;
   out.polyWhileScrubbing = r.polyMs;
   return out;
 }
@@ -262,7 +279,9 @@ void reportMode(const ScrubRun& r, const ScrubFigures& fig, const std::string& t
   rows.push_back({tag + ", frame loop", 1000.0 * double(frameMs.size()) / scrubMs, "fps", "",
                   std::to_string(frameMs.size()) + " frames drawn; frame time p50 " +
                       std::to_string(int(percentile(frameMs, 0.5) + 0.5)) + " ms, p95 " +
-                      std::to_string(int(percentile(frameMs, 0.95) + 0.5)) + " ms; " + how + "; the process used " +
+                      std::to_string(int(percentile(frameMs, 0.95) + 0.5)) + " ms; " + std::to_string(fig.scenePassesWhileScrubbing) +
+                      " rendered the scene" + (r.mode.keepImage ? " (the others kept the image)" : "") + "; " + how +
+                      "; the process used " +
                       std::to_string(cores).substr(0, 4) + " cores"});
   rows.push_back({tag + ", input to its frame p95", percentile(r.inputWaitMs, 0.95), "ms", "",
                   "p50 " + std::to_string(int(percentile(r.inputWaitMs, 0.5) + 0.5)) +
@@ -297,7 +316,8 @@ std::vector<Row> runAnimorphScrub(const Options& opt) {
   OrbitCamera camera;
   camera.frame(d.view, float(off.width) / float(off.height));
   for (const ScrubMode mode :
-       {ScrubMode{false, false, ", redraw at once"}, ScrubMode{false, true, ", paced"}, ScrubMode{true, false, ""}}) {
+       {ScrubMode{false, false, ", redraw at once"}, ScrubMode{false, true, ", paced"},
+        ScrubMode{false, true, ", paced, kept viewport image", true}, ScrubMode{true, false, ""}}) {
     if (mode.gpu && !opt.gpu && off.ctx->deviceType() == VK_PHYSICAL_DEVICE_TYPE_CPU) {
       rows.push_back({"GPU preview: skipped", 0, "", "", "a CPU Vulkan device (run with --gpu to measure it anyway)"});
       continue;

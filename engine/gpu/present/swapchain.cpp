@@ -120,6 +120,11 @@ Status Swapchain::init(const SwapchainSettings& settings) {
       dev, format_.format, ctx_.depthFormat(), host_ ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
   if (!pass) return Error{pass.error()};
   renderPass_ = *pass;
+  Result<VkRenderPass> loadPass =
+      createSceneRenderPass(dev, format_.format, ctx_.depthFormat(),
+                            host_ ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, true);
+  if (!loadPass) return Error{loadPass.error()};
+  loadPass_ = *loadPass;
 
   if (Status c = createCommandResources(dev, ctx_.queueFamily(), kFramesInFlight, &pool_, cmds_, inFlight_,
                                         /*signalled=*/true);
@@ -149,6 +154,7 @@ Swapchain::~Swapchain() {
   }
   if (pool_) vkDestroyCommandPool(dev, pool_, nullptr);
   if (renderPass_) vkDestroyRenderPass(dev, renderPass_, nullptr);
+  if (loadPass_) vkDestroyRenderPass(dev, loadPass_, nullptr);
 }
 
 void Swapchain::destroyTargets() {
@@ -225,7 +231,8 @@ Status Swapchain::recreateHost(VkExtent2D size) {
   }
   for (uint32_t i = 0; i < kFramesInFlight; ++i) {
     Result<Image> img = createImage(ctx_, extent_, format_.format,
-                                    VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                                    VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                                        VK_IMAGE_USAGE_TRANSFER_DST_BIT,
                                     VK_IMAGE_ASPECT_COLOR_BIT);
     if (!img) return Error{img.error()};
     hostImages_.push_back(*img);
@@ -292,6 +299,7 @@ Status Swapchain::recreate(VkExtent2D size) {
   if (caps.maxImageCount > 0) imageCount = std::min(imageCount, caps.maxImageCount);
   minImageCount_ = std::max(caps.minImageCount, 2u);
   captureSupported_ = caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  underlaySupported_ = caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_DST_BIT;
 
   VkSwapchainKHR old = swapchain_;
   VkSwapchainCreateInfoKHR sci{VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR};
@@ -301,7 +309,8 @@ Status Swapchain::recreate(VkExtent2D size) {
   sci.imageColorSpace = format_.colorSpace;
   sci.imageExtent = size;
   sci.imageArrayLayers = 1;
-  sci.imageUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | (captureSupported_ ? VK_IMAGE_USAGE_TRANSFER_SRC_BIT : 0);
+  sci.imageUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | (captureSupported_ ? VK_IMAGE_USAGE_TRANSFER_SRC_BIT : 0) |
+                   (underlaySupported_ ? VK_IMAGE_USAGE_TRANSFER_DST_BIT : 0);
   sci.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
   sci.preTransform = caps.currentTransform;
   sci.compositeAlpha = (caps.supportedCompositeAlpha & VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR)
@@ -364,6 +373,12 @@ bool debugDeviceLostNow() {
 }  // namespace
 
 FrameStatus Swapchain::beginFrame(Frame& frame) {
+  FrameStatus st = acquireFrame(frame);
+  if (st == FrameStatus::Ready) beginPass(nullptr);
+  return st;
+}
+
+FrameStatus Swapchain::acquireFrame(Frame& frame) {
   VkDevice dev = ctx_.device();
   if (frameOpen_) return fail("beginFrame called twice without endFrame");
   VkExtent2D size = framebufferSize(ctx_.window());
@@ -410,20 +425,66 @@ FrameStatus Swapchain::beginFrame(Frame& frame) {
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   vkBeginCommandBuffer(cmd, &bi);
+  frame = Frame{cmd, serial_, slot_, imageIndex_, extent_};
+  frameOpen_ = true;
+  passOpen_ = false;
+  return FrameStatus::Ready;
+}
+
+// The window cleared, the underlay's image copied into its rectangle, then the pass that loads them.
+void Swapchain::recordUnderlay(VkCommandBuffer cmd, const FrameUnderlay& u) {
+  VkImage target = host_ ? hostImages_[slot_].image : images_[imageIndex_];
+  VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+  b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  b.image = target;
+  b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+  b.srcAccessMask = 0;
+  b.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  // After the previous use of this image (its pass, its copy to the host, its presentation).
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr, 1, &b);
+  const glm::vec4& c = settings_.clearColor;
+  VkClearColorValue clear{{c.r, c.g, c.b, c.a}};
+  vkCmdClearColorImage(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &clear, 1, &b.subresourceRange);
+  VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  mb.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  mb.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &mb, 0, nullptr, 0,
+                       nullptr);
+  VkImageCopy region{};
+  region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.dstSubresource = region.srcSubresource;
+  region.dstOffset = {u.rect.offset.x, u.rect.offset.y, 0};
+  region.extent = {u.rect.extent.width, u.rect.extent.height, 1};
+  vkCmdCopyImage(cmd, u.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                 &region);
+  b.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+  b.newLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  b.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  b.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0, 0, nullptr,
+                       0, nullptr, 1, &b);
+}
+
+void Swapchain::beginPass(const FrameUnderlay* underlay) {
+  if (!frameOpen_ || passOpen_) return;
+  VkCommandBuffer cmd = cmds_[slot_];
+  const bool load = underlay && underlay->image && underlaySupported();
+  if (load) recordUnderlay(cmd, *underlay);
   VkClearValue clears[2];
   const glm::vec4& c = settings_.clearColor;
   clears[0].color = {{c.r, c.g, c.b, c.a}};
   clears[1].depthStencil = {1.0f, 0};
   VkRenderPassBeginInfo rbi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-  rbi.renderPass = renderPass_;
+  rbi.renderPass = load ? loadPass_ : renderPass_;
   rbi.framebuffer = framebuffers_[imageIndex_];
   rbi.renderArea = {{0, 0}, extent_};
   rbi.clearValueCount = 2;
   rbi.pClearValues = clears;
   vkCmdBeginRenderPass(cmd, &rbi, VK_SUBPASS_CONTENTS_INLINE);
-  frame = Frame{cmd, serial_, slot_, imageIndex_, extent_};
-  frameOpen_ = true;
-  return FrameStatus::Ready;
+  passOpen_ = true;
 }
 
 Status Swapchain::endFrame() {
@@ -431,7 +492,9 @@ Status Swapchain::endFrame() {
   frameOpen_ = false;
   VkDevice dev = ctx_.device();
   VkCommandBuffer cmd = cmds_[slot_];
+  if (!passOpen_) beginPass(nullptr);  // acquired, but nothing drawn: the window cleared
   vkCmdEndRenderPass(cmd);
+  passOpen_ = false;
   if (host_) return endFrameHost(cmd);
 
   captureRecorded_ = false;
@@ -479,7 +542,8 @@ Status Swapchain::endFrame() {
   }
 
   AM_VK_TRY(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
-  VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+  // The underlay's clear and copy (beginPass) write the acquired image too.
+  VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
   VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
   si.waitSemaphoreCount = 1;
   si.pWaitSemaphores = &acquired_[slot_];

@@ -50,6 +50,13 @@ struct Frame {
   VkExtent2D extent{0, 0};  // pixels of the window's framebuffer
 };
 
+// An image copied into a frame before its render pass (the kept viewport image, viewport_image.h):
+// same format as the swapchain, in TRANSFER_SRC_OPTIMAL, rect inside both images.
+struct FrameUnderlay {
+  VkImage image = VK_NULL_HANDLE;
+  VkRect2D rect{};
+};
+
 enum class FrameStatus {
   Ready,    // record into the Frame, then call endFrame()
   Skipped,  // minimised (0x0) or the swapchain was just recreated: draw nothing this time
@@ -67,6 +74,15 @@ class Swapchain {
   // Waits for the frame slot, recreates the swapchain when the window size
   // changed, acquires an image, begins the command buffer and the render pass.
   FrameStatus beginFrame(Frame& frame);
+  // beginFrame in two steps, for commands recorded before the render pass (an offscreen pass):
+  // acquireFrame waits, acquires and begins the command buffer (no render pass yet); beginPass then
+  // begins the render pass over the whole image: cleared, or with underlay the window cleared and
+  // the underlay's image copied into its rectangle, then loaded (needs underlaySupported(), else
+  // the underlay is ignored). endFrame begins the pass itself when beginPass was not called.
+  FrameStatus acquireFrame(Frame& frame);
+  void beginPass(const FrameUnderlay* underlay);
+  // The frame images can be copied into (TRANSFER_DST on the swapchain images or our own).
+  bool underlaySupported() const { return host_ || underlaySupported_; }
   // Ends the render pass, records the capture if one was requested, submits and
   // presents. An out-of-date swapchain is recreated on the next beginFrame.
   // Errors: Vulkan failures (also in lastError()).
@@ -102,6 +118,7 @@ class Swapchain {
   Status addFramebuffer(VkImageView color);
   Status endFrameHost(VkCommandBuffer cmd);
   void presentHost(uint32_t slot);
+  void recordUnderlay(VkCommandBuffer cmd, const FrameUnderlay& underlay);
   FrameStatus fail(const std::string& message);
 
   Context& ctx_;
@@ -112,6 +129,7 @@ class Swapchain {
   VkExtent2D extent_{0, 0};
   uint32_t minImageCount_ = 2;
   VkRenderPass renderPass_ = VK_NULL_HANDLE;
+  VkRenderPass loadPass_ = VK_NULL_HANDLE;  // compatible with renderPass_: the colour loaded (beginPass)
   std::vector<VkImage> images_;
   std::vector<VkImageView> views_;
   std::vector<VkFramebuffer> framebuffers_;
@@ -125,6 +143,8 @@ class Swapchain {
   uint64_t serial_ = 0;  // frames begun (Ready) so far; slot_ == serial_ % kFramesInFlight
   uint32_t imageIndex_ = 0;
   bool frameOpen_ = false;
+  bool passOpen_ = false;
+  bool underlaySupported_ = false;  // WSI images take TRANSFER_DST
   bool needsRecreate_ = false;
   bool captureSupported_ = false;
   bool captureRequested_ = false;

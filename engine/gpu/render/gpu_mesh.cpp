@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cstring>
 #include <vector>
 
@@ -185,7 +186,13 @@ GpuMesh::~GpuMesh() {
   destroyBuffer(device_, buffer_);
 }
 
+uint64_t GpuMesh::nextContentSerial() {
+  static std::atomic<uint64_t> next{1};
+  return next.fetch_add(1, std::memory_order_relaxed);
+}
+
 void GpuMesh::setMaterials(std::span<const Material> materials, std::span<const VkDescriptorSet> textureSets) {
+  contentSerial_ = nextContentSerial();
   for (GpuMeshPart& p : parts_) {
     p.factor = glm::vec4(1.0f);
     p.texture = VK_NULL_HANDLE;

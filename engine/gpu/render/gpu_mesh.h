@@ -64,10 +64,15 @@ class GpuMesh {
   uint32_t edgeIndexCount() const { return edgeIndexCount_; }  // 2 per unique edge; 0 when not built
   const Bounds& bounds() const { return bounds_; }             // of the bind-pose positions
   const std::string& name() const { return name_; }
+  // Distinct for every upload and every setMaterials of any GpuMesh in the process: two draws of
+  // meshes with the same serial draw the same (the kept viewport image's test, scene_fingerprint.h).
+  uint64_t contentSerial() const { return contentSerial_; }
 
  private:
-  explicit GpuMesh(VkDevice device) : device_(device) {}
+  explicit GpuMesh(VkDevice device) : device_(device), contentSerial_(nextContentSerial()) {}
+  static uint64_t nextContentSerial();
   VkDevice device_;
+  uint64_t contentSerial_ = 0;
   Buffer buffer_;  // every stream and both index lists, at the offsets below
   static constexpr int kStreams = 8;  // AM_VERTEX_POSITION..WEIGHTS1, then TEXCOORD0, COLOR0
   VkDeviceSize streamOffsets_[kStreams]{};

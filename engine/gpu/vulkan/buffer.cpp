@@ -51,6 +51,20 @@ Result<Buffer> createHostBuffer(const Context& ctx, VkDeviceSize size, VkBufferU
 }
 
 Result<Buffer> createDeviceBuffer(Context& ctx, VkBufferUsageFlags usage, const void* data, VkDeviceSize size) {
+  // A CPU device (lavapipe) or an integrated GPU: device memory the host can write, so no staging
+  // copy and no queue submission, which would wait behind the frames still in the queue (a new
+  // preview mesh uploaded in the UI thread waited for the previous frame's rendering).
+  const VkPhysicalDeviceType type = ctx.deviceType();
+  if (type == VK_PHYSICAL_DEVICE_TYPE_CPU || type == VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU) {
+    Result<Buffer> direct = createBuffer(ctx, size, usage,
+                                         VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT | VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                             VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    if (direct && direct->mapped) {
+      std::memcpy(direct->mapped, data, size);
+      return direct;
+    }
+    if (direct) destroyBuffer(ctx.device(), *direct);  // (not mapped: take the staging path)
+  }
   Result<Buffer> staging = createHostBuffer(ctx, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
   if (!staging) return Error{staging.error()};
   std::memcpy(staging->mapped, data, size);

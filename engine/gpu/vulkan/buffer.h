@@ -20,8 +20,10 @@ Result<Buffer> createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsage
 // A host-visible, host-coherent, mapped buffer (per-frame data, readback).
 Result<Buffer> createHostBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage);
 
-// A device-local buffer filled with size bytes of data through a staging buffer
-// (waits for the copy). usage gets TRANSFER_DST added. Errors: as createBuffer.
+// A device-local buffer filled with size bytes of data: on a CPU device or an integrated GPU with
+// host-visible device memory written directly (no submission, no wait), else through a staging
+// buffer (usage gets TRANSFER_DST added; waits for the copy, and so for the work queued before it).
+// Errors: as createBuffer.
 Result<Buffer> createDeviceBuffer(Context& ctx, VkBufferUsageFlags usage, const void* data, VkDeviceSize size);
 
 // Frees buffer (no-op on an empty one) and resets it to empty.

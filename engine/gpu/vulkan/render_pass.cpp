@@ -5,15 +5,15 @@
 namespace animorph::gpu {
 
 Result<VkRenderPass> createSceneRenderPass(VkDevice device, VkFormat colorFormat, VkFormat depthFormat,
-                                           VkImageLayout colorFinalLayout) {
+                                           VkImageLayout colorFinalLayout, bool loadColor) {
   VkAttachmentDescription att[2]{};
   att[0].format = colorFormat;
   att[0].samples = VK_SAMPLE_COUNT_1_BIT;
-  att[0].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  att[0].loadOp = loadColor ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
   att[0].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
   att[0].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
   att[0].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  att[0].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  att[0].initialLayout = loadColor ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED;
   att[0].finalLayout = colorFinalLayout;
   att[1].format = depthFormat;
   att[1].samples = VK_SAMPLE_COUNT_1_BIT;

@@ -8,8 +8,11 @@ namespace animorph::gpu {
 
 // Colour (cleared, stored, ending in colorFinalLayout: PRESENT_SRC_KHR for a
 // swapchain, TRANSFER_SRC_OPTIMAL for an offscreen target that is read back)
-// and depth (cleared, not stored). Errors: Vulkan failures.
+// and depth (cleared, not stored). loadColor: the colour attachment is loaded instead of cleared and
+// starts in COLOR_ATTACHMENT_OPTIMAL (a frame whose kept viewport image was copied in before the
+// pass); the pass stays compatible with the cleared one (same formats), so pipelines made for one
+// draw in the other. Errors: Vulkan failures.
 Result<VkRenderPass> createSceneRenderPass(VkDevice device, VkFormat colorFormat, VkFormat depthFormat,
-                                           VkImageLayout colorFinalLayout);
+                                           VkImageLayout colorFinalLayout, bool loadColor = false);
 
 }  // namespace animorph::gpu

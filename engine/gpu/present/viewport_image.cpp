@@ -1,0 +1,91 @@
+#include "gpu/present/viewport_image.h"
+
+#include "gpu/vulkan/render_pass.h"
+#include "gpu/vulkan/vk_check.h"
+
+namespace animorph::gpu {
+
+Result<std::unique_ptr<ViewportImage>> ViewportImage::create(Context& ctx, VkFormat colorFormat) {
+  std::unique_ptr<ViewportImage> v(new ViewportImage(ctx));
+  v->colorFormat_ = colorFormat;
+  Result<VkRenderPass> pass =
+      createSceneRenderPass(ctx.device(), colorFormat, ctx.depthFormat(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+  if (!pass) return Error{"viewport image: " + pass.error()};
+  v->renderPass_ = *pass;
+  return v;
+}
+
+ViewportImage::~ViewportImage() {
+  destroyImages();
+  if (renderPass_) vkDestroyRenderPass(ctx_.device(), renderPass_, nullptr);
+}
+
+void ViewportImage::destroyImages() {
+  VkDevice dev = ctx_.device();
+  if (framebuffer_) vkDestroyFramebuffer(dev, framebuffer_, nullptr);
+  framebuffer_ = VK_NULL_HANDLE;
+  destroyImage(dev, color_);
+  destroyImage(dev, depth_);
+  valid_ = false;
+}
+
+Status ViewportImage::resize(uint32_t width, uint32_t height) {
+  if (color_.image) ctx_.waitIdle();  // earlier frames may still copy or draw the old images
+  destroyImages();
+  const VkExtent2D extent{width, height};
+  Result<Image> color = createImage(ctx_, extent, colorFormat_,
+                                    VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                                    VK_IMAGE_ASPECT_COLOR_BIT);
+  if (!color) return Error{"viewport image: " + color.error()};
+  color_ = *color;
+  Result<Image> depth =
+      createImage(ctx_, extent, ctx_.depthFormat(), VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+  if (!depth) {
+    destroyImages();
+    return Error{"viewport image: " + depth.error()};
+  }
+  depth_ = *depth;
+  VkImageView views[2] = {color_.view, depth_.view};
+  VkFramebufferCreateInfo fci{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+  fci.renderPass = renderPass_;
+  fci.attachmentCount = 2;
+  fci.pAttachments = views;
+  fci.width = width;
+  fci.height = height;
+  fci.layers = 1;
+  VkResult r = vkCreateFramebuffer(ctx_.device(), &fci, nullptr, &framebuffer_);
+  if (r != VK_SUCCESS) {
+    destroyImages();
+    return Error{"viewport image: " + vkError("vkCreateFramebuffer", r).message};
+  }
+  return Status::success();
+}
+
+Status ViewportImage::render(VkCommandBuffer cmd, uint32_t width, uint32_t height,
+                             const std::function<void(VkCommandBuffer)>& draw) {
+  if (!framebuffer_ || color_.extent.width != width || color_.extent.height != height)
+    if (Status s = resize(width, height); !s) return s;
+  VkClearValue clears[2];
+  clears[0].color = {{0.0f, 0.0f, 0.0f, 1.0f}};  // SceneRenderer::record clears its rectangle itself
+  clears[1].depthStencil = {1.0f, 0};
+  VkRenderPassBeginInfo rbi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+  rbi.renderPass = renderPass_;
+  rbi.framebuffer = framebuffer_;
+  rbi.renderArea = {{0, 0}, color_.extent};
+  rbi.clearValueCount = 2;
+  rbi.pClearValues = clears;
+  vkCmdBeginRenderPass(cmd, &rbi, VK_SUBPASS_CONTENTS_INLINE);
+  draw(cmd);
+  vkCmdEndRenderPass(cmd);
+  valid_ = true;
+  return Status::success();
+}
+
+FrameUnderlay ViewportImage::underlay(int32_t x, int32_t y) const {
+  FrameUnderlay u;
+  u.image = color_.image;
+  u.rect = {{x, y}, color_.extent};
+  return u;
+}
+
+}  // namespace animorph::gpu
