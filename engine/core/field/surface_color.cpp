@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "core/field/field_program_detail.h"
 #include "core/field/operators.h"
 
 namespace animorph {
@@ -312,6 +313,82 @@ void combine(const ColorProgram& CP, const FieldOp& op, RunScratch& S, int base,
   }
 }
 
+// The value of skeletal point primitive p under affine map m at the points, into V: skeletalPotential
+// (the sum's 0 + v, or the union's max(v, 0)) with an integer stiffness kPower + 1, written without
+// its early return or branches so that the loop vectorises: beyond R, t is clamped at 0 and v is +0.
+template <int kPower, bool kMax>
+__attribute__((always_inline)) inline void mappedPointValues(const SpaceMap& m, const SkeletalPrimitive& p, const float* __restrict x,
+                       const float* __restrict y, const float* __restrict z, int n, float* __restrict V) {
+  const glm::mat3 L = m.linear;  // in locals, as the field's mapPoints has them
+  const float l00 = L[0][0], l01 = L[0][1], l02 = L[0][2], l10 = L[1][0], l11 = L[1][1], l12 = L[1][2],
+              l20 = L[2][0], l21 = L[2][1], l22 = L[2][2];
+  const float o0 = m.origin.x, o1 = m.origin.y, o2 = m.origin.z;
+  const float px = p.skeleton.p0.x, py = p.skeleton.p0.y, pz = p.skeleton.p0.z;
+  const float r2 = p.radius * p.radius, I = p.intensity;
+  for (int i = 0; i < n; ++i) {
+    const float dx = x[i] - o0, dy = y[i] - o1, dz = z[i] - o2;
+    const float ex = l00 * dx + l10 * dy + l20 * dz - px;
+    const float ey = l01 * dx + l11 * dy + l21 * dz - py;
+    const float ez = l02 * dx + l12 * dy + l22 * dz - pz;
+    const float u = 1.0f - (ex * ex + ey * ey + ez * ez) / r2;
+    const float t = 0.5f * (u + std::fabs(u));  // max(u, 0), exactly, with no select to thread jumps through
+    float tk1 = 1.0f;  // powStiffness's multiply chain, written out
+    if constexpr (kPower >= 1) tk1 *= t;
+    if constexpr (kPower >= 2) tk1 *= t;
+    if constexpr (kPower >= 3) tk1 *= t;
+    const float v = I * tk1 * t;
+    if constexpr (kMax) V[i] = 0.5f * (v + std::fabs(v));
+    else V[i] = 0.0f + v;
+  }
+}
+
+template <bool kMax>
+__attribute__((always_inline)) inline void mappedPointValues(const SpaceMap& m, const SkeletalPrimitive& p,
+                                                             const float* x, const float* y, const float* z, int n,
+                                                             float* V) {
+  const float K = p.stiffness;
+  if (K == 1.0f) mappedPointValues<0, kMax>(m, p, x, y, z, n, V);
+  else if (K == 2.0f) mappedPointValues<1, kMax>(m, p, x, y, z, n, V);
+  else if (K == 3.0f) mappedPointValues<2, kMax>(m, p, x, y, z, n, V);
+  else mappedPointValues<3, kMax>(m, p, x, y, z, n, V);
+}
+
+// The loops above, cloned for AVX-512 and AVX2 (field_program_detail.h); this file is compiled
+// without contraction (engine/core/CMakeLists.txt), so every clone computes the same values.
+ANIMORPH_KERNEL __attribute__((noinline)) void mappedPointLoop(const SpaceMap& m, const SkeletalPrimitive& p,
+                                                               bool combineMax, const float* x, const float* y,
+                                                               const float* z, int n, float* V) {
+  if (combineMax) mappedPointValues<true>(m, p, x, y, z, n, V);
+  else mappedPointValues<false>(m, p, x, y, z, n, V);
+}
+
+// One Sum operand's weights w = max(v, 0) (0 where v is NaN) added to W, and w times its colour
+// (rows r, g, b, or the constant c where r is null) to R, G, B. Cloned as mappedPointLoop.
+ANIMORPH_KERNEL __attribute__((noinline)) void weighOperand(const float* __restrict v, const float* __restrict r,
+                                                            const float* __restrict g, const float* __restrict b,
+                                                            const glm::vec3 c, int n, float* __restrict W,
+                                                            float* __restrict R, float* __restrict G,
+                                                            float* __restrict B) {
+  if (!r) {
+    const float cr = c.r, cg = c.g, cb = c.b;
+    for (int i = 0; i < n; ++i) {
+      const float w = v[i] > 0.0f ? v[i] : 0.0f;
+      W[i] += w;
+      R[i] += w * cr;
+      G[i] += w * cg;
+      B[i] += w * cb;
+    }
+    return;
+  }
+  for (int i = 0; i < n; ++i) {
+    const float w = v[i] > 0.0f ? v[i] : 0.0f;
+    W[i] += w;
+    R[i] += w * r[i];
+    G[i] += w * g[i];
+    B[i] += w * b[i];
+  }
+}
+
 // A Sum over entries [base, base + op.count) into base, as combine() gives it, operand by operand
 // over all the points (loops the compiler vectorises): entries that are +0 everywhere are skipped
 // (their weight is 0, and v + 0 is v), one-coloured entries add their weight times a constant.
@@ -361,25 +438,8 @@ void sumOp(const ColorProgram& CP, const FieldOp& op, RunScratch& S, int base, i
     const float* vk = S.V(e);
     for (int i = 0; i < n; ++i) vs[i] += vk[i];
     if (k >= weighing) continue;
-    if (S.uni[e]) {
-      const float r = S.uc[e].r, g = S.uc[e].g, b = S.uc[e].b;
-      for (int i = 0; i < n; ++i) {
-        const float w = vk[i] > 0.0f ? vk[i] : 0.0f;
-        W[i] += w;
-        R[i] += w * r;
-        G[i] += w * g;
-        B[i] += w * b;
-      }
-    } else {
-      const float *rk = S.C(e, 0), *gk = S.C(e, 1), *bk = S.C(e, 2);
-      for (int i = 0; i < n; ++i) {
-        const float w = vk[i] > 0.0f ? vk[i] : 0.0f;
-        W[i] += w;
-        R[i] += w * rk[i];
-        G[i] += w * gk[i];
-        B[i] += w * bk[i];
-      }
-    }
+    if (S.uni[e]) weighOperand(vk, nullptr, nullptr, nullptr, S.uc[e], n, W, R, G, B);
+    else weighOperand(vk, S.C(e, 0), S.C(e, 1), S.C(e, 2), glm::vec3(0.0f), n, W, R, G, B);
   }
   // Where no operand weighs: the rule's colour, or the first operand's (kept).
   if (ruleEmpty || S.uni[base]) fillColor(S, base, n, ruleEmpty ? emptyRule : S.uc[base]);
@@ -393,45 +453,6 @@ void sumOp(const ColorProgram& CP, const FieldOp& op, RunScratch& S, int base, i
   }
   std::copy(vs, vs + n, S.V(base));
   S.zero[base] = S.uni[base] = 0;
-}
-
-// The value of skeletal point primitive p under affine map m at the points, into V: skeletalPotential
-// (the sum's 0 + v, or the union's max(v, 0)) with an integer stiffness kPower + 1, written without
-// its early return or branches so that the loop vectorises: beyond R, t is clamped at 0 and v is +0.
-template <int kPower, bool kMax>
-void mappedPointValues(const SpaceMap& m, const SkeletalPrimitive& p, const float* __restrict x,
-                       const float* __restrict y, const float* __restrict z, int n, float* __restrict V) {
-  const glm::mat3 L = m.linear;  // in locals, as the field's mapPoints has them
-  const float l00 = L[0][0], l01 = L[0][1], l02 = L[0][2], l10 = L[1][0], l11 = L[1][1], l12 = L[1][2],
-              l20 = L[2][0], l21 = L[2][1], l22 = L[2][2];
-  const float o0 = m.origin.x, o1 = m.origin.y, o2 = m.origin.z;
-  const float px = p.skeleton.p0.x, py = p.skeleton.p0.y, pz = p.skeleton.p0.z;
-  const float r2 = p.radius * p.radius, I = p.intensity;
-  for (int i = 0; i < n; ++i) {
-    const float dx = x[i] - o0, dy = y[i] - o1, dz = z[i] - o2;
-    const float ex = l00 * dx + l10 * dy + l20 * dz - px;
-    const float ey = l01 * dx + l11 * dy + l21 * dz - py;
-    const float ez = l02 * dx + l12 * dy + l22 * dz - pz;
-    const float u = 1.0f - (ex * ex + ey * ey + ez * ez) / r2;
-    const float t = 0.5f * (u + std::fabs(u));  // max(u, 0), exactly, with no select to thread jumps through
-    float tk1 = 1.0f;  // powStiffness's multiply chain, written out
-    if constexpr (kPower >= 1) tk1 *= t;
-    if constexpr (kPower >= 2) tk1 *= t;
-    if constexpr (kPower >= 3) tk1 *= t;
-    const float v = I * tk1 * t;
-    if constexpr (kMax) V[i] = 0.5f * (v + std::fabs(v));
-    else V[i] = 0.0f + v;
-  }
-}
-
-template <bool kMax>
-void mappedPointValues(const SpaceMap& m, const SkeletalPrimitive& p, const float* x, const float* y, const float* z,
-                       int n, float* V) {
-  const float K = p.stiffness;
-  if (K == 1.0f) mappedPointValues<0, kMax>(m, p, x, y, z, n, V);
-  else if (K == 2.0f) mappedPointValues<1, kMax>(m, p, x, y, z, n, V);
-  else if (K == 3.0f) mappedPointValues<2, kMax>(m, p, x, y, z, n, V);
-  else mappedPointValues<3, kMax>(m, p, x, y, z, n, V);
 }
 
 // BeginMap ops[oi] of an affine map, then one skeletal point primitive of one colour, then its
@@ -453,8 +474,7 @@ bool fusedMappedPoint(const ColorProgram& CP, const ActiveProgram& A, size_t oi,
   if (p.skeleton.kind != SkeletonKind::Point || !(p.radius > 0.0f) ||
       !(K == 1.0f || K == 2.0f || K == 3.0f || K == 4.0f) || !uniformColor(P, A, prims, first))
     return false;
-  if (prims.combineMax) mappedPointValues<true>(m, p, x, y, z, n, S.V(s));
-  else mappedPointValues<false>(m, p, x, y, z, n, S.V(s));
+  mappedPointLoop(m, p, prims.combineMax, x, y, z, n, S.V(s));
   S.zero[s] = 0;
   setUniform(S, s, first);
   return true;
