@@ -258,6 +258,70 @@ TEST_CASE("colour: a point between two primitives takes the blend weighted by th
   checkNear(ev.evaluatePoint(prog, {0.5f, 0.0f, 0.0f}), {0.5f, 0.0f, 0.5f});
 }
 
+TEST_CASE("colour: a blend of many framed points weighs each by its own field (the walk's one-loop path for a mapped "
+          "point and its one-colour sums), seeded",
+          "[color]") {
+  // Each child a Frame translating one coloured point (a mapped point primitive, as the animorphosis
+  // demo's meta-primitives): the colour at x is sum w_k c_k / sum w_k with w_k = I_k (1 - d_k^2 /
+  // R_k^2)^k_k of its own local point x - t_k, computed here from the definition. Stiffness 1..4 (the
+  // evaluator's one-loop forms) and 2.5 (the general op), some frames far from the points (skipped
+  // maps), runs of one colour next to mixed ones.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  const glm::vec3 palette[3] = {kRed, kBlue, kGreen};
+  struct Child {
+    glm::vec3 t, color;
+    float radius, intensity, stiffness;
+  };
+  std::vector<Child> kids;
+  BlobTree tree;
+  tree.threshold = FloatTrack(0.5f);
+  tree.root = makeBlobNode(NodeType::Blend, 1, "root");
+  int id = 2;
+  for (int k = 0; k < 150; ++k) {
+    Child c;
+    c.t = k % 10 == 9 ? glm::vec3(40.0f + float(k), 0.0f, 0.0f) : glm::vec3(u(rng), u(rng), u(rng));
+    c.color = k < 40 ? kRed : palette[rng() % 3];
+    c.radius = 0.6f + 0.5f * std::abs(u(rng));
+    c.intensity = 0.5f + std::abs(u(rng));
+    const float stiff[5] = {1.0f, 2.0f, 3.0f, 4.0f, 2.5f};
+    c.stiffness = stiff[k % 5];
+    BlobNode p = coloredPoint(id++, glm::vec3(0.0f), c.color, c.radius);
+    p.floatParam("intensity") = FloatTrack(c.intensity);
+    p.floatParam("stiffness") = FloatTrack(c.stiffness);
+    BlobNode frame = makeBlobNode(NodeType::Frame, id++);
+    frame.vec3Param("translation") = Vec3Track(c.t);
+    frame.children.push_back(p);
+    tree.root.children.push_back(frame);
+    kids.push_back(c);
+  }
+  const FieldProgram prog = compileFieldProgram(tree, 0.0);
+  std::vector<glm::vec3> points;
+  for (int i = 0; i < 700; ++i) points.push_back(1.2f * glm::vec3(u(rng), u(rng), u(rng)));
+  std::vector<glm::vec4> got(points.size()), full(points.size());
+  SurfaceColorEvaluator ev;
+  ev.evaluate(prog, points.data(), points.size(), got.data(), 2);
+  ev.evaluateFull(prog, points.data(), points.size(), full.data());
+  int weighed = 0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    glm::vec3 sum(0.0f);
+    float w = 0.0f;
+    for (const Child& c : kids) {
+      const glm::vec3 d = points[i] - c.t;
+      const float q = 1.0f - glm::dot(d, d) / (c.radius * c.radius);
+      const float wk = q > 0.0f ? c.intensity * std::pow(q, c.stiffness) : 0.0f;
+      sum += wk * c.color;
+      w += wk;
+    }
+    if (!(w > 1e-3f)) continue;  // near no primitive: the rules' fallback colours, tested elsewhere
+    ++weighed;
+    INFO("point " << i);
+    checkNear(glm::vec3(got[i]), sum / w, 2e-5f);
+    checkNear(glm::vec3(full[i]), sum / w, 2e-5f);
+  }
+  CHECK(weighed > 500);
+}
+
 TEST_CASE("colour: union takes the larger operand's colour, difference the kept side's, maps move the point",
           "[color]") {
   SurfaceColorEvaluator ev;

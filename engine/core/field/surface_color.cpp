@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "core/field/field_program_detail.h"
 #include "core/field/operators.h"
 
 namespace animorph {
@@ -57,6 +58,20 @@ void boxOf(const float* x, const float* y, const float* z, int n, glm::vec3& lo,
 // Sets entry s's colour to c at every point.
 void fillColor(RunScratch& S, int s, int n, const glm::vec3& c) {
   for (int k = 0; k < 3; ++k) std::fill(S.C(s, k), S.C(s, k) + n, c[k]);
+}
+
+// Entry s's colour is c at every point (its r, g, b rows are left unwritten).
+void setUniform(RunScratch& S, int s, const glm::vec3& c) {
+  S.uni[s] = 1;
+  S.uc[s] = c;
+}
+
+// Entry s's rows written: its value row where it is +0 everywhere, its colour rows where it has one
+// colour (the per-point rules read them).
+void materialise(RunScratch& S, int s, int n) {
+  if (S.zero[s]) std::fill(S.V(s), S.V(s) + n, 0.0f);
+  if (S.uni[s]) fillColor(S, s, n, S.uc[s]);
+  S.zero[s] = S.uni[s] = 0;
 }
 
 // The field of primitives idx[0, count) at the points into f (summed, or their max with 0).
@@ -144,14 +159,15 @@ void primsOp(const ColorProgram& CP, const ActiveProgram& A, const FieldOp& op, 
   float* W = S.weight.data();
   float* one = S.one.data();
   const glm::vec3 first = primsFallback(CP, op);
+  S.zero[s] = S.uni[s] = 0;
   if (op.count == 0) {  // a specialised op whose primitives all miss the region: 0
-    std::fill(V, V + n, 0.0f);
-    fillColor(S, s, n, first);
+    S.zero[s] = 1;
+    setUniform(S, s, first);
     return;
   }
   if (uniformColor(P, A, op, first)) {
     contribution(P, op.primClass, A.indices.data() + op.first, int(op.count), op.combineMax, x, y, z, n, lo, hi, V);
-    fillColor(S, s, n, first);
+    setUniform(S, s, first);
     return;
   }
   std::fill(V, V + n, 0.0f);
@@ -297,6 +313,173 @@ void combine(const ColorProgram& CP, const FieldOp& op, RunScratch& S, int base,
   }
 }
 
+// The value of skeletal point primitive p under affine map m at the points, into V: skeletalPotential
+// (the sum's 0 + v, or the union's max(v, 0)) with an integer stiffness kPower + 1, written without
+// its early return or branches so that the loop vectorises: beyond R, t is clamped at 0 and v is +0.
+template <int kPower, bool kMax>
+__attribute__((always_inline)) inline void mappedPointValues(const SpaceMap& m, const SkeletalPrimitive& p, const float* __restrict x,
+                       const float* __restrict y, const float* __restrict z, int n, float* __restrict V) {
+  const glm::mat3 L = m.linear;  // in locals, as the field's mapPoints has them
+  const float l00 = L[0][0], l01 = L[0][1], l02 = L[0][2], l10 = L[1][0], l11 = L[1][1], l12 = L[1][2],
+              l20 = L[2][0], l21 = L[2][1], l22 = L[2][2];
+  const float o0 = m.origin.x, o1 = m.origin.y, o2 = m.origin.z;
+  const float px = p.skeleton.p0.x, py = p.skeleton.p0.y, pz = p.skeleton.p0.z;
+  const float r2 = p.radius * p.radius, I = p.intensity;
+  for (int i = 0; i < n; ++i) {
+    const float dx = x[i] - o0, dy = y[i] - o1, dz = z[i] - o2;
+    const float ex = l00 * dx + l10 * dy + l20 * dz - px;
+    const float ey = l01 * dx + l11 * dy + l21 * dz - py;
+    const float ez = l02 * dx + l12 * dy + l22 * dz - pz;
+    const float u = 1.0f - (ex * ex + ey * ey + ez * ez) / r2;
+    const float t = 0.5f * (u + std::fabs(u));  // max(u, 0), exactly, with no select to thread jumps through
+    float tk1 = 1.0f;  // powStiffness's multiply chain, written out
+    if constexpr (kPower >= 1) tk1 *= t;
+    if constexpr (kPower >= 2) tk1 *= t;
+    if constexpr (kPower >= 3) tk1 *= t;
+    const float v = I * tk1 * t;
+    if constexpr (kMax) V[i] = 0.5f * (v + std::fabs(v));
+    else V[i] = 0.0f + v;
+  }
+}
+
+template <bool kMax>
+__attribute__((always_inline)) inline void mappedPointValues(const SpaceMap& m, const SkeletalPrimitive& p,
+                                                             const float* x, const float* y, const float* z, int n,
+                                                             float* V) {
+  const float K = p.stiffness;
+  if (K == 1.0f) mappedPointValues<0, kMax>(m, p, x, y, z, n, V);
+  else if (K == 2.0f) mappedPointValues<1, kMax>(m, p, x, y, z, n, V);
+  else if (K == 3.0f) mappedPointValues<2, kMax>(m, p, x, y, z, n, V);
+  else mappedPointValues<3, kMax>(m, p, x, y, z, n, V);
+}
+
+// The loops above, cloned for AVX-512 and AVX2 (field_program_detail.h); this file is compiled
+// without contraction (engine/core/CMakeLists.txt), so every clone computes the same values.
+ANIMORPH_KERNEL __attribute__((noinline)) void mappedPointLoop(const SpaceMap& m, const SkeletalPrimitive& p,
+                                                               bool combineMax, const float* x, const float* y,
+                                                               const float* z, int n, float* V) {
+  if (combineMax) mappedPointValues<true>(m, p, x, y, z, n, V);
+  else mappedPointValues<false>(m, p, x, y, z, n, V);
+}
+
+// One Sum operand's weights w = max(v, 0) (0 where v is NaN) added to W, and w times its colour
+// (rows r, g, b, or the constant c where r is null) to R, G, B. Cloned as mappedPointLoop.
+ANIMORPH_KERNEL __attribute__((noinline)) void weighOperand(const float* __restrict v, const float* __restrict r,
+                                                            const float* __restrict g, const float* __restrict b,
+                                                            const glm::vec3 c, int n, float* __restrict W,
+                                                            float* __restrict R, float* __restrict G,
+                                                            float* __restrict B) {
+  if (!r) {
+    const float cr = c.r, cg = c.g, cb = c.b;
+    for (int i = 0; i < n; ++i) {
+      const float w = v[i] > 0.0f ? v[i] : 0.0f;
+      W[i] += w;
+      R[i] += w * cr;
+      G[i] += w * cg;
+      B[i] += w * cb;
+    }
+    return;
+  }
+  for (int i = 0; i < n; ++i) {
+    const float w = v[i] > 0.0f ? v[i] : 0.0f;
+    W[i] += w;
+    R[i] += w * r[i];
+    G[i] += w * g[i];
+    B[i] += w * b[i];
+  }
+}
+
+// A Sum over entries [base, base + op.count) into base, as combine() gives it, operand by operand
+// over all the points (loops the compiler vectorises): entries that are +0 everywhere are skipped
+// (their weight is 0, and v + 0 is v), one-coloured entries add their weight times a constant.
+// The weights, sums and quotients are combine()'s, in the same order. One colour when every
+// operand that can weigh and the colour where none weighs are the same.
+void sumOp(const ColorProgram& CP, const FieldOp& op, RunScratch& S, int base, int n) {
+  const int count = int(op.count), weighing = std::min(count, 64);  // combine(): at most 64 colours weigh
+  const bool ruleEmpty = colorRule(op) == 2;
+  const glm::vec3 emptyRule = ruleEmpty ? ruleColor(CP, op) : glm::vec3(0.0f);
+  bool allZero = true, oneColor = ruleEmpty || S.uni[base];
+  const glm::vec3 c0 = ruleEmpty ? emptyRule : S.uc[base];
+  for (int k = 0; k < count; ++k) {
+    const int e = base + k;
+    if (S.zero[e]) continue;
+    allZero = false;
+    if (k < weighing) oneColor = oneColor && S.uni[e] && S.uc[e] == c0;
+  }
+  if (oneColor) {  // (every operand +0: no weight anywhere, the colour c0 where none weighs)
+    if (allZero) S.zero[base] = 1;
+    else {  // the value: the plain sum, from the first operand that is not +0
+      bool started = false;
+      float* V0 = S.V(base);
+      for (int k = 0; k < count; ++k) {
+        if (S.zero[base + k]) continue;
+        const float* vk = S.V(base + k);
+        if (!started) std::copy(vk, vk + n, V0);
+        else
+          for (int i = 0; i < n; ++i) V0[i] += vk[i];
+        started = true;
+      }
+      S.zero[base] = 0;
+    }
+    setUniform(S, base, c0);
+    return;
+  }
+  float* W = S.weight.data();
+  float* vs = S.one.data();
+  float* R = S.acc.data();
+  float* G = R + kRun;
+  float* B = R + 2 * kRun;
+  std::fill(W, W + n, 0.0f);
+  std::fill(vs, vs + n, 0.0f);
+  std::fill(S.acc.begin(), S.acc.end(), 0.0f);
+  for (int k = 0; k < count; ++k) {
+    const int e = base + k;
+    if (S.zero[e]) continue;
+    const float* vk = S.V(e);
+    for (int i = 0; i < n; ++i) vs[i] += vk[i];
+    if (k >= weighing) continue;
+    if (S.uni[e]) weighOperand(vk, nullptr, nullptr, nullptr, S.uc[e], n, W, R, G, B);
+    else weighOperand(vk, S.C(e, 0), S.C(e, 1), S.C(e, 2), glm::vec3(0.0f), n, W, R, G, B);
+  }
+  // Where no operand weighs: the rule's colour, or the first operand's (kept).
+  if (ruleEmpty || S.uni[base]) fillColor(S, base, n, ruleEmpty ? emptyRule : S.uc[base]);
+  float *R0 = S.C(base, 0), *G0 = S.C(base, 1), *B0 = S.C(base, 2);
+  for (int i = 0; i < n; ++i) {
+    if (W[i] > 0.0f) {
+      R0[i] = R[i] / W[i];
+      G0[i] = G[i] / W[i];
+      B0[i] = B[i] / W[i];
+    }
+  }
+  std::copy(vs, vs + n, S.V(base));
+  S.zero[base] = S.uni[base] = 0;
+}
+
+// BeginMap ops[oi] of an affine map, then one skeletal point primitive of one colour, then its
+// EndMap (a meta-primitive's instance): its value at the points in one loop into entry s, its
+// colour one constant (as primsOp gives them without mapping the points). False when the ops are
+// not of that form (nothing written).
+bool fusedMappedPoint(const ColorProgram& CP, const ActiveProgram& A, size_t oi, RunScratch& S, int s, const float* x,
+                      const float* y, const float* z, int n) {
+  const FieldProgram& P = CP.program;
+  const SpaceMap& m = P.maps[A.ops[oi].first];
+  if (m.kind != SpaceMapKind::Affine || oi + 2 >= A.ops.size()) return false;
+  const FieldOp& prims = A.ops[oi + 1];
+  if (prims.code != OpCode::Prims || prims.primClass != PrimClass::Skeletal || prims.count != 1 ||
+      A.ops[oi + 2].code != OpCode::EndMap)
+    return false;
+  const SkeletalPrimitive& p = P.skeletal[A.indices[prims.first]];
+  const glm::vec3 first = primsFallback(CP, prims);
+  const float K = p.stiffness;
+  if (p.skeleton.kind != SkeletonKind::Point || !(p.radius > 0.0f) ||
+      !(K == 1.0f || K == 2.0f || K == 3.0f || K == 4.0f) || !uniformColor(P, A, prims, first))
+    return false;
+  mappedPointLoop(m, p, prims.combineMax, x, y, z, n, S.V(s));
+  S.zero[s] = 0;
+  setUniform(S, s, first);
+  return true;
+}
+
 // True (with c) when the program can give only one colour: every primitive it holds, every
 // fallback colour (a Prims op's first primitive, a constant's, a Sum's, a skipped map's) is c.
 // Every op's colour is a blend of, or a choice among, these: c wherever it is evaluated.
@@ -339,6 +522,10 @@ size_t matchingEnd(const ActiveProgram& A, size_t oi) {
 void prepareRun(const FieldProgram& P, RunScratch& S, const float* x, const float* y, const float* z, int n) {
   const int depth = P.maxMapDepth() + 1;
   S.stack.resize(size_t(std::max(1, P.maxStack())) * 4 * kRun);
+  S.uni.assign(size_t(std::max(1, P.maxStack())), 0);
+  S.zero.assign(size_t(std::max(1, P.maxStack())), 0);
+  S.uc.resize(size_t(std::max(1, P.maxStack())));
+  S.acc.resize(3 * kRun);
   S.coords.resize(size_t(depth) * 3 * kRun);
   S.one.resize(kRun);
   S.weight.resize(kRun);
@@ -355,11 +542,26 @@ void prepareRun(const FieldProgram& P, RunScratch& S, const float* x, const floa
 void enterMap(const SpaceMap& m, RunScratch& S, int& level, int n) {
   float* o = S.coords.data() + size_t(level + 1) * 3 * kRun;
   const size_t l = size_t(level);
-  for (int i = 0; i < n; ++i) {
-    const glm::vec3 q = m.toLocal({S.lx[l][i], S.ly[l][i], S.lz[l][i]});
-    o[i] = q.x;
-    o[kRun + i] = q.y;
-    o[2 * kRun + i] = q.z;
+  if (m.kind == SpaceMapKind::Affine) {  // linear * (x - origin), in locals (a loop that vectorises)
+    const glm::mat3 L = m.linear;
+    const float l00 = L[0][0], l01 = L[0][1], l02 = L[0][2], l10 = L[1][0], l11 = L[1][1], l12 = L[1][2],
+                l20 = L[2][0], l21 = L[2][1], l22 = L[2][2];
+    const float o0 = m.origin.x, o1 = m.origin.y, o2 = m.origin.z;
+    const float *__restrict ix = S.lx[l], *__restrict iy = S.ly[l], *__restrict iz = S.lz[l];
+    float *__restrict ox = o, *__restrict oy = o + kRun, *__restrict oz = o + 2 * kRun;
+    for (int i = 0; i < n; ++i) {
+      const float dx = ix[i] - o0, dy = iy[i] - o1, dz = iz[i] - o2;
+      ox[i] = l00 * dx + l10 * dy + l20 * dz;
+      oy[i] = l01 * dx + l11 * dy + l21 * dz;
+      oz[i] = l02 * dx + l12 * dy + l22 * dz;
+    }
+  } else {
+    for (int i = 0; i < n; ++i) {
+      const glm::vec3 q = m.toLocal({S.lx[l][i], S.ly[l][i], S.lz[l][i]});
+      o[i] = q.x;
+      o[kRun + i] = q.y;
+      o[2 * kRun + i] = q.z;
+    }
   }
   ++level;
   S.lx[size_t(level)] = o;
@@ -372,9 +574,22 @@ void enterMap(const SpaceMap& m, RunScratch& S, int& level, int n) {
 void applyValueRule(const ColorProgram& CP, const FieldOp& op, RunScratch& S, int s, int n) {
   if (colorRule(op) != 3) return;
   const glm::vec3 c = ruleColor(CP, op);
+  if (S.zero[s]) {  // <= 0 everywhere
+    setUniform(S, s, c);
+    return;
+  }
+  if (S.uni[s] && S.uc[s] == c) return;
+  materialise(S, s, n);
   const float* V = S.V(s);
   for (int i = 0; i < n; ++i)
     if (!(V[i] > 0.0f)) setColor(S, s, i, c);
+}
+
+// Pushes a constant value of one colour into entry s (+0: only flagged).
+void pushConstant(RunScratch& S, int s, int n, float value, const glm::vec3& c) {
+  S.zero[s] = value == 0.0f && !std::signbit(value);
+  if (!S.zero[s]) std::fill(S.V(s), S.V(s) + n, value);
+  setUniform(S, s, c);
 }
 
 // The ops of a specialised program over one run of n points (n <= kRun): colours into out.
@@ -395,8 +610,7 @@ void runColors(const ColorProgram& CP, const ActiveProgram& A, RunScratch& S, co
         ++sp;
         break;
       case OpCode::Const:
-        std::fill(S.V(sp), S.V(sp) + n, op.emptyValue);
-        fillColor(S, sp, n, constColor(CP, op));
+        pushConstant(S, sp, n, op.emptyValue, constColor(CP, op));
         ++sp;
         break;
       case OpCode::BeginMap: {
@@ -404,9 +618,16 @@ void runColors(const ColorProgram& CP, const ActiveProgram& A, RunScratch& S, co
         if (skipMissedMaps &&
             (r.empty() || glm::any(glm::greaterThan(r.min, S.hi[0])) || glm::any(glm::lessThan(r.max, S.lo[0])))) {
           oi = matchingEnd(A, oi);
-          std::fill(S.V(sp), S.V(sp) + n, A.ops[oi].emptyValue);
-          fillColor(S, sp, n, op.first < CP.mapEmptyColor.size() ? CP.mapEmptyColor[op.first] : clayLinear());
+          pushConstant(S, sp, n, A.ops[oi].emptyValue,
+                       op.first < CP.mapEmptyColor.size() ? CP.mapEmptyColor[op.first] : clayLinear());
           applyValueRule(CP, A.ops[oi], S, sp, n);
+          ++sp;
+          break;
+        }
+        if (fusedMappedPoint(CP, A, oi, S, sp, S.lx[l], S.ly[l], S.lz[l], n)) {
+          applyValueRule(CP, A.ops[oi + 1], S, sp, n);
+          applyValueRule(CP, A.ops[oi + 2], S, sp, n);
+          oi += 2;
           ++sp;
           break;
         }
@@ -419,11 +640,20 @@ void runColors(const ColorProgram& CP, const ActiveProgram& A, RunScratch& S, co
         break;
       default: {
         const int base = sp - int(op.count);
-        combine(CP, op, S, base, n);
+        if (op.code == OpCode::Sum) {
+          sumOp(CP, op, S, base, n);
+        } else {
+          for (int k = 0; k < int(op.count); ++k) materialise(S, base + k, n);
+          combine(CP, op, S, base, n);
+        }
         applyValueRule(CP, op, S, base, n);
         sp = base + 1;
       }
     }
+  }
+  if (sp > 0 && S.uni[0]) {
+    std::fill(out, out + n, glm::vec4(glm::clamp(S.uc[0], 0.0f, 1.0f), 1.0f));
+    return;
   }
   for (int i = 0; i < n; ++i) {
     glm::vec3 c = sp > 0 ? glm::vec3(S.C(0, 0)[i], S.C(0, 1)[i], S.C(0, 2)[i]) : clayLinear();

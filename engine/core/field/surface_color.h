@@ -74,6 +74,11 @@ class SurfaceColorEvaluator {
   static constexpr int kRun = 128;  // points evaluated together
   struct RunScratch {
     std::vector<float> stack, coords, one, weight;  // stack entry s: kRun values, then kRun each of r, g, b
+    // Per stack entry: its colour is uni[s] ? uc[s] at every point (its r, g, b rows unwritten) : its
+    // rows; zero[s]: its value is +0 at every point (its value row unwritten). acc: a Sum's r, g, b sums.
+    std::vector<uint8_t> uni, zero;
+    std::vector<glm::vec3> uc;
+    std::vector<float> acc;
     std::vector<uint32_t> reach;
     std::vector<uint32_t> grouped, groupStart;  // a Prims op's primitives by colour, each group's first
     std::vector<glm::vec3> groupColor;

@@ -807,13 +807,29 @@ void PolygonizeRun::gradientNormals(const BlockJob& job, Scratch& sc) {
       nq = outwardNormal(sc.gx[q], sc.gy[q], sc.gz[q], nq);
     }
     pairs.fetch_add(m * active.primitiveCount, std::memory_order_relaxed);
-    if (colorProg) colorVertices(active, o, sc, m);
   }
   points.fetch_add(nv, std::memory_order_relaxed);
+  if (!colorProg) return;
+  // Colours: every vertex with the block's program, one walk per run of 128 (sub-block by sub-block,
+  // so each run stays compact), not one per sub-block.
+  sc.gather.clear();
+  for (int sq = 0; sq < 8; ++sq)
+    for (size_t q = 0; q < nv; ++q)
+      if (sc.vertexSub[q] == sq) sc.gather.push_back(uint32_t(q));
+  for (size_t q = 0; q < nv; ++q) {
+    const glm::vec3& pq = o.positions[sc.gather[q]];
+    sc.x[q] = pq.x;
+    sc.y[q] = pq.y;
+    sc.z[q] = pq.z;
+  }
+  colorVertices(*job.prog, o, sc, nv);
 }
 
-// The colours of the m vertices sc.gather of o (their points in sc.x, y, z), with the program
-// their normals were evaluated with (field/surface_color.h: the whole walk's colours).
+// The colours of the m vertices sc.gather of o (their points in sc.x, y, z), with active: the
+// block's program (field/surface_color.h: the whole walk's colours). The block's, not each
+// sub-block's: a walk over the program's ops costs about as much as the points it colours in the
+// animorphosis demo (hundreds of maps per program, a dozen vertices per sub-block), so one walk
+// per run of 128 vertices instead of one per sub-block halved the colour's time there.
 void PolygonizeRun::colorVertices(const ActiveProgram& active, BlockOutput& o, Scratch& sc, size_t m) {
   const auto c0 = std::chrono::steady_clock::now();
   o.colors.resize(o.positions.size());
