@@ -45,10 +45,7 @@ def load(folder, formats):
 
 
 # Files fit and new refuse today, and why (a limit outside the importer, reported rather than hidden).
-KNOWN_FAILURES = {
-    "quadruped_cm.dae": "the automatic stand-in fits poorly (10.2 % far after repair) where the same scene in "
-                        "metres (quadruped_m.dae) fits at 5.8 % and its FBX at 0.0 %: the fit depends on the "
-                        "file's scale"}
+KNOWN_FAILURES = {}
 
 
 def mode_fit(cli, folder, formats):
