@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 
 #include <nlohmann/json.hpp>
 
@@ -18,6 +17,7 @@
 #include "core/standin/character_pose.h"
 #include "core/standin/fit_standin.h"
 #include "core/standin/repair_fit.h"
+#include "util/test_characters.h"
 #include "util/test_skip.h"
 
 using namespace animorph;
@@ -28,12 +28,8 @@ const std::filesystem::path kDir = ANIMORPH_TEST_CHARACTERS;
 
 // The manifest's entries whose files this build can import (glTF, FBX, Collada).
 std::vector<nlohmann::json> importableCharacters() {
-  std::ifstream in(kDir / "manifest.json");
-  if (!in) return {};
-  const auto manifest = nlohmann::json::parse(in, nullptr, false);
   std::vector<nlohmann::json> out;
-  if (manifest.is_discarded()) return out;
-  for (const auto& e : manifest["files"])
+  for (const auto& e : test::testCharacterEntries(kDir.string()))
     if (characterFormatOf(e["file"].get<std::string>()) != CharacterFormat::Unknown) out.push_back(e);
   return out;
 }
