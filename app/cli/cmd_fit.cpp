@@ -1,4 +1,6 @@
 // animorph-cli fit CHARACTER -o STANDIN.json: fits a stand-in and prints the fit error.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -40,7 +42,8 @@ json reportJson(const FitReport& r) {
           {"projection", {{"points", r.projection.points},
                           {"converged", r.projection.converged},
                           {"fallbacks", r.projection.fallbacks},
-                          {"failures", r.projection.failures}}},
+                          {"failures", r.projection.failures},
+                          {"misses", r.projectionMisses}}},
           {"milliseconds", r.milliseconds},
           {"notes", r.notes},
           {"mean_distance", r.meanDistance},
@@ -134,8 +137,14 @@ int runFit(const std::vector<std::string>& args) {
                 e.meanDistance, e.maxDistance, 100.0 * e.farShare);
   if (!r.repairs.empty()) std::printf("  %s\n", repairSummary(r).c_str());
   for (const auto& p : r.problems) std::printf("  POOR FIT: %s\n", p.c_str());
-  std::printf("  projection: %zu vertices, %zu fallbacks, %zu failures; %.0f ms\n", r.projection.points,
-              r.projection.fallbacks, r.projection.failures, r.milliseconds);
+  std::printf("  projection: %zu vertices, %zu fallbacks, %zu failures", r.projection.points, r.projection.fallbacks,
+              r.projection.failures);
+  if (r.projection.failures) {  // the failure closest to the surface, in diagonals
+    double nearest = INFINITY;
+    for (float d : r.projection.failureDistances) nearest = std::min(nearest, double(d) / std::max(1e-12, r.diagonal));
+    std::printf(" (%zu off the surface; the closest %.2g of the diagonal from it)", r.projectionMisses, nearest);
+  }
+  std::printf("; %.0f ms\n", r.milliseconds);
   for (const auto& n : r.notes) std::printf("  note: %s\n", n.c_str());
   std::printf("wrote %s\n", output.c_str());
   return 0;

@@ -4,14 +4,15 @@
   info       info and info --json on an FBX (format, unit, joints, clip), a Collada and an OBJ of
              assimp-testmodels; a truncated FBX fails (exit 1) naming the path as given
   units      new with a centimetre character (FBX) as source and a metre one (glTF) as target,
-             without any flag: the factor 100 is printed and saved as the target's scale; the
-             same two glTF files whose sizes differ 100x with no unit to explain it are refused
-             unless --allow-rescale
+             without any flag: the factor 100 is printed and saved as the target's scale; a glTF
+             holding centimetre numbers (100x its metre twin) is scaled by 0.01 and said so; a
+             300x that no unit explains is refused unless --allow-rescale
 
 usage: import_checks.py MODE CLI TEST_CHARACTERS_DIR
 Exit 77 (skipped) when assimp-testmodels or the test characters (Blender) are missing."""
 import json
 import os
+import struct
 import subprocess
 import sys
 import tempfile
@@ -70,6 +71,24 @@ def mode_info(cli, _chars):
               f"info on a truncated FBX fails naming the path and the reason: {r.stderr.strip()}")
 
 
+def rescaled_glb(src, dst, k):
+    """Writes src with its scene's root nodes scaled k times (no matrix on them, as Blender writes)."""
+    with open(src, "rb") as f:
+        data = f.read()
+    json_len = struct.unpack_from("<I", data, 12)[0]
+    doc = json.loads(data[20:20 + json_len])
+    for n in doc["scenes"][doc.get("scene", 0)]["nodes"]:
+        node = doc["nodes"][n]
+        node["scale"] = [k * s for s in node.get("scale", [1, 1, 1])]
+        node["translation"] = [k * t for t in node.get("translation", [0, 0, 0])]
+    text = json.dumps(doc).encode()
+    text += b" " * (-len(text) % 4)
+    rest = data[20 + json_len:]
+    with open(dst, "wb") as f:
+        f.write(struct.pack("<III", 0x46546C67, 2, 20 + len(text) + len(rest)))
+        f.write(struct.pack("<II", len(text), 0x4E4F534A) + text + rest)
+
+
 def mode_units(cli, chars):
     cm_fbx = os.path.join(chars, "humanoid_cm.fbx")
     m_glb = os.path.join(chars, "humanoid_m.glb")
@@ -86,9 +105,22 @@ def mode_units(cli, chars):
         target = [a for a in project["actors"] if a["id"] == project["morph"]["target"]][0]
         scale = target["scale"]
         check(all(abs(s - 100.0) < 1.0 for s in scale), f"the target's saved scale is the units' 100 ({scale})")
-        r = run(cli, "new", m_glb, cm_numbers_glb, "-o", os.path.join(tmp, "refused.animorph"), "--accept-poor-fit")
-        check(r.returncode == 1 and "which no unit explains" in r.stderr and cm_numbers_glb in r.stderr,
-              f"a 100x size difference no unit explains is refused naming the file: {r.stderr.strip()}")
+        out = os.path.join(tmp, "guessed.animorph")
+        r = run(cli, "new", m_glb, cm_numbers_glb, "-o", out, "--accept-poor-fit")
+        check(r.returncode == 0 and "target is 100x its partner (probably authored in centimetres): scaled by 0.01"
+              in r.stdout, f"glTF holding centimetre numbers is taken as centimetres: {r.stdout} {r.stderr.strip()}")
+        project = json.load(open(out))
+        target = [a for a in project["actors"] if a["id"] == project["morph"]["target"]][0]
+        check(all(abs(s - 0.01) < 1e-6 for s in target["scale"]), f"its saved scale is 0.01 ({target['scale']})")
+        # 300x: between centimetres and millimetres, no unit explains it.
+        odd = os.path.join(tmp, "humanoid_x300.glb")
+        rescaled_glb(m_glb, odd, 300.0)
+        r = run(cli, "new", m_glb, odd, "-o", os.path.join(tmp, "refused.animorph"), "--accept-poor-fit")
+        check(r.returncode == 1 and "which no unit explains" in r.stderr and "humanoid_x300.glb" in r.stderr,
+              f"a 300x size difference no unit explains is refused naming the file: {r.stderr.strip()}")
+        r = run(cli, "new", m_glb, odd, "-o", os.path.join(tmp, "allowed.animorph"), "--accept-poor-fit",
+                "--allow-rescale")
+        check(r.returncode == 0 and "WARNING" in r.stderr, f"--allow-rescale accepts it loudly: {r.stderr.strip()}")
 
 
 def main():

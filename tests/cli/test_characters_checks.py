@@ -7,13 +7,14 @@ usage: test_characters_checks.py fit|new|every CLI DIR FORMATS
        files of that format the importer cannot read instead of failing) gets a stand-in in
        one piece, not poor, with its fit report (and a 'repaired' line with before/after figures
        when the first fit was poor).
-  new: `new A B -o P.animorph` works without flags on pairs of characters in the same unit.
+  new: `new A B -o P.animorph` works without flags on pairs of characters in the same unit, or in
+       units that explain their sizes (a declared unit, or glTF holding centimetre numbers).
   every: `new PARTNER FILE -o P.animorph` works without flags for every file of the test set in
-       FORMATS (all units and variants; PARTNER is humanoid_m.glb, quadruped_m.glb for itself; for
-       the NAME_cm.glb files, whose centimetre numbers glTF cannot declare, humanoid_cm.glb: against
-       a metre partner they need --allow-rescale by design, docs/morph.md), and on cross-format
-       pairs; prints per file the stand-in's pieces, the share of vertices far from it and the
-       scale factor applied to the file. KNOWN_FAILURES are printed, not failed (and fail the run
+       FORMATS (all units and variants; PARTNER is humanoid_m.glb, quadruped_m.glb for itself; the
+       NAME_cm.glb files, whose centimetre numbers glTF cannot declare, are scaled by 0.01 as
+       "probably authored in centimetres", docs/morph.md), and on cross-format pairs; prints per
+       file the stand-in's pieces, the share of vertices far from it and the scale factor applied
+       to the file. KNOWN_FAILURES are printed, not failed (and fail the run
        once they pass, so that the list is kept true).
 Exit 77 (skipped) when DIR has no manifest (Blender missing).
 """
@@ -45,10 +46,7 @@ def load(folder, formats):
 
 
 # Files fit and new refuse today, and why (a limit outside the importer, reported rather than hidden).
-KNOWN_FAILURES = {
-    "quadruped_cm.dae": "the automatic stand-in fits poorly (10.2 % far after repair) where the same scene in "
-                        "metres (quadruped_m.dae) fits at 5.8 % and its FBX at 0.0 %: the fit depends on the "
-                        "file's scale"}
+KNOWN_FAILURES = {}
 
 
 def mode_fit(cli, folder, formats):
@@ -105,12 +103,15 @@ def mode_fit(cli, folder, formats):
 
 def mode_new(cli, folder, formats):
     entries = {e["file"]: e for e in load(folder, formats)}
-    # Same-unit pairs, and FBX (centimetres) with glTF or FBX in metres: the units are aligned without a flag.
+    # Same-unit pairs, FBX (centimetres) with glTF or FBX in metres, and glTF in centimetres with
+    # glTF in metres: the units are aligned without a flag.
     pairs = [("humanoid_m.glb", "quadruped_m.glb"), ("quadruped_m.glb", "tentacle_m.glb"),
              ("tentacle_m.glb", "flag_m.glb"), ("flag_m.glb", "humanoid_m.glb"), ("humanoid_cm.glb", "tentacle_cm.glb"),
              ("quadruped_cm.glb", "flag_cm.glb"), ("humanoid_scaledroot.glb", "quadruped_stretched.glb"),
              ("tentacle_scaledroot.glb", "humanoid_m.glb"), ("humanoid_m.fbx", "quadruped_m.glb"),
-             ("quadruped_cm.fbx", "tentacle_m.fbx"), ("tentacle_scaledroot.fbx", "flag_m.fbx")]
+             ("quadruped_cm.fbx", "tentacle_m.fbx"), ("tentacle_scaledroot.fbx", "flag_m.fbx"),
+             # glTF holding centimetre numbers against metres: a 100x that the centimetre explains.
+             ("humanoid_m.glb", "tentacle_cm.glb"), ("flag_cm.glb", "quadruped_m.glb")]
     done = 0
     with tempfile.TemporaryDirectory() as tmp:
         for fa, fb in pairs:
@@ -168,8 +169,6 @@ def new_without_flags(cli, folder, fa, fb, tmp):
 
 
 def partner_of(name):
-    if name.endswith("_cm.glb"):
-        return "quadruped_cm.glb" if name == "humanoid_cm.glb" else "humanoid_cm.glb"
     return "quadruped_m.glb" if name == "humanoid_m.glb" else "humanoid_m.glb"
 
 
@@ -200,6 +199,8 @@ def mode_every(cli, folder, formats):
                   f"(file in {e['unit']}, partner {partner})")
             if pieces != 1:
                 failures.append(f"{e['file']}: stand-in in {pieces} pieces")
+            if e["file"].endswith("_cm.glb") and ("probably authored in centimetres): scaled by 0.01" not in out):
+                failures.append(f"new {partner} {e['file']} does not say it scaled the centimetre numbers: {out}")
         cross = [("humanoid_cm.dae", "tentacle_m.fbx"), ("quadruped_m.fbx", "flag_cm.dae"),
                  ("tentacle_scaledroot.fbx", "humanoid_scaledroot.dae"), ("flag_m.dae", "humanoid_fbxunits.fbx"),
                  ("quadruped_stretched.glb", "tentacle_cm.dae")]

@@ -142,19 +142,30 @@ TEST_CASE("fit report: the components check fails on a deliberately broken stand
   CHECK(measureStandinFit(c, fit->standin, FitSettings{}).standinComponents == 1);
 }
 
-TEST_CASE("new: a rescale over 10x needs consent, a poor fit is refused naming bones", "[standin][realrig]") {
+TEST_CASE("new: a rescale over 10x that no unit explains needs consent, a poor fit is refused naming bones",
+          "[standin][realrig]") {
   const Character creature = makeCreatureCharacter();
   const Character& figure = figure60();
   NewMorphSettings s;
-  auto refused = makeMorphProject(creature, "creature.glb", figure, "figure60.glb", s);
+  // 60 units tall against the 1 m creature: 42x its size, taken as inches (1 in = 0.0254 m).
+  auto inches = makeMorphProject(creature, "creature.glb", figure, "figure60.glb", s);
+  REQUIRE(inches.ok());
+  CHECK(inches->warnings.empty());
+  CHECK(inches->scaleApplied == Approx(0.0254));
+  CHECK(std::any_of(inches->messages.begin(), inches->messages.end(),
+                    [](const std::string& m) { return m.find("(probably authored in inches)") != std::string::npos; }));
+  // 7 times that (about 290x): between centimetres and millimetres, no unit explains it.
+  Character huge = figure;
+  for (int r : huge.roots) huge.nodes[size_t(r)].rest.scale *= 7.0f, huge.nodes[size_t(r)].rest.translation *= 7.0f;
+  auto refused = makeMorphProject(creature, "creature.glb", huge, "figure420.glb", s);
   REQUIRE(!refused.ok());
-  CHECK(refused.error().find("figure60.glb") != std::string::npos);
-  CHECK(refused.error().find("scale") != std::string::npos);
+  CHECK(refused.error().find("figure420.glb") != std::string::npos);
+  CHECK(refused.error().find("which no unit explains") != std::string::npos);
   s.allowLargeRescale = true;
-  auto made = makeMorphProject(creature, "creature.glb", figure, "figure60.glb", s);
+  auto made = makeMorphProject(creature, "creature.glb", huge, "figure420.glb", s);
   REQUIRE(made.ok());
   CHECK(made->aligned);
-  CHECK(made->scaleApplied < 0.1);  // the target shrinks by more than 10x
+  CHECK(made->scaleApplied < 0.01);  // the target shrinks by more than 100x
   REQUIRE(!made->warnings.empty());
   CHECK(made->warnings.front().find("scale") != std::string::npos);
 

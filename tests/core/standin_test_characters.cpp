@@ -8,8 +8,8 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
-#include <fstream>
 
 #include <nlohmann/json.hpp>
 
@@ -17,6 +17,7 @@
 #include "core/standin/character_pose.h"
 #include "core/standin/fit_standin.h"
 #include "core/standin/repair_fit.h"
+#include "util/test_characters.h"
 #include "util/test_skip.h"
 
 using namespace animorph;
@@ -27,12 +28,8 @@ const std::filesystem::path kDir = ANIMORPH_TEST_CHARACTERS;
 
 // The manifest's entries whose files this build can import (glTF, FBX, Collada).
 std::vector<nlohmann::json> importableCharacters() {
-  std::ifstream in(kDir / "manifest.json");
-  if (!in) return {};
-  const auto manifest = nlohmann::json::parse(in, nullptr, false);
   std::vector<nlohmann::json> out;
-  if (manifest.is_discarded()) return out;
-  for (const auto& e : manifest["files"])
+  for (const auto& e : test::testCharacterEntries(kDir.string()))
     if (characterFormatOf(e["file"].get<std::string>()) != CharacterFormat::Unknown) out.push_back(e);
   return out;
 }
@@ -60,11 +57,9 @@ TEST_CASE("fit: every test character (Blender exports) gets a one-piece stand-in
     CHECK(r.meshComponents == int(e["meshes"].size()));
     CHECK(r.standinComponents == 1);
     CHECK(r.largestGap == 0.0);
-    // Known: quadruped_cm.dae fits poorly (10.2 % far) where quadruped_m.dae fits at 5.8 %: the
-    // fit depends on the file's scale (docs/import.md). Checked both ways, to keep the list true.
-    const bool knownPoor = e["file"] == "quadruped_cm.dae";
-    if (knownPoor) WARN("known poor fit: " << file << ": " << fitSummary(r));
-    CHECK(r.poor == knownPoor);
+    CHECK(!r.poor);
+    CHECK(r.projection.failureDistances.size() == r.projection.failures);
+    CHECK(r.projectionMisses <= r.projection.failures);
     CHECK(r.meanError < 0.04);
     CHECK(r.segments == fit->standin.segments.size());
     CHECK(r.perSegment.size() == r.segments);
@@ -78,6 +73,45 @@ TEST_CASE("fit: every test character (Blender exports) gets a one-piece stand-in
   // Repairs are not free: the report says how many characters needed one.
   CHECK(fitted >= 30);  // every glTF, FBX and Collada file of the set
   std::cout << "test characters: " << fitted << " of " << entries.size() << " fitted, " << repaired << " repaired\n";
+}
+
+// The quadruped's first fit is poor in both units; the spine's repair was refused in centimetres
+// for one vertex whose projection stopped within float noise of the surface (|f| 1.4e-5 against a
+// tolerance of 1e-5): such a failure is no miss (FitQualitySettings::surfaceNoiseFraction).
+TEST_CASE("fit: the quadruped in centimetres (Collada) fits like the one in metres, repair included",
+          "[.testchars][standin]") {
+  const std::string mFile = (kDir / "quadruped_m.dae").string(), cmFile = (kDir / "quadruped_cm.dae").string();
+  for (const auto& f : {mFile, cmFile})
+    if (!std::filesystem::exists(f)) ANIMORPH_SKIP("no " << f << " (Blender missing?)");
+  auto m = importCharacter(mFile);
+  auto cm = importCharacter(cmFile);
+  REQUIRE(m.ok());
+  REQUIRE(cm.ok());
+  REQUIRE(cm->unit.metresPerUnit == Approx(0.01));
+  auto a = fitStandin(*m);
+  auto b = fitStandin(*cm);
+  REQUIRE(a.ok());
+  REQUIRE(b.ok());
+  const FitReport &ra = a->report, &rb = b->report;
+  INFO("metres: " << fitSummary(ra) << " / " << repairSummary(ra));
+  INFO("centimetres: " << fitSummary(rb) << " / " << repairSummary(rb));
+  CHECK(rb.diagonal == Approx(100.0 * ra.diagonal).epsilon(1e-4));
+  CHECK(!ra.poor);
+  CHECK(!rb.poor);
+  CHECK(rb.segments == ra.segments);
+  CHECK(rb.repairs.size() == ra.repairs.size());
+  CHECK(rb.standinComponents == 1);
+  CHECK(std::abs(rb.farShare - ra.farShare) <= 2e-3);
+  CHECK(std::abs(rb.meanError - ra.meanError) <= 1e-3);
+  CHECK(ra.projectionMisses == 0);
+  CHECK(rb.projectionMisses == 0);
+  // Every failure counts as a miss when no noise is allowed: the count is what the projection says.
+  FitSettings fs;
+  fs.quality.surfaceNoiseFraction = 0.0;
+  const CharacterPose pose = poseCharacter(*cm, nullptr, 0.0f, glm::mat4(1.0f));
+  const FitReport strict = measureFitQuality(*cm, b->standin, pose, fs.projection, fs.quality);
+  CHECK(strict.projectionMisses == strict.projection.failures);
+  CHECK(strict.farShare == Approx(rb.farShare));
 }
 
 TEST_CASE("fit repair: the wide-bodied quadruped's spine is re-placed side by side, before and after reported",

@@ -10,12 +10,15 @@ using namespace animorph;
 
 namespace {
 
-// The creature as a file in centimetres would hold it: every root scaled 100x, unit declared.
-Character inCentimetres(Character c) {
-  for (int r : c.roots) c.nodes[r].rest.scale *= 100.0f, c.nodes[r].rest.translation *= 100.0f;
-  c.unit = {0.01, "centimetres", true};
+// The creature with every root scaled k times (its lengths in a unit 1/k m), unit as given.
+Character scaledBy(Character c, float k, LengthUnit unit) {
+  for (int r : c.roots) c.nodes[r].rest.scale *= k, c.nodes[r].rest.translation *= k;
+  c.unit = unit;
   return c;
 }
+
+// The creature as a file in centimetres would hold it: every root scaled 100x, unit declared.
+Character inCentimetres(const Character& c) { return scaledBy(c, 100.0f, {0.01, "centimetres", true}); }
 
 }  // namespace
 
@@ -36,7 +39,8 @@ TEST_CASE("target alignment: a centimetre target is scaled by its unit alone, an
   CHECK(unitsOnly(back).scale.y == Approx(100.0f));
 }
 
-TEST_CASE("new: units explain a 100x size difference, the same difference with no unit is refused", "[morph][units]") {
+TEST_CASE("new: units explain a 100x size difference, declared or not, a 300x that no unit explains is refused",
+          "[morph][units]") {
   const Character metres = makeCreatureCharacter();
   NewMorphSettings s;
   s.acceptPoorFit = true;  // the fit is not what this test is about
@@ -47,15 +51,40 @@ TEST_CASE("new: units explain a 100x size difference, the same difference with n
                   "target in centimetres, scaled by 0.01 to the source's metres") != made->messages.end());
   CHECK(made->warnings.empty());
 
-  Character undeclared = inCentimetres(metres);
-  undeclared.unit = {};  // metres: the 100x is no unit's doing
-  auto refused = makeMorphProject(metres, "walker.glb", undeclared, "big.glb", s);
-  REQUIRE_FALSE(refused.ok());
-  CHECK_THAT(refused.error(), Catch::StartsWith("big.glb: aligning the target to the source needs a scale of 0.01x"));
-  CHECK_THAT(refused.error(), Catch::Contains("which no unit explains"));
-  s.allowLargeRescale = true;
-  auto allowed = makeMorphProject(metres, "walker.glb", undeclared, "big.glb", s);
-  REQUIRE(allowed.ok());
-  CHECK(allowed->scaleApplied == Approx(0.01).epsilon(1e-3));
-  CHECK_FALSE(allowed->warnings.empty());
+  // glTF holding centimetre numbers (it declares metres) and a file that declares no unit: the 100x
+  // is taken as centimetres, scaled by exactly 0.01 and said so.
+  for (const LengthUnit& unit : {LengthUnit{}, LengthUnit{1.0, "metres (assumed)", false}}) {
+    auto guessed = makeMorphProject(metres, "walker.glb", scaledBy(metres, 100.0f, unit), "big.glb", s);
+    REQUIRE(guessed.ok());
+    CHECK(guessed->scaleApplied == Approx(0.01));
+    CHECK(guessed->warnings.empty());
+    CHECK(std::find(guessed->messages.begin(), guessed->messages.end(),
+                    "target is 100x its partner (probably authored in centimetres): scaled by 0.01") !=
+          guessed->messages.end());
+  }
+  // The source in millimetre numbers: the target is scaled up by 1000.
+  const TargetAlignment up = alignTargetToSource(scaledBy(metres, 1000.0f, {}), metres);
+  CHECK(up.unitScale == Approx(1000.0));
+  CHECK(up.guessedScale == Approx(1000.0));
+  CHECK_FALSE(up.needsConsent);
+  CHECK(up.unitNote == "target is 0.001x its partner (the partner probably authored in millimetres): scaled by 1000");
+  // A file that declares centimetres is not guessed again: 100x more than its unit needs consent.
+  const TargetAlignment declared = alignTargetToSource(metres, scaledBy(metres, 10000.0f, {0.01, "centimetres", true}));
+  CHECK(declared.guessedScale == 1.0);
+  CHECK(declared.needsConsent);
+
+  // 300x and 13x: between the units' factors, beyond the tolerance of each.
+  for (const float k : {300.0f, 13.0f}) {
+    INFO("x" << k);
+    auto refused = makeMorphProject(metres, "walker.glb", scaledBy(metres, k, {}), "big.glb", s);
+    REQUIRE_FALSE(refused.ok());
+    CHECK_THAT(refused.error(), Catch::StartsWith("big.glb: aligning the target to the source needs a scale of"));
+    CHECK_THAT(refused.error(), Catch::Contains("which no unit explains"));
+    s.allowLargeRescale = true;
+    auto allowed = makeMorphProject(metres, "walker.glb", scaledBy(metres, k, {}), "big.glb", s);
+    s.allowLargeRescale = false;
+    REQUIRE(allowed.ok());
+    CHECK(allowed->scaleApplied == Approx(1.0 / k).epsilon(1e-3));
+    CHECK_FALSE(allowed->warnings.empty());
+  }
 }

@@ -10,12 +10,13 @@ using namespace animorph::test;
 
 namespace {
 
-// hero (the test character, metres) and "giant": the same rig as a file in centimetres would
-// hold it (roots scaled 100x), its unit declared or not. glTF cannot declare centimetres, so
-// giant is handed to the editor's asset cache as an importer would return it, not written.
-void loadHeroAndGiant(EditorFixture& f, bool declared) {
+// hero (the test character, metres) and "giant": the same rig with its roots scaled k times (as a
+// file in centimetres would hold it for k = 100), declared in centimetres or in glTF's metres.
+// glTF cannot declare centimetres, so giant is handed to the editor's asset cache as an importer
+// would return it, not written.
+void loadHeroAndGiant(EditorFixture& f, bool declared, float k = 100.0f) {
   Character hero = f.loadHeroScene();
-  for (int r : hero.roots) hero.nodes[r].rest.scale *= 100.0f, hero.nodes[r].rest.translation *= 100.0f;
+  for (int r : hero.roots) hero.nodes[r].rest.scale *= k, hero.nodes[r].rest.translation *= k;
   if (declared) hero.unit = {0.01, "centimetres", true};
   const std::string asset = f.dir.file("giant.gltf");
   AssetCache::Entry giantEntry;
@@ -53,10 +54,24 @@ TEST_CASE("Create > Morph...: a centimetre target is scaled by its unit with the
   CHECK(h.doc().project().findActor("giant")->transform.scale.x == Approx(1.0f));
 }
 
-TEST_CASE("Create > Morph...: a 100x resize no unit explains needs the box ticked, unticking Align keeps the target",
+TEST_CASE("Create > Morph...: glTF holding centimetre numbers is scaled by 0.01 without asking, and says so",
           "[morph][units]") {
   EditorFixture f;
   loadHeroAndGiant(f, false);
+  auto& h = f.h;
+  REQUIRE(h.hasWidget("morph/create/align"));
+  CHECK_FALSE(h.hasWidget("morph/create/allow_resize"));
+  h.clickWidget("morph/create/create");
+  h.frames(2);
+  REQUIRE(h.doc().project().morph.enabled());
+  CHECK(h.doc().project().findActor("giant")->transform.scale.x == Approx(0.01f));
+  CHECK_THAT(h.ui->state().status.text, Catch::Contains("(probably authored in centimetres): scaled by 0.01"));
+}
+
+TEST_CASE("Create > Morph...: a 300x resize no unit explains needs the box ticked, unticking Align keeps the target",
+          "[morph][units]") {
+  EditorFixture f;
+  loadHeroAndGiant(f, false, 300.0f);
   auto& h = f.h;
   REQUIRE(h.hasWidget("morph/create/allow_resize"));
   h.clickWidget("morph/create/create");
@@ -67,7 +82,7 @@ TEST_CASE("Create > Morph...: a 100x resize no unit explains needs the box ticke
   h.clickWidget("morph/create/create");
   h.frames(2);
   REQUIRE(h.doc().project().morph.enabled());
-  CHECK(h.doc().project().findActor("giant")->transform.scale.x == Approx(0.01f).epsilon(1e-3));
+  CHECK(h.doc().project().findActor("giant")->transform.scale.x == Approx(1.0f / 300.0f).epsilon(1e-3));
 
   h.doc().undo();
   openCreateMorph(h.doc(), h.ui->state().createMorph);

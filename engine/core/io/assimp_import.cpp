@@ -908,7 +908,10 @@ Status checkDeclaredSizes(const std::string& file, const std::string& format, co
     if (isFbxBinary(bytes)) return checkFbxBinaryDeclaredSizes(file, bytes);
     return checkTextDeclaredCounts(file, bytes, false);
   }
-  if (format == "Collada") return checkTextDeclaredCounts(file, bytes, true);
+  if (format == "Collada") {
+    if (Status counts = checkTextDeclaredCounts(file, bytes, true); !counts) return counts;
+    return checkColladaIndexLists(file, bytes);
+  }
   return {};
 }
 

@@ -1,6 +1,7 @@
 #include "core/io/declared_size_check.h"
 
 #include <cstdint>
+#include <cstdio>
 #include <algorithm>
 #include <cstring>
 #include <vector>
@@ -154,6 +155,31 @@ Status checkTextDeclaredCounts(const std::string& file, const std::string& b, bo
       return Error{file + ": " + (collada ? "count" : "array") + " at byte " + std::to_string(p) + " declares " +
                    b.substr(p + key.size(), digits) + " elements; the arrays so far need more than " +
                    budgetText(b.size())};
+  }
+  return {};
+}
+
+Status checkColladaIndexLists(const std::string& file, const std::string& b) {
+  for (size_t lt = b.find('<'); lt != std::string::npos; lt = b.find('<', lt + 1)) {
+    const char name = lt + 2 < b.size() ? b[lt + 1] : '\0';
+    if (name != 'p' && name != 'h') continue;
+    const char after = b[lt + 2];
+    if (after != '>' && after != ' ' && after != '\t' && after != '\r' && after != '\n') continue;
+    const size_t gt = b.find('>', lt);
+    if (gt == std::string::npos) return {};  // a cut file: the XML parser says so
+    if (b[gt - 1] == '/') continue;          // <p/>: empty
+    for (size_t q = gt + 1; q < b.size() && b[q] != '<'; ++q) {
+      const char ch = b[q];
+      if ((ch >= '0' && ch <= '9') || ch == ' ' || ch == '\t' || ch == '\r' || ch == '\n') continue;
+      char shown[16];
+      if (ch > ' ' && ch < 127)
+        std::snprintf(shown, sizeof shown, "'%c'", ch);
+      else
+        std::snprintf(shown, sizeof shown, "byte 0x%02X", unsigned(static_cast<unsigned char>(ch)));
+      return Error{file + ": <" + std::string(1, name) + "> at byte " + std::to_string(lt) + ": " + shown +
+                   " at byte " + std::to_string(q) +
+                   " is not a digit or white space (an index list holds unsigned integers only)"};
+    }
   }
   return {};
 }

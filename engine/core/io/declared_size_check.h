@@ -33,6 +33,12 @@ Status checkFbxBinaryDeclaredSizes(const std::string& file, const std::string& b
 // offset and the count.
 Status checkTextDeclaredCounts(const std::string& file, const std::string& bytes, bool collada);
 
+// Collada index lists (<p>, and <h> of a polygon with holes): only digits and white space.
+// libassimp 5.2 reads such a list until its end, one unsigned integer at a time, and does not move
+// past a character that starts none ("1.5", a stray byte): it appends zeros until memory runs out.
+// Errors name file, the element, its byte offset and the character. Time linear in the size.
+Status checkColladaIndexLists(const std::string& file, const std::string& bytes);
+
 // True when bytes start with the binary FBX magic.
 bool isFbxBinary(const std::string& bytes);
 

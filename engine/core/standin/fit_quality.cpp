@@ -136,6 +136,8 @@ FitReport measureFitQuality(const Character& c, const Standin& s, const Characte
   const size_t n = pose.positions.size();
   std::vector<glm::vec3> out(n);
   r.projection = projectOntoField(prog, segs, pose.positions.data(), n, out.data(), nullptr, projection);
+  for (float d : r.projection.failureDistances)
+    if (!(double(d) <= settings.surfaceNoiseFraction * diag)) ++r.projectionMisses;
   r.meanDistance = r.projection.meanDistance;
   r.maxDistance = r.projection.maxDistance;
   r.meanError = r.meanDistance / diag;

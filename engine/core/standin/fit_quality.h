@@ -28,6 +28,11 @@ struct FitQualitySettings {
   // Polygonise the stand-in (cells along the longest side) to count its
   // components; 0 skips the topology check (components stay -1).
   int topologyResolution = 64;
+  // A vertex the projection fails on counts as a miss only when it was left farther than this
+  // fraction of the diagonal from the surface: closer, it is stuck in the float noise of the field
+  // (|f| about the tolerance), which depends on the rounding of its coordinates and so on the
+  // file's unit (quadruped_cm.dae failed on one vertex where quadruped_m.dae did not).
+  double surfaceNoiseFraction = 1e-5;
 };
 
 // Error of the vertices closest to one segment (world units).
@@ -75,6 +80,7 @@ struct FitReport {
   std::vector<std::string> problems;   // one line each, naming bones
   std::vector<std::string> poorBones;  // bones whose segments fit worst or lie in detached pieces
   ProjectionStats projection;   // of the measurement
+  size_t projectionMisses = 0;  // projection failures left farther than surfaceNoiseFraction * diagonal
   double milliseconds = 0.0;    // fitting and measuring
   std::vector<std::string> notes;
   // Automatic repair of a poor first fit (standin/repair_fit.h): what was done, one line each

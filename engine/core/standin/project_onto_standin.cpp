@@ -44,7 +44,7 @@ ProjectionStats projectOntoField(const FieldProgram& prog, const std::vector<Pos
   const float T = prog.threshold;
   const size_t chunks = (n + kChunk - 1) / kChunk;
   std::vector<uint8_t> fellBack(n, 0), failed(n, 0);
-  std::vector<float> finalF(n, 0.0f);
+  std::vector<float> finalF(n, 0.0f), finalG(n, 0.0f);
   tbb::enumerable_thread_specific<Scratch> scratch;
   tbb::task_arena arena(s.threads > 0 ? s.threads : tbb::task_arena::automatic);
   arena.execute([&] {
@@ -111,6 +111,7 @@ ProjectionStats projectOntoField(const FieldProgram& prog, const std::vector<Pos
       for (size_t k = 0; k < m; ++k) {
         out[b + k] = best[k];
         finalF[b + k] = bestF[k];
+        finalG[b + k] = glm::length(grad[k]);
         if (std::abs(bestF[k]) > tol) failed[b + k] = 1;
         if (normals) {
           const float gl = glm::length(grad[k]);
@@ -123,6 +124,8 @@ ProjectionStats projectOntoField(const FieldProgram& prog, const std::vector<Pos
   for (size_t i = 0; i < n; ++i) {
     st.fallbacks += fellBack[i];
     st.failures += failed[i];
+    if (failed[i])
+      st.failureDistances.push_back(finalG[i] > 0.0f ? std::abs(finalF[i]) / finalG[i] : INFINITY);
     st.maxAbsField = std::max(st.maxAbsField, std::abs(finalF[i]));
     const double d = glm::length(out[i] - in[i]);
     sum += d;

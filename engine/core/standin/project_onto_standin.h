@@ -26,6 +26,11 @@ struct ProjectionStats {
   size_t converged = 0;   // |f| <= tolerance at the end
   size_t fallbacks = 0;   // points that took the closest-segment direction
   size_t failures = 0;    // not converged: left at the point of smallest |f| found
+  // Per failure (in point order): |f| / |grad f| where the point was left, an estimate of its
+  // distance from the surface in the points' units (INFINITY where grad f vanishes). f's float
+  // noise is about the tolerance, so a point can fail within a hair of the surface: callers that
+  // compare fits tell those from real misses by this distance against their scale.
+  std::vector<float> failureDistances;
   float maxAbsField = 0.0f;
   double meanDistance = 0.0;  // mean |moved| (in the points' units)
   double maxDistance = 0.0;

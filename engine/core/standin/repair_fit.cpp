@@ -154,10 +154,11 @@ int excessPieces(const FitReport& r) {
 }
 
 // Whether measurement m is better than r: fewer excess pieces first; then, with no more vertices
-// the projection fails on, fewer far vertices or a smaller mean.
+// the projection misses (failures stuck within float noise of the surface do not count: where they
+// fall depends on the file's unit), fewer far vertices or a smaller mean.
 bool better(const FitReport& m, const FitReport& r) {
   if (excessPieces(m) != excessPieces(r)) return excessPieces(m) < excessPieces(r);
-  if (m.projection.failures > r.projection.failures) return false;
+  if (m.projectionMisses > r.projectionMisses) return false;
   if (m.farShare < r.farShare - 1e-3) return true;
   return m.farShare <= r.farShare + 1e-3 && m.meanDistance < 0.97 * r.meanDistance;
 }
