@@ -99,5 +99,5 @@ void normalsPass() {
 
 void main() {
   normalsPass();
-  flagCutLoops();
+  flagCutLoops(AM_OVERFLOW_CUT_NORMALS);
 }

@@ -847,6 +847,7 @@ TEST_CASE("GPU polygoniser: the animorphosis demo's creatures at three times agr
       s.resolution = kRes;
       auto st = r.poly->polygonize(field, s);
       if (!st.ok()) {
+        WARN(cs.name << " at " << t << " s: " << st.error());
         CHECK(limited);
         CHECK_THAT(st.error(), Catch::Contains("65535"));
         ++failed;

@@ -256,6 +256,7 @@ struct GpuPolygonizer::Impl {
   // with it too, even when recordFitted() took those counters, so the caller goes to the CPU rather
   // than redoing a frame that cannot fit.
   bool cutLoops = false;
+  uint32_t cutLoopsBits = 0;  // its AM_CTL_OVERFLOW bits (which passes)
   // A frame walking per-region lists had its loops cut all the same (the iteration counts are
   // estimates): from then on the lists are for single blocks and superblocks are not tested as a
   // whole (buildRegionLists), the most the device can be spared. lastRegionLists: the last
@@ -808,6 +809,15 @@ uint32_t firstBlockCapacity(uint32_t nb) { return nb <= 4096u ? nb : std::max(40
 constexpr const char* kCutLoops =
     "GPU polygoniser: the device cut the shaders' loops short (llvmpipe stops a shader's loops after "
     "65535 iterations): the program is too large for this device; polygonise it on the CPU";
+
+// kCutLoops, naming the passes whose loops were cut (the AM_OVERFLOW_CUT_* bits of overflow).
+std::string cutLoopsError(uint32_t overflow) {
+  std::string passes;
+  for (auto [bit, name] : {std::pair{AM_OVERFLOW_CUT_COARSE, "coarse"}, std::pair{AM_OVERFLOW_CUT_CELLS, "cells"},
+                           std::pair{AM_OVERFLOW_CUT_NORMALS, "normals"}})
+    if (overflow & bit) passes += std::string(passes.empty() ? "" : ", ") + name;
+  return std::string(kCutLoops) + (passes.empty() ? "" : " (the " + passes + " pass)");
+}
 }  // namespace
 
 GpuPolygonizer::GpuPolygonizer(Context& ctx) : impl_(std::make_unique<Impl>(ctx)) {}
@@ -886,8 +896,9 @@ Status GpuPolygonizer::absorbCounters(uint32_t slot) {
   if (c[AM_CTL_OVERFLOW] == 0) return Status::success();
   if (c[AM_CTL_OVERFLOW] & AM_OVERFLOW_LOOPS) {  // redoing it would cut them again
     m.cutLoops = true;
+    m.cutLoopsBits = c[AM_CTL_OVERFLOW];
     if (m.lastRegionLists) m.conservativeRegions = true;  // the next shape's frames spare the device more
-    return Error{kCutLoops};
+    return Error{cutLoopsError(m.cutLoopsBits)};
   }
   // That frame drew nothing; grow to what it needed (counts past a block overflow are
   // partial, so those buffers double too) for the record that redoes it.
@@ -915,7 +926,7 @@ Status GpuPolygonizer::record(VkCommandBuffer cmd, uint64_t frameSerial, const G
   if (Status g = absorbCounters(slot); !g) return g;
   if (m.cutLoops) {
     m.cutLoops = false;
-    return Error{kCutLoops};
+    return Error{cutLoopsError(m.cutLoopsBits)};
   }
   // First frames: size the buffers for the grid as polygonize() does.
   if (Result<Grid> g = makeGrid(field, s); g) {
@@ -986,7 +997,7 @@ Result<GpuPolygonizeStats> GpuPolygonizer::polygonize(const GpuField& field, con
     stats.triangles = c[AM_CTL_TRIANGLES];
     uint32_t overflow = c[AM_CTL_OVERFLOW];
     if (overflow & AM_OVERFLOW_LOOPS) {
-      if (!m.lastRegionLists) return Error{kCutLoops};
+      if (!m.lastRegionLists) return Error{cutLoopsError(overflow)};
       m.conservativeRegions = true;  // redo it with the smallest regions
       continue;
     }
