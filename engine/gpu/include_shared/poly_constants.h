@@ -175,6 +175,10 @@
 #define AM_OVERFLOW_CUT_NORMALS 64u
 #define AM_POLY_LLVMPIPE_LOOP_LIMIT 65535
 
+// Push constant x of the normals pass: the invocation's four vertices, or only vertex k (AM_NORMALS_VERTEX + k).
+#define AM_NORMALS_ALL 0
+#define AM_NORMALS_VERTEX 1
+
 // Push constants (one uvec4) of the helper passes.
 #define AM_SCAN_REDUCE 0
 #define AM_SCAN_PARTIALS 1

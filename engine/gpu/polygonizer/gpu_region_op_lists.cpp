@@ -162,6 +162,7 @@ RegionOpLists appendRegionOpLists(const FieldProgram& a, const FieldProgram* b, 
   sides.emplace_back(a, pk, 0);
   if (b) sides.emplace_back(*b, pk, 1);
   const bool stencilNormals = !analyticGradients(a) || (b && !analyticGradients(*b));
+  out.stencilNormals = stencilNormals;
   const uint64_t words = out.maskWords;
   ActiveProgram act;
   for (size_t k = 0; k < sides.size(); ++k) out.reaching[k].resize(regions.size());
@@ -198,14 +199,14 @@ RegionOpLists appendRegionOpLists(const FieldProgram& a, const FieldProgram* b, 
     out.longestOps = std::max(out.longestOps, entry.y + entry.w);
     // As gpuLoopIterationEstimate: the coarse pass (mask words, candidates, interval), the cells pass
     // (the sub-block intervals and the corners in SIMD groups of their own, bookkeeping), the normals
-    // (the stencil's two evaluations, or one analytic gradient).
+    // (one vertex's walk: the stencil's pair, or the analytic gradient).
     // The kernels of every primitive reaching the region count too: a block of it may be reached by all.
     const uint64_t interval = total.interval + intervalKernels;
     out.intervalWalk.push_back(3 * words + 32 + interval);
     out.longestIntervalWalk = std::max(out.longestIntervalWalk, out.intervalWalk.back());
     out.longestCoarse = std::max(out.longestCoarse, 3 * words + candidates + 32 + interval);
-    const uint64_t normals =
-        stencilNormals ? 2 * (total.value + kernels) + 16 : total.value + gradientKernels + 16;
+    const uint64_t normals = stencilNormals ? total.value + kernels + 16 : total.value + gradientKernels + 16;
+    out.longestNormalWalk = std::max(out.longestNormalWalk, normals);
     out.longestFine = std::max({out.longestFine, interval + 512, total.value + kernels + 512, normals});
   }
   return out;
