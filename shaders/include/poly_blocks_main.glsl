@@ -99,5 +99,5 @@ void coarsePass() {
 
 void main() {
   coarsePass();
-  flagCutLoops();
+  flagCutLoops(AM_OVERFLOW_CUT_COARSE);
 }

@@ -6,7 +6,7 @@
 // block's (vertex, triangle) counts for the scan.
 //
 // Sub-block culling (as the CPU polygoniser): the intervals of the block's
-// eight 4^3-cell sub-blocks (invocations 0..7) leave out the corners only
+// eight 4^3-cell sub-blocks (the workgroup's last 8 invocations) leave out the corners only
 // sub-blocks proved one-signed need. The corners left are listed in groups of
 // up to 4 along a grid line (half rows x = 0..3 or 4..7 of a row (y, z); on the
 // x = 8 face, y = 0..3, 4..7 or 8 of a column z) and each invocation evaluates
@@ -32,8 +32,8 @@
 #if AM_POLY_CORNER_V != 2
 #error "the row layout evaluates 8 corners per invocation"
 #endif
-#if AM_POLY_WG_CELLS < 95
-#error "the row layout needs 95 invocations: 189 groups of corners, two per invocation"
+#if AM_POLY_WG_CELLS < 104
+#error "the row layout needs 95 invocations (189 groups of corners, two per invocation), then 8 for the sub-blocks"
 #endif
 
 layout(local_size_x = AM_POLY_WG_CELLS) in;
@@ -47,6 +47,10 @@ const uint kHalfRows = 2u * kRows;             // groups of 4 corners: x = 0..3 
 const uint kFaceGroups = 27u;                  // the x = 8 face: y = 0..3, 4..7 and 8 of each column z
 const uint kGroups = kHalfRows + kFaceGroups;
 const uint kEvaluators = (kGroups + 1u) / 2u;  // two groups (8 corners) per invocation
+// The sub-blocks' intervals: the workgroup's last 8 invocations (a SIMD group of their own on
+// lavapipe, past the evaluators), so that no invocation walks both the interval program and the
+// corners' program: lavapipe's loop limiter counts each SIMD group's iterations of all its loops.
+const uint kSubBlockFirst = uint(AM_POLY_WG_CELLS) - 8u;
 
 shared uint sSub;             // bit q: sub-block q may hold surface; bit 8 + q: proved inside
 shared uint sGroup[kGroups];  // the groups to evaluate
@@ -174,11 +178,12 @@ void cellsPass() {
   // no surface, so its corners that are not evaluated take its sign (sub-blocks sharing a
   // corner agree: the true value there has both their signs) and its cells and edges stay
   // empty, as if evaluated.
-  if (t < 8u) {
-    uvec3 h = 4u * uvec3(t & 1u, (t >> 1) & 1u, t >> 2);
+  if (t >= kSubBlockFirst) {
+    uint q = t - kSubBlockFirst;
+    uvec3 h = 4u * uvec3(q & 1u, (q >> 1) & 1u, q >> 2);
     if (all(lessThan(h, cnt))) {
       int sign = P.modes.z == 0u ? 0 : boxSign(c0 + h, min(uvec3(4u), cnt - h), b * P.modes.y);
-      if (sign >= 0) atomicOr(sSub, sign == 0 ? 1u << t : 256u << t);
+      if (sign >= 0) atomicOr(sSub, sign == 0 ? 1u << q : 256u << q);
     }
   }
   barrier();
@@ -273,5 +278,5 @@ void cellsPass() {
 
 void main() {
   cellsPass();
-  flagCutLoops();
+  flagCutLoops(AM_OVERFLOW_CUT_CELLS);
 }

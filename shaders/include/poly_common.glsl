@@ -110,10 +110,11 @@ uint fineSlots() {
 // programs. A loop of two iterations at the end of a pass then runs once: the pass flags the frame
 // (AM_OVERFLOW_LOOPS), which then draws nothing and is reported, never shown. (GpuPolygonizer
 // refuses the programs that could get there beforehand: this catches what its bound missed.)
-void flagCutLoops() {
+// pass: the pass's AM_OVERFLOW_CUT_* bit.
+void flagCutLoops(uint pass) {
   uint n = 0u;
   for (uint k = 0u; k < 2u * P.caps.w; ++k) ++n;
-  if (n < 2u) atomicOr(control[AM_CTL_OVERFLOW], AM_OVERFLOW_LOOPS);
+  if (n < 2u) atomicOr(control[AM_CTL_OVERFLOW], AM_OVERFLOW_LOOPS | pass);
 }
 
 #define kInf uintBitsToFloat(0x7f800000u)

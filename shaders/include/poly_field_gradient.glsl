@@ -119,23 +119,31 @@ Grad4 programGrad(uint opBegin, uint opCount, float T, uint maskBase, vec4 px, v
           if (!primActive(maskBase, op0.w + k)) continue;
           bool skeletal = cls == AM_PRIM_SKELETAL;
           uint r = op0.y + k * (skeletal ? AM_REC_SKEL : AM_REC_CAPSULE);
-          for (uint c = 0u; c < 4u * P.caps.w; ++c) {  // one copy of the kernel (see poly_field_batch.glsl)
-            vec3 q = vec3(x[c], y[c], z[c]), grad = vec3(0.0);
-            float v = 0.0;
-            if (AM_HAS_CLASS(AM_PRIM_SKELETAL) && skeletal) v = skeletalValueGrad(r, q, grad);
-            if (AM_HAS_CLASS(AM_PRIM_CAPSULE) && !skeletal) v = capsuleValueGrad(r, q, T, grad);
-            bool replace = cmax && v > a.f[c];
-            if (replace) {
-              a.f[c] = v;
-              a.x[c] = grad.x;
-              a.y[c] = grad.y;
-              a.z[c] = grad.z;
-            } else if (!cmax) {
-              a.f[c] += v;
-              a.x[c] += grad.x;
-              a.y[c] += grad.y;
-              a.z[c] += grad.z;
-            }
+          // The four points in one iteration (four copies of the kernel), in a loop whose trip count (1)
+          // the compiler cannot see: lavapipe's loop limiter counts every iteration, and a loop per
+          // point made 4 of a primitive's ~9 (see poly_field_program.glsl).
+          for (uint h = 0u; h < P.caps.w; ++h) {
+#define AM_GRAD_POINT(c)                                                            \
+  {                                                                                 \
+    vec3 q = vec3(x.c, y.c, z.c), grad = vec3(0.0);                                 \
+    float v = 0.0;                                                                  \
+    if (AM_HAS_CLASS(AM_PRIM_SKELETAL) && skeletal) v = skeletalValueGrad(r, q, grad); \
+    if (AM_HAS_CLASS(AM_PRIM_CAPSULE) && !skeletal) v = capsuleValueGrad(r, q, T, grad); \
+    bool replace = cmax && v > a.f.c;                                               \
+    if (replace) {                                                                  \
+      a.f.c = v;                                                                    \
+      a.x.c = grad.x;                                                               \
+      a.y.c = grad.y;                                                               \
+      a.z.c = grad.z;                                                               \
+    } else if (!cmax) {                                                             \
+      a.f.c += v;                                                                   \
+      a.x.c += grad.x;                                                              \
+      a.y.c += grad.y;                                                              \
+      a.z.c += grad.z;                                                              \
+    }                                                                               \
+  }
+            AM_GRAD_POINT(x) AM_GRAD_POINT(y) AM_GRAD_POINT(z) AM_GRAD_POINT(w)
+#undef AM_GRAD_POINT
           }
         }
       }

@@ -44,21 +44,27 @@ void AM_PROGRAM(uint opBegin, uint opCount, float T, uint maskBase, AM_POINTS w,
 #if !AM_LINES
       } else if (AM_HAS_CLASS(AM_PRIM_SKELETAL) || AM_HAS_CLASS(AM_PRIM_CAPSULE)) {
         // Skeletal and capsule kernels are long (closest points on nine skeleton
-        // kinds): one copy in a loop whose trip count the compiler cannot see
-        // (P.caps.w = 1), rather than 4 V inlined copies.
+        // kinds): four copies (one vec4 of points) in a loop over the V vec4 whose
+        // trip count the compiler cannot see (P.caps.w = 1), rather than 4 V inlined
+        // copies. Four points per iteration rather than one: lavapipe's loop limiter
+        // counts every iteration, and the per-point loop was 8 of a primitive's ~14
+        // (docs/gpu-polygonizer.md, "Lavapipe findings").
         for (uint k = 0u; k < op0.z; ++k) {
           if (!primActive(maskBase, op0.w + k)) continue;
           bool skeletal = cls == AM_PRIM_SKELETAL;
           uint r = op0.y + k * (skeletal ? AM_REC_SKEL : AM_REC_CAPSULE);
-          for (uint p = 0u; p < 4u * uint(V) * P.caps.w; ++p) {
-            bool hi = p >= 4u;  // second vec4 (V = 2); the arrays are only indexed by constants
-            uint c = p & 3u;
+          for (uint h = 0u; h < uint(V) * P.caps.w; ++h) {
+            bool hi = h >= 1u;  // second vec4 (V = 2); the arrays are only indexed by constants
             vec4 px = hi ? x[V - 1] : x[0], py = hi ? y[V - 1] : y[0], pz = hi ? z[V - 1] : z[0];
-            float v = 0.0;
-            if (AM_HAS_CLASS(AM_PRIM_SKELETAL) && skeletal) v = skeletalValue(r, vec3(px[c], py[c], pz[c]));
-            if (AM_HAS_CLASS(AM_PRIM_CAPSULE) && !skeletal) v = capsuleValue(r, vec3(px[c], py[c], pz[c]), T);
+            vec4 v = vec4(0.0);
+            if (AM_HAS_CLASS(AM_PRIM_SKELETAL) && skeletal)
+              v = vec4(skeletalValue(r, vec3(px.x, py.x, pz.x)), skeletalValue(r, vec3(px.y, py.y, pz.y)),
+                       skeletalValue(r, vec3(px.z, py.z, pz.z)), skeletalValue(r, vec3(px.w, py.w, pz.w)));
+            if (AM_HAS_CLASS(AM_PRIM_CAPSULE) && !skeletal)
+              v = vec4(capsuleValue(r, vec3(px.x, py.x, pz.x), T), capsuleValue(r, vec3(px.y, py.y, pz.y), T),
+                       capsuleValue(r, vec3(px.z, py.z, pz.z), T), capsuleValue(r, vec3(px.w, py.w, pz.w), T));
             vec4 acc = hi ? a[V - 1] : a[0];
-            acc[c] = cmax ? max(acc[c], v) : acc[c] + v;
+            acc = cmax ? max(acc, v) : acc + v;
             if (hi) a[V - 1] = acc;
             else a[0] = acc;
           }

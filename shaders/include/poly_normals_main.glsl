@@ -24,6 +24,7 @@ uvec4 gMaskBases;  // the primitive masks of the invocation's four vertices
 #include "poly_field_gradient.glsl"
 
 layout(local_size_x = AM_POLY_WG_NORMALS) in;
+layout(push_constant) uniform NormalsPush { uvec4 pc; };  // x: AM_NORMALS_* (which of the four vertices)
 
 layout(set = 0, binding = AM_PB_POSITIONS, std430) readonly buffer Positions { vec4 positions[]; };
 layout(set = 0, binding = AM_PB_NORMALS, std430) buffer Normals { vec4 normals[]; };
@@ -46,9 +47,11 @@ uint vertexRegion(uint maskBase) {
 }
 
 // Normals of the invocation's vertices that lie in region `region`, with its op lists.
-void normalsIn(uint region, uvec4 supers, uint v0, uint total, vec4 q0, vec4 q1, vec4 q2, vec4 q3) {
+// Only the `handled` vertices are this dispatch's; the stencil evaluates the pairs [hBegin, hEnd).
+void normalsIn(uint region, uvec4 supers, uint v0, uint total, vec4 q0, vec4 q1, vec4 q2, vec4 q3, bvec4 handled,
+               uint hBegin, uint hEnd) {
   selectRegionOps(region);
-  bvec4 mine = equal(supers, uvec4(region));
+  bvec4 mine = bvec4(uvec4(equal(supers, uvec4(region))) & uvec4(handled));
   if (AM_ANALYTIC_GRADIENT) {
     Grad4 g = fieldGrad(gMaskBases.x, vec4(q0.x, q1.x, q2.x, q3.x), vec4(q0.y, q1.y, q2.y, q3.y),
                         vec4(q0.z, q1.z, q2.z, q3.z));
@@ -59,7 +62,7 @@ void normalsIn(uint region, uvec4 supers, uint v0, uint total, vec4 q0, vec4 q1,
   } else {
     const float d = P.morph1.w;
     const vec3 k0 = vec3(1, -1, -1), k1 = vec3(-1, -1, 1), k2 = vec3(-1, 1, -1), k3 = vec3(1, 1, 1);
-    for (uint h = 0u; h < 2u; ++h) {  // two vertices per evaluation (8 points)
+    for (uint h = hBegin; h < hEnd; ++h) {  // two vertices per evaluation (8 points)
       vec3 posA = h == 0u ? q0.xyz : q2.xyz, posB = h == 0u ? q1.xyz : q3.xyz;
       PointsV w;
       AM_SET_POINT(w, 0, 0, posA + d * k0) AM_SET_POINT(w, 0, 1, posA + d * k1)
@@ -89,15 +92,29 @@ void normalsPass() {
   // the evaluations on lavapipe).
   uvec4 supers = uvec4(vertexRegion(gMaskBases.x), vertexRegion(gMaskBases.y),
                        vertexRegion(gMaskBases.z), vertexRegion(gMaskBases.w));
+  // One vertex per dispatch (AM_NORMALS_VERTEX + k, programs near lavapipe's loop limit with
+  // region lists): the other vertices take its region and mask, so they add no walk (and are not
+  // written); the stencil evaluates only its pair.
+  bvec4 handled = bvec4(true);
+  uint hBegin = 0u, hEnd = 2u;
+  if (pc.x != AM_NORMALS_ALL) {
+    uint k = pc.x - AM_NORMALS_VERTEX;
+    if (v0 + k >= total) return;
+    handled = equal(uvec4(0u, 1u, 2u, 3u), uvec4(k));
+    supers = uvec4(supers[k]);
+    gMaskBases = uvec4(gMaskBases[k]);
+    hBegin = k >> 1;
+    hEnd = hBegin + 1u;
+  }
   uvec4 todo = uvec4(supers.x, 0u, 0u, 0u);
   uint n = 1u;
   if (supers.y != supers.x) todo[n++] = supers.y;
   if (supers.z != supers.x && supers.z != supers.y) todo[n++] = supers.z;
   if (supers.w != supers.x && supers.w != supers.y && supers.w != supers.z) todo[n++] = supers.w;
-  for (uint k = 0u; k < n; ++k) normalsIn(todo[k], supers, v0, total, q0, q1, q2, q3);
+  for (uint k = 0u; k < n; ++k) normalsIn(todo[k], supers, v0, total, q0, q1, q2, q3, handled, hBegin, hEnd);
 }
 
 void main() {
   normalsPass();
-  flagCutLoops();
+  flagCutLoops(AM_OVERFLOW_CUT_NORMALS);
 }

@@ -809,14 +809,55 @@ TEST_CASE("GPU polygoniser walks per-region programs: the same mesh as the whole
   CHECK(r.ctx->validationErrorCount() == 0);
 }
 
-TEST_CASE("GPU polygoniser: the animorphosis demo's creatures at three times agree with the CPU or fail naming the loop limit",
+TEST_CASE("GPU polygoniser: normals over region lists one vertex per dispatch equal the whole programs' (stencil and analytic)",
+          "[gpu][gpupoly]") {
+  // Near lavapipe's loop limit the normals pass runs once per vertex of its invocations' four
+  // (GpuPolygonizeSettings::normalsPerVertex, forced here). Seeded random trees (not made for this
+  // test), with analytic normals and with the stencil (HyperBlend, curved maps), through region
+  // lists so and through the whole programs: the same triangles and normals.
+  Rig r = makeRig();
+  int counted[2] = {0, 0};  // analytic, stencil
+  for (unsigned seed = 1; seed <= 60 && (counted[0] < 3 || counted[1] < 3); ++seed) {
+    std::mt19937 rng(seed);
+    int id = 1;
+    BlobTree tree = treeOf(randomNode(rng, 3, id), 0.5f);
+    FieldProgram p = compileFieldProgram(tree, 0.5);
+    bool stencil = false;
+    for (const FieldOp& op : p.ops) stencil |= op.code == OpCode::HyperBlend;
+    for (const SpaceMap& m : p.maps) stencil |= m.kind != SpaceMapKind::Affine;
+    if (counted[stencil ? 1 : 0] >= 3) continue;
+    INFO("seed " << seed << (stencil ? " (stencil)" : " (analytic)"));
+    GpuPolygonizeSettings s;
+    s.resolution = 72;
+    s.bounds = cube(1.2f);
+    s.regionPrograms = GpuPolygonizeSettings::RegionPrograms::Off;
+    GpuPolygonizeStats whole, regions;
+    TriangleMesh m0 = gpuMesh(*r.poly, GpuField::single(p), s, &whole);
+    if (m0.triangleCount() < 100) continue;
+    ++counted[stencil ? 1 : 0];
+    s.regionPrograms = GpuPolygonizeSettings::RegionPrograms::On;
+    s.normalsPerVertex = true;
+    TriangleMesh m1 = gpuMesh(*r.poly, GpuField::single(p), s, &regions);
+    CHECK(whole.normalsDispatches == 1);
+    CHECK(regions.regionLists);
+    CHECK(regions.normalsDispatches == 4);
+    CHECK(m1.triangleCount() == m0.triangleCount());
+    CHECK(maxNearestDistance(m1.positions, m0.positions, whole.cellSize) <= 1e-4f * whole.cellSize);
+    auto [matched, close] = normalAgreement(m1, m0, whole.cellSize);
+    CHECK(matched == m1.positions.size());
+    CHECK(close == matched);
+  }
+  CHECK(counted[0] == 3);
+  CHECK(counted[1] == 3);
+  CHECK(r.ctx->validationErrorCount() == 0);
+}
+
+TEST_CASE("GPU polygoniser: the animorphosis demo's creatures at three times agree with the CPU (lavapipe's loop limit included)",
           "[gpu][gpupoly]") {
   // 22 000 primitives and 41 000 ops each: refused on lavapipe (loop limit) before per-region
   // programs. Three times of each: the dinosaur walking, the dragon flying, C(t) inside the morph.
-  // The dinosaur now polygonises on lavapipe and agrees with the CPU at every time; the dragon and
-  // C(t) still have blocks reached by more primitives than lavapipe's loop limiter lets one
-  // invocation evaluate (docs/gpu-polygonizer.md, "Per-region programs"): such a frame fails
-  // naming the limit, never a wrong mesh. On a device without a limiter every case must agree.
+  // Every frame must polygonise and agree with the CPU, on lavapipe too (docs/gpu-polygonizer.md,
+  // "Loop budget, second round"); a failure is printed with its reason (the pass whose loops were cut).
   auto project = makeAnimorphosisDemoProject();
   REQUIRE(project.ok());
   auto c = projectGenericTree(*project);
@@ -847,8 +888,7 @@ TEST_CASE("GPU polygoniser: the animorphosis demo's creatures at three times agr
       s.resolution = kRes;
       auto st = r.poly->polygonize(field, s);
       if (!st.ok()) {
-        CHECK(limited);
-        CHECK_THAT(st.error(), Catch::Contains("65535"));
+        WARN(cs.name << " at " << t << " s: " << st.error() << (limited ? "" : " (no loop limiter)"));
         ++failed;
         continue;
       }
@@ -866,8 +906,7 @@ TEST_CASE("GPU polygoniser: the animorphosis demo's creatures at three times agr
   }
   WARN(agreed << " of 9 frames polygonised on the GPU and agreed with the CPU; " << failed
               << " failed naming the loop limit");
-  CHECK(agreed + failed == 9);  // every frame either agreed or failed naming the limit: none skipped
-  if (!limited) CHECK(agreed == 9);
+  CHECK(agreed == 9);
   CHECK(r.ctx->validationErrorCount() == 0);
 }
 

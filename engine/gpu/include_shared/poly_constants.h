@@ -24,7 +24,7 @@
 
 // Workgroup sizes (x only; multiples of 8 suit lavapipe's 8-wide SIMD).
 #define AM_POLY_WG_BLOCKS 64   // coarse pass: one invocation per block
-#define AM_POLY_WG_CELLS 96    // corners + cells pass: one workgroup per active block
+#define AM_POLY_WG_CELLS 104   // corners + cells pass: one workgroup per active block (95 evaluators, 8 sub-block intervals)
 #define AM_POLY_WG_EMIT 64     // emit pass: one workgroup per active block (one invocation per mask word and per row)
 #define AM_POLY_WG_NORMALS 64  // normals pass: four vertices per invocation, over all the mesh's vertices
 // Points per invocation of the batched field evaluation, in vec4, 1 or 2 (shaders/include/poly_field_batch.glsl):
@@ -169,7 +169,15 @@
 // invocation once AM_POLY_LLVMPIPE_LOOP_LIMIT iterations have run in it, all loops together):
 // the frame draws nothing and is not redone (GpuPolygonizer reports it).
 #define AM_OVERFLOW_LOOPS 8u
+// With AM_OVERFLOW_LOOPS: which pass found its loops cut (the error names it).
+#define AM_OVERFLOW_CUT_COARSE 16u
+#define AM_OVERFLOW_CUT_CELLS 32u
+#define AM_OVERFLOW_CUT_NORMALS 64u
 #define AM_POLY_LLVMPIPE_LOOP_LIMIT 65535
+
+// Push constant x of the normals pass: the invocation's four vertices, or only vertex k (AM_NORMALS_VERTEX + k).
+#define AM_NORMALS_ALL 0
+#define AM_NORMALS_VERTEX 1
 
 // Push constants (one uvec4) of the helper passes.
 #define AM_SCAN_REDUCE 0

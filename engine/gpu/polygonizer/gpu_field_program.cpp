@@ -200,7 +200,7 @@ uint64_t gpuLoopIterationEstimate(const FieldProgram& a, const FieldProgram* b) 
   }
   const uint64_t words = (total + 31) / 32;
   const uint64_t coarse = total + 2 * words + 32 + c.interval;  // primitive lists, then the interval
-  const uint64_t cells = c.interval + c.value + 512;            // sub-block intervals, corners, bookkeeping
+  const uint64_t cells = std::max(c.interval, c.value) + 512;  // sub-block intervals | corners (own SIMD groups)
   const uint64_t normals = 2 * c.value + 16;                    // the stencil: two evaluations
   return std::max({coarse, cells, normals});
 }

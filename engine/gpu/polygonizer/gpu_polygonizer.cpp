@@ -256,6 +256,11 @@ struct GpuPolygonizer::Impl {
   // with it too, even when recordFitted() took those counters, so the caller goes to the CPU rather
   // than redoing a frame that cannot fit.
   bool cutLoops = false;
+  uint32_t cutLoopsBits = 0;  // its AM_CTL_OVERFLOW bits (which passes)
+  bool normalsPerVertex = false;  // this frame's normals pass runs once per vertex (recordPasses)
+  // A frame walking region lists had the normals pass's loops cut: from then on that pass runs once
+  // per vertex wherever lists are walked (the estimates undercount), and polygonize() redoes the frame.
+  bool conservativeNormals = false;
   // A frame walking per-region lists had its loops cut all the same (the iteration counts are
   // estimates): from then on the lists are for single blocks and superblocks are not tested as a
   // whole (buildRegionLists), the most the device can be spared. lastRegionLists: the last
@@ -721,7 +726,19 @@ void GpuPolygonizer::Impl::recordPasses(VkCommandBuffer cb, uint32_t slot, const
   vkCmdDispatchIndirect(cb, control.buffer, AM_CTL_DISPATCH * 4);
   computeToCompute(cb);
   vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, fp.normals);
-  vkCmdDispatchIndirect(cb, control.buffer, AM_CTL_NORMALS * 4);
+  if (normalsPerVertex) {
+    // Walking region lists, an invocation's four vertices may lie in two regions (block order), each
+    // one more walk of a list (twice for the stencil's two pairs). Near lavapipe's loop limit: one
+    // dispatch per vertex of the four, each invocation walking one list once (the limiter counts a
+    // SIMD group's iterations per dispatch).
+    for (uint32_t k = 0; k < 4; ++k) {
+      push(AM_NORMALS_VERTEX + k, 0u, 0u);
+      vkCmdDispatchIndirect(cb, control.buffer, AM_CTL_NORMALS * 4);
+    }
+  } else {
+    push(AM_NORMALS_ALL, 0u, 0u);
+    vkCmdDispatchIndirect(cb, control.buffer, AM_CTL_NORMALS * 4);
+  }
   if (s.noiseAmplitude != 0.0f) {
     // Solid noise along the normals just made (the CPU's displaceBySolidNoise).
     computeToCompute(cb);
@@ -765,6 +782,13 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
     stats.regionOpsTotal = fr.blocks.opsTotal;
     stats.regionBlocks = 1u << fr.shift;
   }
+  // Two regions among an invocation's four vertices, two walks each with the stencil; and twice that
+  // again: the walks counted undercount (C(t) of the demo at 2.6 s, 128^3, single-block lists: a
+  // walk counted at ~17 900 and one dispatch of the four vertices cut at 65 535).
+  const uint64_t oneNormalsDispatch = uint64_t(fr.blocks.stencilNormals ? 4 : 2) * fr.blocks.longestNormalWalk;
+  normalsPerVertex =
+      lists && (s.normalsPerVertex || conservativeNormals || (limit != 0 && 2 * oneNormalsDispatch + 64 >= limit));
+  stats.normalsDispatches = normalsPerVertex ? 4u : 1u;
   lastRegionLists = lists && !conservativeRegions;
   if (s.loopBudgetCheck && !lists)
     if (std::string why = loopBudgetReason(field, limit); !why.empty()) return Error{"GPU polygoniser: " + why};
@@ -808,6 +832,15 @@ uint32_t firstBlockCapacity(uint32_t nb) { return nb <= 4096u ? nb : std::max(40
 constexpr const char* kCutLoops =
     "GPU polygoniser: the device cut the shaders' loops short (llvmpipe stops a shader's loops after "
     "65535 iterations): the program is too large for this device; polygonise it on the CPU";
+
+// kCutLoops, naming the passes whose loops were cut (the AM_OVERFLOW_CUT_* bits of overflow).
+std::string cutLoopsError(uint32_t overflow) {
+  std::string passes;
+  for (auto [bit, name] : {std::pair{AM_OVERFLOW_CUT_COARSE, "coarse"}, std::pair{AM_OVERFLOW_CUT_CELLS, "cells"},
+                           std::pair{AM_OVERFLOW_CUT_NORMALS, "normals"}})
+    if (overflow & bit) passes += std::string(passes.empty() ? "" : ", ") + name;
+  return std::string(kCutLoops) + (passes.empty() ? "" : " (the " + passes + " pass)");
+}
 }  // namespace
 
 GpuPolygonizer::GpuPolygonizer(Context& ctx) : impl_(std::make_unique<Impl>(ctx)) {}
@@ -886,8 +919,10 @@ Status GpuPolygonizer::absorbCounters(uint32_t slot) {
   if (c[AM_CTL_OVERFLOW] == 0) return Status::success();
   if (c[AM_CTL_OVERFLOW] & AM_OVERFLOW_LOOPS) {  // redoing it would cut them again
     m.cutLoops = true;
+    m.cutLoopsBits = c[AM_CTL_OVERFLOW];
     if (m.lastRegionLists) m.conservativeRegions = true;  // the next shape's frames spare the device more
-    return Error{kCutLoops};
+    if (m.cutLoopsBits & AM_OVERFLOW_CUT_NORMALS) m.conservativeNormals = true;
+    return Error{cutLoopsError(m.cutLoopsBits)};
   }
   // That frame drew nothing; grow to what it needed (counts past a block overflow are
   // partial, so those buffers double too) for the record that redoes it.
@@ -915,7 +950,7 @@ Status GpuPolygonizer::record(VkCommandBuffer cmd, uint64_t frameSerial, const G
   if (Status g = absorbCounters(slot); !g) return g;
   if (m.cutLoops) {
     m.cutLoops = false;
-    return Error{kCutLoops};
+    return Error{cutLoopsError(m.cutLoopsBits)};
   }
   // First frames: size the buffers for the grid as polygonize() does.
   if (Result<Grid> g = makeGrid(field, s); g) {
@@ -986,8 +1021,11 @@ Result<GpuPolygonizeStats> GpuPolygonizer::polygonize(const GpuField& field, con
     stats.triangles = c[AM_CTL_TRIANGLES];
     uint32_t overflow = c[AM_CTL_OVERFLOW];
     if (overflow & AM_OVERFLOW_LOOPS) {
-      if (!m.lastRegionLists) return Error{kCutLoops};
-      m.conservativeRegions = true;  // redo it with the smallest regions
+      const bool normalsRedo = (overflow & AM_OVERFLOW_CUT_NORMALS) && stats.regionLists && !m.normalsPerVertex;
+      if (!m.lastRegionLists && !normalsRedo) return Error{cutLoopsError(overflow)};
+      if (normalsRedo) m.conservativeNormals = true;  // redo it with the normals one vertex at a time
+      if ((overflow & (AM_OVERFLOW_CUT_COARSE | AM_OVERFLOW_CUT_CELLS)) != 0 || !normalsRedo)
+        m.conservativeRegions = true;  // redo it with the smallest regions
       continue;
     }
     if (overflow == 0) {

@@ -115,6 +115,10 @@ struct GpuPolygonizeSettings {
   // GpuPolygonizer::loopLimit). Tests turn it off to run the shaders' own detection of cut loops,
   // which fails the polygonisation instead of drawing a wrong mesh.
   bool loopBudgetCheck = true;
+  // With region lists: run the normals pass once per vertex of its invocations' four (four
+  // dispatches, each invocation walking one region's list once). Automatic where one dispatch could
+  // outrun the device's loop limit (two regions among four vertices); tests force it.
+  bool normalsPerVertex = false;
   // Initial buffer capacities (0: automatic). They grow when a frame overflows.
   uint32_t initialBlockCapacity = 0;
   uint32_t initialVertexCapacity = 0;
@@ -136,6 +140,7 @@ struct GpuPolygonizeStats {
   bool regionLists = false;
   uint32_t regionLongestOps = 0;
   uint32_t regionBlocks = 0;  // blocks a side of the regions the blocks' lists are for (4: superblocks)
+  uint32_t normalsDispatches = 1;  // 4: the normals pass ran once per vertex of its invocations
   uint64_t regionOpsTotal = 0;
   double regionListMs = 0.0;
   double milliseconds = 0.0;  // polygonize(): wall time from submit to completion (all passes)

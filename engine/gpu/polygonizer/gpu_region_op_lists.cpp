@@ -19,29 +19,34 @@ struct ProgramSide {
   uint32_t primOffset;            // global id of its first primitive
   std::vector<uint32_t> localOf;  // by program-local global id
   std::vector<uint8_t> kernelLoops;    // by program-local global id: loop iterations of its kernel at 8 points
+  std::vector<uint8_t> gradientLoops;  // the same for its value and gradient at 4 points (the normals)
   std::vector<uint8_t> intervalLoops;  // the same for its interval (the potential's power, twice)
 
   ProgramSide(const FieldProgram& p, const PackedFieldPrograms& pk, int which)
       : prog(p), paramsBase(pk.paramsBase[which]), mapsBase(pk.mapsBase[which]),
         classBase{pk.classBase[which][0], pk.classBase[which][1], pk.classBase[which][2]},
         primOffset(pk.primBegin[which]), localOf(p.primitiveCount(), 0u), kernelLoops(p.primitiveCount(), 1u),
-        intervalLoops(p.primitiveCount(), 1u) {
+        gradientLoops(p.primitiveCount(), 1u), intervalLoops(p.primitiveCount(), 1u) {
     for (const FieldOp& op : p.ops)
       if (op.code == OpCode::Prims)
         for (uint32_t k = 0; k < op.count; ++k) {
           localOf[op.primBegin + k] = op.first + k;
-          // A skeletal or capsule kernel: its loop over the 8 points, one step of the op's loop (the
-          // power has no loop); a spline curve's closest point loops over its segments and 8
-          // refinement steps per point. A convolution segment: one step.
-          uint32_t loops = op.primClass == PrimClass::Convolution ? 1u : 9u, intervalSteps = 1u;
+          // A skeletal or capsule kernel: one step of the op's loop, then its loop over the 8 points
+          // four at a time (2 steps; the normals' 4 points: 1; the power has no loop); a spline
+          // curve's closest point loops over its segments and 8 refinement steps per point. A
+          // convolution segment: one step.
+          const bool conv = op.primClass == PrimClass::Convolution;
+          uint32_t loops = conv ? 1u : 3u, gradient = conv ? 1u : 2u, intervalSteps = 1u;
           if (op.primClass == PrimClass::Skeletal) {
             const Skeleton& sk = p.skeletal[op.first + k].skeleton;
             if (sk.kind == SkeletonKind::Curve) {
               intervalSteps = uint32_t(std::min(200, sk.curveCount + 10));
-              loops = std::min(255u, 8u * intervalSteps + 1u);
+              loops = std::min(255u, 8u * intervalSteps + 3u);
+              gradient = std::min(255u, 4u * intervalSteps + 2u);
             }
           }
           kernelLoops[op.primBegin + k] = uint8_t(loops);
+          gradientLoops[op.primBegin + k] = uint8_t(gradient);
           intervalLoops[op.primBegin + k] = uint8_t(std::min(255u, intervalSteps));
         }
   }
@@ -128,6 +133,16 @@ ListLoops packActive(const ProgramSide& side, const ActiveProgram& act, std::vec
   return loops;
 }
 
+// Whether the normals pass takes p's analytic gradient (AM_ANALYTIC_GRADIENT in
+// poly_field_gradient.glsl: no HyperBlend, affine maps only) rather than the tetrahedral stencil.
+bool analyticGradients(const FieldProgram& p) {
+  for (const FieldOp& op : p.ops)
+    if (op.code == OpCode::HyperBlend) return false;
+  for (const SpaceMap& m : p.maps)
+    if (m.kind != SpaceMapKind::Affine) return false;
+  return true;
+}
+
 }  // namespace
 
 RegionOpLists appendRegionOpLists(const FieldProgram& a, const FieldProgram* b, const std::vector<Bounds>& regions,
@@ -146,13 +161,15 @@ RegionOpLists appendRegionOpLists(const FieldProgram& a, const FieldProgram* b, 
   std::vector<ProgramSide> sides;
   sides.emplace_back(a, pk, 0);
   if (b) sides.emplace_back(*b, pk, 1);
+  const bool stencilNormals = !analyticGradients(a) || (b && !analyticGradients(*b));
+  out.stencilNormals = stencilNormals;
   const uint64_t words = out.maskWords;
   ActiveProgram act;
   for (size_t k = 0; k < sides.size(); ++k) out.reaching[k].resize(regions.size());
   for (uint32_t r = 0; r < regions.size(); ++r) {
     glm::uvec4 entry(0u);
     ListLoops total;
-    uint64_t candidates = 0, kernels = 0, intervalKernels = 0;
+    uint64_t candidates = 0, kernels = 0, gradientKernels = 0, intervalKernels = 0;
     for (size_t k = 0; k < sides.size(); ++k) {
       const ProgramSide& side = sides[k];
       std::vector<uint32_t>& reaching = out.reaching[k][r];
@@ -161,6 +178,7 @@ RegionOpLists appendRegionOpLists(const FieldProgram& a, const FieldProgram* b, 
       candidates += within ? within->size() : reaching.size();
       for (uint32_t g : reaching) {
         kernels += side.kernelLoops[g];
+        gradientKernels += side.gradientLoops[g];
         intervalKernels += side.intervalLoops[g];
       }
       if (masks)
@@ -180,14 +198,16 @@ RegionOpLists appendRegionOpLists(const FieldProgram& a, const FieldProgram* b, 
     pool[out.table + r] = entry;
     out.longestOps = std::max(out.longestOps, entry.y + entry.w);
     // As gpuLoopIterationEstimate: the coarse pass (mask words, candidates, interval), the cells pass
-    // (sub-block intervals, corners, bookkeeping), the normals' stencil.
+    // (the sub-block intervals and the corners in SIMD groups of their own, bookkeeping), the normals
+    // (one vertex's walk: the stencil's pair, or the analytic gradient).
     // The kernels of every primitive reaching the region count too: a block of it may be reached by all.
     const uint64_t interval = total.interval + intervalKernels;
     out.intervalWalk.push_back(3 * words + 32 + interval);
     out.longestIntervalWalk = std::max(out.longestIntervalWalk, out.intervalWalk.back());
     out.longestCoarse = std::max(out.longestCoarse, 3 * words + candidates + 32 + interval);
-    out.longestFine = std::max(out.longestFine, std::max(interval + total.value + kernels + 512,
-                                                         2 * (total.value + kernels) + 16));
+    const uint64_t normals = stencilNormals ? total.value + kernels + 16 : total.value + gradientKernels + 16;
+    out.longestNormalWalk = std::max(out.longestNormalWalk, normals);
+    out.longestFine = std::max({out.longestFine, interval + 512, total.value + kernels + 512, normals});
   }
   return out;
 }

@@ -28,6 +28,10 @@ struct RegionOpLists {
   // coarse pass of a superblock); the coarse pass of a block (its candidates then the interval);
   // the fine passes (sub-block intervals and corners, the normals' stencil).
   uint64_t longestIntervalWalk = 0, longestCoarse = 0, longestFine = 0;
+  // The normals pass's walk of one list for one vertex (the stencil's pair or the analytic gradient):
+  // the fine figure above counts it once (the pass run once per vertex where needed).
+  uint64_t longestNormalWalk = 0;
+  bool stencilNormals = false;  // the programs' normals take the stencil (two walks for four vertices)
   std::vector<uint64_t> intervalWalk;  // per region: the first figure
   // Per program (a, b), per region: the primitives (program-local ids) reaching it, sorted.
   std::vector<std::vector<uint32_t>> reaching[2];
