@@ -101,16 +101,8 @@ Status OffscreenTarget::render(const std::function<void(VkCommandBuffer)>& recor
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   AM_VK_TRY(vkBeginCommandBuffer(cmd_, &bi), "vkBeginCommandBuffer");
-  VkClearValue clears[2];
-  clears[0].color = {{clearColor.r, clearColor.g, clearColor.b, clearColor.a}};
-  clears[1].depthStencil = {1.0f, 0};
-  VkRenderPassBeginInfo rbi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-  rbi.renderPass = renderPass_;
-  rbi.framebuffer = framebuffer_;
-  rbi.renderArea = {{0, 0}, color_.extent};
-  rbi.clearValueCount = 2;
-  rbi.pClearValues = clears;
-  vkCmdBeginRenderPass(cmd_, &rbi, VK_SUBPASS_CONTENTS_INLINE);
+  const float clear[4] = {clearColor.r, clearColor.g, clearColor.b, clearColor.a};
+  beginScenePass(cmd_, renderPass_, framebuffer_, color_.extent, clear);
   record(cmd_);
   vkCmdEndRenderPass(cmd_);
   if (readBack) {

@@ -473,17 +473,9 @@ void Swapchain::beginPass(const FrameUnderlay* underlay) {
   VkCommandBuffer cmd = cmds_[slot_];
   const bool load = underlay && underlay->image && underlaySupported();
   if (load) recordUnderlay(cmd, *underlay);
-  VkClearValue clears[2];
   const glm::vec4& c = settings_.clearColor;
-  clears[0].color = {{c.r, c.g, c.b, c.a}};
-  clears[1].depthStencil = {1.0f, 0};
-  VkRenderPassBeginInfo rbi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-  rbi.renderPass = load ? loadPass_ : renderPass_;
-  rbi.framebuffer = framebuffers_[imageIndex_];
-  rbi.renderArea = {{0, 0}, extent_};
-  rbi.clearValueCount = 2;
-  rbi.pClearValues = clears;
-  vkCmdBeginRenderPass(cmd, &rbi, VK_SUBPASS_CONTENTS_INLINE);
+  const float clear[4] = {c.r, c.g, c.b, c.a};
+  beginScenePass(cmd, load ? loadPass_ : renderPass_, framebuffers_[imageIndex_], extent_, clear);
   passOpen_ = true;
 }
 

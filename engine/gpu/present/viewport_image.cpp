@@ -65,16 +65,8 @@ Status ViewportImage::render(VkCommandBuffer cmd, uint32_t width, uint32_t heigh
                              const std::function<void(VkCommandBuffer)>& draw) {
   if (!framebuffer_ || color_.extent.width != width || color_.extent.height != height)
     if (Status s = resize(width, height); !s) return s;
-  VkClearValue clears[2];
-  clears[0].color = {{0.0f, 0.0f, 0.0f, 1.0f}};  // SceneRenderer::record clears its rectangle itself
-  clears[1].depthStencil = {1.0f, 0};
-  VkRenderPassBeginInfo rbi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-  rbi.renderPass = renderPass_;
-  rbi.framebuffer = framebuffer_;
-  rbi.renderArea = {{0, 0}, color_.extent};
-  rbi.clearValueCount = 2;
-  rbi.pClearValues = clears;
-  vkCmdBeginRenderPass(cmd, &rbi, VK_SUBPASS_CONTENTS_INLINE);
+  const float black[4] = {0.0f, 0.0f, 0.0f, 1.0f};  // SceneRenderer::record clears its rectangle itself
+  beginScenePass(cmd, renderPass_, framebuffer_, color_.extent, black);
   draw(cmd);
   vkCmdEndRenderPass(cmd);
   valid_ = true;

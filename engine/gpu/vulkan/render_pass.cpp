@@ -60,4 +60,18 @@ Result<VkRenderPass> createSceneRenderPass(VkDevice device, VkFormat colorFormat
   return pass;
 }
 
+void beginScenePass(VkCommandBuffer cmd, VkRenderPass renderPass, VkFramebuffer framebuffer, VkExtent2D extent,
+                    const float clearColor[4]) {
+  VkClearValue clears[2];
+  clears[0].color = {{clearColor[0], clearColor[1], clearColor[2], clearColor[3]}};
+  clears[1].depthStencil = {1.0f, 0};
+  VkRenderPassBeginInfo rbi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+  rbi.renderPass = renderPass;
+  rbi.framebuffer = framebuffer;
+  rbi.renderArea = {{0, 0}, extent};
+  rbi.clearValueCount = 2;
+  rbi.pClearValues = clears;
+  vkCmdBeginRenderPass(cmd, &rbi, VK_SUBPASS_CONTENTS_INLINE);
+}
+
 }  // namespace animorph::gpu

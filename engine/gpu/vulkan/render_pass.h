@@ -15,4 +15,10 @@ namespace animorph::gpu {
 Result<VkRenderPass> createSceneRenderPass(VkDevice device, VkFormat colorFormat, VkFormat depthFormat,
                                            VkImageLayout colorFinalLayout, bool loadColor = false);
 
+// Begins renderPass (one made by createSceneRenderPass) on framebuffer over its whole extent, inline
+// contents, the colour cleared to clearColor (r, g, b, a) and depth to 1 (a pass that loads its colour
+// ignores the colour clear). The caller ends the pass.
+void beginScenePass(VkCommandBuffer cmd, VkRenderPass renderPass, VkFramebuffer framebuffer, VkExtent2D extent,
+                    const float clearColor[4]);
+
 }  // namespace animorph::gpu
