@@ -252,6 +252,31 @@ TEST_CASE("assimp import: malformed, truncated and oversized files are refused q
     refused(name, bad, "<p> at byte " + std::to_string(list) + ": ");
     CHECK_THAT(outcome(importCharacter(tmp.file(name))), Catch::Contains("is not a digit or white space"));
   }
+  // Skin weights whose count disagrees with their lists (fuzz_collada: count="4" over 8 vertices made
+  // libassimp read a null pointer): refused before assimp reads them, naming the element.
+  const std::string rig = readBytes(std::string(ANIMORPH_SOURCE_DIR) + "/tests/fuzz/corpus/collada/rig.dae");
+  const size_t weights = rig.find("<vertex_weights count=\"8\">");
+  REQUIRE(weights != std::string::npos);
+  std::string fewer = rig;
+  fewer.replace(weights, 26, "<vertex_weights count=\"4\">");
+  refused("weights_count.dae", fewer,
+          "<vertex_weights> at byte " + std::to_string(weights) + ": count=\"4\" but its <vcount> lists 8 numbers");
+  std::string shortV = rig;
+  const size_t v = shortV.find("<v>", weights);
+  REQUIRE(v != std::string::npos);
+  shortV.replace(v, 7, "<v>");  // the first influence's two indices gone
+  refused("weights_v.dae", shortV, "adds up to 8 influences of 2 indices each, but its <v> lists 14");
+  // Accessors that read past their array or hold something else than <param>s (fuzz_collada: a
+  // broken <param> made libassimp assert and abort the process).
+  const size_t accessor = rig.find("<accessor source=\"#Cube-mesh-positions-array\" count=\"8\"");
+  REQUIRE(accessor != std::string::npos);
+  std::string longer = rig;
+  longer.replace(longer.find("count=\"8\"", accessor), 9, "count=\"9\"");
+  refused("accessor_count.dae", longer, "reads 9 x 3 values from 0 in 'Cube-mesh-positions-array', which holds 24");
+  std::string broken = rig;
+  broken[broken.find("<param", accessor) + 4] = '\xd7';
+  refused("accessor_param.dae", broken, "<accessor> at byte " + std::to_string(accessor) + ": holds <par?m");
+  CHECK(importCharacter(std::string(ANIMORPH_SOURCE_DIR) + "/tests/fuzz/corpus/collada/rig.dae").ok());
   // Not a file: a folder named like one.
   fs::create_directory(tmp.file("folder.fbx"));
   CHECK_THAT(outcome(importCharacter(tmp.file("folder.fbx"))), Catch::StartsWith(tmp.file("folder.fbx")));

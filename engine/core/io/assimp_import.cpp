@@ -910,7 +910,9 @@ Status checkDeclaredSizes(const std::string& file, const std::string& format, co
   }
   if (format == "Collada") {
     if (Status counts = checkTextDeclaredCounts(file, bytes, true); !counts) return counts;
-    return checkColladaIndexLists(file, bytes);
+    if (Status lists = checkColladaIndexLists(file, bytes); !lists) return lists;
+    if (Status weights = checkColladaVertexWeights(file, bytes); !weights) return weights;
+    return checkColladaAccessors(file, bytes);
   }
   return {};
 }

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <algorithm>
 #include <cstring>
+#include <utility>
 #include <vector>
 
 namespace animorph {
@@ -180,6 +181,142 @@ Status checkColladaIndexLists(const std::string& file, const std::string& b) {
                    " at byte " + std::to_string(q) +
                    " is not a digit or white space (an index list holds unsigned integers only)"};
     }
+  }
+  return {};
+}
+
+namespace {
+
+// The unsigned integers of the text between begin and end (the element's content); at most cap
+// of them are summed (each capped), so a broken list costs linear time and cannot overflow.
+struct IndexList {
+  uint64_t entries = 0, sum = 0;
+};
+
+IndexList readIndexList(const std::string& b, size_t begin, size_t end) {
+  IndexList l;
+  size_t q = begin;
+  while (q < end) {
+    while (q < end && (b[q] < '0' || b[q] > '9')) ++q;
+    if (q >= end) break;
+    uint64_t v = 0;
+    while (q < end && b[q] >= '0' && b[q] <= '9') {
+      v = std::min<uint64_t>(v * 10 + uint64_t(b[q] - '0'), uint64_t(1) << 40);
+      ++q;
+    }
+    ++l.entries;
+    l.sum = std::min<uint64_t>(l.sum + v, uint64_t(1) << 50);
+  }
+  return l;
+}
+
+// The content range of the first <tag> inside [from, to): {begin, end} or {npos, npos}.
+std::pair<size_t, size_t> elementContent(const std::string& b, const std::string& tag, size_t from, size_t to) {
+  const size_t lt = b.find("<" + tag + ">", from);
+  if (lt == std::string::npos || lt >= to) return {std::string::npos, std::string::npos};
+  const size_t begin = lt + tag.size() + 2, end = b.find("</" + tag + ">", begin);
+  if (end == std::string::npos || end > to) return {std::string::npos, std::string::npos};
+  return {begin, end};
+}
+
+// The largest offset="k" of the <input> elements in [from, to), plus one (0 when none).
+uint64_t inputStride(const std::string& b, size_t from, size_t to) {
+  uint64_t stride = 0;
+  for (size_t p = b.find("offset=\"", from); p != std::string::npos && p < to; p = b.find("offset=\"", p + 1)) {
+    uint64_t k = 0;
+    for (size_t q = p + 8; q < to && b[q] >= '0' && b[q] <= '9' && k < (uint64_t(1) << 20); ++q)
+      k = k * 10 + uint64_t(b[q] - '0');
+    stride = std::max(stride, k + 1);
+  }
+  return stride;
+}
+
+}  // namespace
+
+Status checkColladaVertexWeights(const std::string& file, const std::string& b) {
+  const std::string open = "<vertex_weights", close = "</vertex_weights>";
+  for (size_t at = b.find(open); at != std::string::npos; at = b.find(open, at + 1)) {
+    const size_t end = b.find(close, at);
+    if (end == std::string::npos) return {};  // a cut file: the XML parser says so
+    const size_t tagEnd = b.find('>', at);
+    const size_t countAt = b.find("count=\"", at);
+    if (countAt == std::string::npos || countAt > tagEnd) continue;  // no count: the XML reader refuses it
+    const IndexList count = readIndexList(b, countAt + 7, b.find('"', countAt + 7));
+    const auto [vcBegin, vcEnd] = elementContent(b, "vcount", tagEnd, end);
+    const auto [vBegin, vEnd] = elementContent(b, "v", tagEnd, end);
+    const IndexList vcount = vcBegin == std::string::npos ? IndexList{} : readIndexList(b, vcBegin, vcEnd);
+    const IndexList v = vBegin == std::string::npos ? IndexList{} : readIndexList(b, vBegin, vEnd);
+    const uint64_t stride = inputStride(b, tagEnd, end);
+    const std::string where = file + ": <vertex_weights> at byte " + std::to_string(at) + ": ";
+    if (vcount.entries != count.sum)
+      return Error{where + "count=\"" + std::to_string(count.sum) + "\" but its <vcount> lists " +
+                   std::to_string(vcount.entries) + " numbers"};
+    if (v.entries != vcount.sum * stride)
+      return Error{where + "its <vcount> adds up to " + std::to_string(vcount.sum) + " influences of " +
+                   std::to_string(stride) + " indices each, but its <v> lists " + std::to_string(v.entries)};
+  }
+  return {};
+}
+
+namespace {
+
+// The value of attribute name="..." inside the tag [tagBegin, tagEnd), or def when absent.
+std::string attribute(const std::string& b, size_t tagBegin, size_t tagEnd, const std::string& name,
+                      const std::string& def) {
+  const std::string key = " " + name + "=\"";
+  const size_t p = b.find(key, tagBegin);
+  if (p == std::string::npos || p >= tagEnd) return def;
+  const size_t q = b.find('"', p + key.size());
+  return q == std::string::npos || q > tagEnd ? def : b.substr(p + key.size(), q - p - key.size());
+}
+
+uint64_t attributeNumber(const std::string& b, size_t tagBegin, size_t tagEnd, const std::string& name,
+                         uint64_t def) {
+  const std::string v = attribute(b, tagBegin, tagEnd, name, "");
+  if (v.empty()) return def;
+  const IndexList l = readIndexList(v, 0, v.size());
+  return l.entries == 1 ? l.sum : def;
+}
+
+// The count="N" of the element whose id is id, or -1 when the file has none.
+int64_t arrayCount(const std::string& b, const std::string& id) {
+  const size_t p = b.find(" id=\"" + id + "\"");
+  if (p == std::string::npos) return -1;
+  const size_t lt = b.rfind('<', p), gt = b.find('>', p);
+  if (lt == std::string::npos || gt == std::string::npos) return -1;
+  return int64_t(attributeNumber(b, lt, gt, "count", 0));
+}
+
+}  // namespace
+
+Status checkColladaAccessors(const std::string& file, const std::string& b) {
+  const std::string open = "<accessor", close = "</accessor>";
+  for (size_t at = b.find(open); at != std::string::npos; at = b.find(open, at + 1)) {
+    const size_t tagEnd = b.find('>', at), end = b.find(close, at);
+    if (tagEnd == std::string::npos || end == std::string::npos) return {};  // cut: the XML parser says so
+    const std::string where = file + ": <accessor> at byte " + std::to_string(at) + ": ";
+    const uint64_t count = attributeNumber(b, at, tagEnd, "count", 0),
+                   stride = attributeNumber(b, at, tagEnd, "stride", 1),
+                   offset = attributeNumber(b, at, tagEnd, "offset", 0);
+    uint64_t params = 0;
+    for (size_t lt = b.find('<', tagEnd); lt < end; lt = b.find('<', lt + 1)) {
+      if (b.compare(lt, 6, "<param") == 0 && (b[lt + 6] == ' ' || b[lt + 6] == '>' || b[lt + 6] == '/')) {
+        ++params;
+      } else if (b.compare(lt, 7, "</param") != 0 && b.compare(lt, 4, "<!--") != 0) {
+        std::string shown = b.substr(lt + 1, std::min<size_t>(12, end - lt - 1));
+        for (char& ch : shown)
+          if (ch < 0x20 || ch > 0x7e) ch = '?';  // a broken file's element name may be any bytes
+        return Error{where + "holds <" + shown + "...>, not a <param>"};
+      }
+    }
+    if (params > stride)
+      return Error{where + std::to_string(params) + " <param>s in a stride of " + std::to_string(stride)};
+    const std::string source = attribute(b, at, tagEnd, "source", "");
+    if (source.size() < 2 || source[0] != '#') continue;  // an external or missing source: assimp refuses it
+    const int64_t values = arrayCount(b, source.substr(1));
+    if (values >= 0 && double(offset) + double(count) * double(stride) > double(values))  // no overflow
+      return Error{where + "reads " + std::to_string(count) + " x " + std::to_string(stride) + " values from " +
+                   std::to_string(offset) + " in '" + source.substr(1) + "', which holds " + std::to_string(values)};
   }
   return {};
 }

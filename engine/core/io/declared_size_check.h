@@ -39,6 +39,18 @@ Status checkTextDeclaredCounts(const std::string& file, const std::string& bytes
 // Errors name file, the element, its byte offset and the character. Time linear in the size.
 Status checkColladaIndexLists(const std::string& file, const std::string& bytes);
 
+// Collada skin weights (<vertex_weights count="N">): its <vcount> lists N numbers, and its <v> lists
+// their sum times the inputs' stride (the largest input offset + 1) indices. libassimp 5.2 trusts
+// count and reads past the lists it sized by it (a null read in its skin conversion). Errors name
+// file, the element, its byte offset and what disagrees. Time linear in the size.
+Status checkColladaVertexWeights(const std::string& file, const std::string& bytes);
+
+// Collada accessors (<accessor source="#array" count="C" stride="S" offset="O">): every child is a
+// <param>, at most S of them, and the array named by source (found in the same file) holds at least
+// O + C * S values. libassimp 5.2 trusts the accessor and asserts (aborting the process) when it
+// reads past the array. Errors name file, the accessor, its byte offset and what disagrees.
+Status checkColladaAccessors(const std::string& file, const std::string& bytes);
+
 // True when bytes start with the binary FBX magic.
 bool isFbxBinary(const std::string& bytes);
 
