@@ -106,12 +106,12 @@ void normalsPass() {
     hBegin = k >> 1;
     hEnd = hBegin + 1u;
   }
-  uvec4 todo = uvec4(supers.x, 0u, 0u, 0u);
+  uvec4 pending = uvec4(supers.x, 0u, 0u, 0u);
   uint n = 1u;
-  if (supers.y != supers.x) todo[n++] = supers.y;
-  if (supers.z != supers.x && supers.z != supers.y) todo[n++] = supers.z;
-  if (supers.w != supers.x && supers.w != supers.y && supers.w != supers.z) todo[n++] = supers.w;
-  for (uint k = 0u; k < n; ++k) normalsIn(todo[k], supers, v0, total, q0, q1, q2, q3, handled, hBegin, hEnd);
+  if (supers.y != supers.x) pending[n++] = supers.y;
+  if (supers.z != supers.x && supers.z != supers.y) pending[n++] = supers.z;
+  if (supers.w != supers.x && supers.w != supers.y && supers.w != supers.z) pending[n++] = supers.w;
+  for (uint k = 0u; k < n; ++k) normalsIn(pending[k], supers, v0, total, q0, q1, q2, q3, handled, hBegin, hEnd);
 }
 
 void main() {

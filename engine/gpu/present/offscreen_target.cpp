@@ -53,27 +53,18 @@ Status OffscreenTarget::createImages(uint32_t width, uint32_t height) {
     destroyImage(ctx_.device(), *depth);
     return Error{readback.error()};
   }
-  VkImageView views[2] = {color->view, depth->view};
-  VkFramebufferCreateInfo fci{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-  fci.renderPass = renderPass_;
-  fci.attachmentCount = 2;
-  fci.pAttachments = views;
-  fci.width = width;
-  fci.height = height;
-  fci.layers = 1;
-  VkFramebuffer fb = VK_NULL_HANDLE;
-  VkResult r = vkCreateFramebuffer(ctx_.device(), &fci, nullptr, &fb);
-  if (r != VK_SUCCESS) {
+  Result<VkFramebuffer> fb = createSceneFramebuffer(ctx_.device(), renderPass_, color->view, depth->view, extent);
+  if (!fb) {
     destroyImage(ctx_.device(), *color);
     destroyImage(ctx_.device(), *depth);
     destroyBuffer(ctx_.device(), *readback);
-    return vkError("vkCreateFramebuffer", r);
+    return Error{fb.error()};
   }
   destroyImages();
   color_ = *color;
   depth_ = *depth;
   readback_ = *readback;
-  framebuffer_ = fb;
+  framebuffer_ = *fb;
   image_ = RgbaImage{};
   return Status::success();
 }

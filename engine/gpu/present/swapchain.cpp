@@ -177,17 +177,9 @@ void Swapchain::destroyTargets() {
 
 // A framebuffer of the render pass over `color` and the depth buffer, at the current extent.
 Status Swapchain::addFramebuffer(VkImageView color) {
-  VkImageView attachments[2] = {color, depth_.view};
-  VkFramebufferCreateInfo fci{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-  fci.renderPass = renderPass_;
-  fci.attachmentCount = 2;
-  fci.pAttachments = attachments;
-  fci.width = extent_.width;
-  fci.height = extent_.height;
-  fci.layers = 1;
-  VkFramebuffer fb = VK_NULL_HANDLE;
-  AM_VK_TRY(vkCreateFramebuffer(ctx_.device(), &fci, nullptr, &fb), "vkCreateFramebuffer");
-  framebuffers_.push_back(fb);
+  Result<VkFramebuffer> fb = createSceneFramebuffer(ctx_.device(), renderPass_, color, depth_.view, extent_);
+  if (!fb) return Error{fb.error()};
+  framebuffers_.push_back(*fb);
   return Status::success();
 }
 

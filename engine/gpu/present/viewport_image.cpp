@@ -45,19 +45,12 @@ Status ViewportImage::resize(uint32_t width, uint32_t height) {
     return Error{"viewport image: " + depth.error()};
   }
   depth_ = *depth;
-  VkImageView views[2] = {color_.view, depth_.view};
-  VkFramebufferCreateInfo fci{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-  fci.renderPass = renderPass_;
-  fci.attachmentCount = 2;
-  fci.pAttachments = views;
-  fci.width = width;
-  fci.height = height;
-  fci.layers = 1;
-  VkResult r = vkCreateFramebuffer(ctx_.device(), &fci, nullptr, &framebuffer_);
-  if (r != VK_SUCCESS) {
+  Result<VkFramebuffer> fb = createSceneFramebuffer(ctx_.device(), renderPass_, color_.view, depth_.view, extent);
+  if (!fb) {
     destroyImages();
-    return Error{"viewport image: " + vkError("vkCreateFramebuffer", r).message};
+    return Error{"viewport image: " + fb.error()};
   }
+  framebuffer_ = *fb;
   return Status::success();
 }
 

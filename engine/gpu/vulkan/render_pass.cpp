@@ -60,6 +60,21 @@ Result<VkRenderPass> createSceneRenderPass(VkDevice device, VkFormat colorFormat
   return pass;
 }
 
+Result<VkFramebuffer> createSceneFramebuffer(VkDevice device, VkRenderPass renderPass, VkImageView colorView,
+                                             VkImageView depthView, VkExtent2D extent) {
+  VkImageView views[2] = {colorView, depthView};
+  VkFramebufferCreateInfo fci{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+  fci.renderPass = renderPass;
+  fci.attachmentCount = 2;
+  fci.pAttachments = views;
+  fci.width = extent.width;
+  fci.height = extent.height;
+  fci.layers = 1;
+  VkFramebuffer fb = VK_NULL_HANDLE;
+  AM_VK_TRY(vkCreateFramebuffer(device, &fci, nullptr, &fb), "vkCreateFramebuffer");
+  return fb;
+}
+
 void beginScenePass(VkCommandBuffer cmd, VkRenderPass renderPass, VkFramebuffer framebuffer, VkExtent2D extent,
                     const float clearColor[4]) {
   VkClearValue clears[2];

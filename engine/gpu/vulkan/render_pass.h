@@ -15,6 +15,11 @@ namespace animorph::gpu {
 Result<VkRenderPass> createSceneRenderPass(VkDevice device, VkFormat colorFormat, VkFormat depthFormat,
                                            VkImageLayout colorFinalLayout, bool loadColor = false);
 
+// A framebuffer of renderPass (one made by createSceneRenderPass) over colorView and depthView,
+// extent wide and high, one layer. Errors: Vulkan failures. The caller destroys it.
+Result<VkFramebuffer> createSceneFramebuffer(VkDevice device, VkRenderPass renderPass, VkImageView colorView,
+                                             VkImageView depthView, VkExtent2D extent);
+
 // Begins renderPass (one made by createSceneRenderPass) on framebuffer over its whole extent, inline
 // contents, the colour cleared to clearColor (r, g, b, a) and depth to 1 (a pass that loads its colour
 // ignores the colour clear). The caller ends the pass.
