@@ -6,20 +6,25 @@
 // plane in a circle of radius r d / sqrt(d^2 - r^2), the triangle's inscribed circle. One
 // triangle rather than a square's two: a CPU rasteriser shades each small triangle's 4x4 pixel
 // blocks on its own, so two triangles over the same few pixels cost nearly twice as much.
-// particle_sphere.frag ray-casts the sphere inside it. A sphere around the eye draws nothing.
+// particle_sphere.frag ray-casts the sphere inside it. A sphere around the eye draws nothing. Each
+// particle has its own colour (a converted shape's particles keep their surface's colours).
 #include "frame.glsl"
 #include "mesh_push.glsl"
 
 layout(location = 0) in vec4 inSphere;  // xyz: centre (world), w: radius
+layout(location = 1) in vec4 inColor;   // sRGB; alpha 0: the draw's colour (pc.baseLinear)
 
 layout(location = 0) out vec3 outWorldPos;      // on the triangle
 layout(location = 1) flat out vec4 outSphere;
+layout(location = 2) flat out vec3 outBase;     // the particle's colour in linear light
 
 void main() {
   // An equilateral triangle whose inscribed circle has radius 1 (counter-clockwise).
   const vec2 corners[3] = vec2[](vec2(0.0, 2.0), vec2(-1.7320508, -1.0), vec2(1.7320508, -1.0));
   const vec2 corner = corners[gl_VertexIndex];
   outSphere = inSphere;
+  // pow(c, 2.2) as the draw colour's pc.baseLinear, once per vertex rather than per pixel.
+  outBase = inColor.a > 0.5 ? pow(inColor.rgb, vec3(2.2)) : pc.baseLinear.rgb;
   const vec3 toCentre = inSphere.xyz - frame.cameraPos.xyz;
   const float d = length(toCentre), r = inSphere.w;
   if (!(r > 0.0) || d <= 1.0001 * r) {  // degenerate: outside the clip volume

@@ -19,8 +19,14 @@ BlobNode part(NodeType type, int id, const char* name, float thickness) {
   return n;
 }
 
-BlobNode segment(int id, const char* name, glm::vec3 a, glm::vec3 b, float thickness) {
+// The statue's materials (sRGB): its particles keep them as they fly (convertToParticles colours
+// each particle by the surface point it came from), so the explosion shows where each piece was.
+constexpr glm::vec3 kGranite{0.46f, 0.24f, 0.2f}, kBronze{0.74f, 0.48f, 0.22f}, kMarble{0.9f, 0.88f, 0.82f},
+    kGold{0.96f, 0.76f, 0.26f};
+
+BlobNode segment(int id, const char* name, glm::vec3 a, glm::vec3 b, float thickness, glm::vec3 color) {
   BlobNode n = part(NodeType::Segment, id, name, thickness);
+  n.vec3Param("color") = Vec3Track(color);
   n.vec3Param("a") = Vec3Track(a);
   n.vec3Param("b") = Vec3Track(b);
   return n;
@@ -35,16 +41,18 @@ BlobTree makeStatue() {
   pedestal.vec3Param("a") = Vec3Track(glm::vec3(0.0f, 0.1f, 0.0f));
   pedestal.vec3Param("b") = Vec3Track(glm::vec3(0.0f, 0.3f, 0.0f));
   pedestal.floatParam("skeletonRadius") = FloatTrack(0.22f);
+  pedestal.vec3Param("color") = Vec3Track(kGranite);
   auto& c = t.root.children;
   c.push_back(pedestal);
-  c.push_back(segment(3, "left leg", {-0.12f, 0.45f, 0.0f}, {-0.09f, 0.95f, 0.0f}, 0.09f));
-  c.push_back(segment(4, "right leg", {0.12f, 0.45f, 0.0f}, {0.09f, 0.95f, 0.0f}, 0.09f));
-  c.push_back(segment(5, "torso", {0.0f, 0.98f, 0.0f}, {0.0f, 1.38f, 0.0f}, 0.16f));
-  c.push_back(segment(6, "shoulders", {-0.2f, 1.42f, 0.0f}, {0.2f, 1.42f, 0.0f}, 0.085f));
-  c.push_back(segment(7, "left arm", {-0.22f, 1.42f, 0.0f}, {-0.42f, 1.8f, 0.05f}, 0.07f));
-  c.push_back(segment(8, "right arm", {0.22f, 1.42f, 0.0f}, {0.42f, 1.8f, 0.05f}, 0.07f));
+  c.push_back(segment(3, "left leg", {-0.12f, 0.45f, 0.0f}, {-0.09f, 0.95f, 0.0f}, 0.09f, kBronze));
+  c.push_back(segment(4, "right leg", {0.12f, 0.45f, 0.0f}, {0.09f, 0.95f, 0.0f}, 0.09f, kBronze));
+  c.push_back(segment(5, "torso", {0.0f, 0.98f, 0.0f}, {0.0f, 1.38f, 0.0f}, 0.16f, kMarble));
+  c.push_back(segment(6, "shoulders", {-0.2f, 1.42f, 0.0f}, {0.2f, 1.42f, 0.0f}, 0.085f, kMarble));
+  c.push_back(segment(7, "left arm", {-0.22f, 1.42f, 0.0f}, {-0.42f, 1.8f, 0.05f}, 0.07f, kBronze));
+  c.push_back(segment(8, "right arm", {0.22f, 1.42f, 0.0f}, {0.42f, 1.8f, 0.05f}, 0.07f, kBronze));
   BlobNode head = part(NodeType::Point, 9, "head", 0.12f);
   head.vec3Param("center") = Vec3Track(glm::vec3(0.0f, 1.66f, 0.0f));
+  head.vec3Param("color") = Vec3Track(kGold);
   c.push_back(head);
   return t;
 }

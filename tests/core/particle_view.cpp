@@ -181,3 +181,22 @@ TEST_CASE("particles spread too far for the surface's grid stay particles while 
   CHECK(f.blobs.size() == 1);
   CHECK(closeView.note().empty());
 }
+
+TEST_CASE("particles carry their points' colours at the draw's time (keyed colours included)", "[particles][view]") {
+  Project p = projectWithPoints(3);
+  BlobNode& root = p.actors[0].blobTree.root;
+  root.children[0].vec3Param("color") = Vec3Track(glm::vec3(1.0f, 0.0f, 0.0f));
+  Vec3Track keyed;
+  keyed.setKey(0.0, glm::vec3(0.0f, 0.0f, 1.0f), KeyInterp::Linear);
+  keyed.setKey(1.0, glm::vec3(0.0f, 1.0f, 0.0f), KeyInterp::Linear);
+  root.children[2].vec3Param("color") = keyed;
+  for (double t : {0.0, 0.25, 1.0}) {
+    const ParticleDraw d = particleDraw(frameAt(t).blobs[0], p, 3);
+    REQUIRE(d.colors.size() == 3);
+    CHECK(d.colors[0] == glm::vec3(1.0f, 0.0f, 0.0f));
+    CHECK(d.colors[1] == kDefaultBlobColor);  // no colour of its own: the clay tone
+    CHECK(d.colors[2].y == Approx(float(t)));
+    CHECK(d.colors[2].z == Approx(1.0f - float(t)));
+  }
+  CHECK(particleDraw(frameAt(1.0).blobs[0], p, 4).colors.empty());  // fewer particles than asked: none
+}

@@ -35,6 +35,7 @@ Scene emptyScene() {
 float luminance(glm::u8vec4 p) { return 0.2126f * p.r + 0.7152f * p.g + 0.0722f * p.b; }
 bool reddish(glm::u8vec4 p) { return p.r > p.g + 40 && p.r > p.b + 40; }
 bool greenish(glm::u8vec4 p) { return p.g > p.r + 40 && p.g > p.b + 40; }
+bool bluish(glm::u8vec4 p) { return p.b > p.r + 40 && p.b > p.g + 40; }
 
 ParticleSpheresDraw spheres(std::vector<glm::vec4> s, glm::vec4 color) {
   ParticleSpheresDraw d;
@@ -113,4 +114,31 @@ TEST_CASE("particle spheres from a particle draw follow its model matrix", "[gpu
   CHECK(s.spheres[0].w == Approx(0.2f));
   CHECK(s.spheres[1].w == Approx(2e-3f));  // at least 1 mm before the scale
   CHECK(s.selected);
+  CHECK(s.colors.empty());  // no colours of its own: the draw's colour
+  d.colors = {glm::vec3(1.0f, 0.5f, 0.0f), glm::vec3(0.0f, 0.0f, 2.0f)};
+  const ParticleSpheresDraw c = particleSpheres(d, {1, 0, 0, 1}, false);
+  REQUIRE(c.colors.size() == 2);
+  CHECK(c.colors[0] == (0xFF000000u | (128u << 8) | 255u));  // r in the low byte, alpha 255
+  CHECK(c.colors[1] == 0xFFFF0000u);                         // clamped to 1
+}
+
+TEST_CASE("particle spheres of one draw each take their own colour", "[gpu][render][particles]") {
+  auto ctx = makeTestContext();
+  SceneTarget r = makeSceneTarget(*ctx, 320, 240);
+  const OrbitCamera cam = camera();
+  const glm::vec3 a(-1.2f, 0.3f, 0.0f), b(1.1f, -0.4f, 0.5f), c(0.0f, -1.0f, 0.0f);
+  Scene scene = emptyScene();
+  ParticleDraw d;
+  d.centres = {a, b, c};
+  d.radii = {0.35f, 0.35f, 0.35f};
+  d.colors = {glm::vec3(0.9f, 0.1f, 0.1f), glm::vec3(0.1f, 0.2f, 0.9f), glm::vec3(0.1f, 0.9f, 0.1f)};
+  scene.particles.push_back(particleSpheres(d, {0.85f, 0.85f, 0.85f, 1.0f}, false));
+  // A draw without colours of its own keeps its one colour.
+  scene.particles.push_back(spheres({glm::vec4(0.0f, 1.2f, 0.0f, 0.3f)}, {0.85f, 0.2f, 0.15f, 1.0f}));
+  const RgbaImage& img = renderScene(r, cam, scene);
+  CHECK(reddish(pixelAt(img, cam, a)));
+  CHECK(bluish(pixelAt(img, cam, b)));
+  CHECK(greenish(pixelAt(img, cam, c)));
+  CHECK(reddish(pixelAt(img, cam, glm::vec3(0.0f, 1.2f, 0.0f))));
+  CHECK(ctx->validationErrorCount() == 0);
 }

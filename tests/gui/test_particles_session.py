@@ -1,7 +1,8 @@
 """The Particles section and the particle view in a real window, on a copy of the statue demo:
 select the exploding particle actor, raise the explosion's energy in the inspector's Particles
 section, Simulate (a background job, one undo step), scrub the timeline (particles drawn as spheres
-while the playhead is dragged, the polygonised surface once it is let go), undo. Judged by the UI
+in the colours of the statue's surface they came from while the playhead is dragged, the
+polygonised surface once it is let go), undo. Judged by the UI
 map (selection, job, status, the particle view flag), screenshots of the viewport and the saved
 project (the simulated tracks fly farther than the demo's; after undo they are the demo's again).
 
@@ -118,6 +119,13 @@ try:
     g.check(m["particle_view"], f"particles are drawn while the playhead is dragged (frame {m['current_frame']})")
     markers = ed.screenshot(os.path.join(work, "particles.png"))
     g.check(ed.ui_map().get("particle_view"), "still the particle view after the screenshot (the button is held)")
+    # Each sphere in the colour of the statue's surface it came from (bronze, gold, granite), not one
+    # clay tone for all.
+    _, warm, clay, saturated = g.hue_counts(markers, g.scene_region(m))
+    # (Drawn all in the clay tone, the selection's orange rims and the red axis give ~2,200 warm
+    # pixels against ~2,400 clay ones; in their colours ~12,000 against ~2,400.)
+    g.check(warm > 5000 and warm > 3 * clay,
+            f"the spheres show the statue's colours ({warm} warm pixels, {clay} clay, {saturated} saturated)")
     g.xdo("mouseup", 1)
     settle(ed)
     surface = ed.screenshot(os.path.join(work, "surface.png"))

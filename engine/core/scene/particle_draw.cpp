@@ -38,6 +38,8 @@ ParticleDraw particleDraw(const BlobDraw& draw, const Project& project, size_t m
   TreeParticles tp = treeParticles(*tree, draw.treeTimeSec);
   out.centres = std::move(tp.set.position);
   out.radii = std::move(tp.set.radius);
+  out.colors.reserve(out.centres.size());
+  forEachParticleNode(tree->root, [&](const BlobNode& n) { out.colors.push_back(n.vec3Param("color").evaluate(draw.treeTimeSec)); });
   return out;
 }
 

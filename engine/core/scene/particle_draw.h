@@ -27,6 +27,9 @@ struct ParticleDraw {
   glm::mat4 model{1.0f};
   std::vector<glm::vec3> centres;
   std::vector<float> radii;  // visible radius of each (where a point alone reaches the threshold)
+  // The colour of each (its point's colour track at the draw's time, sRGB: a converted shape's
+  // particles keep the colour of the surface point they came from); empty: the draw's colour.
+  std::vector<glm::vec3> colors;
 };
 
 // The draw's tree (its own, else its BlobTree actor's in project) when it has at least minParticles
@@ -34,8 +37,8 @@ struct ParticleDraw {
 // alive in its cache until the next frame's.
 const BlobTree* particleTree(const BlobDraw& draw, const Project& project, size_t minParticles);
 
-// The particles of a draw's tree (its own, else the actor's) at its time; empty when the tree has
-// fewer than minParticles particles.
+// The particles of a draw's tree (its own, else the actor's) at its time, with their colours; empty
+// when the tree has fewer than minParticles particles.
 ParticleDraw particleDraw(const BlobDraw& draw, const Project& project, size_t minParticles);
 
 // Whether a grid of resolution cells along the longest side of the particles' bounds (centres

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "gpu/render/line_batch.h"
+
 namespace animorph::gpu {
 
 ParticleSpheresDraw particleSpheres(const ParticleDraw& draw, const glm::vec4& color, bool selected) {
@@ -17,6 +19,11 @@ ParticleSpheresDraw particleSpheres(const ParticleDraw& draw, const glm::vec4& c
     const glm::vec3 c = glm::vec3(draw.model * glm::vec4(draw.centres[i], 1.0f));
     const float r = std::max(i < draw.radii.size() ? draw.radii[i] : 0.0f, 1e-3f) * scale;
     out.spheres[i] = glm::vec4(c, r);
+  }
+  if (draw.colors.size() == draw.centres.size()) {
+    out.colors.resize(draw.colors.size());
+    for (size_t i = 0; i < draw.colors.size(); ++i)
+      out.colors[i] = packRgba(glm::vec4(glm::clamp(draw.colors[i], 0.0f, 1.0f), 1.0f));
   }
   return out;
 }

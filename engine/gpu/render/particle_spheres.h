@@ -9,7 +9,8 @@
 namespace animorph::gpu {
 
 // The spheres of draw in the world (centres through draw.model, radii by its scale, at least
-// 1 mm), in color; selected adds the selection's rim as on meshes.
+// 1 mm), each in its own colour (draw.colors, sRGB) or, where draw has none, in color; selected
+// adds the selection's rim as on meshes.
 ParticleSpheresDraw particleSpheres(const ParticleDraw& draw, const glm::vec4& color, bool selected);
 
 }  // namespace animorph::gpu

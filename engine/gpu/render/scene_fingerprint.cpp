@@ -91,6 +91,7 @@ std::optional<uint64_t> sceneFingerprint(const Scene& scene, const OrbitCamera& 
   h.value(scene.particles.size());
   for (const ParticleSpheresDraw& p : scene.particles) {
     h.span(std::span<const glm::vec4>(p.spheres));
+    h.span(std::span<const uint32_t>(p.colors));
     h.vec(p.color);
     h.value(uint32_t(p.selected));
   }

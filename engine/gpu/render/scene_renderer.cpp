@@ -59,6 +59,10 @@ constexpr float kWireDepthPull = 5e-5f;
 
 enum class VertexInput { None, Mesh, MeshWeights, Line, Generated, Transition, Sphere };
 
+// A particle in the frame's ring buffer: its sphere (vec4), then, after all of its draw's spheres,
+// its colour (RGBA8).
+constexpr VkDeviceSize kParticleBytes = sizeof(glm::vec4) + sizeof(uint32_t);
+
 struct PipelineDesc {
   const char* vert;
   const char* frag;
@@ -105,9 +109,11 @@ Result<VkPipeline> createPipeline(VkDevice device, VkRenderPass pass, VkPipeline
       bindings.push_back({s, GeneratedMeshDraw::kVertexStride, VK_VERTEX_INPUT_RATE_VERTEX});
       attributes.push_back({s, s, VK_FORMAT_R32G32B32_SFLOAT, 0});
     }
-  } else if (d.input == VertexInput::Sphere) {  // one vec4 (centre, radius) per instance
+  } else if (d.input == VertexInput::Sphere) {  // per instance: a vec4 (centre, radius), an RGBA8 colour
     bindings.push_back({0, sizeof(glm::vec4), VK_VERTEX_INPUT_RATE_INSTANCE});
     attributes.push_back({0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 0});
+    bindings.push_back({1, sizeof(uint32_t), VK_VERTEX_INPUT_RATE_INSTANCE});
+    attributes.push_back({1, 1, VK_FORMAT_R8G8B8A8_UNORM, 0});
   } else if (d.input == VertexInput::Line) {
     bindings.push_back({0, sizeof(LineVertex), VK_VERTEX_INPUT_RATE_VERTEX});
     attributes.push_back({0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0});
@@ -568,7 +574,7 @@ Status SceneRenderer::uploadFrameData(const Scene& scene, RecordPass& rp) {
   const VkDeviceSize lineBytes = lineScratch_.size() * sizeof(LineVertex);
   const VkDeviceSize weightBytes = weightScratch_.size() * sizeof(float);
   VkDeviceSize particleBytes = 0;
-  for (const ParticleSpheresDraw& d : scene.particles) particleBytes += d.spheres.size() * sizeof(glm::vec4);
+  for (const ParticleSpheresDraw& d : scene.particles) particleBytes += d.spheres.size() * kParticleBytes;
   Status cap = reserve(slot, jointBytes, lineBytes, weightBytes, particleBytes);
   if (cap && !scene.transitionMeshes.empty())
     cap = reserveTransitionParams(slot, scene.transitionMeshes.size() * transitionParamStride_);
@@ -582,10 +588,13 @@ Status SceneRenderer::uploadFrameData(const Scene& scene, RecordPass& rp) {
     std::memcpy(static_cast<uint8_t*>(slot.weights.mapped) + rp.weightBase, weightScratch_.data(), weightBytes);
   slot.weightsUsed += weightBytes;
   rp.particleBase = slot.particlesUsed;
-  for (const ParticleSpheresDraw& d : scene.particles) {
-    std::memcpy(static_cast<uint8_t*>(slot.particles.mapped) + slot.particlesUsed, d.spheres.data(),
-                d.spheres.size() * sizeof(glm::vec4));
-    slot.particlesUsed += d.spheres.size() * sizeof(glm::vec4);
+  for (const ParticleSpheresDraw& d : scene.particles) {  // each draw's spheres, then their colours
+    uint8_t* at = static_cast<uint8_t*>(slot.particles.mapped) + slot.particlesUsed;
+    const size_t n = d.spheres.size();
+    std::memcpy(at, d.spheres.data(), n * sizeof(glm::vec4));
+    if (d.colors.size() == n) std::memcpy(at + n * sizeof(glm::vec4), d.colors.data(), n * sizeof(uint32_t));
+    else std::memset(at + n * sizeof(glm::vec4), 0, n * sizeof(uint32_t));  // alpha 0: the draw's colour
+    slot.particlesUsed += n * kParticleBytes;
   }
   if (jointBytes)
     std::memcpy(static_cast<uint8_t*>(slot.joints.mapped) + slot.jointsUsed, jointScratch_.data(), jointBytes);
@@ -745,7 +754,7 @@ void SceneRenderer::drawParticlesAndWeights(const Scene& scene, RecordPass& rp) 
   // Particles: one instanced draw of a triangle per particle draw, at its place in the ring buffer.
   VkDeviceSize particleOffset = rp.particleBase;
   for (const ParticleSpheresDraw& d : scene.particles) {
-    const VkDeviceSize bytes = d.spheres.size() * sizeof(glm::vec4);
+    const VkDeviceSize bytes = d.spheres.size() * kParticleBytes;
     if (d.spheres.empty()) continue;
     bindPipeline(rp, particlePipeline_);
     MeshPush p{};
@@ -755,7 +764,9 @@ void SceneRenderer::drawParticlesAndWeights(const Scene& scene, RecordPass& rp) 
     p.jointCount = 1;
     p.flags = d.selected ? kDrawSelected : 0u;
     vkCmdPushConstants(cmd, layout_, kPushStages, 0, sizeof(p), &p);
-    vkCmdBindVertexBuffers(cmd, 0, 1, &slot.particles.buffer, &particleOffset);
+    const VkBuffer buffers[2] = {slot.particles.buffer, slot.particles.buffer};
+    const VkDeviceSize offsets[2] = {particleOffset, particleOffset + d.spheres.size() * sizeof(glm::vec4)};
+    vkCmdBindVertexBuffers(cmd, 0, 2, buffers, offsets);
     vkCmdDraw(cmd, 3, static_cast<uint32_t>(d.spheres.size()), 0, 0);
     particleOffset += bytes;
   }

@@ -101,10 +101,12 @@ struct WeightOverlayDraw {
 
 // Particles drawn as spheres (the particle view while scrubbing, editor/particle_view.h): each a
 // ray-cast impostor (particle_sphere shaders: an eye-facing triangle per instance) with the depth of
-// its true surface, shaded like a mesh of color. spheres: world centre (xyz) and radius (w) of each;
-// copied into the frame's ring buffer while recording (16 bytes a particle).
+// its true surface, shaded like a mesh of its colour. spheres: world centre (xyz) and radius (w) of
+// each; colors: each one's colour (RGBA8, sRGB; alpha 0, or colors empty: the draw's color);
+// copied into the frame's ring buffer while recording (20 bytes a particle).
 struct ParticleSpheresDraw {
   std::vector<glm::vec4> spheres;
+  std::vector<uint32_t> colors;                  // empty or one per sphere: packed as LineVertex::rgba
   glm::vec4 color{0.55f, 0.68f, 0.82f, 1.0f};  // sRGB
   bool selected = false;
 };
