@@ -166,7 +166,8 @@ TEST_CASE("collada morph weights: channels in three addressing forms play the sh
   CHECK(moved < rest.size());
 
   for (const std::string& target :
-       {m.controllerId + "/MorphWeights(0)", m.weightSourceId + "(0)", m.controllerId + "-weights(0)", m.weightSourceId}) {
+       {m.controllerId + "/MorphWeights(0)", m.weightSourceId + "(0)", m.controllerId + "-weights(0)", m.weightSourceId,
+        m.weightArrayId + "(0)"}) {
     INFO("channel target " << target);
     const Character c = importText(tmp, "animated.dae", withAnimations(dae, animationXml("w", target, linear)));
     REQUIRE(c.clips.size() == 1);
@@ -229,6 +230,7 @@ TEST_CASE("collada morph weights: malformed channels are refused naming the file
   refused(animationXml("w", ctl + "(3)", good), ctl + "(3)", "target 3 does not exist");
   refused(animationXml("w", ctl + "(0)(0)", good), ctl + "(0)(0)", "more than one index");
   refused(animationXml("w", ctl + ".X", good), ctl + ".X", "member selection");
+  refused(animationXml("w", m.weightSourceId + ".X", good), m.weightSourceId + ".X", "member selection");
   refused(animationXml("w", ctl + "(0)", {{0.2f, 0.6f, 1.0f}, {0.0f, 1.0f}, {}}), ctl + "(0)",
           "2 OUTPUT values for 3 keys");
   refused(animationXml("w", ctl + "(0)", {{0.2f, 0.6f, 1.0f}, {0.0f, 1.0f, 0.5f}, {"LINEAR"}}), ctl + "(0)",

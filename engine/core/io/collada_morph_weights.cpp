@@ -43,28 +43,45 @@ void readSelection(std::string_view sel, Address& a) {
   a.target = size_t(std::stoul(std::string(digits)));
 }
 
-// Whether target starts with id followed by its end, '(' or '.'.
-bool addresses(const std::string& target, const std::string& id) {
-  return !id.empty() && target.compare(0, id.size(), id) == 0 &&
-         (target.size() == id.size() || target[id.size()] == '(' || target[id.size()] == '.');
-}
+// The morphs by the ids a channel names them by: controllers (before '/'), and weight sources,
+// their arrays and CONTROLLER-weights (a target without '/').
+struct MorphIds {
+  std::map<std::string, size_t> controllers, weights;
+  explicit MorphIds(const std::vector<ColladaMorph>& morphs) {
+    for (size_t i = 0; i < morphs.size(); ++i) {
+      controllers.emplace(morphs[i].controllerId, i);
+      for (const std::string& id : {morphs[i].weightSourceId, morphs[i].weightArrayId, morphs[i].controllerId + "-weights"})
+        if (!id.empty()) weights.emplace(id, i);
+    }
+  }
+};
 
 // The morph a channel target addresses (see the header), or nullopt: not a morph's weights.
-std::optional<Address> addressOf(const std::string& target, const std::vector<ColladaMorph>& morphs) {
+// An id may hold '.' (not '(' or '/'): without '/', the id is what comes before the first '(', or
+// before the last '.' (a member selection), whichever names a morph.
+std::optional<Address> addressOf(const std::string& target, const MorphIds& ids) {
   const size_t slash = target.find('/');
   Address a;
   size_t idEnd = npos;
-  for (a.morph = 0; a.morph < morphs.size(); ++a.morph) {
-    const ColladaMorph& m = morphs[a.morph];
-    if (slash != npos) {
-      if (target.compare(0, slash, m.controllerId) == 0 && slash == m.controllerId.size()) idEnd = slash;
-    } else {
-      for (const std::string& id : {m.weightSourceId, m.weightArrayId, m.controllerId + "-weights"})
-        if (idEnd == npos && addresses(target, id)) idEnd = id.size();
+  if (slash != npos) {
+    auto it = ids.controllers.find(target.substr(0, slash));
+    if (it == ids.controllers.end()) return std::nullopt;
+    a.morph = it->second;
+    idEnd = slash;
+  } else {
+    for (const size_t end : {target.find('('), target.rfind('.')}) {
+      auto it = ids.weights.find(target.substr(0, end));
+      if (it == ids.weights.end()) continue;
+      a.morph = it->second;
+      idEnd = std::min(end, target.size());
+      break;
     }
-    if (idEnd != npos) break;
+    if (idEnd == npos) return std::nullopt;
   }
-  if (a.morph == morphs.size()) return std::nullopt;
+  if (idEnd >= target.size()) {
+    a.whole = true;
+    return a;
+  }
   std::string_view rest = std::string_view(target).substr(idEnd);
   if (slash != npos) {
     rest.remove_prefix(1);
@@ -137,14 +154,22 @@ struct Reader {
     return &numbers.emplace(id, std::move(*v)).first->second;
   }
 
+  // A sampler's keys, checked once however many channels use it.
+  struct Keys {
+    const std::vector<float>* times = nullptr;
+    const std::vector<float>* values = nullptr;
+    size_t steps = 0, curves = 0;  // segments (keys but the last) of each kind
+  };
+  std::map<std::string, Keys> keysOfSampler;
+
+  Result<const Keys*> keys(const std::string& where, const std::string& ref);
   Result<Track> track(const std::string& where, const Element& channel, size_t width, std::vector<std::string>& notes);
 };
 
-// The keys of channel (its sampler's INPUT, OUTPUT and INTERPOLATION), width values a key.
-Result<Track> Reader::track(const std::string& where, const Element& channel, size_t width,
-                            std::vector<std::string>& notes) {
+// The keys of the sampler ref ("#ID"): INPUT (increasing times), OUTPUT, INTERPOLATION.
+Result<const Reader::Keys*> Reader::keys(const std::string& where, const std::string& ref) {
   index();
-  const std::string ref = attribute(b, channel, "source");
+  if (auto it = keysOfSampler.find(ref); it != keysOfSampler.end()) return &it->second;
   auto sampler = ref.size() > 1 && ref[0] == '#' ? samplers.find(ref.substr(1)) : samplers.end();
   if (sampler == samplers.end()) return Error{where + ": sampler '" + ref + "' is missing"};
   auto in = input(where, sampler->second, "INPUT");
@@ -155,32 +180,41 @@ Result<Track> Reader::track(const std::string& where, const Element& channel, si
   auto times = floatsOf(where, *in);
   auto values = times ? floatsOf(where, *out) : Result<const std::vector<float>*>(Error{times.error()});
   if (!values) return Error{values.error()};
-  Track t{*times, *values, false};
+  Keys k{*times, *values, 0, 0};
   const std::vector<float>& ts = **times;
   if (ts.empty()) return Error{where + ": no keys"};
-  if (t.values->size() != ts.size() * width)
-    return Error{where + ": " + std::to_string(t.values->size()) + " OUTPUT values for " + std::to_string(ts.size()) +
-                 " keys of " + std::to_string(width) + " weight" + (width == 1 ? "" : "s")};
-  for (size_t k = 1; k < ts.size(); ++k)
-    if (ts[k] < ts[k - 1]) return Error{where + ": key times decrease at key " + std::to_string(k)};
-  std::vector<std::string> names;
+  for (size_t i = 1; i < ts.size(); ++i)
+    if (ts[i] < ts[i - 1]) return Error{where + ": key times decrease at key " + std::to_string(i)};
   if (interp->at != npos) {
     const Element arr = findElement(b, "Name_array", interp->begin, interp->close);
-    if (arr.at != npos) names = tokens(b, arr);
+    const std::vector<std::string> names = arr.at != npos ? tokens(b, arr) : std::vector<std::string>{};
     if (names.size() != ts.size())
       return Error{where + ": " + std::to_string(names.size()) + " INTERPOLATION names for " +
                    std::to_string(ts.size()) + " keys"};
+    for (size_t i = 0; i + 1 < names.size(); ++i) {  // the last key's interpolation leads nowhere
+      const Segment seg = segmentOf(names[i]);
+      if (seg == Segment::Unknown)
+        return Error{where + ": key " + std::to_string(i) + ": interpolation '" + names[i] + "' is not Collada's"};
+      k.steps += seg == Segment::Step;
+      k.curves += seg == Segment::Curve;
+    }
   }
-  size_t steps = 0, curves = 0;
-  for (size_t k = 0; k + 1 < names.size(); ++k) {  // the last key's interpolation leads nowhere
-    const Segment s = segmentOf(names[k]);
-    if (s == Segment::Unknown) return Error{where + ": key " + std::to_string(k) + ": interpolation '" + names[k] + "' is not Collada's"};
-    steps += s == Segment::Step;
-    curves += s == Segment::Curve;
-  }
-  t.step = ts.size() > 1 && steps == ts.size() - 1;
-  if (curves > 0) notes.push_back(where + ": " + std::to_string(curves) + " curve keys (BEZIER ...) taken as linear");
-  if (steps > 0 && !t.step) notes.push_back(where + ": STEP keys among linear ones taken as linear");
+  return &keysOfSampler.emplace(ref, k).first->second;
+}
+
+// The keys of channel (its sampler's), width values a key.
+Result<Track> Reader::track(const std::string& where, const Element& channel, size_t width,
+                            std::vector<std::string>& notes) {
+  auto k = keys(where, attribute(b, channel, "source"));
+  if (!k) return Error{k.error()};
+  const size_t n = (*k)->times->size();
+  if ((*k)->values->size() != n * width)
+    return Error{where + ": " + std::to_string((*k)->values->size()) + " OUTPUT values for " + std::to_string(n) +
+                 " keys of " + std::to_string(width) + " weight" + (width == 1 ? "" : "s")};
+  Track t{(*k)->times, (*k)->values, n > 1 && (*k)->steps == n - 1};
+  if ((*k)->curves > 0)
+    notes.push_back(where + ": " + std::to_string((*k)->curves) + " curve keys (BEZIER ...) taken as linear");
+  if ((*k)->steps > 0 && !t.step) notes.push_back(where + ": STEP keys among linear ones taken as linear");
   return t;
 }
 
@@ -234,16 +268,17 @@ Result<std::vector<std::pair<size_t, size_t>>> readColladaMorphWeights(const std
                                                                        std::vector<ColladaMorph>& morphs,
                                                                        std::vector<std::string>& notes) {
   std::vector<std::pair<size_t, size_t>> read;
-  Reader r{file, b, findElement(b, "library_animations", 0, b.size()), {}, {}, {}, false};
+  Reader r{file, b, findElement(b, "library_animations", 0, b.size()), {}, {}, {}, false, {}};
   if (r.library.at == npos || r.library.close == r.library.end) return read;
   std::deque<Track> tracks;  // pointers into it stay valid
+  const MorphIds ids(morphs);
   // Per morph, per target: the track that animates it and the width of its values.
   std::vector<std::vector<std::pair<const Track*, size_t>>> animated(morphs.size());
   for (size_t i = 0; i < morphs.size(); ++i) animated[i].assign(morphs[i].targets.size(), {nullptr, 0});
   for (Element ch = findElement(b, "channel", r.library.begin, r.library.close); ch.at != npos;
        ch = findElement(b, "channel", ch.end, r.library.close)) {
     const std::string target = attribute(b, ch, "target");
-    auto address = addressOf(target, morphs);
+    auto address = addressOf(target, ids);
     if (!address) continue;
     const std::string where = file + ": <channel target=\"" + target + "\"> at byte " + std::to_string(ch.at);
     if (!address->problem.empty()) return Error{where + ": " + address->problem};
