@@ -282,6 +282,7 @@ TEST_CASE("collada morph weights: each test character's Collada with OpenCOLLADA
     const Character still = importText(tmp, "still.dae", dae);
     REQUIRE(still.clips.size() == 1);
     const float start = still.clips[0].durationSec * 0.1f, end = still.clips[0].durationSec + 0.5f;
+    CHECK(still.clips[0].durationSec < end);  // the keys outlast Blender's clip
     // Target k: keys of its own (the first at 0 and 1, the others between), in a form by k and file.
     std::vector<std::vector<float>> times(n), values(n);
     std::string xml;
@@ -310,13 +311,21 @@ TEST_CASE("collada morph weights: each test character's Collada with OpenCOLLADA
         at.push_back(times[k][i]);
         if (i + 1 < times[k].size()) at.push_back(0.5f * (times[k][i] + times[k][i + 1]));
       }
+    // The file held at the first time's weights is read once; at the other times the character
+    // read from it holds its shapes at the weights there (what that file would give, without
+    // reading 19,000 vertices again at every time).
+    std::vector<float> w0(n);
+    for (size_t k = 0; k < n; ++k) w0[k] = expected(times[k], values[k], at[0]);
+    const Character heldFile = importText(tmp, "held.dae", withWeights(dae, m, w0));
     for (float t : at) {
-      std::vector<float> w(n);
-      for (size_t k = 0; k < n; ++k) w[k] = expected(times[k], values[k], t);
+      Character held = heldFile;
+      for (Mesh& mesh : held.meshes)
+        if (mesh.morphTargets.size() == n)
+          for (size_t k = 0; k < n; ++k) mesh.defaultMorphWeights[k] = expected(times[k], values[k], t);
       INFO("t " << t);
-      const Character held = importText(tmp, "held.dae", withWeights(dae, m, w));
       CHECK(poseGap(c, held, t) < 1e-5);
     }
+    CHECK(poseGap(c, heldFile, at[0]) < 1e-5);
     ++checked;
   }
   CHECK(checked == 9);
