@@ -184,6 +184,30 @@ TEST_CASE("collada morph weights: channels in three addressing forms play the sh
   }
 }
 
+TEST_CASE("collada morph weights: a file with no other animation gets a clip for its weights", "[assimp][blendshape]") {
+  std::string dae = readText(kRig);
+  const size_t from = dae.find("<library_animations>");
+  const size_t to = dae.find("</library_animations>");
+  REQUIRE(from != std::string::npos);
+  REQUIRE(to != std::string::npos);
+  dae.erase(from, to + std::string("</library_animations>").size() - from);  // Blender's bone keys gone
+  const ColladaMorph m = morphsOf(dae).at(0);
+  TempDir tmp;
+  const Character still = importText(tmp, "still.dae", dae);
+  CHECK(still.clips.empty());
+  const Keys keys{{0.5f, 1.5f}, {0.0f, 1.0f}, {}};
+  const Character c =
+      importText(tmp, "animated.dae", withAnimations(dae, animationXml("w", m.controllerId + "/MorphWeights(0)", keys)));
+  REQUIRE(c.clips.size() == 1);
+  CHECK(c.clips[0].durationSec == Approx(1.5f));
+  REQUIRE(weightsChannel(c));
+  for (float t : {0.0f, 0.75f, 1.0f, 2.0f}) {
+    INFO("t " << t);
+    const Character held = importText(tmp, "held.dae", withWeights(dae, m, {expected(keys.times, keys.values, t)}));
+    CHECK(poseGap(c, held, t) < 1e-5);
+  }
+}
+
 TEST_CASE("collada morph weights: STEP holds each key, BEZIER keys play linear and the report says so",
           "[assimp][blendshape]") {
   const std::string dae = readText(kRig);
