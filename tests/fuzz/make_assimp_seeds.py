@@ -7,10 +7,13 @@ Collada <morph> controller) -- as Blender exports it, and a few hand-broken vari
   corpus/fbx/      rig.fbx (Blender's binary FBX 7.4), rig_ascii.fbx (the same scene as ASCII FBX,
                    written by the `assimp` command), rig_cut.fbx (truncated), rig_big_count.fbx
                    (an array that claims 2^30 elements)
-  corpus/collada/  rig.dae (Blender's Collada), rig_cut.dae, rig_big_count.dae
+  corpus/collada/  rig.dae (Blender's Collada), rig_cut.dae, rig_big_count.dae, rig_weights.dae
+                   (rig.dae with the shape's weight animated as OpenCOLLADA writes it: STEP,
+                   BEZIER and LINEAR keys; Blender writes no weight animation)
 
 usage: make_assimp_seeds.py [--source DIR]   (runs Blender headless on itself; needs blender
        and assimp-utils)
+       make_assimp_seeds.py --weights-only [--source DIR]   (rig_weights.dae from rig.dae only)
 """
 import os
 import subprocess
@@ -70,6 +73,39 @@ def broken(path, data, cut_to, marker, replacement):
         f.write(data[:at] + replacement + data[at + len(replacement):])
 
 
+def weight_animation(name, target, times, values, interpolation):
+    """An <animation> for a morph's weights as OpenCOLLADA writes it."""
+    def source(kind, array, count, param, ptype):
+        return (f'<source id="{name}-{kind}">{array}<technique_common><accessor source="#{name}-{kind}-array" '
+                f'count="{count}" stride="1"><param name="{param}" type="{ptype}"/></accessor></technique_common>'
+                '</source>\n')
+    n = len(times)
+    return (f'<animation id="{name}">\n'
+            + source("input", f'<float_array id="{name}-input-array" count="{n}">{" ".join(times)}</float_array>',
+                     n, "TIME", "float")
+            + source("output", f'<float_array id="{name}-output-array" count="{n}">{" ".join(values)}</float_array>',
+                     n, "WEIGHT", "float")
+            + source("interpolation", f'<Name_array id="{name}-interpolation-array" count="{n}">'
+                     f'{" ".join(interpolation)}</Name_array>', n, "INTERPOLATION", "name")
+            + f'<sampler id="{name}-sampler"><input semantic="INPUT" source="#{name}-input"/>'
+            f'<input semantic="OUTPUT" source="#{name}-output"/>'
+            f'<input semantic="INTERPOLATION" source="#{name}-interpolation"/></sampler>\n'
+            f'<channel source="#{name}-sampler" target="{target}"/>\n</animation>\n')
+
+
+def write_weights_seed(dae):
+    """rig_weights.dae: rig.dae with its morph's weight animated (CONTROLLER/SID(k) addressing)."""
+    text = open(dae, encoding="utf-8").read()
+    controller = text[text.index('<controller id="', text.index("<morph") - 200):].split('"')[1]
+    weights = text[text.index("<morph"):].split('semantic="MORPH_WEIGHT" source="#')[1].split('"')[0]
+    xml = weight_animation("w", f"{controller}/MorphWeights(0)", ["0.04", "0.125", "0.25", "0.4"],
+                           ["0", "1", "0.5", "0.8"], ["STEP", "BEZIER", "LINEAR", "LINEAR"])
+    # The weights source's own id, as OpenCOLLADA addresses it, in a comment for the fuzzer to splice.
+    xml += f"<!-- {weights}(0) -->\n"
+    open(dae.replace(".", "_weights.", 1), "w", encoding="utf-8").write(
+        text.replace("<library_animations>", "<library_animations>\n" + xml, 1))
+
+
 def main():
     if "--" in sys.argv:  # inside Blender
         in_blender(*sys.argv[sys.argv.index("--") + 1:])
@@ -81,6 +117,9 @@ def main():
     os.makedirs(fbx_dir, exist_ok=True)
     os.makedirs(dae_dir, exist_ok=True)
     fbx, dae = os.path.join(fbx_dir, "rig.fbx"), os.path.join(dae_dir, "rig.dae")
+    if "--weights-only" in sys.argv:
+        write_weights_seed(dae)
+        return
     subprocess.run(["blender", "-b", "--factory-startup", "--python-exit-code", "1", "-P", os.path.abspath(__file__),
                     "--", fbx, dae], check=True,
                    env={k: v for k, v in os.environ.items() if not k.startswith("PYTHON")})
@@ -93,6 +132,7 @@ def main():
     broken(fbx, data, len(data) // 2, data[at:at + 13], data[at:at + 9] + b"\x00\x00\x00\x40")
     text = open(dae, "rb").read()
     broken(dae, text, len(text) // 2, b'count="', b'count="4000000000')
+    write_weights_seed(dae)
     print("seeds written to", corpus)
 
 

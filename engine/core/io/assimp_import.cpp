@@ -21,6 +21,7 @@
 #include <set>
 #include <sstream>
 
+#include "core/io/collada_morph_weights.h"
 #include "core/io/collada_morphs.h"
 #include "core/io/declared_size_check.h"
 #include "core/io/fbx_shape_values.h"
@@ -96,6 +97,9 @@ struct Ctx {
   std::map<std::string, int> nodeByName;  // first node of each name
   const ColladaMorphDocument* collada = nullptr;  // Collada: the shapes read beside assimp
   const FbxShapeValues* fbxShapeValues = nullptr;  // FBX: the channels' values read beside assimp
+  // Collada: per mesh index, the morphs (index into collada->morphs) whose targets it holds and the
+  // index of the first of them among the mesh's targets.
+  std::map<size_t, std::vector<std::pair<size_t, size_t>>> colladaMorphsOfMesh;
 };
 
 Error err(const Ctx& c, const std::string& element, const std::string& reason) {
@@ -313,6 +317,8 @@ void readColladaMorphTargets(Ctx& c, const aiMesh& am, int tagSet, const std::st
       }
       position[v] = i;
     }
+    c.colladaMorphsOfMesh[c.ch.meshes.size()].push_back(
+        {size_t(&morph - c.collada->morphs.data()), mesh.morphTargets.size()});
     for (size_t k = 0; k < morph.targets.size(); ++k) {
       MorphTarget t;
       t.name = morph.targets[k].name;
@@ -396,6 +402,47 @@ Status readMorphChannel(Ctx& c, const std::string& clipWhere, const aiMeshMorphA
   clip.durationSec = std::max(clip.durationSec, out.timesSec.back());
   clip.channels.push_back(std::move(out));
   return {};
+}
+
+// Collada morph weight animation (io/collada_morph_weights): a Weights channel on every node that
+// draws a mesh holding an animated morph's targets, in the first clip (one made when there is none).
+void addColladaWeightChannels(Ctx& c) {
+  if (!c.collada) return;
+  for (const std::string& n : c.collada->notes) c.ch.report.warnings.push_back(n);
+  for (const auto& [meshIndex, parts] : c.colladaMorphsOfMesh) {
+    std::vector<float> times;
+    bool step = true;
+    for (const auto& [morph, offset] : parts) {
+      const ColladaMorph& m = c.collada->morphs[morph];
+      times.insert(times.end(), m.weightTimesSec.begin(), m.weightTimesSec.end());
+      step = step && (m.weightTimesSec.empty() || m.weightsStep);
+    }
+    if (times.empty()) continue;
+    std::sort(times.begin(), times.end());
+    times.erase(std::unique(times.begin(), times.end()), times.end());
+    const Mesh& mesh = c.ch.meshes[meshIndex];
+    const size_t n = mesh.morphTargets.size();
+    Channel out;
+    out.path = ChannelPath::Weights;
+    out.interpolation = step ? Interpolation::Step : Interpolation::Linear;
+    out.weightCount = int(n);
+    out.weightValues.resize(times.size() * n);
+    for (size_t i = 0; i < times.size(); ++i) {
+      std::copy(mesh.defaultMorphWeights.begin(), mesh.defaultMorphWeights.end(), out.weightValues.begin() + i * n);
+      for (const auto& [morph, offset] : parts)
+        for (size_t k = 0; k < c.collada->morphs[morph].targets.size() && offset + k < n; ++k)
+          out.weightValues[i * n + offset + k] = colladaMorphWeightAt(c.collada->morphs[morph], k, times[i]);
+    }
+    out.timesSec = std::move(times);
+    if (c.ch.clips.empty()) c.ch.clips.push_back(AnimationClip{"animation 0", {}, 0.0f});
+    AnimationClip& clip = c.ch.clips.front();
+    for (size_t node = 0; node < c.ch.nodes.size(); ++node) {
+      if (c.ch.nodes[node].mesh != int(meshIndex)) continue;
+      out.node = int(node);
+      clip.channels.push_back(out);
+      clip.durationSec = std::max(clip.durationSec, out.timesSec.back());
+    }
+  }
 }
 
 // ---------------------------------------------------------------------------
@@ -963,7 +1010,8 @@ Result<Character> importImpl(const std::string& path, const AssimpImportLimits& 
   Character ch;
   ch.sourcePath = path;
   ch.format = format;
-  Ctx c{path, *scene, limits, folder, ch, {}, collada ? &*collada : nullptr, fbxShapeValues ? &*fbxShapeValues : nullptr};
+  Ctx c{path, *scene, limits, folder, ch, {}, collada ? &*collada : nullptr, fbxShapeValues ? &*fbxShapeValues : nullptr,
+        {}};
   if (!fbxShapeProblem.empty())
     ch.report.warnings.push_back("blend shape values not read (" + fbxShapeProblem + "); shapes start at weight 0");
   if (fbxShapeValues)
@@ -973,6 +1021,7 @@ Result<Character> importImpl(const std::string& path, const AssimpImportLimits& 
   if (auto st = readNodes(c); !st) return Error{st.error()};
   if (auto st = readMeshes(c); !st) return Error{st.error()};
   if (auto st = readAnimations(c); !st) return Error{st.error()};
+  addColladaWeightChannels(c);
   readMaterials(c);
   readUnitAndAxes(c, format, *bytes);
   if (format == "FBX") foldStaticFbxHelpers(ch);

@@ -2,111 +2,18 @@
 
 #include <algorithm>
 #include <charconv>
-#include <cmath>
 #include <map>
-#include <string_view>
-#include <system_error>
+
+#include "core/io/collada_morph_weights.h"
+#include "core/io/collada_text.h"
 
 namespace animorph {
 namespace {
 
-using View = std::string_view;
-constexpr size_t npos = std::string::npos;
 // assimp reads the tag as a float: indices above 2^24 would not be exact.
 constexpr size_t kMaxTaggedPositions = size_t(1) << 24;
 
-bool isSpace(char ch) { return ch == ' ' || ch == '\t' || ch == '\n' || ch == '\r'; }
-
-// what's first byte in [from, to), or npos.
-size_t findIn(View b, View what, size_t from, size_t to) {
-  if (from >= to || to > b.size()) return npos;
-  const size_t p = b.substr(from, to - from).find(what);
-  return p == npos ? npos : from + p;
-}
-
-// An element: its start tag [at, begin), content [begin, close), the whole [at, end). at == npos: none.
-struct Element {
-  size_t at = npos, begin = 0, close = 0, end = 0;
-};
-
-// The first element `name` starting in [from, to). Elements of the names read here do not nest
-// in Collada, so the first "</name" after the start tag closes it.
-Element findElement(View b, const std::string& name, size_t from, size_t to) {
-  const std::string open = "<" + name;
-  for (size_t p = findIn(b, open, from, to); p != npos; p = findIn(b, open, p + 1, to)) {
-    const size_t after = p + open.size();
-    if (after >= to || !(isSpace(b[after]) || b[after] == '>' || b[after] == '/')) continue;
-    const size_t gt = findIn(b, ">", after, to);
-    if (gt == npos) return {};
-    Element e;
-    e.at = p;
-    e.begin = gt + 1;
-    if (b[gt - 1] == '/') {
-      e.close = e.end = gt + 1;
-      return e;
-    }
-    e.close = findIn(b, "</" + name, e.begin, to);
-    const size_t end = e.close == npos ? npos : findIn(b, ">", e.close, to);
-    if (end == npos) return {};
-    e.end = end + 1;
-    return e;
-  }
-  return {};
-}
-
-// The value of attribute `name` in e's start tag ("" when absent).
-std::string attribute(View b, const Element& e, View name) {
-  const View tag = b.substr(e.at, e.begin - e.at);
-  for (size_t p = tag.find(name); p != npos; p = tag.find(name, p + 1)) {
-    if (p == 0 || !isSpace(tag[p - 1])) continue;
-    size_t q = p + name.size();
-    while (q < tag.size() && isSpace(tag[q])) ++q;
-    if (q >= tag.size() || tag[q] != '=') continue;
-    ++q;
-    while (q < tag.size() && isSpace(tag[q])) ++q;
-    if (q >= tag.size() || (tag[q] != '"' && tag[q] != '\'')) continue;
-    const size_t end = tag.find(tag[q], q + 1);
-    if (end == npos) return {};
-    return std::string(tag.substr(q + 1, end - q - 1));
-  }
-  return {};
-}
-
-// The element `name` in [from, to) whose id is `id`.
-Element findById(View b, const std::string& name, const std::string& id, size_t from, size_t to) {
-  for (Element e = findElement(b, name, from, to); e.at != npos; e = findElement(b, name, e.end, to))
-    if (attribute(b, e, "id") == id) return e;
-  return {};
-}
-
-std::vector<std::string> tokens(View b, const Element& e) {
-  std::vector<std::string> out;
-  size_t p = e.begin;
-  while (p < e.close) {
-    while (p < e.close && isSpace(b[p])) ++p;
-    const size_t s = p;
-    while (p < e.close && !isSpace(b[p])) ++p;
-    if (p > s) out.emplace_back(b.substr(s, p - s));
-  }
-  return out;
-}
-
-// The numbers of a <float_array>; fails naming the byte of the first that is not one.
-Result<std::vector<float>> floats(const std::string& where, View b, const Element& e) {
-  std::vector<float> out;
-  const char* p = b.data() + e.begin;
-  const char* end = b.data() + e.close;
-  while (true) {
-    while (p < end && isSpace(*p)) ++p;
-    if (p >= end) return out;
-    float v = 0.0f;
-    const auto r = std::from_chars(p, end, v);
-    if (r.ec != std::errc() || !std::isfinite(v))
-      return Error{where + ": not a finite number at byte " + std::to_string(p - b.data())};
-    out.push_back(v);
-    p = r.ptr;
-  }
-}
+using namespace collada;
 
 struct Ctx {
   const std::string& file;
@@ -207,6 +114,8 @@ Result<ColladaMorph> readMorph(const Ctx& c, const Element& controller, const El
   const Element weightSource = morphSource(c, morph, weightRef);
   const Element weightArray =
       weightSource.at == npos ? Element{} : findElement(c.b, "float_array", weightSource.begin, weightSource.close);
+  if (weightSource.at != npos) m.weightSourceId = attribute(c.b, weightSource, "id");
+  if (weightArray.at != npos) m.weightArrayId = attribute(c.b, weightArray, "id");
   if (weightArray.at != npos) {
     auto w = floats(where + " weights", c.b, weightArray);
     if (!w) return Error{c.file + ": " + w.error()};
@@ -318,6 +227,9 @@ Result<ColladaMorphDocument> prepareColladaMorphs(const std::string& file, const
     out.morphs.push_back(std::move(*m));
   }
   if (out.morphs.empty()) return out;
+  auto channels = readColladaMorphWeights(file, b, out.morphs, out.notes);
+  if (!channels) return Error{channels.error()};
+  for (const auto& [at, end] : *channels) edits.push_back({at, end - at, ""});
   out.document = applyEdits(b, std::move(edits), baseOfMorph);
   return out;
 }

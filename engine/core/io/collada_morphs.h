@@ -37,18 +37,28 @@ struct ColladaMorph {
   std::vector<glm::vec3> basePositions;  // the base geometry's positions, for checking the mapping
   std::vector<ColladaMorphTarget> targets;
   std::vector<float> defaultWeights;     // one per target (0 where the file gives none)
+  std::string weightSourceId;            // the MORPH_WEIGHT <source>'s id ("" when none)
+  std::string weightArrayId;             // its <float_array>'s id ("" when none)
+  // The weight animation: the <channel>s addressing this morph's weights (io/collada_morph_weights),
+  // merged so that every key holds every target's weight (a target no channel animates keeps its
+  // default weight). Empty times: not animated.
+  std::vector<float> weightTimesSec;     // non-decreasing, in seconds
+  std::vector<float> weightKeys;         // weightTimesSec.size() x targets.size(), key by key
+  bool weightsStep = false;              // every key STEP (held until the next); else linear
 };
 
 struct ColladaMorphDocument {
   std::string document;               // the document for assimp; empty when the file has no <morph>
   std::vector<ColladaMorph> morphs;   // one per <morph> controller
+  std::vector<std::string> notes;     // lines for the import report (keys taken as linear, ...)
 };
 
 // Reads bytes (a Collada document; file is the path as given, for messages). A document without
 // <morph> gives an empty result (nothing rewritten). Fails naming file, the controller or geometry
 // and the reason: a base or target geometry that is missing, has no positions or a different
 // number of them, a <morph> whose base is not a geometry, or targets x positions over
-// maxShapeVertices.
+// maxShapeVertices. The morphs' weight animation is read too (io/collada_morph_weights.h: its
+// errors), and the <channel>s it read are left out of the document for assimp.
 Result<ColladaMorphDocument> prepareColladaMorphs(const std::string& file, const std::string& bytes,
                                                   size_t maxShapeVertices);
 
