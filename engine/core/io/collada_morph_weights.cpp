@@ -115,7 +115,7 @@ Segment segmentOf(const std::string& name) {
 struct Reader {
   const std::string& file;
   View b;
-  Element library;
+  Element animations;
   std::map<std::string, Element> samplers, sources;  // by id, indexed on the first weight channel
   std::map<std::string, std::vector<float>> numbers;  // parsed <float_array>s, by source id
   bool indexed = false;
@@ -123,11 +123,11 @@ struct Reader {
   void index() {
     if (indexed) return;
     indexed = true;
-    for (Element e = findElement(b, "sampler", library.begin, library.close); e.at != npos;
-         e = findElement(b, "sampler", e.end, library.close))
+    for (Element e = findElement(b, "sampler", animations.begin, animations.close); e.at != npos;
+         e = findElement(b, "sampler", e.end, animations.close))
       samplers.emplace(attribute(b, e, "id"), e);
-    for (Element e = findElement(b, "source", library.begin, library.close); e.at != npos;
-         e = findElement(b, "source", e.end, library.close))
+    for (Element e = findElement(b, "source", animations.begin, animations.close); e.at != npos;
+         e = findElement(b, "source", e.end, animations.close))
       sources.emplace(attribute(b, e, "id"), e);
   }
 
@@ -269,14 +269,14 @@ Result<std::vector<std::pair<size_t, size_t>>> readColladaMorphWeights(const std
                                                                        std::vector<std::string>& notes) {
   std::vector<std::pair<size_t, size_t>> read;
   Reader r{file, b, findElement(b, "library_animations", 0, b.size()), {}, {}, {}, false, {}};
-  if (r.library.at == npos || r.library.close == r.library.end) return read;
+  if (r.animations.at == npos || r.animations.close == r.animations.end) return read;
   std::deque<Track> tracks;  // pointers into it stay valid
   const MorphIds ids(morphs);
   // Per morph, per target: the track that animates it and the width of its values.
   std::vector<std::vector<std::pair<const Track*, size_t>>> animated(morphs.size());
   for (size_t i = 0; i < morphs.size(); ++i) animated[i].assign(morphs[i].targets.size(), {nullptr, 0});
-  for (Element ch = findElement(b, "channel", r.library.begin, r.library.close); ch.at != npos;
-       ch = findElement(b, "channel", ch.end, r.library.close)) {
+  for (Element ch = findElement(b, "channel", r.animations.begin, r.animations.close); ch.at != npos;
+       ch = findElement(b, "channel", ch.end, r.animations.close)) {
     const std::string target = attribute(b, ch, "target");
     auto address = addressOf(target, ids);
     if (!address) continue;
