@@ -145,12 +145,13 @@ std::vector<Row> gpuTransitionRows(const Options& opt, const Character& c, const
   const double transMs = colourPairs.wallA, colourMs = colourPairs.wallB;
   const double reprojMs = medianMs(opt.quick ? 3 : 9, [&] { frame(true, 0.75); });
   if (!failure) return {{"GPU transition", 0.0, "", "", failure.error()}};
-  char note[200];
+  char note[240];
   std::snprintf(note, sizeof note, "%zu vertices, %ux%u offscreen frame, alpha 0.5; plain skinned draw %.2f ms (%.2fx); %s",
                 mesh.vertexCount(), width, height, skinMs, transMs / skinMs, (*ctx)->deviceName().c_str());
   rows.push_back({"transition frame (GPU vertex shader)", transMs, "ms", "~ a skinned draw", note});
   std::snprintf(note, sizeof note, "alpha 0.5, the stand-in colour unpacked and faded per vertex and pixel; "
-                "without colour at the same poses %.2f ms (%+.1f %%), latency of one frame, median of %d pairs",
+                "without (the pipeline specialised without colour) at the same poses %.2f ms (%+.1f %%), "
+                "latency of one frame, median of %d pairs",
                 transMs, 100.0 * (colourMs / transMs - 1.0), opt.quick ? 9 : 21);
   rows.push_back({"transition frame with colour (GPU)", colourMs, "ms", "<= 1.1x without colour", note});
   std::snprintf(note, sizeof note, "processor time of the process (llvmpipe's threads included) per frame: "
