@@ -5,6 +5,8 @@
 // binding, the per-draw transition parameters in set 1. Shares mesh.frag.
 #include "frame.glsl"
 #include "transition_constants.h"
+// False: the draw's binding has no stand-in colours (the fragment stage does not read them).
+layout(constant_id = AM_SPEC_STANDIN_COLOR) const bool amStandinColored = true;
 #include "skinned_vertex.glsl"
 layout(location = AM_VERTEX_STANDIN_OFFSET) in vec4 inStandinOffset;  // dp, m
 layout(location = AM_VERTEX_STANDIN_NORMAL) in vec4 inStandinNormal;  // n~, stand-in colour (gpu_standin_binding.h)
@@ -32,7 +34,7 @@ void main() {
   // AM_STANDIN_COLOR_TAG (none: 0).
   amPassMaterial();
   const uint packed = floatBitsToUint(inStandinNormal.w);
-  if ((packed >> 24) == AM_STANDIN_COLOR_TAG)
+  if (amStandinColored && (packed >> 24) == AM_STANDIN_COLOR_TAG)
     outStandinColor = vec4(unpackUnorm4x8(packed).rgb, clamp(amTransitionAlpha(inStandinOffset.w), 0.0, 1.0));
   gl_Position = frame.viewProj * wp;
   gl_Position.z -= pc.depthPull * gl_Position.w;

@@ -279,6 +279,79 @@ TEST_CASE("transition pipeline: at alpha = 0 it draws exactly what plain skinnin
   CHECK(ctx->validationErrorCount() == 0);
 }
 
+// A binding without stand-in colours is drawn by the pipelines specialised without the colour
+// (AM_SPEC_STANDIN_COLOR false): the same shape, in the material's colour only.
+TEST_CASE("transition pipeline: a binding without stand-in colours draws the same shape without the fade",
+          "[gpu][transition][render]") {
+  auto ctx = test::makeTestContext();
+  DrawRig r = makeDrawRig(*ctx, 320, 240);
+  const MorphRuntime& rt = *test::demoMorph().runtime;
+  const MorphActorRuntime& a = rt.source;
+  const Character& c = *a.character;
+  REQUIRE(a.binding.hasColors());
+  StandinBinding uncolouredBinding = a.binding;
+  uncolouredBinding.vertexColors.clear();
+  uncolouredBinding.standinColors.clear();
+  const double t = rt.timeline.frameToSec(rt.setup.markers.a) + 0.3;
+  const float clipT = a.clip ? float(actorClipTimeSec(a.actor, *a.clip, t)) : 0.0f;
+  const auto globals = poseGlobals(c, a.clip, clipT);
+  const int node = c.meshNodes().front();
+  auto mesh = GpuMesh::upload(*ctx, c.meshes[size_t(c.nodes[size_t(node)].mesh)]);
+  REQUIRE(mesh.ok());
+  auto coloured = GpuStandinBinding::upload(*ctx, a.binding, a.morph.weightMap);
+  auto uncoloured = GpuStandinBinding::upload(*ctx, uncolouredBinding, a.morph.weightMap);
+  REQUIRE(coloured.ok());
+  REQUIRE(uncoloured.ok());
+  CHECK((*coloured)->hasColors());
+  CHECK_FALSE((*uncoloured)->hasColors());
+  const MorphFrame cpuStill = evaluateMorphTransition(rt, t, false, 0.0, {});
+  Bounds box;
+  for (const glm::vec3& p : cpuStill.mesh.positions) box.add(p);
+  OrbitCamera cam;
+  cam.frame(box, 320.0f / 240.0f);
+  gpu::MeshDraw d;
+  d.mesh = mesh->get();
+  d.model = a.actor.transform.matrix() * globals[size_t(node)];
+  d.jointMatrices = jointMatrices(c, node, globals);
+  const RgbaImage background = draw(r, cam, emptyScene());
+  auto render = [&](const GpuStandinBinding& b, const TransitionFrame& f) {
+    Scene s = emptyScene();
+    s.transitionMeshes.push_back(TransitionMeshDraw{d, &b, 0, &f});
+    return draw(r, cam, s);
+  };
+  auto saturated = [](const RgbaImage& im) {
+    size_t n = 0;
+    for (size_t i = 0; i < im.pixels.size(); i += 4)
+      n += std::abs(int(im.pixels[i]) - int(im.pixels[i + 1])) + std::abs(int(im.pixels[i + 1]) - int(im.pixels[i + 2])) > 24;
+    return n;
+  };
+  auto sameCoverage = [&](const RgbaImage& x, const RgbaImage& y) {
+    size_t n = 0;
+    for (size_t i = 0; i < x.pixels.size(); i += 4) {
+      bool cx = false, cy = false;
+      for (int k = 0; k < 3; ++k) {
+        cx = cx || x.pixels[i + k] != background.pixels[i + k];
+        cy = cy || y.pixels[i + k] != background.pixels[i + k];
+      }
+      n += cx != cy;
+    }
+    return n;
+  };
+  // At alpha 0 both variants draw plain skinning: the same image to the bit.
+  const TransitionFrame still = transitionFrame(rt, false, t, 0.0, true);
+  const RgbaImage stillColoured = render(**coloured, still), stillPlain = render(**uncoloured, still);
+  CHECK(countDifferent(stillColoured, background, 0) > 2000);
+  CHECK(countDifferent(stillColoured, stillPlain, 0) == 0);
+  // Collapsed: the same pixels covered, the coloured variant in the stand-in's colours, the other grey.
+  const TransitionFrame collapsed = transitionFrame(rt, false, t, 1.0, true);
+  const RgbaImage oneColoured = render(**coloured, collapsed), onePlain = render(**uncoloured, collapsed);
+  INFO(saturated(oneColoured) << " coloured pixels with colours, " << saturated(onePlain) << " without");
+  CHECK(saturated(oneColoured) > 1000);
+  CHECK(saturated(onePlain) == 0);
+  CHECK(sameCoverage(oneColoured, onePlain) == 0);
+  CHECK(ctx->validationErrorCount() == 0);
+}
+
 TEST_CASE("cross-fade: dithered draws at o and 1 - o cover complementary pixels", "[gpu][transition][render]") {
   auto ctx = test::makeTestContext();
   DrawRig r = makeDrawRig(*ctx, 256, 192);

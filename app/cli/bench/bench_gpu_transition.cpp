@@ -1,6 +1,9 @@
 #include "app/cli/bench/bench_gpu_transition.h"
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <memory>
 
 #include "gpu/vulkan/context.h"
@@ -11,6 +14,50 @@
 #include "gpu/transition/transition_evaluator.h"
 
 namespace animorph::bench {
+
+namespace {
+
+double processCpuMs() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) * 1e3 + double(ts.tv_nsec) * 1e-6;
+}
+
+double medianOf(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+// Medians over pairs of frames a and b drawn at the same pose (pose(k) before pair k), in
+// alternating order (a, b; b, a; ...) so that neither always runs second: wall and processor time
+// (the process's, llvmpipe's rendering threads included) of each.
+struct PairTimes {
+  double wallA = 0, wallB = 0, cpuA = 0, cpuB = 0;
+};
+template <class Pose, class A, class B>
+PairTimes pairedMedians(int pairs, Pose&& pose, A&& a, B&& b) {
+  std::vector<double> wa, wb, ca, cb;
+  auto timed = [](auto&& fn, std::vector<double>& wall, std::vector<double>& cpu) {
+    const double c0 = processCpuMs();
+    const auto t0 = std::chrono::steady_clock::now();
+    fn();
+    wall.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    cpu.push_back(processCpuMs() - c0);
+  };
+  for (int k = 0; k < pairs; ++k) {
+    pose(k);
+    if (k % 2 == 0) {
+      timed(a, wa, ca);
+      timed(b, wb, cb);
+    } else {
+      timed(b, wb, cb);
+      timed(a, wa, ca);
+    }
+  }
+  return {medianOf(wa), medianOf(wb), medianOf(ca), medianOf(cb)};
+}
+
+}  // namespace
 
 std::vector<Row> gpuTransitionRows(const Options& opt, const Character& c, const Standin& standin,
                                    const StandinBinding& binding) {
@@ -57,8 +104,9 @@ std::vector<Row> gpuTransitionRows(const Options& opt, const Character& c, const
   Status failure;
   std::vector<glm::mat4> joints;
   TransitionFrame frameParams;
+  bool holdPose = false;  // paired frames: the pose set by the pair, not advanced per frame
   auto frame = [&](bool transition, double u, bool coloured = false) {
-    t += 0.04f;
+    if (!holdPose) t += 0.04f;
     const auto globals = poseGlobals(c, rt.source.clip, t);
     joints = jointMatrices(c, node, globals);
     Scene scene;
@@ -88,18 +136,28 @@ std::vector<Row> gpuTransitionRows(const Options& opt, const Character& c, const
   frame(true, 0.75);
   frame(true, 0.5, true);
   const double skinMs = medianMs(repeats, [&] { frame(false, 0.0); });
-  const double transMs = medianMs(repeats, [&] { frame(true, 0.5); });
-  const double colourMs = medianMs(repeats, [&] { frame(true, 0.5, true); });
+  // With and without colour in pairs at the same pose (the pose changes the pixels drawn: medians
+  // of separate runs at different poses differed by more than the colour costs).
+  holdPose = true;
+  const PairTimes colourPairs = pairedMedians(
+      opt.quick ? 9 : 21, [&](int) { t += 0.04f; }, [&] { frame(true, 0.5); }, [&] { frame(true, 0.5, true); });
+  holdPose = false;
+  const double transMs = colourPairs.wallA, colourMs = colourPairs.wallB;
   const double reprojMs = medianMs(opt.quick ? 3 : 9, [&] { frame(true, 0.75); });
   if (!failure) return {{"GPU transition", 0.0, "", "", failure.error()}};
-  char note[200];
+  char note[240];
   std::snprintf(note, sizeof note, "%zu vertices, %ux%u offscreen frame, alpha 0.5; plain skinned draw %.2f ms (%.2fx); %s",
                 mesh.vertexCount(), width, height, skinMs, transMs / skinMs, (*ctx)->deviceName().c_str());
   rows.push_back({"transition frame (GPU vertex shader)", transMs, "ms", "~ a skinned draw", note});
   std::snprintf(note, sizeof note, "alpha 0.5, the stand-in colour unpacked and faded per vertex and pixel; "
-                "without colour in the same run %.2f ms (%+.1f %%), latency of one frame", transMs,
-                100.0 * (colourMs / transMs - 1.0));
+                "without (the pipeline specialised without colour) at the same poses %.2f ms (%+.1f %%), "
+                "latency of one frame, median of %d pairs",
+                transMs, 100.0 * (colourMs / transMs - 1.0), opt.quick ? 9 : 21);
   rows.push_back({"transition frame with colour (GPU)", colourMs, "ms", "<= 1.1x without colour", note});
+  std::snprintf(note, sizeof note, "processor time of the process (llvmpipe's threads included) per frame: "
+                "%.2f ms with colour, %.2f ms without, the same pairs", colourPairs.cpuB, colourPairs.cpuA);
+  rows.push_back({"transition frame colour cost in processor time (GPU)",
+                  100.0 * (colourPairs.cpuB / colourPairs.cpuA - 1.0), "%", "<= 10 %", note});
   std::snprintf(note, sizeof note, "alpha 0.84: every vertex re-projected in the vertex shader");
   rows.push_back({"transition frame with re-projection (GPU)", reprojMs, "ms", "", note});
 

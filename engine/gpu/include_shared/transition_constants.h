@@ -11,6 +11,10 @@
 // order, linear) with this tag in the top byte (0: no colour). With the tag the bits are a normal
 // float in [0.5, 2), never a NaN or a denormal a vertex fetch could change.
 #define AM_STANDIN_COLOR_TAG 63u
+// Specialisation constant (a bool) of the transition pipelines' vertex and fragment stages: true
+// where the draw's binding carries stand-in colours; false compiles the unpacking, the varying and
+// the per-pixel fade out, so a transition without colours pays nothing for them.
+#define AM_SPEC_STANDIN_COLOR 0
 
 // Descriptor set 1 of the transition pipelines: the per-draw parameters
 // (a storage buffer with a dynamic offset: lavapipe specialises shaders on

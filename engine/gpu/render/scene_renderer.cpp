@@ -73,12 +73,17 @@ struct PipelineDesc {
   bool depthWrite = true;
   bool blend = false;
   VkCullModeFlags cull = VK_CULL_MODE_NONE;
+  bool standinColor = true;  // AM_SPEC_STANDIN_COLOR of the transition and material shaders
 };
 
 Result<VkPipeline> createPipeline(VkDevice device, VkRenderPass pass, VkPipelineLayout layout, const PipelineDesc& d) {
   GraphicsPipelineDesc g;
   g.vert = d.vert;
   g.frag = d.frag;
+  const VkBool32 standinColor = d.standinColor ? VK_TRUE : VK_FALSE;
+  const VkSpecializationMapEntry specEntry{AM_SPEC_STANDIN_COLOR, 0, sizeof(VkBool32)};
+  const VkSpecializationInfo spec{1, &specEntry, sizeof standinColor, &standinColor};
+  if (d.input == VertexInput::Transition) g.specialization = &spec;
   std::vector<VkVertexInputBindingDescription>& bindings = g.bindings;
   std::vector<VkVertexInputAttributeDescription>& attributes = g.attributes;
   if (d.input == VertexInput::Mesh || d.input == VertexInput::MeshWeights || d.input == VertexInput::Transition) {
@@ -270,6 +275,12 @@ Status SceneRenderer::createPipelines(VkRenderPass renderPass) {
     d.input = input;
     return d;
   };
+  // A transition pipeline for draws with stand-in colours (coloured) or without (none to fade into).
+  auto transitionDesc = [&](PipelineDesc d, const char* frag, bool coloured) {
+    d = withShaders(d, "transition.vert", frag, VertexInput::Transition);
+    d.standinColor = coloured;
+    return d;
+  };
   struct Want {
     VkPipeline* out;
     PipelineDesc desc;
@@ -280,20 +291,18 @@ Status SceneRenderer::createPipelines(VkRenderPass renderPass) {
       {&meshDitherPipeline_[0], withShaders(meshDesc(back), "mesh.vert", "mesh_material_dither.frag", VertexInput::Mesh)},
       {&generatedDitherPipeline_, withShaders(meshDesc(back), "generated.vert", "mesh_dither.frag", VertexInput::Generated)},
       {&meshDitherPipeline_[1], withShaders(meshDesc(none), "mesh.vert", "mesh_material_dither.frag", VertexInput::Mesh)},
-      {&transitionPipeline_[0], withShaders(meshDesc(back), "transition.vert", "mesh_material.frag", VertexInput::Transition),
-       transitionLayout_},
-      {&transitionPipeline_[1], withShaders(meshDesc(none), "transition.vert", "mesh_material.frag", VertexInput::Transition),
-       transitionLayout_},
-      {&transitionDitherPipeline_[0],
-       withShaders(meshDesc(back), "transition.vert", "mesh_material_dither.frag", VertexInput::Transition), transitionLayout_},
-      {&transitionDitherPipeline_[1],
-       withShaders(meshDesc(none), "transition.vert", "mesh_material_dither.frag", VertexInput::Transition), transitionLayout_},
+      {&transitionPipeline_[0], transitionDesc(meshDesc(back), "mesh_material.frag", false), transitionLayout_},
+      {&transitionPipeline_[1], transitionDesc(meshDesc(none), "mesh_material.frag", false), transitionLayout_},
+      {&transitionDitherPipeline_[0], transitionDesc(meshDesc(back), "mesh_material_dither.frag", false), transitionLayout_},
+      {&transitionDitherPipeline_[1], transitionDesc(meshDesc(none), "mesh_material_dither.frag", false), transitionLayout_},
+      {&transitionColorPipeline_[0], transitionDesc(meshDesc(back), "mesh_material.frag", true), transitionLayout_},
+      {&transitionColorPipeline_[1], transitionDesc(meshDesc(none), "mesh_material.frag", true), transitionLayout_},
+      {&transitionColorDitherPipeline_[0], transitionDesc(meshDesc(back), "mesh_material_dither.frag", true), transitionLayout_},
+      {&transitionColorDitherPipeline_[1], transitionDesc(meshDesc(none), "mesh_material_dither.frag", true), transitionLayout_},
       {&wirePipeline_[0], wireDesc(back)},
       {&wirePipeline_[1], wireDesc(none)},
-      {&transitionWirePipeline_[0], withShaders(wireDesc(back), "transition.vert", "mesh_material.frag", VertexInput::Transition),
-       transitionLayout_},
-      {&transitionWirePipeline_[1], withShaders(wireDesc(none), "transition.vert", "mesh_material.frag", VertexInput::Transition),
-       transitionLayout_},
+      {&transitionWirePipeline_[0], transitionDesc(wireDesc(back), "mesh_material.frag", false), transitionLayout_},
+      {&transitionWirePipeline_[1], transitionDesc(wireDesc(none), "mesh_material.frag", false), transitionLayout_},
       {&generatedPipeline_, {"generated.vert", "mesh.frag", VertexInput::Generated, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST,
                              VK_POLYGON_MODE_FILL, true, true, false, back}},
       {&weightPipeline_, {"weight_overlay.vert", "weight_overlay.frag", VertexInput::MeshWeights,
@@ -389,7 +398,8 @@ SceneRenderer::~SceneRenderer() {
                        linePipeline_, overlayPipeline_, meshDitherPipeline_[0], meshDitherPipeline_[1], generatedDitherPipeline_,
                        transitionPipeline_[0], transitionPipeline_[1], transitionDitherPipeline_[0],
                        transitionWirePipeline_[0], transitionWirePipeline_[1], generatedWirePipeline_,
-                       transitionDitherPipeline_[1], particlePipeline_})
+                       transitionDitherPipeline_[1], particlePipeline_, transitionColorPipeline_[0],
+                       transitionColorPipeline_[1], transitionColorDitherPipeline_[0], transitionColorDitherPipeline_[1]})
     if (p) vkDestroyPipeline(dev, p, nullptr);
   destroyBuffer(dev, morphPlaceholder_);
   whiteTexture_.reset();
@@ -737,7 +747,11 @@ void SceneRenderer::drawTransitions(const Scene& scene, RecordPass& rp) {
     packTransitionParams(*t.frame, *reinterpret_cast<TransitionParams*>(
                                        static_cast<uint8_t*>(slot.transitionParams.mapped) + paramOffset));
     slot.transitionParamsUsed += transitionParamStride_;
-    bindPipeline(rp, d.opacity < 1.0f ? transitionDitherPipeline_[d.doubleSided] : transitionPipeline_[d.doubleSided]);
+    if (t.binding->hasColors())  // the variant that fades into the stand-in's colours
+      bindPipeline(rp, d.opacity < 1.0f ? transitionColorDitherPipeline_[d.doubleSided]
+                                        : transitionColorPipeline_[d.doubleSided]);
+    else
+      bindPipeline(rp, d.opacity < 1.0f ? transitionDitherPipeline_[d.doubleSided] : transitionPipeline_[d.doubleSided]);
     vkCmdBindDescriptorSets(rp.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, transitionLayout_, 1, 1, &slot.transitionSet, 1,
                             &paramOffset);
     slot.transitionSetBound = true;

@@ -225,6 +225,8 @@ class SceneRenderer {
   VkPipelineLayout transitionLayout_ = VK_NULL_HANDLE;
   VkPipeline transitionPipeline_[2]{};             // [doubleSided]
   VkPipeline transitionDitherPipeline_[2]{};       // [doubleSided]
+  VkPipeline transitionColorPipeline_[2]{};        // [doubleSided]: bindings with stand-in colours (AM_SPEC_STANDIN_COLOR)
+  VkPipeline transitionColorDitherPipeline_[2]{};  // [doubleSided]: the same, dithered
   VkPipeline transitionWirePipeline_[2]{};         // [doubleSided]: the wireframe pass over transitions
   VkPipeline generatedWirePipeline_ = VK_NULL_HANDLE;  // null on the edge-list path (generated meshes have no edge list)
   std::vector<uint32_t> transitionParamOffsets_;   // per transition draw of the current record (the wireframe pass rebinds)

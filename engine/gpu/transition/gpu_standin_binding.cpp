@@ -42,6 +42,7 @@ Result<std::unique_ptr<GpuStandinBinding>> GpuStandinBinding::upload(Context& ct
   if (!buf) return Error{"stand-in binding: " + buf.error()};
   b->buffer_ = *buf;
   b->vertexCount_ = uint32_t(n);
+  b->colored_ = binding.hasColors();
   return b;
 }
 

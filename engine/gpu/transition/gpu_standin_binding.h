@@ -31,12 +31,15 @@ class GpuStandinBinding {
   void bind(VkCommandBuffer cmd, uint32_t firstVertex) const;
   VkBuffer buffer() const { return buffer_.buffer; }
   uint32_t vertexCount() const { return vertexCount_; }
+  // True when the binding was uploaded with stand-in colours (drawn by the colour-fading pipelines).
+  bool hasColors() const { return colored_; }
 
  private:
   explicit GpuStandinBinding(VkDevice device) : device_(device) {}
   VkDevice device_;
   Buffer buffer_;
   uint32_t vertexCount_ = 0;
+  bool colored_ = false;
 };
 
 }  // namespace animorph::gpu

@@ -19,6 +19,7 @@ Result<VkPipeline> createGraphicsPipeline(VkDevice device, VkRenderPass pass, Vk
   VkPipelineShaderStageCreateInfo stages[2]{};
   stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, *vs, "main", nullptr};
   stages[1] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, *fs, "main", nullptr};
+  stages[0].pSpecializationInfo = stages[1].pSpecializationInfo = d.specialization;
 
   const std::vector<VkVertexInputBindingDescription>& bindings = d.bindings;
   const std::vector<VkVertexInputAttributeDescription>& attributes = d.attributes;

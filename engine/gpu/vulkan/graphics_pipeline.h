@@ -28,6 +28,7 @@ struct GraphicsPipelineDesc {
   bool depthWrite = true;
   BlendMode blend = BlendMode::None;
   VkCullModeFlags cull = VK_CULL_MODE_NONE;
+  const VkSpecializationInfo* specialization = nullptr;  // both stages' specialisation constants (null: defaults)
 };
 
 // Errors: unknown shader, Vulkan failure ("pipeline VERT + FRAG: VK_ERROR_...").
