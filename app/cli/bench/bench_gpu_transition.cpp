@@ -57,6 +57,40 @@ PairTimes pairedMedians(int pairs, Pose&& pose, A&& a, B&& b) {
   return {medianOf(wa), medianOf(wb), medianOf(ca), medianOf(cb)};
 }
 
+// The same binding with colours (a textured colour per vertex and the stand-in's), as a coloured
+// character's: the shader then unpacks and fades the colour too.
+StandinBinding colouredCopy(const StandinBinding& binding) {
+  StandinBinding out = binding;
+  out.vertexColors.resize(binding.offsets.size());
+  out.standinColors.resize(binding.offsets.size());
+  for (size_t i = 0; i < binding.offsets.size(); ++i) {
+    const glm::vec3 n = binding.standinNormals[i];
+    out.vertexColors[i] = glm::vec4(0.5f + 0.5f * n, 1.0f);
+    out.standinColors[i] = glm::vec4(0.5f - 0.5f * n, 1.0f);
+  }
+  return out;
+}
+
+// The vertex work alone: the compute twin of the shader (its mesh set), submitted and waited for,
+// at alpha 0.5 and re-projected at 0.84.
+void computeTwinRows(const Options& opt, const Character& c, int node, const MorphRuntime& rt,
+                     gpu::TransitionEvaluator& evaluator, std::vector<Row>& rows) {
+  std::vector<glm::vec3> pos, nrm;
+  const auto globals = poseGlobals(c, rt.source.clip, 0.5f);
+  const auto j = jointMatrices(c, node, globals);
+  char note[240];
+  for (double u : {0.5, 0.75}) {
+    const TransitionFrame f = transitionFrame(rt, false, 0.5, u, true);
+    (void)evaluator.evaluate(j, globals[size_t(node)], f, pos, nrm);  // warm-up
+    const double ms = medianMs(opt.quick ? 3 : 9, [&] { (void)evaluator.evaluate(j, globals[size_t(node)], f, pos, nrm); });
+    std::snprintf(note, sizeof note, "compute twin of the vertex shader, %zu vertices, alpha %s; wall time with "
+                  "submit, wait and read-back (GPU timestamps say %.3f ms)", pos.size(),
+                  u == 0.5 ? "0.5" : "0.84, re-projected", evaluator.lastDispatchMs());
+    rows.push_back({u == 0.5 ? "transition vertices (GPU compute)" : "transition vertices re-projected (GPU compute)",
+                    ms, "ms", "", note});
+  }
+}
+
 }  // namespace
 
 std::vector<Row> gpuTransitionRows(const Options& opt, const Character& c, const Standin& standin,
@@ -77,17 +111,7 @@ std::vector<Row> gpuTransitionRows(const Options& opt, const Character& c, const
   const Mesh& mesh = c.meshes[size_t(c.nodes[size_t(node)].mesh)];
   auto gpuMesh = GpuMesh::upload(**ctx, mesh);
   auto gpuBinding = GpuStandinBinding::upload(**ctx, binding, {});
-  // The same binding with colours (a textured colour per vertex and the stand-in's), as a
-  // coloured character's: the shader then unpacks and fades the colour too.
-  StandinBinding colouredBinding = binding;
-  colouredBinding.vertexColors.resize(binding.offsets.size());
-  colouredBinding.standinColors.resize(binding.offsets.size());
-  for (size_t i = 0; i < binding.offsets.size(); ++i) {
-    const glm::vec3 n = binding.standinNormals[i];
-    colouredBinding.vertexColors[i] = glm::vec4(0.5f + 0.5f * n, 1.0f);
-    colouredBinding.standinColors[i] = glm::vec4(0.5f - 0.5f * n, 1.0f);
-  }
-  auto gpuColoured = GpuStandinBinding::upload(**ctx, colouredBinding, {});
+  auto gpuColoured = GpuStandinBinding::upload(**ctx, colouredCopy(binding), {});
   if (!gpuMesh || !gpuBinding || !gpuColoured) return {{"GPU transition", 0.0, "", "", "upload failed"}};
 
   // A runtime around the character, so the frame parameters come from the editor's code.
@@ -161,22 +185,7 @@ std::vector<Row> gpuTransitionRows(const Options& opt, const Character& c, const
   std::snprintf(note, sizeof note, "alpha 0.84: every vertex re-projected in the vertex shader");
   rows.push_back({"transition frame with re-projection (GPU)", reprojMs, "ms", "", note});
 
-  // The vertex work alone: the compute twin of the shader, submitted and waited for.
-  if ((*evaluator)->setMesh(mesh, **gpuBinding, 0)) {
-    std::vector<glm::vec3> pos, nrm;
-    const auto globals = poseGlobals(c, rt.source.clip, 0.5f);
-    const auto j = jointMatrices(c, node, globals);
-    for (double u : {0.5, 0.75}) {
-      const TransitionFrame f = transitionFrame(rt, false, 0.5, u, true);
-      (void)(*evaluator)->evaluate(j, globals[size_t(node)], f, pos, nrm);  // warm-up
-      const double ms = medianMs(opt.quick ? 3 : 9, [&] { (void)(*evaluator)->evaluate(j, globals[size_t(node)], f, pos, nrm); });
-      std::snprintf(note, sizeof note, "compute twin of the vertex shader, %zu vertices, alpha %s; wall time with "
-                    "submit, wait and read-back (GPU timestamps say %.3f ms)", pos.size(),
-                    u == 0.5 ? "0.5" : "0.84, re-projected", (*evaluator)->lastDispatchMs());
-      rows.push_back({u == 0.5 ? "transition vertices (GPU compute)" : "transition vertices re-projected (GPU compute)",
-                      ms, "ms", "", note});
-    }
-  }
+  if ((*evaluator)->setMesh(mesh, **gpuBinding, 0)) computeTwinRows(opt, c, node, rt, **evaluator, rows);
   return rows;
 }
 
