@@ -1,0 +1,172 @@
+// The GPU polygoniser's colour stream (docs/gpu-polygonizer.md, "Colour"): each vertex's colour from
+// the colour pass against the CPU's SurfaceColorEvaluator at the same vertex (within the 1/255 of
+// the 8-bit colour it is stored in), and a program without colours keeping the one tone.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <set>
+#include <string>
+
+#include "core/blobtree/compile.h"
+#include "core/field/surface_color.h"
+#include "demo/blob_creature.h"
+#include "gpu/polygonizer/gpu_color_table.h"
+#include "gpu/polygonizer/gpu_polygonizer.h"
+#include "gpu_fixture.h"
+#include "util/blob_builders.h"
+
+using namespace animorph;
+using namespace animorph::gpu;
+using namespace animorph::test;
+
+namespace {
+
+struct ColorRig {
+  std::unique_ptr<Context> ctx;
+  std::unique_ptr<GpuPolygonizer> poly;
+};
+
+ColorRig makeColorRig() {
+  ColorRig r;
+  r.ctx = makeTestContext();
+  auto p = GpuPolygonizer::create(*r.ctx);
+  INFO(p.error());
+  REQUIRE(p.ok());
+  r.poly = std::move(*p);
+  return r;
+}
+
+// Every primitive of the subtree painted with one of four colours (so some ops are of one colour,
+// others mixed).
+void paintRandomly(BlobNode& n, std::mt19937& rng) {
+  const glm::vec3 palette[4] = {{0.9f, 0.1f, 0.1f}, {0.1f, 0.2f, 0.9f}, {0.2f, 0.8f, 0.1f}, {0.95f, 0.9f, 0.3f}};
+  if (paramIndex(n.type, "color") >= 0) n.vec3Param("color") = Vec3Track(palette[rng() % 4]);
+  for (BlobNode& c : n.children) paintRandomly(c, rng);
+}
+
+Bounds cubeOf(float half) {
+  Bounds b;
+  b.add(glm::vec3(-half));
+  b.add(glm::vec3(half));
+  return b;
+}
+
+// The GPU's colours of program p against the CPU's at the GPU's own vertices.
+struct ColorComparison {
+  size_t vertices = 0, within = 0;  // vertices, those within 1/255 in every channel
+  float largest = 0.0f;             // largest channel difference
+};
+
+ColorComparison compareColors(GpuPolygonizer& poly, const FieldProgram& p, const GpuPolygonizeSettings& s) {
+  auto st = poly.polygonize(GpuField::single(p), s);
+  INFO(st.error());
+  REQUIRE(st.ok());
+  REQUIRE(st->colors);
+  auto mesh = poly.readBack();
+  INFO(mesh.error());
+  REQUIRE(mesh.ok());
+  REQUIRE(mesh->colors.size() == mesh->positions.size());
+  std::vector<glm::vec4> cpu(mesh->positions.size());
+  SurfaceColorEvaluator().evaluate(p, mesh->positions.data(), mesh->positions.size(), cpu.data(), 2);
+  ColorComparison c;
+  c.vertices = mesh->positions.size();
+  for (size_t i = 0; i < cpu.size(); ++i) {
+    const glm::vec3 d = glm::abs(glm::vec3(mesh->colors[i]) - glm::vec3(cpu[i]));
+    const float m = std::max({d.r, d.g, d.b});
+    c.largest = std::max(c.largest, m);
+    if (m <= 1.0f / 255.0f + 1e-6f) ++c.within;
+  }
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("GPU polygoniser: GPU and CPU colours of the same polygonisation agree within 1/255 (painted random trees, "
+          "the blob creature)",
+          "[gpu][gpupoly][color]") {
+  ColorRig r = makeColorRig();
+  size_t vertices = 0, within = 0;
+  float largest = 0.0f;
+  std::set<int> ops;  // the op codes the programs used
+  auto run = [&](const FieldProgram& p, const GpuPolygonizeSettings& s) {
+    REQUIRE(programHasColors(p));
+    for (const FieldOp& op : p.ops) ops.insert(int(op.code));
+    const ColorComparison c = compareColors(*r.poly, p, s);
+    INFO(c.vertices << " vertices, " << c.within << " within 1/255, largest difference " << c.largest);
+    CHECK(c.vertices > 20);
+    // Float rounding only (the kernels are the CPU's); a vertex on the seam of a union, where the
+    // two operands' values tie within rounding, may take the other side's colour.
+    CHECK(c.within * 1000 >= c.vertices * 998);
+    vertices += c.vertices;
+    within += c.within;
+    largest = std::max(largest, c.largest);
+  };
+  // Seeded random trees over every operator, primitive class, skeleton kind and map kind the
+  // generator makes (tests/util/blob_builders), each primitive painted.
+  for (unsigned seed : {1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u, 9u, 10u, 11u, 12u}) {
+    INFO("seed " << seed);
+    std::mt19937 rng(seed);
+    int id = 1;
+    BlobTree tree = treeOf(randomNode(rng, 3, id), 0.5f);
+    paintRandomly(tree.root, rng);
+    FieldProgram p = compileFieldProgram(tree, 0.5);
+    GpuPolygonizeSettings s;
+    s.resolution = 40;
+    s.bounds = cubeOf(1.2f);
+    run(p, s);
+  }
+  // The demo's blob creature (frames nesting its limbs), painted part by part.
+  {
+    BlobTree creature = makeBlobCreature();
+    std::mt19937 rng(77);
+    paintRandomly(creature.root, rng);
+    FieldProgram p = compileFieldProgram(creature, 0.0);
+    GpuPolygonizeSettings s;
+    s.resolution = 64;
+    run(p, s);
+  }
+  for (OpCode op : {OpCode::Prims, OpCode::Sum, OpCode::Max, OpCode::Min, OpCode::BeginMap, OpCode::EndMap}) {
+    INFO("op " << int(op));
+    CHECK(ops.count(int(op)) == 1);
+  }
+  std::string used;
+  for (int op : ops) used += " " + std::to_string(op);
+  WARN("op codes used:" << used);
+  WARN("colours: " << vertices << " vertices, " << within << " within 1/255 of the CPU's, largest difference "
+                   << largest);
+  CHECK(r.ctx->validationErrorCount() == 0);
+}
+
+TEST_CASE("GPU polygoniser: a program without colours has no colour stream (the one tone)", "[gpu][gpupoly][color]") {
+  ColorRig r = makeColorRig();
+  std::mt19937 rng(5);
+  int id = 1;
+  FieldProgram p = compileFieldProgram(treeOf(randomNode(rng, 3, id), 0.5f), 0.5);
+  REQUIRE(!programHasColors(p));
+  GpuPolygonizeSettings s;
+  s.resolution = 32;
+  s.bounds = cubeOf(1.2f);
+  auto st = r.poly->polygonize(GpuField::single(p), s);
+  REQUIRE(st.ok());
+  CHECK_FALSE(st->colors);
+  auto mesh = r.poly->readBack();
+  REQUIRE(mesh.ok());
+  CHECK(mesh->triangleCount() > 0);
+  CHECK(mesh->colors.empty());
+  // Colours turned off: none either, for a painted program.
+  std::mt19937 paint(9);
+  BlobTree tree = treeOf(randomNode(rng, 3, id), 0.5f);
+  paintRandomly(tree.root, paint);
+  FieldProgram painted = compileFieldProgram(tree, 0.5);
+  REQUIRE(programHasColors(painted));
+  s.colors = false;
+  auto off = r.poly->polygonize(GpuField::single(painted), s);
+  REQUIRE(off.ok());
+  CHECK_FALSE(off->colors);
+  auto offMesh = r.poly->readBack();
+  REQUIRE(offMesh.ok());
+  CHECK(offMesh->colors.empty());
+  CHECK(r.ctx->validationErrorCount() == 0);
+}
