@@ -14,6 +14,8 @@
 #include "demo/blob_creature.h"
 #include "gpu/polygonizer/gpu_color_table.h"
 #include "gpu/polygonizer/gpu_polygonizer.h"
+#include "gpu/present/offscreen_target.h"
+#include "gpu/render/scene_renderer.h"
 #include "gpu_fixture.h"
 #include "util/blob_builders.h"
 
@@ -168,5 +170,84 @@ TEST_CASE("GPU polygoniser: a program without colours has no colour stream (the 
   auto offMesh = r.poly->readBack();
   REQUIRE(offMesh.ok());
   CHECK(offMesh->colors.empty());
+  CHECK(r.ctx->validationErrorCount() == 0);
+}
+
+namespace {
+
+// Point primitive `id` at centre with colour c (linear).
+BlobNode colouredPoint(int id, const glm::vec3& centre, const glm::vec3& c) {
+  BlobNode p = pointNode(id, centre, 0.7f);
+  p.vec3Param("color") = Vec3Track(c);
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("GPU polygoniser: the GPU preview of a coloured BlobTree draws its vertices' colours, one without colours "
+          "its one tone",
+          "[gpu][gpupoly][color]") {
+  ColorRig r = makeColorRig();
+  auto target = OffscreenTarget::create(*r.ctx, 96, 96);
+  REQUIRE(target.ok());
+  auto renderer = SceneRenderer::create(*r.ctx, (*target)->renderPass());
+  INFO(renderer.error());
+  REQUIRE(renderer.ok());
+  // A red point left, a blue one right, blended in the middle; the same shape without colours.
+  BlobNode coloured = operatorNode(NodeType::Blend, 1,
+                                   {colouredPoint(2, glm::vec3(-0.35f, 0, 0), glm::vec3(0.9f, 0.05f, 0.05f)),
+                                    colouredPoint(3, glm::vec3(0.35f, 0, 0), glm::vec3(0.05f, 0.05f, 0.9f))});
+  BlobNode plain = operatorNode(NodeType::Blend, 1,
+                                {pointNode(2, glm::vec3(-0.35f, 0, 0), 0.7f), pointNode(3, glm::vec3(0.35f, 0, 0), 0.7f)});
+  OrbitCamera cam;
+  cam.target = glm::vec3(0.0f);
+  cam.yawRad = 0.0f;
+  cam.pitchRad = 0.0f;
+  cam.distanceM = 3.0f;
+  struct Counts {
+    size_t covered = 0, reddish = 0, bluish = 0, grey = 0;
+  };
+  auto draw = [&](const BlobTree& tree) {
+    FieldProgram p = compileFieldProgram(tree, 0.0);
+    GpuPolygonizeSettings s;
+    s.resolution = 32;
+    Status recorded;
+    Status submitted =
+        r.ctx->submitImmediate([&](VkCommandBuffer cmd) { recorded = r.poly->record(cmd, 0, GpuField::single(p), s); });
+    INFO(recorded.error() + submitted.error());
+    REQUIRE(recorded.ok());
+    REQUIRE(submitted.ok());
+    Scene scene;
+    scene.options.grid = false;
+    scene.options.axisIndicator = false;
+    scene.options.background = {0.0f, 0.0f, 0.0f, 1.0f};
+    scene.generatedMeshes.push_back(r.poly->generatedMesh({0.62f, 0.62f, 0.62f, 1.0f}));
+    Status drawn;
+    Status rendered = (*target)->render(
+        [&](VkCommandBuffer cmd) { drawn = (*renderer)->record(cmd, (*target)->serial(), {0, 0, 96, 96}, cam, scene); });
+    REQUIRE(drawn.ok());
+    REQUIRE(rendered.ok());
+    const RgbaImage& img = (*target)->image();
+    Counts c;
+    for (uint32_t y = 0; y < 96; ++y)
+      for (uint32_t x = 0; x < 96; ++x) {
+        const glm::u8vec4 px = img.at(x, y);
+        if (!differs(px, scene.options.background)) continue;
+        ++c.covered;
+        c.reddish += px.r > px.b + 40 && px.r > px.g + 40;
+        c.bluish += px.b > px.r + 40 && px.b > px.g + 40;
+        c.grey += std::abs(int(px.r) - int(px.b)) <= 3 && std::abs(int(px.r) - int(px.g)) <= 3;
+      }
+    return c;
+  };
+  const Counts col = draw(treeOf(coloured, 0.5f));
+  INFO(col.covered << " covered: " << col.reddish << " reddish, " << col.bluish << " bluish, " << col.grey << " grey");
+  CHECK(col.covered > 96 * 96 / 20);
+  CHECK(col.reddish > col.covered / 5);
+  CHECK(col.bluish > col.covered / 5);
+  const Counts one = draw(treeOf(plain, 0.5f));
+  INFO(one.covered << " covered: " << one.reddish << " reddish, " << one.bluish << " bluish, " << one.grey << " grey");
+  CHECK(one.covered > 96 * 96 / 20);
+  CHECK(one.grey == one.covered);  // the draw's grey tone, shaded
   CHECK(r.ctx->validationErrorCount() == 0);
 }
