@@ -9,12 +9,18 @@
 //   * where every weight is 0 the first operand's colour stays; a constant is clay;
 //   * a map subtree none of whose primitives reaches the vertex's block: its value where none
 //     contributes, with its colour there (the CPU's ColorProgram::emptyColor).
-// One vertex per invocation (four dispatches of the normals pass's arguments, push constant k: vertex
-// 4 i + k), the whole program walked with the vertex's block primitive mask (positions[].w, as the
-// normals pass): a primitive outside the block contributes 0 there, so it gives no weight either.
-// The colour table (P.extra.w, a pool index) holds one vec4 per global primitive (its colour), then
-// one per op of the program (the colour of the subtree it closes where no primitive contributes).
+// One vertex per invocation (four dispatches of the normals pass's arguments, push constant x = k:
+// vertex 4 i + k). The program walked is program A, whole, with the vertex's block primitive mask
+// (positions[].w, as the normals pass): a primitive outside the block contributes 0 there, so it
+// gives no weight either; or a colour program packed after it (GpuField::colors: the same surface,
+// finer colours; push constant y its first op record, z its op count, w its threshold's bits),
+// every primitive of it walked (the block masks are A's).
+// The colour table (P.extra.w, a pool index) holds one vec4 per op of the program walked (the colour
+// of the subtree it closes where no primitive contributes), then one per primitive (its colour).
 // Out: normals[v].w = the colour's RGBA8 bits tagged AM_POLY_COLOR_TAG (poly_constants.h).
+
+bool gAllPrimitives;  // a colour program of its own: every primitive walked
+#define AM_BLOCK_MASK_WORD(maskBase, word_) (gAllPrimitives ? ~0u : blockMask[(maskBase) + (word_)])
 
 #include "poly_common.glsl"
 #include "poly_field.glsl"
@@ -29,9 +35,9 @@ layout(push_constant) uniform ColorPush { uvec4 pc; };  // x: which vertex of ea
 layout(set = 0, binding = AM_PB_POSITIONS, std430) readonly buffer Positions { vec4 positions[]; };
 layout(set = 0, binding = AM_PB_NORMALS, std430) buffer Normals { vec4 normals[]; };
 
-uint gColorTable;
-vec3 primColor(uint globalId) { return POOLF(gColorTable + globalId).xyz; }
-vec3 opEmptyColor(uint op) { return POOLF(gColorTable + P.caps.z + op).xyz; }
+uint gColorTable, gOpCount;
+vec3 opEmptyColor(uint op) { return POOLF(gColorTable + op).xyz; }
+vec3 primColor(uint globalId) { return POOLF(gColorTable + gOpCount + globalId).xyz; }
 
 // One primitive's value at q (class cls, pool record r): the kernels of the value interpreter.
 float primitiveValue(uint cls, uint r, vec3 q, float T) {
@@ -176,11 +182,15 @@ vec3 programColor(uint opBegin, uint opCount, float T, uint maskBase, vec3 p) {
 
 void colorPass() {
   gColorTable = floatBitsToUint(P.extra.w);
+  gAllPrimitives = pc.y != 0u;
+  uint opBegin = gAllPrimitives ? pc.y : P.progA.x;
+  gOpCount = gAllPrimitives ? pc.z : P.progA.y;
+  float T = gAllPrimitives ? uintBitsToFloat(pc.w) : P.thresholds.x;
   uint total = min(control[AM_CTL_VERTICES], P.caps.x);
   uint v = 4u * gl_GlobalInvocationID.x + pc.x;
   if (v >= total || gColorTable == 0u) return;
   vec4 q = positions[v];
-  vec3 c = clamp(programColor(P.progA.x, P.progA.y, P.thresholds.x, floatBitsToUint(q.w), q.xyz), 0.0, 1.0);
+  vec3 c = clamp(programColor(opBegin, gOpCount, T, floatBitsToUint(q.w), q.xyz), 0.0, 1.0);
   uint bits = (packUnorm4x8(vec4(c, 0.0)) & 0x00ffffffu) | (AM_POLY_COLOR_TAG << 24);
   normals[v].w = uintBitsToFloat(bits);
 }

@@ -18,6 +18,7 @@
 #include "gpu/render/scene_renderer.h"
 #include "gpu_fixture.h"
 #include "util/blob_builders.h"
+#include "util/morph_fixtures.h"
 
 using namespace animorph;
 using namespace animorph::gpu;
@@ -249,5 +250,60 @@ TEST_CASE("GPU polygoniser: the GPU preview of a coloured BlobTree draws its ver
   INFO(one.covered << " covered: " << one.reddish << " reddish, " << one.bluish << " bluish, " << one.grey << " grey");
   CHECK(one.covered > 96 * 96 / 20);
   CHECK(one.grey == one.covered);  // the draw's grey tone, shaded
+  CHECK(r.ctx->validationErrorCount() == 0);
+}
+
+TEST_CASE("GPU polygoniser: a morph of two coloured stand-ins takes its colour program's colours (the CPU's within 1/255)",
+          "[gpu][gpupoly][color]") {
+  // The demo morph (creature -> gear, stand-ins coloured from the characters' materials): its
+  // implicit stage's field, coloured by the colour program of split stand-in segments
+  // (MorphImplicitField::colorProgram, GpuField::colors), at the start, middle and end of B..C.
+  const MorphRuntime& rt = *test::demoMorph().runtime;
+  REQUIRE(morphHasColors(rt));
+  const MorphMarkers& k = rt.setup.markers;
+  const double tb = rt.timeline.frameToSec(k.b), tc = rt.timeline.frameToSec(k.c);
+  ColorRig r = makeColorRig();
+  size_t vertices = 0, within = 0;
+  float largest = 0.0f;
+  glm::vec3 lo(1.0f), hi(0.0f);  // the colours' range over the three (the gear is bronze all over)
+  for (double u : {0.0, 0.5, 1.0}) {
+    INFO("u = " << u);
+    const double t = tb + u * (tc - tb);
+    MorphImplicitField f = morphImplicitField(rt, t, 64, u);
+    REQUIRE(f.colorProgram);
+    REQUIRE(programHasColors(*f.colorProgram));
+    GpuField field = GpuField::single(f.program);
+    field.colors = f.colorProgram.get();
+    GpuPolygonizeSettings s;
+    s.resolution = 64;
+    s.bounds = f.bounds;
+    auto st = r.poly->polygonize(field, s);
+    INFO(st.error());
+    REQUIRE(st.ok());
+    REQUIRE(st->colors);
+    auto mesh = r.poly->readBack();
+    REQUIRE(mesh.ok());
+    REQUIRE(mesh->colors.size() == mesh->positions.size());
+    REQUIRE(mesh->positions.size() > 100);
+    std::vector<glm::vec4> cpu(mesh->positions.size());
+    SurfaceColorEvaluator().evaluate(*f.colorProgram, mesh->positions.data(), mesh->positions.size(), cpu.data(), 2);
+    size_t caseWithin = 0;
+    for (size_t i = 0; i < cpu.size(); ++i) {
+      const glm::vec3 d = glm::abs(glm::vec3(mesh->colors[i]) - glm::vec3(cpu[i]));
+      const float m = std::max({d.r, d.g, d.b});
+      largest = std::max(largest, m);
+      caseWithin += m <= 1.0f / 255.0f + 1e-6f;
+      lo = glm::min(lo, glm::vec3(mesh->colors[i]));
+      hi = glm::max(hi, glm::vec3(mesh->colors[i]));
+    }
+    INFO(caseWithin << " of " << cpu.size() << " within 1/255");
+    CHECK(caseWithin * 1000 >= cpu.size() * 998);
+    vertices += cpu.size();
+    within += caseWithin;
+  }
+  const glm::vec3 spread = hi - lo;
+  CHECK(std::max({spread.r, spread.g, spread.b}) > 0.1f);  // coloured, not one tone
+  WARN("morph colours: " << vertices << " vertices, " << within << " within 1/255 of the CPU's, largest difference "
+                         << largest);
   CHECK(r.ctx->validationErrorCount() == 0);
 }

@@ -235,6 +235,7 @@ struct GpuPolygonizer::Impl {
   // The colour pass (poly_color[_ssbo].comp, generic: not specialised, made on first use); colorPass: this frame's
   // (null: the program has no colours, the mesh keeps its one tone).
   VkPipeline colorUniform = VK_NULL_HANDLE, colorStorage = VK_NULL_HANDLE, colorPass = VK_NULL_HANDLE;
+  ColorProgramWalk colorWalkThisFrame;  // with colorPass: a colour program's walk (opBegin 0: program A's)
   VkCommandPool commandPool = VK_NULL_HANDLE;
   VkCommandBuffer cmd = VK_NULL_HANDLE;
   VkFence fence = VK_NULL_HANDLE;
@@ -744,12 +745,15 @@ void GpuPolygonizer::Impl::recordPasses(VkCommandBuffer cb, uint32_t slot, const
     vkCmdDispatchIndirect(cb, control.buffer, AM_CTL_NORMALS * 4);
   }
   if (colorPass) {
+    const ColorProgramWalk& colorWalk = colorWalkThisFrame;
     // The vertices' colours into the normals' w (poly_color_main.glsl), before the noise moves them
     // (the CPU colours the undisplaced surface): one dispatch per vertex of the normals' four.
     computeToCompute(cb);
     vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, colorPass);
     for (uint32_t k = 0; k < 4; ++k) {
-      push(k, 0u, 0u);
+      glm::uvec4 pc(k, colorWalk.opBegin, colorWalk.opCount, 0u);
+      std::memcpy(&pc.w, &colorWalk.threshold, 4);
+      vkCmdPushConstants(cb, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, 16, &pc);
       vkCmdDispatchIndirect(cb, control.buffer, AM_CTL_NORMALS * 4);
     }
   }
@@ -809,9 +813,19 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   // Vertex colours (docs/gpu-polygonizer.md, "Colour"): a single program with colours whose walk fits
   // the device's loop limit (with room: the estimate leaves out the kernels); else no colour stream.
   uint32_t colorTable = 0;
-  if (s.colors && !field.b && programHasColors(*field.a) &&
-      (limit == 0 || 2 * colorWalkLoopEstimate(*field.a) + 64 < limit))
-    colorTable = appendColorTable(*field.a, *packed);
+  ColorProgramWalk colorWalk;  // a colour program of its own (field.colors), else program A's walk
+  const FieldProgram* colorSource = field.colors ? field.colors : field.b ? nullptr : field.a;
+  if (s.colors && colorSource && programHasColors(*colorSource) &&
+      (limit == 0 || 2 * colorWalkLoopEstimate(*colorSource) + 64 < limit)) {
+    if (field.colors) {
+      Result<ColorProgramWalk> w = appendColorProgram(*field.colors, *packed);
+      if (!w) return Error{"GPU polygoniser: " + w.error()};
+      colorWalk = *w;
+      colorTable = colorWalk.table;
+    } else {
+      colorTable = appendColorTable(*field.a, *packed);
+    }
+  }
   stats.colors = colorTable != 0;
   const PackedFieldPrograms& pk = *packed;
   const uint32_t words = std::max(1u, (pk.primitiveTotal() + 31) / 32);
@@ -832,6 +846,7 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
     }
     colorPass = made;
   }
+  colorWalkThisFrame = colorWalk;
   if (lists) {
     prm.regions = glm::uvec4(1u, fr.super.table, fr.super.masks * 4u, fr.shift);
     prm.regionLists = glm::uvec4(fr.blocks.table, fr.dims.x, fr.dims.y, 0u);

@@ -48,6 +48,10 @@ struct GpuField {
   float morphTime = 0.5f;  // space-time: t (0: a, 1: b)
   float timeScale = 1.0f;  // space-time: scale of t against field values
   float a0 = 1.0f, a1 = 1.0f, a2 = 1.0f, a3 = 1.0f;  // space-time: bounded-blending parameters
+  // The program whose colours the vertices take (PolygonizeSettings::colorProgram: the same surface,
+  // finer colours, e.g. a morph's stand-ins split into their colour samples); null: a's own. Used by
+  // the colour pass only (GpuPolygonizeSettings::colors), walked whole at every vertex.
+  const FieldProgram* colors = nullptr;
 
   static GpuField single(const FieldProgram& p) { return {&p}; }
   static GpuField interpolation(const FieldProgram& a, const FieldProgram& b, float w) {
