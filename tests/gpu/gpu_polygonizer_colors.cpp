@@ -87,7 +87,7 @@ ColorComparison compareColors(GpuPolygonizer& poly, const FieldProgram& p, const
 }  // namespace
 
 TEST_CASE("GPU polygoniser: GPU and CPU colours of the same polygonisation agree within 1/255 (painted random trees, "
-          "the blob creature)",
+          "every op, the blob creature)",
           "[gpu][gpupoly][color]") {
   ColorRig r = makeColorRig();
   size_t vertices = 0, within = 0;
@@ -120,6 +120,39 @@ TEST_CASE("GPU polygoniser: GPU and CPU colours of the same polygonisation agree
     s.bounds = cubeOf(1.2f);
     run(p, s);
   }
+  // Ops the generator makes rarely: an R-union node; a constant and capsules, and Remap (the morph's
+  // scaled or bounded operands) in hand-built programs, each primitive its own colour.
+  {
+    BlobNode seg = segmentNode(3, glm::vec3(0.1f, -0.3f, 0), glm::vec3(0.2f, 0.3f, 0.1f), 0.3f);
+    seg.vec3Param("color") = Vec3Track(glm::vec3(0.1f, 0.2f, 0.9f));
+    BlobNode pt = pointNode(2, glm::vec3(-0.2f, 0, 0), 0.5f);
+    pt.vec3Param("color") = Vec3Track(glm::vec3(0.9f, 0.1f, 0.1f));
+    const FieldProgram runion = compileFieldProgram(treeOf(operatorNode(NodeType::RUnion, 1, {pt, seg}), 0.5f), 0.0);
+    FieldProgram withConst;
+    withConst.threshold = 0.5f;
+    withConst.addConstant(0.2f);
+    withConst.nextColor = glm::vec3(0.2f, 0.8f, 0.1f);
+    withConst.addCapsule({glm::vec3(-0.3f, 0, 0), glm::vec3(0.3f, 0.1f, 0), 0.15f}, false, false);
+    withConst.addOperator(OpCode::Sum, 2);
+    withConst.finish();
+    FieldProgram remapped;
+    remapped.threshold = 0.5f;
+    remapped.nextColor = glm::vec3(0.9f, 0.1f, 0.1f);
+    remapped.addCapsule({glm::vec3(-0.3f, 0, 0), glm::vec3(0.3f, 0.1f, 0), 0.2f}, false, false);
+    const float bounded[2] = {0.7f, 3.0f}, scaled[2] = {0.6f, 0.0f};
+    remapped.addOperator(OpCode::Remap, 1, bounded, 2);
+    remapped.nextColor = glm::vec3(0.1f, 0.2f, 0.9f);
+    remapped.addConvolution(glm::vec3(0.0f, -0.3f, 0.0f), glm::vec3(0.1f, 0.3f, 0.1f), 0.15f, 12.0f, 1e-3f, false);
+    remapped.addOperator(OpCode::Remap, 1, scaled, 2);
+    remapped.addOperator(OpCode::Sum, 2);
+    remapped.finish();
+    for (const FieldProgram* p : std::initializer_list<const FieldProgram*>{&runion, &withConst, &remapped}) {
+      GpuPolygonizeSettings s;
+      s.resolution = 40;
+      s.bounds = cubeOf(0.8f);
+      run(*p, s);
+    }
+  }
   // The demo's blob creature (frames nesting its limbs), painted part by part.
   {
     BlobTree creature = makeBlobCreature();
@@ -130,13 +163,12 @@ TEST_CASE("GPU polygoniser: GPU and CPU colours of the same polygonisation agree
     s.resolution = 64;
     run(p, s);
   }
-  for (OpCode op : {OpCode::Prims, OpCode::Sum, OpCode::Max, OpCode::Min, OpCode::BeginMap, OpCode::EndMap}) {
+  for (OpCode op : {OpCode::Prims, OpCode::Const, OpCode::Sum, OpCode::Max, OpCode::Min, OpCode::HyperBlend,
+                    OpCode::Difference, OpCode::RUnion, OpCode::RIntersection, OpCode::BoundedBlend, OpCode::BeginMap,
+                    OpCode::EndMap, OpCode::Remap}) {
     INFO("op " << int(op));
     CHECK(ops.count(int(op)) == 1);
   }
-  std::string used;
-  for (int op : ops) used += " " + std::to_string(op);
-  WARN("op codes used:" << used);
   WARN("colours: " << vertices << " vertices, " << within << " within 1/255 of the CPU's, largest difference "
                    << largest);
   CHECK(r.ctx->validationErrorCount() == 0);
