@@ -118,7 +118,13 @@ TEST_CASE("GPU polygoniser: GPU and CPU colours of the same polygonisation agree
     GpuPolygonizeSettings s;
     s.resolution = 40;
     s.bounds = cubeOf(1.2f);
+    // Both pool variants of the colour pass (a uniform buffer: GPUs; storage: CPU devices, large programs).
+    s.poolBuffer = seed % 2 ? GpuPolygonizeSettings::PoolBuffer::Uniform : GpuPolygonizeSettings::PoolBuffer::Storage;
     run(p, s);
+    if (s.poolBuffer == GpuPolygonizeSettings::PoolBuffer::Uniform) {
+      const GpuPolygonizeStats& st = r.poly->lastStats();
+      CHECK(st.uniformPool);
+    }
   }
   // Ops the generator makes rarely: an R-union node; a constant and capsules, and Remap (the morph's
   // scaled or bounded operands) in hand-built programs, each primitive its own colour.
