@@ -180,11 +180,15 @@ int polygonizeOnGpu(const PolyArgs& a, const PolyTree& t, const animorph::FieldP
   if (!stats) return fail(me, t.what + ": " + stats.error());
   auto mesh = (*poly)->readBack();
   if (!mesh) return fail(me, a.scene + ": " + mesh.error());
-  // Vertex colours on the CPU from the read-back vertices, by the same evaluator as the CPU path
-  // (field/surface_color.h; docs/blobtree.md, "Colour").
-  mesh->colors.resize(mesh->positions.size());
-  animorph::SurfaceColorEvaluator().evaluate(program, mesh->positions.data(), mesh->positions.size(),
-                                             mesh->colors.data());
+  // Vertex colours: the GPU's colour pass (docs/gpu-polygonizer.md, "Colour"). Where it made none (a
+  // program without colours: the clay tone; one too long for the device's loop limit), on the CPU
+  // from the read-back vertices, by the evaluator the colour pass follows (field/surface_color.h).
+  const bool gpuColors = stats->colors && mesh->colors.size() == mesh->positions.size();
+  if (!gpuColors) {
+    mesh->colors.resize(mesh->positions.size());
+    animorph::SurfaceColorEvaluator().evaluate(program, mesh->positions.data(), mesh->positions.size(),
+                                               mesh->colors.data());
+  }
   toWorld(*mesh, t.model);
   if (auto s = animorph::writeMesh(*mesh, a.output); !s) return fail(me, s.error());
   std::printf("%s at t = %g s: %zu triangles, %zu vertices in %.1f ms (GPU: %s)\n", t.what.c_str(), a.timeSec,
@@ -192,6 +196,7 @@ int polygonizeOnGpu(const PolyArgs& a, const PolyTree& t, const animorph::FieldP
   std::printf("  grid %d x %d x %d (cell %.4g m), %zu primitives, blocks %u evaluated / %u culled of %u -> %s\n",
               stats->gridX, stats->gridY, stats->gridZ, stats->cellSize, program.primitiveCount(),
               stats->blocksActive, stats->blocksTotal - stats->blocksActive, stats->blocksTotal, a.output.c_str());
+  std::printf("  colours: %s\n", gpuColors ? "GPU (colour pass)" : "CPU (no GPU colour stream for this program)");
   if ((*ctx)->validationEnabled() && (*ctx)->validationErrorCount() > 0)
     return fail(me, std::to_string((*ctx)->validationErrorCount()) + " Vulkan validation error(s)", 3);
   return 0;

@@ -29,6 +29,7 @@ Result<MorphFrame> GpuImplicitStage::morphFrame(const MorphRuntime& rt, double t
   fr.progress = field.progress;
   fr.blend = field.blend;
   gpu::GpuField gf = gpu::GpuField::single(field.program);
+  gf.colors = field.colorProgram.get();  // the vertices' colours from the GPU's colour pass, as the CPU stage's
   if (std::string why = gpu::GpuPolygonizer::unsupported(gf); !why.empty())
     return Error{"the GPU polygoniser cannot evaluate this morph: " + why};
   gpu::GpuPolygonizeSettings gs;

@@ -86,8 +86,8 @@ ViewportFrame::MorphShown ViewportFrame::applyMorphStage(EditorGpu& g, const Pre
     ectx.viewportNote = morphPreparer_.error().empty() ? "" : "morph: " + morphPreparer_.error();
     return shown;
   }
-  // A morph with colours is drawn in them by the CPU worker (the GPU polygoniser's meshes have
-  // no colour stream yet): on CPU devices Auto takes the worker for it.
+  // A morph with colours: on CPU devices Auto takes the worker for it (the GPU path's colour pass
+  // walks the whole colour program at every vertex, several times slower there: `bench gpu-color`).
   const bool convolution = !rt->source.isTree() && !rt->target.isTree() &&
                            rt->source.morph.standin.kind == StandinKind::Convolution &&
                            rt->target.morph.standin.kind == StandinKind::Convolution && !morphHasColors(*rt);

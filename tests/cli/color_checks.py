@@ -5,8 +5,9 @@ usage: color_checks.py MODE CLI TOOLS_DIR
   files     polygonize of a scene of a red and a blue point writes vertex colours to PLY (red green
             blue alpha, sRGB), OBJ (v x y z r g b, sRGB) and GLB (COLOR_0, linear): red near the red point, blue near
             the blue one, blends between; a scene without colours is the clay tone.
-  gpu       polygonize --gpu gives every vertex the colour the CPU gives the same vertex, within
-            1/255 (exit 77: skipped without a Vulkan device).
+  gpu       polygonize --gpu colours every vertex on the GPU (its colour pass, not the CPU's
+            colouring of the read-back vertices), within 1/255 of the colour the CPU polygoniser gives
+            the same vertex (exit 77: skipped without a Vulkan device).
   validator the glTF-Validator reports 0 errors and 0 warnings on the GLB with COLOR_0 (exit 77:
             skipped when Node/npm or the registry is unavailable).
   blender   Blender imports the GLB with its COLOR_0 as a colour attribute whose values are the
@@ -128,6 +129,8 @@ def mode_gpu(cli):
                 print("no Vulkan device: skipped")
                 sys.exit(77)
             fail(f"polygonize --gpu: {r.returncode} {r.stderr}")
+        if "colours: GPU" not in r.stdout:
+            fail(f"polygonize --gpu did not colour on the GPU: {r.stdout}")
         a, b = obj_colored_vertices(cpu), obj_colored_vertices(gpu)
         # The same grid: match each GPU vertex to the CPU vertex at the same place.
         grid = {}

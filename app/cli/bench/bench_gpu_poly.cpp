@@ -22,6 +22,8 @@
 #include "demo/animorphosis_demo.h"
 #include "demo/blob_creature.h"
 #include "core/poly/polygonizer.h"
+#include "app/cli/bench/bench_demo_morph.h"
+#include "core/scene/morph_runtime.h"
 #include "gpu/vulkan/context.h"
 #include "gpu/polygonizer/gpu_field_program.h"
 #include "gpu/polygonizer/gpu_polygonizer.h"
@@ -360,6 +362,137 @@ void blobTreeRows(g::GpuPolygonizer& poly, int threads, bool quick, std::vector<
               quick ? 1 : 3, threads, "<= 1.5", rows);
 }
 
+// Every primitive of the subtree painted with one of four colours by its id (deterministic).
+void paintById(BlobNode& n) {
+  const glm::vec3 palette[4] = {{0.9f, 0.1f, 0.1f}, {0.1f, 0.2f, 0.9f}, {0.2f, 0.8f, 0.1f}, {0.95f, 0.9f, 0.3f}};
+  if (paramIndex(n.type, "color") >= 0) n.vec3Param("color") = Vec3Track(palette[size_t(n.id) % 4]);
+  for (BlobNode& c : n.children) paintById(c);
+}
+
+// The colour stream's cost (docs/gpu-polygonizer.md, "Colour"): the blob creature painted part by
+// part, polygonised with and without vertex colours on the GPU (the colour pass) and on the CPU (per
+// block), same run, same grid.
+void colorRows(g::GpuPolygonizer& poly, int threads, bool quick, std::vector<Row>& rows) {
+  BlobTree tree = makeBlobCreature();
+  paintById(tree.root);
+  const FieldProgram painted = compileFieldProgram(tree, 0.5);
+  const int res = quick ? 64 : 96, reps = quick ? 3 : 5;
+  const std::string tag = "painted blob creature " + std::to_string(res) + "^3";
+  const std::string th = std::to_string(threads) + " threads";
+  double gpuMs[2] = {0, 0}, cpuMs[2] = {0, 0};
+  uint32_t vertices = 0;
+  for (int colored = 0; colored < 2; ++colored) {
+    g::GpuPolygonizeSettings gs;
+    gs.resolution = res;
+    gs.colors = colored != 0;
+    std::string error;
+    gpuMs[colored] = animorph::bench::medianMs(reps, [&] {
+      auto r = poly.polygonize(g::GpuField::single(painted), gs);
+      if (!r) error = r.error();
+      else if (r->colors != gs.colors) error = "the colour pass did not run as asked";
+      else vertices = r->vertices;
+      if (auto mesh = poly.readBack(); !mesh) error = mesh.error();
+    });
+    if (!error.empty()) {
+      rows.push_back({tag + " GPU failed", 0, "", "", error});
+      return;
+    }
+    PolygonizeSettings cs;
+    cs.resolution = res;
+    cs.threads = threads;
+    cs.colors = colored != 0;
+    cpuMs[colored] = animorph::bench::medianMs(reps, [&] { (void)polygonize(painted, cs); });
+  }
+  const std::string note = "latency, wall, warm, median of " + std::to_string(reps) + ", polygonise + read-back, " +
+                           std::to_string(vertices) + " vertices";
+  rows.push_back({tag + " GPU, colours", gpuMs[1], "ms", "", note});
+  rows.push_back({tag + " GPU, no colours", gpuMs[0], "ms", "", "the same, colour pass off (baseline)"});
+  rows.push_back({tag + " GPU colours / none", gpuMs[1] / gpuMs[0], "ratio", "", ""});
+  rows.push_back({tag + " CPU, colours", cpuMs[1], "ms", "", "latency, wall, warm, " + th});
+  rows.push_back({tag + " CPU, no colours", cpuMs[0], "ms", "", "the same, no colours (baseline)"});
+  rows.push_back({tag + " CPU colours / none", cpuMs[1] / cpuMs[0], "ratio", "", ""});
+}
+
+// The demo morph's implicit stage half way (creature -> gear, 96^3 or 48^3 quick): the GPU with its
+// colour program (GpuField::colors, the preview's path) and without, and the CPU worker's
+// polygonisation with its colour program and without (the preview's other backend).
+void morphColorRows(g::GpuPolygonizer& poly, int threads, bool quick, std::vector<Row>& rows) {
+  const bench::DemoMorphDir demo;
+  if (!demo.project) {
+    rows.push_back({"demo morph colours: skipped", 0, "", "", "the demo morph could not be made"});
+    return;
+  }
+  AssetCache assets;
+  auto rt = prepareMorph(*demo.project, demo.dir, assets);
+  if (!rt) {
+    rows.push_back({"demo morph colours: skipped", 0, "", "", rt.error()});
+    return;
+  }
+  const int res = quick ? 48 : 96, reps = quick ? 3 : 5;
+  const MorphMarkers& k = (*rt)->setup.markers;
+  const double t = (*rt)->timeline.frameToSec(0.5 * (k.b + k.c));
+  const MorphImplicitField f = morphImplicitField(**rt, t, res, 0.5);
+  if (!f.colorProgram) {
+    rows.push_back({"demo morph colours: skipped", 0, "", "", "the demo morph has no colours"});
+    return;
+  }
+  const std::string tag = "demo morph B..C half way " + std::to_string(res) + "^3";
+  double gpuMs[2] = {0, 0}, cpuMs[2] = {0, 0};
+  uint32_t vertices = 0;
+  for (int colored = 0; colored < 2; ++colored) {
+    g::GpuField field = g::GpuField::single(f.program);
+    if (colored) field.colors = f.colorProgram.get();
+    g::GpuPolygonizeSettings gs;
+    gs.resolution = res;
+    gs.bounds = f.bounds;
+    gs.colors = colored != 0;
+    std::string error;
+    gpuMs[colored] = animorph::bench::medianMs(reps, [&] {
+      auto r = poly.polygonize(field, gs);
+      if (!r) error = r.error();
+      else if (r->colors != gs.colors) error = "the colour pass did not run as asked";
+      else vertices = r->vertices;
+      if (auto mesh = poly.readBack(); !mesh) error = mesh.error();
+    });
+    if (!error.empty()) {
+      rows.push_back({tag + " GPU failed", 0, "", "", error});
+      return;
+    }
+    PolygonizeSettings cs;
+    cs.resolution = res;
+    cs.threads = threads;
+    cs.bounds = f.bounds;
+    cs.colors = colored != 0;
+    cs.colorProgram = f.colorProgram.get();
+    cpuMs[colored] = animorph::bench::medianMs(reps, [&] { (void)polygonize(f.program, cs); });
+  }
+  rows.push_back({tag + " GPU, colour program", gpuMs[1], "ms", "",
+                  "latency, wall, warm, polygonise + read-back, " + std::to_string(vertices) + " vertices"});
+  rows.push_back({tag + " GPU, no colours", gpuMs[0], "ms", "", "the same, colour pass off (baseline)"});
+  rows.push_back({tag + " CPU, colour program", cpuMs[1], "ms", "", "latency, wall, warm, " + std::to_string(threads) + " threads"});
+  rows.push_back({tag + " CPU, no colours", cpuMs[0], "ms", "", "the same, no colours (baseline)"});
+  rows.push_back({tag + " GPU / CPU with colours", gpuMs[1] / cpuMs[1], "ratio", "", "the preview's two backends"});
+}
+
+std::vector<Row> runGpuColor(const animorph::bench::Options& opt) {
+  std::vector<Row> rows;
+  auto ctx = g::Context::create(g::ContextSettings{});
+  if (!ctx) {
+    rows.push_back({"skipped", 0, "", "", "no Vulkan device: " + ctx.error()});
+    return rows;
+  }
+  auto poly = g::GpuPolygonizer::create(**ctx);
+  if (!poly) {
+    rows.push_back({"skipped", 0, "", "", poly.error()});
+    return rows;
+  }
+  rows.push_back({"device", 0, "", "", (*ctx)->deviceName() + "; load average " + loadAverage() + " at start"});
+  const int threads = baselineThreads();
+  colorRows(**poly, threads, opt.quick, rows);
+  morphColorRows(**poly, threads, opt.quick, rows);
+  return rows;
+}
+
 std::vector<Row> runGpuPoly(const animorph::bench::Options& opt) {
   std::vector<Row> rows;
   bool wanted = opt.gpu;
@@ -406,3 +539,5 @@ std::vector<Row> runGpuPoly(const animorph::bench::Options& opt) {
 
 ANIMORPH_BENCH("gpu", "GPU vs CPU polygonisation of a 40-segment stand-in morph (needs `bench gpu` or --gpu)",
                runGpuPoly);
+ANIMORPH_BENCH("gpu-color", "the GPU polygoniser's colour pass: painted BlobTree and the demo morph, with and without "
+               "colours, GPU and CPU", runGpuColor);

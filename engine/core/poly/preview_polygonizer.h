@@ -31,6 +31,9 @@ struct PreviewField {
   // track, displaceBySolidNoise): amplitude (m), frequency (1/m); 0 amplitude: none.
   float noiseAmplitude = 0.0f;
   float noiseFrequency = 1.0f;
+  // The program whose colours the surface takes when it is not program's own (a morph's stand-ins
+  // split into their colour samples, MorphImplicitField::colorProgram); null: program's.
+  std::shared_ptr<const FieldProgram> colorProgram;
 };
 
 // A shape to preview: an immutable snapshot (shared with the worker thread).

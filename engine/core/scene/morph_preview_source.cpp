@@ -32,7 +32,7 @@ class MorphStageSource final : public PreviewSource {
   Result<PreviewField> field(int resolution) const override {
     MorphImplicitField f = morphImplicitField(*rt_, timeSec_, resolution, progress_);
     // The noise displaces the polygonised mesh (on the GPU: a pass after the normals).
-    return PreviewField{std::move(f.program), f.bounds, f.noiseAmplitude, rt_->setup.noiseFrequency};
+    return PreviewField{std::move(f.program), f.bounds, f.noiseAmplitude, rt_->setup.noiseFrequency, f.colorProgram};
   }
 
  private:
@@ -70,7 +70,8 @@ class StandinCoreSource final : public PreviewSource {
   Result<PreviewField> field(int) const override {
     std::optional<MorphImplicitField> f = standinCoreField(*rt_, timeSec_, expand_, u_);
     if (!f) return Error{"the stand-in core has melted away at this time"};
-    return PreviewField{std::move(f->program), f->bounds, f->noiseAmplitude, rt_->setup.noiseFrequency};
+    return PreviewField{std::move(f->program), f->bounds, f->noiseAmplitude, rt_->setup.noiseFrequency,
+                        f->colorProgram};
   }
 
  private:

@@ -174,6 +174,11 @@
 #define AM_OVERFLOW_CUT_CELLS 32u
 #define AM_OVERFLOW_CUT_NORMALS 64u
 #define AM_POLY_LLVMPIPE_LOOP_LIMIT 65535
+// The colour pass (poly_color_main.glsl) found its loops cut: that frame's colours are not trusted.
+#define AM_OVERFLOW_CUT_COLORS 128u
+// The colour pass writes each vertex's surface colour into its normal's w: RGBA8 bits (linear r, g, b
+// in the low bytes) with this tag in the top byte; w = 0 (no tag): no colour, the mesh's one tone.
+#define AM_POLY_COLOR_TAG 62u
 
 // Push constant x of the normals pass: the invocation's four vertices, or only vertex k (AM_NORMALS_VERTEX + k).
 #define AM_NORMALS_ALL 0

@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "gpu/polygonizer/field_pipeline_cache.h"
+#include "gpu/polygonizer/gpu_color_table.h"
 #include "gpu/polygonizer/gpu_field_program.h"
 #include "gpu/polygonizer/gpu_region_op_lists.h"
 #include "core/poly/solid_noise.h"
@@ -231,6 +232,10 @@ struct GpuPolygonizer::Impl {
   }};
   VkPipeline scan = VK_NULL_HANDLE, scanSingle = VK_NULL_HANDLE, compact = VK_NULL_HANDLE, args = VK_NULL_HANDLE;
   VkPipeline noise = VK_NULL_HANDLE;  // solid-noise displacement (poly_noise.comp)
+  // The colour pass (poly_color[_ssbo].comp, generic: not specialised, made on first use); colorPass: this frame's
+  // (null: the program has no colours, the mesh keeps its one tone).
+  VkPipeline colorUniform = VK_NULL_HANDLE, colorStorage = VK_NULL_HANDLE, colorPass = VK_NULL_HANDLE;
+  ColorProgramWalk colorWalkThisFrame;  // with colorPass: a colour program's walk (opBegin 0: program A's)
   VkCommandPool commandPool = VK_NULL_HANDLE;
   VkCommandBuffer cmd = VK_NULL_HANDLE;
   VkFence fence = VK_NULL_HANDLE;
@@ -319,7 +324,7 @@ GpuPolygonizer::Impl::~Impl() {
     destroyBuffer(dev, *b);
   for (Buffer& b : staging) destroyBuffer(dev, b);
   fieldCache.destroy(dev);
-  for (VkPipeline p : {scan, scanSingle, compact, args, noise})
+  for (VkPipeline p : {scan, scanSingle, compact, args, noise, colorUniform, colorStorage})
     if (p) vkDestroyPipeline(dev, p, nullptr);
   if (fence) vkDestroyFence(dev, fence, nullptr);
   if (timestamps) vkDestroyQueryPool(dev, timestamps, nullptr);
@@ -739,6 +744,19 @@ void GpuPolygonizer::Impl::recordPasses(VkCommandBuffer cb, uint32_t slot, const
     push(AM_NORMALS_ALL, 0u, 0u);
     vkCmdDispatchIndirect(cb, control.buffer, AM_CTL_NORMALS * 4);
   }
+  if (colorPass) {
+    const ColorProgramWalk& colorWalk = colorWalkThisFrame;
+    // The vertices' colours into the normals' w (poly_color_main.glsl), before the noise moves them
+    // (the CPU colours the undisplaced surface): one dispatch per vertex of the normals' four.
+    computeToCompute(cb);
+    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, colorPass);
+    for (uint32_t k = 0; k < 4; ++k) {
+      glm::uvec4 pc(k, colorWalk.opBegin, colorWalk.opCount, 0u);
+      std::memcpy(&pc.w, &colorWalk.threshold, 4);
+      vkCmdPushConstants(cb, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, 16, &pc);
+      vkCmdDispatchIndirect(cb, control.buffer, AM_CTL_NORMALS * 4);
+    }
+  }
   if (s.noiseAmplitude != 0.0f) {
     // Solid noise along the normals just made (the CPU's displaceBySolidNoise).
     computeToCompute(cb);
@@ -792,6 +810,23 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   lastRegionLists = lists && !conservativeRegions;
   if (s.loopBudgetCheck && !lists)
     if (std::string why = loopBudgetReason(field, limit); !why.empty()) return Error{"GPU polygoniser: " + why};
+  // Vertex colours (docs/gpu-polygonizer.md, "Colour"): a single program with colours whose walk fits
+  // the device's loop limit (with room: the estimate leaves out the kernels); else no colour stream.
+  uint32_t colorTable = 0;
+  ColorProgramWalk colorWalk;  // a colour program of its own (field.colors), else program A's walk
+  const FieldProgram* colorSource = field.colors ? field.colors : field.b ? nullptr : field.a;
+  if (s.colors && colorSource && programHasColors(*colorSource) &&
+      (limit == 0 || 2 * colorWalkLoopEstimate(*colorSource) + 64 < limit)) {
+    if (field.colors) {
+      Result<ColorProgramWalk> w = appendColorProgram(*field.colors, *packed);
+      if (!w) return Error{"GPU polygoniser: " + w.error()};
+      colorWalk = *w;
+      colorTable = colorWalk.table;
+    } else {
+      colorTable = appendColorTable(*field.a, *packed);
+    }
+  }
+  stats.colors = colorTable != 0;
   const PackedFieldPrograms& pk = *packed;
   const uint32_t words = std::max(1u, (pk.primitiveTotal() + 31) / 32);
   const VariantKey variant = variantKey(pk, field, s);
@@ -800,6 +835,18 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   if ((pk.pool.size() + pk.bounds.size()) * 16 > kUpdateBufferMax)
     if (Status st = ensureStaging(slot, (pk.pool.size() + pk.bounds.size()) * 16); !st) return st;
   PolyParams prm = frameParams(g, pk, field, s, words);
+  std::memcpy(&prm.extra.w, &colorTable, 4);  // poly_color_main.glsl: the colour table's pool index (0: none)
+  colorPass = VK_NULL_HANDLE;
+  if (colorTable != 0) {  // created on first use (on lavapipe a pipeline takes a while to compile)
+    VkPipeline& made = storagePool ? colorStorage : colorUniform;
+    if (!made) {
+      Result<VkPipeline> p = pipeline(storagePool ? "poly_color_ssbo.comp" : "poly_color.comp");
+      if (!p) return Error{p.error()};
+      made = *p;
+    }
+    colorPass = made;
+  }
+  colorWalkThisFrame = colorWalk;
   if (lists) {
     prm.regions = glm::uvec4(1u, fr.super.table, fr.super.masks * 4u, fr.shift);
     prm.regionLists = glm::uvec4(fr.blocks.table, fr.dims.x, fr.dims.y, 0u);
@@ -837,7 +884,7 @@ constexpr const char* kCutLoops =
 std::string cutLoopsError(uint32_t overflow) {
   std::string passes;
   for (auto [bit, name] : {std::pair{AM_OVERFLOW_CUT_COARSE, "coarse"}, std::pair{AM_OVERFLOW_CUT_CELLS, "cells"},
-                           std::pair{AM_OVERFLOW_CUT_NORMALS, "normals"}})
+                           std::pair{AM_OVERFLOW_CUT_NORMALS, "normals"}, std::pair{AM_OVERFLOW_CUT_COLORS, "colour"}})
     if (overflow & bit) passes += std::string(passes.empty() ? "" : ", ") + name;
   return std::string(kCutLoops) + (passes.empty() ? "" : " (the " + passes + " pass)");
 }
@@ -1081,6 +1128,14 @@ Result<TriangleMesh> GpuPolygonizer::readBack() {
   for (size_t v = 0; v < stats_.vertices; ++v) {  // vec4 per vertex on the device
     std::memcpy(&mesh.positions[v], bytes + v * kVertexStride, 12);
     std::memcpy(&mesh.normals[v], bytes + vbytes + v * kVertexStride, 12);
+  }
+  if (stats_.colors) {  // the colour pass's RGBA8 in the normals' w (poly_color_main.glsl), linear
+    mesh.colors.resize(stats_.vertices);
+    for (size_t v = 0; v < stats_.vertices; ++v) {
+      uint32_t bits = 0;
+      std::memcpy(&bits, bytes + vbytes + v * kVertexStride + 12, 4);
+      mesh.colors[v] = glm::vec4(float(bits & 0xffu), float((bits >> 8) & 0xffu), float((bits >> 16) & 0xffu), 255.0f) / 255.0f;
+    }
   }
   std::memcpy(mesh.indices.data(), bytes + 2 * vbytes, ibytes);
   destroyBuffer(m.ctx.device(), *host);

@@ -48,6 +48,10 @@ struct GpuField {
   float morphTime = 0.5f;  // space-time: t (0: a, 1: b)
   float timeScale = 1.0f;  // space-time: scale of t against field values
   float a0 = 1.0f, a1 = 1.0f, a2 = 1.0f, a3 = 1.0f;  // space-time: bounded-blending parameters
+  // The program whose colours the vertices take (PolygonizeSettings::colorProgram: the same surface,
+  // finer colours, e.g. a morph's stand-ins split into their colour samples); null: a's own. Used by
+  // the colour pass only (GpuPolygonizeSettings::colors), walked whole at every vertex.
+  const FieldProgram* colors = nullptr;
 
   static GpuField single(const FieldProgram& p) { return {&p}; }
   static GpuField interpolation(const FieldProgram& a, const FieldProgram& b, float w) {
@@ -119,6 +123,12 @@ struct GpuPolygonizeSettings {
   // dispatches, each invocation walking one region's list once). Automatic where one dispatch could
   // outrun the device's loop limit (two regions among four vertices); tests force it.
   bool normalsPerVertex = false;
+  // Vertex colours (docs/gpu-polygonizer.md, "Colour"): for a single program whose primitives carry
+  // colours, a pass after the normals gives each vertex the CPU's surface colour
+  // (field/surface_color.h), RGBA8 in the w of its normal (AM_POLY_COLOR_TAG); readBack() returns
+  // them. Off, or a morph of two programs, or a program too long for the device's loop limit: none
+  // (w stays 0, the draw's one tone; GpuPolygonizeStats::colors says which).
+  bool colors = true;
   // Initial buffer capacities (0: automatic). They grow when a frame overflows.
   uint32_t initialBlockCapacity = 0;
   uint32_t initialVertexCapacity = 0;
@@ -141,6 +151,7 @@ struct GpuPolygonizeStats {
   uint32_t regionLongestOps = 0;
   uint32_t regionBlocks = 0;  // blocks a side of the regions the blocks' lists are for (4: superblocks)
   uint32_t normalsDispatches = 1;  // 4: the normals pass ran once per vertex of its invocations
+  bool colors = false;  // the vertices carry colours (GpuPolygonizeSettings::colors)
   uint64_t regionOpsTotal = 0;
   double regionListMs = 0.0;
   double milliseconds = 0.0;  // polygonize(): wall time from submit to completion (all passes)
@@ -204,8 +215,8 @@ class GpuPolygonizer {
   // Errors: as record(), device lost, a mesh beyond the device's buffer limits.
   Result<GpuPolygonizeStats> polygonize(const GpuField& field, const GpuPolygonizeSettings& s);
 
-  // The mesh of the last polygonize() (positions, normals, indices) copied to
-  // host memory. Errors: nothing polygonised yet, Vulkan failures.
+  // The mesh of the last polygonize() (positions, normals, indices; colours, linear, when
+  // lastStats().colors) copied to host memory. Errors: nothing polygonised yet, Vulkan failures.
   Result<TriangleMesh> readBack();
 
   // Stats of the last polygonize(), or of the last record() whose counters were read.

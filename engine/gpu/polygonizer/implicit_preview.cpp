@@ -427,7 +427,8 @@ bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& sour
   // compiles the viewport keeps the last mesh.
   if (!field) field = takeField(source, res, timeSec, s.settle);
   if (std::optional<bool> decided = unusableField(field, source)) return *decided;
-  const GpuField gf = GpuField::single(field->field->program);
+  GpuField gf = GpuField::single(field->field->program);
+  gf.colors = field->field->colorProgram.get();  // the colour pass walks it (a morph's split stand-ins)
   GpuPolygonizeSettings gs;
   gs.resolution = field->resolution;
   gs.bounds = field->field->bounds;

@@ -85,8 +85,10 @@ struct PreviewBackend {
 // stand-ins runs the GPU path's line groups, which scrub faster in the editor than the CPU worker
 // there (`bench editor`: ~34-41 ms against ~47-51 ms a frame at 1600x900, 96^3); BlobTrees and
 // capsule stand-ins run the per-point interpreter, several times slower than the worker there
-// (`bench gpu`, blob creature row). A morph whose sides have colours counts as Other: only the
-// worker's meshes carry vertex colours (the GPU polygoniser's have no colour stream yet).
+// (`bench gpu`, blob creature row). A morph whose sides have colours counts as Other: the GPU path
+// colours it by walking its whole colour program at every vertex (docs/gpu-polygonizer.md,
+// "Colour"), ~5x the morph's own polygonisation there (`bench gpu-color`, demo morph rows: 624 ms
+// against the worker's 88 ms at 96^3 on lavapipe, 2026-11-29).
 enum class PreviewWork { ConvolutionMorph, Other };
 PreviewBackend choosePreviewBackend(PreviewDevice preference, VkPhysicalDeviceType deviceType,
                                     PreviewWork work = PreviewWork::Other);

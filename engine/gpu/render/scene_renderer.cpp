@@ -110,9 +110,9 @@ Result<VkPipeline> createPipeline(VkDevice device, VkRenderPass pass, VkPipeline
       attributes.push_back({kVertexPaintWeight, kVertexPaintWeight, VK_FORMAT_R32_SFLOAT, 0});
     }
   } else if (d.input == VertexInput::Generated) {
-    for (uint32_t s = 0; s < 2; ++s) {  // AM_VERTEX_POSITION, AM_VERTEX_NORMAL
+    for (uint32_t s = 0; s < 2; ++s) {  // AM_VERTEX_POSITION, AM_VERTEX_NORMAL (w: the colour pass's colour)
       bindings.push_back({s, GeneratedMeshDraw::kVertexStride, VK_VERTEX_INPUT_RATE_VERTEX});
-      attributes.push_back({s, s, VK_FORMAT_R32G32B32_SFLOAT, 0});
+      attributes.push_back({s, s, s == 1 ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R32G32B32_SFLOAT, 0});
     }
   } else if (d.input == VertexInput::Sphere) {  // per instance: a vec4 (centre, radius), an RGBA8 colour
     bindings.push_back({0, sizeof(glm::vec4), VK_VERTEX_INPUT_RATE_INSTANCE});
@@ -289,7 +289,7 @@ Status SceneRenderer::createPipelines(VkRenderPass renderPass) {
       {&meshPipeline_[0], meshDesc(back)},
       {&meshPipeline_[1], meshDesc(none)},
       {&meshDitherPipeline_[0], withShaders(meshDesc(back), "mesh.vert", "mesh_material_dither.frag", VertexInput::Mesh)},
-      {&generatedDitherPipeline_, withShaders(meshDesc(back), "generated.vert", "mesh_dither.frag", VertexInput::Generated)},
+      {&generatedDitherPipeline_, withShaders(meshDesc(back), "generated.vert", "generated_dither.frag", VertexInput::Generated)},
       {&meshDitherPipeline_[1], withShaders(meshDesc(none), "mesh.vert", "mesh_material_dither.frag", VertexInput::Mesh)},
       {&transitionPipeline_[0], transitionDesc(meshDesc(back), "mesh_material.frag", false), transitionLayout_},
       {&transitionPipeline_[1], transitionDesc(meshDesc(none), "mesh_material.frag", false), transitionLayout_},
@@ -303,7 +303,7 @@ Status SceneRenderer::createPipelines(VkRenderPass renderPass) {
       {&wirePipeline_[1], wireDesc(none)},
       {&transitionWirePipeline_[0], transitionDesc(wireDesc(back), "mesh_material.frag", false), transitionLayout_},
       {&transitionWirePipeline_[1], transitionDesc(wireDesc(none), "mesh_material.frag", false), transitionLayout_},
-      {&generatedPipeline_, {"generated.vert", "mesh.frag", VertexInput::Generated, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST,
+      {&generatedPipeline_, {"generated.vert", "generated.frag", VertexInput::Generated, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST,
                              VK_POLYGON_MODE_FILL, true, true, false, back}},
       {&weightPipeline_, {"weight_overlay.vert", "weight_overlay.frag", VertexInput::MeshWeights,
                           VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, VK_POLYGON_MODE_FILL, true, true, false, none}},
@@ -323,7 +323,7 @@ Status SceneRenderer::createPipelines(VkRenderPass renderPass) {
   }
   if (!edgeListWireframe_) {
     Result<VkPipeline> p = createPipeline(dev, renderPass, layout_,
-                                          withShaders(wireDesc(back), "generated.vert", "mesh.frag", VertexInput::Generated));
+                                          withShaders(wireDesc(back), "generated.vert", "generated.frag", VertexInput::Generated));
     if (!p) return Error{p.error()};
     generatedWirePipeline_ = *p;
   }
