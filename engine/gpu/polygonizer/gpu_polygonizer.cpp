@@ -203,6 +203,42 @@ Result<FrameRegions> buildRegionLists(const GpuField& field, const Grid& g, uint
   return fr;
 }
 
+// A frame's host half (GpuPreparedFrame): the grid, the programs packed, the region lists.
+struct FramePrep {
+  Grid g;
+  PackedFieldPrograms pk;
+  FrameRegions fr;
+  bool lists = false;         // the passes walk per-region lists (useRegionLists)
+  bool conservative = false;  // the lists were built conservatively (Impl::conservativeRegions)
+  double regionListMs = 0.0;
+};
+
+// Prepares a frame of field under s for loop limit limit (no device): what recordFrame records.
+Result<FramePrep> prepareFrame(const GpuField& field, const GpuPolygonizeSettings& s, uint64_t limit,
+                               bool conservative) {
+  if (!field.a) return Error{"GPU polygoniser: no field program"};
+  if (s.resolution < 2 || s.resolution > 512)
+    return Error{"GPU polygoniser: resolution " + std::to_string(s.resolution) + " is out of range (2..512)"};
+  FramePrep p;
+  Result<Grid> grid = makeGrid(field, s);
+  if (!grid) return Error{grid.error()};
+  p.g = *grid;
+  Result<PackedFieldPrograms> packed = packFieldPrograms(*field.a, field.b);
+  if (!packed) return Error{"GPU polygoniser: " + packed.error()};
+  p.pk = std::move(*packed);
+  p.lists = useRegionLists(field, s, limit);
+  p.conservative = conservative;
+  if (p.lists) {
+    // The programs specialised on the CPU per region (gpu_region_op_lists.h).
+    const auto t0 = std::chrono::steady_clock::now();
+    Result<FrameRegions> built = buildRegionLists(field, p.g, limit, s.loopBudgetCheck, conservative, p.pk);
+    if (!built) return Error{"GPU polygoniser: " + built.error()};
+    p.fr = std::move(*built);
+    p.regionListMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  }
+  return p;
+}
+
 // The most vkCmdUpdateBuffer takes in one call. Larger uploads (the program pool and the
 // primitives' bounds: megabytes for the animorphosis demo's C(t)) go through a staging buffer.
 constexpr VkDeviceSize kUpdateBufferMax = 65536;
@@ -217,6 +253,19 @@ void updateBuffer(VkCommandBuffer cmd, VkBuffer buffer, const void* data, VkDevi
 }
 
 }  // namespace
+
+// What a prepared frame holds: the field and settings it was prepared for, and its host half.
+struct GpuPreparedFrame::Data {
+  GpuField field;
+  GpuPolygonizeSettings settings;
+  uint64_t loopLimit = 0;
+  FramePrep prep;
+  double milliseconds = 0.0;
+};
+
+GpuPreparedFrame::GpuPreparedFrame(std::unique_ptr<Data> d) : d_(std::move(d)) {}
+GpuPreparedFrame::~GpuPreparedFrame() = default;
+double GpuPreparedFrame::milliseconds() const { return d_->milliseconds; }
 
 struct GpuPolygonizer::Impl {
   Context& ctx;
@@ -293,7 +342,10 @@ struct GpuPolygonizer::Impl {
   void uploadPrograms(VkCommandBuffer cb, uint32_t slot, const PackedFieldPrograms& pk);
   void writeSet();
   Status recordFrame(VkCommandBuffer cmd, uint32_t slot, const GpuField& field, const GpuPolygonizeSettings& s,
-                     GpuPolygonizeStats& stats, bool timed = false);
+                     GpuPolygonizeStats& stats, bool timed = false, const GpuPreparedFrame* prepared = nullptr);
+  // prepared's host half when it suits field under s on this device now (GpuPreparedFrame), else null.
+  const FramePrep* usable(const GpuPreparedFrame* prepared, const GpuField& field, const GpuPolygonizeSettings& s) const;
+  uint64_t preparesInRecord = 0;
   // recordFrame's parts. The per-frame buffers sized for grid g and programs pk (words: mask words
   // per block), the descriptor set written; fails when a buffer cannot grow or the blocks exceed
   // the scan's limit.
@@ -758,26 +810,30 @@ void GpuPolygonizer::Impl::recordPasses(VkCommandBuffer cb, uint32_t slot, const
 }
 
 Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, const GpuField& field,
-                                         const GpuPolygonizeSettings& s, GpuPolygonizeStats& stats, bool timed) {
-  if (!field.a) return Error{"GPU polygoniser: no field program"};
-  if (s.resolution < 2 || s.resolution > 512)
-    return Error{"GPU polygoniser: resolution " + std::to_string(s.resolution) + " is out of range (2..512)"};
-  Result<Grid> grid = makeGrid(field, s);
-  if (!grid) return Error{grid.error()};
-  Result<PackedFieldPrograms> packed = packFieldPrograms(*field.a, field.b);
-  if (!packed) return Error{"GPU polygoniser: " + packed.error()};
-  const Grid& g = *grid;
+                                         const GpuPolygonizeSettings& s, GpuPolygonizeStats& stats, bool timed,
+                                         const GpuPreparedFrame* prepared) {
   const uint64_t limit = loopLimit(ctx.properties());
-  const bool lists = useRegionLists(field, s, limit);
-  FrameRegions fr;
-  stats.regionLists = lists;
-  if (lists) {
-    // The programs specialised on the CPU per region (gpu_region_op_lists.h).
+  // The host half: prepared off this thread (GpuPreparedFrame), or here.
+  const FramePrep* prep = usable(prepared, field, s);
+  std::optional<FramePrep> own;
+  stats.preparedInRecord = prep == nullptr;
+  stats.prepareMs = 0.0;
+  if (!prep) {
     const auto t0 = std::chrono::steady_clock::now();
-    Result<FrameRegions> built = buildRegionLists(field, g, limit, s.loopBudgetCheck, conservativeRegions, *packed);
-    if (!built) return Error{"GPU polygoniser: " + built.error()};
-    fr = std::move(*built);
-    stats.regionListMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    Result<FramePrep> made = prepareFrame(field, s, limit, conservativeRegions);
+    if (!made) return Error{made.error()};
+    own = std::move(*made);
+    prep = &*own;
+    ++preparesInRecord;
+    stats.prepareMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  }
+  const Grid& g = prep->g;
+  const bool lists = prep->lists;
+  const FrameRegions& fr = prep->fr;
+  stats.regionLists = lists;
+  stats.regionListMs = 0.0;
+  if (lists) {
+    stats.regionListMs = prep->regionListMs;
     stats.regionLongestOps = fr.blocks.longestOps;
     stats.regionOpsTotal = fr.blocks.opsTotal;
     stats.regionBlocks = 1u << fr.shift;
@@ -792,7 +848,7 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   lastRegionLists = lists && !conservativeRegions;
   if (s.loopBudgetCheck && !lists)
     if (std::string why = loopBudgetReason(field, limit); !why.empty()) return Error{"GPU polygoniser: " + why};
-  const PackedFieldPrograms& pk = *packed;
+  const PackedFieldPrograms& pk = prep->pk;
   const uint32_t words = std::max(1u, (pk.primitiveTotal() + 31) / 32);
   const VariantKey variant = variantKey(pk, field, s);
   const bool storagePool = std::get<2>(variant) != 0;
@@ -943,7 +999,7 @@ Result<bool> GpuPolygonizer::recordFitted(uint64_t frameSerial) {
 }
 
 Status GpuPolygonizer::record(VkCommandBuffer cmd, uint64_t frameSerial, const GpuField& field,
-                              const GpuPolygonizeSettings& s) {
+                              const GpuPolygonizeSettings& s, const GpuPreparedFrame* prepared) {
   Impl& m = *impl_;
   const uint32_t slot = uint32_t(frameSerial % kFramesInFlight);
   // The counters of the frame that last used this slot (complete, by the caller's contract).
@@ -953,7 +1009,8 @@ Status GpuPolygonizer::record(VkCommandBuffer cmd, uint64_t frameSerial, const G
     return Error{cutLoopsError(m.cutLoopsBits)};
   }
   // First frames: size the buffers for the grid as polygonize() does.
-  if (Result<Grid> g = makeGrid(field, s); g) {
+  const FramePrep* prep = m.usable(prepared, field, s);
+  if (Result<Grid> g = prep ? Result<Grid>(prep->g) : makeGrid(field, s); g) {
     uint32_t blocks = firstBlockCapacity(g->blocks());
     if (blocks > m.blockCapacity) {
       Status e = m.ensureCapacities(blocks, blocks * 192, blocks * 384);
@@ -961,7 +1018,51 @@ Status GpuPolygonizer::record(VkCommandBuffer cmd, uint64_t frameSerial, const G
     }
   }
   m.slotSerial[slot] = frameSerial;
-  return m.recordFrame(cmd, slot, field, s, stats_);
+  return m.recordFrame(cmd, slot, field, s, stats_, false, prepared);
+}
+
+const FramePrep* GpuPolygonizer::Impl::usable(const GpuPreparedFrame* prepared, const GpuField& field,
+                                              const GpuPolygonizeSettings& s) const {
+  if (!prepared) return nullptr;
+  const GpuPreparedFrame::Data& d = *prepared->d_;
+  const GpuField& f = d.field;
+  const GpuPolygonizeSettings& p = d.settings;
+  // What the grid, the packing and the lists depend on (the morph's weights and the passes' other
+  // settings are read at the record).
+  const bool same = f.a == field.a && f.b == field.b && f.method == field.method && p.resolution == s.resolution &&
+                    p.marginCells == s.marginCells && p.regionPrograms == s.regionPrograms &&
+                    p.loopBudgetCheck == s.loopBudgetCheck && p.bounds.has_value() == s.bounds.has_value() &&
+                    (!s.bounds || (p.bounds->min == s.bounds->min && p.bounds->max == s.bounds->max));
+  if (!same || d.loopLimit != loopLimit(ctx.properties())) return nullptr;
+  if (d.prep.lists && d.prep.conservative != conservativeRegions) return nullptr;
+  return &d.prep;
+}
+
+Result<std::shared_ptr<const GpuPreparedFrame>> GpuPolygonizer::prepare(const GpuField& field,
+                                                                        const GpuPolygonizeSettings& s,
+                                                                        uint64_t loopLimit) {
+  if (std::string why = unsupported(field); !why.empty()) return Error{"GPU polygoniser: " + why};
+  const auto t0 = std::chrono::steady_clock::now();
+  Result<FramePrep> prep = prepareFrame(field, s, loopLimit, false);
+  if (!prep) return Error{prep.error()};
+  auto d = std::make_unique<GpuPreparedFrame::Data>();
+  d->field = field;
+  d->settings = s;
+  d->loopLimit = loopLimit;
+  d->prep = std::move(*prep);
+  d->milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return std::shared_ptr<const GpuPreparedFrame>(new GpuPreparedFrame(std::move(d)));
+}
+
+uint64_t GpuPolygonizer::preparesInRecord() const { return impl_->preparesInRecord; }
+
+Status GpuPolygonizer::record(VkCommandBuffer cmd, uint64_t frameSerial, const GpuField& field,
+                              const GpuPolygonizeSettings& s) {
+  return record(cmd, frameSerial, field, s, nullptr);
+}
+
+Result<GpuPolygonizeStats> GpuPolygonizer::polygonize(const GpuField& field, const GpuPolygonizeSettings& s) {
+  return polygonize(field, s, nullptr);
 }
 
 GeneratedMeshDraw GpuPolygonizer::generatedMesh(const glm::vec4& color) const {
@@ -975,12 +1076,14 @@ GeneratedMeshDraw GpuPolygonizer::generatedMesh(const glm::vec4& color) const {
   return d;
 }
 
-Result<GpuPolygonizeStats> GpuPolygonizer::polygonize(const GpuField& field, const GpuPolygonizeSettings& s) {
+Result<GpuPolygonizeStats> GpuPolygonizer::polygonize(const GpuField& field, const GpuPolygonizeSettings& s,
+                                                      const GpuPreparedFrame* prepared) {
   Impl& m = *impl_;
   if (std::string why = unsupported(field); !why.empty()) return Error{"GPU polygoniser: " + why};
   // Initial capacities for this grid (or the caller's, e.g. tiny ones in tests).
   {
-    Result<Grid> g = makeGrid(field, s);
+    const FramePrep* prep = m.usable(prepared, field, s);
+    Result<Grid> g = prep ? Result<Grid>(prep->g) : makeGrid(field, s);
     if (!g) return Error{g.error()};
     uint32_t nb = g->blocks();
     uint32_t blocks = s.initialBlockCapacity ? s.initialBlockCapacity : firstBlockCapacity(nb);
@@ -1005,7 +1108,7 @@ Result<GpuPolygonizeStats> GpuPolygonizer::polygonize(const GpuField& field, con
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     AM_VK_TRY(vkBeginCommandBuffer(m.cmd, &bi), "vkBeginCommandBuffer");
-    Status rec = m.recordFrame(m.cmd, slot, field, s, stats, true);
+    Status rec = m.recordFrame(m.cmd, slot, field, s, stats, true, prepared);
     AM_VK_TRY(vkEndCommandBuffer(m.cmd), "vkEndCommandBuffer");
     if (!rec) return Error{rec.error()};
     if (attempt == 0) t0 = std::chrono::steady_clock::now();

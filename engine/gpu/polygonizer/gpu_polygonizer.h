@@ -143,10 +143,36 @@ struct GpuPolygonizeStats {
   uint32_t normalsDispatches = 1;  // 4: the normals pass ran once per vertex of its invocations
   uint64_t regionOpsTotal = 0;
   double regionListMs = 0.0;
+  // The frame's host preparation (grid bounds, programs packed, region lists: GpuPreparedFrame):
+  // true when this record or polygonize() computed it itself, false when it used a prepared frame
+  // given to it; prepareMs: the host time it spent on that here (0 with a prepared frame).
+  bool preparedInRecord = true;
+  double prepareMs = 0.0;
   double milliseconds = 0.0;  // polygonize(): wall time from submit to completion (all passes)
   // polygonize(): GPU time per pass from timestamps (0 when the queue has none):
   // uploads, coarse (lists + intervals), block compaction, corners + cells, vertex/triangle scan, emit.
   double passMs[6] = {0, 0, 0, 0, 0, 0};
+};
+
+class GpuPolygonizer;
+
+// A frame's host preparation, made once and on any thread (GpuPolygonizer::prepare): the grid (the
+// programs' interval-tightened bounds: 16-29 ms for the animorphosis demo's C(t)), the programs
+// packed into the pool (3-8 ms) and the per-region op lists. A record() given one only uploads and
+// records. It refers to the field's programs, which must outlive it unchanged.
+class GpuPreparedFrame {
+ public:
+  ~GpuPreparedFrame();
+  GpuPreparedFrame(const GpuPreparedFrame&) = delete;
+  GpuPreparedFrame& operator=(const GpuPreparedFrame&) = delete;
+  // Host time the preparation took (ms).
+  double milliseconds() const;
+
+ private:
+  friend class GpuPolygonizer;
+  struct Data;
+  explicit GpuPreparedFrame(std::unique_ptr<Data> d);
+  std::unique_ptr<Data> d_;
 };
 
 class GpuPolygonizer {
@@ -180,6 +206,21 @@ class GpuPolygonizer {
   // Errors: unsupported field, bad settings or bounds, an earlier record whose loops the device
   // cut short (lavapipe's loop limiter: that frame drew nothing), Vulkan failures.
   Status record(VkCommandBuffer cmd, uint64_t frameSerial, const GpuField& field, const GpuPolygonizeSettings& s);
+  // The same with the frame's host preparation done beforehand (prepare()): nothing is computed
+  // here but the upload and the commands. A prepared frame of other programs or settings, for
+  // another loop limit, or made before a cut frame made the region lists conservative, is not used:
+  // the record prepares on the spot as above (lastStats().preparedInRecord, preparesInRecord()).
+  Status record(VkCommandBuffer cmd, uint64_t frameSerial, const GpuField& field, const GpuPolygonizeSettings& s,
+                const GpuPreparedFrame* prepared);
+
+  // The host preparation of a frame of field under s for a device whose loop limit is loopLimit
+  // (GpuPolygonizer::loopLimit; 0: none), on any thread (no device needed). Errors: as record()'s
+  // for bad settings or bounds, unsupported fields, programs that cannot be packed, region lists
+  // that outrun the loop limit.
+  static Result<std::shared_ptr<const GpuPreparedFrame>> prepare(const GpuField& field, const GpuPolygonizeSettings& s,
+                                                                 uint64_t loopLimit);
+  // Records and polygonize() calls that prepared their frame themselves (no usable prepared frame).
+  uint64_t preparesInRecord() const;
 
   // Starts compiling, on a background thread, the shader pipelines record() and polygonize() will
   // need for fields like this one (same operators, primitive kinds and morph method), so that the
@@ -203,6 +244,9 @@ class GpuPolygonizer {
   // waits; on overflow grows the buffers and redoes it until the mesh fits.
   // Errors: as record(), device lost, a mesh beyond the device's buffer limits.
   Result<GpuPolygonizeStats> polygonize(const GpuField& field, const GpuPolygonizeSettings& s);
+  // The same with a prepared frame (see record()'s overload).
+  Result<GpuPolygonizeStats> polygonize(const GpuField& field, const GpuPolygonizeSettings& s,
+                                        const GpuPreparedFrame* prepared);
 
   // The mesh of the last polygonize() (positions, normals, indices) copied to
   // host memory. Errors: nothing polygonised yet, Vulkan failures.

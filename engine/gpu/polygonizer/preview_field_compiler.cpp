@@ -16,7 +16,17 @@ bool CompiledPreviewField::matches(const PreviewSource& s, int res) const {
   return source && resolution == res && samePreviewShape(*source, s);
 }
 
-PreviewFieldCompiler::PreviewFieldCompiler() : thread_([this] { run(); }) {}
+GpuPolygonizeSettings previewGpuSettings(const PreviewField& field, int resolution) {
+  GpuPolygonizeSettings gs;
+  gs.resolution = resolution;
+  gs.bounds = field.bounds;
+  gs.noiseAmplitude = field.noiseAmplitude;
+  gs.noiseFrequency = field.noiseFrequency;
+  return gs;
+}
+
+PreviewFieldCompiler::PreviewFieldCompiler(uint64_t deviceLoopLimit)
+    : loopLimit_(deviceLoopLimit), thread_([this] { run(); }) {}
 
 PreviewFieldCompiler::~PreviewFieldCompiler() {
   {
@@ -58,7 +68,8 @@ std::shared_ptr<const CompiledPreviewField> PreviewFieldCompiler::latest() const
   return latest_;
 }
 
-std::shared_ptr<const CompiledPreviewField> PreviewFieldCompiler::compile(const Request& r, bool onCompileThread) {
+std::shared_ptr<const CompiledPreviewField> PreviewFieldCompiler::compile(const Request& r, bool onCompileThread,
+                                                                          uint64_t loopLimit) {
   const auto t0 = Clock::now();
   auto c = std::make_shared<CompiledPreviewField>();
   c->onCompileThread = onCompileThread;
@@ -73,8 +84,16 @@ std::shared_ptr<const CompiledPreviewField> PreviewFieldCompiler::compile(const 
     c->error = std::move(why);
   } else {
     c->field = std::move(*field);
+    // The GPU frame's host half here too, off the recording thread (a failure is the record's to report).
+    const auto p0 = Clock::now();
+    auto prepared = GpuPolygonizer::prepare(GpuField::single(c->field->program),
+                                            previewGpuSettings(*c->field, r.resolution), loopLimit);
+    if (prepared) c->prepared = std::move(*prepared);
+    c->prepareMs = std::chrono::duration<double, std::milli>(Clock::now() - p0).count();
   }
-  c->milliseconds = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  // (the preparation apart: a record prepares on its own thread when given none, so only the
+  // field's cost decides where the next field compiles, ImplicitPreview::takeField)
+  c->milliseconds = std::chrono::duration<double, std::milli>(Clock::now() - t0).count() - c->prepareMs;
   return c;
 }
 
@@ -85,7 +104,7 @@ std::shared_ptr<const CompiledPreviewField> PreviewFieldCompiler::compileHere(
     std::lock_guard<std::mutex> lock(mutex_);
     r.id = ++nextId_;
   }
-  auto c = compile(r, false);
+  auto c = compile(r, false, loopLimit_);
   std::lock_guard<std::mutex> lock(mutex_);
   ++counters_.onCallerThread;
   counters_.callerThreadMs += c->milliseconds;
@@ -126,7 +145,7 @@ void PreviewFieldCompiler::run() {
       waiting_.reset();
       running_ = r;
     }
-    std::shared_ptr<const CompiledPreviewField> c = compile(r, true);
+    std::shared_ptr<const CompiledPreviewField> c = compile(r, true, loopLimit_);
     {
       std::lock_guard<std::mutex> lock(mutex_);
       running_.reset();

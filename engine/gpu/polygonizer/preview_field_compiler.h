@@ -20,6 +20,13 @@
 
 namespace animorph::gpu {
 
+class GpuPreparedFrame;
+struct GpuPolygonizeSettings;
+
+// The GPU polygoniser's settings for the preview of field at resolution (the record's and the
+// prepared frame's, which must agree for the record to use it).
+GpuPolygonizeSettings previewGpuSettings(const PreviewField& field, int resolution);
+
 // One compiled request: the field, or why the GPU cannot polygonise the shape.
 struct CompiledPreviewField {
   uint64_t id = 0;  // the request's (ids increase with every request, here or on the thread)
@@ -27,9 +34,15 @@ struct CompiledPreviewField {
   int resolution = 0;
   double timeSec = 0.0;             // scene time of the shape (what the status line shows once drawn)
   std::optional<PreviewField> field;  // set on success
+  // With field: the GPU frame's host half (grid bounds, packed programs, region lists) for
+  // previewGpuSettings(*field, resolution), made with the compile (GpuPolygonizer::prepare), so that
+  // the recording thread only uploads and records. Null when it failed (the record prepares on the
+  // spot and reports the error).
+  std::shared_ptr<const GpuPreparedFrame> prepared;
+  double prepareMs = 0.0;  // its host time (not part of milliseconds)
   // field() failed, or the GPU cannot express the program (GpuPolygonizer::unsupported); empty on success.
   std::string error;
-  double milliseconds = 0.0;  // wall time of field() and the check
+  double milliseconds = 0.0;  // wall time of field() and the check (the preparation apart)
   bool onCompileThread = false;
   bool matches(const PreviewSource& s, int res) const;
 };
@@ -47,7 +60,9 @@ bool samePreviewShape(const PreviewSource& a, const PreviewSource& b);
 
 class PreviewFieldCompiler {
  public:
-  PreviewFieldCompiler();
+  // deviceLoopLimit: the recording device's (GpuPolygonizer::loopLimit), which the frames are
+  // prepared for; a frame prepared for another limit is prepared again by the record.
+  explicit PreviewFieldCompiler(uint64_t deviceLoopLimit = 0);
   ~PreviewFieldCompiler();  // the compile in progress finishes first (field() cannot be cancelled)
   PreviewFieldCompiler(const PreviewFieldCompiler&) = delete;
   PreviewFieldCompiler& operator=(const PreviewFieldCompiler&) = delete;
@@ -78,7 +93,8 @@ class PreviewFieldCompiler {
     int resolution = 0;
     double timeSec = 0.0;
   };
-  static std::shared_ptr<const CompiledPreviewField> compile(const Request& r, bool onCompileThread);
+  static std::shared_ptr<const CompiledPreviewField> compile(const Request& r, bool onCompileThread,
+                                                             uint64_t loopLimit);
   void run();
 
   mutable std::mutex mutex_;
@@ -90,6 +106,7 @@ class PreviewFieldCompiler {
   std::shared_ptr<const CompiledPreviewField> latest_;
   PreviewFieldCounters counters_;
   bool stop_ = false;
+  const uint64_t loopLimit_;
   std::thread thread_;
 };
 
