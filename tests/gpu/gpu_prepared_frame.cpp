@@ -164,5 +164,6 @@ TEST_CASE("implicit preview: the compile thread prepares the GPU frame, the reco
   CHECK(compiledOnThread >= 3);
   // Every record and screenshot polygonisation used the frame prepared with its field.
   CHECK(preview.gpuPreparesInRecord() == 0);
+  CHECK(preview.fieldCounters().prepareMs > 0.0);  // prepared with the fields instead
   CHECK(ctx->validationErrorCount() == 0);
 }

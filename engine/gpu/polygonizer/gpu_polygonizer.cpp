@@ -2,15 +2,18 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <tuple>
 
 #include "gpu/polygonizer/field_pipeline_cache.h"
 #include "gpu/polygonizer/gpu_field_program.h"
 #include "gpu/polygonizer/gpu_region_op_lists.h"
+#include "core/poly/program_change.h"
 #include "core/poly/solid_noise.h"
 #include "core/poly/marching_cubes_table.h"
 #include "poly_constants.h"
@@ -261,11 +264,95 @@ struct GpuPreparedFrame::Data {
   uint64_t loopLimit = 0;
   FramePrep prep;
   double milliseconds = 0.0;
+  uint64_t id = 0;          // unique among prepared frames
+  uint64_t previousId = 0;  // the frame the change bounds are from (0: none)
+  std::vector<float> blockBounds;  // per block: how far the field moved since that frame (empty: none)
 };
 
 GpuPreparedFrame::GpuPreparedFrame(std::unique_ptr<Data> d) : d_(std::move(d)) {}
 GpuPreparedFrame::~GpuPreparedFrame() = default;
 double GpuPreparedFrame::milliseconds() const { return d_->milliseconds; }
+bool GpuPreparedFrame::hasChangeBounds() const { return !d_->blockBounds.empty(); }
+
+namespace {
+
+std::atomic<uint64_t> gPreparedIds{0};
+
+bool sameGrid(const Grid& a, const Grid& b) {
+  return a.origin == b.origin && a.h == b.h && a.n[0] == b.n[0] && a.n[1] == b.n[1] && a.n[2] == b.n[2];
+}
+
+// Sum of bounds over the sorted ids of x and of y, each id once.
+double sumOverUnion(const std::vector<float>& bounds, const std::vector<uint32_t>& x, const std::vector<uint32_t>* y) {
+  double sum = 0.0;
+  size_t i = 0, j = 0;
+  const size_t ny = y ? y->size() : 0;
+  while (i < x.size() || j < ny) {
+    uint32_t id;
+    if (j >= ny || (i < x.size() && x[i] < (*y)[j])) id = x[i++];
+    else if (i >= x.size() || (*y)[j] < x[i]) id = (*y)[j++];
+    else { id = x[i++]; ++j; }
+    if (id < bounds.size()) sum += double(bounds[id]);
+  }
+  return sum;
+}
+
+// Per block of now's grid: a bound on how far the field moved there since prev (the change bounds
+// of the primitives reaching its region -- the finest of the frames' region lists -- in either frame, summed over the programs, plus float
+// rounding), the CPU's rule (poly/program_change.h). Empty where no bound holds: another grid,
+// structure or morph parameters.
+std::vector<float> blockChangeBounds(const GpuField& field, const FramePrep& now, const GpuField& pf,
+                                     const FramePrep& prevPrep) {
+  if (!sameGrid(now.g, prevPrep.g) || !pf.a || (field.b == nullptr) != (pf.b == nullptr)) return {};
+  if (field.b && (field.method != pf.method || field.weight != pf.weight || field.morphTime != pf.morphTime ||
+                  field.timeScale != pf.timeScale || field.a0 != pf.a0 || field.a1 != pf.a1 || field.a2 != pf.a2 ||
+                  field.a3 != pf.a3))
+    return {};
+  const FieldProgram* nowP[2] = {field.a, field.b};
+  const FieldProgram* prevP[2] = {pf.a, pf.b};
+  std::vector<float> change[2];
+  float T = 0.0f;
+  for (int k = 0; k < 2 && nowP[k]; ++k) {
+    if (!sameStructure(*nowP[k], *prevP[k])) return {};
+    change[k] = primitiveChangeBounds(*nowP[k], *prevP[k]);
+    T = std::max(T, std::abs(nowP[k]->threshold));
+  }
+  const Grid& g = now.g;
+  // The finest regions both frames have lists for: the blocks' (cubes of 2^shift blocks) when they
+  // match, else the superblocks'.
+  const bool lists = now.lists && prevPrep.lists;
+  const bool fine = lists && now.fr.shift == prevPrep.fr.shift && now.fr.dims == prevPrep.fr.dims;
+  const RegionOpLists* nowL = fine ? &now.fr.blocks : &now.fr.super;
+  const RegionOpLists* prevL = fine ? &prevPrep.fr.blocks : &prevPrep.fr.super;
+  const uint32_t shift = fine ? now.fr.shift : 2u;
+  const glm::uvec3 dims = fine ? now.fr.dims : glm::uvec3(g.superAxis(0), g.superAxis(1), g.superAxis(2));
+  const uint32_t nRegions = dims.x * dims.y * dims.z;
+  std::vector<double> perRegion(nRegions, 0.0);
+  for (int k = 0; k < 2 && nowP[k]; ++k) {
+    const bool have = lists && nowL->reaching[k].size() == nRegions && prevL->reaching[k].size() == nRegions;
+    if (!have) {
+      double all = 0.0;
+      for (float c : change[k]) all += double(c);
+      for (double& v : perRegion) v += all;
+      continue;
+    }
+    for (uint32_t r = 0; r < nRegions; ++r)
+      perRegion[r] += sumOverUnion(change[k], nowL->reaching[k][r], &prevL->reaching[k][r]);
+  }
+  std::vector<float> out(g.blocks());
+  const float safety = 1e-5f * T;  // float rounding of the evaluations (the CPU's keepsBlock)
+  for (uint32_t z = 0; z < g.nb[2]; ++z)
+    for (uint32_t y = 0; y < g.nb[1]; ++y)
+      for (uint32_t x = 0; x < g.nb[0]; ++x) {
+        const uint32_t r = (x >> shift) + dims.x * ((y >> shift) + dims.y * (z >> shift));
+        const double v = perRegion[r];
+        out[x + g.nb[0] * (y + g.nb[1] * z)] =
+            v == 0.0 ? 0.0f : (std::isfinite(v) && v < 1e30 ? float(v) + safety : std::numeric_limits<float>::infinity());
+      }
+  return out;
+}
+
+}  // namespace
 
 struct GpuPolygonizer::Impl {
   Context& ctx;
@@ -287,6 +374,13 @@ struct GpuPolygonizer::Impl {
 
   Buffer params, pool, bounds, table, blockMask, blockFlag, blockPrefix, blockSlot, partials, control;
   Buffer superFlag;
+  // Temporal coherence: per block of the grid, its kept corners and their record (stamp, bound
+  // accumulated since, smallest |f|), and this frame's change bounds (poly_cells_main.glsl).
+  Buffer keptCorners, keptInfo, reuseBound;
+  uint32_t frameStamp = 1;      // the frames' stamps: +1 to a frame that may reuse, +2 otherwise
+  uint64_t lastRecordedId = 0;  // the prepared frame last recorded (0: an unprepared one)
+  bool clearKept = true;        // keptInfo was (re)made: zero it before this frame's passes
+  const std::vector<float>* frameBounds = nullptr;  // this frame's change bounds to upload (recordPasses)
   Buffer active, corners, edges, counts, offsets;  // per active-block slot
   Buffer positions, normals, indices;
   Buffer readback;  // host: AM_CTL_READBACK_UINTS per frame slot
@@ -346,6 +440,11 @@ struct GpuPolygonizer::Impl {
   // prepared's host half when it suits field under s on this device now (GpuPreparedFrame), else null.
   const FramePrep* usable(const GpuPreparedFrame* prepared, const GpuField& field, const GpuPolygonizeSettings& s) const;
   uint64_t preparesInRecord = 0;
+  // Temporal coherence for this frame: the kept buffers sized for grid g (when they fit), the
+  // stamp, and the bounds when prepared (a frame prepared against the one recorded last). Returns
+  // the stamp (0: nothing kept this frame).
+  uint32_t coherence(const Grid& g, const GpuPreparedFrame* prepared, const FramePrep* prep,
+                     const GpuPolygonizeSettings& s, GpuPolygonizeStats& stats);
   // recordFrame's parts. The per-frame buffers sized for grid g and programs pk (words: mask words
   // per block), the descriptor set written; fails when a buffer cannot grow or the blocks exceed
   // the scan's limit.
@@ -367,7 +466,7 @@ GpuPolygonizer::Impl::~Impl() {
   fieldCache.finishCompiling();  // let background compilations finish, then destroy what they made
   vkDeviceWaitIdle(dev);
   for (Buffer* b : {&params, &pool, &bounds, &table, &blockMask, &blockFlag, &blockPrefix, &blockSlot, &partials,
-                    &superFlag, &control, &active, &corners, &edges, &counts, &offsets, &positions, &normals, &indices, &readback})
+                    &superFlag, &keptCorners, &keptInfo, &reuseBound, &control, &active, &corners, &edges, &counts, &offsets, &positions, &normals, &indices, &readback})
     destroyBuffer(dev, *b);
   for (Buffer& b : staging) destroyBuffer(dev, b);
   fieldCache.destroy(dev);
@@ -464,6 +563,9 @@ Status GpuPolygonizer::Impl::init() {
   if (s) s = ensure(blockPrefix, 4096, ssbo);
   if (s) s = ensure(blockSlot, 4096, ssbo);
   if (s) s = ensure(superFlag, 4096, ssbo);
+  if (s) s = ensure(keptCorners, 256, ssbo);
+  if (s) s = ensure(keptInfo, 256, ssbo);
+  if (s) s = ensure(reuseBound, 256, ssbo);
   if (s) s = ensureCapacities(64, 4096, 8192);
   if (!s) return s;
   Result<Buffer> rb = createHostBuffer(ctx, (kFramesInFlight + 1) * AM_CTL_READBACK_UINTS * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
@@ -624,6 +726,9 @@ void GpuPolygonizer::Impl::writeSet() {
   info[AM_PB_BLOCK_PREFIX] = whole(blockPrefix);
   info[AM_PB_BLOCK_SLOT] = whole(blockSlot);
   info[AM_PB_SUPER_FLAG] = whole(superFlag);
+  info[AM_PB_KEPT_CORNERS] = whole(keptCorners);
+  info[AM_PB_KEPT_INFO] = whole(keptInfo);
+  info[AM_PB_REUSE_BOUND] = whole(reuseBound);
   info[AM_PB_ACTIVE] = whole(active);
   info[AM_PB_CORNERS] = whole(corners);
   info[AM_PB_EDGES] = whole(edges);
@@ -741,6 +846,9 @@ void GpuPolygonizer::Impl::recordPasses(VkCommandBuffer cb, uint32_t slot, const
   uploadPrograms(cb, slot, pk);
   vkCmdFillBuffer(cb, control.buffer, 0, AM_CTL_UINTS * 4, 0);
   vkCmdFillBuffer(cb, counts.buffer, 0, VkDeviceSize(blockCapacity) * 8, 0);
+  if (clearKept) vkCmdFillBuffer(cb, keptInfo.buffer, 0, VK_WHOLE_SIZE, 0);
+  clearKept = false;
+  if (frameBounds) updateBuffer(cb, reuseBound.buffer, frameBounds->data(), frameBounds->size() * sizeof(float));
   barrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
           VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_UNIFORM_READ_BIT);
 
@@ -809,6 +917,39 @@ void GpuPolygonizer::Impl::recordPasses(VkCommandBuffer cb, uint32_t slot, const
           VK_ACCESS_HOST_READ_BIT);
 }
 
+uint32_t GpuPolygonizer::Impl::coherence(const Grid& g, const GpuPreparedFrame* prepared, const FramePrep* prep,
+                                         const GpuPolygonizeSettings& s, GpuPolygonizeStats& stats) {
+  frameBounds = nullptr;
+  stats.coherent = false;
+  const GpuPreparedFrame::Data* d = prepared && prep == &prepared->d_->prep ? prepared->d_.get() : nullptr;
+  const uint64_t recordedBefore = lastRecordedId;
+  lastRecordedId = 0;  // (a frame that keeps nothing is no base for the next one's bounds)
+  const VkDeviceSize keptBytes = VkDeviceSize(g.blocks()) * AM_POLY_BLOCK_CORNERS * 4;
+  const VkDeviceSize cap = std::min<VkDeviceSize>(VkDeviceSize(256) << 20, ctx.properties().limits.maxStorageBufferRange);
+  // (an unprepared frame keeps nothing: no later frame's bounds can be from it)
+  if (!d || s.reuseToleranceCells < 0.0f || keptBytes > cap) return 0;
+  const VkBufferUsageFlags ssbo = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  const VkBuffer infoBefore = keptInfo.buffer, cornersBefore = keptCorners.buffer;
+  Status st = ensure(keptCorners, keptBytes, ssbo);
+  if (st) st = ensure(keptInfo, VkDeviceSize(g.blocks()) * 16, ssbo);
+  if (st) st = ensure(reuseBound, VkDeviceSize(g.blocks()) * 4, ssbo);
+  if (keptInfo.buffer != infoBefore || keptCorners.buffer != cornersBefore) clearKept = true;
+  if (!st) {  // nothing is kept this frame; small buffers again where one could not grow
+    for (Buffer* b : {&keptCorners, &keptInfo, &reuseBound})
+      if (!b->buffer) (void)ensure(*b, 256, ssbo);
+    writeSet();
+    return 0;
+  }
+  lastRecordedId = d ? d->id : 0;
+  writeSet();
+  const bool reuse = d && !d->blockBounds.empty() && d->previousId == recordedBefore && !clearKept &&
+                     d->blockBounds.size() == g.blocks();
+  frameStamp += reuse ? 1u : 2u;
+  if (reuse) frameBounds = &d->blockBounds;
+  stats.coherent = reuse;
+  return frameStamp;
+}
+
 Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, const GpuField& field,
                                          const GpuPolygonizeSettings& s, GpuPolygonizeStats& stats, bool timed,
                                          const GpuPreparedFrame* prepared) {
@@ -871,8 +1012,11 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   stats.kinds = std::get<1>(variant);
   Result<FieldPipelines> fp = fieldCache.get({stats.features, stats.kinds, storagePool ? 1 : 0});
   if (!fp) return Error{fp.error()};
+  prm.regionLists.w = coherence(g, prepared, prep, s, stats);
+  prm.extra.w = s.reuseToleranceCells > 0.0f ? 2.0f * s.reuseToleranceCells / (1.0f + 2.0f * s.reuseToleranceCells) : 0.0f;
   lastGrid = g;
   recordPasses(cb, slot, *fp, prm, pk, g, s, timed && timestamps != VK_NULL_HANDLE);
+  frameBounds = nullptr;
   return Status::success();
 }
 
@@ -972,6 +1116,7 @@ Status GpuPolygonizer::absorbCounters(uint32_t slot) {
   stats_.vertices = c[AM_CTL_VERTICES];
   stats_.triangles = c[AM_CTL_TRIANGLES];
   stats_.overflowed = c[AM_CTL_OVERFLOW] != 0;
+  stats_.blocksReused = c[AM_CTL_REUSED];
   if (c[AM_CTL_OVERFLOW] == 0) return Status::success();
   if (c[AM_CTL_OVERFLOW] & AM_OVERFLOW_LOOPS) {  // redoing it would cut them again
     m.cutLoops = true;
@@ -1040,7 +1185,8 @@ const FramePrep* GpuPolygonizer::Impl::usable(const GpuPreparedFrame* prepared, 
 
 Result<std::shared_ptr<const GpuPreparedFrame>> GpuPolygonizer::prepare(const GpuField& field,
                                                                         const GpuPolygonizeSettings& s,
-                                                                        uint64_t loopLimit) {
+                                                                        uint64_t loopLimit,
+                                                                        const GpuPreparedFrame* previous) {
   if (std::string why = unsupported(field); !why.empty()) return Error{"GPU polygoniser: " + why};
   const auto t0 = std::chrono::steady_clock::now();
   Result<FramePrep> prep = prepareFrame(field, s, loopLimit, false);
@@ -1050,6 +1196,11 @@ Result<std::shared_ptr<const GpuPreparedFrame>> GpuPolygonizer::prepare(const Gp
   d->settings = s;
   d->loopLimit = loopLimit;
   d->prep = std::move(*prep);
+  d->id = ++gPreparedIds;
+  if (previous && s.reuseToleranceCells >= 0.0f) {
+    d->blockBounds = blockChangeBounds(field, d->prep, previous->d_->field, previous->d_->prep);
+    if (!d->blockBounds.empty()) d->previousId = previous->d_->id;
+  }
   d->milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return std::shared_ptr<const GpuPreparedFrame>(new GpuPreparedFrame(std::move(d)));
 }
@@ -1122,6 +1273,7 @@ Result<GpuPolygonizeStats> GpuPolygonizer::polygonize(const GpuField& field, con
     stats.blocksActive = c[AM_CTL_ACTIVE];
     stats.vertices = c[AM_CTL_VERTICES];
     stats.triangles = c[AM_CTL_TRIANGLES];
+    stats.blocksReused = c[AM_CTL_REUSED];
     uint32_t overflow = c[AM_CTL_OVERFLOW];
     if (overflow & AM_OVERFLOW_LOOPS) {
       const bool normalsRedo = (overflow & AM_OVERFLOW_CUT_NORMALS) && stats.regionLists && !m.normalsPerVertex;

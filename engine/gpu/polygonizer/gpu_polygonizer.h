@@ -119,6 +119,16 @@ struct GpuPolygonizeSettings {
   // dispatches, each invocation walking one region's list once). Automatic where one dispatch could
   // outrun the device's loop limit (two regions among four vertices); tests force it.
   bool normalsPerVertex = false;
+  // Temporal coherence (docs/gpu-polygonizer.md, "Temporal coherence"): a frame prepared with the
+  // previous recorded frame's (prepare(..., previous)) on the same grid, programs of the same
+  // structure, reuses a block's kept corner values instead of evaluating them when the field
+  // provably moved there (primitiveChangeBounds summed over the primitives reaching its superblock,
+  // accumulated since the values were made) by so little that no corner changes sign and no vertex
+  // moves by more than this many cells (the CPU's rule, poly/polygonizer.h). 0: only blocks nothing
+  // reaching changed (the mesh is exactly a full sweep's); below 0: off (nothing kept). Normals are
+  // evaluated afresh at the vertices. Keeping costs 2.9 KiB of device memory per block of the grid;
+  // grids past 256 MiB of it keep nothing.
+  float reuseToleranceCells = 0.1f;
   // Initial buffer capacities (0: automatic). They grow when a frame overflows.
   uint32_t initialBlockCapacity = 0;
   uint32_t initialVertexCapacity = 0;
@@ -148,6 +158,11 @@ struct GpuPolygonizeStats {
   // given to it; prepareMs: the host time it spent on that here (0 with a prepared frame).
   bool preparedInRecord = true;
   double prepareMs = 0.0;
+  // Temporal coherence (GpuPolygonizeSettings::reuseToleranceCells): the frame had the change bounds
+  // from the previous frame (a prepared frame of its successor on the same grid), and the blocks
+  // whose corners were the kept ones (read back with the other counters).
+  bool coherent = false;
+  uint32_t blocksReused = 0;
   double milliseconds = 0.0;  // polygonize(): wall time from submit to completion (all passes)
   // polygonize(): GPU time per pass from timestamps (0 when the queue has none):
   // uploads, coarse (lists + intervals), block compaction, corners + cells, vertex/triangle scan, emit.
@@ -167,6 +182,8 @@ class GpuPreparedFrame {
   GpuPreparedFrame& operator=(const GpuPreparedFrame&) = delete;
   // Host time the preparation took (ms).
   double milliseconds() const;
+  // Whether it carries change bounds from a previous frame (temporal coherence).
+  bool hasChangeBounds() const;
 
  private:
   friend class GpuPolygonizer;
@@ -217,8 +234,13 @@ class GpuPolygonizer {
   // (GpuPolygonizer::loopLimit; 0: none), on any thread (no device needed). Errors: as record()'s
   // for bad settings or bounds, unsupported fields, programs that cannot be packed, region lists
   // that outrun the loop limit.
+  // With previous (the frame recorded just before this one will be, prepared the same way; its
+  // programs alive during the call): also the change bounds per block for temporal coherence, when
+  // the grid, the programs' structure and the morph's parameters are the same (else none: that
+  // frame evaluates every block).
   static Result<std::shared_ptr<const GpuPreparedFrame>> prepare(const GpuField& field, const GpuPolygonizeSettings& s,
-                                                                 uint64_t loopLimit);
+                                                                 uint64_t loopLimit,
+                                                                 const GpuPreparedFrame* previous = nullptr);
   // Records and polygonize() calls that prepared their frame themselves (no usable prepared frame).
   uint64_t preparesInRecord() const;
 

@@ -68,8 +68,8 @@ std::shared_ptr<const CompiledPreviewField> PreviewFieldCompiler::latest() const
   return latest_;
 }
 
-std::shared_ptr<const CompiledPreviewField> PreviewFieldCompiler::compile(const Request& r, bool onCompileThread,
-                                                                          uint64_t loopLimit) {
+std::shared_ptr<const CompiledPreviewField> PreviewFieldCompiler::compile(
+    const Request& r, bool onCompileThread, uint64_t loopLimit, const std::shared_ptr<const CompiledPreviewField>& previous) {
   const auto t0 = Clock::now();
   auto c = std::make_shared<CompiledPreviewField>();
   c->onCompileThread = onCompileThread;
@@ -86,8 +86,10 @@ std::shared_ptr<const CompiledPreviewField> PreviewFieldCompiler::compile(const 
     c->field = std::move(*field);
     // The GPU frame's host half here too, off the recording thread (a failure is the record's to report).
     const auto p0 = Clock::now();
+    const GpuPreparedFrame* before = previous && previous->field && previous->resolution == r.resolution
+                                         ? previous->prepared.get() : nullptr;
     auto prepared = GpuPolygonizer::prepare(GpuField::single(c->field->program),
-                                            previewGpuSettings(*c->field, r.resolution), loopLimit);
+                                            previewGpuSettings(*c->field, r.resolution), loopLimit, before);
     if (prepared) c->prepared = std::move(*prepared);
     c->prepareMs = std::chrono::duration<double, std::milli>(Clock::now() - p0).count();
   }
@@ -100,14 +102,18 @@ std::shared_ptr<const CompiledPreviewField> PreviewFieldCompiler::compile(const 
 std::shared_ptr<const CompiledPreviewField> PreviewFieldCompiler::compileHere(
     std::shared_ptr<const PreviewSource> source, int resolution, double timeSec) {
   Request r{0, std::move(source), resolution, timeSec};
+  std::shared_ptr<const CompiledPreviewField> previous;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     r.id = ++nextId_;
+    previous = latestAny_;
   }
-  auto c = compile(r, false, loopLimit_);
+  auto c = compile(r, false, loopLimit_, previous);
   std::lock_guard<std::mutex> lock(mutex_);
+  latestAny_ = c;
   ++counters_.onCallerThread;
   counters_.callerThreadMs += c->milliseconds;
+  counters_.prepareMs += c->prepareMs;
   return c;
 }
 
@@ -137,6 +143,7 @@ PreviewFieldCounters PreviewFieldCompiler::counters() const {
 void PreviewFieldCompiler::run() {
   for (;;) {
     Request r;
+    std::shared_ptr<const CompiledPreviewField> previous;
     {
       std::unique_lock<std::mutex> lock(mutex_);
       wake_.wait(lock, [&] { return stop_ || waiting_; });
@@ -144,13 +151,16 @@ void PreviewFieldCompiler::run() {
       r = std::move(*waiting_);
       waiting_.reset();
       running_ = r;
+      previous = latestAny_;
     }
-    std::shared_ptr<const CompiledPreviewField> c = compile(r, true, loopLimit_);
+    std::shared_ptr<const CompiledPreviewField> c = compile(r, true, loopLimit_, previous);
     {
       std::lock_guard<std::mutex> lock(mutex_);
       running_.reset();
       ++counters_.onCompileThread;
       counters_.compileThreadMs += c->milliseconds;
+      counters_.prepareMs += c->prepareMs;
+      latestAny_ = c;
       latest_ = std::move(c);  // the thread's newest (a compileHere() since has a larger id: its caller keeps it)
     }
     done_.notify_all();

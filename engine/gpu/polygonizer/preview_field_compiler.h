@@ -36,7 +36,8 @@ struct CompiledPreviewField {
   std::optional<PreviewField> field;  // set on success
   // With field: the GPU frame's host half (grid bounds, packed programs, region lists) for
   // previewGpuSettings(*field, resolution), made with the compile (GpuPolygonizer::prepare), so that
-  // the recording thread only uploads and records. Null when it failed (the record prepares on the
+  // the recording thread only uploads and records; with the change bounds from the field compiled
+  // before it (temporal coherence: used when that one was the last recorded). Null when it failed (the record prepares on the
   // spot and reports the error).
   std::shared_ptr<const GpuPreparedFrame> prepared;
   double prepareMs = 0.0;  // its host time (not part of milliseconds)
@@ -53,6 +54,7 @@ struct PreviewFieldCounters {
   double compileThreadMs = 0.0;  // their total wall time
   double callerThreadMs = 0.0;
   uint64_t superseded = 0;  // requests replaced while waiting (never compiled)
+  double prepareMs = 0.0;   // the GPU frames prepared with them (CompiledPreviewField::prepareMs), in all
 };
 
 // Same shape (pointer first: sameAs may compare whole trees).
@@ -93,8 +95,10 @@ class PreviewFieldCompiler {
     int resolution = 0;
     double timeSec = 0.0;
   };
-  static std::shared_ptr<const CompiledPreviewField> compile(const Request& r, bool onCompileThread,
-                                                             uint64_t loopLimit);
+  // previous: the newest field compiled before (its prepared frame gives the change bounds for the
+  // GPU's temporal coherence); may be null.
+  static std::shared_ptr<const CompiledPreviewField> compile(const Request& r, bool onCompileThread, uint64_t loopLimit,
+                                                             const std::shared_ptr<const CompiledPreviewField>& previous);
   void run();
 
   mutable std::mutex mutex_;
@@ -104,6 +108,7 @@ class PreviewFieldCompiler {
   std::optional<Request> waiting_;
   std::optional<Request> running_;
   std::shared_ptr<const CompiledPreviewField> latest_;
+  std::shared_ptr<const CompiledPreviewField> latestAny_;  // the newest compiled here or on the thread
   PreviewFieldCounters counters_;
   bool stop_ = false;
   const uint64_t loopLimit_;
