@@ -30,6 +30,7 @@ double msSince(Clock::time_point t) { return std::chrono::duration<double, std::
 struct ModeRun {
   double ms = 0.0, prepareMs = 0.0;
   uint64_t reused = 0, active = 0;
+  int withBounds = 0, coherent = 0;  // frames prepared with change bounds; frames recorded with them
   std::vector<TriangleMesh> meshes;
   std::string error;
 };
@@ -45,13 +46,14 @@ ModeRun runMode(g::GpuPolygonizer& poly, uint64_t limit, const std::vector<Field
     std::shared_ptr<const g::GpuPreparedFrame> prepared;
     if (tolerance >= 0.0f) {
       const auto t0 = Clock::now();
-      auto r = g::GpuPolygonizer::prepare(f, s, limit, previous.get());
+      auto r = g::GpuPolygonizer::prepare(f, s, limit, previous.get(), poly.conservativeRegions());
       m.prepareMs += msSince(t0);
       if (!r) {
         m.error = r.error();
         return m;
       }
       prepared = *r;
+      m.withBounds += prepared->hasChangeBounds() ? 1 : 0;
     }
     const auto t0 = Clock::now();
     auto st = poly.polygonize(f, s, prepared.get());
@@ -62,6 +64,7 @@ ModeRun runMode(g::GpuPolygonizer& poly, uint64_t limit, const std::vector<Field
       return m;
     }
     m.reused += st->blocksReused;
+    m.coherent += st->coherent ? 1 : 0;
     m.active += st->blocksActive;
     m.meshes.push_back(std::move(*mesh));
     previous = prepared;
@@ -102,7 +105,9 @@ void caseRows(g::GpuPolygonizer& poly, uint64_t limit, const std::string& what,
   const double cell = st.cellSize > 0.0f ? double(st.cellSize) : 1.0;
   const std::string how = "wall per frame incl. read-back, one at a time, each frame once";
   auto blocks = [](const ModeRun& m) {
-    return std::to_string(m.reused) + " of " + std::to_string(m.active) + " active blocks reused";
+    return std::to_string(m.reused) + " of " + std::to_string(m.active) + " active blocks reused (" +
+           std::to_string(m.withBounds) + " frames had change bounds, " + std::to_string(m.coherent) +
+           " were recorded with them)";
   };
   char prep[120];
   rows.push_back({head + ", full sweeps (baseline)", full.ms / frames, "ms/frame", "", how});

@@ -1186,10 +1186,11 @@ const FramePrep* GpuPolygonizer::Impl::usable(const GpuPreparedFrame* prepared, 
 Result<std::shared_ptr<const GpuPreparedFrame>> GpuPolygonizer::prepare(const GpuField& field,
                                                                         const GpuPolygonizeSettings& s,
                                                                         uint64_t loopLimit,
-                                                                        const GpuPreparedFrame* previous) {
+                                                                        const GpuPreparedFrame* previous,
+                                                                        bool conservativeRegions) {
   if (std::string why = unsupported(field); !why.empty()) return Error{"GPU polygoniser: " + why};
   const auto t0 = std::chrono::steady_clock::now();
-  Result<FramePrep> prep = prepareFrame(field, s, loopLimit, false);
+  Result<FramePrep> prep = prepareFrame(field, s, loopLimit, conservativeRegions);
   if (!prep) return Error{prep.error()};
   auto d = std::make_unique<GpuPreparedFrame::Data>();
   d->field = field;
@@ -1206,6 +1207,7 @@ Result<std::shared_ptr<const GpuPreparedFrame>> GpuPolygonizer::prepare(const Gp
 }
 
 uint64_t GpuPolygonizer::preparesInRecord() const { return impl_->preparesInRecord; }
+bool GpuPolygonizer::conservativeRegions() const { return impl_->conservativeRegions; }
 
 Status GpuPolygonizer::record(VkCommandBuffer cmd, uint64_t frameSerial, const GpuField& field,
                               const GpuPolygonizeSettings& s) {

@@ -240,7 +240,12 @@ class GpuPolygonizer {
   // frame evaluates every block).
   static Result<std::shared_ptr<const GpuPreparedFrame>> prepare(const GpuField& field, const GpuPolygonizeSettings& s,
                                                                  uint64_t loopLimit,
-                                                                 const GpuPreparedFrame* previous = nullptr);
+                                                                 const GpuPreparedFrame* previous = nullptr,
+                                                                 bool conservativeRegions = false);
+  // Whether this polygoniser builds its region lists conservatively now (after a frame whose loops
+  // the device cut): frames prepared for it must be prepared so (prepare's last argument), or its
+  // records prepare again on the spot.
+  bool conservativeRegions() const;
   // Records and polygonize() calls that prepared their frame themselves (no usable prepared frame).
   uint64_t preparesInRecord() const;
 

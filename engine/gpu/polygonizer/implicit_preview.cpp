@@ -354,6 +354,7 @@ bool ImplicitPreview::submitRecord(const GpuField& gf, const GpuPolygonizeSettin
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   vkBeginCommandBuffer(cmd, &bi);
   Status st = poly_->record(cmd, serial_, gf, gs, field->prepared.get());
+  if (compiler_) compiler_->setConservativeRegions(poly_->conservativeRegions());
   vkEndCommandBuffer(cmd);
   if (!st) {
     gpuFailure_ = "GPU preview: " + st.error();

@@ -69,7 +69,8 @@ std::shared_ptr<const CompiledPreviewField> PreviewFieldCompiler::latest() const
 }
 
 std::shared_ptr<const CompiledPreviewField> PreviewFieldCompiler::compile(
-    const Request& r, bool onCompileThread, uint64_t loopLimit, const std::shared_ptr<const CompiledPreviewField>& previous) {
+    const Request& r, bool onCompileThread, uint64_t loopLimit, const std::shared_ptr<const CompiledPreviewField>& previous,
+    bool conservative) {
   const auto t0 = Clock::now();
   auto c = std::make_shared<CompiledPreviewField>();
   c->onCompileThread = onCompileThread;
@@ -89,7 +90,7 @@ std::shared_ptr<const CompiledPreviewField> PreviewFieldCompiler::compile(
     const GpuPreparedFrame* before = previous && previous->field && previous->resolution == r.resolution
                                          ? previous->prepared.get() : nullptr;
     auto prepared = GpuPolygonizer::prepare(GpuField::single(c->field->program),
-                                            previewGpuSettings(*c->field, r.resolution), loopLimit, before);
+                                            previewGpuSettings(*c->field, r.resolution), loopLimit, before, conservative);
     if (prepared) c->prepared = std::move(*prepared);
     c->prepareMs = std::chrono::duration<double, std::milli>(Clock::now() - p0).count();
   }
@@ -108,7 +109,7 @@ std::shared_ptr<const CompiledPreviewField> PreviewFieldCompiler::compileHere(
     r.id = ++nextId_;
     previous = latestAny_;
   }
-  auto c = compile(r, false, loopLimit_, previous);
+  auto c = compile(r, false, loopLimit_, previous, conservative_.load());
   std::lock_guard<std::mutex> lock(mutex_);
   latestAny_ = c;
   ++counters_.onCallerThread;
@@ -153,7 +154,7 @@ void PreviewFieldCompiler::run() {
       running_ = r;
       previous = latestAny_;
     }
-    std::shared_ptr<const CompiledPreviewField> c = compile(r, true, loopLimit_, previous);
+    std::shared_ptr<const CompiledPreviewField> c = compile(r, true, loopLimit_, previous, conservative_.load());
     {
       std::lock_guard<std::mutex> lock(mutex_);
       running_.reset();

@@ -8,6 +8,7 @@
 // shape than the one on screen). The UI thread polls latest(); only a
 // screenshot waits (waitFor). The same compile runs on the calling thread with
 // compileHere() (fields that take a fraction of a millisecond).
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <memory>
@@ -87,6 +88,8 @@ class PreviewFieldCompiler {
   // Waits until nothing waits or is compiled, at most timeoutSec. Returns idle.
   bool waitIdle(double timeoutSec) const;
   PreviewFieldCounters counters() const;
+  // The recording polygoniser's GpuPolygonizer::conservativeRegions(), for the frames prepared next.
+  void setConservativeRegions(bool on) { conservative_ = on; }
 
  private:
   struct Request {
@@ -98,7 +101,8 @@ class PreviewFieldCompiler {
   // previous: the newest field compiled before (its prepared frame gives the change bounds for the
   // GPU's temporal coherence); may be null.
   static std::shared_ptr<const CompiledPreviewField> compile(const Request& r, bool onCompileThread, uint64_t loopLimit,
-                                                             const std::shared_ptr<const CompiledPreviewField>& previous);
+                                                             const std::shared_ptr<const CompiledPreviewField>& previous,
+                                                             bool conservative);
   void run();
 
   mutable std::mutex mutex_;
@@ -112,6 +116,7 @@ class PreviewFieldCompiler {
   PreviewFieldCounters counters_;
   bool stop_ = false;
   const uint64_t loopLimit_;
+  std::atomic<bool> conservative_{false};
   std::thread thread_;
 };
 
