@@ -182,6 +182,45 @@ void lineOfGroup(uint g, uvec3 c0, out vec4 v, out float s1, out float s2, out u
   axis = alongX ? 0u : 1u;
 }
 
+// Temporal coherence: whether block b's kept corners serve this frame (stamp; 0: nothing kept):
+// they were valid through the previous frame and the field moved there (the bounds accumulated
+// since they were made) by less than their smallest |f| times P.extra.w (the vertex rule:
+// 2 tol / (1 + 2 tol); 0: exact reuse only). Otherwise the block is evaluated afresh and its
+// corners marked not kept (invocation t's share) until stored. info, moved: the record, the bound.
+bool keptServes(uint b, uint stamp, uint t, out uvec4 info, out float moved) {
+  info = stamp != 0u ? keptInfo[b] : uvec4(0u);
+  moved = stamp != 0u ? uintBitsToFloat(info.y) + reuseBound[b] : 0.0;
+  bool reuse = stamp != 0u && info.x + 1u == stamp && (moved == 0.0 || moved <= P.extra.w * uintBitsToFloat(info.z));
+  if (stamp != 0u && !reuse)
+    for (uint i = t; i < uint(AM_POLY_BLOCK_CORNERS); i += uint(AM_POLY_WG_CELLS))
+      keptCorners[b * uint(AM_POLY_BLOCK_CORNERS) + i] = AM_POLY_NOT_KEPT;
+  return reuse;
+}
+
+// With reuse, the kept values of the invocation's groups into f; returns whether it must evaluate
+// them all the same (not an evaluator, or a corner not kept: it then evaluates when an evaluator).
+bool keptGroups(bool reuse, bool evaluator, uint gA, uint gB, bool hasB, uint kept, inout vec4 f[AM_FIELD_V]) {
+  if (!reuse || !evaluator) return evaluator;
+  bool keptA = keptGroup(gA, kept, f[0]);
+  bool keptB = hasB ? keptGroup(gB, kept, f[1]) : true;
+  return !(keptA && keptB);
+}
+
+// The block's edge mask with its popcount prefixes, its (vertex, triangle) counts, and with
+// temporal coherence its kept corners' record and the reuse count.
+void writeBlock(uint slot, uint t, uint b, uint stamp, bool reuse, float moved) {
+  if (t < uint(AM_POLY_EDGE_WORDS)) edges[slot * AM_POLY_EDGE_INFO + t] = sMask[t];
+  if (t != 0u) return;
+  uint run = 0u;
+  for (uint w = 0u; w < uint(AM_POLY_EDGE_WORDS); ++w) {
+    edges[slot * AM_POLY_EDGE_INFO + AM_POLY_EDGE_WORDS + w] = run;
+    run += bitCount(sMask[w]);
+  }
+  counts[slot] = uvec2(run, sTriangles);
+  if (stamp != 0u) keptInfo[b] = uvec4(stamp, floatBitsToUint(reuse ? moved : 0.0), sMinAbs, 0u);
+  if (reuse) atomicAdd(control[AM_CTL_REUSED], 1u);
+}
+
 void cellsPass() {
   uint slot = fineSlot();
   if (slot >= fineSlots()) return;  // the last row's spare workgroups (the whole workgroup returns)
@@ -194,17 +233,11 @@ void cellsPass() {
   if (t < uint(AM_POLY_EDGE_WORDS)) sMask[t] = 0u;
   if (t == 0u) sTriangles = 0u;
 
-  // Temporal coherence: the block's kept corners serve when they were valid through the previous
-  // frame and the field moved there (the bounds accumulated since they were made) by less than
-  // their smallest |f| times P.extra.w (the vertex rule: 2 tol / (1 + 2 tol), 0: exact reuse only).
   const uint stamp = P.regionLists.w;
   const uint kept = b * uint(AM_POLY_BLOCK_CORNERS);
-  uvec4 info = stamp != 0u ? keptInfo[b] : uvec4(0u);
-  float moved = stamp != 0u ? uintBitsToFloat(info.y) + reuseBound[b] : 0.0;
-  bool reuse = stamp != 0u && info.x + 1u == stamp &&
-               (moved == 0.0 || moved <= P.extra.w * uintBitsToFloat(info.z));
-  if (stamp != 0u && !reuse)  // evaluated afresh: the corners it does not evaluate are not kept
-    for (uint i = t; i < uint(AM_POLY_BLOCK_CORNERS); i += uint(AM_POLY_WG_CELLS)) keptCorners[kept + i] = AM_POLY_NOT_KEPT;
+  uvec4 info;
+  float moved;
+  bool reuse = keptServes(b, stamp, t, info, moved);
   if (t == 0u) {
     sSub = 0u;
     sGroups = 0u;
@@ -250,12 +283,7 @@ void cellsPass() {
   uint gB = sGroup[min(2u * t + 1u, kGroups - 1u)];
   vec4 f[AM_FIELD_V];
   const uint base = slot * AM_POLY_BLOCK_CORNERS;
-  bool evaluate = evaluator;
-  if (reuse && evaluator) {
-    bool keptA = keptGroup(gA, kept, f[0]);
-    bool keptB = 2u * t + 1u < groups ? keptGroup(gB, kept, f[1]) : true;
-    evaluate = !(keptA && keptB);
-  }
+  bool evaluate = keptGroups(reuse, evaluator, gA, gB, 2u * t + 1u < groups, kept, f);
   if (AM_LINES_OK) {
     PointsL wl;
 #define AM_GROUP_LINE(j) lineOfGroup(j == 0 ? gA : gB, c0, wl.x[j], wl.y[j], wl.z[j], wl.axis[j]);
@@ -269,8 +297,8 @@ void cellsPass() {
     if (evaluate) fieldV(b * P.modes.y, w, f);
   }
   if (evaluator) {
-    float minAbs = storeGroup(gA, f[0], c0, base, stamp != 0u, kept);
-    if (2u * t + 1u < groups) minAbs = min(minAbs, storeGroup(gB, f[1], c0, base, stamp != 0u, kept));
+    float minAbs = min(storeGroup(gA, f[0], c0, base, stamp != 0u, kept),
+                       2u * t + 1u < groups ? storeGroup(gB, f[1], c0, base, stamp != 0u, kept) : 1e30);
     if (stamp != 0u) atomicMin(sMinAbs, floatBitsToUint(minAbs));
   }
   barrier();
@@ -311,17 +339,7 @@ void cellsPass() {
   }
   if (tris > 0u) atomicAdd(sTriangles, tris);
   barrier();
-  if (t < uint(AM_POLY_EDGE_WORDS)) edges[slot * AM_POLY_EDGE_INFO + t] = sMask[t];
-  if (t == 0u) {
-    uint run = 0u;
-    for (uint w = 0u; w < uint(AM_POLY_EDGE_WORDS); ++w) {
-      edges[slot * AM_POLY_EDGE_INFO + AM_POLY_EDGE_WORDS + w] = run;
-      run += bitCount(sMask[w]);
-    }
-    counts[slot] = uvec2(run, sTriangles);
-    if (stamp != 0u) keptInfo[b] = uvec4(stamp, floatBitsToUint(reuse ? moved : 0.0), sMinAbs, 0u);
-    if (reuse) atomicAdd(control[AM_CTL_REUSED], 1u);
-  }
+  writeBlock(slot, t, b, stamp, reuse, moved);
 }
 
 void main() {
