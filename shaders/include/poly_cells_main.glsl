@@ -41,6 +41,11 @@ layout(local_size_x = AM_POLY_WG_CELLS) in;
 layout(set = 0, binding = AM_PB_CORNERS, std430) writeonly buffer Corners { float corners[]; };
 layout(set = 0, binding = AM_PB_EDGES, std430) writeonly buffer Edges { uint edges[]; };
 layout(set = 0, binding = AM_PB_COUNTS, std430) writeonly buffer Counts { uvec2 counts[]; };
+// Temporal coherence (GpuPolygonizeSettings::reuseToleranceCells; P.regionLists.w: this frame's
+// stamp, 0: off): per block of the grid, its last corner values and their record.
+layout(set = 0, binding = AM_PB_KEPT_CORNERS, std430) buffer KeptCorners { uint keptCorners[]; };
+layout(set = 0, binding = AM_PB_KEPT_INFO, std430) buffer KeptInfo { uvec4 keptInfo[]; };
+layout(set = 0, binding = AM_PB_REUSE_BOUND, std430) readonly buffer ReuseBound { float reuseBound[]; };
 
 const uint kRows = 81u;                        // corner rows along x of a block: (y, z) in [0, 8]^2
 const uint kHalfRows = 2u * kRows;             // groups of 4 corners: x = 0..3 or 4..7 of a row
@@ -58,6 +63,7 @@ shared uint sGroups;
 shared uint sRow[kRows];      // bit x: corner (x, y, z) of the row is inside (f >= 0)
 shared uint sMask[AM_POLY_EDGE_WORDS];
 shared uint sTriangles;
+shared uint sMinAbs;          // smallest |f| (as bits) over the corners stored off the grid boundary
 
 // Corner value with the grid-boundary rule: the boundary counts as outside, so
 // a surface cut by it is closed.
@@ -126,14 +132,20 @@ uvec3 groupCorner(uint g, uint c) {
   return uvec3(8u, faceGroupFirstY(k) + c, k / 3u);
 }
 
-// Stores the corner values f of group g (grid-boundary rule applied) and their sign bits.
-void storeGroup(uint g, vec4 f, uvec3 c0, uint base) {
+// Stores the corner values f of group g (grid-boundary rule applied) and their sign bits; with
+// temporal coherence (keep) also as the block's kept values (from kept). Returns the smallest |f|
+// among them off the grid boundary.
+float storeGroup(uint g, vec4 f, uvec3 c0, uint base, bool keep, uint kept) {
   uint n = g < kHalfRows ? 4u : faceGroupCorners(g - kHalfRows);
   uint bits = 0u;
+  float minAbs = uintBitsToFloat(0x7f800000u);
   for (uint c = 0u; c < 4u; ++c) {
     uvec3 l = groupCorner(g, c);
     float v = boundaryRule(c0 + l, f[c]);
     if (c < n) corners[base + cornerIndex(l)] = v;
+    if (c < n && keep) keptCorners[kept + cornerIndex(l)] = floatBitsToUint(v);
+    uvec3 gc = c0 + l;
+    if (c < n && !any(equal(gc, uvec3(0u))) && !any(equal(gc, P.gridCells.xyz))) minAbs = min(minAbs, abs(v));
     if (c < n && v >= 0.0) bits |= 1u << c;
   }
   if (g < kHalfRows) {
@@ -143,6 +155,20 @@ void storeGroup(uint g, vec4 f, uvec3 c0, uint base) {
     for (uint c = 0u; c < 4u; ++c)
       if (((bits >> c) & 1u) != 0u) atomicOr(sRow[row0 + c], 1u << 8);
   }
+  return minAbs;
+}
+
+// The kept values of group g's corners (kept: the block's first); false when one was not kept.
+bool keptGroup(uint g, uint kept, out vec4 f) {
+  uint n = g < kHalfRows ? 4u : faceGroupCorners(g - kHalfRows);
+  bool all = true;
+  f = vec4(0.0);
+  for (uint c = 0u; c < 4u; ++c) {
+    uint bits = c < n ? keptCorners[kept + cornerIndex(groupCorner(g, c))] : 0u;
+    if (bits == AM_POLY_NOT_KEPT) all = false;
+    f[c] = uintBitsToFloat(bits == AM_POLY_NOT_KEPT ? 0u : bits);
+  }
+  return all;
 }
 
 // Group g as a line of 4 points (PointsL): the varying coordinate, the two others, the axis.
@@ -154,6 +180,45 @@ void lineOfGroup(uint g, uvec3 c0, out vec4 v, out float s1, out float s2, out u
   s1 = alongX ? p0.y : p0.x;
   s2 = p0.z;
   axis = alongX ? 0u : 1u;
+}
+
+// Temporal coherence: whether block b's kept corners serve this frame (stamp; 0: nothing kept):
+// they were valid through the previous frame and the field moved there (the bounds accumulated
+// since they were made) by less than their smallest |f| times P.extra.w (the vertex rule:
+// 2 tol / (1 + 2 tol); 0: exact reuse only). Otherwise the block is evaluated afresh and its
+// corners marked not kept (invocation t's share) until stored. info, moved: the record, the bound.
+bool keptServes(uint b, uint stamp, uint t, out uvec4 info, out float moved) {
+  info = stamp != 0u ? keptInfo[b] : uvec4(0u);
+  moved = stamp != 0u ? uintBitsToFloat(info.y) + reuseBound[b] : 0.0;
+  bool reuse = stamp != 0u && info.x + 1u == stamp && (moved == 0.0 || moved <= P.extra.w * uintBitsToFloat(info.z));
+  if (stamp != 0u && !reuse)
+    for (uint i = t; i < uint(AM_POLY_BLOCK_CORNERS); i += uint(AM_POLY_WG_CELLS))
+      keptCorners[b * uint(AM_POLY_BLOCK_CORNERS) + i] = AM_POLY_NOT_KEPT;
+  return reuse;
+}
+
+// With reuse, the kept values of the invocation's groups into f; returns whether it must evaluate
+// them all the same (not an evaluator, or a corner not kept: it then evaluates when an evaluator).
+bool keptGroups(bool reuse, bool evaluator, uint gA, uint gB, bool hasB, uint kept, inout vec4 f[AM_FIELD_V]) {
+  if (!reuse || !evaluator) return evaluator;
+  bool keptA = keptGroup(gA, kept, f[0]);
+  bool keptB = hasB ? keptGroup(gB, kept, f[1]) : true;
+  return !(keptA && keptB);
+}
+
+// The block's edge mask with its popcount prefixes, its (vertex, triangle) counts, and with
+// temporal coherence its kept corners' record and the reuse count.
+void writeBlock(uint slot, uint t, uint b, uint stamp, bool reuse, float moved) {
+  if (t < uint(AM_POLY_EDGE_WORDS)) edges[slot * AM_POLY_EDGE_INFO + t] = sMask[t];
+  if (t != 0u) return;
+  uint run = 0u;
+  for (uint w = 0u; w < uint(AM_POLY_EDGE_WORDS); ++w) {
+    edges[slot * AM_POLY_EDGE_INFO + AM_POLY_EDGE_WORDS + w] = run;
+    run += bitCount(sMask[w]);
+  }
+  counts[slot] = uvec2(run, sTriangles);
+  if (stamp != 0u) keptInfo[b] = uvec4(stamp, floatBitsToUint(reuse ? moved : 0.0), sMinAbs, 0u);
+  if (reuse) atomicAdd(control[AM_CTL_REUSED], 1u);
 }
 
 void cellsPass() {
@@ -168,10 +233,17 @@ void cellsPass() {
   if (t < uint(AM_POLY_EDGE_WORDS)) sMask[t] = 0u;
   if (t == 0u) sTriangles = 0u;
 
+  const uint stamp = P.regionLists.w;
+  const uint kept = b * uint(AM_POLY_BLOCK_CORNERS);
+  uvec4 info;
+  float moved;
+  bool reuse = keptServes(b, stamp, t, info, moved);
   if (t == 0u) {
     sSub = 0u;
     sGroups = 0u;
+    sMinAbs = reuse ? info.z : 0x7f800000u;
   }
+  memoryBarrierBuffer();
   barrier();
   // Sub-block culling, as the CPU polygoniser: corners are evaluated only where a sub-block
   // whose interval does not prove one sign needs them. A sub-block proved one-signed holds
@@ -211,21 +283,23 @@ void cellsPass() {
   uint gB = sGroup[min(2u * t + 1u, kGroups - 1u)];
   vec4 f[AM_FIELD_V];
   const uint base = slot * AM_POLY_BLOCK_CORNERS;
+  bool evaluate = keptGroups(reuse, evaluator, gA, gB, 2u * t + 1u < groups, kept, f);
   if (AM_LINES_OK) {
     PointsL wl;
 #define AM_GROUP_LINE(j) lineOfGroup(j == 0 ? gA : gB, c0, wl.x[j], wl.y[j], wl.z[j], wl.axis[j]);
     AM_EACH(AM_GROUP_LINE)
-    if (evaluator) fieldL(b * P.modes.y, wl, f);
+    if (evaluate) fieldL(b * P.modes.y, wl, f);
   } else {
     PointsV w;
 #define AM_GROUP_CORNER(j, c) AM_SET_POINT(w, j, c, cornerPosition(c0 + groupCorner(j == 0 ? gA : gB, c)))
 #define AM_GROUP_CORNERS(j) AM_GROUP_CORNER(j, 0) AM_GROUP_CORNER(j, 1) AM_GROUP_CORNER(j, 2) AM_GROUP_CORNER(j, 3)
     AM_EACH(AM_GROUP_CORNERS)
-    if (evaluator) fieldV(b * P.modes.y, w, f);
+    if (evaluate) fieldV(b * P.modes.y, w, f);
   }
   if (evaluator) {
-    storeGroup(gA, f[0], c0, base);
-    if (2u * t + 1u < groups) storeGroup(gB, f[1], c0, base);
+    float minAbs = min(storeGroup(gA, f[0], c0, base, stamp != 0u, kept),
+                       2u * t + 1u < groups ? storeGroup(gB, f[1], c0, base, stamp != 0u, kept) : 1e30);
+    if (stamp != 0u) atomicMin(sMinAbs, floatBitsToUint(minAbs));
   }
   barrier();
   uint signs = rowInvocation ? sRow[t] : 0u;
@@ -265,15 +339,7 @@ void cellsPass() {
   }
   if (tris > 0u) atomicAdd(sTriangles, tris);
   barrier();
-  if (t < uint(AM_POLY_EDGE_WORDS)) edges[slot * AM_POLY_EDGE_INFO + t] = sMask[t];
-  if (t == 0u) {
-    uint run = 0u;
-    for (uint w = 0u; w < uint(AM_POLY_EDGE_WORDS); ++w) {
-      edges[slot * AM_POLY_EDGE_INFO + AM_POLY_EDGE_WORDS + w] = run;
-      run += bitCount(sMask[w]);
-    }
-    counts[slot] = uvec2(run, sTriangles);
-  }
+  writeBlock(slot, t, b, stamp, reuse, moved);
 }
 
 void main() {

@@ -15,7 +15,7 @@
 // gives no weight either; or a colour program packed after it (GpuField::colors: the same surface,
 // finer colours; push constant y its first op record, z its op count, w its threshold's bits),
 // every primitive of it walked (the block masks are A's).
-// The colour table (P.extra.w, a pool index) holds one vec4 per op of the program walked (the colour
+// The colour table (P.colorPass.x, a pool index) holds one vec4 per op of the program walked (the colour
 // of the subtree it closes where no primitive contributes), then one per primitive (its colour).
 // Out: normals[v].w = the colour's RGBA8 bits tagged AM_POLY_COLOR_TAG (poly_constants.h).
 
@@ -181,7 +181,7 @@ vec3 programColor(uint opBegin, uint opCount, float T, uint maskBase, vec3 p) {
 }
 
 void colorPass() {
-  gColorTable = floatBitsToUint(P.extra.w);
+  gColorTable = P.colorPass.x;
   gAllPrimitives = pc.y != 0u;
   uint opBegin = gAllPrimitives ? pc.y : P.progA.x;
   gOpCount = gAllPrimitives ? pc.z : P.progA.y;

@@ -53,12 +53,13 @@ layout(set = 0, binding = AM_PB_PARAMS, std430) readonly buffer PolyParams {
   vec4 morph0;      // x: weight w, y: morph time t, z: time scale, w: a0
   vec4 morph1;      // x: a1, y: a2, z: a3, w: normal step (m)
   uvec4 caps;       // x: vertex capacity, y: triangle capacity, z: total primitives, w: 1 (kept opaque to the compiler: no unrolling)
-  vec4 extra;       // x: reach dilation of a block box (m)
+  vec4 extra;       // x: reach dilation of a block box (m), w: the coherence tolerance factor (poly_cells_main.glsl)
   uvec4 superBlocks; // xyz: superblocks per axis; w: total
   uvec4 regions;    // x: 1 when the pool holds per-region op lists (gpu_region_op_lists.h), y: the superblocks'
                     // table (pool index, a uvec4 per superblock), z: their primitive masks (pool word index),
                     // w: log2 of the blocks a side of the regions whose lists the blocks walk (2: superblocks)
-  uvec4 regionLists; // x: the blocks' regions' table, y, z: regions along x and y
+  uvec4 regionLists; // x: the blocks' regions' table, y, z: regions along x and y, w: the coherence frame stamp
+  uvec4 colorPass;  // x: the colour table's pool index (poly_color_main.glsl; 0: no colour stream)
 } P;
 
 #if AM_POOL_STORAGE

@@ -17,6 +17,7 @@
 #include "core/animorphosis/evaluate_generic.h"
 #include "core/blobtree/compile.h"
 #include "app/cli/bench/bench.h"
+#include "app/cli/bench/bench_hold_tracks.h"
 #include "demo/animorphosis_demo.h"
 #include "core/project/animorphosis_project.h"
 #include "core/poly/frame_sequence.h"
@@ -65,6 +66,15 @@ BlobTree holdAllBut(const BlobTree& tree, const std::string& moving, double time
   holdNode(t.root, moving, timeSec);
   return t;
 }
+
+}  // namespace
+
+// (bench_hold_tracks.h: shared with `bench gpu-coherence`)
+animorph::BlobTree benchHoldAllBut(const animorph::BlobTree& tree, const std::string& moving, double timeSec) {
+  return holdAllBut(tree, moving, timeSec);
+}
+
+namespace {
 
 // Triangles of one polygonisation at `resolution`, or -1 when it failed. listsForSkeletal: per-sub-block
 // primitive lists for skeletal primitives too (as before: the same mesh).

@@ -146,7 +146,12 @@
 #define AM_PB_INDICES 18     // storage: uint per triangle corner (index buffer)
 #define AM_PB_SUPER_FLAG 19  // storage: uint per superblock: can hold surface (their primitive
                              // bitmasks follow the blocks' in AM_PB_BLOCK_MASK)
-#define AM_PB_COUNT 20
+// Temporal coherence (GpuPolygonizeSettings::reuseToleranceCells), per block of the grid:
+#define AM_PB_KEPT_CORNERS 20  // storage: uint (float bits; AM_POLY_NOT_KEPT: none) per corner, AM_POLY_BLOCK_CORNERS a block
+#define AM_PB_KEPT_INFO 21     // storage: uvec4 (frame stamp, accumulated bound, smallest |f|, 0 -- floats as bits)
+#define AM_PB_REUSE_BOUND 22   // storage: float: how far the field moved there since the previous frame
+#define AM_PB_COUNT 23
+#define AM_POLY_NOT_KEPT 0xffffffffu
 
 #define AM_POLY_NONE 0xffffffffu
 
@@ -159,8 +164,9 @@
 #define AM_CTL_DRAW 8        // VkDrawIndexedIndirectCommand (5 uints)
 #define AM_CTL_SCAN_TOTAL 14 // uvec2 total of the last scan
 #define AM_CTL_NORMALS 16     // VkDispatchIndirectCommand of the normals pass
+#define AM_CTL_REUSED 19     // blocks whose corners were the kept ones (temporal coherence)
 #define AM_CTL_UINTS 20
-#define AM_CTL_READBACK_UINTS 4  // counters copied to the host after each frame
+#define AM_CTL_READBACK_UINTS 20  // counters copied to the host after each frame
 
 #define AM_OVERFLOW_BLOCKS 1u
 #define AM_OVERFLOW_VERTICES 2u

@@ -2,16 +2,19 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <tuple>
 
 #include "gpu/polygonizer/field_pipeline_cache.h"
 #include "gpu/polygonizer/gpu_color_table.h"
 #include "gpu/polygonizer/gpu_field_program.h"
 #include "gpu/polygonizer/gpu_region_op_lists.h"
+#include "core/poly/program_change.h"
 #include "core/poly/solid_noise.h"
 #include "core/poly/marching_cubes_table.h"
 #include "poly_constants.h"
@@ -40,8 +43,9 @@ struct PolyParams {
   glm::uvec4 superBlocks;
   glm::uvec4 regions;
   glm::uvec4 regionLists;
+  glm::uvec4 colorPass;
 };
-static_assert(sizeof(PolyParams) == 14 * 16);
+static_assert(sizeof(PolyParams) == 15 * 16);
 
 constexpr uint32_t kTableVec4 = 256 + 64;  // poly_table.glsl: the marching-cubes cases, then the noise permutation
 constexpr VkDeviceSize kVertexStride = GeneratedMeshDraw::kVertexStride;  // poly_emit_main.glsl: vec4 positions, normals
@@ -204,6 +208,64 @@ Result<FrameRegions> buildRegionLists(const GpuField& field, const Grid& g, uint
   return fr;
 }
 
+// A frame's host half (GpuPreparedFrame): the grid, the programs packed, the region lists.
+struct FramePrep {
+  Grid g;
+  PackedFieldPrograms pk;
+  FrameRegions fr;
+  bool lists = false;         // the passes walk per-region lists (useRegionLists)
+  bool conservative = false;  // the lists were built conservatively (Impl::conservativeRegions)
+  double regionListMs = 0.0;
+  uint32_t colorTable = 0;    // the colour pass's table in pk.pool (0: no colour stream)
+  ColorProgramWalk colorWalk; // a colour program of its own (field.colors), else program A's walk
+};
+
+// Vertex colours (docs/gpu-polygonizer.md, "Colour"): a single program with colours, or a colour
+// program of its own, whose walk fits the loop limit (with room: the estimate leaves out the
+// kernels), packed after p's programs and lists; else no colour stream.
+Status prepareColors(const GpuField& field, const GpuPolygonizeSettings& s, uint64_t limit, FramePrep& p) {
+  const FieldProgram* colorSource = field.colors ? field.colors : field.b ? nullptr : field.a;
+  if (!s.colors || !colorSource || !programHasColors(*colorSource) ||
+      (limit != 0 && 2 * colorWalkLoopEstimate(*colorSource) + 64 >= limit))
+    return {};
+  if (field.colors) {
+    Result<ColorProgramWalk> w = appendColorProgram(*field.colors, p.pk);
+    if (!w) return Error{"GPU polygoniser: " + w.error()};
+    p.colorWalk = *w;
+    p.colorTable = p.colorWalk.table;
+  } else {
+    p.colorTable = appendColorTable(*field.a, p.pk);
+  }
+  return {};
+}
+
+// Prepares a frame of field under s for loop limit limit (no device): what recordFrame records.
+Result<FramePrep> prepareFrame(const GpuField& field, const GpuPolygonizeSettings& s, uint64_t limit,
+                               bool conservative) {
+  if (!field.a) return Error{"GPU polygoniser: no field program"};
+  if (s.resolution < 2 || s.resolution > 512)
+    return Error{"GPU polygoniser: resolution " + std::to_string(s.resolution) + " is out of range (2..512)"};
+  FramePrep p;
+  Result<Grid> grid = makeGrid(field, s);
+  if (!grid) return Error{grid.error()};
+  p.g = *grid;
+  Result<PackedFieldPrograms> packed = packFieldPrograms(*field.a, field.b);
+  if (!packed) return Error{"GPU polygoniser: " + packed.error()};
+  p.pk = std::move(*packed);
+  p.lists = useRegionLists(field, s, limit);
+  p.conservative = conservative;
+  if (p.lists) {
+    // The programs specialised on the CPU per region (gpu_region_op_lists.h).
+    const auto t0 = std::chrono::steady_clock::now();
+    Result<FrameRegions> built = buildRegionLists(field, p.g, limit, s.loopBudgetCheck, conservative, p.pk);
+    if (!built) return Error{"GPU polygoniser: " + built.error()};
+    p.fr = std::move(*built);
+    p.regionListMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  }
+  if (Status c = prepareColors(field, s, limit, p); !c) return Error{c.error()};
+  return p;
+}
+
 // The most vkCmdUpdateBuffer takes in one call. Larger uploads (the program pool and the
 // primitives' bounds: megabytes for the animorphosis demo's C(t)) go through a staging buffer.
 constexpr VkDeviceSize kUpdateBufferMax = 65536;
@@ -215,6 +277,103 @@ void updateBuffer(VkCommandBuffer cmd, VkBuffer buffer, const void* data, VkDevi
     VkDeviceSize n = std::min<VkDeviceSize>(65536, bytes - off);
     vkCmdUpdateBuffer(cmd, buffer, off, n, p + off);
   }
+}
+
+}  // namespace
+
+// What a prepared frame holds: the field and settings it was prepared for, and its host half.
+struct GpuPreparedFrame::Data {
+  GpuField field;
+  GpuPolygonizeSettings settings;
+  uint64_t loopLimit = 0;
+  FramePrep prep;
+  double milliseconds = 0.0;
+  uint64_t id = 0;          // unique among prepared frames
+  uint64_t previousId = 0;  // the frame the change bounds are from (0: none)
+  std::vector<float> blockBounds;  // per block: how far the field moved since that frame (empty: none)
+};
+
+GpuPreparedFrame::GpuPreparedFrame(std::unique_ptr<Data> d) : d_(std::move(d)) {}
+GpuPreparedFrame::~GpuPreparedFrame() = default;
+double GpuPreparedFrame::milliseconds() const { return d_->milliseconds; }
+bool GpuPreparedFrame::hasChangeBounds() const { return !d_->blockBounds.empty(); }
+
+namespace {
+
+std::atomic<uint64_t> gPreparedIds{0};
+
+bool sameGrid(const Grid& a, const Grid& b) {
+  return a.origin == b.origin && a.h == b.h && a.n[0] == b.n[0] && a.n[1] == b.n[1] && a.n[2] == b.n[2];
+}
+
+// Sum of bounds over the sorted ids of x and of y, each id once.
+double sumOverUnion(const std::vector<float>& bounds, const std::vector<uint32_t>& x, const std::vector<uint32_t>* y) {
+  double sum = 0.0;
+  size_t i = 0, j = 0;
+  const size_t ny = y ? y->size() : 0;
+  while (i < x.size() || j < ny) {
+    uint32_t id;
+    if (j >= ny || (i < x.size() && x[i] < (*y)[j])) id = x[i++];
+    else if (i >= x.size() || (*y)[j] < x[i]) id = (*y)[j++];
+    else { id = x[i++]; ++j; }
+    if (id < bounds.size()) sum += double(bounds[id]);
+  }
+  return sum;
+}
+
+// Per block of now's grid: a bound on how far the field moved there since prev (the change bounds
+// of the primitives reaching its region -- the finest of the frames' region lists -- in either frame, summed over the programs, plus float
+// rounding), the CPU's rule (poly/program_change.h). Empty where no bound holds: another grid,
+// structure or morph parameters.
+std::vector<float> blockChangeBounds(const GpuField& field, const FramePrep& now, const GpuField& pf,
+                                     const FramePrep& prevPrep) {
+  if (!sameGrid(now.g, prevPrep.g) || !pf.a || (field.b == nullptr) != (pf.b == nullptr)) return {};
+  if (field.b && (field.method != pf.method || field.weight != pf.weight || field.morphTime != pf.morphTime ||
+                  field.timeScale != pf.timeScale || field.a0 != pf.a0 || field.a1 != pf.a1 || field.a2 != pf.a2 ||
+                  field.a3 != pf.a3))
+    return {};
+  const FieldProgram* nowP[2] = {field.a, field.b};
+  const FieldProgram* prevP[2] = {pf.a, pf.b};
+  std::vector<float> change[2];
+  float T = 0.0f;
+  for (int k = 0; k < 2 && nowP[k]; ++k) {
+    if (!sameStructure(*nowP[k], *prevP[k])) return {};
+    change[k] = primitiveChangeBounds(*nowP[k], *prevP[k]);
+    T = std::max(T, std::abs(nowP[k]->threshold));
+  }
+  const Grid& g = now.g;
+  // The finest regions both frames have lists for: the blocks' (cubes of 2^shift blocks) when they
+  // match, else the superblocks'.
+  const bool lists = now.lists && prevPrep.lists;
+  const bool fine = lists && now.fr.shift == prevPrep.fr.shift && now.fr.dims == prevPrep.fr.dims;
+  const RegionOpLists* nowL = fine ? &now.fr.blocks : &now.fr.super;
+  const RegionOpLists* prevL = fine ? &prevPrep.fr.blocks : &prevPrep.fr.super;
+  const uint32_t shift = fine ? now.fr.shift : 2u;
+  const glm::uvec3 dims = fine ? now.fr.dims : glm::uvec3(g.superAxis(0), g.superAxis(1), g.superAxis(2));
+  const uint32_t nRegions = dims.x * dims.y * dims.z;
+  std::vector<double> perRegion(nRegions, 0.0);
+  for (int k = 0; k < 2 && nowP[k]; ++k) {
+    const bool have = lists && nowL->reaching[k].size() == nRegions && prevL->reaching[k].size() == nRegions;
+    if (!have) {
+      double all = 0.0;
+      for (float c : change[k]) all += double(c);
+      for (double& v : perRegion) v += all;
+      continue;
+    }
+    for (uint32_t r = 0; r < nRegions; ++r)
+      perRegion[r] += sumOverUnion(change[k], nowL->reaching[k][r], &prevL->reaching[k][r]);
+  }
+  std::vector<float> out(g.blocks());
+  const float safety = 1e-5f * T;  // float rounding of the evaluations (the CPU's keepsBlock)
+  for (uint32_t z = 0; z < g.nb[2]; ++z)
+    for (uint32_t y = 0; y < g.nb[1]; ++y)
+      for (uint32_t x = 0; x < g.nb[0]; ++x) {
+        const uint32_t r = (x >> shift) + dims.x * ((y >> shift) + dims.y * (z >> shift));
+        const double v = perRegion[r];
+        out[x + g.nb[0] * (y + g.nb[1] * z)] =
+            v == 0.0 ? 0.0f : (std::isfinite(v) && v < 1e30 ? float(v) + safety : std::numeric_limits<float>::infinity());
+      }
+  return out;
 }
 
 }  // namespace
@@ -243,6 +402,13 @@ struct GpuPolygonizer::Impl {
 
   Buffer params, pool, bounds, table, blockMask, blockFlag, blockPrefix, blockSlot, partials, control;
   Buffer superFlag;
+  // Temporal coherence: per block of the grid, its kept corners and their record (stamp, bound
+  // accumulated since, smallest |f|), and this frame's change bounds (poly_cells_main.glsl).
+  Buffer keptCorners, keptInfo, reuseBound;
+  uint32_t frameStamp = 1;      // the frames' stamps: +1 to a frame that may reuse, +2 otherwise
+  uint64_t lastRecordedId = 0;  // the prepared frame last recorded (0: an unprepared one)
+  bool clearKept = true;        // keptInfo was (re)made: zero it before this frame's passes
+  const std::vector<float>* frameBounds = nullptr;  // this frame's change bounds to upload (recordPasses)
   Buffer active, corners, edges, counts, offsets;  // per active-block slot
   Buffer positions, normals, indices;
   Buffer readback;  // host: AM_CTL_READBACK_UINTS per frame slot
@@ -298,7 +464,15 @@ struct GpuPolygonizer::Impl {
   void uploadPrograms(VkCommandBuffer cb, uint32_t slot, const PackedFieldPrograms& pk);
   void writeSet();
   Status recordFrame(VkCommandBuffer cmd, uint32_t slot, const GpuField& field, const GpuPolygonizeSettings& s,
-                     GpuPolygonizeStats& stats, bool timed = false);
+                     GpuPolygonizeStats& stats, bool timed = false, const GpuPreparedFrame* prepared = nullptr);
+  // prepared's host half when it suits field under s on this device now (GpuPreparedFrame), else null.
+  const FramePrep* usable(const GpuPreparedFrame* prepared, const GpuField& field, const GpuPolygonizeSettings& s) const;
+  uint64_t preparesInRecord = 0;
+  // Temporal coherence for this frame: the kept buffers sized for grid g (when they fit), the
+  // stamp, and the bounds when prepared (a frame prepared against the one recorded last). Returns
+  // the stamp (0: nothing kept this frame).
+  uint32_t coherence(const Grid& g, const GpuPreparedFrame* prepared, const FramePrep* prep,
+                     const GpuPolygonizeSettings& s, GpuPolygonizeStats& stats);
   // recordFrame's parts. The per-frame buffers sized for grid g and programs pk (words: mask words
   // per block), the descriptor set written; fails when a buffer cannot grow or the blocks exceed
   // the scan's limit.
@@ -320,7 +494,7 @@ GpuPolygonizer::Impl::~Impl() {
   fieldCache.finishCompiling();  // let background compilations finish, then destroy what they made
   vkDeviceWaitIdle(dev);
   for (Buffer* b : {&params, &pool, &bounds, &table, &blockMask, &blockFlag, &blockPrefix, &blockSlot, &partials,
-                    &superFlag, &control, &active, &corners, &edges, &counts, &offsets, &positions, &normals, &indices, &readback})
+                    &superFlag, &keptCorners, &keptInfo, &reuseBound, &control, &active, &corners, &edges, &counts, &offsets, &positions, &normals, &indices, &readback})
     destroyBuffer(dev, *b);
   for (Buffer& b : staging) destroyBuffer(dev, b);
   fieldCache.destroy(dev);
@@ -417,6 +591,9 @@ Status GpuPolygonizer::Impl::init() {
   if (s) s = ensure(blockPrefix, 4096, ssbo);
   if (s) s = ensure(blockSlot, 4096, ssbo);
   if (s) s = ensure(superFlag, 4096, ssbo);
+  if (s) s = ensure(keptCorners, 256, ssbo);
+  if (s) s = ensure(keptInfo, 256, ssbo);
+  if (s) s = ensure(reuseBound, 256, ssbo);
   if (s) s = ensureCapacities(64, 4096, 8192);
   if (!s) return s;
   Result<Buffer> rb = createHostBuffer(ctx, (kFramesInFlight + 1) * AM_CTL_READBACK_UINTS * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
@@ -577,6 +754,9 @@ void GpuPolygonizer::Impl::writeSet() {
   info[AM_PB_BLOCK_PREFIX] = whole(blockPrefix);
   info[AM_PB_BLOCK_SLOT] = whole(blockSlot);
   info[AM_PB_SUPER_FLAG] = whole(superFlag);
+  info[AM_PB_KEPT_CORNERS] = whole(keptCorners);
+  info[AM_PB_KEPT_INFO] = whole(keptInfo);
+  info[AM_PB_REUSE_BOUND] = whole(reuseBound);
   info[AM_PB_ACTIVE] = whole(active);
   info[AM_PB_CORNERS] = whole(corners);
   info[AM_PB_EDGES] = whole(edges);
@@ -694,6 +874,9 @@ void GpuPolygonizer::Impl::recordPasses(VkCommandBuffer cb, uint32_t slot, const
   uploadPrograms(cb, slot, pk);
   vkCmdFillBuffer(cb, control.buffer, 0, AM_CTL_UINTS * 4, 0);
   vkCmdFillBuffer(cb, counts.buffer, 0, VkDeviceSize(blockCapacity) * 8, 0);
+  if (clearKept) vkCmdFillBuffer(cb, keptInfo.buffer, 0, VK_WHOLE_SIZE, 0);
+  clearKept = false;
+  if (frameBounds) updateBuffer(cb, reuseBound.buffer, frameBounds->data(), frameBounds->size() * sizeof(float));
   barrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
           VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_UNIFORM_READ_BIT);
 
@@ -775,27 +958,64 @@ void GpuPolygonizer::Impl::recordPasses(VkCommandBuffer cb, uint32_t slot, const
           VK_ACCESS_HOST_READ_BIT);
 }
 
+uint32_t GpuPolygonizer::Impl::coherence(const Grid& g, const GpuPreparedFrame* prepared, const FramePrep* prep,
+                                         const GpuPolygonizeSettings& s, GpuPolygonizeStats& stats) {
+  frameBounds = nullptr;
+  stats.coherent = false;
+  const GpuPreparedFrame::Data* d = prepared && prep == &prepared->d_->prep ? prepared->d_.get() : nullptr;
+  const uint64_t recordedBefore = lastRecordedId;
+  lastRecordedId = 0;  // (a frame that keeps nothing is no base for the next one's bounds)
+  const VkDeviceSize keptBytes = VkDeviceSize(g.blocks()) * AM_POLY_BLOCK_CORNERS * 4;
+  const VkDeviceSize cap = std::min<VkDeviceSize>(VkDeviceSize(256) << 20, ctx.properties().limits.maxStorageBufferRange);
+  // (an unprepared frame keeps nothing: no later frame's bounds can be from it)
+  if (!d || s.reuseToleranceCells < 0.0f || keptBytes > cap) return 0;
+  const VkBufferUsageFlags ssbo = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  const VkBuffer infoBefore = keptInfo.buffer, cornersBefore = keptCorners.buffer;
+  Status st = ensure(keptCorners, keptBytes, ssbo);
+  if (st) st = ensure(keptInfo, VkDeviceSize(g.blocks()) * 16, ssbo);
+  if (st) st = ensure(reuseBound, VkDeviceSize(g.blocks()) * 4, ssbo);
+  if (keptInfo.buffer != infoBefore || keptCorners.buffer != cornersBefore) clearKept = true;
+  if (!st) {  // nothing is kept this frame; small buffers again where one could not grow
+    for (Buffer* b : {&keptCorners, &keptInfo, &reuseBound})
+      if (!b->buffer) (void)ensure(*b, 256, ssbo);
+    writeSet();
+    return 0;
+  }
+  lastRecordedId = d ? d->id : 0;
+  writeSet();
+  const bool reuse = d && !d->blockBounds.empty() && d->previousId == recordedBefore && !clearKept &&
+                     d->blockBounds.size() == g.blocks();
+  frameStamp += reuse ? 1u : 2u;
+  if (reuse) frameBounds = &d->blockBounds;
+  stats.coherent = reuse;
+  return frameStamp;
+}
+
 Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, const GpuField& field,
-                                         const GpuPolygonizeSettings& s, GpuPolygonizeStats& stats, bool timed) {
-  if (!field.a) return Error{"GPU polygoniser: no field program"};
-  if (s.resolution < 2 || s.resolution > 512)
-    return Error{"GPU polygoniser: resolution " + std::to_string(s.resolution) + " is out of range (2..512)"};
-  Result<Grid> grid = makeGrid(field, s);
-  if (!grid) return Error{grid.error()};
-  Result<PackedFieldPrograms> packed = packFieldPrograms(*field.a, field.b);
-  if (!packed) return Error{"GPU polygoniser: " + packed.error()};
-  const Grid& g = *grid;
+                                         const GpuPolygonizeSettings& s, GpuPolygonizeStats& stats, bool timed,
+                                         const GpuPreparedFrame* prepared) {
   const uint64_t limit = loopLimit(ctx.properties());
-  const bool lists = useRegionLists(field, s, limit);
-  FrameRegions fr;
-  stats.regionLists = lists;
-  if (lists) {
-    // The programs specialised on the CPU per region (gpu_region_op_lists.h).
+  // The host half: prepared off this thread (GpuPreparedFrame), or here.
+  const FramePrep* prep = usable(prepared, field, s);
+  std::optional<FramePrep> own;
+  stats.preparedInRecord = prep == nullptr;
+  stats.prepareMs = 0.0;
+  if (!prep) {
     const auto t0 = std::chrono::steady_clock::now();
-    Result<FrameRegions> built = buildRegionLists(field, g, limit, s.loopBudgetCheck, conservativeRegions, *packed);
-    if (!built) return Error{"GPU polygoniser: " + built.error()};
-    fr = std::move(*built);
-    stats.regionListMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    Result<FramePrep> made = prepareFrame(field, s, limit, conservativeRegions);
+    if (!made) return Error{made.error()};
+    own = std::move(*made);
+    prep = &*own;
+    ++preparesInRecord;
+    stats.prepareMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  }
+  const Grid& g = prep->g;
+  const bool lists = prep->lists;
+  const FrameRegions& fr = prep->fr;
+  stats.regionLists = lists;
+  stats.regionListMs = 0.0;
+  if (lists) {
+    stats.regionListMs = prep->regionListMs;
     stats.regionLongestOps = fr.blocks.longestOps;
     stats.regionOpsTotal = fr.blocks.opsTotal;
     stats.regionBlocks = 1u << fr.shift;
@@ -810,24 +1030,10 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   lastRegionLists = lists && !conservativeRegions;
   if (s.loopBudgetCheck && !lists)
     if (std::string why = loopBudgetReason(field, limit); !why.empty()) return Error{"GPU polygoniser: " + why};
-  // Vertex colours (docs/gpu-polygonizer.md, "Colour"): a single program with colours whose walk fits
-  // the device's loop limit (with room: the estimate leaves out the kernels); else no colour stream.
-  uint32_t colorTable = 0;
-  ColorProgramWalk colorWalk;  // a colour program of its own (field.colors), else program A's walk
-  const FieldProgram* colorSource = field.colors ? field.colors : field.b ? nullptr : field.a;
-  if (s.colors && colorSource && programHasColors(*colorSource) &&
-      (limit == 0 || 2 * colorWalkLoopEstimate(*colorSource) + 64 < limit)) {
-    if (field.colors) {
-      Result<ColorProgramWalk> w = appendColorProgram(*field.colors, *packed);
-      if (!w) return Error{"GPU polygoniser: " + w.error()};
-      colorWalk = *w;
-      colorTable = colorWalk.table;
-    } else {
-      colorTable = appendColorTable(*field.a, *packed);
-    }
-  }
+  const uint32_t colorTable = prep->colorTable;
+  const ColorProgramWalk& colorWalk = prep->colorWalk;
   stats.colors = colorTable != 0;
-  const PackedFieldPrograms& pk = *packed;
+  const PackedFieldPrograms& pk = prep->pk;
   const uint32_t words = std::max(1u, (pk.primitiveTotal() + 31) / 32);
   const VariantKey variant = variantKey(pk, field, s);
   const bool storagePool = std::get<2>(variant) != 0;
@@ -835,7 +1041,7 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   if ((pk.pool.size() + pk.bounds.size()) * 16 > kUpdateBufferMax)
     if (Status st = ensureStaging(slot, (pk.pool.size() + pk.bounds.size()) * 16); !st) return st;
   PolyParams prm = frameParams(g, pk, field, s, words);
-  std::memcpy(&prm.extra.w, &colorTable, 4);  // poly_color_main.glsl: the colour table's pool index (0: none)
+  prm.colorPass.x = colorTable;  // poly_color_main.glsl: the colour table's pool index (0: none)
   colorPass = VK_NULL_HANDLE;
   if (colorTable != 0) {  // created on first use (on lavapipe a pipeline takes a while to compile)
     VkPipeline& made = storagePool ? colorStorage : colorUniform;
@@ -862,8 +1068,11 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   stats.kinds = std::get<1>(variant);
   Result<FieldPipelines> fp = fieldCache.get({stats.features, stats.kinds, storagePool ? 1 : 0});
   if (!fp) return Error{fp.error()};
+  prm.regionLists.w = coherence(g, prepared, prep, s, stats);
+  prm.extra.w = s.reuseToleranceCells > 0.0f ? 2.0f * s.reuseToleranceCells / (1.0f + 2.0f * s.reuseToleranceCells) : 0.0f;
   lastGrid = g;
   recordPasses(cb, slot, *fp, prm, pk, g, s, timed && timestamps != VK_NULL_HANDLE);
+  frameBounds = nullptr;
   return Status::success();
 }
 
@@ -963,6 +1172,7 @@ Status GpuPolygonizer::absorbCounters(uint32_t slot) {
   stats_.vertices = c[AM_CTL_VERTICES];
   stats_.triangles = c[AM_CTL_TRIANGLES];
   stats_.overflowed = c[AM_CTL_OVERFLOW] != 0;
+  stats_.blocksReused = c[AM_CTL_REUSED];
   if (c[AM_CTL_OVERFLOW] == 0) return Status::success();
   if (c[AM_CTL_OVERFLOW] & AM_OVERFLOW_LOOPS) {  // redoing it would cut them again
     m.cutLoops = true;
@@ -990,7 +1200,7 @@ Result<bool> GpuPolygonizer::recordFitted(uint64_t frameSerial) {
 }
 
 Status GpuPolygonizer::record(VkCommandBuffer cmd, uint64_t frameSerial, const GpuField& field,
-                              const GpuPolygonizeSettings& s) {
+                              const GpuPolygonizeSettings& s, const GpuPreparedFrame* prepared) {
   Impl& m = *impl_;
   const uint32_t slot = uint32_t(frameSerial % kFramesInFlight);
   // The counters of the frame that last used this slot (complete, by the caller's contract).
@@ -1000,7 +1210,8 @@ Status GpuPolygonizer::record(VkCommandBuffer cmd, uint64_t frameSerial, const G
     return Error{cutLoopsError(m.cutLoopsBits)};
   }
   // First frames: size the buffers for the grid as polygonize() does.
-  if (Result<Grid> g = makeGrid(field, s); g) {
+  const FramePrep* prep = m.usable(prepared, field, s);
+  if (Result<Grid> g = prep ? Result<Grid>(prep->g) : makeGrid(field, s); g) {
     uint32_t blocks = firstBlockCapacity(g->blocks());
     if (blocks > m.blockCapacity) {
       Status e = m.ensureCapacities(blocks, blocks * 192, blocks * 384);
@@ -1008,7 +1219,60 @@ Status GpuPolygonizer::record(VkCommandBuffer cmd, uint64_t frameSerial, const G
     }
   }
   m.slotSerial[slot] = frameSerial;
-  return m.recordFrame(cmd, slot, field, s, stats_);
+  return m.recordFrame(cmd, slot, field, s, stats_, false, prepared);
+}
+
+const FramePrep* GpuPolygonizer::Impl::usable(const GpuPreparedFrame* prepared, const GpuField& field,
+                                              const GpuPolygonizeSettings& s) const {
+  if (!prepared) return nullptr;
+  const GpuPreparedFrame::Data& d = *prepared->d_;
+  const GpuField& f = d.field;
+  const GpuPolygonizeSettings& p = d.settings;
+  // What the grid, the packing and the lists depend on (the morph's weights and the passes' other
+  // settings are read at the record).
+  const bool same = f.a == field.a && f.b == field.b && f.colors == field.colors && p.colors == s.colors &&
+                    f.method == field.method && p.resolution == s.resolution &&
+                    p.marginCells == s.marginCells && p.regionPrograms == s.regionPrograms &&
+                    p.loopBudgetCheck == s.loopBudgetCheck && p.bounds.has_value() == s.bounds.has_value() &&
+                    (!s.bounds || (p.bounds->min == s.bounds->min && p.bounds->max == s.bounds->max));
+  if (!same || d.loopLimit != loopLimit(ctx.properties())) return nullptr;
+  if (d.prep.lists && d.prep.conservative != conservativeRegions) return nullptr;
+  return &d.prep;
+}
+
+Result<std::shared_ptr<const GpuPreparedFrame>> GpuPolygonizer::prepare(const GpuField& field,
+                                                                        const GpuPolygonizeSettings& s,
+                                                                        uint64_t loopLimit,
+                                                                        const GpuPreparedFrame* previous,
+                                                                        bool conservativeRegions) {
+  if (std::string why = unsupported(field); !why.empty()) return Error{"GPU polygoniser: " + why};
+  const auto t0 = std::chrono::steady_clock::now();
+  Result<FramePrep> prep = prepareFrame(field, s, loopLimit, conservativeRegions);
+  if (!prep) return Error{prep.error()};
+  auto d = std::make_unique<GpuPreparedFrame::Data>();
+  d->field = field;
+  d->settings = s;
+  d->loopLimit = loopLimit;
+  d->prep = std::move(*prep);
+  d->id = ++gPreparedIds;
+  if (previous && s.reuseToleranceCells >= 0.0f) {
+    d->blockBounds = blockChangeBounds(field, d->prep, previous->d_->field, previous->d_->prep);
+    if (!d->blockBounds.empty()) d->previousId = previous->d_->id;
+  }
+  d->milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return std::shared_ptr<const GpuPreparedFrame>(new GpuPreparedFrame(std::move(d)));
+}
+
+uint64_t GpuPolygonizer::preparesInRecord() const { return impl_->preparesInRecord; }
+bool GpuPolygonizer::conservativeRegions() const { return impl_->conservativeRegions; }
+
+Status GpuPolygonizer::record(VkCommandBuffer cmd, uint64_t frameSerial, const GpuField& field,
+                              const GpuPolygonizeSettings& s) {
+  return record(cmd, frameSerial, field, s, nullptr);
+}
+
+Result<GpuPolygonizeStats> GpuPolygonizer::polygonize(const GpuField& field, const GpuPolygonizeSettings& s) {
+  return polygonize(field, s, nullptr);
 }
 
 GeneratedMeshDraw GpuPolygonizer::generatedMesh(const glm::vec4& color) const {
@@ -1022,12 +1286,14 @@ GeneratedMeshDraw GpuPolygonizer::generatedMesh(const glm::vec4& color) const {
   return d;
 }
 
-Result<GpuPolygonizeStats> GpuPolygonizer::polygonize(const GpuField& field, const GpuPolygonizeSettings& s) {
+Result<GpuPolygonizeStats> GpuPolygonizer::polygonize(const GpuField& field, const GpuPolygonizeSettings& s,
+                                                      const GpuPreparedFrame* prepared) {
   Impl& m = *impl_;
   if (std::string why = unsupported(field); !why.empty()) return Error{"GPU polygoniser: " + why};
   // Initial capacities for this grid (or the caller's, e.g. tiny ones in tests).
   {
-    Result<Grid> g = makeGrid(field, s);
+    const FramePrep* prep = m.usable(prepared, field, s);
+    Result<Grid> g = prep ? Result<Grid>(prep->g) : makeGrid(field, s);
     if (!g) return Error{g.error()};
     uint32_t nb = g->blocks();
     uint32_t blocks = s.initialBlockCapacity ? s.initialBlockCapacity : firstBlockCapacity(nb);
@@ -1052,7 +1318,7 @@ Result<GpuPolygonizeStats> GpuPolygonizer::polygonize(const GpuField& field, con
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     AM_VK_TRY(vkBeginCommandBuffer(m.cmd, &bi), "vkBeginCommandBuffer");
-    Status rec = m.recordFrame(m.cmd, slot, field, s, stats, true);
+    Status rec = m.recordFrame(m.cmd, slot, field, s, stats, true, prepared);
     AM_VK_TRY(vkEndCommandBuffer(m.cmd), "vkEndCommandBuffer");
     if (!rec) return Error{rec.error()};
     if (attempt == 0) t0 = std::chrono::steady_clock::now();
@@ -1066,6 +1332,7 @@ Result<GpuPolygonizeStats> GpuPolygonizer::polygonize(const GpuField& field, con
     stats.blocksActive = c[AM_CTL_ACTIVE];
     stats.vertices = c[AM_CTL_VERTICES];
     stats.triangles = c[AM_CTL_TRIANGLES];
+    stats.blocksReused = c[AM_CTL_REUSED];
     uint32_t overflow = c[AM_CTL_OVERFLOW];
     if (overflow & AM_OVERFLOW_LOOPS) {
       const bool normalsRedo = (overflow & AM_OVERFLOW_CUT_NORMALS) && stats.regionLists && !m.normalsPerVertex;

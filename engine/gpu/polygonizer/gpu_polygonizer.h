@@ -129,6 +129,16 @@ struct GpuPolygonizeSettings {
   // them. Off, or a morph of two programs, or a program too long for the device's loop limit: none
   // (w stays 0, the draw's one tone; GpuPolygonizeStats::colors says which).
   bool colors = true;
+  // Temporal coherence (docs/gpu-polygonizer.md, "Temporal coherence"): a frame prepared with the
+  // previous recorded frame's (prepare(..., previous)) on the same grid, programs of the same
+  // structure, reuses a block's kept corner values instead of evaluating them when the field
+  // provably moved there (primitiveChangeBounds summed over the primitives reaching its superblock,
+  // accumulated since the values were made) by so little that no corner changes sign and no vertex
+  // moves by more than this many cells (the CPU's rule, poly/polygonizer.h). 0: only blocks nothing
+  // reaching changed (the mesh is exactly a full sweep's); below 0: off (nothing kept). Normals are
+  // evaluated afresh at the vertices. Keeping costs 2.9 KiB of device memory per block of the grid;
+  // grids past 256 MiB of it keep nothing.
+  float reuseToleranceCells = 0.1f;
   // Initial buffer capacities (0: automatic). They grow when a frame overflows.
   uint32_t initialBlockCapacity = 0;
   uint32_t initialVertexCapacity = 0;
@@ -154,10 +164,43 @@ struct GpuPolygonizeStats {
   bool colors = false;  // the vertices carry colours (GpuPolygonizeSettings::colors)
   uint64_t regionOpsTotal = 0;
   double regionListMs = 0.0;
+  // The frame's host preparation (grid bounds, programs packed, region lists: GpuPreparedFrame):
+  // true when this record or polygonize() computed it itself, false when it used a prepared frame
+  // given to it; prepareMs: the host time it spent on that here (0 with a prepared frame).
+  bool preparedInRecord = true;
+  double prepareMs = 0.0;
+  // Temporal coherence (GpuPolygonizeSettings::reuseToleranceCells): the frame had the change bounds
+  // from the previous frame (a prepared frame of its successor on the same grid), and the blocks
+  // whose corners were the kept ones (read back with the other counters).
+  bool coherent = false;
+  uint32_t blocksReused = 0;
   double milliseconds = 0.0;  // polygonize(): wall time from submit to completion (all passes)
   // polygonize(): GPU time per pass from timestamps (0 when the queue has none):
   // uploads, coarse (lists + intervals), block compaction, corners + cells, vertex/triangle scan, emit.
   double passMs[6] = {0, 0, 0, 0, 0, 0};
+};
+
+class GpuPolygonizer;
+
+// A frame's host preparation, made once and on any thread (GpuPolygonizer::prepare): the grid (the
+// programs' interval-tightened bounds: 16-29 ms for the animorphosis demo's C(t)), the programs
+// packed into the pool (3-8 ms) and the per-region op lists. A record() given one only uploads and
+// records. It refers to the field's programs, which must outlive it unchanged.
+class GpuPreparedFrame {
+ public:
+  ~GpuPreparedFrame();
+  GpuPreparedFrame(const GpuPreparedFrame&) = delete;
+  GpuPreparedFrame& operator=(const GpuPreparedFrame&) = delete;
+  // Host time the preparation took (ms).
+  double milliseconds() const;
+  // Whether it carries change bounds from a previous frame (temporal coherence).
+  bool hasChangeBounds() const;
+
+ private:
+  friend class GpuPolygonizer;
+  struct Data;
+  explicit GpuPreparedFrame(std::unique_ptr<Data> d);
+  std::unique_ptr<Data> d_;
 };
 
 class GpuPolygonizer {
@@ -191,6 +234,31 @@ class GpuPolygonizer {
   // Errors: unsupported field, bad settings or bounds, an earlier record whose loops the device
   // cut short (lavapipe's loop limiter: that frame drew nothing), Vulkan failures.
   Status record(VkCommandBuffer cmd, uint64_t frameSerial, const GpuField& field, const GpuPolygonizeSettings& s);
+  // The same with the frame's host preparation done beforehand (prepare()): nothing is computed
+  // here but the upload and the commands. A prepared frame of other programs or settings, for
+  // another loop limit, or made before a cut frame made the region lists conservative, is not used:
+  // the record prepares on the spot as above (lastStats().preparedInRecord, preparesInRecord()).
+  Status record(VkCommandBuffer cmd, uint64_t frameSerial, const GpuField& field, const GpuPolygonizeSettings& s,
+                const GpuPreparedFrame* prepared);
+
+  // The host preparation of a frame of field under s for a device whose loop limit is loopLimit
+  // (GpuPolygonizer::loopLimit; 0: none), on any thread (no device needed). Errors: as record()'s
+  // for bad settings or bounds, unsupported fields, programs that cannot be packed, region lists
+  // that outrun the loop limit.
+  // With previous (the frame recorded just before this one will be, prepared the same way; its
+  // programs alive during the call): also the change bounds per block for temporal coherence, when
+  // the grid, the programs' structure and the morph's parameters are the same (else none: that
+  // frame evaluates every block).
+  static Result<std::shared_ptr<const GpuPreparedFrame>> prepare(const GpuField& field, const GpuPolygonizeSettings& s,
+                                                                 uint64_t loopLimit,
+                                                                 const GpuPreparedFrame* previous = nullptr,
+                                                                 bool conservativeRegions = false);
+  // Whether this polygoniser builds its region lists conservatively now (after a frame whose loops
+  // the device cut): frames prepared for it must be prepared so (prepare's last argument), or its
+  // records prepare again on the spot.
+  bool conservativeRegions() const;
+  // Records and polygonize() calls that prepared their frame themselves (no usable prepared frame).
+  uint64_t preparesInRecord() const;
 
   // Starts compiling, on a background thread, the shader pipelines record() and polygonize() will
   // need for fields like this one (same operators, primitive kinds and morph method), so that the
@@ -214,6 +282,9 @@ class GpuPolygonizer {
   // waits; on overflow grows the buffers and redoes it until the mesh fits.
   // Errors: as record(), device lost, a mesh beyond the device's buffer limits.
   Result<GpuPolygonizeStats> polygonize(const GpuField& field, const GpuPolygonizeSettings& s);
+  // The same with a prepared frame (see record()'s overload).
+  Result<GpuPolygonizeStats> polygonize(const GpuField& field, const GpuPolygonizeSettings& s,
+                                        const GpuPreparedFrame* prepared);
 
   // The mesh of the last polygonize() (positions, normals, indices; colours, linear, when
   // lastStats().colors) copied to host memory. Errors: nothing polygonised yet, Vulkan failures.

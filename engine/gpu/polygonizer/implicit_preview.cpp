@@ -149,6 +149,8 @@ void ImplicitPreview::uploadNew() {
   else uploadError_ = up.error();
 }
 
+uint64_t ImplicitPreview::gpuPreparesInRecord() const { return poly_ ? poly_->preparesInRecord() : 0; }
+
 void ImplicitPreview::prewarm(const PreviewSource& source, const ImplicitPreviewSettings& s) {
   if (!s.gpu || !gpuFailure_.empty()) return;
   if (!poly_) {
@@ -195,7 +197,7 @@ void ImplicitPreview::pollGpu() {
 
 std::shared_ptr<const CompiledPreviewField> ImplicitPreview::takeField(
     const std::shared_ptr<const PreviewSource>& source, int res, double timeSec, bool settle) {
-  if (!compiler_) compiler_ = std::make_unique<PreviewFieldCompiler>();
+  if (!compiler_) compiler_ = std::make_unique<PreviewFieldCompiler>(GpuPolygonizer::loopLimit(ctx_.properties()));
   auto keep = [&](std::shared_ptr<const CompiledPreviewField> c) {
     lastFieldMs_ = c->milliseconds;
     ready_ = std::move(c);
@@ -304,7 +306,7 @@ bool ImplicitPreview::polygonizeNow(const GpuField& gf, const GpuPolygonizeSetti
       return false;
     }
   pollGpu();
-  Result<GpuPolygonizeStats> done = poly_->polygonize(gf, gs);
+  Result<GpuPolygonizeStats> done = poly_->polygonize(gf, gs, field->prepared.get());
   if (!done) {
     gpuFailure_ = "GPU preview: " + done.error();
     return false;
@@ -351,7 +353,8 @@ bool ImplicitPreview::submitRecord(const GpuField& gf, const GpuPolygonizeSettin
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   vkBeginCommandBuffer(cmd, &bi);
-  Status st = poly_->record(cmd, serial_, gf, gs);
+  Status st = poly_->record(cmd, serial_, gf, gs, field->prepared.get());
+  if (compiler_) compiler_->setConservativeRegions(poly_->conservativeRegions());
   vkEndCommandBuffer(cmd);
   if (!st) {
     gpuFailure_ = "GPU preview: " + st.error();
@@ -427,13 +430,8 @@ bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& sour
   // compiles the viewport keeps the last mesh.
   if (!field) field = takeField(source, res, timeSec, s.settle);
   if (std::optional<bool> decided = unusableField(field, source)) return *decided;
-  GpuField gf = GpuField::single(field->field->program);
-  gf.colors = field->field->colorProgram.get();  // the colour pass walks it (a morph's split stand-ins)
-  GpuPolygonizeSettings gs;
-  gs.resolution = field->resolution;
-  gs.bounds = field->field->bounds;
-  gs.noiseAmplitude = field->field->noiseAmplitude;
-  gs.noiseFrequency = field->field->noiseFrequency;
+  const GpuField gf = previewGpuField(*field->field);  // the colour pass walks its colour program
+  const GpuPolygonizeSettings gs = previewGpuSettings(*field->field, field->resolution);
   // A kind of shape whose pipelines are not compiled yet: compile them in the background while the
   // CPU worker draws it (update(); the frame would otherwise stall ~1 s on lavapipe); retried every frame.
   // A screenshot (settle) waits for them instead: it must show this shape.

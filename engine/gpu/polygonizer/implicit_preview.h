@@ -135,6 +135,9 @@ class ImplicitPreview {
   void clearGpuFailure() { gpuFailure_.clear(); }
   // The GPU path's field compiles so far: where they ran and how long they took (benches, tests).
   PreviewFieldCounters fieldCounters() const { return compiler_ ? compiler_->counters() : PreviewFieldCounters{}; }
+  // GPU records (and screenshots' polygonisations) that prepared their frame's host half on this
+  // thread because the compiled field brought none that suited (GpuPolygonizer::preparesInRecord).
+  uint64_t gpuPreparesInRecord() const;
 
  private:
   bool usingGpu() const { return gpuActive_; }

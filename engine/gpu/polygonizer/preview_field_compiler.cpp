@@ -16,7 +16,23 @@ bool CompiledPreviewField::matches(const PreviewSource& s, int res) const {
   return source && resolution == res && samePreviewShape(*source, s);
 }
 
-PreviewFieldCompiler::PreviewFieldCompiler() : thread_([this] { run(); }) {}
+GpuPolygonizeSettings previewGpuSettings(const PreviewField& field, int resolution) {
+  GpuPolygonizeSettings gs;
+  gs.resolution = resolution;
+  gs.bounds = field.bounds;
+  gs.noiseAmplitude = field.noiseAmplitude;
+  gs.noiseFrequency = field.noiseFrequency;
+  return gs;
+}
+
+GpuField previewGpuField(const PreviewField& field) {
+  GpuField gf = GpuField::single(field.program);
+  gf.colors = field.colorProgram.get();
+  return gf;
+}
+
+PreviewFieldCompiler::PreviewFieldCompiler(uint64_t deviceLoopLimit)
+    : loopLimit_(deviceLoopLimit), thread_([this] { run(); }) {}
 
 PreviewFieldCompiler::~PreviewFieldCompiler() {
   {
@@ -58,7 +74,9 @@ std::shared_ptr<const CompiledPreviewField> PreviewFieldCompiler::latest() const
   return latest_;
 }
 
-std::shared_ptr<const CompiledPreviewField> PreviewFieldCompiler::compile(const Request& r, bool onCompileThread) {
+std::shared_ptr<const CompiledPreviewField> PreviewFieldCompiler::compile(
+    const Request& r, bool onCompileThread, uint64_t loopLimit, const std::shared_ptr<const CompiledPreviewField>& previous,
+    bool conservative) {
   const auto t0 = Clock::now();
   auto c = std::make_shared<CompiledPreviewField>();
   c->onCompileThread = onCompileThread;
@@ -73,22 +91,36 @@ std::shared_ptr<const CompiledPreviewField> PreviewFieldCompiler::compile(const 
     c->error = std::move(why);
   } else {
     c->field = std::move(*field);
+    // The GPU frame's host half here too, off the recording thread (a failure is the record's to report).
+    const auto p0 = Clock::now();
+    const GpuPreparedFrame* before = previous && previous->field && previous->resolution == r.resolution
+                                         ? previous->prepared.get() : nullptr;
+    auto prepared = GpuPolygonizer::prepare(previewGpuField(*c->field),
+                                            previewGpuSettings(*c->field, r.resolution), loopLimit, before, conservative);
+    if (prepared) c->prepared = std::move(*prepared);
+    c->prepareMs = std::chrono::duration<double, std::milli>(Clock::now() - p0).count();
   }
-  c->milliseconds = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  // (the preparation apart: a record prepares on its own thread when given none, so only the
+  // field's cost decides where the next field compiles, ImplicitPreview::takeField)
+  c->milliseconds = std::chrono::duration<double, std::milli>(Clock::now() - t0).count() - c->prepareMs;
   return c;
 }
 
 std::shared_ptr<const CompiledPreviewField> PreviewFieldCompiler::compileHere(
     std::shared_ptr<const PreviewSource> source, int resolution, double timeSec) {
   Request r{0, std::move(source), resolution, timeSec};
+  std::shared_ptr<const CompiledPreviewField> previous;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     r.id = ++nextId_;
+    previous = latestAny_;
   }
-  auto c = compile(r, false);
+  auto c = compile(r, false, loopLimit_, previous, conservative_.load());
   std::lock_guard<std::mutex> lock(mutex_);
+  latestAny_ = c;
   ++counters_.onCallerThread;
   counters_.callerThreadMs += c->milliseconds;
+  counters_.prepareMs += c->prepareMs;
   return c;
 }
 
@@ -118,6 +150,7 @@ PreviewFieldCounters PreviewFieldCompiler::counters() const {
 void PreviewFieldCompiler::run() {
   for (;;) {
     Request r;
+    std::shared_ptr<const CompiledPreviewField> previous;
     {
       std::unique_lock<std::mutex> lock(mutex_);
       wake_.wait(lock, [&] { return stop_ || waiting_; });
@@ -125,13 +158,16 @@ void PreviewFieldCompiler::run() {
       r = std::move(*waiting_);
       waiting_.reset();
       running_ = r;
+      previous = latestAny_;
     }
-    std::shared_ptr<const CompiledPreviewField> c = compile(r, true);
+    std::shared_ptr<const CompiledPreviewField> c = compile(r, true, loopLimit_, previous, conservative_.load());
     {
       std::lock_guard<std::mutex> lock(mutex_);
       running_.reset();
       ++counters_.onCompileThread;
       counters_.compileThreadMs += c->milliseconds;
+      counters_.prepareMs += c->prepareMs;
+      latestAny_ = c;
       latest_ = std::move(c);  // the thread's newest (a compileHere() since has a larger id: its caller keeps it)
     }
     done_.notify_all();

@@ -8,6 +8,7 @@
 // shape than the one on screen). The UI thread polls latest(); only a
 // screenshot waits (waitFor). The same compile runs on the calling thread with
 // compileHere() (fields that take a fraction of a millisecond).
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <memory>
@@ -20,6 +21,18 @@
 
 namespace animorph::gpu {
 
+class GpuPreparedFrame;
+struct GpuField;
+struct GpuPolygonizeSettings;
+
+// The GPU polygoniser's settings for the preview of field at resolution (the record's and the
+// prepared frame's, which must agree for the record to use it).
+GpuPolygonizeSettings previewGpuSettings(const PreviewField& field, int resolution);
+// What the GPU polygonises for the preview of field: its program, with its colour program (a
+// morph's stand-ins split into their colour samples) for the colour pass where it has one. The
+// record's and the prepared frame's (they must agree); valid while field lives.
+GpuField previewGpuField(const PreviewField& field);
+
 // One compiled request: the field, or why the GPU cannot polygonise the shape.
 struct CompiledPreviewField {
   uint64_t id = 0;  // the request's (ids increase with every request, here or on the thread)
@@ -27,9 +40,16 @@ struct CompiledPreviewField {
   int resolution = 0;
   double timeSec = 0.0;             // scene time of the shape (what the status line shows once drawn)
   std::optional<PreviewField> field;  // set on success
+  // With field: the GPU frame's host half (grid bounds, packed programs, region lists) for
+  // previewGpuSettings(*field, resolution), made with the compile (GpuPolygonizer::prepare), so that
+  // the recording thread only uploads and records; with the change bounds from the field compiled
+  // before it (temporal coherence: used when that one was the last recorded). Null when it failed (the record prepares on the
+  // spot and reports the error).
+  std::shared_ptr<const GpuPreparedFrame> prepared;
+  double prepareMs = 0.0;  // its host time (not part of milliseconds)
   // field() failed, or the GPU cannot express the program (GpuPolygonizer::unsupported); empty on success.
   std::string error;
-  double milliseconds = 0.0;  // wall time of field() and the check
+  double milliseconds = 0.0;  // wall time of field() and the check (the preparation apart)
   bool onCompileThread = false;
   bool matches(const PreviewSource& s, int res) const;
 };
@@ -40,6 +60,7 @@ struct PreviewFieldCounters {
   double compileThreadMs = 0.0;  // their total wall time
   double callerThreadMs = 0.0;
   uint64_t superseded = 0;  // requests replaced while waiting (never compiled)
+  double prepareMs = 0.0;   // the GPU frames prepared with them (CompiledPreviewField::prepareMs), in all
 };
 
 // Same shape (pointer first: sameAs may compare whole trees).
@@ -47,7 +68,9 @@ bool samePreviewShape(const PreviewSource& a, const PreviewSource& b);
 
 class PreviewFieldCompiler {
  public:
-  PreviewFieldCompiler();
+  // deviceLoopLimit: the recording device's (GpuPolygonizer::loopLimit), which the frames are
+  // prepared for; a frame prepared for another limit is prepared again by the record.
+  explicit PreviewFieldCompiler(uint64_t deviceLoopLimit = 0);
   ~PreviewFieldCompiler();  // the compile in progress finishes first (field() cannot be cancelled)
   PreviewFieldCompiler(const PreviewFieldCompiler&) = delete;
   PreviewFieldCompiler& operator=(const PreviewFieldCompiler&) = delete;
@@ -70,6 +93,8 @@ class PreviewFieldCompiler {
   // Waits until nothing waits or is compiled, at most timeoutSec. Returns idle.
   bool waitIdle(double timeoutSec) const;
   PreviewFieldCounters counters() const;
+  // The recording polygoniser's GpuPolygonizer::conservativeRegions(), for the frames prepared next.
+  void setConservativeRegions(bool on) { conservative_ = on; }
 
  private:
   struct Request {
@@ -78,7 +103,11 @@ class PreviewFieldCompiler {
     int resolution = 0;
     double timeSec = 0.0;
   };
-  static std::shared_ptr<const CompiledPreviewField> compile(const Request& r, bool onCompileThread);
+  // previous: the newest field compiled before (its prepared frame gives the change bounds for the
+  // GPU's temporal coherence); may be null.
+  static std::shared_ptr<const CompiledPreviewField> compile(const Request& r, bool onCompileThread, uint64_t loopLimit,
+                                                             const std::shared_ptr<const CompiledPreviewField>& previous,
+                                                             bool conservative);
   void run();
 
   mutable std::mutex mutex_;
@@ -88,8 +117,11 @@ class PreviewFieldCompiler {
   std::optional<Request> waiting_;
   std::optional<Request> running_;
   std::shared_ptr<const CompiledPreviewField> latest_;
+  std::shared_ptr<const CompiledPreviewField> latestAny_;  // the newest compiled here or on the thread
   PreviewFieldCounters counters_;
   bool stop_ = false;
+  const uint64_t loopLimit_;
+  std::atomic<bool> conservative_{false};
   std::thread thread_;
 };
 

@@ -1,0 +1,203 @@
+// Temporal coherence on the GPU polygoniser (GpuPolygonizeSettings::reuseToleranceCells, frames
+// prepared against the previous one: GpuPolygonizer::prepare(..., previous)), on lavapipe with
+// validation: a held pose reuses every active block and gives exactly a full sweep's mesh; a
+// program where every primitive moves by cells reuses none and is exactly a full sweep; where one
+// cluster moves a little, the held one is reused exactly and the moved one within the tolerance
+// (a full sweep's triangle count, vertices within 0.1 cell). Off (tolerance < 0) keeps nothing.
+#include <catch2/catch.hpp>
+
+#include <random>
+
+#include "core/blobtree/compile.h"
+#include "gpu_fixture.h"
+#include "gpu/polygonizer/gpu_polygonizer.h"
+#include "util/blob_builders.h"
+
+using namespace animorph;
+using namespace animorph::gpu;
+using namespace animorph::test;
+
+namespace {
+
+struct CoherenceRig {
+  std::unique_ptr<Context> ctx = makeTestContext();
+  std::unique_ptr<GpuPolygonizer> poly;
+  uint64_t limit = 0;
+  CoherenceRig() {
+    auto p = GpuPolygonizer::create(*ctx);
+    INFO(p.error());
+    REQUIRE(p.ok());
+    poly = std::move(*p);
+    limit = GpuPolygonizer::loopLimit(ctx->properties());
+  }
+  TriangleMesh run(const GpuField& f, const GpuPolygonizeSettings& s, const GpuPreparedFrame* prepared,
+                   GpuPolygonizeStats& stats) {
+    auto st = poly->polygonize(f, s, prepared);
+    INFO(st.error());
+    REQUIRE(st.ok());
+    stats = *st;
+    auto m = poly->readBack();
+    INFO(m.error());
+    REQUIRE(m.ok());
+    return std::move(*m);
+  }
+  std::shared_ptr<const GpuPreparedFrame> prepare(const GpuField& f, const GpuPolygonizeSettings& s,
+                                                  const GpuPreparedFrame* previous) {
+    auto p = GpuPolygonizer::prepare(f, s, limit, previous);
+    INFO(p.error());
+    REQUIRE(p.ok());
+    return *p;
+  }
+};
+
+// Two clusters of seeded random points (left at x < 0, right at x > 0); the right one moved by
+// rightShift, the left by leftShift.
+BlobTree clusters(unsigned seed, glm::vec3 leftShift, glm::vec3 rightShift) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-0.15f, 0.15f);
+  BlobNode root = makeBlobNode(NodeType::Blend, 1);
+  for (int i = 0; i < 24; ++i) {
+    const bool left = i < 12;
+    const glm::vec3 c = glm::vec3(left ? -0.55f : 0.55f, 0.0f, 0.0f) + glm::vec3(u(rng), u(rng), u(rng));
+    root.children.push_back(pointNode(2 + i, c + (left ? leftShift : rightShift), 0.14f));
+  }
+  return treeOf(root, 0.5f);
+}
+
+Bounds box() {
+  Bounds b;
+  b.add(glm::vec3(-0.85f, -0.4f, -0.4f));  // at 64 cells along x: two superblocks, one per cluster
+  b.add(glm::vec3(0.85f, 0.4f, 0.4f));
+  return b;
+}
+
+void requireIdentical(const TriangleMesh& a, const TriangleMesh& b) {
+  REQUIRE(a.positions.size() == b.positions.size());
+  REQUIRE(a.indices.size() == b.indices.size());
+  CHECK(a.positions == b.positions);
+  CHECK(a.indices == b.indices);
+}
+
+// Largest distance from a vertex of a to the nearest vertex of b (brute force: small meshes).
+float farthest(const TriangleMesh& a, const TriangleMesh& b) {
+  float worst = 0.0f;
+  for (const glm::vec3& p : a.positions) {
+    float best = 1e30f;
+    for (const glm::vec3& q : b.positions) best = std::min(best, glm::dot(p - q, p - q));
+    worst = std::max(worst, best);
+  }
+  return std::sqrt(worst);
+}
+
+}  // namespace
+
+TEST_CASE("GPU coherence reuses blocks on a held pose and none when everything moves, meshes identical to full sweeps",
+          "[gpu][gpupoly][coherence]") {
+  CoherenceRig r;
+  for (unsigned seed : {5u, 12u}) {
+    INFO("seed " << seed);
+    const FieldProgram held = compileFieldProgram(clusters(seed, glm::vec3(0.0f), glm::vec3(0.0f)), 0.0);
+    const FieldProgram moved = compileFieldProgram(clusters(seed, glm::vec3(0.0f, 0.09f, 0.0f), glm::vec3(0.0f, -0.09f, 0.0f)), 0.0);
+    for (auto lists : {GpuPolygonizeSettings::RegionPrograms::Off, GpuPolygonizeSettings::RegionPrograms::On}) {
+      INFO("region lists " << (lists == GpuPolygonizeSettings::RegionPrograms::On));
+      GpuPolygonizeSettings s;
+      s.resolution = 64;
+      s.bounds = box();
+      s.regionPrograms = lists;
+      GpuPolygonizeStats full, first, second, third;
+      const TriangleMesh fullHeld = r.run(GpuField::single(held), s, nullptr, full);
+      GpuPolygonizeStats fullMovedStats;
+      const TriangleMesh fullMoved = r.run(GpuField::single(moved), s, nullptr, fullMovedStats);
+      REQUIRE(fullHeld.triangleCount() > 200);
+      // Frame 1: nothing to reuse. Frame 2, the same program: every active block reused.
+      auto p1 = r.prepare(GpuField::single(held), s, nullptr);
+      r.run(GpuField::single(held), s, p1.get(), first);
+      CHECK_FALSE(first.coherent);
+      CHECK(first.blocksReused == 0);
+      auto p2 = r.prepare(GpuField::single(held), s, p1.get());
+      CHECK(p2->hasChangeBounds());
+      const TriangleMesh again = r.run(GpuField::single(held), s, p2.get(), second);
+      CHECK(second.coherent);
+      CHECK(second.blocksActive == full.blocksActive);
+      CHECK(second.blocksReused == second.blocksActive);
+      requireIdentical(again, fullHeld);
+      // Frame 3: every primitive moved by ~3 cells. Exact reuse (tolerance 0): nothing reused,
+      // exactly the full sweep. (With a tolerance, an active block the surface does not cross
+      // whose values stay far from 0 may be kept: it makes no vertex.)
+      GpuPolygonizeSettings exact = s;
+      exact.reuseToleranceCells = 0.0f;
+      auto p3 = r.prepare(GpuField::single(moved), exact, p2.get());
+      const TriangleMesh movedMesh = r.run(GpuField::single(moved), exact, p3.get(), third);
+      CHECK(third.coherent);
+      CHECK(third.blocksReused == 0);
+      requireIdentical(movedMesh, fullMoved);
+      // Moved back, exact: blocks keep nothing from two frames ago (their values are of frame 3).
+      GpuPolygonizeStats fourth;
+      auto p4 = r.prepare(GpuField::single(held), exact, p3.get());
+      requireIdentical(r.run(GpuField::single(held), exact, p4.get(), fourth), fullHeld);
+      CHECK(fourth.blocksReused == 0);
+      // Off: nothing kept, nothing reused.
+      GpuPolygonizeSettings off = s;
+      off.reuseToleranceCells = -1.0f;
+      GpuPolygonizeStats fifth;
+      auto p5 = r.prepare(GpuField::single(held), off, p4.get());
+      CHECK_FALSE(p5->hasChangeBounds());
+      requireIdentical(r.run(GpuField::single(held), off, p5.get(), fifth), fullHeld);
+      CHECK_FALSE(fifth.coherent);
+      CHECK(fifth.blocksReused == 0);
+    }
+  }
+  CHECK(r.ctx->validationErrorCount() == 0);
+}
+
+TEST_CASE("GPU coherence: where one cluster moves a little, the held one is reused exactly and the moved one within 0.1 cell",
+          "[gpu][gpupoly][coherence]") {
+  CoherenceRig r;
+  GpuPolygonizeSettings s;
+  s.resolution = 64;
+  s.bounds = box();
+  s.regionPrograms = GpuPolygonizeSettings::RegionPrograms::On;  // per-superblock primitive sets
+  const FieldProgram before = compileFieldProgram(clusters(7, glm::vec3(0.0f), glm::vec3(0.0f)), 0.0);
+  GpuPolygonizeStats st;
+  auto p1 = r.prepare(GpuField::single(before), s, nullptr);
+  r.run(GpuField::single(before), s, p1.get(), st);
+  auto prev = p1;
+  const float h = st.cellSize;
+  std::vector<uint32_t> reusedPerFrame;
+  // The right cluster drifts by a thousandth of a cell a frame (within the tolerance), then by a
+  // twentieth (beyond it soon).
+  std::vector<FieldProgram> programs;
+  for (int k = 1; k <= 4; ++k) {
+    const float step = k <= 2 ? 0.001f * h * float(k) : 0.05f * h * float(k);
+    programs.push_back(compileFieldProgram(clusters(7, glm::vec3(0.0f), glm::vec3(step, 0.0f, 0.0f)), 0.0));
+  }
+  for (size_t k = 0; k < programs.size(); ++k) {
+    INFO("frame " << k + 2);
+    const GpuField f = GpuField::single(programs[k]);
+    GpuPolygonizeSettings exact = s;
+    exact.reuseToleranceCells = -1.0f;
+    auto p = r.prepare(f, s, prev.get());
+    GpuPolygonizeStats reused;
+    const TriangleMesh m = r.run(f, s, p.get(), reused);
+    CHECK(reused.coherent);
+    CHECK(reused.blocksReused > 0);  // the held cluster's blocks at least
+    if (k >= 2) CHECK(reused.blocksReused < reused.blocksActive);  // not the moved cluster's
+    reusedPerFrame.push_back(reused.blocksReused);
+    prev = p;
+    // The full sweep of the same program, on a polygoniser keeping nothing (off) -- a second
+    // polygoniser, so that this chain of frames goes on.
+    CoherenceRig fresh;
+    GpuPolygonizeStats fst;
+    const TriangleMesh full = fresh.run(f, exact, nullptr, fst);
+    CHECK_FALSE(fst.coherent);
+    CHECK(fst.blocksReused == 0);
+    CHECK(m.triangleCount() == full.triangleCount());
+    CHECK(m.positions.size() == full.positions.size());
+    CHECK(farthest(m, full) <= 0.1f * h + 1e-6f);
+    CHECK(farthest(full, m) <= 0.1f * h + 1e-6f);
+    CHECK(fresh.ctx->validationErrorCount() == 0);
+  }
+  // Within the tolerance, blocks of the moving cluster were reused too.
+  CHECK(reusedPerFrame[0] > reusedPerFrame[3]);
+  CHECK(r.ctx->validationErrorCount() == 0);
+}
