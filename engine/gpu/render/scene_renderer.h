@@ -74,7 +74,8 @@ struct TransitionMeshDraw {
 // drawn with vkCmdDrawIndexedIndirect: no CPU read-back. Buffers must stay
 // valid until the frame that draws them completes.
 struct GeneratedMeshDraw {
-  static constexpr uint32_t kVertexStride = 16;  // positions and normals: vec4 per vertex (xyz used)
+  // Positions and normals: a vec4 per vertex (xyz; a normal's w: the colour pass's colour).
+  static constexpr uint32_t kVertexStride = 16;
   VkBuffer positions = VK_NULL_HANDLE;  // float xyz(w) per vertex, kVertexStride apart
   VkBuffer normals = VK_NULL_HANDLE;    // float xyz(w) per vertex (unit, outward), kVertexStride apart
   VkBuffer indices = VK_NULL_HANDLE;    // uint32 triangle list, counter-clockwise from outside
