@@ -17,6 +17,7 @@
 #include "gpu/present/offscreen_target.h"
 #include "gpu/render/scene_renderer.h"
 #include "gpu_fixture.h"
+#include "polygonizer_rig.h"
 #include "util/blob_builders.h"
 #include "util/morph_fixtures.h"
 
@@ -26,20 +27,6 @@ using namespace animorph::test;
 
 namespace {
 
-struct ColorRig {
-  std::unique_ptr<Context> ctx;
-  std::unique_ptr<GpuPolygonizer> poly;
-};
-
-ColorRig makeColorRig() {
-  ColorRig r;
-  r.ctx = makeTestContext();
-  auto p = GpuPolygonizer::create(*r.ctx);
-  INFO(p.error());
-  REQUIRE(p.ok());
-  r.poly = std::move(*p);
-  return r;
-}
 
 // Every primitive of the subtree painted with one of four colours (so some ops are of one colour,
 // others mixed).
@@ -89,7 +76,7 @@ ColorComparison compareColors(GpuPolygonizer& poly, const FieldProgram& p, const
 TEST_CASE("GPU polygoniser: GPU and CPU colours of the same polygonisation agree within 1/255 (painted random trees, "
           "every op, the blob creature)",
           "[gpu][gpupoly][color]") {
-  ColorRig r = makeColorRig();
+  PolygonizerRig r;
   size_t vertices = 0, within = 0;
   float largest = 0.0f;
   std::set<int> ops;  // the op codes the programs used
@@ -181,7 +168,7 @@ TEST_CASE("GPU polygoniser: GPU and CPU colours of the same polygonisation agree
 }
 
 TEST_CASE("GPU polygoniser: a program without colours has no colour stream (the one tone)", "[gpu][gpupoly][color]") {
-  ColorRig r = makeColorRig();
+  PolygonizerRig r;
   std::mt19937 rng(5);
   int id = 1;
   FieldProgram p = compileFieldProgram(treeOf(randomNode(rng, 3, id), 0.5f), 0.5);
@@ -226,7 +213,7 @@ BlobNode colouredPoint(int id, const glm::vec3& centre, const glm::vec3& c) {
 TEST_CASE("GPU polygoniser: the GPU preview of a coloured BlobTree draws its vertices' colours, one without colours "
           "its one tone",
           "[gpu][gpupoly][color]") {
-  ColorRig r = makeColorRig();
+  PolygonizerRig r;
   auto target = OffscreenTarget::create(*r.ctx, 96, 96);
   REQUIRE(target.ok());
   auto renderer = SceneRenderer::create(*r.ctx, (*target)->renderPass());
@@ -300,7 +287,7 @@ TEST_CASE("GPU polygoniser: a morph of two coloured stand-ins takes its colour p
   REQUIRE(morphHasColors(rt));
   const MorphMarkers& k = rt.setup.markers;
   const double tb = rt.timeline.frameToSec(k.b), tc = rt.timeline.frameToSec(k.c);
-  ColorRig r = makeColorRig();
+  PolygonizerRig r;
   size_t vertices = 0, within = 0;
   float largest = 0.0f;
   glm::vec3 lo(1.0f), hi(0.0f);  // the colours' range over the three (the gear is bronze all over)

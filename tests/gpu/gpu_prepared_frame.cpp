@@ -11,6 +11,7 @@
 #include "core/scene/morph_preview_source.h"
 #include "demo/blob_creature.h"
 #include "gpu_fixture.h"
+#include "polygonizer_rig.h"
 #include "gpu/polygonizer/gpu_polygonizer.h"
 #include "gpu/polygonizer/implicit_preview.h"
 #include "util/blob_builders.h"
@@ -22,25 +23,11 @@ using namespace animorph::test;
 
 namespace {
 
-struct PolyRig {
-  std::unique_ptr<Context> ctx = makeTestContext();
-  std::unique_ptr<GpuPolygonizer> poly;
-  PolyRig() {
-    auto p = GpuPolygonizer::create(*ctx);
-    INFO(p.error());
-    REQUIRE(p.ok());
-    poly = std::move(*p);
-  }
+// The shared rig; mesh() is its polygonisation read back.
+struct PolyRig : PolygonizerRig {
   TriangleMesh mesh(const GpuField& f, const GpuPolygonizeSettings& s, const GpuPreparedFrame* prepared,
                     GpuPolygonizeStats& stats) {
-    auto st = poly->polygonize(f, s, prepared);
-    INFO(st.error());
-    REQUIRE(st.ok());
-    stats = *st;
-    auto m = poly->readBack();
-    INFO(m.error());
-    REQUIRE(m.ok());
-    return std::move(*m);
+    return polygonizeAndRead(f, s, prepared, stats);
   }
 };
 

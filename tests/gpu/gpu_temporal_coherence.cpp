@@ -10,6 +10,7 @@
 
 #include "core/blobtree/compile.h"
 #include "gpu_fixture.h"
+#include "polygonizer_rig.h"
 #include "gpu/polygonizer/gpu_polygonizer.h"
 #include "util/blob_builders.h"
 
@@ -19,27 +20,12 @@ using namespace animorph::test;
 
 namespace {
 
-struct CoherenceRig {
-  std::unique_ptr<Context> ctx = makeTestContext();
-  std::unique_ptr<GpuPolygonizer> poly;
-  uint64_t limit = 0;
-  CoherenceRig() {
-    auto p = GpuPolygonizer::create(*ctx);
-    INFO(p.error());
-    REQUIRE(p.ok());
-    poly = std::move(*p);
-    limit = GpuPolygonizer::loopLimit(ctx->properties());
-  }
+// The shared rig with the device's loop limit; run() is its polygonisation read back.
+struct CoherenceRig : PolygonizerRig {
+  uint64_t limit = GpuPolygonizer::loopLimit(ctx->properties());
   TriangleMesh run(const GpuField& f, const GpuPolygonizeSettings& s, const GpuPreparedFrame* prepared,
                    GpuPolygonizeStats& stats) {
-    auto st = poly->polygonize(f, s, prepared);
-    INFO(st.error());
-    REQUIRE(st.ok());
-    stats = *st;
-    auto m = poly->readBack();
-    INFO(m.error());
-    REQUIRE(m.ok());
-    return std::move(*m);
+    return polygonizeAndRead(f, s, prepared, stats);
   }
   std::shared_ptr<const GpuPreparedFrame> prepare(const GpuField& f, const GpuPolygonizeSettings& s,
                                                   const GpuPreparedFrame* previous) {

@@ -4,6 +4,7 @@
 // one program (B's weights scaled by w, A's by 1 - w: the convolution field is
 // linear in its weights), so both sides make the same mesh.
 #include <algorithm>
+#include <optional>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -369,6 +370,20 @@ void paintById(BlobNode& n) {
   for (BlobNode& c : n.children) paintById(c);
 }
 
+// The median over reps of poly polygonising field under gs and reading the mesh back (latency,
+// wall, warm); vertices gets the mesh's count. Empty error, or why a run failed (the colour pass
+// not running as gs.colors asks included).
+double timedGpuColors(g::GpuPolygonizer& poly, const g::GpuField& field, const g::GpuPolygonizeSettings& gs,
+                      int reps, uint32_t& vertices, std::string& error) {
+  return animorph::bench::medianMs(reps, [&] {
+    auto r = poly.polygonize(field, gs);
+    if (!r) error = r.error();
+    else if (r->colors != gs.colors) error = "the colour pass did not run as asked";
+    else vertices = r->vertices;
+    if (auto mesh = poly.readBack(); !mesh) error = mesh.error();
+  });
+}
+
 // The colour stream's cost (docs/gpu-polygonizer.md, "Colour"): the blob creature painted part by
 // part, polygonised with and without vertex colours on the GPU (the colour pass) and on the CPU (per
 // block), same run, same grid.
@@ -386,13 +401,7 @@ void colorRows(g::GpuPolygonizer& poly, int threads, bool quick, std::vector<Row
     gs.resolution = res;
     gs.colors = colored != 0;
     std::string error;
-    gpuMs[colored] = animorph::bench::medianMs(reps, [&] {
-      auto r = poly.polygonize(g::GpuField::single(painted), gs);
-      if (!r) error = r.error();
-      else if (r->colors != gs.colors) error = "the colour pass did not run as asked";
-      else vertices = r->vertices;
-      if (auto mesh = poly.readBack(); !mesh) error = mesh.error();
-    });
+    gpuMs[colored] = timedGpuColors(poly, g::GpuField::single(painted), gs, reps, vertices, error);
     if (!error.empty()) {
       rows.push_back({tag + " GPU failed", 0, "", "", error});
       return;
@@ -447,13 +456,7 @@ void morphColorRows(g::GpuPolygonizer& poly, int threads, bool quick, std::vecto
     gs.bounds = f.bounds;
     gs.colors = colored != 0;
     std::string error;
-    gpuMs[colored] = animorph::bench::medianMs(reps, [&] {
-      auto r = poly.polygonize(field, gs);
-      if (!r) error = r.error();
-      else if (r->colors != gs.colors) error = "the colour pass did not run as asked";
-      else vertices = r->vertices;
-      if (auto mesh = poly.readBack(); !mesh) error = mesh.error();
-    });
+    gpuMs[colored] = timedGpuColors(poly, field, gs, reps, vertices, error);
     if (!error.empty()) {
       rows.push_back({tag + " GPU failed", 0, "", "", error});
       return;
@@ -474,22 +477,34 @@ void morphColorRows(g::GpuPolygonizer& poly, int threads, bool quick, std::vecto
   rows.push_back({tag + " GPU / CPU with colours", gpuMs[1] / cpuMs[1], "ratio", "", "the preview's two backends"});
 }
 
-std::vector<Row> runGpuColor(const animorph::bench::Options& opt) {
-  std::vector<Row> rows;
+// A Vulkan context and a GPU polygoniser on it for a bench, with its "device" row; none where there
+// is no device or the polygoniser cannot be made (a "skipped" row says why).
+struct BenchDevice {
+  std::unique_ptr<g::Context> ctx;
+  std::unique_ptr<g::GpuPolygonizer> poly;
+};
+std::optional<BenchDevice> benchDevice(std::vector<Row>& rows) {
   auto ctx = g::Context::create(g::ContextSettings{});
   if (!ctx) {
     rows.push_back({"skipped", 0, "", "", "no Vulkan device: " + ctx.error()});
-    return rows;
+    return std::nullopt;
   }
   auto poly = g::GpuPolygonizer::create(**ctx);
   if (!poly) {
     rows.push_back({"skipped", 0, "", "", poly.error()});
-    return rows;
+    return std::nullopt;
   }
   rows.push_back({"device", 0, "", "", (*ctx)->deviceName() + "; load average " + loadAverage() + " at start"});
+  return BenchDevice{std::move(*ctx), std::move(*poly)};
+}
+
+std::vector<Row> runGpuColor(const animorph::bench::Options& opt) {
+  std::vector<Row> rows;
+  std::optional<BenchDevice> dev = benchDevice(rows);
+  if (!dev) return rows;
   const int threads = baselineThreads();
-  colorRows(**poly, threads, opt.quick, rows);
-  morphColorRows(**poly, threads, opt.quick, rows);
+  colorRows(*dev->poly, threads, opt.quick, rows);
+  morphColorRows(*dev->poly, threads, opt.quick, rows);
   return rows;
 }
 
@@ -505,17 +520,8 @@ std::vector<Row> runGpuPoly(const animorph::bench::Options& opt) {
   const float w = 0.5f;
   FieldProgram a = standIn(seedA), b = standIn(seedB);
   FieldProgram merged = interpolatedProgram(seedA, seedB, w);
-  auto ctx = g::Context::create(g::ContextSettings{});
-  if (!ctx) {
-    rows.push_back({"skipped", 0, "", "", "no Vulkan device: " + ctx.error()});
-    return rows;
-  }
-  auto poly = g::GpuPolygonizer::create(**ctx);
-  if (!poly) {
-    rows.push_back({"skipped", 0, "", "", poly.error()});
-    return rows;
-  }
-  rows.push_back({"device", 0, "", "", (*ctx)->deviceName() + "; load average " + loadAverage() + " at start"});
+  std::optional<BenchDevice> dev = benchDevice(rows);
+  if (!dev) return rows;
   const g::GpuField field = g::GpuField::interpolation(a, b, w);
   const bool withDense = !std::getenv("ANIMORPH_BENCH_GPU_NO_DENSE");
   const int threads = baselineThreads();
@@ -523,7 +529,7 @@ std::vector<Row> runGpuPoly(const animorph::bench::Options& opt) {
     const char* target = res == 64 ? "<= 5 ms" : res == 128 ? "<= 30 ms" : "<= 200 ms";
     const int reps = res >= 256 ? 3 : (res >= 128 ? 5 : 9);
     const std::string tag = "40 segs morph " + std::to_string(res) + "^3";
-    const GpuTimes gpu = timeGpu(**poly, field, res, reps, withDense);
+    const GpuTimes gpu = timeGpu(*dev->poly, field, res, reps, withDense);
     if (!gpu.error.empty()) {
       rows.push_back({tag + " GPU failed", 0, "", "", gpu.error});
       continue;
@@ -531,7 +537,7 @@ std::vector<Row> runGpuPoly(const animorph::bench::Options& opt) {
     const CpuTimes cpu = timeCpu(merged, res, reps, withDense, threads);
     sizeRows(tag, target, res >= 128 ? "<= 1.2" : "", gpu, cpu, withDense, threads, rows);
   }
-  blobTreeRows(**poly, threads, opt.quick, rows);
+  blobTreeRows(*dev->poly, threads, opt.quick, rows);
   return rows;
 }
 
