@@ -10,8 +10,9 @@ namespace animorph::gpu {
 // swapchain, TRANSFER_SRC_OPTIMAL for an offscreen target that is read back)
 // and depth (cleared, not stored). loadColor: the colour attachment is loaded instead of cleared and
 // starts in COLOR_ATTACHMENT_OPTIMAL (a frame whose kept viewport image was copied in before the
-// pass); the pass stays compatible with the cleared one (same formats), so pipelines made for one
-// draw in the other. Errors: Vulkan failures.
+// pass), and depth is neither cleared nor stored (DONT_CARE: only pipelines that test no depth, the
+// UI's, may draw in it); the pass stays compatible with the cleared one (same formats), so pipelines
+// made for one draw in the other. Errors: Vulkan failures.
 Result<VkRenderPass> createSceneRenderPass(VkDevice device, VkFormat colorFormat, VkFormat depthFormat,
                                            VkImageLayout colorFinalLayout, bool loadColor = false);
 
