@@ -16,6 +16,7 @@
 #include "core/field/surface_color.h"
 #include "core/poly/marching_cubes_table.h"
 #include "core/poly/program_change.h"
+#include "core/poly/scrubbing_grid.h"
 
 namespace animorph {
 
@@ -172,12 +173,7 @@ std::optional<PolygonizeGrid> SequenceGrid::grid() const {
 }
 
 PolygonizeGrid scrubbingGrid(const PolygonizeGrid& own, const PolygonizeHistory& history, float coarser) {
-  std::optional<PolygonizeGrid> previous = history.grid();
-  if (own.empty || !previous || previous->cellSize > coarser * own.cellSize) return own;
-  const Bounds mine = gridBox(own), theirs = gridBox(*previous);
-  for (int a = 0; a < 3; ++a)
-    if (mine.min[a] < theirs.min[a] || mine.max[a] > theirs.max[a]) return own;
-  return *previous;
+  return holdScrubbingGrid(own, history.grid(), coarser);
 }
 
 Result<PolygonizeGrid> polygonizeGrid(const FieldProgram& program, const PolygonizeSettings& s) {

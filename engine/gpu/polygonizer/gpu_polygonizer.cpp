@@ -61,11 +61,24 @@ struct Grid {
   uint32_t superBlocks() const { return superAxis(0) * superAxis(1) * superAxis(2); }
 };
 
-// The CPU polygoniser's grid rule (poly/polygonizer.cpp), so both meet on the same grid.
-Result<Grid> makeGrid(const GpuField& field, const GpuPolygonizeSettings& s) {
+// The CPU polygoniser's grid rule (poly/polygonizer.cpp), so both meet on the same grid; s.grid
+// as it is. empty (may be null): set when the field is inside nowhere (the grid is then 1 cell).
+Result<Grid> makeGrid(const GpuField& field, const GpuPolygonizeSettings& s, bool* empty = nullptr) {
   Grid g;
   int res = s.resolution;
-  if (s.bounds) {
+  if (empty) *empty = false;
+  if (s.grid) {
+    const PolygonizeGrid& o = *s.grid;
+    bool ok = o.cellSize > 0.0f && std::isfinite(o.cellSize) && std::isfinite(o.origin.x) && std::isfinite(o.origin.y) &&
+              std::isfinite(o.origin.z);
+    for (int a = 0; a < 3; ++a) ok = ok && o.cells[a] >= 1 && o.cells[a] <= 512;
+    if (!ok)
+      return Error{"GPU polygoniser: the grid override has no cells, more than 512 a side, a cell size <= 0 or a "
+                   "non-finite origin"};
+    g.origin = o.origin;
+    g.h = o.cellSize;
+    for (int a = 0; a < 3; ++a) g.n[a] = uint32_t(o.cells[a]);
+  } else if (s.bounds) {
     Bounds box = *s.bounds;
     if (box.empty() || !std::isfinite(box.diagonal()) || box.diagonal() <= 0.0f)
       return Error{"GPU polygoniser: the bounds override is empty or not finite"};
@@ -82,7 +95,10 @@ Result<Grid> makeGrid(const GpuField& field, const GpuPolygonizeSettings& s) {
       Bounds t = p->tightBounds();
       if (!t.empty()) box.add(t);
     }
-    if (box.empty()) return g;  // n stays 1: an empty grid, nothing inside anywhere
+    if (box.empty()) {  // n stays 1: an empty grid, nothing inside anywhere
+      if (empty) *empty = true;
+      return g;
+    }
     if (field.b && field.method == MorphMethod::SpaceTime) {
       glm::vec3 pad = 0.05f * box.size();
       box.min -= pad;
@@ -1222,6 +1238,31 @@ Status GpuPolygonizer::record(VkCommandBuffer cmd, uint64_t frameSerial, const G
   return m.recordFrame(cmd, slot, field, s, stats_, false, prepared);
 }
 
+namespace {
+// Whether a and b override the grid alike (both not, or with the same grid).
+bool sameGridOverride(const GpuPolygonizeSettings& a, const GpuPolygonizeSettings& b) {
+  if (a.grid.has_value() != b.grid.has_value()) return false;
+  if (!a.grid) return true;
+  const PolygonizeGrid &x = *a.grid, &y = *b.grid;
+  return x.origin == y.origin && x.cellSize == y.cellSize && x.cells[0] == y.cells[0] && x.cells[1] == y.cells[1] &&
+         x.cells[2] == y.cells[2];
+}
+}  // namespace
+
+Result<PolygonizeGrid> GpuPolygonizer::grid(const GpuField& field, const GpuPolygonizeSettings& s) {
+  if (s.resolution < 2 || s.resolution > 512)
+    return Error{"GPU polygoniser: resolution " + std::to_string(s.resolution) + " is out of range (2..512)"};
+  bool empty = false;
+  Result<Grid> g = makeGrid(field, s, &empty);
+  if (!g) return Error{g.error()};
+  PolygonizeGrid r;
+  r.origin = g->origin;
+  r.cellSize = g->h;
+  for (int a = 0; a < 3; ++a) r.cells[a] = int(g->n[a]);
+  r.empty = empty;
+  return r;
+}
+
 const FramePrep* GpuPolygonizer::Impl::usable(const GpuPreparedFrame* prepared, const GpuField& field,
                                               const GpuPolygonizeSettings& s) const {
   if (!prepared) return nullptr;
@@ -1234,7 +1275,8 @@ const FramePrep* GpuPolygonizer::Impl::usable(const GpuPreparedFrame* prepared, 
                     f.method == field.method && p.resolution == s.resolution &&
                     p.marginCells == s.marginCells && p.regionPrograms == s.regionPrograms &&
                     p.loopBudgetCheck == s.loopBudgetCheck && p.bounds.has_value() == s.bounds.has_value() &&
-                    (!s.bounds || (p.bounds->min == s.bounds->min && p.bounds->max == s.bounds->max));
+                    (!s.bounds || (p.bounds->min == s.bounds->min && p.bounds->max == s.bounds->max)) &&
+                    sameGridOverride(p, s);
   if (!same || d.loopLimit != loopLimit(ctx.properties())) return nullptr;
   if (d.prep.lists && d.prep.conservative != conservativeRegions) return nullptr;
   return &d.prep;

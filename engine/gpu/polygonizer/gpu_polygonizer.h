@@ -25,6 +25,7 @@
 #include "core/math/bounds.h"
 #include "core/standin_morph/morph_field.h"
 #include "core/poly/mesh.h"
+#include "core/poly/polygonizer.h"
 #include "gpu/render/scene_renderer.h"
 #include "core/util/result.h"
 
@@ -80,6 +81,10 @@ struct GpuPolygonizeSettings {
   // bounds (the union for a morph; space-time blending adds 10%) grown by marginCells.
   std::optional<Bounds> bounds;
   float marginCells = 2.0f;
+  // The grid as it is (origin, cubic cell size, 1..512 cells a side), overriding resolution, bounds
+  // and marginCells: a scrubbed preview holds the previous frame's grid while the shape fits in it
+  // (poly/scrubbing_grid.h), so temporal coherence applies to moving shapes too.
+  std::optional<PolygonizeGrid> grid;
   // Per-block primitive lists and interval culling. Off: every block is
   // evaluated with every primitive (same mesh, slower).
   bool culling = true;
@@ -221,6 +226,11 @@ class GpuPolygonizer {
   // (a region reached by more primitives than the limit allows) fails in polygonize() and record()
   // with the figures, and a frame whose loops still run out is flagged and never drawn.
   static std::string unsupported(const GpuField& field);
+  // The grid field is polygonised on under s (the CPU polygoniser's rule, or s.grid), empty when the
+  // field is inside nowhere; on any thread, no device (for a field without bounds it computes the
+  // programs' interval-tightened bounds). Errors: a resolution out of 2..512, bad bounds or grid, an
+  // unbounded field without bounds.
+  static Result<PolygonizeGrid> grid(const GpuField& field, const GpuPolygonizeSettings& s);
   // Loop iterations after which the device stops every loop of a shader invocation, all loops
   // together (0: no such limit). llvmpipe (lavapipe): AM_POLY_LLVMPIPE_LOOP_LIMIT.
   static uint64_t loopLimit(const VkPhysicalDeviceProperties& properties);

@@ -431,7 +431,8 @@ bool ImplicitPreview::updateGpu(const std::shared_ptr<const PreviewSource>& sour
   if (!field) field = takeField(source, res, timeSec, s.settle);
   if (std::optional<bool> decided = unusableField(field, source)) return *decided;
   const GpuField gf = previewGpuField(*field->field);  // the colour pass walks its colour program
-  const GpuPolygonizeSettings gs = previewGpuSettings(*field->field, field->resolution);
+  GpuPolygonizeSettings gs = previewGpuSettings(*field->field, field->resolution);
+  gs.grid = field->grid;  // the grid its prepared frame was made on (held while scrubbing)
   // A kind of shape whose pipelines are not compiled yet: compile them in the background while the
   // CPU worker draws it (update(); the frame would otherwise stall ~1 s on lavapipe); retried every frame.
   // A screenshot (settle) waits for them instead: it must show this shape.

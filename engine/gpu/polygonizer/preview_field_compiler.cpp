@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "core/poly/scrubbing_grid.h"
 #include "gpu/polygonizer/gpu_polygonizer.h"
 
 namespace animorph::gpu {
@@ -93,10 +94,15 @@ std::shared_ptr<const CompiledPreviewField> PreviewFieldCompiler::compile(
     c->field = std::move(*field);
     // The GPU frame's host half here too, off the recording thread (a failure is the record's to report).
     const auto p0 = Clock::now();
-    const GpuPreparedFrame* before = previous && previous->field && previous->resolution == r.resolution
-                                         ? previous->prepared.get() : nullptr;
-    auto prepared = GpuPolygonizer::prepare(previewGpuField(*c->field),
-                                            previewGpuSettings(*c->field, r.resolution), loopLimit, before, conservative);
+    const bool chained = previous && previous->field && previous->resolution == r.resolution;
+    const GpuPreparedFrame* before = chained ? previous->prepared.get() : nullptr;
+    const GpuField gf = previewGpuField(*c->field);
+    GpuPolygonizeSettings gs = previewGpuSettings(*c->field, r.resolution);
+    // Held from the field before while this one fits in it: a moving shape keeps its blocks too.
+    if (Result<PolygonizeGrid> own = GpuPolygonizer::grid(gf, gs); own && !own->empty)
+      c->grid = holdScrubbingGrid(*own, chained ? previous->grid : std::nullopt);
+    gs.grid = c->grid;
+    auto prepared = GpuPolygonizer::prepare(gf, gs, loopLimit, before, conservative);
     if (prepared) c->prepared = std::move(*prepared);
     c->prepareMs = std::chrono::duration<double, std::milli>(Clock::now() - p0).count();
   }

@@ -46,6 +46,10 @@ struct CompiledPreviewField {
   // before it (temporal coherence: used when that one was the last recorded). Null when it failed (the record prepares on the
   // spot and reports the error).
   std::shared_ptr<const GpuPreparedFrame> prepared;
+  // With field: the grid it is polygonised on (GpuPolygonizeSettings::grid; the record's settings are
+  // previewGpuSettings(*field, resolution) with it): the grid of the field compiled before it while
+  // this shape fits in that one (holdScrubbingGrid, as the CPU worker scrubs), else its own.
+  std::optional<PolygonizeGrid> grid;
   double prepareMs = 0.0;  // its host time (not part of milliseconds)
   // field() failed, or the GPU cannot express the program (GpuPolygonizer::unsupported); empty on success.
   std::string error;
