@@ -339,6 +339,7 @@ struct PolygonizeRun {
   void summariseCorners(const BlockJob& job, const Scratch& sc);
   void triangulateBlock(const BlockJob& job, Scratch& sc);
   void gradientNormals(const BlockJob& job, Scratch& sc);
+  void normalsWithColors(const BlockJob& job, Scratch& sc);
   void colorVertices(const ActiveProgram& active, BlockOutput& o, Scratch& sc, size_t m);
   void recolorKept(BlockOutput& o, Scratch& sc);
   void markColorChanges();
@@ -773,11 +774,16 @@ void PolygonizeRun::triangulateBlock(const BlockJob& job, Scratch& sc) {
   mesher.triangulate();
 }
 
-// Normals from the field gradient at the block's own vertices.
+// Normals from the field gradient at the block's own vertices (and their colours, with per-block
+// colours).
 void PolygonizeRun::gradientNormals(const BlockJob& job, Scratch& sc) {
   BlockOutput& o = *out[job.bi];
   size_t nv = o.positions.size();
   if (nv == 0) return;
+  if (colorProg && !job.perSub) {
+    normalsWithColors(job, sc);
+    return;
+  }
   sc.x.resize(nv);
   sc.y.resize(nv);
   sc.z.resize(nv);
@@ -810,8 +816,8 @@ void PolygonizeRun::gradientNormals(const BlockJob& job, Scratch& sc) {
   }
   points.fetch_add(nv, std::memory_order_relaxed);
   if (!colorProg) return;
-  // Colours: every vertex with the block's program, one walk per run of 128 (sub-block by sub-block,
-  // so each run stays compact), not one per sub-block.
+  // Colours (the sub-blocks' own programs gave the normals): every vertex with the block's program,
+  // one walk per run of 128 (sub-block by sub-block, so each run stays compact), not one per sub-block.
   sc.gather.clear();
   for (int sq = 0; sq < 8; ++sq)
     for (size_t q = 0; q < nv; ++q)
@@ -823,6 +829,43 @@ void PolygonizeRun::gradientNormals(const BlockJob& job, Scratch& sc) {
     sc.z[q] = pq.z;
   }
   colorVertices(*job.prog, o, sc, nv);
+}
+
+// Normals and colours in one walk (field/surface_color.h, evaluateActiveWithGradient) where the
+// block's vertices are evaluated with the block's program: every vertex, one walk per run of 128
+// in sub-block order (compact runs), instead of the gradient walk per sub-block and then the colour
+// walk over the same ops at the same points. The gradients are the evaluator's bit for bit (its
+// value at a point does not depend on the other points of the run), so the normals are those of a
+// polygonisation without colours. Its time counts as colour time (stats.colorMilliseconds).
+void PolygonizeRun::normalsWithColors(const BlockJob& job, Scratch& sc) {
+  const auto c0 = std::chrono::steady_clock::now();
+  BlockOutput& o = *out[job.bi];
+  const size_t nv = o.positions.size();
+  for (auto* v : {&sc.x, &sc.y, &sc.z, &sc.gx, &sc.gy, &sc.gz}) v->resize(nv);
+  sc.gather.clear();
+  for (int sq = 0; sq < 8; ++sq)
+    for (size_t q = 0; q < nv; ++q)
+      if (sc.vertexSub[q] == sq) sc.gather.push_back(uint32_t(q));
+  for (size_t q = 0; q < nv; ++q) {
+    const glm::vec3& pq = o.positions[sc.gather[q]];
+    sc.x[q] = pq.x;
+    sc.y[q] = pq.y;
+    sc.z[q] = pq.z;
+  }
+  o.colors.resize(nv);
+  sc.rgba.resize(nv);
+  sc.color.evaluateActiveWithGradient(*colorProg, *job.prog, sc.x.data(), sc.y.data(), sc.z.data(), int(nv),
+                                      sc.rgba.data(), nullptr, sc.gx.data(), sc.gy.data(), sc.gz.data());
+  for (size_t q = 0; q < nv; ++q) {
+    const uint32_t k = sc.gather[q];
+    o.normals[k] = outwardNormal(sc.gx[q], sc.gy[q], sc.gz[q], o.normals[k]);
+    o.colors[k] = sc.rgba[q];
+  }
+  pairs.fetch_add(nv * job.prog->primitiveCount, std::memory_order_relaxed);
+  points.fetch_add(nv, std::memory_order_relaxed);
+  colorNs.fetch_add(
+      std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - c0).count(),
+      std::memory_order_relaxed);
 }
 
 // The colours of the m vertices sc.gather of o (their points in sc.x, y, z), with active: the
