@@ -512,16 +512,28 @@ void sumValues(RunScratch& S, int base, int count, int n) {
     return;
   }
   const int rows = S.grad ? 4 : 1;  // the value, then the gradient's x, y, z
-  for (int r = 0; r < rows; ++r) {
-    float* out = S.V(base) + size_t(r) * kRun;
-    if (k0 > 0) std::copy(S.V(base + k0) + size_t(r) * kRun, S.V(base + k0) + size_t(r) * kRun + n, out);
-    for (int k = k0 + 1; k < count; ++k) {
-      if (S.zero[base + k]) continue;
-      const float* in = S.V(base + k) + size_t(r) * kRun;
-      for (int i = 0; i < n; ++i) out[i] += in[i];
-    }
+  for (int r = 0; k0 > 0 && r < rows; ++r) {
+    const float* from = S.V(base + k0) + r * kRun;
+    std::copy(from, from + n, S.V(base) + r * kRun);
   }
   S.zero[base] = 0;
+  float *__restrict v = S.V(base), *__restrict gx = S.G(base, 0), *__restrict gy = S.G(base, 1),
+                    *__restrict gz = S.G(base, 2);
+  for (int k = k0 + 1; k < count; ++k) {
+    if (S.zero[base + k]) continue;
+    const float *__restrict a = S.V(base + k), *__restrict ax = S.G(base + k, 0), *__restrict ay = S.G(base + k, 1),
+                            *__restrict az = S.G(base + k, 2);
+    if (!S.grad) {
+      for (int i = 0; i < n; ++i) v[i] += a[i];
+      continue;
+    }
+    for (int i = 0; i < n; ++i) {  // the four rows in one loop (a sub-block's dozen points: one pass)
+      v[i] += a[i];
+      gx[i] += ax[i];
+      gy[i] += ay[i];
+      gz[i] += az[i];
+    }
+  }
 }
 
 // A Sum over entries [base, base + op.count) into base, as combine() gives it, operand by operand

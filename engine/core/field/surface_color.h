@@ -70,8 +70,8 @@ class SurfaceColorEvaluator {
   // field and its gradient at the points: f[i] (the field minus the threshold; f may be null) and
   // (gx[i], gy[i], gz[i]) bit for bit what FieldEvaluator::evaluate gives with the same active
   // program (the walk runs the evaluator's value and gradient arithmetic, op by op in its order,
-  // and calls the same kernels). For the CPU polygoniser's normals and colours in one walk over a
-  // block's program instead of two. gx, gy, gz must not be null.
+  // and calls the same kernels). For the CPU polygoniser's normals and colours in one walk instead
+  // of two (a sub-block's vertices with its block's program). gx, gy, gz must not be null.
   void evaluateActiveWithGradient(const ColorProgram& program, const ActiveProgram& active, const float* x,
                                   const float* y, const float* z, int n, glm::vec4* out, float* f, float* gx,
                                   float* gy, float* gz);
