@@ -14,7 +14,8 @@
 // Where every weight is 0, the first operand's colour is kept; where none of a Prims op's
 // primitives contributes, it has the colour of its first primitive. The field itself is not changed
 // and its kernels are reused as they are: colour costs one more walk over the primitives reaching
-// each point, done per output vertex (not per grid point).
+// each point, done per output vertex (not per grid point); the CPU polygoniser rides it on the
+// walk its normals need (evaluateActiveWithGradient: the field's gradient on the same stack).
 //
 // Only the primitives reaching a point can colour it (the others' field, and so their weight, is 0
 // there), so the walk is restricted to them: evaluate() sorts the points into compact runs and
