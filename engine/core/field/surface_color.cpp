@@ -66,28 +66,36 @@ void setUniform(RunScratch& S, int s, const glm::vec3& c) {
   S.uc[s] = c;
 }
 
-// Entry s's rows written: its value row where it is +0 everywhere, its colour rows where it has one
-// colour (the per-point rules read them).
+// Sets entry s's gradient to 0 at every point (in a walk with gradients).
+void zeroGradient(RunScratch& S, int s, int n) {
+  if (!S.grad) return;
+  for (int a = 0; a < 3; ++a) std::fill(S.G(s, a), S.G(s, a) + n, 0.0f);
+}
+
+// Entry s's rows written: its value (and gradient) rows where it is +0 everywhere, its colour rows
+// where it has one colour (the per-point rules read them).
 void materialise(RunScratch& S, int s, int n) {
-  if (S.zero[s]) std::fill(S.V(s), S.V(s) + n, 0.0f);
+  if (S.zero[s]) {
+    std::fill(S.V(s), S.V(s) + n, 0.0f);
+    zeroGradient(S, s, n);
+  }
   if (S.uni[s]) fillColor(S, s, n, S.uc[s]);
   S.zero[s] = S.uni[s] = 0;
 }
 
-// The field of primitives idx[0, count) at the points into f (summed, or their max with 0).
+// The field of primitives idx[0, count) at the points into f (summed, or their max with 0), and
+// its gradient into gx, gy, gz when gx is not null: from zeros, as the field evaluator's Prims op.
 void contribution(const FieldProgram& P, PrimClass cls, const uint32_t* idx, int count, bool combineMax,
                   const float* x, const float* y, const float* z, int n, const glm::vec3& lo, const glm::vec3& hi,
-                  float* f) {
+                  float* f, float* gx = nullptr, float* gy = nullptr, float* gz = nullptr) {
   std::fill(f, f + n, 0.0f);
+  if (gx)
+    for (float* g : {gx, gy, gz}) std::fill(g, g + n, 0.0f);
   switch (cls) {
-    case PrimClass::Skeletal:
-      skeletalKernel(P, idx, count, combineMax, x, y, z, n, lo, hi, f, nullptr, nullptr, nullptr);
-      break;
-    case PrimClass::Convolution:
-      convolutionKernel(P.convolution, idx, count, x, y, z, n, f, nullptr, nullptr, nullptr);
-      break;
+    case PrimClass::Skeletal: skeletalKernel(P, idx, count, combineMax, x, y, z, n, lo, hi, f, gx, gy, gz); break;
+    case PrimClass::Convolution: convolutionKernel(P.convolution, idx, count, x, y, z, n, f, gx, gy, gz); break;
     case PrimClass::Capsule:
-      capsuleKernel(P.capsules, P.threshold, idx, count, combineMax, x, y, z, n, f, nullptr, nullptr, nullptr);
+      capsuleKernel(P.capsules, P.threshold, idx, count, combineMax, x, y, z, n, f, gx, gy, gz);
       break;
   }
 }
@@ -165,8 +173,12 @@ void primsOp(const ColorProgram& CP, const ActiveProgram& A, const FieldOp& op, 
     setUniform(S, s, first);
     return;
   }
+  const auto fieldOfOp = [&] {  // the op's value (and gradient) as the field evaluator has them
+    contribution(P, op.primClass, A.indices.data() + op.first, int(op.count), op.combineMax, x, y, z, n, lo, hi, V,
+                 S.grad ? S.G(s, 0) : nullptr, S.G(s, 1), S.G(s, 2));
+  };
   if (uniformColor(P, A, op, first)) {
-    contribution(P, op.primClass, A.indices.data() + op.first, int(op.count), op.combineMax, x, y, z, n, lo, hi, V);
+    fieldOfOp();
     setUniform(S, s, first);
     return;
   }
@@ -198,6 +210,9 @@ void primsOp(const ColorProgram& CP, const ActiveProgram& A, const FieldOp& op, 
       }
     }
   }
+  // With gradients, the value the groups summed is replaced by the whole op's (the evaluator's sum
+  // order), the gradient with it: the groups give only the colours.
+  if (S.grad) fieldOfOp();
   if (op.combineMax) return;
   for (int i = 0; i < n; ++i) {
     if (W[i] > 0.0f) {
@@ -236,6 +251,19 @@ void setColor(RunScratch& S, int s, int i, const glm::vec3& c) {
 
 void take(RunScratch& S, int base, int k, int i) {
   for (int c = 0; c < 3; ++c) S.C(base, c)[i] = S.C(base + k, c)[i];
+  if (S.grad)
+    for (int a = 0; a < 3; ++a) S.G(base, a)[i] = S.G(base + k, a)[i];
+}
+
+// Entry base's gradient at point i: the sum of d[k] times entry base + k's, k < count, in the field
+// evaluator's order (from 0 for a hyper-blend, from the first term for the R-functions and bounded
+// blend, as it writes them).
+void chainGradient(RunScratch& S, int base, int count, int i, const float* d, bool fromZero) {
+  for (int a = 0; a < 3; ++a) {
+    float g = fromZero ? 0.0f + d[0] * S.G(base, a)[i] : d[0] * S.G(base, a)[i];
+    for (int k = 1; k < count; ++k) g += d[k] * S.G(base + k, a)[i];
+    S.G(base, a)[i] = g;
+  }
 }
 
 // A combining op over entries [base, base + count), result (value and colour) in entry base.
@@ -282,9 +310,18 @@ void combine(const ColorProgram& CP, const FieldOp& op, RunScratch& S, int base,
         for (int k = 0; k < m; ++k) w[k] = vals[k] > 0.0f ? std::pow(vals[k] / top, prm[0]) : 0.0f;
         weighted(S, base, m, i, w);
         V0[i] = hyperBlend(vals, m, prm[0], d);
+        if (S.grad) chainGradient(S, base, m, i, d, true);
         break;
       }
-      case OpCode::Difference: V0[i] = std::min(V0[i], 2.0f * T - S.V(base + 1)[i]); break;  // the kept side's colour
+      case OpCode::Difference: {  // the kept side's colour
+        const float other = 2.0f * T - S.V(base + 1)[i];
+        if (other < V0[i]) {
+          V0[i] = other;
+          if (S.grad)
+            for (int a = 0; a < 3; ++a) S.G(base, a)[i] = -S.G(base + 1, a)[i];
+        }
+        break;
+      }
       case OpCode::RUnion:
       case OpCode::RIntersection: {
         float d1, d2;
@@ -294,6 +331,7 @@ void combine(const ColorProgram& CP, const FieldOp& op, RunScratch& S, int base,
         w[1] = d2;
         weighted(S, base, 2, i, w);
         V0[i] = T + r;
+        if (S.grad) chainGradient(S, base, 2, i, w, false);
         break;
       }
       case OpCode::BoundedBlend: {
@@ -301,11 +339,14 @@ void combine(const ColorProgram& CP, const FieldOp& op, RunScratch& S, int base,
                                      BoundedBlendParams{prm[0], prm[1], prm[2], prm[3]}, d);
         weighted(S, base, 2, i, d);  // the bounding solid gives no colour
         V0[i] = T + r;
+        if (S.grad) chainGradient(S, base, 3, i, d, false);
         break;
       }
       case OpCode::Remap: {
         float dd;
         V0[i] = remapPotential(V0[i], prm[0], prm[1], T, dd);
+        if (S.grad)
+          for (int a = 0; a < 3; ++a) S.G(base, a)[i] *= dd;
         break;
       }
       default: break;
@@ -362,6 +403,77 @@ ANIMORPH_KERNEL __attribute__((noinline)) void mappedPointLoop(const SpaceMap& m
   else mappedPointValues<false>(m, p, x, y, z, n, V);
 }
 
+// mappedPointValues with the gradient, for a walk with gradients: the field evaluator's fused loop
+// (field_program_evaluate.cpp, mappedPointRun with gradients), its operations in its order, so the
+// value and gradient are the evaluator's bit for bit: within R, 0 + v (a sum) or v where v > 0 (a
+// union), and gf times the offset; elsewhere +0; the local gradient mapped back by L^T.
+template <int kPower, bool kMax>
+__attribute__((always_inline)) inline void mappedPointGradients(const SpaceMap& m, const SkeletalPrimitive& p,
+                                                                const float* __restrict x, const float* __restrict y,
+                                                                const float* __restrict z, int n, float* __restrict V,
+                                                                float* __restrict gx, float* __restrict gy,
+                                                                float* __restrict gz) {
+  const glm::mat3 L = m.linear;
+  const float l00 = L[0][0], l01 = L[0][1], l02 = L[0][2], l10 = L[1][0], l11 = L[1][1], l12 = L[1][2],
+              l20 = L[2][0], l21 = L[2][1], l22 = L[2][2];
+  const float o0 = m.origin.x, o1 = m.origin.y, o2 = m.origin.z;
+  const float px = p.skeleton.p0.x, py = p.skeleton.p0.y, pz = p.skeleton.p0.z;
+  const float r2 = p.radius * p.radius, I = p.intensity, K = p.stiffness;
+  for (int i = 0; i < n; ++i) {
+    const float dx = x[i] - o0, dy = y[i] - o1, dz = z[i] - o2;
+    const float qx = l00 * dx + l10 * dy + l20 * dz;
+    const float qy = l01 * dx + l11 * dy + l21 * dz;
+    const float qz = l02 * dx + l12 * dy + l22 * dz;
+    const float ex = qx - px, ey = qy - py, ez = qz - pz;
+    const float d2 = ex * ex + ey * ey + ez * ez;
+    const bool within = d2 < r2;
+    const float t = 1.0f - d2 / r2;
+    float tk1 = 1.0f;
+    if constexpr (kPower >= 1) tk1 *= t;
+    if constexpr (kPower >= 2) tk1 *= t;
+    if constexpr (kPower >= 3) tk1 *= t;
+    const float gf = -2.0f * I * K / r2 * tk1;
+    const float v = I * tk1 * t;
+    float fv, ax, ay, az;
+    if constexpr (kMax) {
+      const bool keep = within && v > 0.0f;
+      fv = keep ? v : 0.0f;
+      ax = keep ? gf * ex : 0.0f;
+      ay = keep ? gf * ey : 0.0f;
+      az = keep ? gf * ez : 0.0f;
+    } else {
+      fv = within ? 0.0f + v : 0.0f;
+      ax = within ? 0.0f + gf * ex : 0.0f;
+      ay = within ? 0.0f + gf * ey : 0.0f;
+      az = within ? 0.0f + gf * ez : 0.0f;
+    }
+    V[i] = fv;
+    gx[i] = l00 * ax + l01 * ay + l02 * az;
+    gy[i] = l10 * ax + l11 * ay + l12 * az;
+    gz[i] = l20 * ax + l21 * ay + l22 * az;
+  }
+}
+
+template <bool kMax>
+__attribute__((always_inline)) inline void mappedPointGradients(const SpaceMap& m, const SkeletalPrimitive& p,
+                                                                const float* x, const float* y, const float* z, int n,
+                                                                float* V, float* gx, float* gy, float* gz) {
+  const float K = p.stiffness;
+  if (K == 1.0f) mappedPointGradients<0, kMax>(m, p, x, y, z, n, V, gx, gy, gz);
+  else if (K == 2.0f) mappedPointGradients<1, kMax>(m, p, x, y, z, n, V, gx, gy, gz);
+  else if (K == 3.0f) mappedPointGradients<2, kMax>(m, p, x, y, z, n, V, gx, gy, gz);
+  else mappedPointGradients<3, kMax>(m, p, x, y, z, n, V, gx, gy, gz);
+}
+
+// mappedPointGradients, cloned as mappedPointLoop.
+ANIMORPH_KERNEL __attribute__((noinline)) void mappedPointGradientLoop(const SpaceMap& m, const SkeletalPrimitive& p,
+                                                                       bool combineMax, const float* x, const float* y,
+                                                                       const float* z, int n, float* V, float* gx,
+                                                                       float* gy, float* gz) {
+  if (combineMax) mappedPointGradients<true>(m, p, x, y, z, n, V, gx, gy, gz);
+  else mappedPointGradients<false>(m, p, x, y, z, n, V, gx, gy, gz);
+}
+
 // One Sum operand's weights w = max(v, 0) (0 where v is NaN) added to W, and w times its colour
 // (rows r, g, b, or the constant c where r is null) to R, G, B. Cloned as mappedPointLoop.
 ANIMORPH_KERNEL __attribute__((noinline)) void weighOperand(const float* __restrict v, const float* __restrict r,
@@ -389,6 +501,41 @@ ANIMORPH_KERNEL __attribute__((noinline)) void weighOperand(const float* __restr
   }
 }
 
+// The value (and gradient) of a Sum over entries [base, base + count) into base, as the field
+// evaluator sums them: entries +0 everywhere skipped, the first other one copied (0 + a is a), the
+// rest added in their order; every entry +0: base flagged +0.
+void sumValues(RunScratch& S, int base, int count, int n) {
+  int k0 = 0;
+  while (k0 < count && S.zero[base + k0]) ++k0;
+  if (k0 == count) {
+    S.zero[base] = 1;
+    return;
+  }
+  const int rows = S.grad ? 4 : 1;  // the value, then the gradient's x, y, z
+  for (int r = 0; k0 > 0 && r < rows; ++r) {
+    const float* from = S.V(base + k0) + r * kRun;
+    std::copy(from, from + n, S.V(base) + r * kRun);
+  }
+  S.zero[base] = 0;
+  float *__restrict v = S.V(base), *__restrict gx = S.G(base, 0), *__restrict gy = S.G(base, 1),
+                    *__restrict gz = S.G(base, 2);
+  for (int k = k0 + 1; k < count; ++k) {
+    if (S.zero[base + k]) continue;
+    const float *__restrict a = S.V(base + k), *__restrict ax = S.G(base + k, 0), *__restrict ay = S.G(base + k, 1),
+                            *__restrict az = S.G(base + k, 2);
+    if (!S.grad) {
+      for (int i = 0; i < n; ++i) v[i] += a[i];
+      continue;
+    }
+    for (int i = 0; i < n; ++i) {  // the four rows in one loop (a sub-block's dozen points: one pass)
+      v[i] += a[i];
+      gx[i] += ax[i];
+      gy[i] += ay[i];
+      gz[i] += az[i];
+    }
+  }
+}
+
 // A Sum over entries [base, base + op.count) into base, as combine() gives it, operand by operand
 // over all the points (loops the compiler vectorises): entries that are +0 everywhere are skipped
 // (their weight is 0, and v + 0 is v), one-coloured entries add their weight times a constant.
@@ -398,46 +545,28 @@ void sumOp(const ColorProgram& CP, const FieldOp& op, RunScratch& S, int base, i
   const int count = int(op.count), weighing = std::min(count, 64);  // combine(): at most 64 colours weigh
   const bool ruleEmpty = colorRule(op) == 2;
   const glm::vec3 emptyRule = ruleEmpty ? ruleColor(CP, op) : glm::vec3(0.0f);
-  bool allZero = true, oneColor = ruleEmpty || S.uni[base];
+  bool oneColor = ruleEmpty || S.uni[base];
   const glm::vec3 c0 = ruleEmpty ? emptyRule : S.uc[base];
   for (int k = 0; k < count; ++k) {
     const int e = base + k;
     if (S.zero[e]) continue;
-    allZero = false;
     if (k < weighing) oneColor = oneColor && S.uni[e] && S.uc[e] == c0;
   }
   if (oneColor) {  // (every operand +0: no weight anywhere, the colour c0 where none weighs)
-    if (allZero) S.zero[base] = 1;
-    else {  // the value: the plain sum, from the first operand that is not +0
-      bool started = false;
-      float* V0 = S.V(base);
-      for (int k = 0; k < count; ++k) {
-        if (S.zero[base + k]) continue;
-        const float* vk = S.V(base + k);
-        if (!started) std::copy(vk, vk + n, V0);
-        else
-          for (int i = 0; i < n; ++i) V0[i] += vk[i];
-        started = true;
-      }
-      S.zero[base] = 0;
-    }
+    sumValues(S, base, count, n);
     setUniform(S, base, c0);
     return;
   }
   float* W = S.weight.data();
-  float* vs = S.one.data();
   float* R = S.acc.data();
   float* G = R + kRun;
   float* B = R + 2 * kRun;
   std::fill(W, W + n, 0.0f);
-  std::fill(vs, vs + n, 0.0f);
   std::fill(S.acc.begin(), S.acc.end(), 0.0f);
-  for (int k = 0; k < count; ++k) {
+  for (int k = 0; k < weighing; ++k) {
     const int e = base + k;
     if (S.zero[e]) continue;
     const float* vk = S.V(e);
-    for (int i = 0; i < n; ++i) vs[i] += vk[i];
-    if (k >= weighing) continue;
     if (S.uni[e]) weighOperand(vk, nullptr, nullptr, nullptr, S.uc[e], n, W, R, G, B);
     else weighOperand(vk, S.C(e, 0), S.C(e, 1), S.C(e, 2), glm::vec3(0.0f), n, W, R, G, B);
   }
@@ -451,8 +580,8 @@ void sumOp(const ColorProgram& CP, const FieldOp& op, RunScratch& S, int base, i
       B0[i] = B[i] / W[i];
     }
   }
-  std::copy(vs, vs + n, S.V(base));
-  S.zero[base] = S.uni[base] = 0;
+  S.uni[base] = 0;
+  sumValues(S, base, count, n);
 }
 
 // BeginMap ops[oi] of an affine map, then one skeletal point primitive of one colour, then its
@@ -474,7 +603,8 @@ bool fusedMappedPoint(const ColorProgram& CP, const ActiveProgram& A, size_t oi,
   if (p.skeleton.kind != SkeletonKind::Point || !(p.radius > 0.0f) ||
       !(K == 1.0f || K == 2.0f || K == 3.0f || K == 4.0f) || !uniformColor(P, A, prims, first))
     return false;
-  mappedPointLoop(m, p, prims.combineMax, x, y, z, n, S.V(s));
+  if (S.grad) mappedPointGradientLoop(m, p, prims.combineMax, x, y, z, n, S.V(s), S.G(s, 0), S.G(s, 1), S.G(s, 2));
+  else mappedPointLoop(m, p, prims.combineMax, x, y, z, n, S.V(s));
   S.zero[s] = 0;
   setUniform(S, s, first);
   return true;
@@ -521,7 +651,7 @@ size_t matchingEnd(const ActiveProgram& A, size_t oi) {
 // Sizes the scratch for one run of program P and sets the points of level 0.
 void prepareRun(const FieldProgram& P, RunScratch& S, const float* x, const float* y, const float* z, int n) {
   const int depth = P.maxMapDepth() + 1;
-  S.stack.resize(size_t(std::max(1, P.maxStack())) * 4 * kRun);
+  S.stack.resize(size_t(std::max(1, P.maxStack())) * RunScratch::kRows * kRun);
   S.uni.assign(size_t(std::max(1, P.maxStack())), 0);
   S.zero.assign(size_t(std::max(1, P.maxStack())), 0);
   S.uc.resize(size_t(std::max(1, P.maxStack())));
@@ -585,18 +715,65 @@ void applyValueRule(const ColorProgram& CP, const FieldOp& op, RunScratch& S, in
     if (!(V[i] > 0.0f)) setColor(S, s, i, c);
 }
 
-// Pushes a constant value of one colour into entry s (+0: only flagged).
+// Pushes a constant value of one colour (gradient 0) into entry s (+0: only flagged).
 void pushConstant(RunScratch& S, int s, int n, float value, const glm::vec3& c) {
   S.zero[s] = value == 0.0f && !std::signbit(value);
-  if (!S.zero[s]) std::fill(S.V(s), S.V(s) + n, value);
+  if (!S.zero[s]) {
+    std::fill(S.V(s), S.V(s) + n, value);
+    zeroGradient(S, s, n);
+  }
   setUniform(S, s, c);
+}
+
+// Leaving map m (level is the parent's): entry s's local gradient mapped back to the parent's
+// space, grad = J^T grad_local, as the field evaluator's pullBackGradient computes it. An entry +0
+// everywhere keeps its zero gradient.
+void pullBackGradient(const SpaceMap& m, RunScratch& S, int s, int level, int n) {
+  if (!S.grad || S.zero[s]) return;
+  float *__restrict gx = S.G(s, 0), *__restrict gy = S.G(s, 1), *__restrict gz = S.G(s, 2);
+  if (m.kind == SpaceMapKind::Affine) {
+    const glm::mat3 L = m.linear;
+    const float l00 = L[0][0], l01 = L[0][1], l02 = L[0][2], l10 = L[1][0], l11 = L[1][1], l12 = L[1][2],
+                l20 = L[2][0], l21 = L[2][1], l22 = L[2][2];
+    for (int i = 0; i < n; ++i) {
+      const float a = gx[i], b = gy[i], c = gz[i];
+      gx[i] = l00 * a + l01 * b + l02 * c;
+      gy[i] = l10 * a + l11 * b + l12 * c;
+      gz[i] = l20 * a + l21 * b + l22 * c;
+    }
+    return;
+  }
+  const size_t l = size_t(level);
+  for (int i = 0; i < n; ++i) {
+    glm::mat3 J;
+    m.toLocal({S.lx[l][i], S.ly[l][i], S.lz[l][i]}, &J);
+    const glm::vec3 g = glm::transpose(J) * glm::vec3(gx[i], gy[i], gz[i]);
+    gx[i] = g.x;
+    gy[i] = g.y;
+    gz[i] = g.z;
+  }
+}
+
+// The walk's result: the field minus the threshold into f (when not null) and its gradient into
+// gx, gy, gz (when not null), as the field evaluator's last step writes them.
+void writeField(const FieldProgram& P, RunScratch& S, int sp, int n, float* f, float* gx, float* gy, float* gz) {
+  const bool none = sp == 0 || S.zero[0];
+  for (int i = 0; f && i < n; ++i) f[i] = (none ? 0.0f : S.V(0)[i]) - P.threshold;
+  if (!gx) return;
+  float* g[3] = {gx, gy, gz};
+  for (int a = 0; a < 3; ++a) {
+    if (none) std::fill(g[a], g[a] + n, 0.0f);
+    else std::copy(S.G(0, a), S.G(0, a) + n, g[a]);
+  }
 }
 
 // The ops of a specialised program over one run of n points (n <= kRun): colours into out.
 // skipMissedMaps: a map whose primitives reach none of the points is its empty value there, with
 // its empty colour, without mapping the points (as the field evaluator does): the same result.
+// With S.grad, the field and its gradient too (writeField: f may be null, gx not).
 void runColors(const ColorProgram& CP, const ActiveProgram& A, RunScratch& S, const float* x, const float* y,
-               const float* z, int n, glm::vec4* out, bool skipMissedMaps) {
+               const float* z, int n, glm::vec4* out, bool skipMissedMaps, float* f = nullptr,
+               float* gx = nullptr, float* gy = nullptr, float* gz = nullptr) {
   const FieldProgram& P = CP.program;
   prepareRun(P, S, x, y, z, n);
   int sp = 0, level = 0;
@@ -636,6 +813,7 @@ void runColors(const ColorProgram& CP, const ActiveProgram& A, RunScratch& S, co
       }
       case OpCode::EndMap:
         --level;
+        pullBackGradient(P.maps[op.first], S, sp - 1, level, n);
         applyValueRule(CP, op, S, sp - 1, n);
         break;
       default: {
@@ -651,6 +829,7 @@ void runColors(const ColorProgram& CP, const ActiveProgram& A, RunScratch& S, co
       }
     }
   }
+  if (S.grad) writeField(P, S, sp, n, f, gx, gy, gz);
   if (sp > 0 && S.uni[0]) {
     std::fill(out, out + n, glm::vec4(glm::clamp(S.uc[0], 0.0f, 1.0f), 1.0f));
     return;
@@ -695,7 +874,7 @@ ColorProgram::ColorProgram(const FieldProgram& p) : program(p) {
   emptyColor.assign(p.ops.size(), clayLinear());
   mapEmptyColor.assign(p.maps.size(), clayLinear());
   RunScratch S;
-  S.stack.resize(size_t(std::max(1, p.maxStack())) * 4 * kRun);
+  S.stack.resize(size_t(std::max(1, p.maxStack())) * RunScratch::kRows * kRun);
   S.one.resize(kRun);
   S.weight.resize(kRun);
   int sp = 0;
@@ -777,14 +956,35 @@ void SurfaceColorEvaluator::evaluateActive(const ColorProgram& program, const Ac
     std::fill(out, out + n, glm::vec4(glm::clamp(c, 0.0f, 1.0f), 1.0f));
     return;
   }
+  run_.grad = false;
   for (int b = 0; b < n; b += kRun)
     runColors(program, active, run_, x + b, y + b, z + b, std::min(kRun, n - b), out + b, true);
+}
+
+void SurfaceColorEvaluator::evaluateActiveWithGradient(const ColorProgram& program, const ActiveProgram& active,
+                                                       const float* x, const float* y, const float* z, int n,
+                                                       glm::vec4* out, float* f, float* gx, float* gy, float* gz) {
+  if (glm::vec3 c; singleColor(program, active, c)) {  // the colour is known: the field's own walk is cheaper
+    std::fill(out, out + n, glm::vec4(glm::clamp(c, 0.0f, 1.0f), 1.0f));
+    if (!f) {
+      fScratch_.resize(size_t(std::max(n, 0)));
+      f = fScratch_.data();
+    }
+    field_.evaluate(program.program, active, x, y, z, n, f, gx, gy, gz);
+    return;
+  }
+  run_.grad = true;
+  for (int b = 0; b < n; b += kRun)
+    runColors(program, active, run_, x + b, y + b, z + b, std::min(kRun, n - b), out + b, true, f ? f + b : nullptr,
+              gx + b, gy + b, gz + b);
+  run_.grad = false;
 }
 
 void SurfaceColorEvaluator::evaluateFull(const FieldProgram& program, const glm::vec3* points, size_t n,
                                          glm::vec4* out) {
   const ColorProgram cp(program);
   program.specialiseAll(run_.active);
+  run_.grad = false;
   float xyz[3 * kRun];
   for (size_t b = 0; b < n; b += kRun) {
     const int m = int(std::min<size_t>(kRun, n - b));

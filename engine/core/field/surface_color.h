@@ -14,7 +14,8 @@
 // Where every weight is 0, the first operand's colour is kept; where none of a Prims op's
 // primitives contributes, it has the colour of its first primitive. The field itself is not changed
 // and its kernels are reused as they are: colour costs one more walk over the primitives reaching
-// each point, done per output vertex (not per grid point).
+// each point, done per output vertex (not per grid point); the CPU polygoniser rides it on the
+// walk its normals need (evaluateActiveWithGradient: the field's gradient on the same stack).
 //
 // Only the primitives reaching a point can colour it (the others' field, and so their weight, is 0
 // there), so the walk is restricted to them: evaluate() sorts the points into compact runs and
@@ -66,6 +67,15 @@ class SurfaceColorEvaluator {
   // them spatially compact.
   void evaluateActive(const ColorProgram& program, const ActiveProgram& active, const float* x, const float* y,
                       const float* z, int n, glm::vec4* out);
+  // evaluateActive's colours (within float rounding: 1e-5 per channel) and, in the same walk, the
+  // field and its gradient at the points: f[i] (the field minus the threshold; f may be null) and
+  // (gx[i], gy[i], gz[i]) bit for bit what FieldEvaluator::evaluate gives with the same active
+  // program (the walk runs the evaluator's value and gradient arithmetic, op by op in its order,
+  // and calls the same kernels). For the CPU polygoniser's normals and colours in one walk instead
+  // of two (a sub-block's vertices with its block's program). gx, gy, gz must not be null.
+  void evaluateActiveWithGradient(const ColorProgram& program, const ActiveProgram& active, const float* x,
+                                  const float* y, const float* z, int n, glm::vec4* out, float* f, float* gx,
+                                  float* gy, float* gz);
   // The reference: every point against the whole program (specialiseAll), no spatial restriction
   // but the kernels' own skipping. For tests; slow on large programs.
   void evaluateFull(const FieldProgram& program, const glm::vec3* points, size_t n, glm::vec4* out);
@@ -73,7 +83,9 @@ class SurfaceColorEvaluator {
   // One run's working memory (public only so that its type is complete here; not an interface).
   static constexpr int kRun = 128;  // points evaluated together
   struct RunScratch {
-    std::vector<float> stack, coords, one, weight;  // stack entry s: kRun values, then kRun each of r, g, b
+    // Stack entry s: kRun values, then kRun each of the gradient's x, y, z (written only in a walk
+    // with gradients), then kRun each of r, g, b.
+    std::vector<float> stack, coords, one, weight;
     // Per stack entry: its colour is uni[s] ? uc[s] at every point (its r, g, b rows unwritten) : its
     // rows; zero[s]: its value is +0 at every point (its value row unwritten). acc: a Sum's r, g, b sums.
     std::vector<uint8_t> uni, zero;
@@ -85,14 +97,19 @@ class SurfaceColorEvaluator {
     ActiveProgram active;
     std::vector<const float*> lx, ly, lz;  // per map level: the points
     std::vector<glm::vec3> lo, hi;         // per map level: their box
-    float* V(int s) { return stack.data() + size_t(s) * 4 * kRun; }
-    float* C(int s, int c) { return V(s) + size_t(c + 1) * kRun; }
+    bool grad = false;                     // this walk carries the field's gradient
+    float* V(int s) { return stack.data() + size_t(s) * kRows * kRun; }
+    float* G(int s, int a) { return V(s) + size_t(a + 1) * kRun; }  // gradient component a (x, y, z)
+    float* C(int s, int c) { return V(s) + size_t(c + 4) * kRun; }
+    static constexpr int kRows = 7;
   };
 
  private:
   std::vector<uint32_t> order_;
   std::vector<uint64_t> keys_;
   RunScratch run_;  // evaluateActive's and evaluateFull's
+  FieldEvaluator field_;        // evaluateActiveWithGradient's gradients where the program has one colour
+  std::vector<float> fScratch_;  // its values when the caller wants none
 };
 
 }  // namespace animorph
