@@ -17,16 +17,17 @@
 // every primitive of it walked (the block masks are A's).
 // The colour table (P.colorPass.x, a pool index) holds one vec4 per op of the program walked (the colour
 // of the subtree it closes where no primitive contributes), then one per primitive (its colour).
-// With per-region op lists (P.colorPass.z != 0) the walk is the vertex's region's list instead:
-// program A's (the one the normals pass walks, P.regionLists.x) or the colour program's own
-// (P.colorPass.w, built the same way: gpu_color_table.h), so its cost follows the ops and primitives
-// near the vertex. A list is the CPU's specialised program (FieldProgram::specialise): where it
-// dropped a subtree or a zero operand, its records carry the colour provenance the CPU's walk reads
-// (gpu_region_op_lists.h): rule 1 a constant's colour, 2 a Sum's where no operand weighs, 3 an op's
-// where its value is <= 0, each an op's empty colour of the whole program (the table's first part);
-// a Prims op's fallback is its whole op's first primitive's colour, a skipped map's its map's empty
-// colour (the table's maps, P.colorPass.y; the clay tone the word before). Colours: those of the
-// whole walk, as the CPU's evaluateActive gives them (surface_color.h).
+// With per-region op lists (P.colorPass.z = 1 + the regions' shift; 0: none) the walk is the
+// vertex's region's list instead: program A's (the one the normals pass walks, P.regionLists.x) or
+// the colour program's own (P.colorPass.w, built the same way for pairs of blocks: gpu_color_table.h),
+// so its cost follows the ops and primitives near the vertex. A list is the CPU's specialised
+// program (FieldProgram::specialise): where it dropped a subtree or a zero operand, its records
+// carry the colour provenance the CPU's walk reads (gpu_region_op_lists.h): rule 1 a constant's
+// colour, 2 a Sum's where no operand weighs, 3 an op's where its value is <= 0, each an op's empty
+// colour of the whole program (the table's first part); a Prims op's fallback is its whole op's
+// first primitive's colour, a skipped map's its map's empty colour (the table's maps, P.colorPass.y;
+// the clay tone the word before). Colours: those of the whole walk, as the CPU's evaluateActive
+// gives them (surface_color.h).
 // Out: normals[v].w = the colour's RGBA8 bits tagged AM_POLY_COLOR_TAG (poly_constants.h).
 
 bool gAllPrimitives;  // a colour program of its own: every primitive walked
@@ -226,8 +227,11 @@ void colorPass() {
   vec4 q = positions[v];
   uint maskBase = floatBitsToUint(q.w);
   gListWalk = P.colorPass.z != 0u;
-  if (gListWalk) {  // the vertex's region's list (the normals pass's region, vertexRegion there)
-    uint region = regionOf(blockCoord(maskBase / max(P.modes.y, 1u)));
+  if (gListWalk) {  // the vertex's region's list: regions of 2^shift blocks a side (regionOf's order)
+    uint shift = P.colorPass.z - 1u;
+    uvec3 dims = (P.gridBlocks.xyz + (1u << shift) - 1u) >> shift;
+    uvec3 rc = blockCoord(maskBase / max(P.modes.y, 1u)) >> shift;
+    uint region = rc.x + dims.x * (rc.y + dims.y * rc.z);
     uvec4 lists = POOLU((gAllPrimitives ? P.colorPass.w : P.regionLists.x) + region);
     opBegin = lists.x;
     opCount = lists.y;

@@ -323,6 +323,7 @@ TEST_CASE("GPU polygoniser: a morph of two coloured stand-ins takes its colour p
     INFO(st.error());
     REQUIRE(st.ok());
     REQUIRE(st->colors);
+    CHECK(st->colorRegionLists);  // the colour program's own lists, though the field walks its whole program
     auto mesh = r.poly->readBack();
     REQUIRE(mesh.ok());
     REQUIRE(mesh->colors.size() == mesh->positions.size());

@@ -221,6 +221,7 @@ struct FramePrep {
   ColorProgramWalk colorWalk; // a colour program of its own (field.colors), else program A's walk
   uint32_t colorMaps = 0;     // the table's maps part (colorTableMaps; the clay tone before it)
   bool colorLists = false;    // the colour pass walks per-region lists (A's, or colorWalk.lists)
+  uint32_t colorListShift = 0;  // their regions: cubes of 2^shift blocks
 };
 
 // The program whose colours the colour pass gives field's vertices under s (null: no colour stream).
@@ -229,31 +230,36 @@ const FieldProgram* colorSourceOf(const GpuField& field, const GpuPolygonizeSett
   return s.colors && source && programHasColors(*source) ? source : nullptr;
 }
 
-// A colour program's region boxes: the blocks' regions of p's lists, and the superblocks that
+// A colour program's region boxes: cubes of 2^shift blocks of grid g, and the superblocks that
 // narrow their candidates (as buildRegionLists makes them).
 struct ColorRegionBoxes {
   std::vector<Bounds> regions, supers;
   std::vector<uint32_t> parentOf;
   ColorRegions where() const { return {&regions, supers.empty() ? nullptr : &supers, &parentOf}; }
 };
-ColorRegionBoxes colorRegionBoxes(const FramePrep& p) {
+ColorRegionBoxes colorRegionBoxes(const Grid& g, uint32_t shift) {
   ColorRegionBoxes b;
-  const float grow = 2.0f * 0.05f * p.g.h;  // buildRegionLists' (PolyParams::extra.x: twice the normal step)
+  const float grow = 2.0f * 0.05f * g.h;  // buildRegionLists' (PolyParams::extra.x: twice the normal step)
   glm::uvec3 dims;
   std::vector<uint32_t> unused;
-  b.regions = regionBoxes(p.g, p.fr.shift, grow, dims, b.parentOf);
-  if (p.fr.shift < 2) b.supers = regionBoxes(p.g, 2, grow, dims, unused);
+  b.regions = regionBoxes(g, shift, grow, dims, b.parentOf);
+  if (shift < 2) b.supers = regionBoxes(g, 2, grow, dims, unused);
   return b;
 }
 
+// The regions of a colour program's own lists: pairs of blocks a side. It is walked without the
+// block masks (they are the field program's), so its lists are finer than the superblocks; and
+// they do not need the field's lists (a morph's field program is often short, its colour program long).
+constexpr uint32_t kColorProgramListShift = 1;
+
 // Vertex colours (docs/gpu-polygonizer.md, "Colour"): a single program with colours, or a colour
-// program of its own, packed after p's programs and lists with its colour table. With p's region
-// lists (and s.colorRegionLists) the pass walks a list per region (program A's, or the colour
-// program's own, built here), else the whole program; that walk must fit the loop limit with room
-// (the estimates leave out the kernels' inner loops), else no colour stream.
+// program of its own, packed after p's programs and lists with its colour table. With
+// s.colorRegionLists the pass walks a list per region: program A's where p has region lists, a
+// colour program's own (built here, kColorProgramListShift); else the whole program. That walk must
+// fit the loop limit with room (the estimates leave out the kernels' inner loops), else no colour stream.
 Status prepareColors(const GpuField& field, const GpuPolygonizeSettings& s, uint64_t limit, FramePrep& p) {
   if (!colorSourceOf(field, s)) return {};
-  const bool lists = p.lists && s.colorRegionLists;
+  const bool lists = s.colorRegionLists && (field.colors || p.lists);
   // The whole walk: twice the estimate (it leaves out the kernels' inner loops). A list's walk: five
   // times, measured on lavapipe (the demo's dinosaur, single-block lists: ~17 700 estimated was cut at
   // 65 535, ~12 500 at 96^3 ran): a SIMD group's lanes may lie in several blocks, each one more walk.
@@ -262,7 +268,8 @@ Status prepareColors(const GpuField& field, const GpuPolygonizeSettings& s, uint
     if (!lists && !fits(colorWalkLoopEstimate(*field.colors))) return {};
     const size_t poolBefore = p.pk.pool.size();
     ColorRegionBoxes boxes;
-    if (lists) boxes = colorRegionBoxes(p);
+    if (lists) boxes = colorRegionBoxes(p.g, kColorProgramListShift);
+    p.colorListShift = kColorProgramListShift;
     Result<ColorProgramWalk> w = appendColorProgram(*field.colors, p.pk, lists ? boxes.where() : ColorRegions{});
     if (!w) return Error{"GPU polygoniser: " + w.error()};
     if (lists && !fits(w->longestListWalk)) {
@@ -276,6 +283,7 @@ Status prepareColors(const GpuField& field, const GpuPolygonizeSettings& s, uint
     if (!fits(lists ? p.fr.blocks.longestColorWalk : colorWalkLoopEstimate(*field.a))) return {};
     p.colorTable = appendColorTable(*field.a, p.pk);
     p.colorMaps = colorTableMaps(*field.a, p.colorTable);
+    p.colorListShift = p.fr.shift;
   }
   p.colorLists = lists;
   return {};
@@ -1106,9 +1114,10 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   if ((pk.pool.size() + pk.bounds.size()) * 16 > kUpdateBufferMax)
     if (Status st = ensureStaging(slot, (pk.pool.size() + pk.bounds.size()) * 16); !st) return st;
   PolyParams prm = frameParams(g, pk, field, s, words);
-  // poly_color_main.glsl: the colour table's pool index (0: none), its maps, whether the pass walks
-  // region lists, the colour program's lists (0: program A's).
-  prm.colorPass = glm::uvec4(colorTable, prep->colorMaps, prep->colorLists ? 1u : 0u, colorWalk.lists);
+  // poly_color_main.glsl: the colour table's pool index (0: none), its maps, 1 + the shift of the
+  // regions of the lists the pass walks (0: the whole program), the colour program's lists (0: A's).
+  prm.colorPass =
+      glm::uvec4(colorTable, prep->colorMaps, prep->colorLists ? 1u + prep->colorListShift : 0u, colorWalk.lists);
   stats.colorRegionLists = colorTable != 0 && prep->colorLists;
   stats.colorPipelineMadeInRecord = false;
   colorPass = VK_NULL_HANDLE;

@@ -129,10 +129,11 @@ struct GpuPolygonizeSettings {
   // them. Off, or a morph of two programs, or a program too long for the device's loop limit: none
   // (w stays 0, the draw's one tone; GpuPolygonizeStats::colors says which).
   bool colors = true;
-  // With per-region programs (regionPrograms): the colour pass walks the vertex's region's list (program
-  // A's, or the colour program's own lists) rather than the whole program, so its cost follows the
-  // local op count and programs too long for a whole walk on lavapipe get colours. Off: the whole
-  // walk (the same colours; tests compare both).
+  // The colour pass walks the vertex's region's list rather than the whole program, so its cost
+  // follows the local op count and programs too long for a whole walk on lavapipe get colours:
+  // program A's lists where the frame walks per-region programs (regionPrograms), a colour program's
+  // own lists (GpuField::colors, regions of 2 blocks a side) always. Off: the whole walk (the same
+  // colours; tests compare both).
   bool colorRegionLists = true;
   // Temporal coherence (docs/gpu-polygonizer.md, "Temporal coherence"): a frame prepared with the
   // previous recorded frame's (prepare(..., previous)) on the same grid, programs of the same
