@@ -10,13 +10,24 @@
 //   * a map subtree none of whose primitives reaches the vertex's block: its value where none
 //     contributes, with its colour there (the CPU's ColorProgram::emptyColor).
 // One vertex per invocation (four dispatches of the normals pass's arguments, push constant x = k:
-// vertex 4 i + k). The program walked is program A, whole, with the vertex's block primitive mask
+// the k-th quarter of the vertices). The program walked is program A, whole, with the vertex's block primitive mask
 // (positions[].w, as the normals pass): a primitive outside the block contributes 0 there, so it
 // gives no weight either; or a colour program packed after it (GpuField::colors: the same surface,
 // finer colours; push constant y its first op record, z its op count, w its threshold's bits),
 // every primitive of it walked (the block masks are A's).
 // The colour table (P.colorPass.x, a pool index) holds one vec4 per op of the program walked (the colour
 // of the subtree it closes where no primitive contributes), then one per primitive (its colour).
+// With per-region op lists (P.colorPass.z = 1 + the regions' shift; 0: none) the walk is the
+// vertex's region's list instead: program A's (the one the normals pass walks, P.regionLists.x) or
+// the colour program's own (P.colorPass.w, built the same way for pairs of blocks: gpu_color_table.h),
+// so its cost follows the ops and primitives near the vertex. A list is the CPU's specialised
+// program (FieldProgram::specialise): where it dropped a subtree or a zero operand, its records
+// carry the colour provenance the CPU's walk reads (gpu_region_op_lists.h): rule 1 a constant's
+// colour, 2 a Sum's where no operand weighs, 3 an op's where its value is <= 0, each an op's empty
+// colour of the whole program (the table's first part); a Prims op's fallback is its whole op's
+// first primitive's colour, a skipped map's its map's empty colour (the table's maps, P.colorPass.y;
+// the clay tone the word before). Colours: those of the whole walk, as the CPU's evaluateActive
+// gives them (surface_color.h).
 // Out: normals[v].w = the colour's RGBA8 bits tagged AM_POLY_COLOR_TAG (poly_constants.h).
 
 bool gAllPrimitives;  // a colour program of its own: every primitive walked
@@ -35,9 +46,17 @@ layout(push_constant) uniform ColorPush { uvec4 pc; };  // x: which vertex of ea
 layout(set = 0, binding = AM_PB_POSITIONS, std430) readonly buffer Positions { vec4 positions[]; };
 layout(set = 0, binding = AM_PB_NORMALS, std430) buffer Normals { vec4 normals[]; };
 
-uint gColorTable, gOpCount;
+uint gColorTable, gOpCount;  // gOpCount: the whole program's ops (the table's first part)
+bool gListWalk;               // the ops walked are a region's list (their records carry provenance)
 vec3 opEmptyColor(uint op) { return POOLF(gColorTable + op).xyz; }
 vec3 primColor(uint globalId) { return POOLF(gColorTable + gOpCount + globalId).xyz; }
+vec3 mapEmptyColor(uint map) { return POOLF(P.colorPass.y + map).xyz; }
+// A list op's provenance prov (bits 30-31 the rule, 0-29 one plus a whole-program op index): that
+// op's empty colour; the clay tone without one.
+vec3 ruleColor(uint prov) {
+  uint ref = prov & 0x3fffffffu;
+  return ref > 0u ? opEmptyColor(ref - 1u) : POOLF(P.colorPass.y - 1u).xyz;
+}
 
 // One primitive's value at q (class cls, pool record r): the kernels of the value interpreter.
 float primitiveValue(uint cls, uint r, vec3 q, float T) {
@@ -64,12 +83,11 @@ bool blendWeighted(int base, int n) {
   return true;
 }
 
-// A Prims op (records op0) at q: its value and colour.
-vec4 primsColor(uvec4 op0, uint opIndex, uint maskBase, vec3 q, float T) {
+// A Prims op (records op0) at q: its value and colour (first: its colour where none contributes).
+vec4 primsColor(uvec4 op0, vec3 first, uint maskBase, vec3 q, float T) {
   uint cls = (op0.x >> 8) & 0xffu;
   bool cmax = ((op0.x >> 16) & 1u) != 0u;
   uint stride = cls == AM_PRIM_CONVOLUTION ? AM_REC_CONV : cls == AM_PRIM_SKELETAL ? AM_REC_SKEL : AM_REC_CAPSULE;
-  vec3 first = opEmptyColor(opIndex);
   float v = 0.0, wsum = 0.0;
   vec3 c = cmax ? first : vec3(0.0);
   for (uint k = 0u; k < op0.z; ++k) {
@@ -92,8 +110,9 @@ vec4 primsColor(uvec4 op0, uint opIndex, uint maskBase, vec3 q, float T) {
   return vec4(c, v);
 }
 
-// An operator over stack entries [base, base + n): value and colour into gSt[base].
-void operatorColor(uint code, int base, int n, uint prm, float T) {
+// An operator over stack entries [base, base + n): value and colour into gSt[base] (prov: the op's
+// colour provenance, 0 but in a region's list).
+void operatorColor(uint code, int base, int n, uint prm, float T, uint prov) {
   float v0 = gSt[base].w;
   if (code == AM_OP_SUM) {
     float v = 0.0;
@@ -101,7 +120,7 @@ void operatorColor(uint code, int base, int n, uint prm, float T) {
       v += gSt[base + k].w;
       gW[k] = max(gSt[base + k].w, 0.0);
     }
-    blendWeighted(base, n);
+    if (!blendWeighted(base, n) && (prov >> 30) == 2u) gSt[base].xyz = ruleColor(prov);
     v0 = v;
   } else if (code == AM_OP_MAX || code == AM_OP_MIN) {
     for (int k = 1; k < n; ++k) {
@@ -146,7 +165,13 @@ void operatorColor(uint code, int base, int n, uint prm, float T) {
   gSt[base].w = v0;
 }
 
-// The colour of program A at p (its ops from opBegin, opCount of them).
+// Stack entry s just pushed by an op of provenance prov: rule 3's colour where its value is <= 0.
+void applyValueRule(uint prov, int s) {
+  if ((prov >> 30) == 3u && !(gSt[s].w > 0.0)) gSt[s].xyz = ruleColor(prov);
+}
+
+// The colour of the program at p (its ops from opBegin, opCount of them: the whole program, or with
+// gListWalk a region's list).
 vec3 programColor(uint opBegin, uint opCount, float T, uint maskBase, vec3 p) {
   vec3 saved[AM_POLY_MAX_MAP_DEPTH];
   vec3 q = p;
@@ -155,29 +180,35 @@ vec3 programColor(uint opBegin, uint opCount, float T, uint maskBase, vec3 p) {
     uint o = opBegin + i * AM_REC_OP;
     uvec4 op0 = POOLU(o);
     uint code = op0.x & 0xffu;
+    uvec4 op1 = POOLU(o + 1u);
+    uint prov = gListWalk && code != AM_OP_BEGINMAP ? op1.w : 0u;  // a BeginMap's w is its skip
     if (code == AM_OP_PRIMS) {
-      gSt[sp++] = primsColor(op0, i, maskBase, q, T);
+      gSt[sp] = primsColor(op0, gListWalk ? primColor(op1.y) : opEmptyColor(i), maskBase, q, T);
+      applyValueRule(prov, sp++);
     } else if (code == AM_OP_CONST) {
-      gSt[sp++] = vec4(opEmptyColor(i), uintBitsToFloat(POOLU(o + 1u).z));
+      gSt[sp++] = vec4(gListWalk ? ruleColor(prov) : opEmptyColor(i), uintBitsToFloat(op1.z));
     } else if (code == AM_OP_BEGINMAP) {
-      uvec4 op1 = POOLU(o + 1u);
       if (!anyPrimActive(maskBase, op0.w, op0.y)) {
-        gSt[sp++] = vec4(opEmptyColor(i + op1.w), uintBitsToFloat(op1.z));
+        gSt[sp] = vec4(gListWalk ? mapEmptyColor(op0.z) : opEmptyColor(i + op1.w), uintBitsToFloat(op1.z));
         i += op1.w;
+        if (gListWalk) applyValueRule(POOLU(opBegin + i * AM_REC_OP + 1u).w, sp);  // its EndMap's rule
+        ++sp;
         continue;
       }
       saved[level++] = q;
       q = mapToLocal(op1.y, q);
     } else if (code == AM_OP_ENDMAP) {
       q = saved[--level];
+      applyValueRule(prov, sp - 1);
     } else {
       int n = int(op0.z);
       int base = sp - n;
-      operatorColor(code, base, n, POOLU(o + 1u).x, T);
+      operatorColor(code, base, n, op1.x, T, prov);
+      applyValueRule(prov, base);
       sp = base + 1;
     }
   }
-  return sp > 0 ? gSt[0].xyz : opEmptyColor(0u);
+  return sp > 0 ? gSt[0].xyz : gListWalk ? ruleColor(0u) : opEmptyColor(0u);
 }
 
 void colorPass() {
@@ -185,12 +216,27 @@ void colorPass() {
   gAllPrimitives = pc.y != 0u;
   uint opBegin = gAllPrimitives ? pc.y : P.progA.x;
   gOpCount = gAllPrimitives ? pc.z : P.progA.y;
+  uint opCount = gOpCount;
   float T = gAllPrimitives ? uintBitsToFloat(pc.w) : P.thresholds.x;
   uint total = min(control[AM_CTL_VERTICES], P.caps.x);
-  uint v = 4u * gl_GlobalInvocationID.x + pc.x;
+  // Dispatch k of four takes the k-th quarter of the vertex buffer, so a SIMD group's lanes hold
+  // consecutive vertices: nearly always one block, so one region's list (with lists, each distinct
+  // region among a group's lanes is one more walk for lavapipe's loop limiter).
+  uint v = pc.x * gl_NumWorkGroups.x * AM_POLY_WG_NORMALS + gl_GlobalInvocationID.x;
   if (v >= total || gColorTable == 0u) return;
   vec4 q = positions[v];
-  vec3 c = clamp(programColor(opBegin, gOpCount, T, floatBitsToUint(q.w), q.xyz), 0.0, 1.0);
+  uint maskBase = floatBitsToUint(q.w);
+  gListWalk = P.colorPass.z != 0u;
+  if (gListWalk) {  // the vertex's region's list: regions of 2^shift blocks a side (regionOf's order)
+    uint shift = P.colorPass.z - 1u;
+    uvec3 dims = (P.gridBlocks.xyz + (1u << shift) - 1u) >> shift;
+    uvec3 rc = blockCoord(maskBase / max(P.modes.y, 1u)) >> shift;
+    uint region = rc.x + dims.x * (rc.y + dims.y * rc.z);
+    uvec4 lists = POOLU((gAllPrimitives ? P.colorPass.w : P.regionLists.x) + region);
+    opBegin = lists.x;
+    opCount = lists.y;
+  }
+  vec3 c = clamp(programColor(opBegin, opCount, T, maskBase, q.xyz), 0.0, 1.0);
   uint bits = (packUnorm4x8(vec4(c, 0.0)) & 0x00ffffffu) | (AM_POLY_COLOR_TAG << 24);
   normals[v].w = uintBitsToFloat(bits);
 }

@@ -13,14 +13,17 @@
 #include "core/blobtree/compile.h"
 #include "core/field/surface_color.h"
 #include "demo/blob_creature.h"
+#include "demo/dino_dragon.h"
 #include "gpu/polygonizer/gpu_color_table.h"
 #include "gpu/polygonizer/gpu_polygonizer.h"
+#include "poly_constants.h"
 #include "gpu/present/offscreen_target.h"
 #include "gpu/render/scene_renderer.h"
 #include "gpu_fixture.h"
 #include "polygonizer_rig.h"
 #include "util/blob_builders.h"
 #include "util/morph_fixtures.h"
+#include "util/test_skip.h"
 
 using namespace animorph;
 using namespace animorph::gpu;
@@ -50,8 +53,24 @@ struct ColorComparison {
   float largest = 0.0f;             // largest channel difference
 };
 
-ColorComparison compareColors(GpuPolygonizer& poly, const FieldProgram& p, const GpuPolygonizeSettings& s) {
-  auto st = poly.polygonize(GpuField::single(p), s);
+// Colours a and b (one per vertex, same count) compared channel by channel.
+ColorComparison compareColorSets(const std::vector<glm::vec4>& a, const std::vector<glm::vec4>& b) {
+  ColorComparison c;
+  c.vertices = a.size();
+  for (size_t i = 0; i < a.size() && i < b.size(); ++i) {
+    const glm::vec3 d = glm::abs(glm::vec3(a[i]) - glm::vec3(b[i]));
+    const float m = std::max({d.r, d.g, d.b});
+    c.largest = std::max(c.largest, m);
+    if (m <= 1.0f / 255.0f + 1e-6f) ++c.within;
+  }
+  return c;
+}
+
+// The GPU's colours of field (its colour program, or program A) against the CPU's at the GPU's own
+// vertices; gpuColors: the GPU's, when wanted.
+ColorComparison compareColors(GpuPolygonizer& poly, const GpuField& field, const GpuPolygonizeSettings& s,
+                              std::vector<glm::vec4>* gpuColors = nullptr) {
+  auto st = poly.polygonize(field, s);
   INFO(st.error());
   REQUIRE(st.ok());
   REQUIRE(st->colors);
@@ -60,16 +79,13 @@ ColorComparison compareColors(GpuPolygonizer& poly, const FieldProgram& p, const
   REQUIRE(mesh.ok());
   REQUIRE(mesh->colors.size() == mesh->positions.size());
   std::vector<glm::vec4> cpu(mesh->positions.size());
-  SurfaceColorEvaluator().evaluate(p, mesh->positions.data(), mesh->positions.size(), cpu.data(), 2);
-  ColorComparison c;
-  c.vertices = mesh->positions.size();
-  for (size_t i = 0; i < cpu.size(); ++i) {
-    const glm::vec3 d = glm::abs(glm::vec3(mesh->colors[i]) - glm::vec3(cpu[i]));
-    const float m = std::max({d.r, d.g, d.b});
-    c.largest = std::max(c.largest, m);
-    if (m <= 1.0f / 255.0f + 1e-6f) ++c.within;
-  }
-  return c;
+  const FieldProgram& colors = field.colors ? *field.colors : *field.a;
+  SurfaceColorEvaluator().evaluate(colors, mesh->positions.data(), mesh->positions.size(), cpu.data(), 2);
+  if (gpuColors) *gpuColors = mesh->colors;
+  return compareColorSets(mesh->colors, cpu);
+}
+ColorComparison compareColors(GpuPolygonizer& poly, const FieldProgram& p, const GpuPolygonizeSettings& s) {
+  return compareColors(poly, GpuField::single(p), s);
 }
 
 }  // namespace
@@ -307,6 +323,7 @@ TEST_CASE("GPU polygoniser: a morph of two coloured stand-ins takes its colour p
     INFO(st.error());
     REQUIRE(st.ok());
     REQUIRE(st->colors);
+    CHECK(st->colorRegionLists);  // the colour program's own lists, though the field walks its whole program
     auto mesh = r.poly->readBack();
     REQUIRE(mesh.ok());
     REQUIRE(mesh->colors.size() == mesh->positions.size());
@@ -332,4 +349,160 @@ TEST_CASE("GPU polygoniser: a morph of two coloured stand-ins takes its colour p
   std::printf("morph colours: %zu vertices, %zu within 1/255 of the CPU's, largest difference %g\n",
               size_t(vertices), size_t(within), double(largest));  // the figure only: the CHECKs above judge
   CHECK(r.ctx->validationErrorCount() == 0);
+}
+
+TEST_CASE("GPU polygoniser: the colour pass walking per-region lists gives the whole walk's colours (painted random "
+          "trees, the blob creature, the demo morph's colour program)",
+          "[gpu][gpupoly][color]") {
+  PolygonizerRig r;
+  size_t vertices = 0, same = 0;
+  // field with region programs on: its colours walking the lists and walking the whole program, each
+  // against the CPU's, and against each other (the same mesh: the field passes walk the lists both times).
+  auto run = [&](const GpuField& field, GpuPolygonizeSettings s) {
+    s.regionPrograms = GpuPolygonizeSettings::RegionPrograms::On;
+    s.colorRegionLists = true;
+    std::vector<glm::vec4> lists, whole;
+    const ColorComparison withLists = compareColors(*r.poly, field, s, &lists);
+    CHECK(r.poly->lastStats().regionLists);
+    CHECK(r.poly->lastStats().colorRegionLists);
+    s.colorRegionLists = false;
+    const ColorComparison withWhole = compareColors(*r.poly, field, s, &whole);
+    CHECK_FALSE(r.poly->lastStats().colorRegionLists);
+    REQUIRE(lists.size() == whole.size());
+    const ColorComparison between = compareColorSets(lists, whole);
+    INFO(withLists.vertices << " vertices; lists vs CPU " << withLists.within << ", whole vs CPU " << withWhole.within
+                            << ", lists vs whole " << between.within << " within 1/255 (largest " << between.largest
+                            << ")");
+    CHECK(withLists.vertices > 20);
+    CHECK(withLists.within * 1000 >= withLists.vertices * 998);
+    CHECK(between.within * 1000 >= between.vertices * 998);
+    vertices += between.vertices;
+    same += between.within;
+  };
+  for (unsigned seed : {1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u}) {
+    INFO("seed " << seed);
+    std::mt19937 rng(seed);
+    int id = 1;
+    BlobTree tree = treeOf(randomNode(rng, 3, id), 0.5f);
+    paintRandomly(tree.root, rng);
+    const FieldProgram p = compileFieldProgram(tree, 0.5);
+    GpuPolygonizeSettings s;
+    s.resolution = 40;
+    s.bounds = cubeOf(1.2f);
+    run(GpuField::single(p), s);
+  }
+  {
+    BlobTree creature = makeBlobCreature();
+    std::mt19937 rng(77);
+    paintRandomly(creature.root, rng);
+    const FieldProgram p = compileFieldProgram(creature, 0.0);
+    GpuPolygonizeSettings s;
+    s.resolution = 64;
+    run(GpuField::single(p), s);
+  }
+  {  // the demo morph half way through B..C: its own colour program's lists
+    const MorphRuntime& rt = *test::demoMorph().runtime;
+    const MorphMarkers& k = rt.setup.markers;
+    const double t = rt.timeline.frameToSec(0.5 * (k.b + k.c));
+    MorphImplicitField f = morphImplicitField(rt, t, 64, 0.5);
+    REQUIRE(f.colorProgram);
+    GpuField field = GpuField::single(f.program);
+    field.colors = f.colorProgram.get();
+    GpuPolygonizeSettings s;
+    s.resolution = 64;
+    s.bounds = f.bounds;
+    run(field, s);
+  }
+  std::printf("colours walking region lists: %zu vertices, %zu within 1/255 of the whole walk's\n", vertices, same);
+  CHECK(r.ctx->validationErrorCount() == 0);
+}
+
+TEST_CASE("GPU polygoniser: a coloured program too long for a whole colour walk on lavapipe gets GPU colours from the "
+          "region lists (the animorphosis demo's dinosaur, the CPU's within 1/255)",
+          "[gpu][gpupoly][color]") {
+  PolygonizerRig r;
+  const FieldProgram p = compileFieldProgram(makeDinosaur(), 0.5);
+  REQUIRE(programHasColors(p));
+  const uint64_t limit = GpuPolygonizer::loopLimit(r.ctx->properties());
+  if (limit == 0) ANIMORPH_SKIP("the device has no loop limit (not lavapipe): nothing to exceed");
+  // Before region lists the colour pass walked the whole program and refused one past this.
+  INFO("whole colour walk ~" << colorWalkLoopEstimate(p) << " iterations, limit " << limit);
+  REQUIRE(2 * colorWalkLoopEstimate(p) + 64 >= limit);
+  GpuPolygonizeSettings s;
+  s.resolution = 96;  // at 64^3 a block's list is too long for the colour pass's guard: no colours there
+  const ColorComparison c = compareColors(*r.poly, p, s);
+  const GpuPolygonizeStats& st = r.poly->lastStats();
+  CHECK(st.regionLists);
+  CHECK(st.colorRegionLists);
+  INFO(c.vertices << " vertices, " << c.within << " within 1/255, largest difference " << c.largest);
+  CHECK(c.vertices > 1000);
+  CHECK(c.within * 1000 >= c.vertices * 998);
+  // The whole walk is still refused (no colour stream, not a wrong one).
+  s.colorRegionLists = false;
+  auto whole = r.poly->polygonize(GpuField::single(p), s);
+  INFO(whole.error());
+  REQUIRE(whole.ok());
+  CHECK_FALSE(whole->colors);
+  std::printf("dinosaur colours from region lists: %zu vertices, %zu within 1/255 of the CPU's, largest difference "
+              "%g\n", c.vertices, c.within, double(c.largest));
+  CHECK(r.ctx->validationErrorCount() == 0);
+}
+
+namespace {
+// n convolution segments summed in one op, each its own colour, around a ring of radius 0.5.
+FieldProgram paintedRing(uint32_t n) {
+  FieldProgram p;
+  p.threshold = 0.5f;
+  for (uint32_t i = 0; i < n; ++i) {
+    const float a0 = 6.2831853f * float(i) / float(n), a1 = 6.2831853f * float(i + 1) / float(n);
+    p.nextColor = glm::vec3(0.5f + 0.5f * std::cos(a0), 0.5f + 0.5f * std::sin(a0), 0.2f);
+    p.addConvolution(0.5f * glm::vec3(std::cos(a0), std::sin(a0), 0.0f), 0.5f * glm::vec3(std::cos(a1), std::sin(a1), 0.0f),
+                     0.08f, 12.0f, 1e-3f, i > 0);
+  }
+  p.finish();
+  return p;
+}
+}  // namespace
+
+TEST_CASE("GPU polygoniser: prewarm compiles the colour pass's pipeline and picks the frame's pool variant with the "
+          "colour table counted",
+          "[gpu][gpupoly][color]") {
+  // A program whose pool alone fits the uniform buffer and with its colour table does not: the frame
+  // reads it from a storage buffer, and prewarm must make that variant (not the uniform one).
+  uint32_t n = 64;
+  while (fieldProgramsShape(paintedRing(n + 64)).poolWords <= AM_POLY_UNIFORM_POOL_VEC4) n += 64;
+  const FieldProgram p = paintedRing(n);
+  const size_t poolWords = fieldProgramsShape(p).poolWords;
+  INFO(n << " segments, pool " << poolWords << " words");
+  REQUIRE(poolWords <= AM_POLY_UNIFORM_POOL_VEC4);
+  REQUIRE(poolWords + p.ops.size() + p.primitiveCount() > AM_POLY_UNIFORM_POOL_VEC4);
+  GpuPolygonizeSettings s;
+  s.resolution = 32;
+  const GpuField field = GpuField::single(p);
+  {
+    PolygonizerRig r;
+    CHECK_FALSE(r.poly->ready(field, s));
+    r.poly->prewarm(field, s);
+    REQUIRE(r.poly->waitForCompilation(300.0));
+    CHECK(r.poly->ready(field, s));
+    CHECK(r.poly->variantCount() == 1);
+    GpuPolygonizeStats st;
+    (void)r.polygonizeAndRead(field, s, nullptr, st);
+    CHECK(st.colors);
+    CHECK_FALSE(st.regionLists);  // whole programs: the pool's size alone picks the buffer
+    CHECK_FALSE(st.uniformPool);
+    CHECK_FALSE(st.colorPipelineMadeInRecord);  // prewarm made it
+    CHECK(r.poly->variantCount() == 1);          // the prewarmed variant was the frame's
+    CHECK(r.ctx->validationErrorCount() == 0);
+  }
+  {  // without prewarm the first coloured frame makes it, the next does not
+    PolygonizerRig r;
+    GpuPolygonizeStats st;
+    (void)r.polygonizeAndRead(field, s, nullptr, st);
+    CHECK(st.colors);
+    CHECK(st.colorPipelineMadeInRecord);
+    (void)r.polygonizeAndRead(field, s, nullptr, st);
+    CHECK_FALSE(st.colorPipelineMadeInRecord);
+    CHECK(r.ctx->validationErrorCount() == 0);
+  }
 }

@@ -384,6 +384,32 @@ double timedGpuColors(g::GpuPolygonizer& poly, const g::GpuField& field, const g
   });
 }
 
+// The colour pass's cost with per-region programs forced on (the passes and the colour pass walk each
+// region's list, docs/gpu-polygonizer.md "Colour"): field under gs with colours and without, rows
+// tagged tag. Where Auto already walks lists these repeat the rows above.
+void regionListColorRows(g::GpuPolygonizer& poly, const g::GpuField& field, g::GpuPolygonizeSettings gs, int reps,
+                         const std::string& tag, std::vector<Row>& rows) {
+  gs.regionPrograms = g::GpuPolygonizeSettings::RegionPrograms::On;
+  double ms[2] = {0, 0};
+  uint32_t vertices = 0;
+  bool colorLists = false;
+  for (int colored = 0; colored < 2; ++colored) {
+    gs.colors = colored != 0;
+    std::string error;
+    ms[colored] = timedGpuColors(poly, field, gs, reps, vertices, error);
+    if (!error.empty()) {
+      rows.push_back({tag + " GPU region lists on failed", 0, "", "", error});
+      return;
+    }
+    if (colored) colorLists = poly.lastStats().colorRegionLists;
+  }
+  rows.push_back({tag + " GPU lists on, colours", ms[1], "ms", "",
+                  std::string("latency, wall, warm, region programs On, the colour pass ") +
+                      (colorLists ? "walking region lists" : "walking the whole program")});
+  rows.push_back({tag + " GPU lists on, no colours", ms[0], "ms", "", "the same, colour pass off (baseline)"});
+  rows.push_back({tag + " GPU lists on, colours / none", ms[1] / ms[0], "ratio", "", ""});
+}
+
 // The colour stream's cost (docs/gpu-polygonizer.md, "Colour"): the blob creature painted part by
 // part, polygonised with and without vertex colours on the GPU (the colour pass) and on the CPU (per
 // block), same run, same grid.
@@ -417,6 +443,11 @@ void colorRows(g::GpuPolygonizer& poly, int threads, bool quick, std::vector<Row
   rows.push_back({tag + " GPU, colours", gpuMs[1], "ms", "", note});
   rows.push_back({tag + " GPU, no colours", gpuMs[0], "ms", "", "the same, colour pass off (baseline)"});
   rows.push_back({tag + " GPU colours / none", gpuMs[1] / gpuMs[0], "ratio", "", ""});
+  {
+    g::GpuPolygonizeSettings gs;
+    gs.resolution = res;
+    regionListColorRows(poly, g::GpuField::single(painted), gs, reps, tag, rows);
+  }
   rows.push_back({tag + " CPU, colours", cpuMs[1], "ms", "", "latency, wall, warm, " + th});
   rows.push_back({tag + " CPU, no colours", cpuMs[0], "ms", "", "the same, no colours (baseline)"});
   rows.push_back({tag + " CPU colours / none", cpuMs[1] / cpuMs[0], "ratio", "", ""});
@@ -448,6 +479,7 @@ void morphColorRows(g::GpuPolygonizer& poly, int threads, bool quick, std::vecto
   const std::string tag = "demo morph B..C half way " + std::to_string(res) + "^3";
   double gpuMs[2] = {0, 0}, cpuMs[2] = {0, 0};
   uint32_t vertices = 0;
+  bool fieldLists = false, colorLists = false;
   for (int colored = 0; colored < 2; ++colored) {
     g::GpuField field = g::GpuField::single(f.program);
     if (colored) field.colors = f.colorProgram.get();
@@ -461,6 +493,8 @@ void morphColorRows(g::GpuPolygonizer& poly, int threads, bool quick, std::vecto
       rows.push_back({tag + " GPU failed", 0, "", "", error});
       return;
     }
+    fieldLists = poly.lastStats().regionLists;
+    if (colored) colorLists = poly.lastStats().colorRegionLists;
     PolygonizeSettings cs;
     cs.resolution = res;
     cs.threads = threads;
@@ -470,11 +504,22 @@ void morphColorRows(g::GpuPolygonizer& poly, int threads, bool quick, std::vecto
     cpuMs[colored] = animorph::bench::medianMs(reps, [&] { (void)polygonize(f.program, cs); });
   }
   rows.push_back({tag + " GPU, colour program", gpuMs[1], "ms", "",
-                  "latency, wall, warm, polygonise + read-back, " + std::to_string(vertices) + " vertices"});
+                  "latency, wall, warm, polygonise + read-back, " + std::to_string(vertices) + " vertices; region lists " +
+                      (fieldLists ? "on" : "off") + ", the colour pass " +
+                      (colorLists ? "walking region lists" : "walking the whole colour program")});
   rows.push_back({tag + " GPU, no colours", gpuMs[0], "ms", "", "the same, colour pass off (baseline)"});
+  rows.push_back({tag + " GPU colours / none", gpuMs[1] / gpuMs[0], "ratio", "", ""});
   rows.push_back({tag + " CPU, colour program", cpuMs[1], "ms", "", "latency, wall, warm, " + std::to_string(threads) + " threads"});
   rows.push_back({tag + " CPU, no colours", cpuMs[0], "ms", "", "the same, no colours (baseline)"});
   rows.push_back({tag + " GPU / CPU with colours", gpuMs[1] / cpuMs[1], "ratio", "", "the preview's two backends"});
+  if (!fieldLists) {
+    g::GpuField field = g::GpuField::single(f.program);
+    field.colors = f.colorProgram.get();
+    g::GpuPolygonizeSettings gs;
+    gs.resolution = res;
+    gs.bounds = f.bounds;
+    regionListColorRows(poly, field, gs, reps, tag, rows);
+  }
 }
 
 // A Vulkan context and a GPU polygoniser on it for a bench, with its "device" row; none where there

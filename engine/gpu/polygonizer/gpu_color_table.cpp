@@ -16,6 +16,29 @@ glm::uvec4 colorWord(const glm::vec3& c) {
   std::memcpy(&w.z, &c.b, 4);
   return w;
 }
+
+// The per-region op lists of colour program colors (packed as own, then moved to pool index off of
+// pk.pool) appended to pk.pool: own's record bases relocated so the lists point into the moved
+// records; its primitive ids stay its own, as its whole walk's.
+void appendColorLists(const FieldProgram& colors, PackedFieldPrograms& own, uint32_t off, const ColorRegions& where,
+                      PackedFieldPrograms& pk, ColorProgramWalk& w) {
+  own.opBegin[0] += off;
+  own.paramsBase[0] += off;
+  own.mapsBase[0] += off;
+  for (uint32_t& b : own.classBase[0]) b += off;
+  own.pool = std::move(pk.pool);
+  RegionOpLists lists;
+  if (where.supers && where.parentOf && where.supers != where.regions) {
+    const RegionOpLists parent = appendRegionOpLists(colors, nullptr, *where.supers, own, false);
+    lists = appendRegionOpLists(colors, nullptr, *where.regions, own, false, &parent, where.parentOf);
+  } else {
+    lists = appendRegionOpLists(colors, nullptr, *where.regions, own, false);
+  }
+  pk.pool = std::move(own.pool);
+  w.lists = lists.table;
+  w.longestListWalk = lists.longestColorWalk;
+}
+
 }  // namespace
 
 bool programHasColors(const FieldProgram& program) {
@@ -43,10 +66,17 @@ uint32_t appendColorTable(const FieldProgram& program, PackedFieldPrograms& pk) 
   pk.pool.reserve(pk.pool.size() + cp.primColor.size() + cp.emptyColor.size());
   for (const glm::vec3& c : cp.emptyColor) pk.pool.push_back(colorWord(c));
   for (const glm::vec3& c : cp.primColor) pk.pool.push_back(colorWord(c));
+  pk.pool.push_back(colorWord(srgbToLinear(kClayColorSrgb)));
+  for (const glm::vec3& c : cp.mapEmptyColor) pk.pool.push_back(colorWord(c));
   return base;
 }
 
-Result<ColorProgramWalk> appendColorProgram(const FieldProgram& colors, PackedFieldPrograms& pk) {
+uint32_t colorTableMaps(const FieldProgram& program, uint32_t table) {
+  return table + uint32_t(program.ops.size() + program.primitiveCount()) + 1u;
+}
+
+Result<ColorProgramWalk> appendColorProgram(const FieldProgram& colors, PackedFieldPrograms& pk,
+                                            const ColorRegions& where) {
   Result<PackedFieldPrograms> own = packFieldPrograms(colors);
   if (!own) return Error{"colour program: " + own.error()};
   const uint32_t off = uint32_t(pk.pool.size());
@@ -69,6 +99,8 @@ Result<ColorProgramWalk> appendColorProgram(const FieldProgram& colors, PackedFi
   w.opCount = own->opCount[0];
   w.threshold = colors.threshold;
   w.table = appendColorTable(colors, pk);
+  w.maps = colorTableMaps(colors, w.table);
+  if (where.regions) appendColorLists(colors, *own, off, where, pk, w);
   return w;
 }
 

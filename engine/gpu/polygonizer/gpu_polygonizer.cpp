@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <future>
 #include <limits>
 #include <tuple>
 
@@ -234,25 +235,85 @@ struct FramePrep {
   double regionListMs = 0.0;
   uint32_t colorTable = 0;    // the colour pass's table in pk.pool (0: no colour stream)
   ColorProgramWalk colorWalk; // a colour program of its own (field.colors), else program A's walk
+  uint32_t colorMaps = 0;     // the table's maps part (colorTableMaps; the clay tone before it)
+  bool colorLists = false;    // the colour pass walks per-region lists (A's, or colorWalk.lists)
+  uint32_t colorListShift = 0;  // their regions: cubes of 2^shift blocks
 };
 
+// The program whose colours the colour pass gives field's vertices under s (null: no colour stream).
+const FieldProgram* colorSourceOf(const GpuField& field, const GpuPolygonizeSettings& s) {
+  const FieldProgram* source = field.colors ? field.colors : field.b ? nullptr : field.a;
+  return s.colors && source && programHasColors(*source) ? source : nullptr;
+}
+
+// A colour program's region boxes: cubes of 2^shift blocks of grid g, and the superblocks that
+// narrow their candidates (as buildRegionLists makes them).
+struct ColorRegionBoxes {
+  std::vector<Bounds> regions, supers;
+  std::vector<uint32_t> parentOf;
+  ColorRegions where() const { return {&regions, supers.empty() ? nullptr : &supers, &parentOf}; }
+};
+ColorRegionBoxes colorRegionBoxes(const Grid& g, uint32_t shift) {
+  ColorRegionBoxes b;
+  const float grow = 2.0f * 0.05f * g.h;  // buildRegionLists' (PolyParams::extra.x: twice the normal step)
+  glm::uvec3 dims;
+  std::vector<uint32_t> unused;
+  b.regions = regionBoxes(g, shift, grow, dims, b.parentOf);
+  if (shift < 2) b.supers = regionBoxes(g, 2, grow, dims, unused);
+  return b;
+}
+
+// The regions of a colour program's own lists: pairs of blocks a side. It is walked without the
+// block masks (they are the field program's), so its lists are finer than the superblocks; and
+// they do not need the field's lists (a morph's field program is often short, its colour program long).
+constexpr uint32_t kColorProgramListShift = 1;
+
 // Vertex colours (docs/gpu-polygonizer.md, "Colour"): a single program with colours, or a colour
-// program of its own, whose walk fits the loop limit (with room: the estimate leaves out the
-// kernels), packed after p's programs and lists; else no colour stream.
+// program of its own, packed after p's programs and lists with its colour table. With
+// s.colorRegionLists the pass walks a list per region: program A's where p has region lists, a
+// colour program's own (built here, kColorProgramListShift); else the whole program. That walk must
+// fit the loop limit with room (the estimates leave out the kernels' inner loops), else no colour stream.
 Status prepareColors(const GpuField& field, const GpuPolygonizeSettings& s, uint64_t limit, FramePrep& p) {
-  const FieldProgram* colorSource = field.colors ? field.colors : field.b ? nullptr : field.a;
-  if (!s.colors || !colorSource || !programHasColors(*colorSource) ||
-      (limit != 0 && 2 * colorWalkLoopEstimate(*colorSource) + 64 >= limit))
-    return {};
+  if (!colorSourceOf(field, s)) return {};
+  const bool lists = s.colorRegionLists && (field.colors || p.lists);
+  // The whole walk: twice the estimate (it leaves out the kernels' inner loops). A list's walk: five
+  // times, measured on lavapipe (the demo's dinosaur, single-block lists: ~17 700 estimated was cut at
+  // 65 535, ~12 500 at 96^3 ran): a SIMD group's lanes may lie in several blocks, each one more walk.
+  auto fits = [&](uint64_t walk) { return limit == 0 || (lists ? 5 : 2) * walk + 64 < limit; };
   if (field.colors) {
-    Result<ColorProgramWalk> w = appendColorProgram(*field.colors, p.pk);
+    if (!lists && !fits(colorWalkLoopEstimate(*field.colors))) return {};
+    const size_t poolBefore = p.pk.pool.size();
+    ColorRegionBoxes boxes;
+    if (lists) boxes = colorRegionBoxes(p.g, kColorProgramListShift);
+    p.colorListShift = kColorProgramListShift;
+    Result<ColorProgramWalk> w = appendColorProgram(*field.colors, p.pk, lists ? boxes.where() : ColorRegions{});
     if (!w) return Error{"GPU polygoniser: " + w.error()};
+    if (lists && !fits(w->longestListWalk)) {
+      p.pk.pool.resize(poolBefore);
+      return {};
+    }
     p.colorWalk = *w;
     p.colorTable = p.colorWalk.table;
+    p.colorMaps = p.colorWalk.maps;
   } else {
+    if (!fits(lists ? p.fr.blocks.longestColorWalk : colorWalkLoopEstimate(*field.a))) return {};
     p.colorTable = appendColorTable(*field.a, p.pk);
+    p.colorMaps = colorTableMaps(*field.a, p.colorTable);
+    p.colorListShift = p.fr.shift;
   }
+  p.colorLists = lists;
   return {};
+}
+
+// What prepareColors adds to the pool for field under s without region lists (those make the pool
+// a storage buffer anyway): a colour program's records and its colour table, or program A's table.
+// prewarm() and ready() add it to the programs' shape, so that near the uniform pool's size they
+// pick the variant the frame will.
+size_t colorPoolWords(const GpuField& field, const GpuPolygonizeSettings& s, uint64_t limit) {
+  const FieldProgram* source = colorSourceOf(field, s);
+  if (!source || (limit != 0 && 2 * colorWalkLoopEstimate(*source) + 64 >= limit)) return 0;
+  const size_t table = source->ops.size() + source->primitiveCount() + 1 + source->maps.size();
+  return table + (field.colors ? fieldProgramsShape(*field.colors).poolWords : 0);
 }
 
 // Prepares a frame of field under s for loop limit limit (no device): what recordFrame records.
@@ -410,6 +471,14 @@ struct GpuPolygonizer::Impl {
   // The colour pass (poly_color[_ssbo].comp, generic: not specialised, made on first use); colorPass: this frame's
   // (null: the program has no colours, the mesh keeps its one tone).
   VkPipeline colorUniform = VK_NULL_HANDLE, colorStorage = VK_NULL_HANDLE, colorPass = VK_NULL_HANDLE;
+  // The colour pass's pipelines being compiled by prewarm() (index: storage pool 0/1).
+  std::array<std::future<Result<VkPipeline>>, 2> colorCompiling;
+  // The colour pass's pipeline for the pool kind: made, taken over from prewarm() (waiting for it),
+  // or created now (madeHere: true).
+  Result<VkPipeline> colorPipeline(bool storage, bool& madeHere);
+  // Starts compiling it on a background thread unless it exists or is under way.
+  void prewarmColorPipeline(bool storage);
+  bool colorPipelineReady(bool storage) const;
   ColorProgramWalk colorWalkThisFrame;  // with colorPass: a colour program's walk (opBegin 0: program A's)
   VkCommandPool commandPool = VK_NULL_HANDLE;
   VkCommandBuffer cmd = VK_NULL_HANDLE;
@@ -508,6 +577,10 @@ struct GpuPolygonizer::Impl {
 GpuPolygonizer::Impl::~Impl() {
   VkDevice dev = ctx.device();
   fieldCache.finishCompiling();  // let background compilations finish, then destroy what they made
+  for (bool storage : {false, true}) {
+    bool unused = false;
+    if (colorCompiling[storage].valid()) (void)colorPipeline(storage, unused);
+  }
   vkDeviceWaitIdle(dev);
   for (Buffer* b : {&params, &pool, &bounds, &table, &blockMask, &blockFlag, &blockPrefix, &blockSlot, &partials,
                     &superFlag, &keptCorners, &keptInfo, &reuseBound, &control, &active, &corners, &edges, &counts, &offsets, &positions, &normals, &indices, &readback})
@@ -1057,16 +1130,17 @@ Status GpuPolygonizer::Impl::recordFrame(VkCommandBuffer cb, uint32_t slot, cons
   if ((pk.pool.size() + pk.bounds.size()) * 16 > kUpdateBufferMax)
     if (Status st = ensureStaging(slot, (pk.pool.size() + pk.bounds.size()) * 16); !st) return st;
   PolyParams prm = frameParams(g, pk, field, s, words);
-  prm.colorPass.x = colorTable;  // poly_color_main.glsl: the colour table's pool index (0: none)
+  // poly_color_main.glsl: the colour table's pool index (0: none), its maps, 1 + the shift of the
+  // regions of the lists the pass walks (0: the whole program), the colour program's lists (0: A's).
+  prm.colorPass =
+      glm::uvec4(colorTable, prep->colorMaps, prep->colorLists ? 1u + prep->colorListShift : 0u, colorWalk.lists);
+  stats.colorRegionLists = colorTable != 0 && prep->colorLists;
+  stats.colorPipelineMadeInRecord = false;
   colorPass = VK_NULL_HANDLE;
-  if (colorTable != 0) {  // created on first use (on lavapipe a pipeline takes a while to compile)
-    VkPipeline& made = storagePool ? colorStorage : colorUniform;
-    if (!made) {
-      Result<VkPipeline> p = pipeline(storagePool ? "poly_color_ssbo.comp" : "poly_color.comp");
-      if (!p) return Error{p.error()};
-      made = *p;
-    }
-    colorPass = made;
+  if (colorTable != 0) {  // prewarmed, or created on first use (on lavapipe a pipeline takes a while to compile)
+    Result<VkPipeline> p = colorPipeline(storagePool, stats.colorPipelineMadeInRecord);
+    if (!p) return Error{p.error()};
+    colorPass = *p;
   }
   colorWalkThisFrame = colorWalk;
   if (lists) {
@@ -1156,11 +1230,50 @@ std::string GpuPolygonizer::unsupported(const GpuField& field) {
   return {};  // a program's size is no reason (regionPrograms): record() and polygonize() check the regions
 }
 
+Result<VkPipeline> GpuPolygonizer::Impl::colorPipeline(bool storage, bool& madeHere) {
+  VkPipeline& made = storage ? colorStorage : colorUniform;
+  std::future<Result<VkPipeline>>& compiling = colorCompiling[storage];
+  madeHere = false;
+  if (!made && compiling.valid()) {
+    Result<VkPipeline> p = compiling.get();  // a failure is not kept: made below, naming the error
+    if (p) made = *p;
+  }
+  if (!made) {
+    Result<VkPipeline> p = pipeline(storage ? "poly_color_ssbo.comp" : "poly_color.comp");
+    if (!p) return Error{p.error()};
+    made = *p;
+    madeHere = true;
+  }
+  return made;
+}
+
+void GpuPolygonizer::Impl::prewarmColorPipeline(bool storage) {
+  if ((storage ? colorStorage : colorUniform) || colorCompiling[storage].valid()) return;
+  const char* name = storage ? "poly_color_ssbo.comp" : "poly_color.comp";
+  colorCompiling[storage] = std::async(std::launch::async, [this, name] { return pipeline(name); });
+}
+
+bool GpuPolygonizer::Impl::colorPipelineReady(bool storage) const {
+  if (storage ? colorStorage : colorUniform) return true;
+  const std::future<Result<VkPipeline>>& f = colorCompiling[storage];
+  return f.valid() && f.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+}
+
+namespace {
+// The programs' shape with what the colour pass adds to the pool (colorPoolWords).
+FieldProgramsShape framePoolShape(const GpuField& field, const GpuPolygonizeSettings& s, uint64_t limit) {
+  FieldProgramsShape shape = fieldProgramsShape(*field.a, field.b);
+  shape.poolWords += colorPoolWords(field, s, limit);
+  return shape;
+}
+}  // namespace
+
 void GpuPolygonizer::prewarm(const GpuField& field, const GpuPolygonizeSettings& s) {
   Impl& m = *impl_;
   if (!field.a || !unsupported(field).empty()) return;
-  const Impl::VariantKey key = m.variantKey(fieldProgramsShape(*field.a, field.b), field, s);
+  const Impl::VariantKey key = m.variantKey(framePoolShape(field, s, loopLimit(m.ctx.properties())), field, s);
   m.fieldCache.prewarm(key);
+  if (colorSourceOf(field, s)) m.prewarmColorPipeline(std::get<2>(key) != 0);
 }
 
 bool GpuPolygonizer::ready(const GpuField& field, const GpuPolygonizeSettings& s) const {
@@ -1169,12 +1282,16 @@ bool GpuPolygonizer::ready(const GpuField& field, const GpuPolygonizeSettings& s
     return true;  // record() fails at once
   // The variant from the programs' shape: packing them whole (megabytes for the animorphosis
   // demo's C(t)) only to look the variant up cost as much as the record's own packing, every frame.
-  const Impl::VariantKey key = m.variantKey(fieldProgramsShape(*field.a, field.b), field, s);
-  return m.fieldCache.ready(key);
+  const Impl::VariantKey key = m.variantKey(framePoolShape(field, s, loopLimit(m.ctx.properties())), field, s);
+  return m.fieldCache.ready(key) && (!colorSourceOf(field, s) || m.colorPipelineReady(std::get<2>(key) != 0));
 }
 
 bool GpuPolygonizer::waitForCompilation(double timeoutSec) const {
-  return impl_->fieldCache.waitForCompilation(timeoutSec);
+  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeoutSec);
+  bool done = impl_->fieldCache.waitForCompilation(timeoutSec);
+  for (const auto& f : impl_->colorCompiling)
+    if (f.valid()) done = f.wait_until(until) == std::future_status::ready && done;
+  return done;
 }
 
 size_t GpuPolygonizer::variantCount() const { return impl_->fieldCache.size(); }
@@ -1272,6 +1389,7 @@ const FramePrep* GpuPolygonizer::Impl::usable(const GpuPreparedFrame* prepared, 
   // What the grid, the packing and the lists depend on (the morph's weights and the passes' other
   // settings are read at the record).
   const bool same = f.a == field.a && f.b == field.b && f.colors == field.colors && p.colors == s.colors &&
+                    p.colorRegionLists == s.colorRegionLists &&
                     f.method == field.method && p.resolution == s.resolution &&
                     p.marginCells == s.marginCells && p.regionPrograms == s.regionPrograms &&
                     p.loopBudgetCheck == s.loopBudgetCheck && p.bounds.has_value() == s.bounds.has_value() &&

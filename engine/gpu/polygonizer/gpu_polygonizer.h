@@ -134,6 +134,12 @@ struct GpuPolygonizeSettings {
   // them. Off, or a morph of two programs, or a program too long for the device's loop limit: none
   // (w stays 0, the draw's one tone; GpuPolygonizeStats::colors says which).
   bool colors = true;
+  // The colour pass walks the vertex's region's list rather than the whole program, so its cost
+  // follows the local op count and programs too long for a whole walk on lavapipe get colours:
+  // program A's lists where the frame walks per-region programs (regionPrograms), a colour program's
+  // own lists (GpuField::colors, regions of 2 blocks a side) always. Off: the whole walk (the same
+  // colours; tests compare both).
+  bool colorRegionLists = true;
   // Temporal coherence (docs/gpu-polygonizer.md, "Temporal coherence"): a frame prepared with the
   // previous recorded frame's (prepare(..., previous)) on the same grid, programs of the same
   // structure, reuses a block's kept corner values instead of evaluating them when the field
@@ -167,6 +173,10 @@ struct GpuPolygonizeStats {
   uint32_t regionBlocks = 0;  // blocks a side of the regions the blocks' lists are for (4: superblocks)
   uint32_t normalsDispatches = 1;  // 4: the normals pass ran once per vertex of its invocations
   bool colors = false;  // the vertices carry colours (GpuPolygonizeSettings::colors)
+  bool colorRegionLists = false;  // the colour pass walked per-region lists (GpuPolygonizeSettings::colorRegionLists)
+  // The record created the colour pass's pipeline itself (on its thread: a stall on lavapipe); false
+  // when it was made before (an earlier frame, or prewarm()).
+  bool colorPipelineMadeInRecord = false;
   uint64_t regionOpsTotal = 0;
   double regionListMs = 0.0;
   // The frame's host preparation (grid bounds, programs packed, region lists: GpuPreparedFrame):
@@ -275,10 +285,11 @@ class GpuPolygonizer {
   // first of them does not stall its frame: on lavapipe a field's four pipelines take about a
   // second to compile, on the thread that creates them. A record() that needs them meanwhile
   // waits for the compilation. No-op when they exist or are under way, or for an unsupported
-  // field; compilation errors surface in record().
+  // field; compilation errors surface in record(). A field with colours (colors on) has its colour
+  // pass's pipeline compiled too.
   void prewarm(const GpuField& field, const GpuPolygonizeSettings& s = {});
   // True when record() of field would not wait for pipelines to compile (they exist, or a
-  // prewarm has finished them). Interactive callers prewarm and draw what they have meanwhile.
+  // prewarm has finished them; the colour pass's too where the field has colours). Interactive callers prewarm and draw what they have meanwhile.
   bool ready(const GpuField& field, const GpuPolygonizeSettings& s = {}) const;
   // Waits up to timeoutSec for the pipelines being compiled in the background. Returns all done.
   bool waitForCompilation(double timeoutSec) const;

@@ -21,12 +21,16 @@ struct ProgramSide {
   std::vector<uint8_t> kernelLoops;    // by program-local global id: loop iterations of its kernel at 8 points
   std::vector<uint8_t> gradientLoops;  // the same for its value and gradient at 4 points (the normals)
   std::vector<uint8_t> intervalLoops;  // the same for its interval (the potential's power, twice)
+  // The colour pass's kernel at one point beyond its step of the Prims loop: a spline curve's
+  // closest point (16 samples per span, 8 refinement steps: poly_field.glsl closestOnCurve), else none.
+  std::vector<uint32_t> colorLoops;
 
   ProgramSide(const FieldProgram& p, const PackedFieldPrograms& pk, int which)
       : prog(p), paramsBase(pk.paramsBase[which]), mapsBase(pk.mapsBase[which]),
         classBase{pk.classBase[which][0], pk.classBase[which][1], pk.classBase[which][2]},
         primOffset(pk.primBegin[which]), localOf(p.primitiveCount(), 0u), kernelLoops(p.primitiveCount(), 1u),
-        gradientLoops(p.primitiveCount(), 1u), intervalLoops(p.primitiveCount(), 1u) {
+        gradientLoops(p.primitiveCount(), 1u), intervalLoops(p.primitiveCount(), 1u),
+        colorLoops(p.primitiveCount(), 0u) {
     for (const FieldOp& op : p.ops)
       if (op.code == OpCode::Prims)
         for (uint32_t k = 0; k < op.count; ++k) {
@@ -41,6 +45,7 @@ struct ProgramSide {
             const Skeleton& sk = p.skeletal[op.first + k].skeleton;
             if (sk.kind == SkeletonKind::Curve) {
               intervalSteps = uint32_t(std::min(200, sk.curveCount + 10));
+              colorLoops[op.primBegin + k] = 16u * uint32_t(std::max(sk.curveCount - 1, 0)) + 10u;
               loops = std::min(255u, 8u * intervalSteps + 3u);
               gradient = std::min(255u, 4u * intervalSteps + 2u);
             }
@@ -58,7 +63,7 @@ uint32_t recordSize(PrimClass c) {
 
 // Loop iterations of one walk of a list, as gpuLoopIterationEstimate counts a whole program's.
 struct ListLoops {
-  uint64_t value = 0, interval = 0;
+  uint64_t value = 0, interval = 0, color = 0;  // color: the colour pass's walk (poly_color_main.glsl)
 };
 
 // The op records of act (side's program specialised to one region) appended to pool, in the
@@ -76,9 +81,11 @@ ListLoops packActive(const ProgramSide& side, const ActiveProgram& act, std::vec
   for (uint32_t j = 0; j < act.ops.size(); ++j) {
     const FieldOp& op = act.ops[j];
     glm::uvec4 op0(uint32_t(op.code), 0u, op.count, 0u);
-    glm::uvec4 op1(side.paramsBase * 4u + op.param, 0u, bits(op.emptyValue), 0u);
+    // op1.w: the colour provenance (the region op lists' contract in gpu_region_op_lists.h).
+    glm::uvec4 op1(side.paramsBase * 4u + op.param, 0u, bits(op.emptyValue), op.subtreeBegin);
     loops.value += 1;
     loops.interval += 1;
+    loops.color += 1;
     if (op.code == OpCode::Prims) {
       uint32_t lo = side.localOf.empty() ? 0u : side.localOf[op.primBegin], n = 0;
       if (op.count > 0) {
@@ -91,6 +98,8 @@ ListLoops packActive(const ProgramSide& side, const ActiveProgram& act, std::vec
       op0.y = side.classBase[uint32_t(op.primClass)] + recordSize(op.primClass) * lo;
       op0.z = n;
       op0.w = side.primOffset + g0;
+      op1.y = side.primOffset + op.primBegin;  // the colour where none contributes: the whole op's first
+      loops.color += n;
       if (op.primClass == PrimClass::Convolution) {
         loops.value += n / 32 + 2;
       } else {
@@ -103,9 +112,11 @@ ListLoops packActive(const ProgramSide& side, const ActiveProgram& act, std::vec
       }
     } else if (op.code == OpCode::BeginMap || op.code == OpCode::EndMap) {
       op1.y = side.mapsBase + AM_REC_MAP * op.first;
+      if (op.code == OpCode::BeginMap) op0.z = op.first;  // the colour pass's map empty colour
     } else if (op.code != OpCode::Const) {
       loops.value += uint64_t(AM_POLY_CORNER_V) * (op.count + 1);
       loops.interval += op.count + 1;
+      loops.color += 3 * uint64_t(op.count);
     }
     pool[base + AM_REC_OP * j] = op0;
     pool[base + AM_REC_OP * j + 1] = op1;
@@ -119,11 +130,12 @@ ListLoops packActive(const ProgramSide& side, const ActiveProgram& act, std::vec
       b0.w = side.primOffset + p0;
       b0.y = p1 - p0;
       b1.z = bits(op.emptyValue);  // the map's subtree where none of its primitives contributes
-      b1.w = j - m.at;
+      b1.w = j - m.at;             // (a BeginMap carries no colour provenance: its op1.w is the skip)
       // The interpreters test the subtree's mask words at the BeginMap (anyPrimActive): a loop.
       const uint64_t maskSteps = p1 > p0 ? ((p1 - 1) >> 5) - (p0 >> 5) + 1 : 1;
       loops.value += maskSteps;
       loops.interval += maskSteps;
+      loops.color += maskSteps;
       if (!open.empty() && m.p0 != UINT32_MAX) {
         open.back().p0 = std::min(open.back().p0, p0);
         open.back().p1 = std::max(open.back().p1, p1);
@@ -169,7 +181,7 @@ RegionOpLists appendRegionOpLists(const FieldProgram& a, const FieldProgram* b, 
   for (uint32_t r = 0; r < regions.size(); ++r) {
     glm::uvec4 entry(0u);
     ListLoops total;
-    uint64_t candidates = 0, kernels = 0, gradientKernels = 0, intervalKernels = 0;
+    uint64_t candidates = 0, kernels = 0, gradientKernels = 0, intervalKernels = 0, colorKernels = 0;
     for (size_t k = 0; k < sides.size(); ++k) {
       const ProgramSide& side = sides[k];
       std::vector<uint32_t>& reaching = out.reaching[k][r];
@@ -180,6 +192,7 @@ RegionOpLists appendRegionOpLists(const FieldProgram& a, const FieldProgram* b, 
         kernels += side.kernelLoops[g];
         gradientKernels += side.gradientLoops[g];
         intervalKernels += side.intervalLoops[g];
+        colorKernels += side.colorLoops[g];
       }
       if (masks)
         for (uint32_t g : reaching) {
@@ -191,6 +204,7 @@ RegionOpLists appendRegionOpLists(const FieldProgram& a, const FieldProgram* b, 
       const ListLoops l = packActive(side, act, pool);
       total.value += l.value;
       total.interval += l.interval;
+      total.color += l.color;
       entry[int(2 * k)] = begin;
       entry[int(2 * k + 1)] = uint32_t(act.ops.size());
       out.opsTotal += act.ops.size();
@@ -207,6 +221,7 @@ RegionOpLists appendRegionOpLists(const FieldProgram& a, const FieldProgram* b, 
     out.longestCoarse = std::max(out.longestCoarse, 3 * words + candidates + 32 + interval);
     const uint64_t normals = stencilNormals ? total.value + kernels + 16 : total.value + gradientKernels + 16;
     out.longestNormalWalk = std::max(out.longestNormalWalk, normals);
+    out.longestColorWalk = std::max(out.longestColorWalk, total.color + colorKernels + 16);
     out.longestFine = std::max({out.longestFine, interval + 512, total.value + kernels + 512, normals});
   }
   return out;

@@ -31,6 +31,10 @@ struct RegionOpLists {
   // The normals pass's walk of one list for one vertex (the stencil's pair or the analytic gradient):
   // the fine figure above counts it once (the pass run once per vertex where needed).
   uint64_t longestNormalWalk = 0;
+  // The colour pass's walk of one list for one vertex (shaders/include/poly_color_main.glsl: every op,
+  // every primitive of a Prims op one by one, operators' operands, the kernels reaching the region),
+  // the most over the regions: what GpuPolygonizer compares with the loop limit before colouring.
+  uint64_t longestColorWalk = 0;
   bool stencilNormals = false;  // the programs' normals take the stencil (two walks for four vertices)
   std::vector<uint64_t> intervalWalk;  // per region: the first figure
   // Per program (a, b), per region: the primitives (program-local ids) reaching it, sorted.
@@ -44,6 +48,11 @@ struct RegionOpLists {
 // parent, region r lies inside parent's region parentOf[r], whose reaching primitives are the
 // only candidates. Values inside a region are those of the whole program: the primitives left out
 // contribute exactly 0 there.
+// For the colour pass each list op carries what the CPU's colour walk reads beside it
+// (field/surface_color.h): op1.w the colour provenance specialise left in the op's subtreeBegin
+// (a dropped subtree's or operand's empty colour, by the whole program's op index); a Prims op's
+// op1.y the global id of its whole op's first primitive (its colour where none contributes); a
+// BeginMap's op0.z its map index (the map's empty colour). The field passes read none of these.
 RegionOpLists appendRegionOpLists(const FieldProgram& a, const FieldProgram* b, const std::vector<Bounds>& regions,
                                   PackedFieldPrograms& pk, bool masks, const RegionOpLists* parent = nullptr,
                                   const std::vector<uint32_t>* parentOf = nullptr);
