@@ -523,6 +523,7 @@ void FieldProgram::beginRefill() {
   maxMapDepth_ = mapDepth;
   refillable_ = true;
   refilling_ = true;
+  refillOps_.reserve(builtOpCount_);  // a program seeded by adoptStructure has no scratch memory yet
 }
 
 RefillOutcome FieldProgram::finishRefill() {
