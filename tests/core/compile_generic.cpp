@@ -251,7 +251,7 @@ RefillOutcome refillAndCompare(GenericProgramCompiler& compiler, GenericProgramC
 }  // namespace
 
 TEST_CASE(
-    "field program: a refill with new values equals a fresh compile (seeded animorphoses, the demo's C(t) at 12 times)",
+    "field program: a refill with new values equals a fresh compile (seeded animorphoses, the demo's C(t) at 24 times)",
     "[animorph][compile][refill]") {
   auto p = makeAnimorphosisDemoProject();
   REQUIRE(p.ok());
