@@ -6,6 +6,7 @@
 
 #include "core/animorphosis/compile_generic.h"
 #include "core/animorphosis/evaluate_generic.h"
+#include "core/poly/preview_polygonizer.h"
 #include "demo/animorphosis_demo.h"
 #include "core/project/animorphosis_project.h"
 #include "util/animorph_fixtures.h"
@@ -105,6 +106,46 @@ void requireSameProgram(const FieldProgram& direct, const FieldProgram& snapshot
   REQUIRE(a == b);
 }
 
+// A seeded generic tree: a random creature and a perturbed copy with some blends made unions (their
+// pairs bridged), most nodes linked, some with their own s(u). bridged: the blends made unions.
+GenericTree seededGenericTree(unsigned seed, int& bridged) {
+  std::mt19937 rng(seed);
+  BlobTree a = randomCreature(rng, 80);
+  std::unordered_map<int, int> idMap;
+  BlobTree b = perturbedCopy(a, {0.4f, 0.1f, 0.0f}, 1.3f, rng, idMap, 0.05f);
+  bridged = 0;
+  std::function<void(BlobNode&)> bridge = [&](BlobNode& n) {
+    if (n.type == NodeType::Blend && &n != &b.root && rng() % 3 == 0) {
+      n.type = NodeType::Union;
+      ++bridged;
+    }
+    for (BlobNode& k : n.children) bridge(k);
+  };
+  bridge(b.root);
+  CorrespondenceGraph g;
+  std::function<void(const BlobNode&)> link = [&](const BlobNode& n) {
+    if (n.id != a.root.id && rng() % 5 != 0) {
+      g.links.push_back({n.id, idMap.at(n.id), {}, 1.0f, true});
+      if (rng() % 4 == 0) g.links.back().sOverride = hermiteRampTrack(0.0f, 2.0f);
+    }
+    for (const BlobNode& k : n.children) link(k);
+  };
+  link(a.root);
+  auto c = buildGenericTree(a, b, g);
+  INFO("seed " << seed << ", " << bridged << " blends made unions: " << (c.ok() ? "" : c.error()));
+  REQUIRE(c.ok());
+  return std::move(*c);
+}
+
+// The timing of the seeded trees' morph.
+AnimorphosisTiming seededTiming() {
+  AnimorphosisTiming timing;
+  timing.startSec = 0.5;
+  timing.endSec = 1.5;
+  timing.target.speed = 1.5;
+  return timing;
+}
+
 }  // namespace
 
 TEST_CASE("compile generic: the demo's C(t) compiled directly is the snapshot's program bit for bit",
@@ -175,44 +216,177 @@ TEST_CASE("compile generic: random generic trees compiled directly match their s
           "[animorph][compile]") {
   int bridgedPairs = 0;
   for (unsigned seed = 1; seed <= 8; ++seed) {
-    std::mt19937 rng(seed);
-    BlobTree a = randomCreature(rng, 80);
-    std::unordered_map<int, int> idMap;
-    BlobTree b = perturbedCopy(a, {0.4f, 0.1f, 0.0f}, 1.3f, rng, idMap, 0.05f);
-    // Some blends of B become unions: their pairs are bridged (a hyper-blend in between).
     int bridged = 0;
-    std::function<void(BlobNode&)> bridge = [&](BlobNode& n) {
-      if (n.type == NodeType::Blend && &n != &b.root && rng() % 3 == 0) {
-        n.type = NodeType::Union;
-        ++bridged;
-      }
-      for (BlobNode& k : n.children) bridge(k);
-    };
-    bridge(b.root);
-    // Most nodes linked to their copies (the rest get null partners), some with their own s(u).
-    CorrespondenceGraph g;
-    std::function<void(const BlobNode&)> link = [&](const BlobNode& n) {
-      if (n.id != a.root.id && rng() % 5 != 0) {
-        g.links.push_back({n.id, idMap.at(n.id), {}, 1.0f, true});
-        if (rng() % 4 == 0) g.links.back().sOverride = hermiteRampTrack(0.0f, 2.0f);
-      }
-      for (const BlobNode& k : n.children) link(k);
-    };
-    link(a.root);
-    auto c = buildGenericTree(a, b, g);
-    INFO("seed " << seed << ", " << bridged << " blends made unions: " << (c.ok() ? "" : c.error()));
-    REQUIRE(c.ok());
+    const GenericTree c = seededGenericTree(seed, bridged);
     bridgedPairs += bridged;
-    AnimorphosisTiming timing;
-    timing.startSec = 0.5;
-    timing.endSec = 1.5;
-    timing.target.speed = 1.5;
-    GenericProgramCompiler compiler(*c);
+    const AnimorphosisTiming timing = seededTiming();
+    GenericProgramCompiler compiler(c);
     FieldProgram kept;
     for (double t : {0.2, 0.5, 0.61, 0.83, 1.0, 1.22, 1.5, 1.9}) {
       compiler.compile(timing, t, kept);
-      requireSameProgram(kept, compileFieldProgram(instantiateGeneric(*c, timing, t), 0.0), t);
+      requireSameProgram(kept, compileFieldProgram(instantiateGeneric(c, timing, t), 0.0), t);
     }
   }
   CHECK(bridgedPairs > 0);
+}
+
+namespace {
+
+// Refills kept with C at t and checks it against a fresh compile of C at t (bit for bit); returns how
+// the refill ended.
+RefillOutcome refillAndCompare(GenericProgramCompiler& compiler, GenericProgramCompiler& fresh,
+                               const AnimorphosisTiming& timing, double t, FieldProgram& kept) {
+  const uint64_t structure = kept.structureIdentity(), identity = kept.identity();
+  const RefillOutcome outcome = compiler.refill(timing, t, kept);
+  FieldProgram ref;
+  fresh.compile(timing, t, ref);
+  INFO("refill outcome " << int(outcome));
+  requireSameProgram(kept, ref, t);
+  CHECK(kept.identity() != identity);
+  // The structure's identity is kept exactly when the structure was.
+  CHECK((kept.structureIdentity() == structure) == (outcome == RefillOutcome::Refilled));
+  return outcome;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "field program: a refill with new values equals a fresh compile (seeded animorphoses, the demo's C(t) at 24 times)",
+    "[animorph][compile][refill]") {
+  auto p = makeAnimorphosisDemoProject();
+  REQUIRE(p.ok());
+  auto c = projectGenericTree(*p);
+  REQUIRE(c.ok());
+  const AnimorphosisTiming timing = animorphosisTiming(*p);
+  GenericProgramCompiler compiler(*c), fresh(*c);
+  FieldProgram kept;
+  int counts[3] = {0, 0, 0};  // by RefillOutcome
+  // A scrub through the morph: 12 frames a twelfth of the interval apart, then 12 frames 1/30 s apart.
+  const double a = kDemoMorphStartSec, b = kDemoMorphEndSec;
+  std::vector<double> times;
+  for (int k = 0; k < 12; ++k) times.push_back(a + (b - a) * (k + 0.5) / 12.0);
+  for (int k = 0; k < 12; ++k) times.push_back(0.5 * (a + b) + k / 30.0);
+  for (double t : times) ++counts[int(refillAndCompare(compiler, fresh, timing, t, kept))];
+  INFO("demo: " << counts[0] << " refilled, " << counts[1] << " first, " << counts[2] << " structure changed");
+  CHECK(counts[int(RefillOutcome::FirstCompile)] == 1);
+  // Frames 1/30 s apart in the middle of the morph keep their structure (only values move).
+  CHECK(counts[int(RefillOutcome::Refilled)] >= 11);
+
+  // The polygonised meshes of a refilled program and of a fresh compile are the same, bit for bit.
+  for (double t : {a + 0.31 * (b - a), 0.5 * (a + b) + 0.1}) {
+    compiler.refill(timing, t, kept);
+    FieldProgram ref;
+    fresh.compile(timing, t, ref);
+    auto m1 = polygonizePreviewProgram(kept, 40, 2, nullptr, nullptr);
+    auto m2 = polygonizePreviewProgram(ref, 40, 2, nullptr, nullptr);
+    REQUIRE(m1.ok());
+    REQUIRE(m2.ok());
+    CHECK(m1->mesh.triangleCount() > 100);
+    CHECK(m1->mesh == m2->mesh);
+  }
+
+  // Seeded generic trees, one kept program each, refilled at times across the morph.
+  int refilled = 0;
+  for (unsigned seed = 11; seed <= 16; ++seed) {
+    int bridged = 0;
+    const GenericTree g = seededGenericTree(seed, bridged);
+    const AnimorphosisTiming st = seededTiming();
+    GenericProgramCompiler gc(g), gf(g);
+    FieldProgram gk;
+    for (double t : {0.2, 0.3, 0.61, 0.62, 0.83, 0.84, 1.0, 1.22, 1.23, 1.5, 1.9, 2.0})
+      refilled += refillAndCompare(gc, gf, st, t, gk) == RefillOutcome::Refilled;
+  }
+  CHECK(refilled > 0);
+}
+
+namespace {
+
+// A small program with every kind of op: a map over two joined skeletal primitives, capsules, a
+// constant, a blend of five or six operands (folded) and a remap. extra: one more capsule operand;
+// join: whether the second skeletal primitive joins the first op (else a union of the two).
+void buildSmall(FieldProgram& p, float r, float constant, bool extra, bool join) {
+  p.threshold = 0.5f + 0.1f * r;
+  p.beginMap(makeAffineMap(glm::vec3(r, 0.0f, 0.0f), glm::quat(1, 0, 0, 0), glm::vec3(1.0f + r)));
+  SkeletalPrimitive s;
+  s.skeleton.kind = SkeletonKind::Segment;
+  s.skeleton.p1 = glm::vec3(0.0f, r, 0.0f);
+  s.radius = 0.5f + r;
+  p.addSkeletal(s, false, false);
+  s.skeleton.p0 = glm::vec3(r, 0.0f, 0.0f);
+  p.addSkeletal(s, join, false);
+  if (!join) p.addOperator(OpCode::Max, 2);
+  p.endMap();
+  uint32_t operands = 1;
+  for (int k = 0; k < (extra ? 3 : 2); ++k, ++operands)
+    p.addCapsule({glm::vec3(float(k), r, 0.0f), glm::vec3(float(k), r + 1.0f, 0.0f), 0.3f + 0.1f * r}, false, false);
+  p.addConstant(constant);
+  ++operands;
+  p.addConvolution(glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, 1.0f + r), 0.4f, 1.0f, 1e-3f, false);
+  ++operands;
+  p.addOperator(OpCode::Sum, operands);
+  const float remap[2] = {1.0f + r, 0.8f};
+  p.addOperator(OpCode::Remap, 1, remap, 2);
+}
+
+FieldProgram freshSmall(float r, float constant, bool extra, bool join) {
+  FieldProgram p;
+  buildSmall(p, r, constant, extra, join);
+  p.finish();
+  return p;
+}
+
+RefillOutcome refillSmall(FieldProgram& p, float r, float constant, bool extra, bool join) {
+  p.beginRefill();
+  buildSmall(p, r, constant, extra, join);
+  const RefillOutcome outcome = p.finishRefill();
+  requireSameProgram(p, freshSmall(r, constant, extra, join), r);
+  return outcome;
+}
+
+}  // namespace
+
+TEST_CASE("field program: a refill whose structure changed is refused and compiles fully",
+          "[animorph][compile][refill]") {
+  FieldProgram p;
+  CHECK(refillSmall(p, 0.1f, 0.0f, false, true) == RefillOutcome::FirstCompile);
+  REQUIRE(p.ops.size() > 6);
+  const uint64_t structure = p.structureIdentity();
+  CHECK(refillSmall(p, 0.2f, 0.0f, false, true) == RefillOutcome::Refilled);
+  CHECK(p.structureIdentity() == structure);
+  CHECK(refillSmall(p, 0.3f, 0.0f, true, true) == RefillOutcome::StructureChanged);  // one more operand
+  CHECK(p.structureIdentity() != structure);
+  CHECK(refillSmall(p, 0.4f, 0.0f, true, true) == RefillOutcome::Refilled);
+  CHECK(refillSmall(p, 0.4f, 0.0f, true, false) == RefillOutcome::StructureChanged);  // not joined
+  CHECK(refillSmall(p, 0.4f, 0.25f, true, false) == RefillOutcome::StructureChanged);  // a constant moved
+  CHECK(refillSmall(p, 0.5f, 0.25f, true, false) == RefillOutcome::Refilled);
+  // A fresh program seeded with the structure refills it.
+  FieldProgram q;
+  q.adoptStructure(p);
+  CHECK(q.structureIdentity() == p.structureIdentity());
+  CHECK(refillSmall(q, 0.7f, 0.25f, true, false) == RefillOutcome::Refilled);
+  // reset() forgets the structure.
+  p.reset();
+  CHECK(refillSmall(p, 0.5f, 0.25f, true, false) == RefillOutcome::FirstCompile);
+  // A malformed program keeps nothing to refill.
+  FieldProgram bad;
+  bad.addCapsule({glm::vec3(0.0f), glm::vec3(1.0f), 0.5f}, false, false);
+  bad.addCapsule({glm::vec3(0.0f), glm::vec3(1.0f), 0.5f}, false, false);
+  bad.finish();
+  FieldProgram seeded;
+  seeded.adoptStructure(bad);
+  CHECK(seeded.structureIdentity() == 0);
+
+  // The demo's C(t): the A side before the morph, then the middle (bridged pairs blend) and back.
+  auto d = makeAnimorphosisDemoProject();
+  REQUIRE(d.ok());
+  auto c = projectGenericTree(*d);
+  REQUIRE(c.ok());
+  const AnimorphosisTiming timing = animorphosisTiming(*d);
+  GenericProgramCompiler compiler(*c), fresh(*c);
+  FieldProgram kept;
+  const double mid = 0.5 * (kDemoMorphStartSec + kDemoMorphEndSec);
+  CHECK(refillAndCompare(compiler, fresh, timing, 0.0, kept) == RefillOutcome::FirstCompile);
+  CHECK(refillAndCompare(compiler, fresh, timing, 0.1, kept) == RefillOutcome::Refilled);
+  CHECK(refillAndCompare(compiler, fresh, timing, mid, kept) == RefillOutcome::StructureChanged);
+  CHECK(refillAndCompare(compiler, fresh, timing, 0.0, kept) == RefillOutcome::StructureChanged);
 }

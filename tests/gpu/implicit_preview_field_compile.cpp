@@ -2,7 +2,8 @@
 // preview_field_compiler.h), on lavapipe: a shape whose field takes long to
 // compile does not hold up update(), the viewport keeps the last mesh until it
 // is compiled, shapes superseded while waiting are never compiled, and a
-// screenshot (settle) still shows exactly the shape asked for.
+// screenshot (settle) still shows exactly the shape asked for; fields of C(t) scrubbed refill the
+// kept structure of the last one (counted).
 #include <catch2/catch.hpp>
 
 #include <atomic>
@@ -11,7 +12,10 @@
 
 #include "gpu_fixture.h"
 #include "gpu/polygonizer/implicit_preview.h"
+#include "core/project/animorphosis_project.h"
+#include "core/scene/animorphosis_preview_source.h"
 #include "core/scene/morph_preview_source.h"
+#include "demo/animorphosis_demo.h"
 #include "util/morph_fixtures.h"
 
 using namespace animorph;
@@ -193,4 +197,37 @@ TEST_CASE("implicit preview: a screenshot shows the shape asked for while an old
   CHECK_FALSE(preview.busy());
   CHECK(s.triangles == f.trianglesAt(shot.t));
   CHECK(f.ctx->validationErrorCount() == 0);
+}
+
+TEST_CASE("preview field compiler: scrubbing C(t) refills the kept structure (counted), a new C compiles",
+          "[gpu][preview][refill]") {
+  auto p = makeAnimorphosisDemoProject();
+  REQUIRE(p.ok());
+  auto c = projectGenericTree(*p);
+  REQUIRE(c.ok());
+  auto tree = std::make_shared<const GenericTree>(std::move(*c));
+  const AnimorphosisTiming timing = animorphosisTiming(*p);
+  const double mid = 0.5 * (kDemoMorphStartSec + kDemoMorphEndSec);
+  PreviewFieldCompiler compiler;
+  auto shared = std::make_shared<SharedGenericCompiler>(tree);
+  for (int k = 0; k < 6; ++k) {
+    const double t = mid + k / 30.0;
+    auto r = compiler.compileHere(animorphosisPreviewSource(shared, timing, t), 48, t);
+    REQUIRE(r);
+    INFO(r->error);
+    CHECK(r->field.has_value());
+  }
+  PreviewFieldCounters n = compiler.counters();
+  INFO(n.refilled << " refilled, " << n.firstCompiles << " first, " << n.structureChanged << " changed, "
+                  << n.notRefilled << " not refilled");
+  CHECK(n.onCallerThread == 6);
+  CHECK(n.firstCompiles == 1);
+  CHECK(n.refilled >= 4);
+  CHECK(n.refilled + n.firstCompiles + n.structureChanged == 6);
+  // Another C (the editor builds one after an edit): its first field is compiled fully.
+  auto edited = std::make_shared<SharedGenericCompiler>(tree);
+  auto r = compiler.compileHere(animorphosisPreviewSource(edited, timing, mid), 48, mid);
+  REQUIRE(r);
+  CHECK(compiler.counters().firstCompiles == 2);
+  CHECK(compiler.counters().refilled == n.refilled);
 }

@@ -5,6 +5,7 @@
 // with only its wings moving, on the dinosaur with only its tail), a bake of consecutive frames
 // on one grid with coherence, each with a baseline measured in the same run.
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <ctime>
 #include <functional>
@@ -108,6 +109,7 @@ struct DemoBench {
 
   void flattenRows();
   void scrubFlattenRows();
+  void refillRows();
   void polygoniseRows();
   void bakeRows();
   // Consecutive frames (1/24 s apart) of `frame` on one grid: full sweeps, temporal coherence
@@ -217,6 +219,56 @@ void DemoBench::scrubFlattenRows() {
   double base = bench::medianMs(repeats, [&] { (void)compileFieldProgram(dragon, 0.5); });
   rows.push_back({"flatten the dragon alone (baseline)", double(dragon.root.subtreeSize()) / (base * 1e-3),
                   "nodes/s", "", ms(base) + " per frame"});
+}
+
+// Scrubbing with C(t)'s structure kept (FieldProgram::beginRefill, GenericProgramCompiler::refill): the
+// same frames (1/30 s apart from the middle of the morph) four ways, alternating A B C D a frame each,
+// each row the median of its frames: compiled into a kept program (A) and refilled into another (B);
+// a new program per frame as the preview's sources make them, compiled (C, the preview before) and
+// seeded with the last structure then refilled (D, SharedGenericCompiler now).
+void DemoBench::refillRows() {
+  const int frames = opt.quick ? 6 : 24;
+  FieldProgram keptA, keptB;
+  auto shared = std::make_shared<SharedGenericCompiler>(std::make_shared<const GenericTree>(c));
+  std::vector<double> wall[4], cpu[4], finish[4];
+  int outcomes[3] = {0, 0, 0};
+  compiler.refill(timing, mid, keptB);  // the structure the refills keep (a first compile)
+  { FieldProgram first; shared->compile(timing, mid, first); }
+  for (int f = 0; f < frames; ++f) {
+    const double t = mid + (f + 1) / 30.0;
+    for (int way = 0; way < 4; ++way) {
+      const auto w0 = std::chrono::steady_clock::now();
+      const std::clock_t c0 = std::clock();
+      FieldProgram fresh;
+      if (way == 0) compiler.compile(timing, t, keptA);
+      else if (way == 1) ++outcomes[int(compiler.refill(timing, t, keptB))];
+      else if (way == 2) compiler.compile(timing, t, fresh);
+      else shared->compile(timing, t, fresh);
+      cpu[way].push_back(1e3 * double(std::clock() - c0) / CLOCKS_PER_SEC);
+      wall[way].push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - w0).count());
+      if (way < 3) finish[way].push_back(1e3 * compiler.lastTiming().finishSec);
+    }
+  }
+  auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v[v.size() / 2];
+  };
+  const SharedGenericCompiler::Counters n = shared->counters();
+  const std::string how = "median of " + std::to_string(frames) + " frames 1/30 s apart, A B C D alternated; the "
+                          "emitter on this thread plus the compiler's helper threads; processor time ";
+  rows.push_back({"scrub C(t): compile into the kept program (A, baseline)", median(wall[0]), "ms", "",
+                  how + ms(median(cpu[0])) + ", FieldProgram::finish " + ms(median(finish[0]))});
+  rows.push_back({"scrub C(t): refill the kept program's structure (B)", median(wall[1]), "ms", "",
+                  how + ms(median(cpu[1])) + ", finishRefill " + ms(median(finish[1])) + "; " +
+                      std::to_string(outcomes[int(RefillOutcome::Refilled)]) + " refilled, " +
+                      std::to_string(outcomes[int(RefillOutcome::StructureChanged)]) + " structure changed"});
+  rows.push_back({"scrub C(t): a new program per frame, compiled (C, baseline: the preview before)", median(wall[2]),
+                  "ms", "", how + ms(median(cpu[2]))});
+  rows.push_back({"scrub C(t): a new program per frame, seeded and refilled (D, the preview's sources)",
+                  median(wall[3]), "ms", "",
+                  how + ms(median(cpu[3])) + "; " + std::to_string(n.refills) + " refilled, " +
+                      std::to_string(n.structureChanges) + " structure changed, " + std::to_string(n.firstCompiles) +
+                      " first (outside the timing)"});
 }
 
 void DemoBench::polygoniseRows() {
@@ -432,6 +484,7 @@ std::vector<Row> runDemoBench(const bench::Options& opt) {
   DemoBench b(opt, *p, *c);
   b.flattenRows();
   b.scrubFlattenRows();
+  b.refillRows();
   b.polygoniseRows();
   b.bakeRows();
   b.allCoherenceRows();

@@ -234,6 +234,10 @@ ScrubFigures scrub(ScrubRun& r) {
   out.fields.callerThreadMs -= fieldsBefore.callerThreadMs;
   out.fields.superseded -= fieldsBefore.superseded;
   out.fields.prepareMs -= fieldsBefore.prepareMs;
+  out.fields.refilled -= fieldsBefore.refilled;
+  out.fields.firstCompiles -= fieldsBefore.firstCompiles;
+  out.fields.structureChanged -= fieldsBefore.structureChanged;
+  out.fields.notRefilled -= fieldsBefore.notRefilled;
   out.shownWhileScrubbing = r.meshesShown;
   out.scenePassesWhileScrubbing = r.scenePasses;
   out.polyWhileScrubbing = r.polyMs;
@@ -257,16 +261,21 @@ void settle(ScrubRun& r, ScrubFigures& out) {
 // the frame (previews stage) when it is cheap or a screenshot needs it.
 Row fieldCompileRow(const std::string& tag, const gpu::PreviewFieldCounters& fields) {
   const uint64_t compiles = fields.onCompileThread + fields.onCallerThread;
-  char where[300];
+  char where[500];
   std::snprintf(where, sizeof where,
                 "%llu on the compile thread (%.1f ms each), %llu on the UI thread (%.1f ms each), %llu superseded "
                 "before compiling; each also prepared its GPU frame (grid bounds, packing, region lists: %.1f ms "
-                "each, not in the row's figure)",
+                "each, not in the row's figure); %llu refilled the kept structure (values only), %llu built it "
+                "(%llu first, %llu structure changed), %llu not refillable",
                 (unsigned long long)fields.onCompileThread,
                 fields.onCompileThread ? fields.compileThreadMs / double(fields.onCompileThread) : 0.0,
                 (unsigned long long)fields.onCallerThread,
                 fields.onCallerThread ? fields.callerThreadMs / double(fields.onCallerThread) : 0.0,
-                (unsigned long long)fields.superseded, compiles ? fields.prepareMs / double(compiles) : 0.0);
+                (unsigned long long)fields.superseded, compiles ? fields.prepareMs / double(compiles) : 0.0,
+                (unsigned long long)fields.refilled,
+                (unsigned long long)(fields.firstCompiles + fields.structureChanged),
+                (unsigned long long)fields.firstCompiles, (unsigned long long)fields.structureChanged,
+                (unsigned long long)fields.notRefilled);
   return {tag + ", field compile", compiles ? (fields.compileThreadMs + fields.callerThreadMs) / double(compiles) : 0.0,
           "ms", "", where};
 }

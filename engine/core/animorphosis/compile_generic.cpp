@@ -302,6 +302,16 @@ const GenericProgramCompiler::Timing& GenericProgramCompiler::lastTiming() const
 
 void GenericProgramCompiler::compile(const AnimorphosisTiming& timing, double timeSec, FieldProgram& out,
                                      const CompileOptions& options) {
+  build(timing, timeSec, out, options, false);
+}
+
+RefillOutcome GenericProgramCompiler::refill(const AnimorphosisTiming& timing, double timeSec, FieldProgram& out,
+                                             const CompileOptions& options) {
+  return build(timing, timeSec, out, options, true);
+}
+
+RefillOutcome GenericProgramCompiler::build(const AnimorphosisTiming& timing, double timeSec, FieldProgram& out,
+                                            const CompileOptions& options, bool refill) {
   Impl& m = *impl_;
   const auto t0 = std::chrono::steady_clock::now();
   m.tA = timing.source.localTime(timeSec);
@@ -321,15 +331,19 @@ void GenericProgramCompiler::compile(const AnimorphosisTiming& timing, double ti
       while (m.evaluateNextChunk()) {
       }
     });
-  out.reset();
+  if (refill) out.beginRefill();
+  else out.reset();
   out.threshold = std::max(1e-6f, genericThreshold(m.c, timing, timeSec));
   PlanSource source{m};
   FlatEmitter<PlanSource> emitter(out, source, options.cutoffEpsilon);
   emitter.node(0);
   helpers.wait();
   const auto t2 = std::chrono::steady_clock::now();
-  out.finish();
+  RefillOutcome outcome = RefillOutcome::FirstCompile;
+  if (refill) outcome = out.finishRefill();
+  else out.finish();
   const auto t3 = std::chrono::steady_clock::now();
   m.timing = {seconds(t0, t1), seconds(t1, t2), seconds(t2, t3)};
+  return outcome;
 }
 }  // namespace animorph

@@ -31,6 +31,11 @@ class GenericProgramCompiler {
   // One call at a time per compiler (it keeps the values of the frame it compiles).
   void compile(const AnimorphosisTiming& timing, double timeSec, FieldProgram& out,
                const CompileOptions& options = {});
+  // compile() refilling out (FieldProgram::beginRefill): the same program, out's op list kept when C at
+  // timeSec has the structure out was last compiled with (a scrub: only values move), else rebuilt.
+  // Returns which; lastTiming()'s finishSec is then the refill's finish.
+  RefillOutcome refill(const AnimorphosisTiming& timing, double timeSec, FieldProgram& out,
+                       const CompileOptions& options = {});
   const GenericTree& tree() const;
   size_t nodeCount() const;
 
@@ -44,6 +49,8 @@ class GenericProgramCompiler {
   struct Impl;  // the nodes and their values (compile_generic.cpp)
 
  private:
+  RefillOutcome build(const AnimorphosisTiming& timing, double timeSec, FieldProgram& out,
+                      const CompileOptions& options, bool refill);
   std::unique_ptr<Impl> impl_;
 };
 

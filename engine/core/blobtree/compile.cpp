@@ -73,6 +73,14 @@ void compileFieldProgram(const BlobTree& tree, double timeSec, FieldProgram& pro
   prog.finish();
 }
 
+RefillOutcome refillFieldProgram(const BlobTree& tree, double timeSec, FieldProgram& prog,
+                                 const CompileOptions& options) {
+  prog.beginRefill();
+  prog.threshold = std::max(1e-6f, tree.threshold.evaluate(timeSec));
+  appendBlobTree(prog, tree, timeSec, options);
+  return prog.finishRefill();
+}
+
 void appendBlobTree(FieldProgram& prog, const BlobTree& tree, double timeSec, const CompileOptions& options) {
   TrackSource source{timeSec, {}, {}};
   FlatEmitter<TrackSource> emitter(prog, source, options.cutoffEpsilon);

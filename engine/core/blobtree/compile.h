@@ -19,6 +19,10 @@ FieldProgram compileFieldProgram(const BlobTree& tree, double timeSec, const Com
 // The same program built into `out` (whatever it held is replaced), reusing its memory: flattening
 // every frame into one kept program allocates nothing once warm.
 void compileFieldProgram(const BlobTree& tree, double timeSec, FieldProgram& out, const CompileOptions& options = {});
+// The same program refilled into `out` (FieldProgram::beginRefill): out's op list is kept when the tree
+// at timeSec flattens to the same one (an animation moving values only), else rebuilt. Returns which.
+RefillOutcome refillFieldProgram(const BlobTree& tree, double timeSec, FieldProgram& out,
+                                 const CompileOptions& options = {});
 
 // The same tree appended to prog as one operand (prog not finished yet), under
 // whatever maps prog has open: how a morph puts a BlobTree beside a stand-in.

@@ -171,6 +171,31 @@ void foldWideOperators(std::vector<FieldOp>& ops) {
 
 namespace {
 
+// A new program identity (FieldProgram::identity, structureIdentity): unique in the process.
+uint64_t nextProgramIdentity() {
+  static std::atomic<uint64_t> next{1};
+  return next.fetch_add(1);
+}
+
+uint64_t mixWord(uint64_t h, uint64_t w) {
+  h = (h ^ w) * 0x9E3779B97F4A7C15ull;
+  return h ^ (h >> 29);
+}
+
+// Digest of an unfolded op list (as the adds made it): every field the adds set, in order.
+uint64_t digestOps(const std::vector<FieldOp>& ops) {
+  uint64_t h = 0xCBF29CE484222325ull ^ ops.size();
+  for (const FieldOp& op : ops) {
+    uint32_t emptyBits;
+    std::memcpy(&emptyBits, &op.emptyValue, sizeof emptyBits);
+    h = mixWord(h, uint64_t(op.code) | uint64_t(op.primClass) << 8 | uint64_t(op.combineMax) << 16 |
+                       uint64_t(op.count) << 32);
+    h = mixWord(h, uint64_t(op.first) | uint64_t(op.primBegin) << 32);
+    h = mixWord(h, uint64_t(op.param) | uint64_t(emptyBits) << 32);
+  }
+  return h;
+}
+
 // A primitive's capsule (a, b, radius) and box in its own space, where its world bound starts.
 PrimitiveBound localBound(const glm::vec3& a, const glm::vec3& b, float radius) {
   PrimitiveBound pb;
@@ -311,6 +336,7 @@ bool FieldProgram::pushPrims(PrimClass cls, uint32_t local, bool combineWithPrev
   std::vector<glm::vec3>& colors = classColors[size_t(cls)];
   if (colors.size() <= local) colors.resize(size_t(local) + 1, nextColor);
   colors[local] = nextColor;
+  std::vector<FieldOp>& ops = building();
   if (combineWithPrevious && !ops.empty()) {
     FieldOp& last = ops.back();
     if (last.code == OpCode::Prims && last.primClass == cls && last.combineMax == combineMax &&
@@ -396,7 +422,7 @@ void FieldProgram::addConstant(float potential) {
   FieldOp op;
   op.code = OpCode::Const;
   op.emptyValue = potential;
-  ops.push_back(op);
+  building().push_back(op);
 }
 
 void FieldProgram::addOperator(OpCode code, uint32_t operands, const float* opParams, int paramCount) {
@@ -405,7 +431,7 @@ void FieldProgram::addOperator(OpCode code, uint32_t operands, const float* opPa
   op.count = operands;
   op.param = uint32_t(params.size());
   for (int i = 0; i < paramCount; ++i) params.push_back(opParams[i]);
-  ops.push_back(op);
+  building().push_back(op);
 }
 
 void FieldProgram::beginMap(const SpaceMap& m) {
@@ -413,13 +439,13 @@ void FieldProgram::beginMap(const SpaceMap& m) {
   op.code = OpCode::BeginMap;
   op.first = uint32_t(maps.size());
   openMaps_.push_back(op.first);
-  openBegins_.push_back(uint32_t(ops.size()));
+  openBegins_.push_back(uint32_t(building().size()));
   float scale;
   openScale_.push_back(m.kind == SpaceMapKind::Affine && uniformScaleRigid(m.forwardLinear, scale) ? scale : -1.0f);
   for (int c = 0; c < 3; ++c) openLanes_.emplace_back(m.forwardLinear[c], 0.0f);
   openLanes_.emplace_back(m.origin, 0.0f);
   maps.push_back(m);
-  ops.push_back(op);
+  building().push_back(op);
 }
 
 void FieldProgram::endMap() {
@@ -431,7 +457,7 @@ void FieldProgram::endMap() {
   openBegins_.pop_back();
   openScale_.pop_back();
   openLanes_.resize(openLanes_.size() - 4);
-  ops.push_back(op);
+  building().push_back(op);
 }
 
 void FieldProgram::reset() {
@@ -462,6 +488,74 @@ void FieldProgram::reset() {
   maxMapDepth_ = 0;
   mapReach_.clear();
   identity_ = 0;
+  refillOps_.clear();
+  structureDigest_ = 0;
+  builtOpCount_ = 0;
+  refilling_ = false;
+  refillable_ = false;
+  structureIdentity_ = 0;
+}
+
+void FieldProgram::beginRefill() {
+  if (!refillable_) {  // nothing kept: the adds build ops, finishRefill runs finish()
+    reset();
+    return;
+  }
+  // reset() with the structure set aside (their memory kept).
+  std::vector<FieldOp> keptOps, scratch;
+  std::vector<uint32_t> keptEnd, keptBefore;
+  keptOps.swap(ops);
+  scratch.swap(refillOps_);
+  keptEnd.swap(outermostEnd_);
+  keptBefore.swap(primsBefore_);
+  const uint64_t digest = structureDigest_, structure = structureIdentity_;
+  const size_t opCount = builtOpCount_;
+  const int stack = maxStack_, mapDepth = maxMapDepth_;
+  reset();
+  ops.swap(keptOps);
+  refillOps_.swap(scratch);
+  outermostEnd_.swap(keptEnd);
+  primsBefore_.swap(keptBefore);
+  structureDigest_ = digest;
+  structureIdentity_ = structure;
+  builtOpCount_ = opCount;
+  maxStack_ = stack;
+  maxMapDepth_ = mapDepth;
+  refillable_ = true;
+  refilling_ = true;
+  refillOps_.reserve(builtOpCount_);  // a program seeded by adoptStructure has no scratch memory yet
+}
+
+RefillOutcome FieldProgram::finishRefill() {
+  if (!refilling_) {
+    finish();
+    return RefillOutcome::FirstCompile;
+  }
+  refilling_ = false;
+  if (refillOps_.size() == builtOpCount_ && digestOps(refillOps_) == structureDigest_) {
+    refillOps_.clear();
+    identity_ = nextProgramIdentity();
+    runSymbolic();  // the last full finish's ops, which were well formed
+    return RefillOutcome::Refilled;
+  }
+  ops.swap(refillOps_);
+  refillOps_.clear();
+  finish();
+  return RefillOutcome::StructureChanged;
+}
+
+void FieldProgram::adoptStructure(const FieldProgram& other) {
+  reset();
+  if (!other.refillable_) return;
+  ops = other.ops;
+  outermostEnd_ = other.outermostEnd_;
+  primsBefore_ = other.primsBefore_;
+  structureDigest_ = other.structureDigest_;
+  builtOpCount_ = other.builtOpCount_;
+  maxStack_ = other.maxStack_;
+  maxMapDepth_ = other.maxMapDepth_;
+  structureIdentity_ = other.structureIdentity_;
+  refillable_ = true;
 }
 
 namespace {
@@ -509,9 +603,33 @@ void indexSubtrees(const std::vector<FieldOp>& ops, std::vector<uint32_t>& outer
 }  // namespace
 
 void FieldProgram::finish() {
-  static std::atomic<uint64_t> nextIdentity{1};
-  identity_ = nextIdentity.fetch_add(1);
+  if (refilling_) {  // a refill ended by finish(): its ops are in refillOps_
+    (void)finishRefill();
+    return;
+  }
+  identity_ = nextProgramIdentity();
+  structureIdentity_ = identity_;
+  refilling_ = false;
+  refillOps_.clear();
+  structureDigest_ = digestOps(ops);
+  builtOpCount_ = ops.size();
   foldWideOperators(ops);
+  const bool wellFormed = runSymbolic();
+  indexSubtrees(ops, outermostEnd_, primsBefore_);
+  refillable_ = wellFormed;
+  if (!wellFormed) {
+    // Empty or malformed program: evaluates to "outside" everywhere.
+    ops.clear();
+    addConstant(0.0f);
+    outermostEnd_.assign(1, 0);
+    primsBefore_.assign(2, 0);
+    maxStack_ = 1;
+    bounds_ = Bounds{};
+    unbounded_ = false;
+  }
+}
+
+bool FieldProgram::runSymbolic() {
   // Empty values, subtree extents and stack depth by a symbolic run (in per-thread memory, kept:
   // a program rebuilt every frame allocates nothing here once warm).
   thread_local std::vector<float> vals;
@@ -587,20 +705,10 @@ void FieldProgram::finish() {
     }
     maxStack_ = std::max(maxStack_, int(vals.size()));
   }
-  indexSubtrees(ops, outermostEnd_, primsBefore_);
-  if (vals.size() != 1) {
-    // Empty or malformed program: evaluates to "outside" everywhere.
-    ops.clear();
-    addConstant(0.0f);
-    outermostEnd_.assign(1, 0);
-    primsBefore_.assign(2, 0);
-    maxStack_ = 1;
-    bounds_ = Bounds{};
-    unbounded_ = false;
-    return;
-  }
+  if (vals.size() != 1) return false;
   unbounded_ = isInfinite(boxes[0]);
   bounds_ = unbounded_ ? Bounds{} : boxes[0];
+  return true;
 }
 
 }  // namespace animorph

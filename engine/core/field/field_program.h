@@ -91,6 +91,13 @@ struct PrimitiveBound {
   Bounds box;
 };
 
+// How FieldProgram::finishRefill ended: in every case the program equals a fresh compile of the same adds.
+enum class RefillOutcome : uint8_t {
+  Refilled,          // the adds made the kept op list again: only the values were recomputed
+  FirstCompile,      // no structure was kept (never finished, reset, or malformed): a full finish ran
+  StructureChanged,  // the adds made another op list: a full finish ran on it
+};
+
 // A program restricted to some primitives (see FieldProgram::specialise).
 struct ActiveProgram {
   std::vector<FieldOp> ops;        // Prims ops index `indices`
@@ -153,6 +160,21 @@ class FieldProgram {
   // Empties the program to build another one into it, keeping its memory (a scrubbing editor
   // flattens every frame into one kept program: no allocation once warm).
   void reset();
+  // A refill: the same adds as a compile, for a program whose structure (op list) is kept. Empties the
+  // values (as reset() does: threshold 1, the clay colour) but keeps the finished op list; the adds
+  // that follow record their ops in scratch memory and the primitives, parameters, maps and bounds as
+  // a compile does. Scrubbing a tree whose values alone move refills one kept program every frame.
+  void beginRefill();
+  // Ends a refill (instead of finish()). When the adds made the kept op list again (a 64-bit digest of
+  // every op's kind, class, counts, indices and constants, and the op count, compared), only the value
+  // part of finish() runs (empty values, bounds, map reaches): the folding of wide operators, the
+  // subtree index and the stack sizes are kept. Otherwise the new op list replaces the kept one and a
+  // full finish() runs. Either way the program then equals a fresh compile of the same adds.
+  RefillOutcome finishRefill();
+  // Copies other's finished structure (op list, subtree index, stack sizes, digest) into this program
+  // and empties its values, so that a refill of this program can keep that structure (a new program
+  // seeded from the last frame's). other unfinished or malformed: this program is reset().
+  void adoptStructure(const FieldProgram& other);
 
   // --- queries ---
   size_t primitiveCount() const { return primitiveBounds.size(); }
@@ -162,6 +184,10 @@ class FieldProgram {
   int maxStack() const { return maxStack_; }
   // Unique per finish() call (copies share it): lets evaluators cache per program.
   uint64_t identity() const { return identity_; }
+  // Unique per full finish() (kept by a refill that keeps the structure, and by adoptStructure): equal
+  // for two programs when their op lists, subtree indices and stack sizes are the same, so that what
+  // depends only on the structure (a GPU pipeline variant, packed op records) can be kept.
+  uint64_t structureIdentity() const { return structureIdentity_; }
   int maxMapDepth() const { return maxMapDepth_; }
   // World box of the supports of every primitive under maps[i] (empty: none): beyond it the
   // map's subtree has its empty value, so an evaluator may skip the subtree there.
@@ -209,6 +235,17 @@ class FieldProgram {
   int maxMapDepth_ = 0;
   std::vector<Bounds> mapReach_;
   uint64_t identity_ = 0;
+  // The ops the adds write: ops, or refillOps_ during a refill.
+  std::vector<FieldOp>& building() { return refilling_ ? refillOps_ : ops; }
+  // finish()'s symbolic run over the finished ops: empty values, subtree starts, stack sizes, map
+  // reaches and bounds. False when the program is malformed (not one value left).
+  bool runSymbolic();
+  std::vector<FieldOp> refillOps_;  // during a refill: the ops the adds made (emptied after)
+  uint64_t structureDigest_ = 0;    // digest of the unfolded op list of the last full finish
+  size_t builtOpCount_ = 0;         // its length
+  bool refilling_ = false;          // between beginRefill and finishRefill, with a kept structure
+  bool refillable_ = false;         // a finished, well-formed structure is kept
+  uint64_t structureIdentity_ = 0;
 };
 
 // Evaluates programs on batches of points. Holds scratch memory: one per thread.

@@ -34,6 +34,9 @@ struct PreviewField {
   // The program whose colours the surface takes when it is not program's own (a morph's stand-ins
   // split into their colour samples, MorphImplicitField::colorProgram); null: program's.
   std::shared_ptr<const FieldProgram> colorProgram;
+  // How program was made where its source refills a kept structure (the animorphosis' C(t),
+  // FieldProgram::finishRefill): Refilled when only its values were computed; nullopt: compiled afresh.
+  std::optional<RefillOutcome> refill;
 };
 
 // A shape to preview: an immutable snapshot (shared with the worker thread).

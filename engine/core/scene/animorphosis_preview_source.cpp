@@ -5,9 +5,22 @@ namespace animorph {
 SharedGenericCompiler::SharedGenericCompiler(std::shared_ptr<const GenericTree> c)
     : tree_(std::move(c)), compiler_(*tree_) {}
 
-void SharedGenericCompiler::compile(const AnimorphosisTiming& timing, double timeSec, FieldProgram& out) {
+RefillOutcome SharedGenericCompiler::compile(const AnimorphosisTiming& timing, double timeSec, FieldProgram& out) {
   std::lock_guard<std::mutex> lock(mutex_);
-  compiler_.compile(timing, timeSec, out);
+  if (out.structureIdentity() != structure_.structureIdentity()) out.adoptStructure(structure_);
+  const RefillOutcome outcome = compiler_.refill(timing, timeSec, out);
+  switch (outcome) {
+    case RefillOutcome::Refilled: ++counters_.refills; break;
+    case RefillOutcome::FirstCompile: ++counters_.firstCompiles; break;
+    case RefillOutcome::StructureChanged: ++counters_.structureChanges; break;
+  }
+  if (outcome != RefillOutcome::Refilled) structure_.adoptStructure(out);
+  return outcome;
+}
+
+SharedGenericCompiler::Counters SharedGenericCompiler::counters() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return counters_;
 }
 
 namespace {
@@ -28,7 +41,7 @@ class AnimorphosisSource final : public PreviewSource {
   }
   Result<PreviewField> field(int) const override {
     PreviewField f;
-    compiler_->compile(timing_, timeSec_, f.program);
+    f.refill = compiler_->compile(timing_, timeSec_, f.program);
     return f;
   }
 

@@ -13,17 +13,30 @@
 namespace animorph {
 
 // The compiler of one C, shared by the sources of its frames: compiles are serialised (the
-// compiler keeps the values of the frame it compiles), each into the caller's program.
+// compiler keeps the values of the frame it compiles), each into the caller's program. A scrub
+// changes C(t)'s values, rarely its structure: each compile refills the structure of the last one
+// (FieldProgram::adoptStructure, GenericProgramCompiler::refill) instead of building the op list.
 class SharedGenericCompiler {
  public:
   explicit SharedGenericCompiler(std::shared_ptr<const GenericTree> c);
-  void compile(const AnimorphosisTiming& timing, double timeSec, FieldProgram& out);
+  // C at timeSec into out (a fresh program, or one it compiled before), equal to a fresh compile.
+  // Returns how: Refilled (the last compile's structure kept), else FirstCompile or StructureChanged.
+  RefillOutcome compile(const AnimorphosisTiming& timing, double timeSec, FieldProgram& out);
   const std::shared_ptr<const GenericTree>& tree() const { return tree_; }
+  // The compiles so far by how they ended.
+  struct Counters {
+    uint64_t refills = 0;           // the structure kept: only values computed
+    uint64_t firstCompiles = 0;     // nothing kept yet
+    uint64_t structureChanges = 0;  // C(t)'s op list differed from the last one's: built afresh
+  };
+  Counters counters() const;
 
  private:
   std::shared_ptr<const GenericTree> tree_;
-  std::mutex mutex_;
+  mutable std::mutex mutex_;
   GenericProgramCompiler compiler_;
+  FieldProgram structure_;  // the last compile's structure (its values empty): what the next one refills
+  Counters counters_;
 };
 
 // C at timeline time timeSec. Two sources are the same when they share the compiler (so C and its

@@ -39,6 +39,8 @@ class AnimorphosisCache {
   // pointer while neither C nor the time change.
   std::shared_ptr<const PreviewSource> previewSource(const Project& project, double timeSec);
   const std::string& error() const { return error_; }
+  // The compiler of the tree get() returned last (its refill counters), or null.
+  std::shared_ptr<const SharedGenericCompiler> compiler() const { return compiler_; }
 
  private:
   std::shared_ptr<const GenericTree> tree_;

@@ -32,7 +32,8 @@ class MorphStageSource final : public PreviewSource {
   Result<PreviewField> field(int resolution) const override {
     MorphImplicitField f = morphImplicitField(*rt_, timeSec_, resolution, progress_);
     // The noise displaces the polygonised mesh (on the GPU: a pass after the normals).
-    return PreviewField{std::move(f.program), f.bounds, f.noiseAmplitude, rt_->setup.noiseFrequency, f.colorProgram};
+    return PreviewField{std::move(f.program), f.bounds, f.noiseAmplitude, rt_->setup.noiseFrequency, f.colorProgram,
+                        std::nullopt};
   }
 
  private:
@@ -71,7 +72,7 @@ class StandinCoreSource final : public PreviewSource {
     std::optional<MorphImplicitField> f = standinCoreField(*rt_, timeSec_, expand_, u_);
     if (!f) return Error{"the stand-in core has melted away at this time"};
     return PreviewField{std::move(f->program), f->bounds, f->noiseAmplitude, rt_->setup.noiseFrequency,
-                        f->colorProgram};
+                        f->colorProgram, std::nullopt};
   }
 
  private:

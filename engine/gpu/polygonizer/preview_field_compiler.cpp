@@ -112,6 +112,19 @@ std::shared_ptr<const CompiledPreviewField> PreviewFieldCompiler::compile(
   return c;
 }
 
+namespace {
+
+// One compiled field in the counters (the counts by how its program was made).
+void countCompiled(const CompiledPreviewField& c, PreviewFieldCounters& n) {
+  n.prepareMs += c.prepareMs;
+  if (!c.field || !c.field->refill) ++n.notRefilled;
+  else if (*c.field->refill == RefillOutcome::Refilled) ++n.refilled;
+  else if (*c.field->refill == RefillOutcome::FirstCompile) ++n.firstCompiles;
+  else ++n.structureChanged;
+}
+
+}  // namespace
+
 std::shared_ptr<const CompiledPreviewField> PreviewFieldCompiler::compileHere(
     std::shared_ptr<const PreviewSource> source, int resolution, double timeSec) {
   Request r{0, std::move(source), resolution, timeSec};
@@ -126,7 +139,7 @@ std::shared_ptr<const CompiledPreviewField> PreviewFieldCompiler::compileHere(
   latestAny_ = c;
   ++counters_.onCallerThread;
   counters_.callerThreadMs += c->milliseconds;
-  counters_.prepareMs += c->prepareMs;
+  countCompiled(*c, counters_);
   return c;
 }
 
@@ -172,7 +185,7 @@ void PreviewFieldCompiler::run() {
       running_.reset();
       ++counters_.onCompileThread;
       counters_.compileThreadMs += c->milliseconds;
-      counters_.prepareMs += c->prepareMs;
+      countCompiled(*c, counters_);
       latestAny_ = c;
       latest_ = std::move(c);  // the thread's newest (a compileHere() since has a larger id: its caller keeps it)
     }

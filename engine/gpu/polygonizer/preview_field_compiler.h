@@ -65,6 +65,10 @@ struct PreviewFieldCounters {
   double callerThreadMs = 0.0;
   uint64_t superseded = 0;  // requests replaced while waiting (never compiled)
   double prepareMs = 0.0;   // the GPU frames prepared with them (CompiledPreviewField::prepareMs), in all
+  // How the compiled programs were made (PreviewField::refill): the structure kept, only values
+  // computed (a scrub of C(t)); built because nothing was kept (the first of a C, or after an edit)
+  // or because the structure changed; by a source that does not refill (BlobTrees), or failed.
+  uint64_t refilled = 0, firstCompiles = 0, structureChanged = 0, notRefilled = 0;
 };
 
 // Same shape (pointer first: sameAs may compare whole trees).
