@@ -114,6 +114,21 @@ bool keepsBlock(const BlockSummary& b, double delta, float tolerance, float T) {
   return delta + safety <= double(tolerance) * double(b.minGap) / (1.0 + 2.0 * double(tolerance));
 }
 
+// The block's first nv vertices gathered sub-block by sub-block (sc.gather: vertex indices, each
+// 4^3 sub-block's in turn) and their positions into sc.x / y / z in that order (sized >= nv).
+void gatherBySubBlock(const BlockOutput& o, Scratch& sc, size_t nv) {
+  sc.gather.clear();
+  for (int sq = 0; sq < 8; ++sq)
+    for (size_t q = 0; q < nv; ++q)
+      if (sc.vertexSub[q] == sq) sc.gather.push_back(uint32_t(q));
+  for (size_t q = 0; q < nv; ++q) {
+    const glm::vec3& pq = o.positions[sc.gather[q]];
+    sc.x[q] = pq.x;
+    sc.y[q] = pq.y;
+    sc.z[q] = pq.z;
+  }
+}
+
 }  // namespace
 
 struct PolygonizeHistory::State {
@@ -814,16 +829,7 @@ void PolygonizeRun::gradientNormals(const BlockJob& job, Scratch& sc) {
   if (!colorProg) return;
   // Colours (the sub-blocks' own programs gave the normals): every vertex with the block's program,
   // one walk per run of 128 (sub-block by sub-block, so each run stays compact), not one per sub-block.
-  sc.gather.clear();
-  for (int sq = 0; sq < 8; ++sq)
-    for (size_t q = 0; q < nv; ++q)
-      if (sc.vertexSub[q] == sq) sc.gather.push_back(uint32_t(q));
-  for (size_t q = 0; q < nv; ++q) {
-    const glm::vec3& pq = o.positions[sc.gather[q]];
-    sc.x[q] = pq.x;
-    sc.y[q] = pq.y;
-    sc.z[q] = pq.z;
-  }
+  gatherBySubBlock(o, sc, nv);
   colorVertices(*job.prog, o, sc, nv);
 }
 
@@ -841,16 +847,7 @@ void PolygonizeRun::normalsWithColors(const BlockJob& job, Scratch& sc) {
   BlockOutput& o = *out[job.bi];
   const size_t nv = o.positions.size();
   for (auto* v : {&sc.x, &sc.y, &sc.z, &sc.gx, &sc.gy, &sc.gz}) v->resize(nv);
-  sc.gather.clear();
-  for (int sq = 0; sq < 8; ++sq)
-    for (size_t q = 0; q < nv; ++q)
-      if (sc.vertexSub[q] == sq) sc.gather.push_back(uint32_t(q));
-  for (size_t q = 0; q < nv; ++q) {
-    const glm::vec3& pq = o.positions[sc.gather[q]];
-    sc.x[q] = pq.x;
-    sc.y[q] = pq.y;
-    sc.z[q] = pq.z;
-  }
+  gatherBySubBlock(o, sc, nv);
   o.colors.resize(nv);
   sc.rgba.resize(nv);
   for (size_t q0 = 0, q1 = 0; q0 < nv; q0 = q1) {  // sc.gather holds each sub-block's vertices in turn
