@@ -127,7 +127,7 @@ void drawRuler(Document& doc, Playback& playback, const std::vector<int>& keyFra
     bool major = f % step == 0;
     float h = major ? size.y * 0.45f : size.y * 0.2f;
     dl->AddLine(ImVec2(x, p0.y), ImVec2(x, p0.y + h), major ? IM_COL32(170, 170, 180, 255) : IM_COL32(100, 100, 110, 255));
-    if (major) {
+    if (major && x + 3.0f >= p0.x) {  // a label cut at the left edge would misread ("-5" as "5")
       char buf[24];
       std::snprintf(buf, sizeof buf, "%ld", f);
       // Below the minor ticks, so no tick line crosses the digits.
