@@ -279,6 +279,30 @@ void DemoBench::refillRows() {
                   how + ms(median(cpu[4])) + ", finishRefill " + ms(median(finish[4])) + "; nodes evaluated " +
                       std::to_string(evaluatedE / size_t(frames)) + " of " + std::to_string(keeping.nodeCount()) +
                       " a frame (A B C: all)"});
+  // After the morph (B plays, s = 1 everywhere): B and E again, alternated, on frames 1/30 s apart.
+  std::vector<double> afterWall[2], afterCpu[2];
+  size_t afterEvaluated = 0;
+  for (int f = 0; f < frames; ++f) {
+    const double t = kDemoMorphEndSec + 0.5 + f / 30.0;
+    for (int way = 0; way < 2; ++way) {
+      const auto w0 = std::chrono::steady_clock::now();
+      const std::clock_t c0 = std::clock();
+      if (way == 0) compiler.refill(timing, t, keptB);
+      else keeping.refill(timing, t, keptE);
+      afterCpu[way].push_back(1e3 * double(std::clock() - c0) / CLOCKS_PER_SEC);
+      afterWall[way].push_back(
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - w0).count());
+      if (way == 1 && f > 0) afterEvaluated += keeping.lastEvaluatedNodes();
+    }
+  }
+  const std::string after = "median of " + std::to_string(frames) + " frames 1/30 s apart from 0.5 s after the "
+                            "morph, the two alternated; processor time ";
+  rows.push_back({"scrub C(t) after the morph: refill, every node evaluated (B', baseline)", median(afterWall[0]), "ms",
+                  "", after + ms(median(afterCpu[0]))});
+  rows.push_back({"scrub C(t) after the morph: refill, unmoved nodes' values kept (E')", median(afterWall[1]), "ms",
+                  "", after + ms(median(afterCpu[1])) + "; nodes evaluated " +
+                          std::to_string(afterEvaluated / size_t(std::max(1, frames - 1))) + " of " +
+                          std::to_string(keeping.nodeCount()) + " a frame"});
   const SharedGenericCompiler::PoolCounters pool = shared->poolCounters();
   rows.push_back({"scrub C(t): a pooled program per frame, refilled, values kept (D, the preview's sources)",
                   median(wall[3]), "ms", "",
