@@ -94,3 +94,51 @@ TEST_CASE("preview: scrubbing C(t) refills without compiling (counted), an edit 
   CHECK(cache.compiler()->counters().firstCompiles == 1);
   CHECK(cache.compiler()->counters().refills == 0);
 }
+
+TEST_CASE("preview: the CPU worker's C(t) sources reuse a pooled program only once nobody holds it",
+          "[animorph][preview][refill][pool]") {
+  auto p = makeAnimorphosisDemoProject();
+  REQUIRE(p.ok());
+  auto c = projectGenericTree(*p);
+  REQUIRE(c.ok());
+  auto shared = std::make_shared<SharedGenericCompiler>(std::make_shared<const GenericTree>(*c));
+  const AnimorphosisTiming timing = animorphosisTiming(*p);
+  const double mid = 0.5 * (kDemoMorphStartSec + kDemoMorphEndSec);
+  // Held programs are never handed out again: two held at once are two programs.
+  std::shared_ptr<FieldProgram> a = shared->takeProgram(), b = shared->takeProgram();
+  CHECK(a != b);
+  CHECK(shared->poolCounters().made == 2);
+  FieldProgram* aAddress = a.get();
+  a.reset();  // let go: the next take reuses it
+  std::shared_ptr<FieldProgram> again = shared->takeProgram();
+  CHECK(again.get() == aAddress);
+  CHECK(shared->poolCounters().reused == 1);
+  again.reset();
+  b.reset();
+  // A scrub through sources polygonised one after another (the worker lets each go before the
+  // next): every frame after the first reuses a program, and meshes equal a fresh compile's.
+  GenericProgramCompiler fresh(*c);
+  fresh.keepValues(false);
+  const uint64_t madeBefore = shared->poolCounters().made;
+  for (int k = 0; k < 4; ++k) {
+    const double t = mid + k / 30.0;
+    auto source = animorphosisPreviewSource(shared, timing, t);
+    auto mesh = source->polygonize(24, 1, nullptr, nullptr);
+    REQUIRE(mesh.ok());
+    FieldProgram ref;
+    fresh.compile(timing, t, ref);
+    auto refMesh = polygonizePreviewProgram(ref, 24, 1, nullptr, nullptr);
+    REQUIRE(refMesh.ok());
+    CHECK(mesh->mesh.triangleCount() > 0);
+    CHECK(mesh->mesh == refMesh->mesh);
+  }
+  CHECK(shared->poolCounters().made == madeBefore);  // the two programs made above served every frame
+  // A source still held keeps its program: the next source gets another one.
+  auto held = animorphosisPreviewSource(shared, timing, mid);
+  REQUIRE(held->polygonize(24, 1, nullptr, nullptr).ok());
+  auto next = animorphosisPreviewSource(shared, timing, mid + 0.1);
+  REQUIRE(next->polygonize(24, 1, nullptr, nullptr).ok());
+  const SharedGenericCompiler::PoolCounters n = shared->poolCounters();
+  CHECK(n.reused >= 5);
+  CHECK(n.made == madeBefore);
+}

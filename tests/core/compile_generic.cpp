@@ -239,6 +239,7 @@ RefillOutcome refillAndCompare(GenericProgramCompiler& compiler, GenericProgramC
   const uint64_t structure = kept.structureIdentity(), identity = kept.identity();
   const RefillOutcome outcome = compiler.refill(timing, t, kept);
   FieldProgram ref;
+  fresh.keepValues(false);  // the reference evaluates every node
   fresh.compile(timing, t, ref);
   INFO("refill outcome " << int(outcome));
   requireSameProgram(kept, ref, t);
@@ -297,6 +298,70 @@ TEST_CASE(
       refilled += refillAndCompare(gc, gf, st, t, gk) == RefillOutcome::Refilled;
   }
   CHECK(refilled > 0);
+}
+
+TEST_CASE(
+    "field program: a refill with kept values equals a fresh compile (the demo scrubbed forward, backward, by jumps, "
+    "across B and C, a timing edit between frames)",
+    "[animorph][compile][refill][kept]") {
+  auto p = makeAnimorphosisDemoProject();
+  REQUIRE(p.ok());
+  auto c = projectGenericTree(*p);
+  REQUIRE(c.ok());
+  AnimorphosisTiming timing = animorphosisTiming(*p);
+  GenericProgramCompiler compiler(*c), fresh(*c);
+  FieldProgram kept;
+  const double a = kDemoMorphStartSec, b = kDemoMorphEndSec, mid = 0.5 * (a + b);
+  std::vector<double> times;
+  for (int k = 0; k < 4; ++k) times.push_back(mid + k / 30.0);        // forward
+  for (int k = 3; k >= 0; --k) times.push_back(mid - k / 30.0 - 0.2);  // backward
+  for (double t : {a - 1.0, a - 0.5, a - 0.5, b + 0.5, b + 0.5 + 1 / 30.0, a + 0.1, b + 1.0, mid, a - 0.25})
+    times.push_back(t);  // jumps across A (before t0), C (the morph) and B (after t1), a time twice
+  size_t evaluated = 0;
+  for (double t : times) {
+    refillAndCompare(compiler, fresh, timing, t, kept);
+    evaluated += compiler.lastEvaluatedNodes();
+  }
+  // A timing edit between frames (the source clip shifted and slowed): the clip times move, the
+  // kept values whose inputs moved are evaluated again, the program still equals a fresh compile.
+  timing.source.offsetSec += 0.37;
+  timing.source.speed *= 0.8;
+  for (double t : {mid, mid + 1 / 30.0, a - 0.5}) refillAndCompare(compiler, fresh, timing, t, kept);
+  INFO(evaluated << " nodes evaluated over " << times.size() << " frames of " << compiler.nodeCount());
+  CHECK(evaluated < (times.size() - 1) * compiler.nodeCount());
+}
+
+TEST_CASE("compile generic: scrubbing C(t) evaluates only the nodes whose inputs moved (counted)",
+          "[animorph][compile][kept]") {
+  auto p = makeAnimorphosisDemoProject();
+  REQUIRE(p.ok());
+  auto c = projectGenericTree(*p);
+  REQUIRE(c.ok());
+  const AnimorphosisTiming timing = animorphosisTiming(*p);
+  GenericProgramCompiler compiler(*c);
+  const size_t n = compiler.nodeCount();
+  FieldProgram kept;
+  const double mid = 0.5 * (kDemoMorphStartSec + kDemoMorphEndSec);
+  compiler.refill(timing, mid, kept);
+  CHECK(compiler.lastEvaluatedNodes() == n);  // nothing kept yet
+  compiler.refill(timing, mid, kept);
+  CHECK(compiler.lastEvaluatedNodes() == 0);  // the same inputs: every value kept
+  // Before the morph (A plays) and after it (B plays), a frame later: the nodes animated on the side
+  // they read are evaluated, the nodes standing still (constant tracks) are not. (Inside the morph
+  // the demo's global s(u) moves every node's blend: every node is evaluated.)
+  for (double t : {kDemoMorphStartSec - 0.7, kDemoMorphEndSec + 0.5}) {
+    compiler.refill(timing, t, kept);
+    compiler.refill(timing, t + 1 / 30.0, kept);
+    const size_t moved = compiler.lastEvaluatedNodes();
+    INFO(moved << " of " << n << " nodes evaluated a frame after " << t << " s");
+    CHECK(moved > 0);
+    CHECK(moved < n / 4);
+  }
+  // With the values not kept, every node is evaluated every frame (the baseline).
+  compiler.keepValues(false);
+  compiler.refill(timing, mid, kept);
+  compiler.refill(timing, mid, kept);
+  CHECK(compiler.lastEvaluatedNodes() == n);
 }
 
 namespace {

@@ -93,7 +93,9 @@ struct DemoBench {
   DemoBench(const bench::Options& options, const Project& project, const GenericTree& tree)
       : opt(options), c(tree), dino(project.actors[0].blobTree), dragon(project.actors[1].blobTree),
         timing(animorphosisTiming(project)), n(double(tree.size())), repeats(options.quick ? 2 : 9),
-        res(options.quick ? 48 : 128), compiler(tree) {}
+        res(options.quick ? 48 : 128), compiler(tree) {
+    compiler.keepValues(false);  // the rows' baselines evaluate every node every frame (as before 2026-11-30)
+  }
   const bench::Options& opt;
   const GenericTree& c;
   const BlobTree& dino;
@@ -103,7 +105,7 @@ struct DemoBench {
   const double n;     // nodes of C
   const int repeats;  // of each flatten measurement
   const int res;      // of the polygonisations and bakes
-  GenericProgramCompiler compiler;  // C(t) -> FieldProgram directly (animorphosis/compile_generic.h)
+  GenericProgramCompiler compiler;  // C(t) -> FieldProgram directly (animorphosis/compile_generic.h), no kept values
   BlobTree kept;                    // the snapshot the baselines update in place
   std::vector<Row> rows;
 
@@ -222,31 +224,40 @@ void DemoBench::scrubFlattenRows() {
 }
 
 // Scrubbing with C(t)'s structure kept (FieldProgram::beginRefill, GenericProgramCompiler::refill): the
-// same frames (1/30 s apart from the middle of the morph) four ways, alternating A B C D a frame each,
+// same frames (1/30 s apart from the middle of the morph) five ways, alternating A B C D E a frame each,
 // each row the median of its frames: compiled into a kept program (A) and refilled into another (B);
-// a new program per frame as the preview's sources make them, compiled (C, the preview before) and
-// seeded with the last structure then refilled (D, SharedGenericCompiler now).
+// a new program per frame, compiled (C, the preview before), and a program from SharedGenericCompiler's
+// pool refilled (D, the preview's sources now, values kept); E: B with the
+// values of nodes whose inputs did not move kept (GenericProgramCompiler::keepValues), its own compiler.
 void DemoBench::refillRows() {
   const int frames = opt.quick ? 6 : 24;
-  FieldProgram keptA, keptB;
+  FieldProgram keptA, keptB, keptE;
+  GenericProgramCompiler keeping(c);  // values kept (the default)
   auto shared = std::make_shared<SharedGenericCompiler>(std::make_shared<const GenericTree>(c));
-  std::vector<double> wall[4], cpu[4], finish[4];
+  std::vector<double> wall[5], cpu[5], finish[5];
   int outcomes[3] = {0, 0, 0};
+  size_t evaluatedE = 0;
   compiler.refill(timing, mid, keptB);  // the structure the refills keep (a first compile)
+  keeping.refill(timing, mid, keptE);
   { FieldProgram first; shared->compile(timing, mid, first); }
   for (int f = 0; f < frames; ++f) {
     const double t = mid + (f + 1) / 30.0;
-    for (int way = 0; way < 4; ++way) {
+    for (int way = 0; way < 5; ++way) {
       const auto w0 = std::chrono::steady_clock::now();
       const std::clock_t c0 = std::clock();
       FieldProgram fresh;
       if (way == 0) compiler.compile(timing, t, keptA);
       else if (way == 1) ++outcomes[int(compiler.refill(timing, t, keptB))];
       else if (way == 2) compiler.compile(timing, t, fresh);
-      else shared->compile(timing, t, fresh);
+      else if (way == 3) shared->compile(timing, t, *shared->takeProgram());  // pooled, let go at once
+      else keeping.refill(timing, t, keptE);
       cpu[way].push_back(1e3 * double(std::clock() - c0) / CLOCKS_PER_SEC);
       wall[way].push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - w0).count());
       if (way < 3) finish[way].push_back(1e3 * compiler.lastTiming().finishSec);
+      if (way == 4) {
+        finish[way].push_back(1e3 * keeping.lastTiming().finishSec);
+        evaluatedE += keeping.lastEvaluatedNodes();
+      }
     }
   }
   auto median = [](std::vector<double> v) {
@@ -254,7 +265,7 @@ void DemoBench::refillRows() {
     return v.empty() ? 0.0 : v[v.size() / 2];
   };
   const SharedGenericCompiler::Counters n = shared->counters();
-  const std::string how = "median of " + std::to_string(frames) + " frames 1/30 s apart, A B C D alternated; the "
+  const std::string how = "median of " + std::to_string(frames) + " frames 1/30 s apart, A B C D E alternated; the "
                           "emitter on this thread plus the compiler's helper threads; processor time ";
   rows.push_back({"scrub C(t): compile into the kept program (A, baseline)", median(wall[0]), "ms", "",
                   how + ms(median(cpu[0])) + ", FieldProgram::finish " + ms(median(finish[0]))});
@@ -264,11 +275,41 @@ void DemoBench::refillRows() {
                       std::to_string(outcomes[int(RefillOutcome::StructureChanged)]) + " structure changed"});
   rows.push_back({"scrub C(t): a new program per frame, compiled (C, baseline: the preview before)", median(wall[2]),
                   "ms", "", how + ms(median(cpu[2]))});
-  rows.push_back({"scrub C(t): a new program per frame, seeded and refilled (D, the preview's sources)",
+  rows.push_back({"scrub C(t): refill the kept program, unmoved nodes' values kept (E)", median(wall[4]), "ms", "",
+                  how + ms(median(cpu[4])) + ", finishRefill " + ms(median(finish[4])) + "; nodes evaluated " +
+                      std::to_string(evaluatedE / size_t(frames)) + " of " + std::to_string(keeping.nodeCount()) +
+                      " a frame (A B C: all)"});
+  // After the morph (B plays, s = 1 everywhere): B and E again, alternated, on frames 1/30 s apart.
+  std::vector<double> afterWall[2], afterCpu[2];
+  size_t afterEvaluated = 0;
+  for (int f = 0; f < frames; ++f) {
+    const double t = kDemoMorphEndSec + 0.5 + f / 30.0;
+    for (int way = 0; way < 2; ++way) {
+      const auto w0 = std::chrono::steady_clock::now();
+      const std::clock_t c0 = std::clock();
+      if (way == 0) compiler.refill(timing, t, keptB);
+      else keeping.refill(timing, t, keptE);
+      afterCpu[way].push_back(1e3 * double(std::clock() - c0) / CLOCKS_PER_SEC);
+      afterWall[way].push_back(
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - w0).count());
+      if (way == 1 && f > 0) afterEvaluated += keeping.lastEvaluatedNodes();
+    }
+  }
+  const std::string after = "median of " + std::to_string(frames) + " frames 1/30 s apart from 0.5 s after the "
+                            "morph, the two alternated; processor time ";
+  rows.push_back({"scrub C(t) after the morph: refill, every node evaluated (B', baseline)", median(afterWall[0]), "ms",
+                  "", after + ms(median(afterCpu[0]))});
+  rows.push_back({"scrub C(t) after the morph: refill, unmoved nodes' values kept (E')", median(afterWall[1]), "ms",
+                  "", after + ms(median(afterCpu[1])) + "; nodes evaluated " +
+                          std::to_string(afterEvaluated / size_t(std::max(1, frames - 1))) + " of " +
+                          std::to_string(keeping.nodeCount()) + " a frame"});
+  const SharedGenericCompiler::PoolCounters pool = shared->poolCounters();
+  rows.push_back({"scrub C(t): a pooled program per frame, refilled, values kept (D, the preview's sources)",
                   median(wall[3]), "ms", "",
                   how + ms(median(cpu[3])) + "; " + std::to_string(n.refills) + " refilled, " +
                       std::to_string(n.structureChanges) + " structure changed, " + std::to_string(n.firstCompiles) +
-                      " first (outside the timing)"});
+                      " first (outside the timing); programs from the pool: " + std::to_string(pool.reused) +
+                      " reused, " + std::to_string(pool.made) + " made"});
 }
 
 void DemoBench::polygoniseRows() {
@@ -497,3 +538,22 @@ std::vector<Row> runDemoBench(const bench::Options& opt) {
 
 ANIMORPH_BENCH("animorph-demo", "the dinosaur -> dragon demo: C(t) instantiate + flatten, 128^3 polygonisation, bake",
                runDemoBench);
+
+namespace {
+
+// The demo's scrub C(t) rows alone (DemoBench::refillRows): the field compile per scrubbed frame,
+// without the polygonisations and bakes of `bench animorph-demo` (minutes on 2 cores).
+std::vector<Row> runScrubCompileBench(const bench::Options& opt) {
+  auto p = makeAnimorphosisDemoProject();
+  if (!p) return {{"demo project failed: " + p.error(), 0.0, "", "", ""}};
+  auto c = projectGenericTree(*p);
+  if (!c) return {{"demo generic tree failed: " + c.error(), 0.0, "", "", ""}};
+  DemoBench b(opt, *p, *c);
+  b.refillRows();
+  return std::move(b.rows);
+}
+
+}  // namespace
+
+ANIMORPH_BENCH("animorph-compile", "the demo's C(t) compiled per scrubbed frame: the scrub C(t) rows of animorph-demo",
+               runScrubCompileBench);

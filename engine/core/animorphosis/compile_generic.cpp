@@ -27,6 +27,21 @@ struct PlanNode {
   int32_t meta = -1;                        // Impl::frames / Impl::triangles index of a meta-primitive
   uint32_t slotsA = 0, slotsB = 0;          // A's and B's parameters in Impl::samplers
   uint32_t bridgeA = 0, bridgeB = 0;        // bridged nodes: the q of A's and B's operator
+  bool movesWithA = false, movesWithB = false;  // A's / B's parameters (and q) move with their clip's time
+};
+
+// The inputs a node's values of one frame are a function of: its type, s, and the clip times of the
+// sides it reads whose parameters move (0 for a side it does not read or whose tracks are constant).
+// Compared bit for bit: equal keys give equal values (the samplers are pure functions of them).
+struct ValueKey {
+  bool valid = false;
+  NodeType type = NodeType::Blend;
+  uint32_t sBits = 0;
+  double tA = 0.0, tB = 0.0;
+  bool operator==(const ValueKey& o) const {
+    return valid && o.valid && type == o.type && sBits == o.sBits && std::memcmp(&tA, &o.tA, sizeof tA) == 0 &&
+           std::memcmp(&tB, &o.tB, sizeof tB) == 0;
+  }
 };
 
 size_t paramCount(NodeType type) { return nodeTypeInfo(type).params.size(); }
@@ -63,6 +78,12 @@ struct GenericProgramCompiler::Impl {
   std::vector<int8_t> paramSlots;  // compileParamSlot(type, p) at [type * CompileParam::Size + p], looked up once
   std::vector<float> sOfCurve;  // s(u) of each override curve, then of the global one (last)
   std::vector<float> splineCounts;  // a spline-of-nodes' count at this frame (the stack need reads it first)
+  // Per node: the inputs its kept values were evaluated from. A node whose key is the same this
+  // frame keeps them (a node outside its s(u) interval whose side's tracks are constant, a frame
+  // compiled again at the same time): only nodes whose inputs moved are evaluated again.
+  std::vector<ValueKey> valueKeys;
+  std::atomic<uint32_t> evaluatedNodes{0};  // nodes evaluated by the compile in progress (or the last)
+  bool keepValues = true;                   // GenericProgramCompiler::keepValues
   Timing timing;
   double tA = 0.0, tB = 0.0;
 
@@ -96,6 +117,8 @@ struct GenericProgramCompiler::Impl {
           p.slotsB = m.samplers.add(g.b);
           p.bridgeA = m.samplers.addBridgeQ(g.a);
           p.bridgeB = m.samplers.addBridgeQ(g.b);
+          p.movesWithA = m.samplers.animated(p.bridgeA, 1);
+          p.movesWithB = m.samplers.animated(p.bridgeB, 1);
         } else {  // blended lists are resampled to the longer one
           std::vector<size_t> counts(std::max(g.a.params.size(), g.b.params.size()), 0);
           for (size_t k = 0; k < counts.size(); ++k) {
@@ -106,6 +129,8 @@ struct GenericProgramCompiler::Impl {
           p.slotsA = m.samplers.add(g.a, &counts);
           p.slotsB = m.samplers.add(g.b, &counts);
         }
+        p.movesWithA = p.movesWithA || m.samplers.animated(p.slotsA, uint32_t(g.a.params.size()));
+        p.movesWithB = p.movesWithB || m.samplers.animated(p.slotsB, uint32_t(g.b.params.size()));
         m.nodes.push_back(p);
         std::vector<uint32_t> kids;
         kids.reserve(g.children.size());
@@ -129,6 +154,7 @@ struct GenericProgramCompiler::Impl {
       for (size_t k = 0; k < kParams; ++k)
         paramSlots[t * kParams + k] = int8_t(compileParamSlot(NodeType(t), CompileParam(k)));
     splineCounts.resize(nodes.size());
+    valueKeys.resize(nodes.size());
     chunkCount = uint32_t((nodes.size() + kChunk - 1) / kChunk);
     chunkState = std::make_unique<std::atomic<uint8_t>[]>(chunkCount);
   }
@@ -151,6 +177,7 @@ struct GenericProgramCompiler::Impl {
                                     : samplers.blendFloatAt(a, b, tA, tB, s);
     }
     for (uint32_t c = 0; c < chunkCount; ++c) chunkState[c].store(0, std::memory_order_relaxed);
+    evaluatedNodes.store(0, std::memory_order_relaxed);
     nextChunk.store(0, std::memory_order_release);
   }
 
@@ -161,7 +188,9 @@ struct GenericProgramCompiler::Impl {
     if (c >= chunkCount) return false;
     chunkState[c].store(1, std::memory_order_relaxed);
     const uint32_t end = std::min<uint32_t>(uint32_t(nodes.size()), (c + 1) * kChunk);
-    for (uint32_t i = c * kChunk; i < end; ++i) evaluate(i);
+    uint32_t evaluated = 0;
+    for (uint32_t i = c * kChunk; i < end; ++i) evaluated += evaluateIfMoved(i) ? 1 : 0;
+    evaluatedNodes.fetch_add(evaluated, std::memory_order_relaxed);
     chunkState[c].store(2, std::memory_order_release);
     return true;
   }
@@ -171,6 +200,35 @@ struct GenericProgramCompiler::Impl {
     const uint32_t c = i / kChunk;
     while (chunkState[c].load(std::memory_order_acquire) != 2)
       if (!evaluateNextChunk()) std::this_thread::yield();
+  }
+
+  // The inputs node i's values at this frame are a function of (ValueKey).
+  ValueKey keyOf(uint32_t i) const {
+    const PlanNode& p = nodes[i];
+    const float s = sOf(*p.g);
+    ValueKey k;
+    k.valid = true;
+    k.type = types[i];
+    std::memcpy(&k.sBits, &s, sizeof s);
+    if (s < 1.0f && p.movesWithA) k.tA = tA;  // A read: s <= 0 or blending
+    if (s > 0.0f && p.movesWithB) k.tB = tB;  // B read: s >= 1 or blending
+    return k;
+  }
+
+  // Node i's values at this frame: kept when its inputs are those they were evaluated from, else
+  // evaluated. Returns true when evaluated.
+  bool evaluateIfMoved(uint32_t i) {
+    const ValueKey k = keyOf(i);
+    if (k == valueKeys[i]) return false;
+    valueKeys[i].valid = false;  // (a throw below leaves no stale key)
+    evaluate(i);
+    if (keepValues) valueKeys[i] = k;
+    return true;
+  }
+
+  // Forgets every kept value: the next compile evaluates every node.
+  void forgetValues() {
+    for (ValueKey& k : valueKeys) k.valid = false;
   }
 
   // The node's values at this frame, as updateGenericSnapshot writes them into its snapshot node.
@@ -299,6 +357,11 @@ GenericProgramCompiler::~GenericProgramCompiler() = default;
 const GenericTree& GenericProgramCompiler::tree() const { return impl_->c; }
 size_t GenericProgramCompiler::nodeCount() const { return impl_->nodes.size(); }
 const GenericProgramCompiler::Timing& GenericProgramCompiler::lastTiming() const { return impl_->timing; }
+size_t GenericProgramCompiler::lastEvaluatedNodes() const { return impl_->evaluatedNodes.load(); }
+void GenericProgramCompiler::keepValues(bool on) {
+  impl_->keepValues = on;
+  if (!on) impl_->forgetValues();
+}
 
 void GenericProgramCompiler::compile(const AnimorphosisTiming& timing, double timeSec, FieldProgram& out,
                                      const CompileOptions& options) {

@@ -45,6 +45,15 @@ class GenericProgramCompiler {
     double typesSec = 0.0, emitSec = 0.0, finishSec = 0.0;
   };
   const Timing& lastTiming() const;
+  // Nodes whose values the last compile() or refill() evaluated. The others kept the values of an
+  // earlier frame: their inputs (type, s, the clip time of each side they read whose tracks move)
+  // were bit for bit the same, so their values are too (scrubbing, nodes outside their s(u)
+  // interval with constant tracks are not evaluated again).
+  size_t lastEvaluatedNodes() const;
+  // Whether compiles keep the values of nodes whose inputs did not move (on by default; off: every
+  // node evaluated every frame, as before, the baseline of `bench animorph-compile`). The program is
+  // the same either way.
+  void keepValues(bool on);
 
   struct Impl;  // the nodes and their values (compile_generic.cpp)
 

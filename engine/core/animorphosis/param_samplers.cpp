@@ -87,6 +87,15 @@ uint32_t ParamSamplers::addBridgeQ(const BlobNode& n) {
   return uint32_t(slots_.size() - 1);
 }
 
+bool ParamSamplers::animated(uint32_t first, uint32_t count) const {
+  for (uint32_t k = first; k < first + count && k < slots_.size(); ++k) {
+    const Slot& s = slots_[k];
+    if (s.kind != ParamKind::Vec3List ? s.animated : lists_[s.index].count > 0 && lists_[s.index].fixedAt < 0)
+      return true;
+  }
+  return false;
+}
+
 float ParamSamplers::floatAt(uint32_t slot, double t) const {
   const Slot& s = slots_[slot];
   return s.animated ? floats_[s.index].sample(t) : constants_[s.index].x;

@@ -35,6 +35,9 @@ class ParamSamplers {
     return (1.0f - s) * floatAt(a, tA) + s * floatAt(b, tB);
   }
   float bridgeQ(uint32_t slot, double t) const { return std::max(1.0f, floatAt(slot, t)); }
+  // Whether any of slots [first, first + count) moves with time (an animated track, a point list with
+  // an animated point): false means their values at every time are those at time 0.
+  bool animated(uint32_t first, uint32_t count) const;
 
  private:
   struct Slot {

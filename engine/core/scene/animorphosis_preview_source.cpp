@@ -1,5 +1,7 @@
 #include "core/scene/animorphosis_preview_source.h"
 
+#include <atomic>
+
 namespace animorph {
 
 SharedGenericCompiler::SharedGenericCompiler(std::shared_ptr<const GenericTree> c)
@@ -16,6 +18,25 @@ RefillOutcome SharedGenericCompiler::compile(const AnimorphosisTiming& timing, d
   }
   if (outcome != RefillOutcome::Refilled) structure_.adoptStructure(out);
   return outcome;
+}
+
+std::shared_ptr<FieldProgram> SharedGenericCompiler::takeProgram() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (const std::shared_ptr<FieldProgram>& p : pool_)
+    if (p.use_count() == 1) {  // only the pool holds it: whoever read it has let it go
+      std::atomic_thread_fence(std::memory_order_acquire);
+      ++poolCounters_.reused;
+      return p;
+    }
+  ++poolCounters_.made;
+  auto p = std::make_shared<FieldProgram>();
+  if (pool_.size() < kProgramPool) pool_.push_back(p);
+  return p;
+}
+
+SharedGenericCompiler::PoolCounters SharedGenericCompiler::poolCounters() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return poolCounters_;
 }
 
 SharedGenericCompiler::Counters SharedGenericCompiler::counters() const {
@@ -36,8 +57,11 @@ class AnimorphosisSource final : public PreviewSource {
   // Like a BlobTree's preview: on the last frame's grid while C fits in it, its blocks reused.
   Result<PolygonizeResult> polygonize(int resolution, int threads, const std::atomic<bool>* cancel,
                                       PolygonizeHistory* history) const override {
-    std::call_once(compiled_, [&] { compiler_->compile(timing_, timeSec_, program_); });
-    return polygonizePreviewProgram(program_, resolution, threads, cancel, history);
+    std::call_once(compiled_, [&] {
+      program_ = compiler_->takeProgram();
+      compiler_->compile(timing_, timeSec_, *program_);
+    });
+    return polygonizePreviewProgram(*program_, resolution, threads, cancel, history);
   }
   Result<PreviewField> field(int) const override {
     PreviewField f;
@@ -50,7 +74,8 @@ class AnimorphosisSource final : public PreviewSource {
   AnimorphosisTiming timing_;
   double timeSec_;
   mutable std::once_flag compiled_;  // the worker compiles once for both levels
-  mutable FieldProgram program_;
+  // From the compiler's pool (SharedGenericCompiler::takeProgram): back to it when this source goes.
+  mutable std::shared_ptr<FieldProgram> program_;
 };
 
 }  // namespace

@@ -6,6 +6,7 @@
 // the snapshot's, bit for bit, so the preview's meshes are the same).
 #include <memory>
 #include <mutex>
+#include <vector>
 
 #include "core/animorphosis/compile_generic.h"
 #include "core/poly/preview_polygonizer.h"
@@ -30,6 +31,16 @@ class SharedGenericCompiler {
     uint64_t structureChanges = 0;  // C(t)'s op list differed from the last one's: built afresh
   };
   Counters counters() const;
+  // A program for the next frame's compile: one of the compiler's kept programs that nobody else
+  // holds any more (its memory and structure reused: no allocation, no structure copied once warm),
+  // else a new one, kept while fewer than kProgramPool are. The caller holds it while it reads it.
+  std::shared_ptr<FieldProgram> takeProgram();
+  static constexpr size_t kProgramPool = 4;
+  // Programs takeProgram handed out again (reused) and made (new), so far.
+  struct PoolCounters {
+    uint64_t reused = 0, made = 0;
+  };
+  PoolCounters poolCounters() const;
 
  private:
   std::shared_ptr<const GenericTree> tree_;
@@ -37,6 +48,8 @@ class SharedGenericCompiler {
   GenericProgramCompiler compiler_;
   FieldProgram structure_;  // the last compile's structure (its values empty): what the next one refills
   Counters counters_;
+  std::vector<std::shared_ptr<FieldProgram>> pool_;  // takeProgram's kept programs
+  PoolCounters poolCounters_;
 };
 
 // C at timeline time timeSec. Two sources are the same when they share the compiler (so C and its
