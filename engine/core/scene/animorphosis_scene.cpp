@@ -28,6 +28,7 @@ std::shared_ptr<const GenericTree> AnimorphosisCache::get(const Project& project
   if (c) {
     tree_ = std::make_shared<const GenericTree>(std::move(*c));
     compiler_ = std::make_shared<SharedGenericCompiler>(tree_);
+    timing_ = animorphosisTiming(project);
     error_.clear();
   } else {
     tree_.reset();
@@ -37,20 +38,21 @@ std::shared_ptr<const GenericTree> AnimorphosisCache::get(const Project& project
   return tree_;
 }
 
-std::shared_ptr<const BlobTree> AnimorphosisCache::snapshot(const Project& project, double timeSec) {
+std::shared_ptr<const BlobTree> AnimorphosisCache::snapshot(const Project& /*the one get() had*/, double timeSec) {
   if (!tree_) return nullptr;
   if (snapshot_ && snapshotTimeSec_ == timeSec) return snapshot_;
   // Rewritten in place when nobody else holds the previous snapshot (no allocation while scrubbing).
   if (!snapshot_ || snapshot_.use_count() > 1) snapshot_ = std::make_shared<BlobTree>();
-  updateGenericSnapshot(*tree_, animorphosisTiming(project), timeSec, *snapshot_);
+  updateGenericSnapshot(*tree_, timing_, timeSec, *snapshot_);
   snapshotTimeSec_ = timeSec;
   return snapshot_;
 }
 
-std::shared_ptr<const PreviewSource> AnimorphosisCache::previewSource(const Project& project, double timeSec) {
+std::shared_ptr<const PreviewSource> AnimorphosisCache::previewSource(const Project& /*the one get() had*/,
+                                                                      double timeSec) {
   if (!compiler_) return nullptr;
   if (!source_ || sourceTimeSec_ != timeSec) {
-    source_ = animorphosisPreviewSource(compiler_, animorphosisTiming(project), timeSec);
+    source_ = animorphosisPreviewSource(compiler_, timing_, timeSec);
     sourceTimeSec_ = timeSec;
   }
   return source_;

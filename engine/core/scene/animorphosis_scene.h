@@ -25,18 +25,19 @@ struct AnimorphosisSceneInfo {
 };
 
 // Keeps the generic tree C of one document state (built again only when the
-// project changes: its revision or the document itself) with its compiler, the
-// last preview source and the last snapshot of C(t).
+// project changes: its revision or the document itself) with its compiler, its
+// timing, the last preview source and the last snapshot of C(t).
 class AnimorphosisCache {
  public:
   // C for project at revision, or null (no animorphosis, or building it
   // failed: error() says why).
   std::shared_ptr<const GenericTree> get(const Project& project, const void* owner, uint64_t revision);
   // C(timeSec) of the tree get() returned last, as a BlobTree of constant
-  // tracks; the same pointer while neither C nor the time change.
+  // tracks; the same pointer while neither C nor the time change. project is the
+  // one get() was given (its timing, kept by get(), is used).
   std::shared_ptr<const BlobTree> snapshot(const Project& project, double timeSec);
   // C(timeSec) of the same tree as a preview source (compiled when polygonised); the same
-  // pointer while neither C nor the time change.
+  // pointer while neither C nor the time change. project as for snapshot().
   std::shared_ptr<const PreviewSource> previewSource(const Project& project, double timeSec);
   const std::string& error() const { return error_; }
   // The compiler of the tree get() returned last (its refill counters), or null.
@@ -52,6 +53,9 @@ class AnimorphosisCache {
   std::shared_ptr<SharedGenericCompiler> compiler_;
   std::shared_ptr<const PreviewSource> source_;
   double sourceTimeSec_ = 0.0;
+  // The project's timing when get() built C: its clip lengths walk both actors' trees (a few ms for
+  // the demo), too much to do again for every scrubbed time (snapshot, previewSource).
+  AnimorphosisTiming timing_;
 };
 
 // Replaces the source and target BlobTree draws (and their skeleton guides)
