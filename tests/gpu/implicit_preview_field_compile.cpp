@@ -224,10 +224,35 @@ TEST_CASE("preview field compiler: scrubbing C(t) refills the kept structure (co
   CHECK(n.firstCompiles == 1);
   CHECK(n.refilled >= 4);
   CHECK(n.refilled + n.firstCompiles + n.structureChanged == 6);
+  // The fields' programs come from the shared compiler's pool: a frame's program is taken again
+  // once no compiled field holds it (the compiler keeps the latest), not made anew each frame.
+  const SharedGenericCompiler::PoolCounters pool = shared->poolCounters();
+  INFO(pool.made << " programs made, " << pool.reused << " reused");
+  CHECK(pool.made + pool.reused == 6);
+  CHECK(pool.reused >= 3);
+  {
+    const double t = mid + 6 / 30.0;
+    auto last = compiler.compileHere(animorphosisPreviewSource(shared, timing, t), 48, t);
+    REQUIRE(last->field);
+    CHECK(last->field->pooledProgram);
+    // A reused program's mesh equals a fresh compile's, bit for bit.
+    GenericProgramCompiler fresh(*tree);
+    fresh.keepValues(false);
+    FieldProgram ref;
+    fresh.compile(timing, t, ref);
+    auto mine = polygonizePreviewProgram(last->field->fieldProgram(), 24, 1, nullptr, nullptr);
+    auto theirs = polygonizePreviewProgram(ref, 24, 1, nullptr, nullptr);
+    REQUIRE(mine.ok());
+    REQUIRE(theirs.ok());
+    CHECK(mine->mesh.triangleCount() > 0);
+    CHECK(mine->mesh == theirs->mesh);
+  }
   // Another C (the editor builds one after an edit): its first field is compiled fully.
   auto edited = std::make_shared<SharedGenericCompiler>(tree);
   auto r = compiler.compileHere(animorphosisPreviewSource(edited, timing, mid), 48, mid);
   REQUIRE(r);
   CHECK(compiler.counters().firstCompiles == 2);
-  CHECK(compiler.counters().refilled == n.refilled);
+  CHECK(compiler.counters().refilled + compiler.counters().structureChanged ==
+        n.refilled + n.structureChanged + 1);  // (the seventh frame above)
 }
+

@@ -168,7 +168,7 @@ void ImplicitPreview::prewarm(const PreviewSource& source, const ImplicitPreview
   gs.bounds = field->bounds;
   gs.noiseAmplitude = field->noiseAmplitude;
   gs.noiseFrequency = field->noiseFrequency;
-  poly_->prewarm(GpuField::single(field->program), gs);
+  poly_->prewarm(GpuField::single(field->fieldProgram()), gs);
 }
 
 Status ImplicitPreview::initGpu() {
