@@ -8,6 +8,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <thread>
 
 #include "gpu_fixture.h"
@@ -256,3 +257,35 @@ TEST_CASE("preview field compiler: scrubbing C(t) refills the kept structure (co
         n.refilled + n.structureChanged + 1);  // (the seventh frame above)
 }
 
+TEST_CASE("implicit preview: C(t) at 96^3 with the GPU preference draws a GPU mesh, not the CPU fallback, within 0.5 % "
+          "of the CPU's triangles",
+          "[gpu][preview][animorphosis]") {
+  // lavapipe cuts a record's loops where the per-region lists of C(t) are longer than counted
+  // (the coarse pass at 96^3); that record is redone with single-block lists, as polygonize() redoes
+  // its frame, instead of sending the preview to the CPU worker for good (bench animorph-scrub --gpu).
+  auto p = makeAnimorphosisDemoProject();
+  REQUIRE(p.ok());
+  auto c = projectGenericTree(*p);
+  REQUIRE(c.ok());
+  auto shared = std::make_shared<SharedGenericCompiler>(std::make_shared<const GenericTree>(std::move(*c)));
+  const AnimorphosisTiming timing = animorphosisTiming(*p);
+  const double t = 0.5 * (kDemoMorphStartSec + kDemoMorphEndSec);
+  auto source = animorphosisPreviewSource(shared, timing, t);
+  Fixture f;
+  f.ps.interactiveResolution = 96;
+  f.ps.refinedResolution = 96;
+  ImplicitPreview preview(*f.ctx);
+  const ImplicitPreviewStatus st = f.settle(preview, source, t);
+  INFO("fell back: " << st.gpuFallback << "; " << preview.gpuRecordCount() << " records, "
+                     << preview.gpuCutFramesRedone() << " cut and redone");
+  CHECK(st.gpu);
+  CHECK(st.gpuFallback.empty());
+  CHECK(preview.gpuFailure().empty());
+  CHECK(st.resolution == 96);
+  auto cpu = source->polygonize(96, 0, nullptr, nullptr);
+  REQUIRE(cpu.ok());
+  const double cpuTris = double(cpu->mesh.triangleCount());
+  REQUIRE(cpuTris > 1000);
+  CHECK(std::abs(double(st.triangles) - cpuTris) <= 0.005 * cpuTris);
+  CHECK(f.ctx->validationErrorCount() == 0);
+}
