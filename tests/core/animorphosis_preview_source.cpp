@@ -51,10 +51,10 @@ TEST_CASE("preview: scrubbing C(t) refills without compiling (counted), an edit 
     ++outcomes[int(*f->refill)];
     FieldProgram ref;
     fresh.compile(timing, t, ref);
-    REQUIRE(f->program.ops.size() == ref.ops.size());
-    REQUIRE(f->program.primitiveCount() == ref.primitiveCount());
-    CHECK(f->program.bounds().min == ref.bounds().min);
-    CHECK(f->program.bounds().max == ref.bounds().max);
+    REQUIRE(f->fieldProgram().ops.size() == ref.ops.size());
+    REQUIRE(f->fieldProgram().primitiveCount() == ref.primitiveCount());
+    CHECK(f->fieldProgram().bounds().min == ref.bounds().min);
+    CHECK(f->fieldProgram().bounds().max == ref.bounds().max);
   }
   INFO(outcomes[0] << " refilled, " << outcomes[1] << " first compiles, " << outcomes[2] << " structure changes");
   CHECK(outcomes[int(RefillOutcome::FirstCompile)] == 1);
@@ -90,7 +90,7 @@ TEST_CASE("preview: scrubbing C(t) refills without compiling (counted), an edit 
   REQUIRE(after.ok());
   REQUIRE(after->refill.has_value());
   CHECK(*after->refill == RefillOutcome::FirstCompile);
-  CHECK(after->program.primitiveCount() > before->program.primitiveCount());
+  CHECK(after->fieldProgram().primitiveCount() > before->fieldProgram().primitiveCount());
   CHECK(cache.compiler()->counters().firstCompiles == 1);
   CHECK(cache.compiler()->counters().refills == 0);
 }

@@ -252,7 +252,7 @@ TEST_CASE("GPU preview scrubbing a moving shape holds its grid: two frames share
                                    res, 0.0);
     REQUIRE(c1->error.empty());
     REQUIRE(c1->field);
-    REQUIRE(c1->field->program.ops.size() > GpuPolygonizeSettings::kRegionListMinOps);
+    REQUIRE(c1->field->fieldProgram().ops.size() > GpuPolygonizeSettings::kRegionListMinOps);
     REQUIRE(c1->grid);
     const float h = c1->grid->cellSize;
     auto c2 = compiler.compileHere(

@@ -86,7 +86,7 @@ PolygonizeResult gpuFieldMatchesCpu(Context& ctx, const PreviewSource& source, i
   const PreviewGpuField pf = previewGpuField(source, res);
   auto poly = GpuPolygonizer::create(ctx);
   REQUIRE(poly.ok());
-  auto st = (*poly)->polygonize(GpuField::single(pf.field.program), pf.settings);
+  auto st = (*poly)->polygonize(GpuField::single(pf.field.fieldProgram()), pf.settings);
   INFO(st.error());
   REQUIRE(st.ok());
   auto gpuMesh = (*poly)->readBack();
@@ -383,7 +383,7 @@ TEST_CASE("implicit preview: the first GPU record of a shape fits its buffers (n
       const PreviewGpuField pf = previewGpuField(*source, res);
       auto poly = GpuPolygonizer::create(*ctx);
       REQUIRE(poly.ok());
-      const GpuField gf = GpuField::single(pf.field.program);
+      const GpuField gf = GpuField::single(pf.field.fieldProgram());
       for (uint64_t serial : {uint64_t(0), uint64_t(kFramesInFlight)}) {
         Status recorded;
         Status submitted = ctx->submitImmediate([&](VkCommandBuffer cmd) { recorded = (*poly)->record(cmd, serial, gf, pf.settings); });

@@ -41,7 +41,7 @@ class BlobTreeSource final : public PreviewSource {
   }
   Result<PreviewField> field(int) const override {
     if (Status s = validateBlobTree(*tree_); !s) return Error{s.error()};
-    return PreviewField{compileFieldProgram(*tree_, timeSec_), std::nullopt, 0.0f, 1.0f, nullptr, std::nullopt};
+    return PreviewField{compileFieldProgram(*tree_, timeSec_), std::nullopt, 0.0f, 1.0f, nullptr, std::nullopt, nullptr};
   }
 
  private:

@@ -25,7 +25,7 @@ namespace animorph {
 // A preview's field as one program, for polygonisers other than the worker's
 // (the GPU's): the program and the grid bounds (nullopt: the program's own).
 struct PreviewField {
-  FieldProgram program;
+  FieldProgram program;  // empty when pooledProgram is set
   std::optional<Bounds> bounds;
   // Solid noise moving the polygonised mesh's vertices along their normals (the morph's noise
   // track, displaceBySolidNoise): amplitude (m), frequency (1/m); 0 amplitude: none.
@@ -37,6 +37,11 @@ struct PreviewField {
   // How program was made where its source refills a kept structure (the animorphosis' C(t),
   // FieldProgram::finishRefill): Refilled when only its values were computed; nullopt: compiled afresh.
   std::optional<RefillOutcome> refill;
+  // The program when its source lends one from a pool it reuses once nobody holds it (the
+  // animorphosis' C(t), SharedGenericCompiler::takeProgram); null: program, held by value.
+  std::shared_ptr<FieldProgram> pooledProgram;
+  // The field's program: pooledProgram's when set, else program.
+  const FieldProgram& fieldProgram() const { return pooledProgram ? *pooledProgram : program; }
 };
 
 // A shape to preview: an immutable snapshot (shared with the worker thread).

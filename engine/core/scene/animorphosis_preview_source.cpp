@@ -64,8 +64,10 @@ class AnimorphosisSource final : public PreviewSource {
     return polygonizePreviewProgram(*program_, resolution, threads, cancel, history);
   }
   Result<PreviewField> field(int) const override {
+    // From the pool like polygonize()'s: the GPU's compiled field holds it while it is drawn.
     PreviewField f;
-    f.refill = compiler_->compile(timing_, timeSec_, f.program);
+    f.pooledProgram = compiler_->takeProgram();
+    f.refill = compiler_->compile(timing_, timeSec_, *f.pooledProgram);
     return f;
   }
 

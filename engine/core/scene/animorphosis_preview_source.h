@@ -35,7 +35,7 @@ class SharedGenericCompiler {
   // holds any more (its memory and structure reused: no allocation, no structure copied once warm),
   // else a new one, kept while fewer than kProgramPool are. The caller holds it while it reads it.
   std::shared_ptr<FieldProgram> takeProgram();
-  static constexpr size_t kProgramPool = 4;
+  static constexpr size_t kProgramPool = 8;
   // Programs takeProgram handed out again (reused) and made (new), so far.
   struct PoolCounters {
     uint64_t reused = 0, made = 0;

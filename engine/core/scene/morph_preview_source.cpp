@@ -33,7 +33,7 @@ class MorphStageSource final : public PreviewSource {
     MorphImplicitField f = morphImplicitField(*rt_, timeSec_, resolution, progress_);
     // The noise displaces the polygonised mesh (on the GPU: a pass after the normals).
     return PreviewField{std::move(f.program), f.bounds, f.noiseAmplitude, rt_->setup.noiseFrequency, f.colorProgram,
-                        std::nullopt};
+                        std::nullopt, nullptr};
   }
 
  private:
@@ -72,7 +72,7 @@ class StandinCoreSource final : public PreviewSource {
     std::optional<MorphImplicitField> f = standinCoreField(*rt_, timeSec_, expand_, u_);
     if (!f) return Error{"the stand-in core has melted away at this time"};
     return PreviewField{std::move(f->program), f->bounds, f->noiseAmplitude, rt_->setup.noiseFrequency,
-                        f->colorProgram, std::nullopt};
+                        f->colorProgram, std::nullopt, nullptr};
   }
 
  private:

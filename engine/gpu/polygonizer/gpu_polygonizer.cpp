@@ -453,6 +453,24 @@ std::vector<float> blockChangeBounds(const GpuField& field, const FramePrep& now
   return out;
 }
 
+// How a record walked the programs: per-region lists, built conservatively (single blocks), the
+// normals one vertex a dispatch.
+struct SlotWalk {
+  bool lists = false, conservative = false, normalsPerVertex = false;
+};
+
+// Whether a record whose loops the device cut (overflow: its AM_CTL_OVERFLOW bits) can be redone
+// sparing the device more: it walked lists, and every pass cut has a sparer form it did not use
+// (the coarse and cells passes single-block lists, the normals pass those or one vertex a dispatch).
+// A cut colour pass, or a cut frame without lists, cannot.
+bool cutFrameRedoable(uint32_t overflow, SlotWalk w) {
+  const bool fieldCut = (overflow & (AM_OVERFLOW_CUT_COARSE | AM_OVERFLOW_CUT_CELLS)) != 0;
+  const bool normalsCut = (overflow & AM_OVERFLOW_CUT_NORMALS) != 0;
+  if (!w.lists || (overflow & AM_OVERFLOW_CUT_COLORS) || (!fieldCut && !normalsCut)) return false;
+  if (fieldCut && w.conservative) return false;
+  return !normalsCut || !w.conservative || !w.normalsPerVertex;
+}
+
 }  // namespace
 
 struct GpuPolygonizer::Impl {
@@ -513,6 +531,10 @@ struct GpuPolygonizer::Impl {
   // than redoing a frame that cannot fit.
   bool cutLoops = false;
   uint32_t cutLoopsBits = 0;  // its AM_CTL_OVERFLOW bits (which passes)
+  // How each readback slot's record walked the programs (record): whether a frame of it whose
+  // loops were cut can be redone sparing the device more (cutFrameRedoable), as polygonize() does.
+  std::array<SlotWalk, kFramesInFlight + 1> slotWalk{};
+  uint64_t cutFramesRedone = 0;  // records cut that the next record redid (GpuPolygonizer::cutFramesRedone)
   bool normalsPerVertex = false;  // this frame's normals pass runs once per vertex (recordPasses)
   // A frame walking region lists had the normals pass's loops cut: from then on that pass runs once
   // per vertex wherever lists are walked (the estimates undercount), and polygonize() redoes the frame.
@@ -1307,11 +1329,20 @@ Status GpuPolygonizer::absorbCounters(uint32_t slot) {
   stats_.overflowed = c[AM_CTL_OVERFLOW] != 0;
   stats_.blocksReused = c[AM_CTL_REUSED];
   if (c[AM_CTL_OVERFLOW] == 0) return Status::success();
-  if (c[AM_CTL_OVERFLOW] & AM_OVERFLOW_LOOPS) {  // redoing it would cut them again
-    m.cutLoops = true;
-    m.cutLoopsBits = c[AM_CTL_OVERFLOW];
-    if (m.lastRegionLists) m.conservativeRegions = true;  // the next shape's frames spare the device more
-    if (m.cutLoopsBits & AM_OVERFLOW_CUT_NORMALS) m.conservativeNormals = true;
+  if (c[AM_CTL_OVERFLOW] & AM_OVERFLOW_LOOPS) {
+    const uint32_t bits = c[AM_CTL_OVERFLOW];
+    const SlotWalk walk = m.slotWalk[slot];
+    if (m.lastRegionLists || (walk.lists && !walk.conservative))
+      m.conservativeRegions = true;  // the next frames spare the device more
+    if (bits & AM_OVERFLOW_CUT_NORMALS) m.conservativeNormals = true;
+    // That frame drew nothing; the next record redoes it with single-block lists (and the normals
+    // one vertex a dispatch), as polygonize() redoes its frame. Cut again so: the CPU's.
+    if (cutFrameRedoable(bits, walk)) {
+      ++m.cutFramesRedone;
+      return Status::success();
+    }
+    m.cutLoops = true;  // redoing it would cut them again
+    m.cutLoopsBits = bits;
     return Error{cutLoopsError(m.cutLoopsBits)};
   }
   // That frame drew nothing; grow to what it needed (counts past a block overflow are
@@ -1352,8 +1383,13 @@ Status GpuPolygonizer::record(VkCommandBuffer cmd, uint64_t frameSerial, const G
     }
   }
   m.slotSerial[slot] = frameSerial;
-  return m.recordFrame(cmd, slot, field, s, stats_, false, prepared);
+  const bool conservative = m.conservativeRegions;  // (what a prepared frame's lists must match, Impl::usable)
+  Status st = m.recordFrame(cmd, slot, field, s, stats_, false, prepared);
+  m.slotWalk[slot] = SlotWalk{stats_.regionLists, conservative, m.normalsPerVertex};
+  return st;
 }
+
+uint64_t GpuPolygonizer::cutFramesRedone() const { return impl_->cutFramesRedone; }
 
 namespace {
 // Whether a and b override the grid alike (both not, or with the same grid).

@@ -251,8 +251,12 @@ class GpuPolygonizer {
   // frameSerial - kFramesInFlight, which the caller guarantees has completed,
   // are read here, and if that frame overflowed the buffers grow first (waiting
   // for the device). Buffers may be replaced: take generatedMesh() after record().
+  // A record whose loops the device cut short (lavapipe's loop limiter) draws nothing; when it
+  // walked per-region lists not yet in their sparest form, it counts as overflowed (lastStats,
+  // recordFitted false: record the shape again) and the next records walk single-block lists (and
+  // the normals one vertex a dispatch), as polygonize() redoes its frame (cutFramesRedone).
   // Errors: unsupported field, bad settings or bounds, an earlier record whose loops the device
-  // cut short (lavapipe's loop limiter: that frame drew nothing), Vulkan failures.
+  // cut short in the sparest form (that frame drew nothing: use the CPU), Vulkan failures.
   Status record(VkCommandBuffer cmd, uint64_t frameSerial, const GpuField& field, const GpuPolygonizeSettings& s);
   // The same with the frame's host preparation done beforehand (prepare()): nothing is computed
   // here but the upload and the commands. A prepared frame of other programs or settings, for
@@ -279,6 +283,8 @@ class GpuPolygonizer {
   bool conservativeRegions() const;
   // Records and polygonize() calls that prepared their frame themselves (no usable prepared frame).
   uint64_t preparesInRecord() const;
+  // Records whose loops the device cut and that a later record redid sparing it more (see record()).
+  uint64_t cutFramesRedone() const;
 
   // Starts compiling, on a background thread, the shader pipelines record() and polygonize() will
   // need for fields like this one (same operators, primitive kinds and morph method), so that the

@@ -150,6 +150,7 @@ void ImplicitPreview::uploadNew() {
 }
 
 uint64_t ImplicitPreview::gpuPreparesInRecord() const { return poly_ ? poly_->preparesInRecord() : 0; }
+uint64_t ImplicitPreview::gpuCutFramesRedone() const { return poly_ ? poly_->cutFramesRedone() : 0; }
 
 void ImplicitPreview::prewarm(const PreviewSource& source, const ImplicitPreviewSettings& s) {
   if (!s.gpu || !gpuFailure_.empty()) return;
@@ -168,7 +169,7 @@ void ImplicitPreview::prewarm(const PreviewSource& source, const ImplicitPreview
   gs.bounds = field->bounds;
   gs.noiseAmplitude = field->noiseAmplitude;
   gs.noiseFrequency = field->noiseFrequency;
-  poly_->prewarm(GpuField::single(field->program), gs);
+  poly_->prewarm(GpuField::single(field->fieldProgram()), gs);
 }
 
 Status ImplicitPreview::initGpu() {

@@ -138,6 +138,9 @@ class ImplicitPreview {
   // GPU records (and screenshots' polygonisations) that prepared their frame's host half on this
   // thread because the compiled field brought none that suited (GpuPolygonizer::preparesInRecord).
   uint64_t gpuPreparesInRecord() const;
+  // GPU records whose loops the device cut and that were redone sparing it more instead of leaving
+  // the GPU (GpuPolygonizer::cutFramesRedone; lavapipe's loop limiter).
+  uint64_t gpuCutFramesRedone() const;
 
  private:
   bool usingGpu() const { return gpuActive_; }

@@ -27,7 +27,7 @@ GpuPolygonizeSettings previewGpuSettings(const PreviewField& field, int resoluti
 }
 
 GpuField previewGpuField(const PreviewField& field) {
-  GpuField gf = GpuField::single(field.program);
+  GpuField gf = GpuField::single(field.fieldProgram());
   gf.colors = field.colorProgram.get();
   return gf;
 }
@@ -88,7 +88,7 @@ std::shared_ptr<const CompiledPreviewField> PreviewFieldCompiler::compile(
   Result<PreviewField> field = r.source->field(r.resolution);
   if (!field) {
     c->error = field.error();
-  } else if (std::string why = GpuPolygonizer::unsupported(GpuField::single(field->program)); !why.empty()) {
+  } else if (std::string why = GpuPolygonizer::unsupported(GpuField::single(field->fieldProgram())); !why.empty()) {
     c->error = std::move(why);
   } else {
     c->field = std::move(*field);
