@@ -19,10 +19,10 @@ void requireSourceFollowsTiming(AnimorphosisCache& cache, const Project& p, cons
   auto field = source->field(64);
   REQUIRE(field.ok());
   const FieldProgram ref = compileGeneric(c, animorphosisTiming(p), timeSec);
-  REQUIRE(field->program.primitiveCount() == ref.primitiveCount());
-  CHECK(field->program.bounds().min == ref.bounds().min);
-  CHECK(field->program.bounds().max == ref.bounds().max);
-  bounds = field->program.bounds();
+  REQUIRE(field->fieldProgram().primitiveCount() == ref.primitiveCount());
+  CHECK(field->fieldProgram().bounds().min == ref.bounds().min);
+  CHECK(field->fieldProgram().bounds().max == ref.bounds().max);
+  bounds = field->fieldProgram().bounds();
 }
 
 }  // namespace
