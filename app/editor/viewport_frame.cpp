@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "core/paint/paint_mesh.h"
+#include "core/project/animation_end_cache.h"
 #include "core/scene/animorphosis_scene.h"
 #include "editor/blob_pick.h"
 #include "editor/click_selection.h"
@@ -38,7 +39,10 @@ ViewportFrameResult ViewportFrame::build(EditorGpu& g, EditorUI& ui, EditorConte
   const EditorOutput& out = ui.output();
   Document& doc = *ectx.document;
   const double timeSec = doc.project().timeline.currentTimeSec();
-  frame_ = evaluateScene(doc.project(), doc.baseDir(), ectx.assets, timeSec);
+  {
+    AnimationEndScope ends(doc.project(), &doc, doc.revision());  // each tree walked once per revision
+    frame_ = evaluateScene(doc.project(), doc.baseDir(), ectx.assets, timeSec);
+  }
   const Preferences& prefs = ui.state().prefs;
   r.backend = gpu::choosePreviewBackend(prefs.previewDevice, g.ctx->deviceType());
   if (prefs.previewDevice != previewDevice_) {  // the user switched: try the GPU again
@@ -185,6 +189,7 @@ void ViewportFrame::composeScene(EditorGpu& g, EditorUI& ui, EditorContext& ectx
                   selBlobNode, g.standinBindings.get());
   if (const Actor* ha = doc.project().findActor(out.highlightBlobNode.actorId);
       ha && ha->kind == ActorKind::BlobTree) {  // a node hovered in the correspondence editor
+    AnimationEndScope ends(doc.project(), &doc, doc.revision());
     if (ha->blobTree.find(out.highlightBlobNode.node))
       gpu::addBlobHighlight(blobSubtreeGuides(ha->blobTree, out.highlightBlobNode.node, blobActorTimeSec(*ha, timeSec),
                                               ha->transform.matrix()),

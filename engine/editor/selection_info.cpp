@@ -5,6 +5,7 @@
 
 #include "core/blobtree/compile.h"
 #include "core/blobtree/tree_edit.h"
+#include "core/project/animation_end_cache.h"
 #include "core/rig/pose.h"
 #include "core/scene/scene_frame.h"
 #include "core/rig/skinning.h"
@@ -26,7 +27,7 @@ std::vector<int> selectionKeyFrames(const Document& doc, AssetCache& assets) {
     const Timeline& tl = p.timeline;
     if (actor->speed == 0.0 || !(tl.fps > 0.0)) return frames;
     std::vector<double> keys = animatedKeyTimes(actor->blobTree, doc.selection.node);
-    double end = animationEndSec(actor->blobTree);
+    double end = cachedAnimationEndSec(actor->blobTree, &doc, doc.revision());
     double cycleSec = end / std::abs(actor->speed);
     double startSec = tl.frameStart / tl.fps, endSec = (tl.frameEnd + 1) / tl.fps;
     long first = 0, last = 0;
@@ -94,6 +95,7 @@ Bounds selectionBounds(const Document& doc, AssetCache& assets, double timeSec) 
     bool selected = actor.id == doc.selection.actorId;
     if (!doc.selection.actorId.empty() ? !selected : !actor.visible) continue;
     if (actor.kind == ActorKind::BlobTree) {
+      AnimationEndScope ends(p, &doc, doc.revision());
       double t = blobActorTimeSec(actor, timeSec);
       glm::mat4 world = actor.transform.matrix();
       int node = selected ? doc.selection.node : -1;

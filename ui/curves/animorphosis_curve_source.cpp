@@ -5,6 +5,7 @@
 
 #include "core/animorphosis/tree_index.h"
 #include "core/doc/animorphosis_commands.h"
+#include "core/project/animation_end_cache.h"
 #include "core/project/animorphosis_project.h"
 
 namespace animorph {
@@ -52,6 +53,7 @@ class AnimorphosisCurveSource final : public CurveSource {
     const Project& p = doc_.project();
     CurveAxis ax = progressAxis("u: progress of the animorphosis");
     const double t = p.timeline.currentTimeSec();
+    AnimationEndScope ends(p, &doc_, doc_.revision());  // drawn every frame: the trees' ends are kept
     ax.playheads.push_back({animorphosisTiming(p).u(t), "u", false});
     return ax;
   }

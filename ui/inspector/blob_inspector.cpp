@@ -10,6 +10,7 @@
 #include "core/blobtree/tree_edit.h"
 #include "core/doc/blobtree_commands.h"
 #include "core/math/euler.h"
+#include "core/project/animation_end_cache.h"
 #include "core/scene/scene_frame.h"
 #include "ui/widgets/widget_rects.h"
 
@@ -196,7 +197,7 @@ void drawBlobActorInspector(Document& doc, const std::string& actorId, DragMerge
   const Actor* actor = doc.project().findActor(actorId);
   if (!actor || actor->kind != ActorKind::BlobTree) return;
   const BlobTree& tree = actor->blobTree;
-  double end = animationEndSec(tree);
+  double end = cachedAnimationEndSec(tree, &doc, doc.revision());
   ImGui::TextDisabled("BlobTree");
   ImGui::SameLine(110.0f);
   ImGui::Text("%zu nodes, %s", tree.root.subtreeSize(),

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "core/blobtree/tree_edit.h"
+#include "core/project/animation_end_cache.h"
 #include "core/rig/pose.h"
 
 namespace animorph {
@@ -13,8 +13,9 @@ double actorClipTimeSec(const Actor& actor, const AnimationClip& clip, double ti
 
 double blobActorTimeSec(const Actor& actor, double timeSec) {
   double t = (timeSec - actor.timeOffsetSec) * actor.speed;
-  double end = animationEndSec(actor.blobTree);
-  if (actor.loop && end > 1e-6) {
+  if (!actor.loop) return t;  // the tree's end matters only to a looping actor
+  double end = AnimationEndScope::endSec(actor);
+  if (end > 1e-6) {
     t = std::fmod(t, end);
     if (t < 0.0) t += end;
   }

@@ -1,15 +1,16 @@
 #include "core/project/animorphosis_project.h"
 
 #include "core/animorphosis/validate_correspondence.h"
-#include "core/blobtree/tree_edit.h"
+#include "core/project/animation_end_cache.h"
 
 namespace animorph {
 
 namespace {
 
 ClipTiming clipOf(const Actor& a) {
-  double end = animationEndSec(a.blobTree);
-  return ClipTiming{a.timeOffsetSec, a.speed, a.loop && end > 1e-6 ? end : 0.0};
+  if (!a.loop) return ClipTiming{a.timeOffsetSec, a.speed, 0.0};
+  double end = AnimationEndScope::endSec(a);  // kept per revision inside the editor's scopes
+  return ClipTiming{a.timeOffsetSec, a.speed, end > 1e-6 ? end : 0.0};
 }
 
 }  // namespace
