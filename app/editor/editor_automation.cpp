@@ -62,6 +62,7 @@ bool EditorAutomation::frameDone(int frameCount, double dtSec, double nowSec, bo
   if (args_.benchFrames > 0 && frameCount >= 10 && benchCpuStartSec_ < 0.0) benchCpuStartSec_ = processCpuSec();
   if (args_.benchFrames > 0 && frameCount > 10) {
     frameMs_.push_back(dtSec * 1000.0);
+    frameNotes_.push_back(lastNote_);
     if (static_cast<int>(frameMs_.size()) >= args_.benchFrames) {
       benchCpuEndSec_ = processCpuSec();
       return true;
@@ -83,12 +84,22 @@ bool EditorAutomation::frameDone(int frameCount, double dtSec, double nowSec, bo
   return false;
 }
 
+void EditorAutomation::noteFrame(bool scenePass, int projectFrame) {
+  lastNote_ = FrameNote{scenePass, projectFrame};
+}
+
 void EditorAutomation::printBench(const std::string& deviceName, const std::string& presentPath) const {
   if (args_.benchFrames <= 0) return;
   std::printf("start to first frame: %.1f ms\n", firstFrameMs_);
   std::printf("present: %s\n", presentPath.c_str());
   std::printf("frame time over %zu frames: p50 %.2f ms, p95 %.2f ms, max %.2f ms (device: %s)\n", frameMs_.size(),
               percentile(frameMs_, 0.5), percentile(frameMs_, 0.95), percentile(frameMs_, 1.0), deviceName.c_str());
+  // Which frames make the p95: each measured frame's wall time, its project frame, S where it
+  // rendered the 3D scene (else it showed the kept image).
+  std::printf("frame times (ms@project frame, S: scene rendered):");
+  for (size_t i = 0; i < frameMs_.size(); ++i)
+    std::printf(" %.1f@%d%s", frameMs_[i], frameNotes_[i].projectFrame, frameNotes_[i].scenePass ? "S" : "");
+  std::printf("\n");
   // Throughput: the frames the window showed over the wall time they took (not 1000 / a median).
   double wallMs = 0.0;
   for (double ms : frameMs_) wallMs += ms;

@@ -33,6 +33,9 @@ class EditorAutomation {
   // After frame frameCount: records --bench's frame time and --idle-bench's figures. True when the
   // run is over (the bench's frames measured, --quit without a screenshot, the idle time elapsed).
   bool frameDone(int frameCount, double dtSec, double nowSec, bool previewsSettled, bool continuousRedraw);
+  // Before frameDone: what the frame showed (the 3D scene rendered or the kept image, the
+  // project frame), listed by printBench next to each measured frame's time.
+  void noteFrame(bool scenePass, int projectFrame);
   // --bench was given.
   bool benchRan() const { return args_.benchFrames > 0; }
   // --bench's figures, on exit.
@@ -46,6 +49,12 @@ class EditorAutomation {
   double scrubStartSec_ = -1.0;
   double firstFrameMs_ = -1.0;
   std::vector<double> frameMs_;
+  struct FrameNote {
+    bool scenePass = false;
+    int projectFrame = 0;
+  };
+  std::vector<FrameNote> frameNotes_;  // one per measured frame, as frameMs_
+  FrameNote lastNote_;
   // --bench: the editor process's processor time (all its threads) when the first measured frame
   // started, and when the last ended: frames shown per second and processor time per frame.
   double benchCpuStartSec_ = -1.0, benchCpuEndSec_ = -1.0;

@@ -163,6 +163,7 @@ bool Editor::frame() {
   if (frameCount_ == 10) benchScenePasses_ = scenePasses_, benchKeptFrames_ = keptFrames_;  // the bench's first frame
   scenePasses_ += f.shown.scenePass;
   keptFrames_ += f.shown.sceneKept;
+  automation_.noteFrame(f.shown.scenePass, document_->project().timeline.currentFrame);
   if (f.shown.captured) {
     pendingCapture_.clear();
     captureFrames_ = 0;

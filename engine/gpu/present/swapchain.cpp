@@ -423,7 +423,36 @@ FrameStatus Swapchain::acquireFrame(Frame& frame) {
   return FrameStatus::Ready;
 }
 
-// The window cleared, the underlay's image copied into its rectangle, then the pass that loads them.
+namespace {
+
+// Inside a render pass over the whole frame image: up to four bands around rect (clipped to the
+// frame) cleared to c; with the copied rectangle they cover the window once.
+void clearAroundUnderlay(VkCommandBuffer cmd, VkExtent2D extent, const VkRect2D& rect, const glm::vec4& c) {
+  const int32_t w = int32_t(extent.width), h = int32_t(extent.height);
+  const int32_t x0 = std::clamp(rect.offset.x, 0, w), y0 = std::clamp(rect.offset.y, 0, h);
+  const int32_t x1 = std::clamp(rect.offset.x + int32_t(rect.extent.width), x0, w);
+  const int32_t y1 = std::clamp(rect.offset.y + int32_t(rect.extent.height), y0, h);
+  VkClearRect bands[4]{};
+  uint32_t n = 0;
+  auto add = [&](int32_t x, int32_t y, int32_t bw, int32_t bh) {
+    if (bw > 0 && bh > 0) bands[n++] = VkClearRect{{{x, y}, {uint32_t(bw), uint32_t(bh)}}, 0, 1};
+  };
+  add(0, 0, w, y0);              // above
+  add(0, y1, w, h - y1);         // below
+  add(0, y0, x0, y1 - y0);       // left
+  add(x1, y0, w - x1, y1 - y0);  // right
+  if (n == 0) return;
+  VkClearAttachment clear{};
+  clear.aspectMask = VK_IMAGE_ASPECT_COLOR_BIT;
+  clear.colorAttachment = 0;
+  clear.clearValue.color = {{c.r, c.g, c.b, c.a}};
+  vkCmdClearAttachments(cmd, 1, &clear, n, bands);
+}
+
+}  // namespace
+
+// The underlay's image copied into its rectangle of the frame image, which then waits for the pass
+// that loads it (the window around the rectangle is cleared in that pass: clearAroundUnderlay).
 void Swapchain::recordUnderlay(VkCommandBuffer cmd, const FrameUnderlay& u) {
   VkImage target = host_ ? hostImages_[slot_].image : images_[imageIndex_];
   VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
@@ -437,14 +466,8 @@ void Swapchain::recordUnderlay(VkCommandBuffer cmd, const FrameUnderlay& u) {
   // After the previous use of this image (its pass, its copy to the host, its presentation).
   vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                        VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr, 1, &b);
-  const glm::vec4& c = settings_.clearColor;
-  VkClearColorValue clear{{c.r, c.g, c.b, c.a}};
-  vkCmdClearColorImage(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &clear, 1, &b.subresourceRange);
-  VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-  mb.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-  mb.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &mb, 0, nullptr, 0,
-                       nullptr);
+  // The rest of the window is cleared inside the pass (clearAroundUnderlay): the rectangle the copy
+  // fills is not written twice (on a CPU device a clear is a memset of every pixel).
   VkImageCopy region{};
   region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
   region.dstSubresource = region.srcSubresource;
@@ -468,6 +491,7 @@ void Swapchain::beginPass(const FrameUnderlay* underlay) {
   const glm::vec4& c = settings_.clearColor;
   const float clear[4] = {c.r, c.g, c.b, c.a};
   beginScenePass(cmd, load ? loadPass_ : renderPass_, framebuffers_[imageIndex_], extent_, clear);
+  if (load) clearAroundUnderlay(cmd, extent_, underlay->rect, settings_.clearColor);
   passOpen_ = true;
 }
 
