@@ -148,6 +148,9 @@ class SequenceGrid {
 // For scrubbing with a history: the grid the history's previous frame was polygonised on when the
 // grid `own` this frame would get alone lies inside it and its cells are at most `coarser` times
 // `own`'s; otherwise `own`. A preview that moves little then stays on one grid, so blocks can be reused.
+// A shape that moved out of it while the cell size holds keeps its lattice (holdScrubbingGrid with
+// whole superblocks of 32 cells): the grid's origin moves by whole superblocks, its extent follows
+// the shape, and the history keeps the blocks both grids share (off both grids' boundaries).
 PolygonizeGrid scrubbingGrid(const PolygonizeGrid& own, const PolygonizeHistory& history, float coarser = 1.25f);
 
 // Polygonises f = 0 of the program. Errors: bad resolution, an unbounded
