@@ -29,7 +29,9 @@ struct PolygonizeGrid {
 // operator parameters), a block whose primitives did not change since the previous call (same
 // data, same bounds, same maps above them; compared value by value, no tolerance) has the same
 // output, which is reused instead of being culled and evaluated again. The mesh is exactly the one
-// a full sweep makes; anything else (another grid, structure or threshold) is a full sweep. With
+// a full sweep makes; anything else (another grid, structure or threshold) is a full sweep, except
+// a grid on the same lattice moved by whole superblocks (scrubbingGrid), whose shared blocks off
+// the grids' boundaries are kept. With
 // PolygonizeSettings::reuseToleranceCells, blocks whose primitives moved by a provably small amount
 // are reused too (the grid must still be the same: give the frames one bounds override). One
 // history per sequence of frames, used by one polygonisation at a time.
