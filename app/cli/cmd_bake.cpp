@@ -109,8 +109,8 @@ std::string checkArgs(BakeArgs& o) {
   if (std::sscanf(o.size.c_str(), "%dx%d%c", &o.width, &o.height, &sizeTail) != 2 || o.width < 16 || o.height < 16 ||
       o.width > 8192 || o.height > 8192 || o.width % 2 || o.height % 2)
     return "--size: expected WxH, even numbers 16..8192 (H.264 needs even sizes), got '" + o.size + "'";
-  if (o.project.empty() || o.frames.empty() || (o.needDir() && o.output.empty()) ||
-      (!o.needDir() && o.gltf.empty() && o.vdb.empty() && o.mp4.empty()))
+  // --format none with no other output is a bake that writes nothing: its report only (timing, continuity).
+  if (o.project.empty() || o.frames.empty() || (o.needDir() && o.output.empty()))
     return "usage: bake PROJECT --frames A:B --res N -o DIR [--format ply|obj|none] [--gltf FILE.glb] [--vdb DIR] (see --help)";
   if (!o.name.empty() && framePrefix(o.name) != o.name)
     return "--name: use letters, digits, '.', '-' and '_' only, got '" + o.name + "'";
@@ -162,6 +162,7 @@ std::string into(const BakeArgs& o) {
   std::string s = o.needDir() ? o.output : std::string();
   if (!o.gltf.empty()) s += (s.empty() ? "" : " and ") + o.gltf;
   if (!o.vdb.empty()) s += (s.empty() ? "" : " and ") + o.vdb;
+  if (s.empty()) s = o.mp4.empty() ? "no files (--format none: the report only)" : o.mp4 + " (the playblast)";
   return s;
 }
 
@@ -295,7 +296,9 @@ ANIMORPH_CLI_COMMAND("bake", "bake a project's morph into mesh sequences, an ani
                      "               NAME_####.ply / NAME_####.obj (frame number padded to 4 digits):\n"
                      "               ply (binary PLY, the default), obj (Wavefront OBJ with vn normals,\n"
                      "               f a//a b//b c//c faces, v x y z r g b when the frame has vertex\n"
-                     "               colours), ply,obj (both) or none (no sequence; -o not needed then)\n"
+                     "               colours), ply,obj (both) or none (no sequence; -o not needed then;\n"
+                     "               with no --gltf/--vdb/--png/--mp4 either, nothing is written: the\n"
+                     "               bake runs for its report, timing and continuity)\n"
                      "  --obj        short for --format obj\n"
                      "  --name NAME  the file-name prefix (default: the project's name)\n"
                      "  --gltf FILE  also one animated glTF binary of the whole range: a mesh per\n"

@@ -3,7 +3,8 @@
 
 usage: export_checks.py MODE CLI PROJECT [ARGS...]
   sequence CLI PROJECT            --format ply,obj / --obj / --name: NAME_####.EXT files, OBJ read back
-                                  with the PLY's vertex and face counts; bad --format/--name exit 2
+                                  with the PLY's vertex and face counts; bad --format/--name exit 2;
+                                  --format none alone bakes for the report and writes nothing
   gltf CLI PROJECT                --gltf: one node per frame, at every frame exactly that frame's node
                                   has scale 1 (STEP keys evaluated), the same for KHR_node_visibility,
                                   vertex and triangle counts equal the PLY of the same frame, repeated
@@ -123,12 +124,28 @@ def mode_sequence(cli, project):
                     open(os.path.join(out2, f"creature_to_gear_{f:04d}.obj"), "rb") as b:
                 if a.read() != b.read():
                     fail(f"frame {f}: the OBJ of --obj differs from the one of --format ply,obj")
-        for bad in (["--format", "stl"], ["--name", "a/b"], ["--name", "two words"], ["--format", "none"]):
+        for bad in (["--format", "stl"], ["--name", "a/b"], ["--name", "two words"]):
             r = run(cli, "bake", project, "--frames", "46:46", "--res", RES, "-o", os.path.join(tmp, "bad"), *bad)
             if r.returncode != 2:
                 fail(f"bake {bad}: exit {r.returncode}, expected 2 ({r.stderr})")
         if os.path.exists(os.path.join(tmp, "bad")):
             fail("a refused bake created its output directory")
+        check_format_none(cli, project, tmp, frames)
+
+
+def check_format_none(cli, project, tmp, frames):
+    """--format none with no other output bakes for its report and writes nothing (no -o needed)."""
+    quiet = os.path.join(tmp, "quiet")
+    os.mkdir(quiet)
+    r = subprocess.run([os.path.abspath(cli), "bake", os.path.abspath(project), "--frames", f"{frames[0]}:{frames[1]}", "--res", RES,
+                        "--format", "none"], capture_output=True, text=True, cwd=quiet)
+    if r.returncode != 0:
+        fail(f"bake --format none without -o: exit {r.returncode}, expected 0 ({r.stderr.strip()})")
+    summary = f"baked frames {frames[0]}..{frames[1]} "
+    if summary not in r.stdout or "into no files" not in r.stdout or "continuity:" not in r.stdout:
+        fail(f"bake --format none: no summary '{summary}... into no files' and continuity report: {r.stdout}")
+    if os.listdir(quiet):
+        fail(f"bake --format none wrote {os.listdir(quiet)}")
 
 
 def mode_gltf(cli, project):

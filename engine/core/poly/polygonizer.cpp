@@ -205,7 +205,7 @@ std::optional<PolygonizeGrid> SequenceGrid::grid() const {
 }
 
 PolygonizeGrid scrubbingGrid(const PolygonizeGrid& own, const PolygonizeHistory& history, float coarser) {
-  return holdScrubbingGrid(own, history.grid(), coarser);
+  return holdScrubbingGrid(own, history.grid(), coarser, kSuper * kBlock);
 }
 
 Result<PolygonizeGrid> polygonizeGrid(const FieldProgram& program, const PolygonizeSettings& s) {
@@ -359,6 +359,9 @@ struct PolygonizeRun {
   }
 
   void takeHistory();
+  bool remapShiftedHistory();
+  // Per superblock, after remapShiftedHistory: its previous lists may skip it whole (superReused).
+  std::vector<uint8_t> superKeepable;
   void cullSuperblocks(tbb::task_arena& arena, tbb::enumerable_thread_specific<Scratch>& scratch);
   void listPairCandidates(tbb::task_arena& arena);
   void cullPairs(tbb::task_arena& arena, tbb::enumerable_thread_specific<Scratch>& scratch);
@@ -388,6 +391,9 @@ struct PolygonizeRun {
 
 void PolygonizeRun::takeHistory() {
   if (s.history) previous = std::move(PolygonizeHistoryAccess::state(*s.history));
+  if (previous && s.culling &&
+      (previous->origin != g.origin || previous->n[0] != g.n[0] || previous->n[1] != g.n[1] || previous->n[2] != g.n[2]))
+    remapShiftedHistory();
   if (previous && s.culling && previous->subBlockLists == s.subBlockLists && previous->origin == g.origin &&
       previous->h == g.h && previous->n[0] == g.n[0] && previous->n[1] == g.n[1] && previous->n[2] == g.n[2] &&
       previous->out.size() == nBlocks && previous->superCandidates.size() == nSupers &&
@@ -400,6 +406,81 @@ void PolygonizeRun::takeHistory() {
   if (previous && tolerance > 0.0f) changeBound = primitiveChangeBounds(program, previous->program);
   summary.resize(nBlocks);
   superReused.assign(nSupers, 0);
+}
+
+// Temporal coherence on a grid that moved by whole superblocks on the previous frame's lattice
+// (holdScrubbingGrid with latticeCells = kSuper * kBlock): the previous frame's superblock lists,
+// block outputs and summaries moved to this grid's indices, the outputs' external edges to its
+// cells. A block's output is kept only where, on each axis, the grid did not change or the block
+// lies whole inside both grids off both grids' boundaries (the boundary is forced outside: such a
+// block's output depends on the grid); a superblock is skipped whole (superKeepable) only under
+// the same condition. False when this
+// grid is not such a shift of the previous one (previous left as it was: a full sweep).
+bool PolygonizeRun::remapShiftedHistory() {
+  PolygonizeHistory::State& p = *previous;
+  constexpr int kSuperCells = kSuper * kBlock;
+  if (p.h != g.h) return false;
+  int shift[3], pnb[3], pns[3];  // shift: this grid's cell index of the previous grid's cell 0
+  size_t oldBlocks = 1, oldSupers = 1;
+  for (int a = 0; a < 3; ++a) {
+    const float moved = (p.origin[a] - g.origin[a]) / g.h;
+    shift[a] = int(std::lround(moved));
+    if (std::fabs(moved - float(shift[a])) > 1e-2f || shift[a] % kSuperCells != 0) return false;
+    pnb[a] = (p.n[a] + kBlock - 1) / kBlock;
+    pns[a] = (pnb[a] + kSuper - 1) / kSuper;
+    oldBlocks *= size_t(pnb[a]);
+    oldSupers *= size_t(pns[a]);
+  }
+  if (p.out.size() != oldBlocks || p.superCandidates.size() != oldSupers || p.summary.size() != oldBlocks) return false;
+  // Whether cells [c0, c0 + count) of an axis lie whole and off the boundary of n cells.
+  auto inside = [](int c0, int count, int n) { return c0 > 0 && c0 + count < n; };
+  // An axis on which the grid did not change: its blocks are the same whether on a boundary or not.
+  bool same[3];
+  for (int a = 0; a < 3; ++a) same[a] = shift[a] == 0 && p.n[a] == g.n[a];
+  std::vector<std::unique_ptr<BlockOutput>> out2(nBlocks);
+  std::vector<BlockSummary> summary2(nBlocks);
+  for (size_t bi = 0; bi < nBlocks; ++bi) {
+    const int b[3] = {int(bi % size_t(g.nb[0])), int((bi / size_t(g.nb[0])) % size_t(g.nb[1])),
+                      int(bi / (size_t(g.nb[0]) * g.nb[1]))};
+    bool keep = true;
+    size_t old = 0;
+    for (int a = 2; a >= 0 && keep; --a) {
+      const int c0 = b[a] * kBlock, c0Old = c0 - shift[a];
+      keep = same[a] || (inside(c0, kBlock, g.n[a]) && inside(c0Old, kBlock, p.n[a]));
+      old = old * size_t(pnb[a]) + size_t(keep ? c0Old / kBlock : 0);
+    }
+    if (!keep || !p.out[old]) continue;
+    for (ExternalVertex& ev : p.out[old]->externals) {
+      ev.gi += shift[0];
+      ev.gj += shift[1];
+      ev.gk += shift[2];
+    }
+    out2[bi] = std::move(p.out[old]);
+    summary2[bi] = p.summary[old];
+  }
+  std::vector<std::vector<uint32_t>> supers2(nSupers);
+  superKeepable.assign(nSupers, 0);
+  for (size_t si = 0; si < nSupers; ++si) {
+    const int sidx[3] = {int(si % size_t(g.ns[0])), int((si / size_t(g.ns[0])) % size_t(g.ns[1])),
+                         int(si / (size_t(g.ns[0]) * g.ns[1]))};
+    bool mapped = true, whole = true;
+    size_t old = 0;
+    for (int a = 2; a >= 0 && mapped; --a) {
+      const int c0 = sidx[a] * kSuperCells, c0Old = c0 - shift[a];
+      mapped = c0Old >= 0 && c0Old < p.n[a];
+      whole = whole && (same[a] || (inside(c0, kSuperCells, g.n[a]) && inside(c0Old, kSuperCells, p.n[a])));
+      old = old * size_t(pns[a]) + size_t(mapped ? c0Old / kSuperCells : 0);
+    }
+    if (!mapped) continue;
+    supers2[si] = std::move(p.superCandidates[old]);
+    superKeepable[si] = whole;
+  }
+  p.origin = g.origin;
+  for (int a = 0; a < 3; ++a) p.n[a] = g.n[a];
+  p.out = std::move(out2);
+  p.summary = std::move(summary2);
+  p.superCandidates = std::move(supers2);
+  return true;
 }
 
 // With per-block colours: primitives whose colour changed since the previous frame. Such a change
@@ -443,7 +524,8 @@ void PolygonizeRun::cullSuperblocks(tbb::task_arena& arena, tbb::enumerable_thre
             if (changed[p]) return false;
           return true;
         };
-        superReused[si] = unchanged(superCandidates[si]) && unchanged(previous->superCandidates[si]);
+        superReused[si] = unchanged(superCandidates[si]) && unchanged(previous->superCandidates[si]) &&
+                          (superKeepable.empty() || superKeepable[si]);
       }
       program.specialise(superCandidates[si], sc.active);
       Interval iv = program.interval(sc.active, b.center(), 0.5f * b.diagonal());

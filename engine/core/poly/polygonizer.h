@@ -29,7 +29,9 @@ struct PolygonizeGrid {
 // operator parameters), a block whose primitives did not change since the previous call (same
 // data, same bounds, same maps above them; compared value by value, no tolerance) has the same
 // output, which is reused instead of being culled and evaluated again. The mesh is exactly the one
-// a full sweep makes; anything else (another grid, structure or threshold) is a full sweep. With
+// a full sweep makes; anything else (another grid, structure or threshold) is a full sweep, except
+// a grid on the same lattice moved by whole superblocks (scrubbingGrid), whose shared blocks off
+// the grids' boundaries are kept. With
 // PolygonizeSettings::reuseToleranceCells, blocks whose primitives moved by a provably small amount
 // are reused too (the grid must still be the same: give the frames one bounds override). One
 // history per sequence of frames, used by one polygonisation at a time.
@@ -148,6 +150,9 @@ class SequenceGrid {
 // For scrubbing with a history: the grid the history's previous frame was polygonised on when the
 // grid `own` this frame would get alone lies inside it and its cells are at most `coarser` times
 // `own`'s; otherwise `own`. A preview that moves little then stays on one grid, so blocks can be reused.
+// A shape that moved out of it while the cell size holds keeps its lattice (holdScrubbingGrid with
+// whole superblocks of 32 cells): the grid's origin moves by whole superblocks, its extent follows
+// the shape, and the history keeps the blocks both grids share (off both grids' boundaries).
 PolygonizeGrid scrubbingGrid(const PolygonizeGrid& own, const PolygonizeHistory& history, float coarser = 1.25f);
 
 // Polygonises f = 0 of the program. Errors: bad resolution, an unbounded
