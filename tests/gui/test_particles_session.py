@@ -142,6 +142,8 @@ try:
     m = ed.fresh_map()
     g.check(m["dirty"], "Ctrl+Z undoes the simulation in one step")
     ed.key("ctrl+s")
+    m = ed.wait_until(lambda m: not m["dirty"], "Ctrl+S after the undo saves the project")
+    g.check(not m["dirty"], f"Ctrl+S after the undo saves ({m.get('status', '')})")
     g.check(same(exploding(saved()), exploding(original)), "after undo the particle tracks are the demo's again")
     settle(ed)
     undone = ed.screenshot(os.path.join(work, "undone.png"))
